@@ -1,0 +1,190 @@
+//! Typed errors and warnings of the library.
+//!
+//! Two classes matter to a caller (after the `exr` crate): the file is bad
+//! ([`ErrorKind::Invalid`]: truncation counts as bad data, not as an I/O
+//! failure), or the file is valid but uses something this crate does not do
+//! ([`ErrorKind::Unsupported`]). Every parse error names the file, the line
+//! (and column where it helps), what was expected and what was found.
+//! Recoverable oddities are not errors: they become [`Warning`]s kept on the
+//! loaded luminaire, so a report can show them.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+/// Result alias of the library.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// What kind of failure a [`ParseError`] is.
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorKind {
+    /// The data is malformed: truncated, out of range, not a number, ...
+    Invalid,
+    /// The data is well formed but uses a feature this crate does not support.
+    Unsupported,
+}
+
+/// A position in a source file: 1-based line and optional 1-based column.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Location {
+    /// 1-based line number; 0 when the error concerns the file as a whole.
+    pub line: usize,
+    /// 1-based column (in bytes), when it helps.
+    pub column: Option<usize>,
+}
+
+impl Location {
+    /// A location on a line, without column.
+    pub fn line(line: usize) -> Self {
+        Self { line, column: None }
+    }
+    /// A location on a line and column.
+    pub fn at(line: usize, column: usize) -> Self {
+        Self {
+            line,
+            column: Some(column),
+        }
+    }
+}
+
+/// A photometric file could not be read: where, what was expected, what was found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParseError {
+    /// The file ("<memory>" for in-memory input).
+    pub path: PathBuf,
+    /// Where in the file.
+    pub location: Location,
+    /// Invalid or unsupported.
+    pub kind: ErrorKind,
+    /// What the reader expected, e.g. "number of vertical angles (integer >= 1)".
+    pub expected: String,
+    /// What it found, e.g. "`abc`" or "end of file".
+    pub found: String,
+}
+
+impl fmt::Display for ParseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.path.display())?;
+        if self.location.line > 0 {
+            write!(f, ":{}", self.location.line)?;
+            if let Some(c) = self.location.column {
+                write!(f, ":{c}")?;
+            }
+        }
+        let what = match self.kind {
+            ErrorKind::Unsupported => "unsupported: ",
+            _ => "",
+        };
+        write!(f, ": {what}expected {}, found {}", self.expected, self.found)
+    }
+}
+
+impl std::error::Error for ParseError {}
+
+/// An invariant of the canonical model was violated while building it.
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    /// An angle list is empty, unsorted, has duplicates, or leaves its range.
+    #[error("{axis} angles: {reason}")]
+    Angles {
+        /// "C" or "gamma".
+        axis: &'static str,
+        /// What is wrong, with the offending values.
+        reason: String,
+    },
+    /// The intensity table does not match the grid, or holds NaN/infinity.
+    #[error("intensities: {0}")]
+    Intensities(String),
+    /// A computation needs a non-zero distribution (normalisation, fitting).
+    #[error("the distribution is zero everywhere: {0}")]
+    AllZero(&'static str),
+    /// A parameter is outside its documented domain.
+    #[error("{name} = {value}: {reason}")]
+    Parameter {
+        /// Parameter name as the CLI spells it.
+        name: &'static str,
+        /// The value given.
+        value: String,
+        /// Allowed domain.
+        reason: String,
+    },
+}
+
+/// Every error of the library.
+#[non_exhaustive]
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file's content is bad or unsupported.
+    #[error(transparent)]
+    Parse(#[from] ParseError),
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}", path = .path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// A model invariant or parameter domain was violated.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// Something that cannot be done with this input (e.g. a GPU with no adapter).
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+impl Error {
+    /// An I/O error on `path`.
+    pub fn io(path: impl AsRef<Path>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.as_ref().to_path_buf(),
+            source,
+        }
+    }
+}
+
+/// A recoverable oddity found while reading or checking a file.
+///
+/// Serialised as `{"line": 12, "code": "nadir-mismatch", "message": "..."}`
+/// (`line` is `null` when the warning concerns the whole file).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct Warning {
+    /// 1-based line number, when the warning has one.
+    pub line: Option<usize>,
+    /// Stable machine-readable code, kebab-case (e.g. `extra-values`).
+    pub code: &'static str,
+    /// Human explanation with the numbers involved.
+    pub message: String,
+}
+
+impl Warning {
+    /// A warning about the file as a whole.
+    pub fn new(code: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            line: None,
+            code,
+            message: message.into(),
+        }
+    }
+    /// A warning about one line.
+    pub fn at(line: usize, code: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            line: Some(line),
+            code,
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "line {l}: [{}] {}", self.code, self.message),
+            None => write!(f, "[{}] {}", self.code, self.message),
+        }
+    }
+}

@@ -1,0 +1,150 @@
+//! Formats in: IES LM-63 and EULUMDAT readers and writers.
+//!
+//! Readers resolve everything once (units, multipliers, angle order,
+//! symmetry, Type A/B conversion, tilt files) and return a [`Luminaire`];
+//! nothing downstream looks at file details again. Writers take a
+//! `Luminaire` and return text; [`save`] writes it atomically.
+
+pub mod ies;
+pub mod ldt;
+pub mod text;
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::error::{Error, ErrorKind, Location, ParseError, Result};
+use crate::model::{Format, Luminaire};
+
+/// Largest file the readers accept (bytes). The biggest real photometric
+/// files are a few MB; anything far larger is not a photometric file and is
+/// refused before it is read into memory.
+pub const MAX_FILE_BYTES: u64 = 256 * 1024 * 1024;
+
+/// Rotation sense of the C (horizontal) angles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Handedness {
+    /// C increases counter-clockwise seen from above: C90 = +y (default; LM-63 Type C, EULUMDAT).
+    #[default]
+    CounterClockwise,
+    /// C increases clockwise seen from above: C90 = −y.
+    Clockwise,
+}
+
+/// How a lamp-set count > 1 is interpreted in EULUMDAT.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LampSetFlux {
+    /// cd/klm refer to the flux of lamp set 1 (most tools).
+    #[default]
+    First,
+    /// cd/klm refer to the summed flux of all sets.
+    Sum,
+}
+
+/// Options of the readers. `Default` is lenient: recoverable problems become warnings.
+#[derive(Debug, Clone, Default)]
+pub struct ReadOptions {
+    /// Repair duplicate / unsorted angle lists (sort, drop duplicates, warn)
+    /// instead of failing. Default: false.
+    pub repair: bool,
+    /// Handedness of Type A/B horizontal angles when converting to Type C. Default: counter-clockwise.
+    pub handedness: Handedness,
+    /// Which lamp flux EULUMDAT cd/klm values refer to. Default: set 1.
+    pub lamp_set_flux: LampSetFlux,
+}
+
+/// Read a photometric file, format from its extension (or, failing that, its content).
+pub fn load(path: impl AsRef<Path>) -> Result<Luminaire> {
+    load_with(path, &ReadOptions::default())
+}
+
+/// [`load`] with options.
+pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire> {
+    let path = path.as_ref();
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(ParseError {
+            path: path.to_path_buf(),
+            location: Location::line(0),
+            kind: ErrorKind::Invalid,
+            expected: format!("a photometric file of at most {MAX_FILE_BYTES} bytes"),
+            found: format!("{} bytes", meta.len()),
+        }
+        .into());
+    }
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let format = Format::from_extension(path).unwrap_or_else(|| sniff(&bytes));
+    let lum = match format {
+        Format::Ies => ies::read(&bytes, path, opts)?,
+        Format::Ldt => ldt::read(&bytes, path, opts)?,
+    };
+    Ok(lum)
+}
+
+/// Parse bytes as the given format; `path` is used for messages and, for
+/// `TILT=<file>`, to find the tilt file next to it.
+pub fn parse(bytes: &[u8], path: &Path, format: Format, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+    match format {
+        Format::Ies => ies::read(bytes, path, opts),
+        Format::Ldt => ldt::read(bytes, path, opts),
+    }
+}
+
+/// Guess the format of content with no telling extension: IES files carry
+/// `TILT=`, EULUMDAT files do not.
+pub fn sniff(bytes: &[u8]) -> Format {
+    let head = &bytes[..bytes.len().min(64 * 1024)];
+    if head.windows(5).any(|w| w.eq_ignore_ascii_case(b"TILT=")) {
+        Format::Ies
+    } else {
+        Format::Ldt
+    }
+}
+
+/// Write `contents` to `path` atomically: a temporary file in the same
+/// directory is written, flushed and renamed over the target, so a reader
+/// never sees a half-written file.
+pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    let result = (|| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(contents)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(Error::io(path, e));
+    }
+    Ok(())
+}
+
+/// Options of the writers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct WriteOptions {
+    /// IES version to write (2002 default, or 2019).
+    pub ies_version: ies::IesWriteVersion,
+}
+
+/// Write `lum` to `path` in the format of its extension, atomically.
+pub fn save(lum: &Luminaire, path: &Path, opts: &WriteOptions) -> Result<()> {
+    let format = Format::from_extension(path).ok_or_else(|| {
+        Error::Unsupported(format!(
+            "{}: cannot tell the output format; use the extension .ies or .ldt",
+            path.display()
+        ))
+    })?;
+    let text = match format {
+        Format::Ies => ies::write(lum, opts.ies_version),
+        Format::Ldt => ldt::write(lum),
+    };
+    write_atomic(path, text.as_bytes())
+}

@@ -1,0 +1,642 @@
+//! The canonical intensity distribution: absolute candela on a Type C grid.
+//!
+//! # Frame and angles
+//! Angles are in **degrees**. γ (gamma) runs from 0 (nadir, −z) to 180
+//! (zenith, +z); C is the azimuth about z, C0 = +x, C90 = +y (right-handed,
+//! counter-clockwise seen from above). The direction of (C, γ) is
+//! `d = (sin γ cos C, sin γ sin C, −cos γ)`.
+//!
+//! # What is guaranteed
+//! A [`Distribution`] always holds:
+//! - γ angles: at least one, finite, strictly ascending, inside [0, 180];
+//! - C angles: at least one, finite, strictly ascending, inside the range
+//!   its [`Symmetry`] stores (see [`Symmetry::stored_range`]);
+//! - one finite intensity in cd per (C, γ) pair, C-major (γ fastest).
+//!
+//! Intensity is zero outside the measured γ range (hemisphere or partial
+//! data); nothing is extrapolated. Negative values may be present when a file
+//! holds them (readers warn); [`Distribution::clamp_negative`] removes them.
+
+use serde::Serialize;
+
+use crate::error::ModelError;
+
+/// Tolerance (degrees) under which two angles are the same angle.
+pub const ANGLE_EPS: f64 = 1e-6;
+
+/// Which symmetry the stored C-planes rely on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Symmetry {
+    /// No symmetry: planes anywhere in [0, 360) (EULUMDAT Isym 0, IES 0-360).
+    None,
+    /// Rotationally symmetric about the vertical axis: one plane, C = 0 (Isym 1, IES {0}).
+    Rotational,
+    /// Mirror symmetric about the C0-C180 plane: I(C) = I(360 − C); planes in [0, 180] (Isym 2, IES 0-180).
+    C0C180,
+    /// Mirror symmetric about the C90-C270 plane: I(C) = I(180 − C); planes in [90, 270] (Isym 3, IES 90-270).
+    C90C270,
+    /// Symmetric about both planes: planes in [0, 90] (Isym 4, IES 0-90).
+    Quadrant,
+}
+
+impl Symmetry {
+    /// The closed C range (degrees) whose planes are stored.
+    pub fn stored_range(self) -> (f64, f64) {
+        match self {
+            Symmetry::None => (0.0, 360.0),
+            Symmetry::Rotational => (0.0, 0.0),
+            Symmetry::C0C180 => (0.0, 180.0),
+            Symmetry::C90C270 => (90.0, 270.0),
+            Symmetry::Quadrant => (0.0, 90.0),
+        }
+    }
+
+    /// EULUMDAT's Isym code.
+    pub fn isym(self) -> u8 {
+        match self {
+            Symmetry::None => 0,
+            Symmetry::Rotational => 1,
+            Symmetry::C0C180 => 2,
+            Symmetry::C90C270 => 3,
+            Symmetry::Quadrant => 4,
+        }
+    }
+
+    /// From EULUMDAT's Isym code.
+    pub fn from_isym(isym: i64) -> Option<Self> {
+        Some(match isym {
+            0 => Symmetry::None,
+            1 => Symmetry::Rotational,
+            2 => Symmetry::C0C180,
+            3 => Symmetry::C90C270,
+            4 => Symmetry::Quadrant,
+            _ => return None,
+        })
+    }
+
+    /// Fold any C (degrees, any real) into the stored range through the
+    /// symmetry. The result lies in [`Symmetry::stored_range`] (for `None`, in [0, 360)).
+    #[inline]
+    pub fn fold(self, c: f64) -> f64 {
+        let c = wrap360(c);
+        match self {
+            Symmetry::None => c,
+            Symmetry::Rotational => 0.0,
+            Symmetry::C0C180 => {
+                if c > 180.0 {
+                    360.0 - c
+                } else {
+                    c
+                }
+            }
+            Symmetry::C90C270 => {
+                if c < 90.0 {
+                    180.0 - c
+                } else if c > 270.0 {
+                    540.0 - c
+                } else {
+                    c
+                }
+            }
+            Symmetry::Quadrant => {
+                let c = if c > 180.0 { 360.0 - c } else { c };
+                if c > 90.0 {
+                    180.0 - c
+                } else {
+                    c
+                }
+            }
+        }
+    }
+
+    /// All images of C under the symmetry group, wrapped to [0, 360).
+    fn images(self, c: f64) -> Vec<f64> {
+        let v = match self {
+            Symmetry::None => vec![c],
+            Symmetry::Rotational => vec![c],
+            Symmetry::C0C180 => vec![c, 360.0 - c],
+            Symmetry::C90C270 => vec![c, 180.0 - c],
+            Symmetry::Quadrant => vec![c, 180.0 - c, 180.0 + c, 360.0 - c],
+        };
+        v.into_iter().map(wrap360).collect()
+    }
+
+    /// Human name.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Symmetry::None => "none",
+            Symmetry::Rotational => "rotational",
+            Symmetry::C0C180 => "C0-C180 plane",
+            Symmetry::C90C270 => "C90-C270 plane",
+            Symmetry::Quadrant => "quadrant (both planes)",
+        }
+    }
+}
+
+/// Wrap an angle in degrees into [0, 360). Values within [`ANGLE_EPS`] of 360 become 0.
+#[inline]
+pub fn wrap360(c: f64) -> f64 {
+    let mut w = c.rem_euclid(360.0);
+    if w >= 360.0 - ANGLE_EPS {
+        w = 0.0;
+    }
+    w
+}
+
+/// The measured γ range.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum GammaRange {
+    /// 0-90: nothing measured above the horizontal.
+    Lower,
+    /// 90-180: nothing measured below the horizontal.
+    Upper,
+    /// 0-180: the full sphere.
+    Full,
+    /// Anything else, e.g. 0-130.5 (degrees).
+    Partial {
+        /// First measured γ (degrees).
+        from: f64,
+        /// Last measured γ (degrees).
+        to: f64,
+    },
+}
+
+/// Absolute intensity (cd) on a Type C grid. See the module docs for the invariants.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Distribution {
+    c: Vec<f64>,
+    gamma: Vec<f64>,
+    cd: Vec<f64>,
+    symmetry: Symmetry,
+}
+
+fn check_ascending(axis: &'static str, v: &[f64], lo: f64, hi: f64) -> Result<(), ModelError> {
+    if v.is_empty() {
+        return Err(ModelError::Angles {
+            axis,
+            reason: "no angles".into(),
+        });
+    }
+    for (i, &a) in v.iter().enumerate() {
+        if !a.is_finite() || a < lo - ANGLE_EPS || a > hi + ANGLE_EPS {
+            return Err(ModelError::Angles {
+                axis,
+                reason: format!("angle #{} = {a} is outside [{lo}, {hi}]", i + 1),
+            });
+        }
+        if i > 0 && a <= v[i - 1] {
+            return Err(ModelError::Angles {
+                axis,
+                reason: format!("not strictly ascending: angle #{} = {} follows {}", i + 1, a, v[i - 1]),
+            });
+        }
+    }
+    Ok(())
+}
+
+impl Distribution {
+    /// Build a distribution, checking every invariant.
+    ///
+    /// `cd` is C-major: `cd[ic * gamma.len() + ig]`. For [`Symmetry::None`] a
+    /// trailing C = 360 plane must already be removed (readers check it equals C = 0).
+    pub fn new(c: Vec<f64>, gamma: Vec<f64>, cd: Vec<f64>, symmetry: Symmetry) -> Result<Self, ModelError> {
+        check_ascending("gamma", &gamma, 0.0, 180.0)?;
+        let (lo, hi) = symmetry.stored_range();
+        check_ascending("C", &c, lo, hi)?;
+        match symmetry {
+            Symmetry::Rotational if c.len() != 1 => {
+                return Err(ModelError::Angles {
+                    axis: "C",
+                    reason: format!("rotational symmetry stores one plane, got {}", c.len()),
+                })
+            }
+            Symmetry::None if *c.last().unwrap() >= 360.0 - ANGLE_EPS => {
+                return Err(ModelError::Angles {
+                    axis: "C",
+                    reason: "C = 360 duplicates C = 0; drop it".into(),
+                })
+            }
+            Symmetry::C0C180 | Symmetry::C90C270 | Symmetry::Quadrant
+                if (c[0] - lo).abs() > ANGLE_EPS || (c[c.len() - 1] - hi).abs() > ANGLE_EPS =>
+            {
+                return Err(ModelError::Angles {
+                    axis: "C",
+                    reason: format!(
+                        "{} symmetry needs planes from {lo} to {hi}, got {} to {}",
+                        symmetry.describe(),
+                        c[0],
+                        c[c.len() - 1]
+                    ),
+                });
+            }
+            _ => {}
+        }
+        if cd.len() != c.len() * gamma.len() {
+            return Err(ModelError::Intensities(format!(
+                "{} values for {} C-planes x {} gamma angles",
+                cd.len(),
+                c.len(),
+                gamma.len()
+            )));
+        }
+        if let Some(i) = cd.iter().position(|v| !v.is_finite()) {
+            return Err(ModelError::Intensities(format!(
+                "value at C = {}, gamma = {} is not finite",
+                c[i / gamma.len()],
+                gamma[i % gamma.len()]
+            )));
+        }
+        Ok(Self { c, gamma, cd, symmetry })
+    }
+
+    /// Stored C-plane angles (degrees), ascending, within the symmetry's stored range.
+    pub fn c_angles(&self) -> &[f64] {
+        &self.c
+    }
+    /// γ angles (degrees), ascending, within [0, 180].
+    pub fn gamma_angles(&self) -> &[f64] {
+        &self.gamma
+    }
+    /// All intensities (cd), C-major, γ fastest.
+    pub fn intensities(&self) -> &[f64] {
+        &self.cd
+    }
+    /// Intensities (cd) of stored plane `ic` at every γ.
+    pub fn plane(&self, ic: usize) -> &[f64] {
+        let n = self.gamma.len();
+        &self.cd[ic * n..(ic + 1) * n]
+    }
+    /// Intensity (cd) at stored plane `ic`, γ index `ig`.
+    pub fn value(&self, ic: usize, ig: usize) -> f64 {
+        self.cd[ic * self.gamma.len() + ig]
+    }
+    /// The symmetry the stored planes rely on.
+    pub fn symmetry(&self) -> Symmetry {
+        self.symmetry
+    }
+    /// Number of stored C-planes.
+    pub fn n_c(&self) -> usize {
+        self.c.len()
+    }
+    /// Number of γ angles.
+    pub fn n_gamma(&self) -> usize {
+        self.gamma.len()
+    }
+
+    /// The measured γ range.
+    pub fn gamma_range(&self) -> GammaRange {
+        let (a, b) = (self.gamma[0], self.gamma[self.gamma.len() - 1]);
+        let near = |x: f64, y: f64| (x - y).abs() <= ANGLE_EPS;
+        if near(a, 0.0) && near(b, 180.0) {
+            GammaRange::Full
+        } else if near(a, 0.0) && near(b, 90.0) {
+            GammaRange::Lower
+        } else if near(a, 90.0) && near(b, 180.0) {
+            GammaRange::Upper
+        } else {
+            GammaRange::Partial { from: a, to: b }
+        }
+    }
+
+    /// Largest intensity (cd) and its direction (C, γ) in degrees, C of the stored plane.
+    pub fn max(&self) -> (f64, f64, f64) {
+        let mut best = (f64::NEG_INFINITY, 0.0, 0.0);
+        let n = self.gamma.len();
+        for (i, &v) in self.cd.iter().enumerate() {
+            if v > best.0 {
+                best = (v, self.c[i / n], self.gamma[i % n]);
+            }
+        }
+        best
+    }
+
+    /// Largest intensity (cd).
+    pub fn max_cd(&self) -> f64 {
+        self.max().0
+    }
+
+    /// The same distribution with every value multiplied by `factor` (finite).
+    pub fn scaled(&self, factor: f64) -> Result<Self, ModelError> {
+        if !factor.is_finite() {
+            return Err(ModelError::Parameter {
+                name: "scale",
+                value: factor.to_string(),
+                reason: "must be finite".into(),
+            });
+        }
+        let mut d = self.clone();
+        d.cd.iter_mut().for_each(|v| *v *= factor);
+        Ok(d)
+    }
+
+    /// Negative values set to 0; returns how many were changed.
+    pub fn clamp_negative(&mut self) -> usize {
+        let mut n = 0;
+        for v in &mut self.cd {
+            if *v < 0.0 {
+                *v = 0.0;
+                n += 1;
+            }
+        }
+        n
+    }
+
+    /// Index of the stored plane at angle `c` (degrees), exact within [`ANGLE_EPS`].
+    pub fn find_plane(&self, c: f64) -> Option<usize> {
+        let i = self.c.partition_point(|&x| x < c - ANGLE_EPS);
+        (i < self.c.len() && (self.c[i] - c).abs() <= ANGLE_EPS).then_some(i)
+    }
+
+    /// The full-circle C-planes: for each angle in [0, 360) (ascending) the
+    /// index of the stored plane holding its values.
+    ///
+    /// Every image of every stored plane under the symmetry is listed, so
+    /// non-uniform grids stay on their own knots. A rotational distribution
+    /// maps to one plane at C = 0 (callers treat it as constant in C).
+    pub fn full_planes(&self) -> Vec<(f64, usize)> {
+        let mut out: Vec<(f64, usize)> = Vec::with_capacity(self.c.len() * 4);
+        for (i, &c) in self.c.iter().enumerate() {
+            for img in self.symmetry.images(c) {
+                out.push((img, i));
+            }
+        }
+        out.sort_by(|a, b| a.0.total_cmp(&b.0));
+        out.dedup_by(|a, b| (a.0 - b.0).abs() <= ANGLE_EPS);
+        // Every image maps back to a stored plane with identical values by
+        // construction; re-resolve through `fold` so that planes shared by
+        // two images (e.g. C90 under Quadrant) point at the canonical one.
+        for e in &mut out {
+            if let Some(ic) = self.find_plane(self.symmetry.fold(e.0)) {
+                e.1 = ic;
+            }
+        }
+        out
+    }
+
+    /// Expand to [`Symmetry::None`] over [0, 360): every stored value appears
+    /// unchanged at each of its symmetric images. A rotational distribution
+    /// is expanded to `rotational_planes` evenly spaced planes (at least 1).
+    pub fn expand(&self, rotational_planes: usize) -> Distribution {
+        let planes: Vec<(f64, usize)> = if self.symmetry == Symmetry::Rotational {
+            let n = rotational_planes.max(1);
+            (0..n).map(|k| (k as f64 * 360.0 / n as f64, 0)).collect()
+        } else {
+            self.full_planes()
+        };
+        let mut cd = Vec::with_capacity(planes.len() * self.gamma.len());
+        for &(_, ic) in &planes {
+            cd.extend_from_slice(self.plane(ic));
+        }
+        Distribution {
+            c: planes.iter().map(|p| p.0).collect(),
+            gamma: self.gamma.clone(),
+            cd,
+            symmetry: Symmetry::None,
+        }
+    }
+
+    /// Intensity (cd) at a stored-grid γ index for any C (degrees) that is
+    /// one of the full-circle plane angles; `None` if C is not a grid plane.
+    pub fn value_at_plane(&self, c: f64, ig: usize) -> Option<f64> {
+        let ic = self.find_plane(self.symmetry.fold(c))?;
+        Some(self.value(ic, ig))
+    }
+
+    /// The smallest symmetry the data actually has, within `tol` (cd,
+    /// absolute). Only symmetries whose mirror planes exist in the grid are
+    /// considered. Order of preference: rotational, quadrant, C0-C180,
+    /// C90-C270, none.
+    pub fn detect_symmetry(&self, tol: f64) -> Symmetry {
+        let full = self.full_planes();
+        let get = |c: f64| -> Option<&[f64]> {
+            let c = wrap360(c);
+            let i = full.partition_point(|p| p.0 < c - ANGLE_EPS);
+            let i = if i == full.len() && c > 360.0 - 1e-3 { 0 } else { i };
+            (i < full.len() && (full[i].0 - c).abs() <= ANGLE_EPS).then(|| self.plane(full[i].1))
+        };
+        let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol);
+        let holds = |map: &dyn Fn(f64) -> f64| {
+            full.iter().all(|&(c, ic)| match get(map(c)) {
+                Some(other) => close(self.plane(ic), other),
+                None => false,
+            })
+        };
+        let p0 = self.plane(full[0].1);
+        if full.iter().all(|&(_, ic)| close(self.plane(ic), p0)) {
+            return Symmetry::Rotational;
+        }
+        let s02 = holds(&|c| 360.0 - c);
+        let s39 = holds(&|c| 180.0 - c);
+        match (s02, s39) {
+            (true, true) => Symmetry::Quadrant,
+            (true, false) => Symmetry::C0C180,
+            (false, true) => Symmetry::C90C270,
+            _ => Symmetry::None,
+        }
+    }
+
+    /// Re-store the data with symmetry `target`, keeping only the planes in
+    /// its stored range. The caller is responsible for the data having that
+    /// symmetry (see [`Distribution::detect_symmetry`]); values are taken from
+    /// the planes as they are. Fails if the needed planes do not exist.
+    pub fn with_symmetry(&self, target: Symmetry) -> Result<Distribution, ModelError> {
+        if target == self.symmetry {
+            return Ok(self.clone());
+        }
+        let full = self.full_planes();
+        let (lo, hi) = target.stored_range();
+        let mut c = Vec::new();
+        let mut cd = Vec::new();
+        let mut push = |angle: f64, ic: usize| {
+            c.push(angle);
+            cd.extend_from_slice(self.plane(ic));
+        };
+        match target {
+            Symmetry::Rotational => push(0.0, full[0].1),
+            Symmetry::None => {
+                for &(a, ic) in &full {
+                    push(a, ic);
+                }
+            }
+            Symmetry::C90C270 => {
+                for &(a, ic) in &full {
+                    if a >= lo - ANGLE_EPS && a <= hi + ANGLE_EPS {
+                        push(a, ic);
+                    }
+                }
+            }
+            Symmetry::C0C180 | Symmetry::Quadrant => {
+                for &(a, ic) in &full {
+                    if a <= hi + ANGLE_EPS {
+                        push(a, ic);
+                    }
+                }
+                // C = 180 (or 90) may only exist as an image of 0 in `full`; handled above.
+            }
+        }
+        Distribution::new(c, self.gamma.clone(), cd, target)
+    }
+
+    /// Largest spread (cd) between planes of the value at γ = 0 and at
+    /// γ = 180 (when measured): (nadir spread, zenith spread).
+    pub fn pole_spread(&self) -> (f64, f64) {
+        let spread = |ig: usize| {
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for ic in 0..self.c.len() {
+                let v = self.value(ic, ig);
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+            hi - lo
+        };
+        let n = self.gamma.len();
+        let nadir = if self.gamma[0].abs() <= ANGLE_EPS {
+            spread(0)
+        } else {
+            0.0
+        };
+        let zenith = if (self.gamma[n - 1] - 180.0).abs() <= ANGLE_EPS {
+            spread(n - 1)
+        } else {
+            0.0
+        };
+        (nadir, zenith)
+    }
+
+    /// The same distribution with the γ = 0 and γ = 180 values replaced by
+    /// their average over the full circle of planes (weighted by each plane's
+    /// share of the circle), so that the value at a pole does not depend on C.
+    pub fn with_averaged_poles(&self) -> Distribution {
+        let mut d = self.clone();
+        let n = self.gamma.len();
+        let full = self.full_planes();
+        let weights: Vec<f64> = periodic_widths(&full.iter().map(|p| p.0).collect::<Vec<_>>());
+        let total: f64 = weights.iter().sum();
+        for ig in [0, n - 1] {
+            let g = self.gamma[ig];
+            if g.abs() > ANGLE_EPS && (g - 180.0).abs() > ANGLE_EPS {
+                continue;
+            }
+            let avg = full
+                .iter()
+                .zip(&weights)
+                .map(|(&(_, ic), w)| self.value(ic, ig) * w)
+                .sum::<f64>()
+                / total;
+            for ic in 0..self.c.len() {
+                d.cd[ic * n + ig] = avg;
+            }
+        }
+        d
+    }
+}
+
+/// Trapezoid weights (degrees) of sorted angles on the periodic [0, 360)
+/// circle: each angle gets half the gap to each neighbour, wrapping at 360.
+/// One angle gets the whole circle.
+pub fn periodic_widths(c: &[f64]) -> Vec<f64> {
+    let n = c.len();
+    if n == 1 {
+        return vec![360.0];
+    }
+    (0..n)
+        .map(|i| {
+            let prev = if i == 0 { c[n - 1] - 360.0 } else { c[i - 1] };
+            let next = if i + 1 == n { c[0] + 360.0 } else { c[i + 1] };
+            0.5 * (next - prev)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quadrant() -> Distribution {
+        // planes 0, 30, 90 (non-uniform) x gamma 0, 45, 90
+        Distribution::new(
+            vec![0.0, 30.0, 90.0],
+            vec![0.0, 45.0, 90.0],
+            vec![10.0, 8.0, 1.0, 10.0, 7.0, 2.0, 10.0, 6.0, 3.0],
+            Symmetry::Quadrant,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn fold_maps_into_stored_range() {
+        for c in [
+            -720.0, -1.0, 0.0, 45.0, 89.9, 90.0, 135.0, 180.0, 200.0, 270.0, 300.0, 359.999, 360.0, 1e6,
+        ] {
+            for s in [Symmetry::None, Symmetry::C0C180, Symmetry::C90C270, Symmetry::Quadrant] {
+                let f = s.fold(c);
+                let (lo, hi) = s.stored_range();
+                assert!(f >= lo && f <= hi + 1e-9, "{s:?} {c} -> {f}");
+            }
+        }
+        assert_eq!(Symmetry::C90C270.fold(10.0), 170.0);
+        assert_eq!(Symmetry::C90C270.fold(300.0), 240.0);
+        assert_eq!(Symmetry::Quadrant.fold(200.0), 20.0);
+        assert_eq!(Symmetry::Quadrant.fold(330.0), 30.0);
+    }
+
+    #[test]
+    fn expansion_reproduces_stored_values_on_nonuniform_grid() {
+        let d = quadrant();
+        let full = d.expand(1);
+        let c = full.c_angles();
+        assert_eq!(c, &[0.0, 30.0, 90.0, 150.0, 180.0, 210.0, 270.0, 330.0]);
+        for (k, &a) in c.iter().enumerate() {
+            let ic = d.find_plane(Symmetry::Quadrant.fold(a)).unwrap();
+            assert_eq!(full.plane(k), d.plane(ic));
+        }
+        assert_eq!(full.detect_symmetry(1e-9), Symmetry::Quadrant);
+        let back = full.with_symmetry(Symmetry::Quadrant).unwrap();
+        assert_eq!(back, d);
+    }
+
+    #[test]
+    fn c90c270_round_trip() {
+        let d = Distribution::new(
+            vec![90.0, 180.0, 270.0],
+            vec![0.0, 90.0],
+            vec![5.0, 1.0, 5.0, 2.0, 5.0, 3.0],
+            Symmetry::C90C270,
+        )
+        .unwrap();
+        let full = d.expand(1);
+        assert_eq!(full.c_angles(), &[0.0, 90.0, 180.0, 270.0]);
+        assert_eq!(full.plane(0), d.plane(1)); // C0 = C180
+        assert_eq!(full.detect_symmetry(1e-9), Symmetry::C90C270);
+        assert_eq!(full.with_symmetry(Symmetry::C90C270).unwrap(), d);
+    }
+
+    #[test]
+    fn rejects_bad_grids() {
+        assert!(Distribution::new(vec![0.0], vec![10.0, 5.0], vec![1.0, 1.0], Symmetry::Rotational).is_err());
+        assert!(Distribution::new(vec![0.0], vec![0.0, 0.0], vec![1.0, 1.0], Symmetry::Rotational).is_err());
+        assert!(Distribution::new(vec![0.0], vec![0.0, 190.0], vec![1.0, 1.0], Symmetry::Rotational).is_err());
+        assert!(Distribution::new(vec![0.0], vec![0.0, 90.0], vec![1.0, f64::NAN], Symmetry::Rotational).is_err());
+        assert!(Distribution::new(vec![0.0, 360.0], vec![0.0], vec![1.0, 1.0], Symmetry::None).is_err());
+        assert!(Distribution::new(vec![0.0, 80.0], vec![0.0], vec![1.0, 1.0], Symmetry::Quadrant).is_err());
+        assert!(Distribution::new(vec![0.0], vec![0.0], vec![1.0, 1.0], Symmetry::Rotational).is_err());
+    }
+
+    #[test]
+    fn pole_average_is_weighted_by_circle_share() {
+        let d = Distribution::new(
+            vec![0.0, 90.0, 180.0, 270.0],
+            vec![0.0, 90.0],
+            vec![1.0, 0.0, 2.0, 0.0, 3.0, 0.0, 4.0, 0.0],
+            Symmetry::None,
+        )
+        .unwrap();
+        assert_eq!(d.pole_spread(), (3.0, 0.0));
+        let a = d.with_averaged_poles();
+        for ic in 0..4 {
+            assert!((a.value(ic, 0) - 2.5).abs() < 1e-12);
+        }
+    }
+}
