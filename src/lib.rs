@@ -5,12 +5,24 @@
 //! - [`formats`]: IES LM-63 and EULUMDAT readers and writers, in and out;
 //! - [`model`]: the one canonical model, a [`Luminaire`] holding a Type C
 //!   [`Distribution`] in absolute candela;
+//! - [`photometry`]: flux, light output ratios, beam and field angles;
+//! - [`synth`]: analytic distributions with closed-form answers.
+//!
+//! ```
+//! use photosolid::{photometry, synth};
+//! let grid = synth::GridSpec::uniform(15.0, 5.0).unwrap();
+//! let lum = synth::Synth::Isotropic.build(&grid, 1.0).unwrap();
+//! let flux = photometry::flux(&lum.distribution).total_lm;
+//! assert!((flux - 4.0 * std::f64::consts::PI).abs() < 1e-9); // 4π lm per cd
+//! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod error;
 pub mod formats;
 pub mod model;
+pub mod photometry;
+pub mod synth;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 pub use formats::{load, load_with, save, ReadOptions};
