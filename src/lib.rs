@@ -22,6 +22,7 @@ pub mod error;
 pub mod formats;
 pub mod model;
 pub mod photometry;
+pub mod report;
 pub mod synth;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};

@@ -85,7 +85,8 @@ impl Synth {
                 }
             }
             Synth::Roadway => {
-                let c = c_deg.to_radians();
+                // Evaluate on the folded angle so the mirror symmetry holds bit for bit.
+                let c = Symmetry::C90C270.fold(c_deg).to_radians();
                 let d = [g.sin() * c.cos(), g.sin() * c.sin(), -g.cos()];
                 let lobe = |ca: f64| {
                     let (ca, ga) = (ca.to_radians(), 65f64.to_radians());

@@ -406,8 +406,9 @@ impl Distribution {
 
     /// The smallest symmetry the data actually has, within `tol` (cd,
     /// absolute). Only symmetries whose mirror planes exist in the grid are
-    /// considered. Order of preference: rotational, quadrant, C0-C180,
-    /// C90-C270, none.
+    /// considered, and only when the planes bounding their stored range exist
+    /// (so the result can always be passed to [`Distribution::with_symmetry`]).
+    /// Order of preference: rotational, quadrant, C0-C180, C90-C270, none.
     pub fn detect_symmetry(&self, tol: f64) -> Symmetry {
         let full = self.full_planes();
         let get = |c: f64| -> Option<&[f64]> {
@@ -427,8 +428,10 @@ impl Distribution {
         if full.iter().all(|&(_, ic)| close(self.plane(ic), p0)) {
             return Symmetry::Rotational;
         }
-        let s02 = holds(&|c| 360.0 - c);
-        let s39 = holds(&|c| 180.0 - c);
+        // A half or quadrant can only be stored when its boundary planes exist.
+        let has = |c: f64| get(c).is_some();
+        let s02 = has(0.0) && has(180.0) && holds(&|c| 360.0 - c);
+        let s39 = has(90.0) && has(270.0) && holds(&|c| 180.0 - c);
         match (s02, s39) {
             (true, true) => Symmetry::Quadrant,
             (true, false) => Symmetry::C0C180,
@@ -477,6 +480,44 @@ impl Distribution {
             }
         }
         Distribution::new(c, self.gamma.clone(), cd, target)
+    }
+
+    /// The distribution re-oriented in C: each plane at C moves to
+    /// `(mirror ? −C : C) + rotate_deg` (degrees). Used to change the C0
+    /// convention between files (e.g. a lab that mounted the luminaire 90°
+    /// turned, or measured clockwise). The result is stored with the
+    /// smallest symmetry the moved data has (exactly, tolerance 0), so a
+    /// symmetric file stays compact when the move preserves its symmetry.
+    pub fn reoriented(&self, rotate_deg: f64, mirror: bool) -> Result<Distribution, ModelError> {
+        if !rotate_deg.is_finite() {
+            return Err(ModelError::Parameter {
+                name: "rotate-c",
+                value: rotate_deg.to_string(),
+                reason: "must be finite degrees".into(),
+            });
+        }
+        if self.symmetry == Symmetry::Rotational {
+            return Ok(self.clone());
+        }
+        let full = self.full_planes();
+        let mut moved: Vec<(f64, usize)> = full
+            .iter()
+            .map(|&(c, ic)| (wrap360(if mirror { -c } else { c } + rotate_deg), ic))
+            .collect();
+        moved.sort_by(|a, b| a.0.total_cmp(&b.0));
+        moved.dedup_by(|a, b| (a.0 - b.0).abs() <= ANGLE_EPS);
+        let mut cd = Vec::with_capacity(moved.len() * self.gamma.len());
+        for &(_, ic) in &moved {
+            cd.extend_from_slice(self.plane(ic));
+        }
+        let d = Distribution::new(
+            moved.iter().map(|m| m.0).collect(),
+            self.gamma.clone(),
+            cd,
+            Symmetry::None,
+        )?;
+        let s = d.detect_symmetry(0.0);
+        d.with_symmetry(s)
     }
 
     /// Largest spread (cd) between planes of the value at γ = 0 and at
@@ -611,6 +652,27 @@ mod tests {
         assert_eq!(full.plane(0), d.plane(1)); // C0 = C180
         assert_eq!(full.detect_symmetry(1e-9), Symmetry::C90C270);
         assert_eq!(full.with_symmetry(Symmetry::C90C270).unwrap(), d);
+    }
+
+    #[test]
+    fn reorientation_rotates_and_mirrors() {
+        let lum = crate::synth::Synth::Roadway
+            .build(&crate::synth::GridSpec::uniform(10.0, 10.0).unwrap(), 100.0)
+            .unwrap();
+        let d = lum.distribution;
+        let r = d.reoriented(90.0, false).unwrap();
+        // The C90-C270 mirror becomes a C0-C180 mirror after a 90° turn.
+        assert_eq!(r.symmetry(), Symmetry::C0C180);
+        let full = d.expand(1);
+        for (k, &c) in full.c_angles().iter().enumerate() {
+            assert_eq!(r.value_at_plane(c + 90.0, 3), Some(full.value(k, 3)));
+        }
+        let m = d.reoriented(0.0, true).unwrap();
+        assert_eq!(m.value_at_plane(300.0, 5), d.expand(1).value_at_plane(60.0, 5));
+        assert_eq!(
+            d.reoriented(360.0, false).unwrap(),
+            d.with_symmetry(Symmetry::C90C270).unwrap()
+        );
     }
 
     #[test]

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Runs every test of photosolid on a fresh machine, installing what the tests need.
+# Usage: bash scripts/test-all.sh   (from anywhere; CI calls it through .ci/run)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+echo "== toolchain"
+cargo --version
+rustc --version
+
+echo "== build (all targets, tests profile)"
+cargo build --all-targets --locked 2>&1 | tail -n 3
+
+echo "== cargo test (library, integration, doc tests; corpus at ../shared/corpus when present)"
+if [ -d ../shared/corpus ]; then
+  echo "corpus: $(cd ../shared/corpus && pwd)"
+else
+  echo "corpus: ../shared/corpus not found; corpus tests print a notice and check only built-in data"
+fi
+cargo test --all-targets --locked
+cargo test --doc --locked
+
+echo "== benches compile"
+cargo bench --no-run --locked 2>&1 | tail -n 1
+
+echo "== CLI smoke: demo and validate on the project's own data/"
+cargo run --release --locked --quiet -- demo --output target/demo-smoke
+cargo run --release --locked --quiet -- validate data
+
+echo "all tests passed"

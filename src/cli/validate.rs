@@ -1,0 +1,141 @@
+//! `photosolid validate PATH... [--json]`: load every .ies/.ldt file (any case) under the paths.
+//!
+//! Files are loaded in parallel (rayon) and reported in input order (paths
+//! as given, directories walked in sorted order). Exit status 0 when every
+//! file loaded, 1 otherwise. A progress bar goes to stderr when it is a
+//! terminal and there are many files.
+
+use std::io::{IsTerminal, Write};
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use photosolid::report::InfoReport;
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::ReadArgs;
+
+#[derive(Args, Debug)]
+pub struct ValidateArgs {
+    /// Files and directories (searched recursively for .ies/.ldt, any case).
+    #[arg(required = true)]
+    paths: Vec<PathBuf>,
+    /// One JSON object per line: path, ok, errors, warnings, and the info numbers when ok.
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    read: ReadArgs,
+}
+
+#[derive(Serialize)]
+struct Line {
+    path: String,
+    ok: bool,
+    errors: Vec<String>,
+    warnings: Vec<photosolid::Warning>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    info: Option<InfoReport>,
+}
+
+fn is_photometric(p: &Path) -> bool {
+    photosolid::model::Format::from_extension(p).is_some()
+}
+
+fn collect(path: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+    if path.is_dir() {
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        entries.sort();
+        for e in entries {
+            if e.is_dir() {
+                collect(&e, out)?;
+            } else if is_photometric(&e) {
+                out.push(e);
+            }
+        }
+    } else {
+        // A file named explicitly is checked whatever its extension.
+        out.push(path.to_path_buf());
+    }
+    Ok(())
+}
+
+pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
+    let mut files = Vec::new();
+    for p in &a.paths {
+        collect(p, &mut files).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
+    }
+    let opts = a.read.options();
+    let bar = (std::io::stderr().is_terminal() && files.len() > 20).then(|| {
+        let b = indicatif::ProgressBar::new(files.len() as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} files {elapsed}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let results: Vec<Line> = files
+        .par_iter()
+        .map(|f| {
+            let r = photosolid::load_with(f, &opts);
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            match r {
+                Ok(lum) => {
+                    let info = InfoReport::of(&lum);
+                    Line {
+                        path: f.display().to_string(),
+                        ok: true,
+                        errors: vec![],
+                        warnings: info.warnings.clone(),
+                        info: Some(info),
+                    }
+                }
+                Err(e) => Line {
+                    path: f.display().to_string(),
+                    ok: false,
+                    errors: vec![e.to_string()],
+                    warnings: vec![],
+                    info: None,
+                },
+            }
+        })
+        .collect();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut failed = 0;
+    for r in &results {
+        if !r.ok {
+            failed += 1;
+        }
+        if a.json {
+            serde_json::to_writer(&mut out, r)?;
+            writeln!(out)?;
+        } else if r.ok {
+            writeln!(out, "ok   {} ({} warnings)", r.path, r.warnings.len())?;
+            for w in &r.warnings {
+                writeln!(out, "       {w}")?;
+            }
+        } else {
+            writeln!(out, "FAIL {}", r.path)?;
+            for e in &r.errors {
+                writeln!(out, "       {e}")?;
+            }
+        }
+    }
+    if !a.json {
+        writeln!(
+            out,
+            "{} files, {} ok, {} failed",
+            results.len(),
+            results.len() - failed,
+            failed
+        )?;
+    }
+    out.flush()?;
+    Ok(if failed == 0 { 0 } else { 1 })
+}

@@ -1,0 +1,205 @@
+//! The `info` report of one luminaire: the JSON wire format of `photosolid info --json`
+//! and of each ok line of `photosolid validate --json`.
+//!
+//! Keys (stable; other tools rely on them): `format` (`ies`|`ldt`), `version`,
+//! `photometric_type` (`A`|`B`|`C`), `symmetry` (`none`, `rotational`, `c0-c180`,
+//! `c90-c270`, `quadrant`), `n_c` (stored C-planes), `n_c_full` (planes on
+//! the full circle), `n_gamma`, `gamma_range`, `max_cd`, `max_direction_deg`
+//! ([C, γ]), `flux_lm`, `downward_flux_lm`, `upward_flux_lm`,
+//! `declared_flux_lm`, `flux_ratio`, `lor`, `dlor`, `ulor`, `dff` (fractions,
+//! not percent), `beam_angle_deg` / `field_angle_deg` (IES definition, of
+//! I_max, in the C0-C180 plane; `null` when undefined), `beam_angles` (all
+//! four definitions x two planes), `tilt`, `absolute`, and `warnings`, an
+//! array of `{line, code, message}` (reader warnings first, then photometric
+//! consistency warnings).
+
+use serde::Serialize;
+
+use crate::error::Warning;
+use crate::model::{GammaRange, Luminaire, PhotometricType, Symmetry};
+use crate::photometry::{self, BeamAngles};
+
+/// Everything `info` reports about a luminaire.
+#[derive(Debug, Clone, Serialize)]
+pub struct InfoReport {
+    /// `ies` or `ldt`.
+    pub format: crate::model::Format,
+    /// Format version, e.g. `LM-63-2002`.
+    pub version: String,
+    /// A, B or C.
+    pub photometric_type: PhotometricType,
+    /// Symmetry the stored planes rely on.
+    pub symmetry: Symmetry,
+    /// Stored C-planes.
+    pub n_c: usize,
+    /// C-planes on the full circle after symmetry expansion.
+    pub n_c_full: usize,
+    /// γ angles.
+    pub n_gamma: usize,
+    /// Measured γ range.
+    pub gamma_range: GammaRange,
+    /// Largest intensity, cd.
+    pub max_cd: f64,
+    /// Its direction [C, γ], degrees.
+    pub max_direction_deg: [f64; 2],
+    /// Integrated luminous flux, lm.
+    pub flux_lm: f64,
+    /// Flux below the horizontal, lm.
+    pub downward_flux_lm: f64,
+    /// Flux above the horizontal, lm.
+    pub upward_flux_lm: f64,
+    /// Flux the file declares, lm.
+    pub declared_flux_lm: Option<f64>,
+    /// flux_lm / declared_flux_lm.
+    pub flux_ratio: Option<f64>,
+    /// Light output ratio (fraction).
+    pub lor: Option<f64>,
+    /// Downward light output ratio (fraction).
+    pub dlor: Option<f64>,
+    /// Upward light output ratio (fraction).
+    pub ulor: Option<f64>,
+    /// Downward flux fraction (fraction).
+    pub dff: Option<f64>,
+    /// Declared LOR (fraction), when the file states one.
+    pub declared_lor: Option<f64>,
+    /// IES beam angle (50 % of I_max) in the C0-C180 plane, degrees.
+    pub beam_angle_deg: Option<f64>,
+    /// IES field angle (10 % of I_max) in the C0-C180 plane, degrees.
+    pub field_angle_deg: Option<f64>,
+    /// All beam/field angle definitions in both planes.
+    pub beam_angles: BeamAngles,
+    /// TILT kind: `none`, `include`, `file`.
+    pub tilt: &'static str,
+    /// Absolute photometry.
+    pub absolute: bool,
+    /// Manufacturer.
+    pub manufacturer: String,
+    /// Catalogue number.
+    pub catalogue: String,
+    /// Reader and consistency warnings.
+    pub warnings: Vec<Warning>,
+}
+
+impl InfoReport {
+    /// Build the report of `lum`.
+    pub fn of(lum: &Luminaire) -> Self {
+        let d = &lum.distribution;
+        let s = photometry::summary(lum);
+        let mut warnings = lum.warnings.clone();
+        warnings.extend(s.warnings.iter().cloned());
+        InfoReport {
+            format: lum.format,
+            version: lum.version.clone(),
+            photometric_type: lum.photometric_type,
+            symmetry: d.symmetry(),
+            n_c: d.n_c(),
+            n_c_full: d.full_planes().len(),
+            n_gamma: d.n_gamma(),
+            gamma_range: d.gamma_range(),
+            max_cd: s.max_cd,
+            max_direction_deg: [s.max_direction_deg.0, s.max_direction_deg.1],
+            flux_lm: s.flux.total_lm,
+            downward_flux_lm: s.flux.downward_lm,
+            upward_flux_lm: s.flux.upward_lm,
+            declared_flux_lm: s.declared_flux_lm,
+            flux_ratio: s.flux_ratio,
+            lor: s.lor,
+            dlor: s.dlor,
+            ulor: s.ulor,
+            dff: s.dff,
+            declared_lor: lum.declared.lor,
+            beam_angle_deg: s.beams.ies_beam_deg[0],
+            field_angle_deg: s.beams.ies_field_deg[0],
+            beam_angles: s.beams,
+            tilt: match lum.tilt {
+                crate::model::Tilt::None => "none",
+                crate::model::Tilt::Include { .. } => "include",
+                crate::model::Tilt::File { .. } => "file",
+            },
+            absolute: lum.declared.absolute,
+            manufacturer: lum.metadata.manufacturer.clone(),
+            catalogue: lum.metadata.catalogue.clone(),
+            warnings,
+        }
+    }
+
+    /// A human-readable table.
+    pub fn to_text(&self) -> String {
+        use std::fmt::Write;
+        let mut o = String::new();
+        let opt = |v: Option<f64>, scale: f64, unit: &str| match v {
+            Some(x) => format!("{:.2}{unit}", x * scale),
+            None => "-".to_string(),
+        };
+        let pair = |a: [Option<f64>; 2]| format!("{} / {}", opt(a[0], 1.0, "°"), opt(a[1], 1.0, "°"));
+        let range = match self.gamma_range {
+            GammaRange::Full => "0-180 (full sphere)".to_string(),
+            GammaRange::Lower => "0-90 (lower hemisphere)".to_string(),
+            GammaRange::Upper => "90-180 (upper hemisphere)".to_string(),
+            GammaRange::Partial { from, to } => format!("{from}-{to} (partial)"),
+        };
+        let rows: Vec<(&str, String)> = vec![
+            ("format", format!("{:?} {}", self.format, self.version).to_uppercase()),
+            ("manufacturer", self.manufacturer.clone()),
+            ("catalogue", self.catalogue.clone()),
+            ("photometric type", format!("{:?}", self.photometric_type)),
+            ("symmetry", self.symmetry.describe().to_string()),
+            (
+                "grid",
+                format!(
+                    "{} C-planes stored ({} on the full circle) x {} gamma angles",
+                    self.n_c, self.n_c_full, self.n_gamma
+                ),
+            ),
+            ("gamma range", range),
+            (
+                "max intensity",
+                format!(
+                    "{:.2} cd at C {:.1}°, gamma {:.1}°",
+                    self.max_cd, self.max_direction_deg[0], self.max_direction_deg[1]
+                ),
+            ),
+            (
+                "flux",
+                format!(
+                    "{:.2} lm (down {:.2}, up {:.2})",
+                    self.flux_lm, self.downward_flux_lm, self.upward_flux_lm
+                ),
+            ),
+            (
+                "declared flux",
+                match (self.declared_flux_lm, self.flux_ratio) {
+                    (Some(d), Some(r)) => format!("{d:.2} lm (computed / declared = {:.3})", r),
+                    _ => "-".into(),
+                },
+            ),
+            (
+                "LOR / DLOR / ULOR",
+                format!(
+                    "{} / {} / {}",
+                    opt(self.lor, 100.0, " %"),
+                    opt(self.dlor, 100.0, " %"),
+                    opt(self.ulor, 100.0, " %")
+                ),
+            ),
+            ("declared LOR", opt(self.declared_lor, 100.0, " %")),
+            ("DFF", opt(self.dff, 100.0, " %")),
+            ("beam angle IES C0-180 / C90-270", pair(self.beam_angles.ies_beam_deg)),
+            ("field angle IES C0-180 / C90-270", pair(self.beam_angles.ies_field_deg)),
+            ("beam angle CIE C0-180 / C90-270", pair(self.beam_angles.cie_beam_deg)),
+            ("field angle CIE C0-180 / C90-270", pair(self.beam_angles.cie_field_deg)),
+            ("tilt", self.tilt.to_string()),
+            ("absolute photometry", self.absolute.to_string()),
+        ];
+        for (k, v) in rows {
+            let _ = writeln!(o, "{k:<34} {v}");
+        }
+        if !self.warnings.is_empty() {
+            let _ = writeln!(o, "warnings:");
+            for w in &self.warnings {
+                let _ = writeln!(o, "  {w}");
+            }
+        }
+        o
+    }
+}

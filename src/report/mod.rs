@@ -1,0 +1,5 @@
+//! Reports: what the CLI prints, as typed, serialisable values.
+
+pub mod info;
+
+pub use info::InfoReport;
