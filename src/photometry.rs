@@ -252,6 +252,9 @@ pub struct Summary {
 /// Relative difference past which declared and computed flux disagree.
 pub const FLUX_MISMATCH: f64 = 0.05;
 
+/// Difference (fraction, i.e. 0.01 = 1 percentage point) past which computed and declared LOR disagree.
+pub const LOR_MISMATCH: f64 = 0.01;
+
 /// Compute the summary of `lum` (untilted).
 pub fn summary(lum: &Luminaire) -> Summary {
     let d = &lum.distribution;
@@ -276,6 +279,20 @@ pub fn summary(lum: &Luminaire) -> Summary {
                     100.0 * r,
                     dcl,
                     100.0 * FLUX_MISMATCH
+                ),
+            ));
+        }
+    }
+    if let (Some(decl), Some(l)) = (lum.declared.lor, lamp) {
+        let lor = flux.total_lm / l;
+        if (lor - decl).abs() > LOR_MISMATCH {
+            warnings.push(Warning::new(
+                "lor-mismatch",
+                format!(
+                    "integrated LOR {:.2} % differs from the declared {:.2} % by {:+.2} percentage points",
+                    100.0 * lor,
+                    100.0 * decl,
+                    100.0 * (lor - decl)
                 ),
             ));
         }
