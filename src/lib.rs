@@ -20,6 +20,7 @@
 
 pub mod error;
 pub mod formats;
+pub mod metrics;
 pub mod model;
 pub mod photometry;
 pub mod report;

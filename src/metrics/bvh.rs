@@ -1,0 +1,355 @@
+//! A bounding-volume hierarchy over triangles for exact closest-point queries.
+//!
+//! Binary tree of axis-aligned boxes, built top-down by splitting the
+//! centroids at the median of the box's longest axis (leaves of at most
+//! [`LEAF_SIZE`] triangles), stored flat. A query descends nearest child
+//! first and prunes every box farther than the best distance found, so the
+//! result is the exact (f64) distance to the closest triangle.
+
+/// Triangles per leaf.
+pub const LEAF_SIZE: usize = 4;
+
+/// Axis-aligned box.
+#[derive(Debug, Clone, Copy)]
+struct Aabb {
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+impl Aabb {
+    fn empty() -> Self {
+        Self {
+            lo: [f64::INFINITY; 3],
+            hi: [f64::NEG_INFINITY; 3],
+        }
+    }
+    fn grow(&mut self, p: &[f64; 3]) {
+        for k in 0..3 {
+            self.lo[k] = self.lo[k].min(p[k]);
+            self.hi[k] = self.hi[k].max(p[k]);
+        }
+    }
+    fn merge(&mut self, o: &Aabb) {
+        for k in 0..3 {
+            self.lo[k] = self.lo[k].min(o.lo[k]);
+            self.hi[k] = self.hi[k].max(o.hi[k]);
+        }
+    }
+    /// Squared distance from p to the box (0 inside).
+    #[inline]
+    fn dist2(&self, p: &[f64; 3]) -> f64 {
+        let mut d = 0.0;
+        for k in 0..3 {
+            let v = if p[k] < self.lo[k] {
+                self.lo[k] - p[k]
+            } else if p[k] > self.hi[k] {
+                p[k] - self.hi[k]
+            } else {
+                0.0
+            };
+            d += v * v;
+        }
+        d
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    bounds: Aabb,
+    /// Leaf: first triangle in `order`; inner: index of the left child (right = left + 1).
+    start: u32,
+    /// Leaf: triangle count (> 0); inner: 0.
+    count: u32,
+}
+
+/// A BVH over a triangle mesh (positions in any consistent unit, e.g. cd).
+#[derive(Debug, Clone)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    order: Vec<u32>,
+    tris: Vec<[[f64; 3]; 3]>,
+}
+
+impl Bvh {
+    /// Build over `triangles` (indices into `positions`).
+    pub fn build(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> Self {
+        let tris: Vec<[[f64; 3]; 3]> = triangles
+            .iter()
+            .map(|t| {
+                [
+                    positions[t[0] as usize],
+                    positions[t[1] as usize],
+                    positions[t[2] as usize],
+                ]
+            })
+            .collect();
+        let centroids: Vec<[f64; 3]> = tris
+            .iter()
+            .map(|t| {
+                [
+                    (t[0][0] + t[1][0] + t[2][0]) / 3.0,
+                    (t[0][1] + t[1][1] + t[2][1]) / 3.0,
+                    (t[0][2] + t[1][2] + t[2][2]) / 3.0,
+                ]
+            })
+            .collect();
+        let mut order: Vec<u32> = (0..tris.len() as u32).collect();
+        let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 2);
+        nodes.push(Node {
+            bounds: Aabb::empty(),
+            start: 0,
+            count: 0,
+        });
+        // Explicit stack: (node index, start, end).
+        let mut stack = vec![(0usize, 0usize, tris.len())];
+        while let Some((ni, s, e)) = stack.pop() {
+            let mut b = Aabb::empty();
+            for &t in &order[s..e] {
+                for p in &tris[t as usize] {
+                    b.grow(p);
+                }
+            }
+            nodes[ni].bounds = b;
+            if e - s <= LEAF_SIZE {
+                nodes[ni].start = s as u32;
+                nodes[ni].count = (e - s) as u32;
+                continue;
+            }
+            let mut cb = Aabb::empty();
+            for &t in &order[s..e] {
+                cb.grow(&centroids[t as usize]);
+            }
+            let axis = (0..3)
+                .max_by(|&a, &b| (cb.hi[a] - cb.lo[a]).total_cmp(&(cb.hi[b] - cb.lo[b])))
+                .unwrap_or(0);
+            let mid = (s + e) / 2;
+            order[s..e].select_nth_unstable_by(mid - s, |&a, &b| {
+                centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])
+            });
+            let left = nodes.len();
+            nodes.push(Node {
+                bounds: Aabb::empty(),
+                start: 0,
+                count: 0,
+            });
+            nodes.push(Node {
+                bounds: Aabb::empty(),
+                start: 0,
+                count: 0,
+            });
+            nodes[ni].start = left as u32;
+            nodes[ni].count = 0;
+            stack.push((left, s, mid));
+            stack.push((left + 1, mid, e));
+        }
+        Self { nodes, order, tris }
+    }
+
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.tris.len()
+    }
+
+    /// True when there are no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.tris.is_empty()
+    }
+
+    /// Exact distance from `p` to the closest triangle (infinity when empty).
+    pub fn distance(&self, p: &[f64; 3]) -> f64 {
+        self.distance2_below(p, f64::INFINITY).sqrt()
+    }
+
+    /// Squared distance to the closest triangle, searching only below `best2`
+    /// (a known upper bound, e.g. from a neighbouring query).
+    pub fn distance2_below(&self, p: &[f64; 3], best2: f64) -> f64 {
+        self.nearest_below(p, best2).0
+    }
+
+    /// The triangle `i` as three points.
+    pub fn triangle(&self, i: u32) -> &[[f64; 3]; 3] {
+        &self.tris[i as usize]
+    }
+
+    /// Squared distance to the closest triangle and its index (in build
+    /// order, for [`Bvh::triangle`]), searching only below `best2`. The index
+    /// is `u32::MAX` when nothing lies below `best2`.
+    pub fn nearest_below(&self, p: &[f64; 3], mut best2: f64) -> (f64, u32) {
+        let mut best_t = u32::MAX;
+        if self.tris.is_empty() {
+            return (f64::INFINITY, best_t);
+        }
+        let mut stack: [u32; 64] = [0; 64];
+        let mut sp = 1usize;
+        stack[0] = 0;
+        while sp > 0 {
+            sp -= 1;
+            let n = &self.nodes[stack[sp] as usize];
+            if n.bounds.dist2(p) >= best2 {
+                continue;
+            }
+            if n.count > 0 {
+                for &t in &self.order[n.start as usize..(n.start + n.count) as usize] {
+                    let d2 = point_triangle_dist2(p, &self.tris[t as usize]);
+                    if d2 < best2 {
+                        best2 = d2;
+                        best_t = t;
+                    }
+                }
+            } else {
+                let (l, r) = (n.start, n.start + 1);
+                let dl = self.nodes[l as usize].bounds.dist2(p);
+                let dr = self.nodes[r as usize].bounds.dist2(p);
+                // Push the farther child first so the nearer one is searched first.
+                let (first, second) = if dl <= dr { (r, l) } else { (l, r) };
+                if sp + 2 <= stack.len() {
+                    stack[sp] = first;
+                    stack[sp + 1] = second;
+                    sp += 2;
+                } else {
+                    // Depth beyond 64 cannot happen with median splits below 2^32 triangles.
+                    unreachable!("BVH deeper than its stack");
+                }
+            }
+        }
+        (best2, best_t)
+    }
+}
+
+#[inline]
+fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline]
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Squared distance from `p` to triangle `t`, by the Voronoi-region cases of
+/// Ericson, *Real-Time Collision Detection* §5.1.5 (exact for degenerate triangles too).
+pub fn point_triangle_dist2(p: &[f64; 3], t: &[[f64; 3]; 3]) -> f64 {
+    let (a, b, c) = (&t[0], &t[1], &t[2]);
+    let ab = sub(b, a);
+    let ac = sub(c, a);
+    let ap = sub(p, a);
+    let d1 = dot(&ab, &ap);
+    let d2 = dot(&ac, &ap);
+    let closest = |q: [f64; 3]| {
+        let d = sub(p, &q);
+        dot(&d, &d)
+    };
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return dot(&ap, &ap);
+    }
+    let bp = sub(p, b);
+    let d3 = dot(&ab, &bp);
+    let d4 = dot(&ac, &bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return dot(&bp, &bp);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return closest([a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2]]);
+    }
+    let cp = sub(p, c);
+    let d5 = dot(&ab, &cp);
+    let d6 = dot(&ac, &cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return dot(&cp, &cp);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return closest([a[0] + w * ac[0], a[1] + w * ac[1], a[2] + w * ac[2]]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return closest([
+            b[0] + w * (c[0] - b[0]),
+            b[1] + w * (c[1] - b[1]),
+            b[2] + w * (c[2] - b[2]),
+        ]);
+    }
+    let denom = va + vb + vc;
+    if denom.abs() < f64::MIN_POSITIVE {
+        // Degenerate (zero-area) triangle: the nearest of its edges.
+        let seg = |u: &[f64; 3], w: &[f64; 3]| {
+            let e = sub(w, u);
+            let l2 = dot(&e, &e);
+            let s = if l2 > 0.0 {
+                (dot(&sub(p, u), &e) / l2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            closest([u[0] + s * e[0], u[1] + s * e[1], u[2] + s * e[2]])
+        };
+        return seg(a, b).min(seg(b, c)).min(seg(a, c));
+    }
+    let v = vb / denom;
+    let w = vc / denom;
+    closest([
+        a[0] + ab[0] * v + ac[0] * w,
+        a[1] + ab[1] * v + ac[1] * w,
+        a[2] + ab[2] * v + ac[2] * w,
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn point_triangle_regions() {
+        let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let d = |p: [f64; 3]| point_triangle_dist2(&p, &t).sqrt();
+        assert!((d([0.2, 0.2, 2.0]) - 2.0).abs() < 1e-12); // face
+        assert!((d([-1.0, -1.0, 0.0]) - 2f64.sqrt()).abs() < 1e-12); // vertex a
+        assert!((d([0.5, -1.0, 0.0]) - 1.0).abs() < 1e-12); // edge ab
+        assert!((d([1.0, 1.0, 0.0]) - 0.5f64.sqrt()).abs() < 1e-12); // edge bc
+        assert!((d([3.0, 0.0, 0.0]) - 2.0).abs() < 1e-12); // vertex b
+        let degenerate = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+        assert!((point_triangle_dist2(&[1.0, 1.0, 0.0], &degenerate).sqrt() - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bvh_matches_brute_force() {
+        // A bumpy grid of triangles and pseudo-random query points.
+        let n = 30;
+        let mut pos = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n {
+                let (x, y) = (i as f64, j as f64);
+                pos.push([x, y, (x * 0.7).sin() * (y * 0.3).cos() * 3.0]);
+            }
+        }
+        let mut tris = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                let a = (i * (n + 1) + j) as u32;
+                let b = a + 1;
+                let c = a + (n + 1) as u32;
+                tris.push([a, b, c]);
+                tris.push([b, c + 1, c]);
+            }
+        }
+        let bvh = Bvh::build(&pos, &tris);
+        let mut s = 12345u64;
+        let mut rnd = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s % 10_000) as f64 / 10_000.0
+        };
+        for _ in 0..300 {
+            let p = [rnd() * 40.0 - 5.0, rnd() * 40.0 - 5.0, rnd() * 20.0 - 10.0];
+            let brute = tris
+                .iter()
+                .map(|t| point_triangle_dist2(&p, &[pos[t[0] as usize], pos[t[1] as usize], pos[t[2] as usize]]))
+                .fold(f64::INFINITY, f64::min)
+                .sqrt();
+            assert!((bvh.distance(&p) - brute).abs() < 1e-12);
+        }
+    }
+}
