@@ -11,6 +11,7 @@
 pub mod error;
 pub mod formats;
 pub mod model;
+pub mod reconstruct;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 pub use formats::{load, load_with, save, ReadOptions};
