@@ -234,7 +234,7 @@ fn fritsch_butland<T: Real>(d0: T, d1: T, h0: T, h1: T) -> T {
 #[inline]
 fn pchip_eval<T: Real>(v: [T; 4], w: [T; 4]) -> T {
     let [s, h_prev, h, h_next] = w;
-    if !(h > T::ZERO) {
+    if h <= T::ZERO {
         return T::ZERO;
     }
     let d_prev = (v[1] - v[0]) / h_prev;

@@ -94,7 +94,7 @@ fn flux(d: &Distribution, cd: &[f64]) -> f64 {
 /// [`ModelError::AllZero`] when the original or the thinned data is all zero.
 pub fn holdout(dist: &Distribution, spec: HoldoutSpec, filters: &[Filter]) -> Result<Vec<HoldoutReport>, ModelError> {
     let i_max = dist.max_cd();
-    if !(i_max > 0.0) {
+    if i_max <= 0.0 {
         return Err(ModelError::AllZero("hold-out errors are relative to I_max"));
     }
     let periodic = dist.symmetry() == Symmetry::None;

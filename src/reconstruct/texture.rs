@@ -33,6 +33,12 @@
 //! Pole values are first averaged over the circle
 //! ([`Distribution::with_averaged_poles`]), so the value at a pole does not
 //! depend on C; files whose pole values agree across planes are unchanged.
+//! This makes every interpolating filter single-valued at the poles.
+//! Approximating filters (mitchell, bspline) blend the pole row with the
+//! first row and its ghost there, `k(0)·p₀ + k(1)·(I(C, γ₁) + I(C+180, γ₁))`:
+//! continuous along every meridian through the pole on grids closed under
+//! C + 180 (every uniform grid), but the pole value itself may vary with C by
+//! up to k(1) = 1/18 (Mitchell) or 1/6 (B-spline) of the spread of row γ₁.
 //!
 //! # Texel centres of a render
 //! A render of height H and width W covers γ 0–180 and C 0–360 with texel
@@ -122,7 +128,8 @@ impl LightTexture {
     pub fn new(dist: &Distribution) -> Result<Self, ModelError> {
         let d = dist.with_averaged_poles();
         let i_max_cd = d.max_cd();
-        if !(i_max_cd > 0.0) {
+        // Values are finite (a Distribution invariant), so I_max is never NaN.
+        if i_max_cd <= 0.0 {
             return Err(ModelError::AllZero(
                 "a light distribution texture is normalised by I_max, which must be positive",
             ));
