@@ -53,7 +53,7 @@ impl Location {
 /// A photometric file could not be read: where, what was expected, what was found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParseError {
-    /// The file ("<memory>" for in-memory input).
+    /// The file (`<memory>` for in-memory input).
     pub path: PathBuf,
     /// Where in the file.
     pub location: Location,

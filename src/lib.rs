@@ -23,6 +23,7 @@ pub mod formats;
 pub mod metrics;
 pub mod model;
 pub mod photometry;
+pub mod reconstruct;
 pub mod report;
 pub mod synth;
 

@@ -1,0 +1,45 @@
+//! Render throughput of the light distribution texture (samples per second).
+//!
+//! Run briefly: `cargo bench --bench reconstruct -- --warm-up-time 1 --measurement-time 2`.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
+use photosolid::{Distribution, Symmetry};
+
+/// A road-luminaire-sized grid: 72 planes (5°) x 361 γ (0.5°), no symmetry.
+fn roadway() -> Distribution {
+    let c: Vec<f64> = (0..72).map(|k| k as f64 * 5.0).collect();
+    let g: Vec<f64> = (0..=360).map(|k| k as f64 * 0.5).collect();
+    let cd = c
+        .iter()
+        .flat_map(|&c| g.iter().map(move |&g| (c, g)))
+        .map(|(c, g): (f64, f64)| {
+            let (c, g) = (c.to_radians(), g.to_radians());
+            1000.0 * g.cos().max(0.0).powi(2) * (1.0 + 0.5 * c.cos() * g.sin()) + 5.0
+        })
+        .collect();
+    Distribution::new(c, g, cd, Symmetry::None).unwrap()
+}
+
+fn bench(cr: &mut Criterion) {
+    let tex = LightTexture::new(&roadway()).unwrap();
+    let mut group = cr.benchmark_group("render-5x");
+    for filter in [Filter::Bilinear, Filter::CatmullRom, Filter::Pchip] {
+        for parallel in [true, false] {
+            let opts = RenderOptions {
+                filter,
+                factor: 5,
+                clamp: true,
+                parallel,
+            };
+            let n = render_with(&tex, &opts).unwrap().data.len();
+            group.throughput(Throughput::Elements(n as u64));
+            let id = BenchmarkId::new(filter.to_string(), if parallel { "parallel" } else { "serial" });
+            group.bench_with_input(id, &opts, |b, o| b.iter(|| render_with(&tex, o).unwrap()));
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
