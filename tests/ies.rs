@@ -166,6 +166,11 @@ fn no_panic_on_truncated_flipped_or_random_input() {
             let _ = ies::read(&b, p, &opts_all[k % 2]);
         }
     }
+    // Multi-byte text where a tilt file name or keyword is expected.
+    for t in ["TILT=€€€", "TILT=FILE€", "TILT=FILE ", "TILT=F€LE x", "TILT="] {
+        let s = SIMPLE.replace("TILT=NONE", t);
+        let _ = read_str(&s);
+    }
     // Random bytes, and random bytes after a valid prefix.
     let base = "IESNA:LM-63-2002\nTILT=NONE\n";
     for k in 0..2000 {
@@ -514,4 +519,39 @@ fn synthetic_luminaire_writes_and_reads_back() {
     assert_eq!(back.distribution.plane(3), l.distribution.plane(2));
     assert_eq!(back.metadata.manufacturer, "Synth");
     assert!(back.declared.absolute);
+}
+
+/// Parse speed on a large synthetic file (run with `--ignored --nocapture`).
+#[test]
+#[ignore]
+fn parse_speed() {
+    let nv = 721;
+    let nh = 1441;
+    let mut s = format!("IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 {nv} {nh} 1 2 0 0 0\n1 1 0\n");
+    for i in 0..nv {
+        s += &format!("{} ", i as f64 * 0.25);
+    }
+    s += "\n";
+    for i in 0..nh {
+        s += &format!("{} ", i as f64 * 0.25);
+    }
+    s += "\n";
+    for i in 0..nv * nh {
+        s += &format!("{:.2} ", 1000.0 + (i % 997) as f64 * 1.37);
+        if i % 10 == 9 {
+            s += "\n";
+        }
+    }
+    let t = Instant::now();
+    let n = photosolid::formats::text::Tokens::new(s.as_bytes(), 0, 1, true).count_remaining();
+    eprintln!("count_remaining: {n} tokens in {:.3} s", t.elapsed().as_secs_f64());
+    let t = Instant::now();
+    let l = read_str(&s).unwrap();
+    let dt = t.elapsed().as_secs_f64();
+    eprintln!(
+        "{} MB in {dt:.3} s: {:.0} MB/s",
+        s.len() / 1_000_000,
+        s.len() as f64 / dt / 1e6
+    );
+    assert_eq!(l.distribution.n_c(), nh - 1);
 }

@@ -21,6 +21,7 @@
 //! See [`write`]: LM-63-2002 or LM-63-2019 text with CRLF line ends.
 
 mod read;
+mod stream;
 pub mod type_ab;
 mod write;
 

@@ -3,13 +3,14 @@
 use std::path::{Path, PathBuf};
 
 use crate::error::{Location, ParseError, Warning};
-use crate::formats::text::{Source, Tokens};
+use crate::formats::text::Source;
 use crate::formats::ReadOptions;
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Symmetry,
     Tilt, TiltTable, ANGLE_EPS,
 };
 
+use super::stream::Stream;
 use super::{type_ab, IesHeader, IesLabel};
 
 const FEET_TO_M: f64 = 0.3048;
@@ -157,7 +158,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     };
     header.tilt = src.text(tilt_raw);
 
-    let mut tokens = Tokens::new(src.bytes, lines.offset(), tilt_line_no + 1, true);
+    let mut tokens = Stream::new(src.bytes, lines.offset(), tilt_line_no + 1);
 
     // ---- TILT.
     let tilt = if tilt_raw.eq_ignore_ascii_case(b"NONE") {
@@ -176,13 +177,13 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     let remaining = tokens.count_remaining();
     header.lamps = tokens.number(&src, "number of lamps")?;
     header.lumens_per_lamp = tokens.number(&src, "lumens per lamp (-1 for absolute photometry)")?;
-    let mult_tok = tokens.peek();
+    let mult_idx = tokens.index();
     header.multiplier = tokens.number(&src, "candela multiplier")?;
     if header.multiplier <= 0.0 {
-        let t = mult_tok.expect("a number was just read");
-        return Err(src.invalid(t.location(), "candela multiplier (> 0)", t.display()));
+        let (loc, found) = tokens.locate(mult_idx);
+        return Err(src.invalid(loc, "candela multiplier (> 0)", found));
     }
-    let nv_tok = tokens.peek();
+    let nv_idx = tokens.index();
     let nv = tokens.integer(&src, "number of vertical angles", 1, i64::MAX)? as u64;
     let nh = tokens.integer(&src, "number of horizontal angles", 1, i64::MAX)? as u64;
     header.photometric_type = tokens.integer(&src, "photometric type (1 = C, 2 = B, 3 = A)", 1, 3)? as u8;
@@ -195,9 +196,9 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     let after_first = remaining.saturating_sub(10) as u128;
     let grid = (nv as u128) * (nh as u128) + nv as u128 + nh as u128;
     if grid > after_first {
-        let t = nv_tok.expect("a number was just read");
+        let (loc, _) = tokens.locate(nv_idx);
         return Err(src.invalid(
-            t.location(),
+            loc,
             format!(
                 "angle counts that fit the data: {nv} vertical x {nh} horizontal angles need {grid} numbers \
                  (+3 for the ballast record)"
@@ -211,7 +212,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     header.n_horizontal = nh;
 
     // ---- Second header record, which some generators omit: detect it by the count.
-    let ballast_line = tokens.line();
+    let ballast_line = tokens.line_of(tokens.index());
     if after_first as usize == grid {
         header.ballast_record = false;
         header.ballast_factor = 1.0;
@@ -253,12 +254,12 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     let scale = header.multiplier * bf * blpf;
 
     // ---- Angles and values.
-    let v_start = tokens.clone();
+    let v_start = tokens.index();
     let mut vertical = Vec::with_capacity(nv);
     tokens.numbers_into(&src, nv, &mut vertical, &|i| {
         format!("vertical angle #{} of {nv}", i + 1)
     })?;
-    let h_start = tokens.clone();
+    let h_start = tokens.index();
     let mut horizontal = Vec::with_capacity(nh);
     tokens.numbers_into(&src, nh, &mut horizontal, &|i| {
         format!("horizontal angle #{} of {nh}", i + 1)
@@ -277,7 +278,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     if remaining > consumed {
         let extra = remaining - consumed;
         warnings.push(Warning::at(
-            tokens.peek().map_or(tokens.line(), |t| t.line),
+            tokens.line_of(tokens.index()),
             "extra-values",
             format!("{extra} extra token(s) after the candela values ignored"),
         ));
@@ -296,9 +297,11 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     }
 
     // Strictly ascending angle lists (or a warned repair).
+    let v_at = (&tokens, v_start);
+    let h_at = (&tokens, h_start);
     check_or_repair(
         &src,
-        &v_start,
+        v_at,
         "vertical",
         &mut vertical,
         nh,
@@ -309,7 +312,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     )?;
     check_or_repair(
         &src,
-        &h_start,
+        h_at,
         "horizontal",
         &mut horizontal,
         vertical.len(),
@@ -336,7 +339,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     };
     let (distribution, source_grid) = match kind {
         PhotometricType::C => {
-            let d = type_c(&src, &v_start, &h_start, vertical, horizontal, cd, &mut warnings)?;
+            let d = type_c(&src, v_at, h_at, vertical, horizontal, cd, &mut warnings)?;
             (d, None)
         }
         _ => {
@@ -347,9 +350,8 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
                 cd,
             };
             let d = type_ab::to_type_c(&sg, opts.handedness).map_err(|msg| {
-                let t = h_start.clone().next();
                 src.unsupported(
-                    t.map_or(Location::line(ballast_line), |t| t.location()),
+                    tokens.locate(h_start).0,
                     format!("a Type {:?} grid that converts to Type C", kind),
                     msg,
                 )
@@ -450,13 +452,12 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     })
 }
 
-/// Location of the `i`-th token from `start`.
-fn token_location(start: &Tokens<'_>, i: usize) -> (Location, String) {
-    let mut t = start.clone();
-    match t.nth(i) {
-        Some(tok) => (tok.location(), tok.display()),
-        None => (t.end_location(), "end of file".into()),
-    }
+/// A list's place in the stream: the stream and the index of its first token.
+type At<'s, 'a> = (&'s Stream<'a>, usize);
+
+/// Location and text of the `i`-th token of the list at `at`.
+fn token_location(at: At<'_, '_>, i: usize) -> (Location, String) {
+    at.0.locate(at.1 + i)
 }
 
 /// Check that `angles` ascend strictly; with `opts.repair` sort them (stable, so
@@ -466,7 +467,7 @@ fn token_location(start: &Tokens<'_>, i: usize) -> (Location, String) {
 #[allow(clippy::too_many_arguments)]
 fn check_or_repair(
     src: &Source<'_>,
-    start: &Tokens<'_>,
+    start: At<'_, '_>,
     what: &str,
     angles: &mut Vec<f64>,
     stride: usize,
@@ -519,7 +520,7 @@ fn check_or_repair(
         }
     }
     warnings.push(Warning::at(
-        start.line(),
+        start.0.line_of(start.1),
         "angles-repaired",
         format!("{what} angles were not strictly ascending: sorted, {dropped} duplicate(s) dropped (first kept)"),
     ));
@@ -544,8 +545,8 @@ fn check_or_repair(
 /// describes (centred on C180) is not measured at all.
 fn type_c(
     src: &Source<'_>,
-    v_start: &Tokens<'_>,
-    h_start: &Tokens<'_>,
+    v_start: At<'_, '_>,
+    h_start: At<'_, '_>,
     vertical: Vec<f64>,
     mut horizontal: Vec<f64>,
     mut cd: Vec<f64>,
@@ -649,25 +650,25 @@ fn type_c(
 /// Parse a tilt table (`geometry N angles... multipliers...`) from `tokens`.
 fn read_tilt_table(
     src: &Source<'_>,
-    tokens: &mut Tokens<'_>,
+    tokens: &mut Stream<'_>,
     remaining: usize,
     opts: &ReadOptions,
     warnings: &mut Vec<Warning>,
 ) -> Result<TiltTable, ParseError> {
     let geometry = tokens.integer(src, "tilt lamp-to-luminaire geometry (1, 2 or 3)", 1, 3)? as u8;
-    let n_tok = tokens.peek();
+    let n_idx = tokens.index();
     let max_pairs = remaining.saturating_sub(2) / 2;
     let n = tokens.integer(src, "number of tilt angle / multiplier pairs", 1, i64::MAX)? as u64;
     if n > max_pairs as u64 {
-        let t = n_tok.expect("a number was just read");
+        let (loc, found) = tokens.locate(n_idx);
         return Err(src.invalid(
-            t.location(),
+            loc,
             format!("a number of tilt pairs that fits the file (at most {max_pairs})"),
-            t.display(),
+            found,
         ));
     }
     let n = n as usize;
-    let a_start = tokens.clone();
+    let a_start = tokens.index();
     let mut angles = Vec::with_capacity(n);
     tokens.numbers_into(src, n, &mut angles, &|i| format!("tilt angle #{} of {n}", i + 1))?;
     let mut multipliers = Vec::with_capacity(n);
@@ -675,7 +676,17 @@ fn read_tilt_table(
         format!("tilt multiplier #{} of {n}", i + 1)
     })?;
     let mut m = multipliers;
-    check_or_repair(src, &a_start, "tilt", &mut angles, 1, &mut m, true, opts, warnings)?;
+    check_or_repair(
+        src,
+        (&*tokens, a_start),
+        "tilt",
+        &mut angles,
+        1,
+        &mut m,
+        true,
+        opts,
+        warnings,
+    )?;
     Ok(TiltTable {
         geometry,
         angles,
@@ -696,9 +707,11 @@ fn read_tilt_file(
     let dir = src.path.parent().unwrap_or(Path::new(""));
     let mut name = value.to_string();
     let mut full: PathBuf = dir.join(&name);
-    if !full.is_file() && value.len() > 5 && value[..4].eq_ignore_ascii_case("FILE") {
+    // Byte-wise test: `value` may hold multi-byte characters at any position.
+    if !full.is_file() && value.len() > 5 && value.as_bytes()[..4].eq_ignore_ascii_case(b"FILE") {
+        // The first four bytes are ASCII, so byte 4 is a character boundary.
         let rest = value[4..].trim_start();
-        if rest.len() < value.len() - 4 {
+        if !rest.is_empty() && rest.len() < value.len() - 4 {
             warnings.push(Warning::at(
                 line,
                 "tilt-file-keyword",
@@ -722,17 +735,17 @@ fn read_tilt_file(
         e.location.line = e.location.line.max(1);
         e
     })?;
-    let mut tokens = Tokens::new(tsrc.bytes, 0, 1, true);
+    let mut tokens = Stream::new(tsrc.bytes, 0, 1);
     let remaining = tokens.count_remaining();
     let table = read_tilt_table(&tsrc, &mut tokens, remaining, opts, warnings)?;
-    if let Some(t) = tokens.peek() {
+    let extra = tokens.count_remaining();
+    if extra > 0 {
         warnings.push(Warning::new(
             "tilt-extra-values",
             format!(
-                "{} extra token(s) in tilt file `{}` from line {} ignored",
-                tokens.count_remaining(),
+                "{extra} extra token(s) in tilt file `{}` from line {} ignored",
                 full.display(),
-                t.line
+                tokens.line_of(tokens.index())
             ),
         ));
     }
