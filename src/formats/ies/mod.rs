@@ -8,8 +8,8 @@
 //! Candela values become absolute: value × candela multiplier × ballast factor
 //! (× ballast-lamp photometric factor for 1986 and 1991 files only). Type A and
 //! B grids are converted to Type C through direction vectors (see
-//! [`type_ab`]) and the original grid is kept in [`Luminaire::source_grid`].
-//! The tilt table is parsed and kept in [`Luminaire::tilt`], never applied.
+//! [`type_ab`]) and the original grid is kept in [`crate::model::Luminaire::source_grid`].
+//! The tilt table is parsed and kept in [`crate::model::Luminaire::tilt`], never applied.
 //!
 //! # Warning codes
 //! `unknown-version`, `missing-ballast-line`, `extra-values`, `angles-repaired`,

@@ -751,3 +751,31 @@ fn read_tilt_file(
     }
     Ok((name, table))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn version_lines() {
+        let v = |s: &str| parse_version(s.as_bytes()).map(|(v, k)| (v.name(), k));
+        assert_eq!(v("IESNA: LM-63-2002 "), Some(("LM-63-2002", true)));
+        assert_eq!(v("IESNA:LM-63-2019"), Some(("LM-63-2019", true)));
+        assert_eq!(v("IES:LM-63-2019"), Some(("LM-63-2019", true)));
+        assert_eq!(v("IESNA:LM-63-1995"), Some(("LM-63-1995", true)));
+        assert_eq!(v("iesna91"), Some(("LM-63-1991", true)));
+        assert_eq!(v("IESNA94"), Some(("IESNA94", true)));
+        assert_eq!(v("IESNA95"), Some(("IESNA95", true)));
+        assert_eq!(v("IESNA:LM-63-2077"), Some(("LM-63-2002", false)));
+        assert_eq!(v("ERCO Leuchten GmbH"), None);
+    }
+
+    #[test]
+    fn tilt_lines() {
+        assert_eq!(tilt_value(b"TILT=NONE"), Some(&b"NONE"[..]));
+        assert_eq!(tilt_value(b"  tilt = INCLUDE  "), Some(&b"INCLUDE"[..]));
+        assert_eq!(tilt_value(b"TILT=FILE x.dat"), Some(&b"FILE x.dat"[..]));
+        assert_eq!(tilt_value(b"TILTED"), None);
+        assert_eq!(tilt_value(b"[TILT] x"), None);
+    }
+}
