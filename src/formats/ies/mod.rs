@@ -18,7 +18,7 @@
 //! `tilt-extra-values`.
 //!
 //! # Writing
-//! See [`write`]: LM-63-2002 or LM-63-2019 text with CRLF line ends.
+//! See [`write()`]: LM-63-2002 or LM-63-2019 text with CRLF line ends.
 
 mod read;
 mod stream;
