@@ -1,0 +1,320 @@
+//! The IES writer: LM-63-2002 or LM-63-2019 text.
+
+use std::fmt::Write as _;
+
+use crate::model::{Luminaire, PhotometricType, Symmetry};
+
+use super::{IesLabel, IesWriteVersion};
+
+/// Line end of written files: LM-63-2002 specifies CRLF.
+const EOL: &str = "\r\n";
+/// Longest line written, in bytes without the CRLF (LM-63-2002: 256 including it).
+const MAX_LINE: usize = 254;
+/// Numbers are wrapped well below the limit, for readability.
+const WRAP: usize = 200;
+
+/// Write `lum` as IES text (CRLF line ends).
+///
+/// - Version line `IESNA:LM-63-2002` or `IES:LM-63-2019`.
+/// - A luminaire read from IES keeps its keyword lines in order and its header
+///   numbers (lamps, lm/lamp, multiplier, units, dimensions, ballast factor,
+///   watts); free-form 1986 label lines become `[OTHER]` lines. Any other
+///   luminaire gets keywords from its [`crate::model::Metadata`] and an absolute
+///   header (lm/lamp = −1 when its photometry is absolute, multiplier 1, metres).
+///   The required `[TEST] [TESTLAB] [ISSUEDATE] [MANUFAC]` are added when missing.
+///   Long keyword values are continued on `[MORE]` lines (lines ≤ 256 bytes with CRLF).
+/// - `TILT=NONE`, or `TILT=INCLUDE` with the table (a `TILT=<file>` source is
+///   written inline since the file may not travel; 2019 forbids the file form).
+/// - Type A/B sources write their original grid and type back; Type C writes
+///   the stored planes: rotational {0}, quadrant 0..90, C0-C180 0..180,
+///   C90-C270 90..270, none: the planes plus a closing 360 plane equal to C0
+///   (a missing C0 plane is interpolated across the seam first).
+/// - The second header value is the future-use field (2002: kept from 1995-2002
+///   sources, else 1.0) or the file-generation type (2019: kept from 2019 sources,
+///   else 1.00001 "undefined"). A 1986/1991 ballast-lamp factor is folded into the values.
+///
+/// # Precision
+/// Angles are written as the shortest decimal that reads back to the same
+/// `f64`. Candela values are divided by the header's multiplier × ballast factor;
+/// when that product is 1 they are written exactly the same way (shortest
+/// round trip, so reading back gives identical values); otherwise the quotient
+/// is first rounded to 15 significant digits, and reading back reproduces the
+/// value within a relative 1e-14. Magnitudes outside [1e-5, 1e15) use exponent
+/// notation (`1.5e-7`).
+pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
+    let mut w = Writer {
+        out: String::with_capacity(64 * 1024),
+        col: 0,
+    };
+    w.line(match version {
+        IesWriteVersion::Lm63_2002 => "IESNA:LM-63-2002",
+        IesWriteVersion::Lm63_2019 => "IES:LM-63-2019",
+    });
+
+    // ---- Keywords.
+    let md = &lum.metadata;
+    let mut kws: Vec<(String, String)> = Vec::new();
+    match &lum.ies {
+        Some(h) => {
+            for l in &h.labels {
+                match l {
+                    IesLabel::Keyword { key, value } => kws.push((key.clone(), value.clone())),
+                    IesLabel::Text(t) => kws.push(("OTHER".into(), t.clone())),
+                }
+            }
+        }
+        None => {
+            let lamp = if md.lamp.is_empty() {
+                lum.lamp_sets.first().map(|s| s.lamp_type.clone()).unwrap_or_default()
+            } else {
+                md.lamp.clone()
+            };
+            for (k, v) in [("LUMCAT", &md.catalogue), ("LUMINAIRE", &md.luminaire), ("LAMP", &lamp)] {
+                if !v.is_empty() {
+                    kws.push((k.into(), v.clone()));
+                }
+            }
+        }
+    }
+    let required = [
+        ("TEST", md.test_report.clone()),
+        ("TESTLAB", String::new()),
+        ("ISSUEDATE", md.date.clone()),
+        ("MANUFAC", md.manufacturer.clone()),
+    ];
+    let missing: Vec<(String, String)> = required
+        .into_iter()
+        .filter(|(k, _)| !kws.iter().any(|(kk, _)| kk.eq_ignore_ascii_case(k)))
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+    for (k, v) in missing.iter().chain(kws.iter()) {
+        w.keyword(k, v);
+    }
+
+    // ---- TILT.
+    match lum.tilt.table() {
+        None => w.line("TILT=NONE"),
+        Some(t) => {
+            w.line("TILT=INCLUDE");
+            w.num(t.geometry as f64);
+            w.end();
+            w.num(t.angles.len() as f64);
+            w.end();
+            w.nums(&t.angles);
+            w.nums(&t.multipliers);
+        }
+    }
+
+    // ---- Grid: angles and planes (each plane = values at all vertical angles).
+    let (type_code, vertical, horizontal, planes): (u8, Vec<f64>, Vec<f64>, Vec<f64>) = match &lum.source_grid {
+        Some(sg) => (
+            if sg.kind == PhotometricType::A { 3 } else { 2 },
+            sg.vertical.clone(),
+            sg.horizontal.clone(),
+            sg.cd.clone(),
+        ),
+        None => {
+            let d = &lum.distribution;
+            let ng = d.n_gamma();
+            let mut h = d.c_angles().to_vec();
+            let mut cd = d.intensities().to_vec();
+            if d.symmetry() == Symmetry::None {
+                if h[0] > 1e-9 {
+                    // No C0 plane: interpolate it across the seam so the file
+                    // starts at 0 as LM-63 wants.
+                    let (c_last, c_first) = (h[h.len() - 1], h[0]);
+                    let t = (360.0 - c_last) / (c_first + 360.0 - c_last);
+                    let last = d.plane(h.len() - 1);
+                    let first = d.plane(0);
+                    let p0: Vec<f64> = (0..ng).map(|i| last[i] + t * (first[i] - last[i])).collect();
+                    h.insert(0, 0.0);
+                    let mut v = p0;
+                    v.extend_from_slice(&cd);
+                    cd = v;
+                }
+                h.push(360.0);
+                let p0 = cd[..ng].to_vec();
+                cd.extend_from_slice(&p0);
+            }
+            (1, d.gamma_angles().to_vec(), h, cd)
+        }
+    };
+
+    // ---- Header records.
+    let (lamps, lpl, mult, units, width, length, height, bf, future, watts);
+    match &lum.ies {
+        Some(h) => {
+            lamps = h.lamps;
+            lpl = h.lumens_per_lamp;
+            mult = h.multiplier;
+            units = h.units as f64;
+            (width, length, height) = (h.width, h.length, h.height);
+            bf = h.ballast_factor;
+            let blpf_applied = matches!(lum.version.as_str(), "LM-63-1986" | "LM-63-1991");
+            future = match version {
+                IesWriteVersion::Lm63_2002 if !blpf_applied && lum.version != "LM-63-2019" => h.future_use,
+                IesWriteVersion::Lm63_2002 => 1.0,
+                IesWriteVersion::Lm63_2019 if lum.version == "LM-63-2019" => h.future_use,
+                IesWriteVersion::Lm63_2019 => 1.00001,
+            };
+            watts = h.input_watts;
+        }
+        None => {
+            let count: f64 = lum.lamp_sets.iter().map(|s| s.count.abs()).sum();
+            lamps = if count > 0.0 { count } else { 1.0 };
+            let flux = lum
+                .declared
+                .lamp_flux_lm
+                .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.flux_lm).sum());
+            lpl = if lum.declared.absolute || flux <= 0.0 {
+                -1.0
+            } else {
+                flux / lamps
+            };
+            mult = 1.0;
+            units = 2.0;
+            let o = &lum.luminous_opening;
+            let dims = if o.length_m != 0.0 || o.width_m != 0.0 || o.height_m != 0.0 {
+                *o
+            } else {
+                lum.dimensions
+            };
+            (width, length, height) = (dims.width_m, dims.length_m, dims.height_m);
+            bf = 1.0;
+            future = match version {
+                IesWriteVersion::Lm63_2002 => 1.0,
+                IesWriteVersion::Lm63_2019 => 1.00001,
+            };
+            watts = lum
+                .declared
+                .input_watts
+                .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.watts).sum());
+        }
+    }
+    // The reader multiplies by multiplier × ballast factor (a non-positive ballast factor reads as 1).
+    let scale = mult * if bf > 0.0 { bf } else { 1.0 };
+    for v in [lamps, lpl, mult, vertical.len() as f64, horizontal.len() as f64] {
+        w.num(v);
+    }
+    w.num(type_code as f64);
+    for v in [units, width, length, height] {
+        w.num(v);
+    }
+    w.end();
+    for v in [bf, future, watts] {
+        w.num(v);
+    }
+    w.end();
+    w.nums(&vertical);
+    w.nums(&horizontal);
+    let nv = vertical.len();
+    for p in planes.chunks(nv.max(1)) {
+        if scale == 1.0 {
+            w.nums(p);
+        } else {
+            for &v in p {
+                w.num(round15(v / scale));
+            }
+            w.end();
+        }
+    }
+    w.out
+}
+
+/// Round to 15 significant digits (so `v / scale` does not print 17 digits of noise).
+fn round15(v: f64) -> f64 {
+    if !v.is_finite() || v == 0.0 {
+        return v;
+    }
+    let s = format!("{v:.14e}");
+    s.parse().unwrap_or(v)
+}
+
+struct Writer {
+    out: String,
+    /// Bytes on the current line (0: at a line start).
+    col: usize,
+}
+
+impl Writer {
+    fn line(&mut self, s: &str) {
+        self.end();
+        self.out.push_str(s);
+        self.out.push_str(EOL);
+    }
+
+    /// End the current line of numbers, if one is open.
+    fn end(&mut self) {
+        if self.col > 0 {
+            self.out.push_str(EOL);
+            self.col = 0;
+        }
+    }
+
+    fn num(&mut self, v: f64) {
+        let start = self.out.len();
+        if self.col > 0 {
+            self.out.push(' ');
+        }
+        let a = v.abs();
+        if v == 0.0 {
+            self.out.push('0');
+        } else if (1e-5..1e15).contains(&a) {
+            let _ = write!(self.out, "{v}");
+        } else {
+            let _ = write!(self.out, "{v:e}");
+        }
+        self.col += self.out.len() - start;
+        if self.col >= WRAP {
+            self.end();
+        }
+    }
+
+    fn nums(&mut self, vs: &[f64]) {
+        for &v in vs {
+            self.num(v);
+        }
+        self.end();
+    }
+
+    /// `[KEY] value`, continued on `[MORE]` lines to keep lines ≤ 256 bytes.
+    fn keyword(&mut self, key: &str, value: &str) {
+        let clean = |s: &str, drop: &[char]| -> String {
+            s.chars()
+                .map(|c| if c.is_control() { ' ' } else { c })
+                .filter(|c| !drop.contains(c))
+                .collect()
+        };
+        let mut key = clean(key, &['[', ']']);
+        if key.is_empty() {
+            key = "OTHER".into();
+        }
+        let value = clean(value, &[]);
+        let value = value.trim();
+        let mut prefix = format!("[{key}]");
+        if prefix.len() > 40 {
+            // A keyword longer than any real one: keep it readable and short.
+            prefix = format!("[{}]", key.chars().take(38).collect::<String>());
+        }
+        let mut rest = value;
+        loop {
+            self.end();
+            self.out.push_str(&prefix);
+            if !rest.is_empty() {
+                self.out.push(' ');
+                let room = MAX_LINE - prefix.len() - 1;
+                let mut cut = rest.len().min(room);
+                while !rest.is_char_boundary(cut) {
+                    cut -= 1;
+                }
+                self.out.push_str(&rest[..cut]);
+                rest = &rest[cut..];
+            }
+            self.out.push_str(EOL);
+            if rest.is_empty() {
+                break;
+            }
+            prefix = "[MORE]".into();
+        }
+    }
+}
