@@ -406,6 +406,8 @@ fn unsorted_angles_fail_or_are_repaired() {
     let text = ldt_text(1, &[0.0], &[0.0, 90.0, 45.0], &ONE_SET, &[3.0, 1.0, 2.0]);
     let e = read_str(&text).unwrap_err();
     assert!(e.to_string().contains("strictly ascending gamma"), "{e}");
+    let line = text.split("\r\n").position(|l| l == "45").unwrap() + 1;
+    assert_eq!((e.location.line, e.location.column), (line, Some(1)), "{e}");
     let repair = ReadOptions {
         repair: true,
         ..ReadOptions::default()
@@ -490,4 +492,29 @@ fn synthetic_distributions_are_written_with_derived_headers() {
     let h = back.ldt.as_ref().unwrap();
     assert_eq!((h.isym, h.mc, h.dc), (1, 24, 15.0));
     assert_same_distribution(&d, &back.distribution, "rotational");
+}
+
+/// Throughput of the reader on a large file (run with `--ignored --nocapture`).
+#[test]
+#[ignore]
+fn parse_speed() {
+    let c: Vec<f64> = (0..720).map(|i| i as f64 * 0.5).collect();
+    let g: Vec<f64> = (0..=1800).map(|i| i as f64 * 0.1).collect();
+    // Real files print a few decimals: keep the values short, as they are.
+    let values: Vec<f64> = (0..c.len() * g.len())
+        .map(|i| ((i % 9973) as f64 * 37.0).round() / 100.0)
+        .collect();
+    let text = ldt_text(0, &c, &g, &ONE_SET, &values);
+    let start = Instant::now();
+    let runs = 5;
+    for _ in 0..runs {
+        read_str(&text).unwrap();
+    }
+    let s = start.elapsed().as_secs_f64() / runs as f64;
+    println!(
+        "{:.1} MB in {:.3} s: {:.0} MB/s",
+        text.len() as f64 / 1e6,
+        s,
+        text.len() as f64 / 1e6 / s
+    );
 }

@@ -4,7 +4,7 @@ use std::path::Path;
 
 use super::{formula_plane_count, parse_number, stored_plane_indices, LampSetLayout, LdtHeader};
 use crate::error::{Location, ParseError, Warning};
-use crate::formats::text::{Line, Lines, Source, Token, Tokens};
+use crate::formats::text::{line_col, Line, Lines, Source};
 use crate::formats::{LampSetFlux, ReadOptions};
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
@@ -285,10 +285,16 @@ impl<'s, 'a> Reader<'s, 'a> {
         }
 
         // From line 27 on: a stream of numbers.
-        let mut toks = Tokens::new(src.bytes, self.lines.offset(), self.lines.line_number() + 1, false);
-        let remaining = toks.count_remaining();
+        let mut toks = Stream {
+            b: src.bytes,
+            pos: self.lines.offset(),
+        };
+        // Every value takes at least two bytes (a digit and a separator), which
+        // bounds the counts before anything is allocated, without a counting pass.
+        let max_values = (src.bytes.len() - self.lines.offset()) / 2 + 1;
         let minimum = 10 + mc + ng + ng;
-        if remaining < minimum {
+        if minimum > max_values {
+            let remaining = toks.count_remaining();
             return Err(src.invalid(
                 toks.end_location(),
                 format!(
@@ -302,14 +308,17 @@ impl<'s, 'a> Reader<'s, 'a> {
         for (i, d) in direct_ratios.iter_mut().enumerate() {
             *d = number(src, &mut toks, &|| format!("direct ratio {} of 10 (line 27)", i + 1))?;
         }
-        let c_first = toks.peek().map_or(toks.line(), |t| t.line);
+        let c_first = toks.next_line();
+        // Kept to point errors about the i-th angle at its own line and column.
+        let c_toks = toks.clone();
         let mut c_file = Vec::with_capacity(mc);
         for i in 0..mc {
             c_file.push(number(src, &mut toks, &|| {
                 format!("C-angle {} of {mc} (line 28, degrees)", i + 1)
             })?);
         }
-        let g_first = toks.peek().map_or(toks.line(), |t| t.line);
+        let g_first = toks.next_line();
+        let g_toks = toks.clone();
         let mut gamma = Vec::with_capacity(ng);
         for i in 0..ng {
             gamma.push(number(src, &mut toks, &|| {
@@ -317,15 +326,16 @@ impl<'s, 'a> Reader<'s, 'a> {
             })?);
         }
         // Angle lists: range, order.
-        check_range(src, &c_file, c_first, "C", 360.0)?;
-        check_range(src, &gamma, g_first, "gamma", 180.0)?;
+        check_range(src, &c_file, &c_toks, "C", 360.0)?;
+        check_range(src, &gamma, &g_toks, "gamma", 180.0)?;
         let c_sorted = strictly_ascending(&c_file);
         let g_sorted = strictly_ascending(&gamma);
-        for (ok, first, what) in [(c_sorted, c_first, "C"), (g_sorted, g_first, "gamma")] {
+        for (ok, at, what) in [(c_sorted, &c_toks, "C"), (g_sorted, &g_toks, "gamma")] {
             if let Err((i, a, b)) = ok {
+                let loc = nth_location(at, i);
                 if opts.repair {
                     self.warn(
-                        first,
+                        loc.line,
                         "unsorted-angles",
                         format!(
                             "{what} angles not strictly ascending (#{} = {b} after {a}); sorted, duplicates dropped",
@@ -334,7 +344,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                     );
                 } else {
                     return Err(src.invalid(
-                        Location::line(first),
+                        loc,
                         format!("strictly ascending {what} angles"),
                         format!(
                             "{what} angle #{} = {b} after {a} (use the repair option to sort them)",
@@ -404,30 +414,38 @@ impl<'s, 'a> Reader<'s, 'a> {
         // Intensities.
         let nstored = stored.len();
         let need = nstored * ng;
-        let left = remaining - 10 - mc - ng;
-        if left < need {
-            return Err(src.invalid(
+        let truncated = |found: usize, toks: &Stream<'_>| {
+            src.invalid(
                 toks.end_location(),
                 format!("{need} intensities ({nstored} C-planes × {ng} gamma angles, line 30 on)"),
-                format!("{left} values before the end of the file"),
-            ));
+                format!("{found} values before the end of the file"),
+            )
+        };
+        if 10 + mc + ng + need > max_values {
+            return Err(truncated(toks.count_remaining(), &toks));
         }
+        let cd_first = toks.next_line();
         let mut cd = Vec::with_capacity(need);
         for i in 0..need {
-            cd.push(number(src, &mut toks, &|| {
-                format!(
-                    "intensity in cd/klm (plane {} of {nstored}, gamma {} of {ng})",
-                    i / ng + 1,
-                    i % ng + 1
-                )
-            })?);
+            let t = toks.next().ok_or_else(|| truncated(i, &toks))?;
+            match parse_number(t.bytes) {
+                Some(v) => cd.push(v),
+                None => {
+                    let what = format!(
+                        "intensity in cd/klm (plane {} of {nstored}, gamma {} of {ng})",
+                        i / ng + 1,
+                        i % ng + 1
+                    );
+                    return Err(bad(src, &toks, &t, what));
+                }
+            }
         }
-        if left > need {
-            let line = toks.peek().map_or(toks.line(), |t| t.line);
+        if toks.clone().next().is_some() {
+            let extra = toks.count_remaining();
             self.warn(
-                line,
+                toks.next_line(),
                 "extra-values",
-                format!("{} values after the {need} intensities were ignored", left - need),
+                format!("{extra} values after the {need} intensities were ignored"),
             );
         }
 
@@ -453,14 +471,16 @@ impl<'s, 'a> Reader<'s, 'a> {
         let scale = cfli * phi / 1000.0;
         let mut min = f64::INFINITY;
         let mut negatives = 0usize;
+        let mut finite = scale.is_finite();
         for v in &mut cd {
             if *v < 0.0 {
                 negatives += 1;
                 min = min.min(*v);
             }
             *v *= scale;
+            finite &= v.is_finite();
         }
-        if !scale.is_finite() || cd.iter().any(|v| !v.is_finite()) {
+        if !finite {
             return Err(src.invalid(
                 Location::line(n_line + 1),
                 "intensities and lamp flux whose product is a finite candela value",
@@ -469,7 +489,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         }
         if negatives > 0 {
             self.warn(
-                c_first,
+                cd_first,
                 "negative-intensity",
                 format!("{negatives} negative intensities (lowest {min} cd/klm) kept as they are"),
             );
@@ -523,9 +543,9 @@ impl<'s, 'a> Reader<'s, 'a> {
             )
         })?;
         let (nadir, zenith) = dist.pole_spread();
-        let tol = 1e-9 * dist.max_cd().abs().max(1.0);
         for (spread, name, ig) in [(nadir, "nadir (gamma 0)", 0), (zenith, "zenith (gamma 180)", ng - 1)] {
-            if spread > tol {
+            // Differences at float-noise level are no mismatch.
+            if spread > 0.0 && spread > 1e-9 * dist.max_cd().abs().max(1.0) {
                 let mean = (0..dist.n_c()).map(|ic| dist.value(ic, ig)).sum::<f64>() / dist.n_c() as f64;
                 self.warn(
                     g_first,
@@ -608,23 +628,119 @@ impl<'s, 'a> Reader<'s, 'a> {
     }
 }
 
-/// The next number of the stream (decimal comma allowed).
-fn number(src: &Source<'_>, toks: &mut Tokens<'_>, what: &dyn Fn() -> String) -> Result<f64, ParseError> {
-    match toks.next() {
-        None => Err(src.invalid(toks.end_location(), what(), "end of file")),
-        Some(t) => parse_number(t.bytes).ok_or_else(|| bad(src, &t, what())),
+/// The number stream from line 27 on: tokens separated by blanks and line
+/// ends, `;` and `!` starting a comment to the end of the line (as
+/// [`crate::formats::text::Tokens`] splits them, with the decimal comma kept
+/// in the token). It tracks only a byte offset; lines and columns are worked
+/// out when an error or warning needs them, which keeps the hot loop lean.
+#[derive(Clone)]
+struct Stream<'a> {
+    b: &'a [u8],
+    pos: usize,
+}
+
+/// A token of a [`Stream`]: its bytes and byte offset.
+struct Tok<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+#[inline(always)]
+fn is_separator(c: u8) -> bool {
+    matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C | 0x1A | 0)
+}
+
+impl<'a> Stream<'a> {
+    #[inline(always)]
+    fn next(&mut self) -> Option<Tok<'a>> {
+        let b = self.b;
+        let mut i = self.pos;
+        loop {
+            match b.get(i) {
+                None => {
+                    self.pos = i;
+                    return None;
+                }
+                Some(&c) if is_separator(c) => i += 1,
+                Some(b';' | b'!') => {
+                    while i < b.len() && b[i] != b'\n' && b[i] != b'\r' {
+                        i += 1;
+                    }
+                }
+                Some(_) => break,
+            }
+        }
+        let start = i;
+        while i < b.len() && !is_separator(b[i]) && b[i] != b';' && b[i] != b'!' {
+            i += 1;
+        }
+        self.pos = i;
+        Some(Tok {
+            bytes: &b[start..i],
+            at: start,
+        })
+    }
+
+    fn location(&self, at: usize) -> Location {
+        let (line, col) = line_col(self.b, at);
+        Location::at(line, col)
+    }
+
+    /// Line of the next token (or of the end of the file).
+    fn next_line(&self) -> usize {
+        let at = self.clone().next().map_or(self.b.len(), |t| t.at);
+        line_col(self.b, at).0
+    }
+
+    fn end_location(&self) -> Location {
+        Location::line(line_col(self.b, self.b.len()).0)
+    }
+
+    fn count_remaining(&self) -> usize {
+        let mut c = self.clone();
+        let mut n = 0;
+        while c.next().is_some() {
+            n += 1;
+        }
+        n
     }
 }
 
-fn bad(src: &Source<'_>, t: &Token<'_>, what: String) -> ParseError {
-    src.invalid(t.location(), what, t.display())
+/// The next number of the stream (decimal comma allowed).
+fn number(src: &Source<'_>, toks: &mut Stream<'_>, what: &dyn Fn() -> String) -> Result<f64, ParseError> {
+    match toks.next() {
+        None => Err(src.invalid(toks.end_location(), what(), "end of file")),
+        Some(t) => parse_number(t.bytes).ok_or_else(|| bad(src, toks, &t, what())),
+    }
 }
 
-fn check_range(src: &Source<'_>, v: &[f64], line: usize, what: &str, hi: f64) -> Result<(), ParseError> {
+fn bad(src: &Source<'_>, toks: &Stream<'_>, t: &Tok<'_>, what: String) -> ParseError {
+    let s = String::from_utf8_lossy(t.bytes);
+    let found = if s.chars().count() > 40 {
+        format!("`{}...`", s.chars().take(40).collect::<String>())
+    } else {
+        format!("`{s}`")
+    };
+    src.invalid(toks.location(t.at), what, found)
+}
+
+/// Where the `i`-th token from `toks` starts.
+fn nth_location(toks: &Stream<'_>, i: usize) -> Location {
+    let mut t = toks.clone();
+    for _ in 0..i {
+        t.next();
+    }
+    match t.next() {
+        Some(tok) => toks.location(tok.at),
+        None => t.end_location(),
+    }
+}
+
+fn check_range(src: &Source<'_>, v: &[f64], toks: &Stream<'_>, what: &str, hi: f64) -> Result<(), ParseError> {
     match v.iter().position(|&a| !(-ANGLE_EPS..=hi + ANGLE_EPS).contains(&a)) {
         None => Ok(()),
         Some(i) => Err(src.invalid(
-            Location::line(line),
+            nth_location(toks, i),
             format!("{what} angles in [0, {hi}] degrees"),
             format!("{what} angle #{} = {}", i + 1, v[i]),
         )),

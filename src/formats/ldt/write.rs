@@ -71,7 +71,8 @@ pub fn write(lum: &Luminaire) -> String {
                 } else {
                     1000.0
                 });
-                let flux = round_sig(flux);
+                // A flux that rounds to 0 in print would make every intensity infinite.
+                let flux = Some(round_sig(flux)).filter(|f| *f > 0.0).unwrap_or(1000.0);
                 sets[0].count = -sets[0].count.abs().max(1.0);
                 sets[0].flux_lm = flux;
                 lorl = Some(100.0);
