@@ -29,12 +29,6 @@ impl Aabb {
             self.hi[k] = self.hi[k].max(p[k]);
         }
     }
-    fn merge(&mut self, o: &Aabb) {
-        for k in 0..3 {
-            self.lo[k] = self.lo[k].min(o.lo[k]);
-            self.hi[k] = self.hi[k].max(o.hi[k]);
-        }
-    }
     /// Squared distance from p to the box (0 inside).
     #[inline]
     fn dist2(&self, p: &[f64; 3]) -> f64 {

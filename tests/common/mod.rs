@@ -28,9 +28,10 @@ pub struct Entry {
 }
 
 impl Entry {
-    /// Marked malformed on purpose by the manifest.
+    /// Marked malformed on purpose by the manifest, or broken by design
+    /// (a TILT=<file> naming a file that does not exist must be an error).
     pub fn malformed(&self) -> bool {
-        self.notes.contains("MALFORMED")
+        self.notes.contains("MALFORMED") || self.notes.contains("does not exist")
     }
     /// A photometric file (not a tilt table).
     pub fn photometric(&self) -> bool {
