@@ -23,6 +23,12 @@ cargo test --doc --locked
 echo "== benches compile"
 cargo bench --no-run --locked 2>&1 | tail -n 1
 
+echo "== data/ is reproducible from the code (scripts/make-data.sh)"
+bash scripts/make-data.sh 2>/dev/null
+if git rev-parse --git-dir >/dev/null 2>&1; then
+  git diff --exit-code --stat -- data || { echo "data/ differs from what scripts/make-data.sh writes"; exit 1; }
+fi
+
 echo "== CLI smoke: demo and validate on the project's own data/"
 cargo run --release --locked --quiet -- demo --output target/demo-smoke
 cargo run --release --locked --quiet -- validate data

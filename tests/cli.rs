@@ -149,7 +149,10 @@ fn validate_exit_codes_and_json_lines_in_input_order() {
     assert_eq!(broken.len(), 1);
     let msg = broken[0]["errors"][0].as_str().unwrap();
     let after = msg.split("broken.IES:").nth(1).unwrap_or("");
-    assert!(after.starts_with(|c: char| c.is_ascii_digit()), "error must name file and line: {msg}");
+    assert!(
+        after.starts_with(|c: char| c.is_ascii_digit()),
+        "error must name file and line: {msg}"
+    );
 }
 
 #[test]
