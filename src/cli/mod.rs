@@ -2,8 +2,11 @@
 
 mod convert;
 mod demo;
+mod holdout;
 mod info;
 mod synth;
+mod texture;
+mod tradeoff;
 mod validate;
 
 use std::path::PathBuf;
@@ -29,6 +32,12 @@ enum Command {
     Convert(convert::ConvertArgs),
     /// Write an analytic distribution (isotropic, lambertian, cosine-power, spot, batwing, roadway).
     Synth(synth::SynthArgs),
+    /// Render a light distribution texture (5x supersampled float texture) to EXR and PNG.
+    Texture(texture::TextureArgs),
+    /// Drop measured planes/rows, reconstruct them with each filter, report the errors.
+    Holdout(holdout::HoldoutArgs),
+    /// Time per sample vs hold-out error of every filter (Pareto rows marked).
+    Tradeoff(tradeoff::TradeoffArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),
 }
@@ -77,6 +86,44 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Validate(a) => validate::run(a),
         Command::Convert(a) => convert::run(a),
         Command::Synth(a) => synth::run(a),
+        Command::Texture(a) => texture::run(a),
+        Command::Holdout(a) => holdout::run(a),
+        Command::Tradeoff(a) => tradeoff::run(a),
         Command::Demo(a) => demo::run(a),
     }
+}
+
+/// Render `tex` on the backend the user asked for (`auto`, `gpu`, `cpu`).
+fn render_on(
+    backend: &str,
+    tex: &photosolid::reconstruct::LightTexture,
+    filter: photosolid::reconstruct::Filter,
+    factor: u32,
+) -> anyhow::Result<photosolid::reconstruct::Rendered> {
+    match backend {
+        "gpu" => anyhow::bail!("the GPU backend is not built into this version; use --backend cpu"),
+        _ => Ok(photosolid::reconstruct::render(tex, filter, factor)?),
+    }
+}
+
+/// The hold-out reports as a text table.
+fn holdout_table(reports: &[photosolid::reconstruct::HoldoutReport]) -> String {
+    use std::fmt::Write;
+    let mut s = format!(
+        "{:<16} {:>9} {:>9} {:>22} {:>10} {:>8}\n",
+        "filter", "rms %", "max %", "max at (C, gamma)", "flux %", "clamped"
+    );
+    for r in reports {
+        let _ = writeln!(
+            s,
+            "{:<16} {:>9.3} {:>9.3} {:>22} {:>+10.3} {:>8}",
+            r.filter.to_string(),
+            r.rms_percent,
+            r.max_percent,
+            format!("({:.1}, {:.1})", r.max_at.0, r.max_at.1),
+            r.flux_error_percent,
+            r.clamped
+        );
+    }
+    s
 }
