@@ -23,6 +23,7 @@ pub mod formats;
 pub mod model;
 pub mod photometry;
 pub mod report;
+pub mod solid;
 pub mod synth;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
