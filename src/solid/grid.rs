@@ -14,7 +14,7 @@
 
 use rayon::prelude::*;
 
-use super::mesh::{cross, p64, sub, Mesh, SolidInfo};
+use super::mesh::{cross, p64, remove_fins, sub, Mesh, SolidInfo};
 use super::{stored_radius, Units};
 use crate::error::ModelError;
 use crate::model::{periodic_widths, Distribution, ANGLE_EPS};
@@ -228,12 +228,12 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
     let (sin_g, cos_g): (Vec<f64>, Vec<f64>) = grid.gamma.iter().map(|g| g.to_radians().sin_cos()).unzip();
 
     // Radii in output units; zero means "at the origin".
-    let r_nadir = stored_radius(nadir * scale)?;
-    let r_zenith = stored_radius(zenith * scale)?;
+    let r_nadir = stored_radius(nadir * scale, peak * scale)?;
+    let r_zenith = stored_radius(zenith * scale, peak * scale)?;
     let mut any_zero = r_nadir == 0.0 || r_zenith == 0.0;
     for ic in 0..nc {
         for ig in 1..ng - 1 {
-            let r = stored_radius(s[ic * ng + ig] * scale)?;
+            let r = stored_radius(s[ic * ng + ig] * scale, peak * scale)?;
             s[ic * ng + ig] = r;
             any_zero |= r == 0.0;
         }
@@ -311,6 +311,12 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
         units,
         units_per_cd: scale,
     };
+    let (mut positions, mut triangles, mut origin) = (positions, triangles, origin);
+    remove_fins(&mut positions, &mut triangles, &mut origin);
+    if triangles.is_empty() {
+        // Nothing but zero-thickness fins: non-zero only on a set of no solid angle.
+        return Err(ModelError::AllZero("photometric solid (it encloses no volume)"));
+    }
     let mut mesh = Mesh::from_parts(positions, triangles, origin, info)?;
     mesh.compute_normals();
     Ok(mesh)

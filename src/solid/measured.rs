@@ -32,7 +32,7 @@
 
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use super::mesh::{Mesh, SolidInfo};
+use super::mesh::{remove_fins, Mesh, SolidInfo};
 use super::{stored_radius, Units};
 use crate::error::ModelError;
 use crate::model::{Distribution, ANGLE_EPS};
@@ -112,7 +112,7 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
         ));
     }
     let peak = d.max_cd();
-    if !(peak > 0.0) {
+    if peak.is_nan() || peak <= 0.0 {
         return Err(ModelError::AllZero("photometric solid"));
     }
     let scale = units.units_per_cd(peak)?;
@@ -154,18 +154,18 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
         let (sg, cg) = a.to_radians().sin_cos();
         let value = |ic: usize| ig.map_or(0.0, |ig| d.value(ic, ig));
         if is_pole(a) {
-            radius[dir_row[j]] = stored_radius(value(planes[0].1) * scale)?;
+            radius[dir_row[j]] = stored_radius(value(planes[0].1) * scale, peak * scale)?;
             unit_dir[dir_row[j]] = [0.0, 0.0, if a < 90.0 { -1.0 } else { 1.0 }];
         } else {
             for (k, &(_, ic)) in planes.iter().enumerate() {
-                radius[dir_row[j] + k] = stored_radius(value(ic) * scale)?;
+                radius[dir_row[j] + k] = stored_radius(value(ic) * scale, peak * scale)?;
                 unit_dir[dir_row[j] + k] = [sg * cos_c[k], sg * sin_c[k], -cg];
             }
         }
     }
 
     // Mesh vertices: the origin first (if any zero), then every non-zero direction.
-    let any_zero = radius.iter().any(|&r| r == 0.0);
+    let any_zero = radius.contains(&0.0);
     let mut positions: Vec<[f32; 3]> = Vec::with_capacity(n_dirs + 1);
     let origin = any_zero.then(|| {
         positions.push([0.0; 3]);
@@ -245,6 +245,12 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
         units,
         units_per_cd: scale,
     };
+    let (mut positions, mut triangles, mut origin) = (positions, triangles, origin);
+    remove_fins(&mut positions, &mut triangles, &mut origin);
+    if triangles.is_empty() {
+        // Nothing but zero-thickness fins: non-zero only on a set of no solid angle.
+        return Err(ModelError::AllZero("photometric solid (it encloses no volume)"));
+    }
     let mut mesh = Mesh::from_parts(positions, triangles, origin, info)?;
     mesh.compute_normals();
     Ok(mesh)

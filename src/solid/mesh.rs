@@ -508,6 +508,99 @@ impl Mesh {
     }
 }
 
+/// Remove zero-thickness fins at the origin, then drop unused vertices.
+///
+/// Merging zero samples into the origin can leave a triangle and its mirror
+/// image (same three vertices, opposite winding): a flat fin of no volume,
+/// e.g. a single non-zero ring between zero rings. Such a pair cancels as a
+/// surface (its edges are matched within the pair), so both are removed; any
+/// vertex then unused is dropped (indices renumbered, order kept). Fins always
+/// contain the origin (no other merge makes two triangles share all three
+/// vertices), so only triangles at the origin are examined.
+pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u32; 3]>, origin: &mut Option<u32>) {
+    let Some(o) = *origin else { return };
+    // (canonical vertex set, +1/-1 parity of the winding, triangle index)
+    let mut at_o: Vec<([u32; 3], bool, usize)> = triangles
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.contains(&o))
+        .map(|(i, t)| {
+            let mut s = *t;
+            s.sort_unstable();
+            // Even permutation of the sorted order = same winding as sorted.
+            let k = t.iter().position(|&v| v == s[0]).unwrap();
+            let even = t[(k + 1) % 3] == s[1];
+            (s, even, i)
+        })
+        .collect();
+    at_o.sort_unstable();
+    let mut dead = Vec::new();
+    let mut i = 0;
+    while i < at_o.len() {
+        let mut j = i;
+        while j < at_o.len() && at_o[j].0 == at_o[i].0 {
+            j += 1;
+        }
+        // Pair off opposite windings within the group.
+        let (mut ev, mut od): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+        for e in &at_o[i..j] {
+            if e.1 {
+                ev.push(e.2)
+            } else {
+                od.push(e.2)
+            }
+        }
+        let n = ev.len().min(od.len());
+        dead.extend_from_slice(&ev[..n]);
+        dead.extend_from_slice(&od[..n]);
+        i = j;
+    }
+    if dead.is_empty() {
+        return;
+    }
+    dead.sort_unstable();
+    let mut k = 0;
+    let mut idx = 0;
+    triangles.retain(|_| {
+        let keep = !(k < dead.len() && dead[k] == idx);
+        if !keep {
+            k += 1;
+        }
+        idx += 1;
+        keep
+    });
+    let mut used = vec![false; positions.len()];
+    for t in triangles.iter() {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    if used.iter().all(|&u| u) {
+        return;
+    }
+    let mut remap = vec![u32::MAX; positions.len()];
+    let mut next = 0u32;
+    let mut kept = Vec::with_capacity(positions.len());
+    for (v, p) in positions.iter().enumerate() {
+        if used[v] {
+            remap[v] = next;
+            next += 1;
+            kept.push(*p);
+        }
+    }
+    *positions = kept;
+    for t in triangles.iter_mut() {
+        for v in t.iter_mut() {
+            *v = remap[*v as usize];
+        }
+    }
+    *origin = if used[o as usize] {
+        Some(remap[o as usize])
+    } else {
+        None
+    };
+}
+
 /// The result of a successful [`Mesh::sanity_check`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SanityReport {

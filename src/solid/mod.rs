@@ -52,9 +52,10 @@ use crate::model::Distribution;
 pub const UNIT_FRAME: &str = "luminaire frame, z up, nadir -z, C0 +x, C90 +y";
 
 /// Units of the solid's coordinates.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Units {
     /// Candela: 1 unit of length = 1 cd. Default.
+    #[default]
     Candela,
     /// Relative: the peak intensity of the solid is 1 (dimensionless).
     Peak,
@@ -64,12 +65,6 @@ pub enum Units {
         /// The flux Φ (lm) the intensities are divided by.
         flux_lm: f64,
     },
-}
-
-impl Default for Units {
-    fn default() -> Self {
-        Units::Candela
-    }
 }
 
 impl Units {
@@ -139,16 +134,17 @@ pub fn check_measured(d: &Distribution) -> Result<SanityReport, CheckError> {
     Ok(mesh.sanity_check()?)
 }
 
-/// Scaled intensity → the value stored: negative and below-f32-range values
-/// are zero (merged into the origin), NaN is refused, too large is refused.
+/// Scaled intensity → the radius stored: NaN and too-large values are
+/// refused; negative values, values below the smallest normal f32 (they
+/// would collapse onto the origin in the file) and values below 1e-15 of the
+/// peak (round-off of a zero, e.g. I0 cos 90° = 6e-17 I0) are zero, i.e. the
+/// merged origin vertex. `peak` is the peak in the same units.
 #[inline]
-pub(crate) fn stored_radius(v_units: f64) -> Result<f64, ModelError> {
+pub(crate) fn stored_radius(v_units: f64, peak: f64) -> Result<f64, ModelError> {
     if v_units.is_nan() {
         return Err(ModelError::Intensities("an intensity is NaN".into()));
     }
-    // Below the smallest normal f32 the vertex would collapse onto the
-    // origin (or become subnormal) in the file: treat it as zero.
-    if v_units < f32::MIN_POSITIVE as f64 {
+    if v_units < (f32::MIN_POSITIVE as f64).max(1e-15 * peak) {
         return Ok(0.0);
     }
     // Leave headroom so that products of coordinates stay finite in f32 readers.
