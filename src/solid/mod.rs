@@ -34,6 +34,32 @@
 //! no origin vertex. An all-zero distribution has no solid: the builders
 //! return [`ModelError::AllZero`].
 
+//! # Example (what `photosolid mesh` does)
+//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`
+//! is: load, pick the units, build ([`measured_solid`], or [`grid_solid`]
+//! with the filter's sampler as the [`IntensityField`] on
+//! [`SolidGrid::refined`]`(d, factor)`), optionally [`Mesh::colorize`], then
+//! [`export::write`] (format from the extension).
+//! ```
+//! use photosolid::solid::{self, export, ColorMap, SolidGrid, Units};
+//! use photosolid::synth::{GridSpec, Synth};
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let d = Synth::Lambertian.build(&GridSpec::uniform(15.0, 5.0)?, 1000.0)?.distribution;
+//! // --measured --units klm --color
+//! let mut m = solid::measured_solid(&d, Units::per_kilolumen(&d)?)?;
+//! m.colorize(ColorMap::Viridis);
+//! let report = m.sanity_check()?;
+//! assert_eq!(report.components, 1);
+//! // --filter (any sampler; here the analytic kind itself) --factor 5 --units peak
+//! let field = |c: f64, g: f64| 1000.0 * Synth::Lambertian.relative(c, g);
+//! let g = solid::grid_solid(&field, &SolidGrid::refined(&d, 5)?, Units::Peak)?;
+//! let exact = std::f64::consts::PI / 6.0; // a sphere of diameter 1 touching the origin
+//! assert!((g.volume() - exact).abs() / exact < 1e-3);
+//! let bytes = export::encode(&g, export::MeshFormat::Glb);
+//! assert_eq!(&bytes[..4], b"glTF");
+//! # Ok(()) }
+//! ```
+
 pub mod colormap;
 pub mod export;
 pub mod grid;
