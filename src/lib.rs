@@ -25,6 +25,7 @@ pub mod model;
 pub mod photometry;
 pub mod reconstruct;
 pub mod report;
+pub mod solid;
 pub mod synth;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};

@@ -1,0 +1,117 @@
+//! glTF 2.0 binary (.glb): one scene, one node, one mesh, one triangle
+//! primitive with `POSITION` (with the min/max glTF requires), optional
+//! `NORMAL` and `COLOR_0` (RGBA unsigned byte, normalized: every attribute
+//! element stays 4-byte aligned), and `u32` indices. The node rotates the
+//! luminaire frame (z up) into glTF's +Y up (−90° about x), so the data in
+//! the buffer are the mesh's coordinates unchanged. Metadata (units, kind,
+//! frame) go into `asset.extras` and `meshes[0].extras`.
+
+use serde_json::json;
+
+use crate::solid::Mesh;
+
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+const FLOAT: u32 = 5126;
+const UNSIGNED_BYTE: u32 = 5121;
+const UNSIGNED_INT: u32 = 5125;
+
+/// The .glb file's bytes.
+pub fn encode(mesh: &Mesh) -> Vec<u8> {
+    let nv = mesh.n_vertices();
+    let nf = mesh.n_triangles();
+    let normals = mesh.normals();
+    let colors = mesh.colors();
+    let bin_len = 12 * nv + normals.map_or(0, |_| 12 * nv) + colors.map_or(0, |_| 4 * nv) + 12 * nf;
+    let mut bin: Vec<u8> = Vec::with_capacity(bin_len);
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    let mut attributes = serde_json::Map::new();
+
+    let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    for p in mesh.positions() {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+            bin.extend_from_slice(&p[k].to_le_bytes());
+        }
+    }
+    views.push(json!({"buffer": 0, "byteOffset": 0, "byteLength": 12 * nv, "target": ARRAY_BUFFER}));
+    accessors.push(json!({"bufferView": 0, "componentType": FLOAT, "count": nv, "type": "VEC3", "min": lo, "max": hi}));
+    attributes.insert("POSITION".into(), json!(0));
+    if let Some(n) = normals {
+        let offset = bin.len();
+        for v in n {
+            for x in v {
+                bin.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": 12 * nv, "target": ARRAY_BUFFER}));
+        accessors.push(json!({"bufferView": views.len() - 1, "componentType": FLOAT, "count": nv, "type": "VEC3"}));
+        attributes.insert("NORMAL".into(), json!(accessors.len() - 1));
+    }
+    if let Some(c) = colors {
+        let offset = bin.len();
+        for v in c {
+            bin.extend_from_slice(&[v[0], v[1], v[2], 255]);
+        }
+        views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": 4 * nv, "target": ARRAY_BUFFER}));
+        accessors.push(json!({"bufferView": views.len() - 1, "componentType": UNSIGNED_BYTE, "normalized": true, "count": nv, "type": "VEC4"}));
+        attributes.insert("COLOR_0".into(), json!(accessors.len() - 1));
+    }
+    let offset = bin.len();
+    for t in mesh.triangles() {
+        for v in t {
+            bin.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": 12 * nf, "target": ELEMENT_ARRAY_BUFFER}));
+    accessors
+        .push(json!({"bufferView": views.len() - 1, "componentType": UNSIGNED_INT, "count": 3 * nf, "type": "SCALAR"}));
+    let indices = accessors.len() - 1;
+
+    let info = mesh.info();
+    let extras = json!({
+        "photosolid": {
+            "kind": info.kind,
+            "source": info.source,
+            "units": info.units.name(),
+            "units_description": info.units.describe(),
+            "units_per_cd": info.units_per_cd,
+            "frame": crate::solid::UNIT_FRAME,
+            "node_rotation": "-90 deg about x: luminaire z up -> glTF +Y up",
+            "origin_vertex": mesh.origin_vertex(),
+        }
+    });
+    let s = std::f32::consts::FRAC_1_SQRT_2;
+    let doc = json!({
+        "asset": {"version": "2.0", "generator": concat!("photosolid ", env!("CARGO_PKG_VERSION")), "extras": extras},
+        "scene": 0,
+        "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0, "name": "photometric solid", "rotation": [-s, 0.0, 0.0, s]}],
+        "meshes": [{"name": "photometric solid", "primitives": [{"attributes": attributes, "indices": indices, "mode": 4, "material": 0}], "extras": extras}],
+        "materials": [{"name": "solid", "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0], "metallicFactor": 0.0, "roughnessFactor": 1.0}}],
+        "buffers": [{"byteLength": bin.len()}],
+        "bufferViews": views,
+        "accessors": accessors,
+    });
+    let mut json_bytes = serde_json::to_vec(&doc).expect("serialisable JSON");
+    while json_bytes.len() % 4 != 0 {
+        json_bytes.push(b' ');
+    }
+    while bin.len() % 4 != 0 {
+        bin.push(0);
+    }
+    let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(b"glTF");
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&(total as u32).to_le_bytes());
+    out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"JSON");
+    out.extend_from_slice(&json_bytes);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(b"BIN\0");
+    out.extend_from_slice(&bin);
+    out
+}

@@ -1,0 +1,115 @@
+//! Mesh export: OBJ, binary PLY, binary STL and binary glTF (.glb), all
+//! from one [`Mesh`], each file written atomically through
+//! [`crate::formats::write_atomic`] (one buffer, sized up front, one write).
+//!
+//! | format | normals | per-vertex colour | metadata (units, kind, frame) |
+//! |---|---|---|---|
+//! | OBJ | `vn`, `f a//a` | `v x y z r g b` (floats in [0, 1]; read by trimesh, Blender, MeshLab) | `#` comments |
+//! | PLY (binary little endian) | `nx ny nz` | `red green blue` (uchar) | `comment` lines |
+//! | STL (binary) | one per facet, recomputed | **none: STL has no per-vertex colour** | the 80-byte header (truncated) |
+//! | glTF 2.0 binary (.glb) | `NORMAL` | `COLOR_0` (RGBA unsigned byte, normalized) | `asset.extras` and `meshes[0].extras` |
+//!
+//! Coordinates are written in the luminaire frame (z up) unchanged, except
+//! that the glTF node carries a −90° rotation about x, because glTF is +Y
+//! up: viewers (and Blender's importer) then show nadir down. When importing
+//! OBJ into Blender, choose "Up: Z" (its OBJ default is Y up).
+//! The readers here ([`ply::read`], [`obj::read`]) read back what the
+//! writers write (and simple files like it); they are for tests and for
+//! loading reference solids, not general-purpose importers.
+
+pub mod glb;
+pub mod obj;
+pub mod ply;
+pub mod stl;
+
+use std::path::Path;
+
+use super::Mesh;
+use crate::error::{Error, Result};
+
+/// A mesh file format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ (text).
+    Obj,
+    /// Stanford PLY, binary little endian.
+    Ply,
+    /// STL, binary.
+    Stl,
+    /// glTF 2.0 binary container (.glb).
+    Glb,
+}
+
+impl MeshFormat {
+    /// From a file extension (any case): `obj`, `ply`, `stl`, `glb`.
+    pub fn from_path(path: &Path) -> Option<Self> {
+        match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+            "obj" => Some(Self::Obj),
+            "ply" => Some(Self::Ply),
+            "stl" => Some(Self::Stl),
+            "glb" => Some(Self::Glb),
+            _ => None,
+        }
+    }
+
+    /// The usual extension, without the dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Self::Obj => "obj",
+            Self::Ply => "ply",
+            Self::Stl => "stl",
+            Self::Glb => "glb",
+        }
+    }
+}
+
+/// The file's bytes for `mesh` in `format`.
+pub fn encode(mesh: &Mesh, format: MeshFormat) -> Vec<u8> {
+    match format {
+        MeshFormat::Obj => obj::encode(mesh),
+        MeshFormat::Ply => ply::encode(mesh),
+        MeshFormat::Stl => stl::encode(mesh),
+        MeshFormat::Glb => glb::encode(mesh),
+    }
+}
+
+/// Write `mesh` to `path` in the format of its extension, atomically.
+pub fn write(mesh: &Mesh, path: &Path) -> Result<()> {
+    let format = MeshFormat::from_path(path).ok_or_else(|| {
+        Error::Unsupported(format!(
+            "{}: cannot tell the mesh format; use the extension .obj, .ply, .stl or .glb",
+            path.display()
+        ))
+    })?;
+    write_as(mesh, path, format)
+}
+
+/// Write `mesh` to `path` in `format`, atomically. An empty mesh is refused
+/// (glTF cannot hold one, and no solid is empty).
+pub fn write_as(mesh: &Mesh, path: &Path, format: MeshFormat) -> Result<()> {
+    if mesh.n_triangles() == 0 {
+        return Err(Error::Unsupported(format!(
+            "{}: the mesh has no triangles",
+            path.display()
+        )));
+    }
+    crate::formats::write_atomic(path, &encode(mesh, format))
+}
+
+/// Mesh metadata lines, ASCII only (STL headers and some PLY readers need
+/// it): non-ASCII characters become `?`, line breaks spaces.
+pub(crate) fn ascii_lines(mesh: &Mesh) -> Vec<String> {
+    mesh.info()
+        .lines()
+        .into_iter()
+        .map(|l| {
+            l.chars()
+                .map(|c| match c {
+                    '\n' | '\r' => ' ',
+                    c if c.is_ascii() => c,
+                    _ => '?',
+                })
+                .collect()
+        })
+        .collect()
+}

@@ -1,0 +1,815 @@
+//! The one triangle mesh type of the crate, its quantities (volume, area,
+//! normals) and its invariant checker [`Mesh::sanity_check`].
+//!
+//! # Layout
+//! Positions are `f32` (what every export format stores), in the mesh's
+//! [`Units`] (cd by default; 1 unit of length = 1 unit of intensity), in the
+//! luminaire frame: z up, nadir −z, C0 = +x, C90 = +y. Triangles index the
+//! positions and are wound counter-clockwise seen from outside (outward
+//! normals, right-hand rule). Quantities are accumulated in `f64`.
+
+use std::fmt;
+
+use super::{Units, UNIT_FRAME};
+use crate::error::ModelError;
+
+/// What a mesh is and in which units its coordinates are. Written into the
+/// metadata of every export (OBJ/PLY comments, STL header, glTF `extras`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolidInfo {
+    /// How the mesh was made, e.g. `measured (Delaunay of 72 x 37 directions)`.
+    pub kind: String,
+    /// Where the data came from (file name, synthetic kind); may be empty.
+    pub source: String,
+    /// Units of the coordinates.
+    pub units: Units,
+    /// Coordinate units per candela (1 for [`Units::Candela`]).
+    pub units_per_cd: f64,
+}
+
+impl Default for SolidInfo {
+    fn default() -> Self {
+        Self {
+            kind: "mesh".into(),
+            source: String::new(),
+            units: Units::Candela,
+            units_per_cd: 1.0,
+        }
+    }
+}
+
+impl SolidInfo {
+    /// One line per fact, for file comments and glTF extras, without comment markers.
+    pub fn lines(&self) -> Vec<String> {
+        let mut v = vec![
+            "photosolid photometric solid".to_string(),
+            format!("kind: {}", self.kind),
+        ];
+        if !self.source.is_empty() {
+            v.push(format!("source: {}", self.source));
+        }
+        v.push(format!("units: {}", self.units.describe()));
+        v.push(format!("scale: {} unit per cd", self.units_per_cd));
+        v.push(format!("frame: {UNIT_FRAME}"));
+        v
+    }
+}
+
+/// A triangle mesh: the photometric solid or anything else closed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    positions: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+    normals: Option<Vec<[f32; 3]>>,
+    colors: Option<Vec<[u8; 3]>>,
+    origin: Option<u32>,
+    info: SolidInfo,
+}
+
+impl Mesh {
+    /// A mesh from raw parts; indices are checked to be in range.
+    /// `origin` names the vertex at (0, 0, 0) where zero-intensity regions
+    /// were merged, if any (see the module docs of [`crate::solid`]).
+    pub fn from_parts(
+        positions: Vec<[f32; 3]>,
+        triangles: Vec<[u32; 3]>,
+        origin: Option<u32>,
+        info: SolidInfo,
+    ) -> Result<Self, ModelError> {
+        let n = positions.len();
+        if n > u32::MAX as usize {
+            return Err(ModelError::Intensities(format!(
+                "{n} vertices do not fit 32-bit indices"
+            )));
+        }
+        if let Some(t) = triangles.iter().position(|t| t.iter().any(|&i| i as usize >= n)) {
+            return Err(ModelError::Intensities(format!(
+                "triangle #{t} {:?} indexes past the {n} vertices",
+                triangles[t]
+            )));
+        }
+        if let Some(o) = origin {
+            if o as usize >= n || positions[o as usize] != [0.0; 3] {
+                return Err(ModelError::Intensities(format!(
+                    "origin vertex #{o} is not at (0, 0, 0)"
+                )));
+            }
+        }
+        Ok(Self {
+            positions,
+            triangles,
+            normals: None,
+            colors: None,
+            origin,
+            info,
+        })
+    }
+
+    /// Vertex positions, in [`SolidInfo::units`].
+    pub fn positions(&self) -> &[[f32; 3]] {
+        &self.positions
+    }
+    /// Triangles (vertex indices), counter-clockwise seen from outside.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+    /// Unit per-vertex normals, when computed ([`Mesh::compute_normals`]).
+    pub fn normals(&self) -> Option<&[[f32; 3]]> {
+        self.normals.as_deref()
+    }
+    /// Per-vertex sRGB colours, when set ([`Mesh::colorize`]).
+    pub fn colors(&self) -> Option<&[[u8; 3]]> {
+        self.colors.as_deref()
+    }
+    /// The merged vertex at (0, 0, 0) standing for every zero-intensity direction, if any.
+    pub fn origin_vertex(&self) -> Option<u32> {
+        self.origin
+    }
+    /// What the mesh is and its units.
+    pub fn info(&self) -> &SolidInfo {
+        &self.info
+    }
+    /// Mutable metadata (e.g. to set [`SolidInfo::source`] to the file name).
+    pub fn info_mut(&mut self) -> &mut SolidInfo {
+        &mut self.info
+    }
+    /// Number of vertices.
+    pub fn n_vertices(&self) -> usize {
+        self.positions.len()
+    }
+    /// Number of triangles.
+    pub fn n_triangles(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Largest distance of a vertex from the origin: the peak intensity in
+    /// the mesh's units (the solid's vertices sit at I(d) d with |d| = 1).
+    pub fn max_radius(&self) -> f64 {
+        self.positions.iter().map(|p| norm(p64(p))).fold(0.0, f64::max)
+    }
+
+    /// Enclosed volume (units³) by the divergence theorem: Σ det(p0, p1, p2) / 6
+    /// over the triangles. Positive for outward winding; exact for the polyhedron.
+    pub fn volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = self.tri(t);
+                dot(a, cross(b, c))
+            })
+            .sum::<f64>()
+            / 6.0
+    }
+
+    /// Surface area (units²): Σ |(p1 − p0) × (p2 − p0)| / 2.
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = self.tri(t);
+                norm(cross(sub(b, a), sub(c, a)))
+            })
+            .sum::<f64>()
+            / 2.0
+    }
+
+    #[inline]
+    fn tri(&self, t: &[u32; 3]) -> [[f64; 3]; 3] {
+        [
+            p64(&self.positions[t[0] as usize]),
+            p64(&self.positions[t[1] as usize]),
+            p64(&self.positions[t[2] as usize]),
+        ]
+    }
+
+    /// Per-vertex normals: the area-weighted mean of the adjacent face
+    /// normals, normalised. A vertex whose weighted sum vanishes (a cusp, e.g.
+    /// the merged origin vertex between opposite sheets) gets the normalised
+    /// sum of the adjacent unit face normals, and failing that its own
+    /// direction from the origin, and failing that +z: never NaN, always unit.
+    pub fn compute_normals(&mut self) {
+        let n = self.positions.len();
+        let mut acc = vec![[0.0f64; 3]; n];
+        for t in &self.triangles {
+            let [a, b, c] = self.tri(t);
+            let fnorm = cross(sub(b, a), sub(c, a));
+            for &i in t {
+                let s = &mut acc[i as usize];
+                s[0] += fnorm[0];
+                s[1] += fnorm[1];
+                s[2] += fnorm[2];
+            }
+        }
+        let mut out = Vec::with_capacity(n);
+        let mut fallback = Vec::new();
+        for (i, s) in acc.iter().enumerate() {
+            match unit(*s) {
+                Some(u) => out.push([u[0] as f32, u[1] as f32, u[2] as f32]),
+                None => {
+                    fallback.push(i);
+                    out.push([0.0, 0.0, 1.0]);
+                }
+            }
+        }
+        if !fallback.is_empty() {
+            // Rare: recompute only for the few vertices that need it.
+            let mut unit_acc = vec![[0.0f64; 3]; fallback.len()];
+            for t in &self.triangles {
+                for &i in t {
+                    if let Ok(k) = fallback.binary_search(&(i as usize)) {
+                        let [a, b, c] = self.tri(t);
+                        if let Some(u) = unit(cross(sub(b, a), sub(c, a))) {
+                            unit_acc[k] = [unit_acc[k][0] + u[0], unit_acc[k][1] + u[1], unit_acc[k][2] + u[2]];
+                        }
+                    }
+                }
+            }
+            for (k, &i) in fallback.iter().enumerate() {
+                let u = unit(unit_acc[k])
+                    .or_else(|| unit(p64(&self.positions[i])))
+                    .unwrap_or([0.0, 0.0, 1.0]);
+                out[i] = [u[0] as f32, u[1] as f32, u[2] as f32];
+            }
+        }
+        self.normals = Some(out);
+    }
+
+    /// Colour every vertex by its distance from the origin (the intensity)
+    /// relative to the largest one, through `map`: 0 at the origin, 1 at the peak.
+    pub fn colorize(&mut self, map: super::ColorMap) {
+        let peak = self.max_radius();
+        let inv = if peak > 0.0 { 1.0 / peak } else { 0.0 };
+        self.colors = Some(self.positions.iter().map(|p| map.rgb8(norm(p64(p)) * inv)).collect());
+    }
+
+    /// Drop the normals.
+    pub fn clear_normals(&mut self) {
+        self.normals = None;
+    }
+    /// Drop the colours.
+    pub fn clear_colors(&mut self) {
+        self.colors = None;
+    }
+
+    /// Check every invariant a photometric solid must hold; see [`SanityError`]
+    /// for the list. On success, returns the mesh's topology and quantities.
+    ///
+    /// # Topology
+    /// A solid with zero-intensity regions has one merged vertex at the
+    /// origin where several sheets of the surface may meet (e.g. two lobes of
+    /// a batwing-like distribution that is zero between them). The check
+    /// splits that vertex into one copy per cycle of its link (one per sheet,
+    /// [`SanityReport::origin_sheets`]) and then requires an orientable
+    /// closed 2-manifold whose every connected component is a sphere:
+    /// every edge shared by exactly two triangles with opposite directions,
+    /// and Euler characteristic V − E + F = 2 per component.
+    ///
+    /// # Cost
+    /// O(F log F) time (sorts the 3F directed edges), O(V + F) memory.
+    pub fn sanity_check(&self) -> Result<SanityReport, SanityError> {
+        let nv = self.positions.len();
+        let nf = self.triangles.len();
+        if nf == 0 {
+            return Err(SanityError::Empty);
+        }
+        if let Some(v) = self.positions.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+            return Err(SanityError::NonFinite { vertex: v });
+        }
+        if let Some(normals) = &self.normals {
+            if normals.len() != nv {
+                return Err(SanityError::Attribute(format!(
+                    "{} normals for {nv} vertices",
+                    normals.len()
+                )));
+            }
+            if let Some(v) = normals
+                .iter()
+                .position(|n| n.iter().any(|x| !x.is_finite()) || (norm(p64(n)) - 1.0).abs() > 1e-3)
+            {
+                return Err(SanityError::Attribute(format!(
+                    "normal of vertex {v} is not a unit vector"
+                )));
+            }
+        }
+        if let Some(c) = &self.colors {
+            if c.len() != nv {
+                return Err(SanityError::Attribute(format!("{} colours for {nv} vertices", c.len())));
+            }
+        }
+        let mut used = vec![false; nv];
+        for (i, t) in self.triangles.iter().enumerate() {
+            if t.iter().any(|&v| v as usize >= nv) {
+                return Err(SanityError::IndexOutOfRange { triangle: i });
+            }
+            let [a, b, c] = self.tri(t);
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || cross(sub(b, a), sub(c, a)) == [0.0; 3] {
+                return Err(SanityError::Degenerate {
+                    triangle: i,
+                    vertices: *t,
+                });
+            }
+            for &v in t {
+                used[v as usize] = true;
+            }
+        }
+        if let Some(v) = used.iter().position(|u| !u) {
+            return Err(SanityError::UnusedVertex { vertex: v });
+        }
+
+        // Directed edges, sorted: (a, b) must be matched by (b, a).
+        let key = |a: u32, b: u32| ((a as u64) << 32) | b as u64;
+        let mut directed: Vec<u64> = Vec::with_capacity(3 * nf);
+        for t in &self.triangles {
+            directed.push(key(t[0], t[1]));
+            directed.push(key(t[1], t[2]));
+            directed.push(key(t[2], t[0]));
+        }
+        directed.sort_unstable();
+        let count = |k: u64| -> usize {
+            let lo = directed.partition_point(|&x| x < k);
+            let hi = directed.partition_point(|&x| x <= k);
+            hi - lo
+        };
+        let origin = self.origin;
+        let mut i = 0;
+        while i < directed.len() {
+            let k = directed[i];
+            let mut j = i + 1;
+            while j < directed.len() && directed[j] == k {
+                j += 1;
+            }
+            let n_ab = j - i;
+            let (a, b) = ((k >> 32) as u32, k as u32);
+            let n_ba = count(key(b, a));
+            let at_origin = origin.is_some_and(|o| a == o || b == o);
+            if n_ab != n_ba {
+                // One triangle on one side only is a hole; anything else
+                // unbalanced is a triangle wound the wrong way round.
+                return Err(if n_ab == 1 && n_ba == 0 {
+                    SanityError::OpenEdge { a, b }
+                } else {
+                    SanityError::InconsistentOrientation { a, b }
+                });
+            }
+            if n_ab > 1 && !at_origin {
+                return Err(SanityError::NonManifoldEdge {
+                    a,
+                    b,
+                    triangles: n_ab + n_ba,
+                });
+            }
+            i = j;
+        }
+
+        // Split the origin vertex into one copy per simple cycle of its link.
+        let (tris, sheets, nv_split) = self.split_origin();
+        // After the split, every undirected edge must be shared by exactly two triangles.
+        let mut undirected: Vec<u64> = Vec::with_capacity(3 * nf);
+        for t in &tris {
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                undirected.push(key(a.min(b), a.max(b)));
+            }
+        }
+        undirected.sort_unstable();
+        let mut n_edges = 0usize;
+        let mut i = 0;
+        while i < undirected.len() {
+            let mut j = i + 1;
+            while j < undirected.len() && undirected[j] == undirected[i] {
+                j += 1;
+            }
+            if j - i != 2 {
+                let k = undirected[i];
+                return Err(SanityError::NonManifoldEdge {
+                    a: (k >> 32) as u32,
+                    b: k as u32,
+                    triangles: j - i,
+                });
+            }
+            n_edges += 1;
+            i = j;
+        }
+        // Connected components by union-find over the split vertices.
+        let mut parent: Vec<u32> = (0..nv_split as u32).collect();
+        fn find(p: &mut [u32], mut x: u32) -> u32 {
+            while p[x as usize] != x {
+                p[x as usize] = p[p[x as usize] as usize];
+                x = p[x as usize];
+            }
+            x
+        }
+        for t in &tris {
+            let r0 = find(&mut parent, t[0]);
+            for &v in &t[1..] {
+                let r = find(&mut parent, v);
+                if r != r0 {
+                    parent[r as usize] = r0;
+                }
+            }
+        }
+        let components = (0..nv_split as u32).filter(|&x| find(&mut parent, x) == x).count();
+        let euler = nv_split as i64 - n_edges as i64 + nf as i64;
+        // χ ≤ 2 for every connected closed surface, so the sum equals 2 per
+        // component only when each component is a sphere.
+        if euler != 2 * components as i64 {
+            return Err(SanityError::Topology { euler, components });
+        }
+        let volume = self.volume();
+        if volume.is_nan() || volume < 0.0 {
+            return Err(SanityError::InwardFacing { volume });
+        }
+        Ok(SanityReport {
+            vertices: nv,
+            triangles: nf,
+            edges: n_edges,
+            euler_characteristic: euler,
+            components,
+            origin_sheets: sheets,
+            volume,
+            area: self.area(),
+        })
+    }
+
+    /// Triangles with the origin vertex replaced by one new vertex per simple
+    /// cycle of its link; returns (triangles, number of cycles, vertex count).
+    fn split_origin(&self) -> (Vec<[u32; 3]>, usize, usize) {
+        let nv = self.positions.len();
+        let Some(o) = self.origin else {
+            return (self.triangles.clone(), 0, nv);
+        };
+        // Link edges x -> y of the triangles (o, x, y), with the triangle index.
+        let mut link: Vec<(u32, u32, usize)> = Vec::new();
+        for (i, t) in self.triangles.iter().enumerate() {
+            if let Some(k) = t.iter().position(|&v| v == o) {
+                link.push((t[(k + 1) % 3], t[(k + 2) % 3], i));
+            }
+        }
+        if link.is_empty() {
+            return (self.triangles.clone(), 0, nv);
+        }
+        link.sort_unstable();
+        let mut used = vec![false; link.len()];
+        let mut sheet_of = vec![0usize; link.len()];
+        let mut sheets = 0usize;
+        // Walk the link; whenever the path revisits a vertex, the loop since
+        // that vertex is one simple cycle (one sheet through the origin).
+        for start in 0..link.len() {
+            if used[start] {
+                continue;
+            }
+            let mut path_v: Vec<u32> = vec![link[start].0];
+            let mut path_e: Vec<usize> = Vec::new();
+            let mut e = start;
+            loop {
+                used[e] = true;
+                path_e.push(e);
+                let y = link[e].1;
+                if let Some(pos) = path_v.iter().rposition(|&v| v == y) {
+                    for &pe in &path_e[pos..] {
+                        sheet_of[pe] = sheets;
+                    }
+                    sheets += 1;
+                    path_e.truncate(pos);
+                    path_v.truncate(pos + 1);
+                } else {
+                    path_v.push(y);
+                }
+                let from = *path_v.last().unwrap();
+                let lo = link.partition_point(|l| l.0 < from);
+                match (lo..link.len()).take_while(|&k| link[k].0 == from).find(|&k| !used[k]) {
+                    Some(next) => e = next,
+                    None => {
+                        // An open link (only when edges are unbalanced, caught
+                        // before): close what is left as one sheet.
+                        if !path_e.is_empty() {
+                            for &pe in &path_e {
+                                sheet_of[pe] = sheets;
+                            }
+                            sheets += 1;
+                        }
+                        break;
+                    }
+                }
+            }
+        }
+        let mut tris = self.triangles.clone();
+        for (k, &(_, _, ti)) in link.iter().enumerate() {
+            let s = sheet_of[k];
+            if s > 0 {
+                let new_id = (nv + s - 1) as u32;
+                for v in &mut tris[ti] {
+                    if *v == o {
+                        *v = new_id;
+                    }
+                }
+            }
+        }
+        (tris, sheets, nv + sheets - 1)
+    }
+}
+
+/// Remove zero-thickness fins at the origin, then drop unused vertices.
+///
+/// Merging zero samples into the origin can leave a triangle and its mirror
+/// image (same three vertices, opposite winding): a flat fin of no volume,
+/// e.g. a single non-zero ring between zero rings. Such a pair cancels as a
+/// surface (its edges are matched within the pair), so both are removed; any
+/// vertex then unused is dropped (indices renumbered, order kept). Fins always
+/// contain the origin (no other merge makes two triangles share all three
+/// vertices), so only triangles at the origin are examined.
+pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u32; 3]>, origin: &mut Option<u32>) {
+    let Some(o) = *origin else { return };
+    // (canonical vertex set, +1/-1 parity of the winding, triangle index)
+    let mut at_o: Vec<([u32; 3], bool, usize)> = triangles
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.contains(&o))
+        .map(|(i, t)| {
+            let mut s = *t;
+            s.sort_unstable();
+            // Even permutation of the sorted order = same winding as sorted.
+            let k = t.iter().position(|&v| v == s[0]).unwrap();
+            let even = t[(k + 1) % 3] == s[1];
+            (s, even, i)
+        })
+        .collect();
+    at_o.sort_unstable();
+    let mut dead = Vec::new();
+    let mut i = 0;
+    while i < at_o.len() {
+        let mut j = i;
+        while j < at_o.len() && at_o[j].0 == at_o[i].0 {
+            j += 1;
+        }
+        // Pair off opposite windings within the group.
+        let (mut ev, mut od): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
+        for e in &at_o[i..j] {
+            if e.1 {
+                ev.push(e.2)
+            } else {
+                od.push(e.2)
+            }
+        }
+        let n = ev.len().min(od.len());
+        dead.extend_from_slice(&ev[..n]);
+        dead.extend_from_slice(&od[..n]);
+        i = j;
+    }
+    if dead.is_empty() {
+        return;
+    }
+    dead.sort_unstable();
+    let mut k = 0;
+    let mut idx = 0;
+    triangles.retain(|_| {
+        let keep = !(k < dead.len() && dead[k] == idx);
+        if !keep {
+            k += 1;
+        }
+        idx += 1;
+        keep
+    });
+    let mut used = vec![false; positions.len()];
+    for t in triangles.iter() {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    if used.iter().all(|&u| u) {
+        return;
+    }
+    let mut remap = vec![u32::MAX; positions.len()];
+    let mut next = 0u32;
+    let mut kept = Vec::with_capacity(positions.len());
+    for (v, p) in positions.iter().enumerate() {
+        if used[v] {
+            remap[v] = next;
+            next += 1;
+            kept.push(*p);
+        }
+    }
+    *positions = kept;
+    for t in triangles.iter_mut() {
+        for v in t.iter_mut() {
+            *v = remap[*v as usize];
+        }
+    }
+    *origin = if used[o as usize] {
+        Some(remap[o as usize])
+    } else {
+        None
+    };
+}
+
+/// The result of a successful [`Mesh::sanity_check`].
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SanityReport {
+    /// Number of vertices (the origin counted once).
+    pub vertices: usize,
+    /// Number of triangles.
+    pub triangles: usize,
+    /// Number of edges after splitting the origin per sheet.
+    pub edges: usize,
+    /// V − E + F after splitting the origin per sheet: 2 per component.
+    pub euler_characteristic: i64,
+    /// Connected components after splitting the origin (1 for a solid with no
+    /// zero region or a single one; more when sheets meet only at the origin).
+    pub components: usize,
+    /// Number of surface sheets meeting at the merged origin vertex (0 when
+    /// the intensity is nowhere zero).
+    pub origin_sheets: usize,
+    /// Enclosed volume, units³.
+    pub volume: f64,
+    /// Surface area, units².
+    pub area: f64,
+}
+
+/// A broken invariant found by [`Mesh::sanity_check`].
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SanityError {
+    /// The mesh has no triangles.
+    #[error("the mesh has no triangles")]
+    Empty,
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate")]
+    NonFinite {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// A normal or colour array does not match the vertices, or a normal is not unit.
+    #[error("attribute: {0}")]
+    Attribute(String),
+    /// A triangle indexes past the vertices.
+    #[error("triangle {triangle} indexes past the vertices")]
+    IndexOutOfRange {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// A triangle repeats a vertex or has zero area.
+    #[error("triangle {triangle} {vertices:?} is degenerate (repeated vertex or zero area)")]
+    Degenerate {
+        /// Triangle index.
+        triangle: usize,
+        /// Its vertex indices.
+        vertices: [u32; 3],
+    },
+    /// A vertex is used by no triangle.
+    #[error("vertex {vertex} is used by no triangle")]
+    UnusedVertex {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// An edge has triangles on one side only: the surface has a hole.
+    #[error("edge {a} -> {b} has no opposite edge: the surface is open")]
+    OpenEdge {
+        /// From vertex.
+        a: u32,
+        /// To vertex.
+        b: u32,
+    },
+    /// Two triangles run along an edge in the same direction: winding flips.
+    #[error("edge {a} -> {b} is used more often in one direction than the other: inconsistent winding")]
+    InconsistentOrientation {
+        /// From vertex.
+        a: u32,
+        /// To vertex.
+        b: u32,
+    },
+    /// An edge (away from the origin vertex) is shared by more than two triangles.
+    #[error("edge {a} - {b} is shared by {triangles} triangles")]
+    NonManifoldEdge {
+        /// One end.
+        a: u32,
+        /// Other end.
+        b: u32,
+        /// How many triangles share it.
+        triangles: usize,
+    },
+    /// The surface is not a union of spheres.
+    #[error("Euler characteristic {euler} for {components} component(s): expected 2 per component (a sphere)")]
+    Topology {
+        /// V − E + F after splitting the origin.
+        euler: i64,
+        /// Connected components.
+        components: usize,
+    },
+    /// The enclosed volume is negative: the triangles face inwards.
+    #[error("enclosed volume {volume} is negative: triangles face inwards")]
+    InwardFacing {
+        /// The signed volume.
+        volume: f64,
+    },
+}
+
+impl fmt::Display for SanityReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} vertices, {} triangles, {} edges, χ = {} over {} component(s), {} sheet(s) at the origin, volume {:.6e}, area {:.6e}",
+            self.vertices,
+            self.triangles,
+            self.edges,
+            self.euler_characteristic,
+            self.components,
+            self.origin_sheets,
+            self.volume,
+            self.area
+        )
+    }
+}
+
+#[inline]
+pub(crate) fn p64(p: &[f32; 3]) -> [f64; 3] {
+    [p[0] as f64, p[1] as f64, p[2] as f64]
+}
+#[inline]
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline]
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+#[inline]
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+#[inline]
+pub(crate) fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+/// `a / |a|`, or `None` when |a| is zero or not finite (glam's `try_normalize`).
+#[inline]
+pub(crate) fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let n = norm(a);
+    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tetra() -> Mesh {
+        let p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        Mesh::from_parts(p, t, None, SolidInfo::default()).unwrap()
+    }
+
+    #[test]
+    fn tetrahedron_volume_area_and_check() {
+        let mut m = tetra();
+        assert!((m.volume() - 1.0 / 6.0).abs() < 1e-12);
+        let area = 1.5 + 3f64.sqrt() / 2.0;
+        assert!((m.area() - area).abs() < 1e-6);
+        m.compute_normals();
+        let r = m.sanity_check().unwrap();
+        assert_eq!((r.euler_characteristic, r.components, r.edges), (2, 1, 6));
+    }
+
+    #[test]
+    fn check_finds_flipped_open_and_degenerate() {
+        let m = tetra();
+        let mut flipped = m.triangles.clone();
+        flipped[3] = [1, 3, 2];
+        let f = Mesh::from_parts(m.positions.clone(), flipped, None, SolidInfo::default()).unwrap();
+        assert!(matches!(
+            f.sanity_check(),
+            Err(SanityError::InconsistentOrientation { .. })
+        ));
+        let open = Mesh::from_parts(
+            m.positions.clone(),
+            m.triangles[..3].to_vec(),
+            None,
+            SolidInfo::default(),
+        )
+        .unwrap();
+        assert!(matches!(open.sanity_check(), Err(SanityError::OpenEdge { .. })));
+        let inward: Vec<[u32; 3]> = m.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        let i = Mesh::from_parts(m.positions.clone(), inward, None, SolidInfo::default()).unwrap();
+        assert!(matches!(i.sanity_check(), Err(SanityError::InwardFacing { .. })));
+        let mut p = m.positions.clone();
+        p[3] = [0.5, 0.5, 0.0]; // on the hypotenuse of the face 0-1-2 plane: face 1-2-3 collinear
+        let d = Mesh::from_parts(p, m.triangles.clone(), None, SolidInfo::default()).unwrap();
+        assert!(matches!(d.sanity_check(), Err(SanityError::Degenerate { .. })));
+    }
+
+    /// Two tetrahedra sharing only the origin vertex: one component after the
+    /// split would be wrong; the check sees two spheres meeting at the origin.
+    #[test]
+    fn pinched_origin_splits_into_sheets() {
+        let mut p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        p.extend([[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]]);
+        let mut t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        // The mirror image (det −1) with the winding flipped back.
+        t.extend([[0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]]);
+        let m = Mesh::from_parts(p, t, Some(0), SolidInfo::default()).unwrap();
+        let r = m.sanity_check().unwrap();
+        assert_eq!((r.origin_sheets, r.components), (2, 2));
+        assert!((r.volume - 2.0 / 6.0).abs() < 1e-9);
+    }
+}
