@@ -110,15 +110,16 @@ fn render_on(
 fn holdout_table(reports: &[photosolid::reconstruct::HoldoutReport]) -> String {
     use std::fmt::Write;
     let mut s = format!(
-        "{:<16} {:>9} {:>9} {:>22} {:>10} {:>8}\n",
-        "filter", "rms %", "max %", "max at (C, gamma)", "flux %", "clamped"
+        "{:<16} {:>9} {:>9} {:>9} {:>22} {:>10} {:>8}\n",
+        "filter", "rms %", "rms-all %", "max %", "max at (C, gamma)", "flux %", "clamped"
     );
     for r in reports {
         let _ = writeln!(
             s,
-            "{:<16} {:>9.3} {:>9.3} {:>22} {:>+10.3} {:>8}",
+            "{:<16} {:>9.3} {:>9.3} {:>9.3} {:>22} {:>+10.3} {:>8}",
             r.filter.to_string(),
             r.rms_percent,
+            r.rms_all_percent,
             r.max_percent,
             format!("({:.1}, {:.1})", r.max_at.0, r.max_at.1),
             r.flux_error_percent,
