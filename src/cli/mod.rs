@@ -4,6 +4,7 @@ mod convert;
 mod demo;
 mod holdout;
 mod info;
+mod mesh;
 mod synth;
 mod texture;
 mod tradeoff;
@@ -38,6 +39,8 @@ enum Command {
     Holdout(holdout::HoldoutArgs),
     /// Time per sample vs hold-out error of every filter (Pareto rows marked).
     Tradeoff(tradeoff::TradeoffArgs),
+    /// Build the photometric solid as a mesh (OBJ, PLY, STL, GLB).
+    Mesh(mesh::MeshArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),
 }
@@ -89,6 +92,7 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Texture(a) => texture::run(a),
         Command::Holdout(a) => holdout::run(a),
         Command::Tradeoff(a) => tradeoff::run(a),
+        Command::Mesh(a) => mesh::run(a),
         Command::Demo(a) => demo::run(a),
     }
 }

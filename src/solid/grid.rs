@@ -354,3 +354,14 @@ mod tests {
         assert!(SolidGrid::new(vec![0.0, 10.0, 20.0], vec![90.0]).is_err());
     }
 }
+
+/// A filter on the measured data is an intensity field (the reference f64 sampler, clamped at 0).
+impl IntensityField for crate::reconstruct::Sampler<'_> {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        self.cd(c_deg, gamma_deg)
+    }
+
+    fn describe(&self) -> String {
+        format!("filter {}", self.filter())
+    }
+}

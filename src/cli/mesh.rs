@@ -1,0 +1,71 @@
+//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use photosolid::reconstruct::{Filter, LightTexture};
+use photosolid::solid::{export, grid_solid, measured_solid, ColorMap, SolidGrid, Units};
+
+use super::ReadArgs;
+
+#[derive(Args, Debug)]
+pub struct MeshArgs {
+    /// An .ies or .ldt file.
+    file: PathBuf,
+    /// Reconstruct with this filter on a grid `--factor` times denser than the file's.
+    #[arg(long, conflicts_with = "measured")]
+    filter: Option<Filter>,
+    /// The measured points alone, Delaunay-triangulated (no interpolation).
+    #[arg(long)]
+    measured: bool,
+    /// Grid refinement of a filtered solid: each measured interval cut into this many steps.
+    #[arg(long, default_value_t = 5)]
+    factor: usize,
+    /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd/klm).
+    #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm"])]
+    units: String,
+    /// Per-vertex colour from the viridis map of intensity (not in STL).
+    #[arg(long)]
+    color: bool,
+    /// Output: .obj, .ply (binary), .stl (binary) or .glb.
+    #[arg(short, long)]
+    output: PathBuf,
+    #[command(flatten)]
+    read: ReadArgs,
+}
+
+pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
+    let lum = super::load(&a.file, &a.read)?;
+    let d = &lum.distribution;
+    let units = match a.units.as_str() {
+        "peak" => Units::Peak,
+        "klm" => Units::per_kilolumen(d)?,
+        _ => Units::Candela,
+    };
+    let mut mesh = if a.measured {
+        measured_solid(d, units)?
+    } else if let Some(f) = a.filter {
+        let tex = LightTexture::new(d).context("building the light distribution texture")?;
+        let grid = SolidGrid::refined(d, a.factor)?;
+        grid_solid(&tex.sampler(f), &grid, units)?
+    } else {
+        anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)");
+    };
+    mesh.info_mut().source = a.file.display().to_string();
+    if a.color {
+        mesh.colorize(ColorMap::Viridis);
+    }
+    let report = mesh.sanity_check().map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
+    export::write(&mesh, &a.output)?;
+    println!(
+        "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report:?}",
+        a.output.display(),
+        mesh.positions().len(),
+        mesh.triangles().len(),
+        mesh.volume(),
+        mesh.area(),
+        u = units.name()
+    );
+    Ok(0)
+}
