@@ -50,7 +50,7 @@ pub use report::FitReport;
 use crate::error::ModelError;
 use crate::model::Distribution;
 use objective::{Other, Samples};
-use optimize::{Rng, SpotFit, SpotSearch};
+use optimize::{OtherSpec, Rng, SpotFit, SpotSearch};
 
 /// Default model-selection tolerance, in units of the error (0.01 = one
 /// percentage point of RMS relative error).
@@ -239,10 +239,10 @@ fn point_only(s: &Samples) -> Outcome {
     }
 }
 
-fn one_spot(s: &Samples, hemi: Hemisphere, with_point: bool, free: bool, warm: &[SpotFit], seed: u64) -> Outcome {
-    let other = if with_point { Other::Point } else { Other::None };
-    let mut search = SpotSearch::new(s, hemi, other, free);
-    let f = search.run(warm, &mut Rng::new(seed));
+fn one_spot(s: &Samples, thin: Option<&Samples>, hemi: Hemisphere, with_point: bool, free: bool, seed: u64) -> Outcome {
+    let other = if with_point { OtherSpec::Point } else { OtherSpec::None };
+    let mut search = SpotSearch::new(s, thin, hemi, other, free);
+    let f = search.run(&[], &mut Rng::new(seed));
     let mut lights = vec![Light::Spot(f.spot())];
     if with_point {
         lights.insert(
@@ -260,8 +260,7 @@ fn one_spot(s: &Samples, hemi: Hemisphere, with_point: bool, free: bool, warm: &
 }
 
 /// Two spots in opposite hemispheres, starting from the single-spot fits.
-fn two_spots(s: &Samples, down: SpotFit, up: SpotFit, free: bool, seed: u64) -> Outcome {
-    let mut rng = Rng::new(seed);
+fn two_spots(s: &Samples, thin: Option<&Samples>, down: SpotFit, up: SpotFit, free: bool) -> Outcome {
     let mut evals = 0;
     let (mut d, mut u) = (down, up);
     // Joint weights for the current shapes: profile the down spot with the up spot fixed.
@@ -277,13 +276,13 @@ fn two_spots(s: &Samples, down: SpotFit, up: SpotFit, free: bool, seed: u64) -> 
     let overlap = bd.iter().zip(&bu).any(|(a, b)| *a > 0.0 && *b > 0.0);
     if overlap {
         // Alternate: each spot searched with the other's shape fixed (both weights free).
-        for _ in 0..4 {
+        for _ in 0..3 {
             let before = dj.prof.e;
-            let mut sd = SpotSearch::new(s, Hemisphere::Down, Other::Shape(u.factors(s)), free);
-            d = sd.run(&[d], &mut rng);
+            let mut sd = SpotSearch::new(s, thin, Hemisphere::Down, OtherSpec::Spot(u), free);
+            d = sd.refine(d);
             evals += sd.evals();
-            let mut su = SpotSearch::new(s, Hemisphere::Up, Other::Shape(d.factors(s)), free);
-            u = su.run(&[u], &mut rng);
+            let mut su = SpotSearch::new(s, thin, Hemisphere::Up, OtherSpec::Spot(d), free);
+            u = su.refine(u);
             evals += su.evals();
             dj = joint(&d, &u, &mut evals);
             if before - dj.prof.e <= 1e-12 + 1e-6 * dj.prof.e {
@@ -326,6 +325,8 @@ pub fn fit(d: &Distribution, options: &FitOptions) -> Result<Fit, ModelError> {
     }
     let s = Samples::new(d, options.metric, options.guard)?;
     let free = !s.rotational;
+    let thin = s.thinned();
+    let thin = thin.as_ref();
     let skip_reason = |c: Combination| -> Option<String> {
         for &h in c.hemispheres() {
             let (i, name) = match h {
@@ -352,10 +353,10 @@ pub fn fit(d: &Distribution, options: &FitOptions) -> Result<Fit, ModelError> {
         let seed = seed_for(options.seed, c);
         Some(match c {
             Combination::Point => point_only(&s),
-            Combination::SpotDown => one_spot(&s, Hemisphere::Down, false, free, &[], seed),
-            Combination::SpotUp => one_spot(&s, Hemisphere::Up, false, free, &[], seed),
-            Combination::PointSpotDown => one_spot(&s, Hemisphere::Down, true, free, &[], seed),
-            Combination::PointSpotUp => one_spot(&s, Hemisphere::Up, true, free, &[], seed),
+            Combination::SpotDown => one_spot(&s, thin, Hemisphere::Down, false, free, seed),
+            Combination::SpotUp => one_spot(&s, thin, Hemisphere::Up, false, free, seed),
+            Combination::PointSpotDown => one_spot(&s, thin, Hemisphere::Down, true, free, seed),
+            Combination::PointSpotUp => one_spot(&s, thin, Hemisphere::Up, true, free, seed),
             Combination::SpotDownSpotUp => unreachable!("fitted after the single spots"),
         })
     };
@@ -383,7 +384,7 @@ pub fn fit(d: &Distribution, options: &FitOptions) -> Result<Fit, ModelError> {
             single(Combination::SpotDown),
             single(Combination::SpotUp),
         ) {
-            (None, Some(dn), Some(up)) => Some(two_spots(&s, dn, up, free, seed_for(options.seed, c))),
+            (None, Some(dn), Some(up)) => Some(two_spots(&s, thin, dn, up, free)),
             _ => None,
         };
         outcomes.push(o);

@@ -26,7 +26,8 @@
 //!
 //! # Cut-off profile
 //! For one spot of fixed axis and exponent, every cut-off is tried at once:
-//! the directions are binned by their angle to the axis (0.1° bins), prefix
+//! the directions are binned by their angle to the axis (900 bins, about
+//! 0.1° each), prefix
 //! sums of `ρ s²`, `ρ s m`, `ρ s b` give the optimal weights (2×2
 //! non-negative least squares with the other light `b`) for every bin
 //! boundary in O(N + bins), and the best boundary is refined exactly among
@@ -48,9 +49,8 @@ pub const DEFAULT_GUARD: f64 = 0.02;
 /// unmeasured spike; 10 I_max leaves any real fit free.
 pub const MAX_RELATIVE_WEIGHT: f64 = 10.0;
 
-/// Width of the coarse cut-off bins, degrees.
-const BIN_DEG: f64 = 0.1;
-const N_BINS: usize = 900; // 90° / BIN_DEG
+/// Number of coarse cut-off bins over [0°, 90°].
+const N_BINS: usize = 900;
 
 /// Which error the fit minimises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Default)]
@@ -98,6 +98,8 @@ pub(crate) struct Samples {
     pub measured: [bool; 2],
     /// Whether any direction strictly below / above the horizontal is lit (m > 0).
     pub lit: [bool; 2],
+    /// Number of full-circle planes and of γ angles (directions are plane-major).
+    pub shape: (usize, usize),
 }
 
 impl Samples {
@@ -199,6 +201,48 @@ impl Samples {
             rotational,
             measured,
             lit,
+            shape: (planes.len(), ng),
+        })
+    }
+
+    /// Every other plane and every other γ angle (the last γ kept), for the
+    /// exploratory stage of the search on large grids; `None` when the grid
+    /// is small enough (under 2500 directions) to search on directly. The
+    /// weights keep their ratios, so the error is the full one's up to
+    /// sampling.
+    pub fn thinned(&self) -> Option<Samples> {
+        let (np, ng) = self.shape;
+        if self.len() < 2500 {
+            return None;
+        }
+        let mut keep = Vec::new();
+        for i in (0..np).step_by(if np >= 8 { 2 } else { 1 }) {
+            for j in 0..ng {
+                if j % 2 == 0 || j + 1 == ng {
+                    keep.push(i * ng + j);
+                }
+            }
+        }
+        let f = self.len() as f64 / keep.len() as f64;
+        let pick = |v: &Vec<f64>| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
+        let rho: Vec<f64> = keep.iter().map(|&k| self.rho[k] * f).collect();
+        let m = pick(&self.m);
+        let mm = rho.iter().zip(&m).map(|(r, x)| r * x * x).sum();
+        let rho_sum = rho.iter().sum();
+        let rho_m = rho.iter().zip(&m).map(|(r, x)| r * x).sum();
+        Some(Samples {
+            dir: keep.iter().map(|&k| self.dir[k]).collect(),
+            omega: pick(&self.omega),
+            m,
+            rho,
+            i_max: self.i_max,
+            mm,
+            rho_sum,
+            rho_m,
+            rotational: self.rotational,
+            measured: self.measured,
+            lit: self.lit,
+            shape: (0, 0),
         })
     }
 
@@ -264,13 +308,22 @@ pub(crate) struct Profiler<'a> {
     bin_s2: Vec<f64>,
     bin_sm: Vec<f64>,
     bin_sb: Vec<f64>,
-    bin_min: Vec<f64>,
-    bin_max: Vec<f64>,
-    // per candidate direction: (bin, θ degrees, ρs², ρsm, ρsb)
+    bin_n: Vec<u32>,
+    // per candidate direction: (bin, q = sin(θ/2), ρs², ρsm, ρsb)
     cand: Vec<(u32, f64, f64, f64, f64)>,
     window: Vec<(f64, f64, f64, f64)>,
     /// Number of profile evaluations so far.
     pub evals: usize,
+}
+
+/// The bins are uniform in q = sin(θ/2) = sqrt((1 − t)/2) (no acos per
+/// direction; q is within 11 % of linear in θ on [0°, 90°]).
+const Q_MAX: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// θ in degrees of q = sin(θ/2).
+#[inline]
+fn theta_deg(q: f64) -> f64 {
+    2.0 * q.min(1.0).asin().to_degrees()
 }
 
 impl<'a> Profiler<'a> {
@@ -292,8 +345,7 @@ impl<'a> Profiler<'a> {
             bin_s2: vec![0.0; N_BINS],
             bin_sm: vec![0.0; N_BINS],
             bin_sb: vec![0.0; N_BINS],
-            bin_min: vec![f64::INFINITY; N_BINS],
-            bin_max: vec![f64::NEG_INFINITY; N_BINS],
+            bin_n: vec![0; N_BINS],
             cand: Vec::with_capacity(s.len()),
             window: Vec::new(),
             evals: 0,
@@ -349,14 +401,14 @@ impl<'a> Profiler<'a> {
         self.bin_s2.iter_mut().for_each(|x| *x = 0.0);
         self.bin_sm.iter_mut().for_each(|x| *x = 0.0);
         self.bin_sb.iter_mut().for_each(|x| *x = 0.0);
-        self.bin_min.iter_mut().for_each(|x| *x = f64::INFINITY);
-        self.bin_max.iter_mut().for_each(|x| *x = f64::NEG_INFINITY);
+        self.bin_n.iter_mut().for_each(|x| *x = 0);
         self.cand.clear();
         let shape = match &self.other {
             Other::Shape(b) => Some(b.as_slice()),
             _ => None,
         };
         let point = matches!(self.other, Other::Point);
+        let scale = N_BINS as f64 / Q_MAX;
         for k in 0..s.dir.len() {
             let d = s.dir[k];
             let t = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
@@ -365,30 +417,28 @@ impl<'a> Profiler<'a> {
                 continue;
             }
             let t = t.min(1.0);
-            let theta = if t == 0.0 { 90.0 } else { t.acos().to_degrees() };
+            let q = (0.5 * (1.0 - t)).sqrt();
             let sv = spot_factor(t, p, 0.0);
-            let r = s.rho[k];
-            let rs = r * sv;
+            let rs = s.rho[k] * sv;
             let b = match shape {
                 Some(b) => b[k],
                 None if point => 1.0,
                 None => 0.0,
             };
             let (a2, am, ab) = (rs * sv, rs * s.m[k], rs * b);
-            let bin = ((theta / BIN_DEG) as usize).min(N_BINS - 1);
+            let bin = ((q * scale) as usize).min(N_BINS - 1);
             self.bin_s2[bin] += a2;
             self.bin_sm[bin] += am;
             self.bin_sb[bin] += ab;
-            self.bin_min[bin] = self.bin_min[bin].min(theta);
-            self.bin_max[bin] = self.bin_max[bin].max(theta);
-            self.cand.push((bin as u32, theta, a2, am, ab));
+            self.bin_n[bin] += 1;
+            self.cand.push((bin as u32, q, a2, am, ab));
         }
         // Coarse: every bin boundary j (bins < j lit).
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
         let mut best_j = 0;
         let mut best_e = self.solve(0.0, 0.0, 0.0).0;
         for j in 0..N_BINS {
-            if self.bin_min[j] == f64::INFINITY {
+            if self.bin_n[j] == 0 {
                 continue;
             }
             s2 += self.bin_s2[j];
@@ -404,33 +454,33 @@ impl<'a> Profiler<'a> {
         let lo = best_j.saturating_sub(2);
         let hi = (best_j + 1).min(N_BINS - 1);
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
-        let mut theta_in = f64::NEG_INFINITY; // largest lit angle
         for j in 0..lo {
             s2 += self.bin_s2[j];
             sm += self.bin_sm[j];
             sb += self.bin_sb[j];
-            theta_in = theta_in.max(self.bin_max[j]);
         }
-        let theta_after = (hi + 1..N_BINS)
-            .map(|j| self.bin_min[j])
-            .find(|x| x.is_finite())
-            .unwrap_or(f64::INFINITY);
+        let mut q_in = f64::NEG_INFINITY; // largest lit q below the window
+        let mut q_after = f64::INFINITY; // smallest dark q above the window
         self.window.clear();
-        for &(bin, th, a2, am, ab) in &self.cand {
+        for &(bin, q, a2, am, ab) in &self.cand {
             let b = bin as usize;
-            if b >= lo && b <= hi {
-                self.window.push((th, a2, am, ab));
+            if b < lo {
+                q_in = q_in.max(q);
+            } else if b > hi {
+                q_after = q_after.min(q);
+            } else {
+                self.window.push((q, a2, am, ab));
             }
         }
         self.window.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         let (e0, ws0, wo0) = self.solve(s2, sm, sb);
-        let first_out = self.window.first().map_or(theta_after, |w| w.0);
-        let mut best = (e0, ws0, wo0, theta_in, first_out);
+        let first_out = self.window.first().map_or(q_after, |w| w.0);
+        let mut best = (e0, ws0, wo0, q_in, first_out);
         let mut i = 0;
         while i < self.window.len() {
             // Directions at the same angle are lit or dark together.
-            let th = self.window[i].0;
-            while i < self.window.len() && self.window[i].0 <= th + 1e-9 {
+            let q = self.window[i].0;
+            while i < self.window.len() && self.window[i].0 <= q + 1e-12 {
                 s2 += self.window[i].1;
                 sm += self.window[i].2;
                 sb += self.window[i].3;
@@ -438,18 +488,18 @@ impl<'a> Profiler<'a> {
             }
             let (e, ws, wo) = self.solve(s2, sm, sb);
             if e < best.0 {
-                let next = self.window.get(i).map_or(theta_after, |w| w.0);
-                best = (e, ws, wo, th, next);
+                let next = self.window.get(i).map_or(q_after, |w| w.0);
+                best = (e, ws, wo, q, next);
             }
         }
-        let (e, ws, wo, tin, tout) = best;
-        let cutoff_deg = if ws == 0.0 || !tin.is_finite() {
+        let (e, ws, wo, qin, qout) = best;
+        let cutoff_deg = if ws == 0.0 || !qin.is_finite() {
             // Nothing lit: the spot is off; any cut-off will do.
             0.0
-        } else if !tout.is_finite() {
+        } else if !qout.is_finite() {
             90.0
         } else {
-            (0.5 * (tin + tout)).clamp(0.0, 90.0)
+            (0.5 * (theta_deg(qin) + theta_deg(qout))).clamp(0.0, 90.0)
         };
         Profile {
             e: e.max(0.0),

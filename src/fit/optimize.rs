@@ -198,27 +198,50 @@ pub(crate) fn nelder_mead<F: FnMut(&[f64]) -> f64>(
 /// Number of exponents on the coarse grid.
 const U_GRID: usize = 17;
 
+/// The other light of a combination, held fixed while a spot is searched.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum OtherSpec {
+    None,
+    Point,
+    Spot(SpotFit),
+}
+
+impl OtherSpec {
+    fn on(&self, s: &Samples) -> Other {
+        match self {
+            OtherSpec::None => Other::None,
+            OtherSpec::Point => Other::Point,
+            OtherSpec::Spot(f) => Other::Shape(f.factors(s)),
+        }
+    }
+}
+
 /// The search for one spot's shape, given the other light.
 pub(crate) struct SpotSearch<'a> {
-    prof: Profiler<'a>,
+    full: Profiler<'a>,
+    /// A thinned copy of the data for the exploratory stage (large grids).
+    thin: Option<Profiler<'a>>,
+    use_thin: bool,
     s: &'a Samples,
     hemi: Hemisphere,
     free_axis: bool,
 }
 
 impl<'a> SpotSearch<'a> {
-    pub fn new(s: &'a Samples, hemi: Hemisphere, other: Other, free_axis: bool) -> Self {
+    pub fn new(s: &'a Samples, thin: Option<&'a Samples>, hemi: Hemisphere, other: OtherSpec, free_axis: bool) -> Self {
         Self {
-            prof: Profiler::new(s, other),
+            full: Profiler::new(s, other.on(s)),
+            thin: thin.filter(|_| free_axis).map(|t| Profiler::new(t, other.on(t))),
+            use_thin: false,
             s,
             hemi,
             free_axis,
         }
     }
 
-    /// Profile evaluations so far.
+    /// Profile evaluations so far (thinned ones counted by their share of the directions).
     pub fn evals(&self) -> usize {
-        self.prof.evals
+        self.full.evals + self.thin.as_ref().map_or(0, |t| t.evals / 4)
     }
 
     fn eval(&mut self, u: f64, x: f64, y: f64) -> SpotFit {
@@ -228,7 +251,11 @@ impl<'a> SpotSearch<'a> {
         // coordinates are the evaluated ones.
         let r = x.hypot(y);
         let (x, y) = if r > 90.0 { (x * 90.0 / r, y * 90.0 / r) } else { (x, y) };
-        let prof = self.prof.profile(axis_of(self.hemi, x, y), exponent_of(u));
+        let (axis, p) = (axis_of(self.hemi, x, y), exponent_of(u));
+        let prof = match (&mut self.thin, self.use_thin) {
+            (Some(t), true) => t.profile(axis, p),
+            _ => self.full.profile(axis, p),
+        };
         SpotFit {
             hemi: self.hemi,
             u,
@@ -246,8 +273,8 @@ impl<'a> SpotSearch<'a> {
             .collect()
     }
 
-    /// Golden-section search in u on [a, b] at axis (x, y).
-    fn golden(&mut self, a: f64, b: f64, x: f64, y: f64) -> SpotFit {
+    /// Golden-section search in u on [a, b] at axis (x, y), to `tol` in u.
+    fn golden(&mut self, a: f64, b: f64, x: f64, y: f64, tol: f64) -> SpotFit {
         let g = 0.5 * (5f64.sqrt() - 1.0);
         let (mut a, mut b) = (a.max(0.0), b.min(u_max()));
         let mut c = b - g * (b - a);
@@ -256,7 +283,7 @@ impl<'a> SpotSearch<'a> {
         let mut fd = self.eval(d, x, y);
         let ea = self.eval(a, x, y);
         let eb = self.eval(b, x, y);
-        while b - a > 1e-7 {
+        while b - a > tol {
             if fc.prof.e <= fd.prof.e {
                 b = d;
                 d = c;
@@ -292,7 +319,7 @@ impl<'a> SpotSearch<'a> {
         for i in minima {
             let a = if i == 0 { grid[0].u } else { grid[i - 1].u };
             let b = if i + 1 == n { grid[n - 1].u } else { grid[i + 1].u };
-            let r = self.golden(a, b, grid[i].x, grid[i].y);
+            let r = self.golden(a, b, grid[i].x, grid[i].y, 1e-7);
             if r.prof.e < best.prof.e {
                 best = r;
             }
@@ -350,16 +377,20 @@ impl<'a> SpotSearch<'a> {
             grid.sort_by(|a, b| a.u.total_cmp(&b.u));
             return self.polish_u(&grid, 3);
         }
+        // Exploration (on the thinned data when the grid is large): the
+        // coarse exponent grid at every start axis, then Nelder–Mead from the
+        // two best.
+        self.use_thin = self.thin.is_some();
         let mut starts: Vec<(f64, f64)> = vec![(0.0, 0.0)];
         starts.extend(self.data_axes());
         starts.extend(warm.iter().filter(|w| w.hemi == self.hemi).map(|w| (w.x, w.y)));
         let (t, a) = (60.0 * rng.f64().sqrt(), std::f64::consts::TAU * rng.f64());
         starts.push((t * a.cos(), t * a.sin()));
         let mut cands: Vec<SpotFit> = Vec::new();
+        let hemi = self.hemi;
         for &(x, y) in &starts {
             let grid = self.coarse(x, y);
             let mut best = *grid.iter().min_by(|p, q| p.prof.e.total_cmp(&q.prof.e)).unwrap();
-            let hemi = self.hemi;
             for w in warm.iter().filter(|w| w.hemi == hemi) {
                 let c = self.eval(w.u, x, y);
                 if c.prof.e < best.prof.e {
@@ -369,40 +400,59 @@ impl<'a> SpotSearch<'a> {
             cands.push(best);
         }
         cands.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
-        let mut best = cands[0];
-        for c in cands.iter().take(2) {
-            let r = self.local(*c);
-            if r.prof.e < best.prof.e {
-                best = r;
-            }
-        }
-        best
+        let mut explored: Vec<SpotFit> = cands.iter().take(2).map(|c| self.nm(*c, 1.0, 150, 1e-3)).collect();
+        explored.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
+        // Refinement on the full data from the best explored point.
+        let thinned = self.use_thin;
+        self.use_thin = false;
+        let e = self.eval(explored[0].u, explored[0].x, explored[0].y);
+        self.local(e, thinned)
     }
 
-    /// Nelder–Mead in (u, x, y) with shrinking restarts, then an exponent polish.
-    fn local(&mut self, start: SpotFit) -> SpotFit {
+    /// Local refinement from `start` only (no exploration): used when the
+    /// other light of a pair has moved a little.
+    pub fn refine(&mut self, start: SpotFit) -> SpotFit {
+        self.use_thin = false;
+        let e = self.eval(start.u, start.x, start.y);
+        if !self.free_axis {
+            return self.golden(e.u - 0.3, e.u + 0.3, 0.0, 0.0, 1e-7);
+        }
+        self.local(e, true)
+    }
+
+    /// One Nelder–Mead run in (u, x, y) with initial steps (0.3, 6°, 6°) × `scale`.
+    fn nm(&mut self, start: SpotFit, scale: f64, max_evals: usize, xtol: f64) -> SpotFit {
+        let mut f = |v: &[f64]| self.eval(v[0], v[1], v[2]).prof.e;
+        let ftol = 1e-15 + 1e-10 * start.prof.e;
+        let (x, _, _) = nelder_mead(
+            &mut f,
+            &[start.u, start.x, start.y],
+            &[0.3 * scale, 6.0 * scale, 6.0 * scale],
+            max_evals,
+            ftol,
+            xtol,
+        );
+        let r = self.eval(x[0], x[1], x[2]);
+        if r.prof.e < start.prof.e {
+            r
+        } else {
+            start
+        }
+    }
+
+    /// Nelder–Mead restarts with shrinking simplices until no gain, then an exponent polish.
+    fn local(&mut self, start: SpotFit, from_thin: bool) -> SpotFit {
         let mut best = start;
-        for (k, scale) in [1.0, 0.3, 0.1, 0.03].into_iter().enumerate() {
-            let mut f = |v: &[f64]| self.eval(v[0], v[1], v[2]).prof.e;
-            let ftol = 1e-15 + 1e-11 * best.prof.e;
-            let (x, _, _) = nelder_mead(
-                &mut f,
-                &[best.u, best.x, best.y],
-                &[0.3 * scale, 6.0 * scale, 6.0 * scale],
-                300,
-                ftol,
-                1e-7,
-            );
-            let r = self.eval(x[0], x[1], x[2]);
+        let scales: &[f64] = if from_thin { &[0.1, 0.03] } else { &[0.3, 0.1, 0.03] };
+        for (k, &scale) in scales.iter().enumerate() {
+            let r = self.nm(best, scale, 120, 1e-4);
             let gain = best.prof.e - r.prof.e;
-            if r.prof.e < best.prof.e {
-                best = r;
-            }
+            best = r;
             if k > 0 && gain <= 1e-14 + 1e-9 * best.prof.e {
                 break;
             }
         }
-        let r = self.golden(best.u - 0.02, best.u + 0.02, best.x, best.y);
+        let r = self.golden(best.u - 0.02, best.u + 0.02, best.x, best.y, 1e-5);
         if r.prof.e < best.prof.e {
             best = r;
         }
