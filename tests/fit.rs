@@ -235,3 +235,409 @@ fn recovers_known_lights_under_one_percent_noise() {
         assert!(f.error() < 0.02, "{what}: {}", f.error());
     }
 }
+
+fn rot(lights: Vec<Light>, g: f64) -> (FittedLights, Distribution) {
+    let m = FittedLights::new(lights);
+    let (_, gs) = grid(360.0, g);
+    let d = m.sample(&[0.0], &gs).unwrap();
+    (m, d)
+}
+
+fn trial<'a>(f: &'a Fit, name: &str) -> &'a photosolid::fit::Trial {
+    f.trials.iter().find(|t| t.combination.name() == name).unwrap()
+}
+
+fn all_finite(f: &Fit) {
+    for t in &f.trials {
+        if let Some(e) = t.error {
+            assert!(e.is_finite() && e >= 0.0, "{:?}", t);
+        }
+        for l in t.model.iter().flat_map(|m| &m.lights) {
+            assert!(l.weight_cd().is_finite() && l.weight_cd() >= 0.0);
+            if let Light::Spot(s) = l {
+                s.validate().unwrap();
+            }
+        }
+    }
+}
+
+#[test]
+fn exponent_zero_and_128_are_recovered() {
+    let (m, d) = rot(vec![spot(Hemisphere::Down, 700.0, 0.0, 50.3, 0.0, 0.0)], 1.0);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    all_finite(&f);
+    check(&m, &f, EXACT, "exponent 0");
+    let (m, d) = rot(vec![spot(Hemisphere::Down, 700.0, 128.0, 20.4, 0.0, 0.0)], 1.0);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    check(&m, &f, EXACT, "exponent 128");
+}
+
+#[test]
+fn cutoffs_near_zero_and_at_ninety() {
+    // Only the nadir sample is lit: the exponent is undetermined, the cut-off is under one step.
+    let (_, d) = rot(vec![spot(Hemisphere::Down, 500.0, 10.0, 0.4, 0.0, 0.0)], 1.0);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    all_finite(&f);
+    assert!(f.error() < 1e-6, "{}", f.error());
+    let Light::Spot(s) = f.model().lights[0] else {
+        panic!("{:?}", f.model())
+    };
+    assert!(s.cutoff_deg < 1.0 && (s.weight_cd - 500.0).abs() < 1e-6, "{s:?}");
+    // Cut-off 0 exactly (OpenGL: only the axis itself).
+    let (_, d) = rot(vec![spot(Hemisphere::Down, 500.0, 3.0, 0.0, 0.0, 0.0)], 1.0);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    assert!(f.error() < 1e-6);
+    // Cut-off 90 with p = 0: the horizon is lit, and the fit says 90.
+    let (m, d) = rot(vec![spot(Hemisphere::Down, 500.0, 0.0, 90.0, 0.0, 0.0)], 1.0);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    check(&m, &f, EXACT, "cut-off 90, p = 0");
+    let Light::Spot(s) = f.model().lights[0] else { panic!() };
+    assert_eq!(s.cutoff_deg, 90.0);
+    // Cut-off 90 with p = 3 (zero at the horizon: 89.5 and 90 are the same light).
+    let (m, d) = rot(vec![spot(Hemisphere::Down, 500.0, 3.0, 90.0, 0.0, 0.0)], 1.0);
+    check(
+        &m,
+        &fit(&d, &FitOptions::default()).unwrap(),
+        EXACT,
+        "cut-off 90, p = 3",
+    );
+}
+
+#[test]
+fn spot_along_the_pole_in_asymmetric_data() {
+    let (m, d) = sample(
+        vec![
+            spot(Hemisphere::Down, 1000.0, 15.0, 46.25, 0.0, 0.0),
+            spot(Hemisphere::Up, 300.0, 5.0, 35.0, 35.0, 120.0),
+        ],
+        5.0,
+        2.5,
+    );
+    assert_eq!(d.symmetry(), Symmetry::None);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    assert!(!f.axis_vertical);
+    check(&m, &f, EXACT, "spot along the pole");
+    let down = f
+        .model()
+        .lights
+        .iter()
+        .find_map(|l| match l {
+            Light::Spot(s) if s.hemisphere == Hemisphere::Down => Some(*s),
+            _ => None,
+        })
+        .unwrap();
+    assert!(down.tilt_deg < 0.5, "{down:?}");
+}
+
+#[test]
+fn one_dark_hemisphere_skips_its_spots() {
+    let (_, d) = rot(vec![spot(Hemisphere::Down, 1000.0, 5.0, 60.0, 0.0, 0.0)], 2.5);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    assert_eq!(f.chosen().combination.name(), "spot-down");
+    for name in ["spot-up", "point+spot-up", "spot-down+spot-up"] {
+        let t = trial(&f, name);
+        assert!(
+            t.error.is_none() && t.skipped.as_deref() == Some("the upper hemisphere is dark"),
+            "{t:?}"
+        );
+    }
+    // Only the lower hemisphere measured (γ 0..90).
+    let gs: Vec<f64> = (0..=90).map(f64::from).collect();
+    let d = FittedLights::new(vec![spot(Hemisphere::Down, 1000.0, 5.0, 60.0, 0.0, 0.0)])
+        .sample(&[0.0], &gs)
+        .unwrap();
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    assert_eq!(f.chosen().combination.name(), "spot-down");
+    assert!(trial(&f, "spot-up")
+        .skipped
+        .as_deref()
+        .unwrap()
+        .contains("no measured direction"));
+}
+
+#[test]
+fn all_equal_data_is_a_point_light() {
+    let (_, gs) = grid(15.0, 5.0);
+    let (cs, _) = grid(15.0, 5.0);
+    let d = Distribution::new(cs.clone(), gs.clone(), vec![250.0; cs.len() * gs.len()], Symmetry::None).unwrap();
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    all_finite(&f);
+    assert!(f.axis_vertical, "identical planes are rotational");
+    assert_eq!(f.chosen().combination.name(), "point");
+    assert!((f.model().lights[0].weight_cd() - 250.0).abs() < 1e-9);
+    assert!(f.error() < 1e-12);
+    // A flat lower hemisphere measured alone: a point light and a p = 0 spot both fit; the point wins.
+    let g90: Vec<f64> = (0..=18).map(|k| k as f64 * 5.0).collect();
+    let d = Distribution::new(vec![0.0], g90.clone(), vec![40.0; g90.len()], Symmetry::Rotational).unwrap();
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    assert_eq!(f.chosen().combination.name(), "point");
+}
+
+#[test]
+fn all_zero_data_is_a_clear_error() {
+    let d = Distribution::new(vec![0.0], vec![0.0, 90.0, 180.0], vec![0.0; 3], Symmetry::Rotational).unwrap();
+    let e = fit(&d, &FitOptions::default()).unwrap_err();
+    assert!(matches!(e, photosolid::ModelError::AllZero(_)), "{e}");
+    assert!(e.to_string().contains("zero everywhere"));
+    let d = Distribution::new(vec![0.0], vec![0.0, 90.0], vec![-1.0, -2.0], Symmetry::Rotational).unwrap();
+    assert!(fit(&d, &FitOptions::default()).is_err());
+    let d = Distribution::new(vec![0.0], vec![0.0, 90.0], vec![1.0, 2.0], Symmetry::Rotational).unwrap();
+    for bad in [
+        FitOptions {
+            max_lights: 3,
+            ..Default::default()
+        },
+        FitOptions {
+            tolerance: f64::NAN,
+            ..Default::default()
+        },
+        FitOptions {
+            guard: 0.0,
+            ..Default::default()
+        },
+    ] {
+        assert!(fit(&d, &bad).is_err());
+    }
+}
+
+/// Distributions without spot character (seed §5: central obstruction, ring
+/// maxima) are fitted and reported with their error, not hidden.
+#[test]
+fn batwing_and_ring_are_reported_honestly() {
+    let bat = photosolid::synth::Synth::Batwing
+        .build(&photosolid::synth::GridSpec::uniform(15.0, 2.5).unwrap(), 1000.0)
+        .unwrap()
+        .distribution;
+    let (_, gs) = grid(360.0, 2.5);
+    // A ring: peak at γ = 60°, nothing at the nadir.
+    let ring: Vec<f64> = gs
+        .iter()
+        .map(|&g| {
+            if g <= 90.0 {
+                1000.0 * (-((g - 60.0) / 10.0).powi(2)).exp()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let ring = Distribution::new(vec![0.0], gs.clone(), ring, Symmetry::Rotational).unwrap();
+    for (what, d) in [("batwing", bat), ("ring", ring)] {
+        let f = fit(&d, &FitOptions::default()).unwrap();
+        all_finite(&f);
+        eprintln!("{what}:\n{}", photosolid::fit::FitReport::of(&f).to_text());
+        assert!(f.error() > 0.05, "{what}: a spot cannot be this good: {}", f.error());
+        assert!(f.error().is_finite());
+    }
+}
+
+#[test]
+fn roadway_fits_with_a_tilted_spot() {
+    let d = photosolid::synth::Synth::Roadway
+        .build(&photosolid::synth::GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0)
+        .unwrap()
+        .distribution;
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    all_finite(&f);
+    eprintln!("{}", photosolid::fit::FitReport::of(&f).to_text());
+    assert!(f.error() < 1.0);
+}
+
+#[test]
+fn deterministic_and_independent_of_threads() {
+    let (_, d) = sample(
+        vec![
+            spot(Hemisphere::Down, 1000.0, 8.0, 50.0, 15.0, 200.0),
+            spot(Hemisphere::Up, 400.0, 3.0, 40.0, 30.0, 45.0),
+        ],
+        5.0,
+        2.5,
+    );
+    let d = noisy(&d, 0.01, 7);
+    let a = fit(&d, &FitOptions::default()).unwrap();
+    let b = fit(&d, &FitOptions::default()).unwrap();
+    let c = fit(
+        &d,
+        &FitOptions {
+            parallel: false,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(a, b);
+    assert_eq!(a.trials, c.trials);
+}
+
+#[test]
+fn error_of_agrees_and_solid_angle_metric_recovers() {
+    let (m, d) = sample(
+        vec![
+            spot(Hemisphere::Down, 900.0, 12.0, 60.2, 10.0, 30.0),
+            Light::Point { weight_cd: 60.0 },
+        ],
+        5.0,
+        2.5,
+    );
+    let opts = FitOptions {
+        metric: ErrorMetric::SolidAngle,
+        ..Default::default()
+    };
+    let f = fit(&d, &opts).unwrap();
+    check(&m, &f, EXACT, "solid-angle metric");
+    for t in f.trials.iter().filter(|t| t.model.is_some()) {
+        let e = error_of(&d, t.model.as_ref().unwrap(), ErrorMetric::SolidAngle, opts.guard).unwrap();
+        assert!((e - t.error.unwrap()).abs() < 1e-12, "{e} vs {:?}", t.error);
+    }
+    // The true model has zero error under both metrics.
+    assert!(error_of(&d, &m, ErrorMetric::Relative, 0.02).unwrap() < 1e-12);
+}
+
+#[test]
+fn selection_prefers_fewer_lights_within_tolerance() {
+    // A spot over a faint point floor (0.3 % of I_max).
+    let (_, d) = rot(
+        vec![
+            spot(Hemisphere::Down, 1000.0, 6.0, 70.0, 0.0, 0.0),
+            Light::Point { weight_cd: 3.0 },
+        ],
+        2.5,
+    );
+    let strict = fit(
+        &d,
+        &FitOptions {
+            tolerance: 0.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(strict.chosen().lights, 2);
+    let lax = fit(
+        &d,
+        &FitOptions {
+            tolerance: 1.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(lax.chosen().lights, 1);
+    let one = fit(
+        &d,
+        &FitOptions {
+            max_lights: 1,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(one.trials.len(), 3);
+    assert!(one.trials.iter().all(|t| t.lights == 1));
+}
+
+#[test]
+fn report_has_gl_units_and_snippets() {
+    let (_, d) = sample(vec![spot(Hemisphere::Down, 1000.0, 10.0, 35.0, 25.0, 60.0)], 5.0, 2.5);
+    let f = fit(&d, &FitOptions::default()).unwrap();
+    let r = photosolid::fit::FitReport::of(&f);
+    let v = serde_json::to_value(&r).unwrap();
+    for k in [
+        "reconstruction",
+        "metric",
+        "guard",
+        "tolerance",
+        "i_max_cd",
+        "chosen",
+        "error",
+        "lights",
+        "trials",
+        "frames",
+        "glsl",
+        "gl_fixed_function",
+    ] {
+        assert!(v.get(k).is_some(), "missing {k}");
+    }
+    assert_eq!(v["reconstruction"], "fitted-gl");
+    assert_eq!(v["trials"].as_array().unwrap().len(), 6);
+    let l = &v["lights"][0];
+    let dz = l["direction_luminaire"].as_array().unwrap();
+    let dy = l["direction_gl"].as_array().unwrap();
+    // y-up = (x, z, −y) of z-up.
+    assert!((dy[1].as_f64().unwrap() - dz[2].as_f64().unwrap()).abs() < 1e-12);
+    assert!((dy[2].as_f64().unwrap() + dz[1].as_f64().unwrap()).abs() < 1e-12);
+    assert!(r.glsl.contains("float luminaireIntensity(vec3 L)"));
+    assert_eq!(r.gl_fixed_function[0].GL_QUADRATIC_ATTENUATION, 1.0);
+    assert!(r.to_text().contains("* spot-down"));
+}
+
+/// The lead runs this after merging the readers: every loadable corpus file
+/// fits with a finite error, and the table is printed (`--nocapture`).
+#[test]
+fn corpus_files_fit() {
+    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus"));
+    let mut files = Vec::new();
+    let mut stack = vec![root.to_path_buf()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if matches!(
+                p.extension()
+                    .and_then(|e| e.to_str())
+                    .map(|e| e.to_ascii_lowercase())
+                    .as_deref(),
+                Some("ies" | "ldt")
+            ) {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    let (mut loaded, mut skipped) = (0, 0);
+    let mut table =
+        String::from("file | chosen | error | spot-down | spot-up | point | point+down | point+up | down+up | ms\n");
+    for p in &files {
+        let Ok(lum) = photosolid::load(p) else {
+            skipped += 1;
+            continue;
+        };
+        if lum.distribution.max_cd() <= 0.0 {
+            skipped += 1;
+            continue;
+        }
+        loaded += 1;
+        let t = std::time::Instant::now();
+        let f = fit(&lum.distribution, &FitOptions::default()).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        all_finite(&f);
+        assert!(f.error().is_finite(), "{}", p.display());
+        let cell = |t: &photosolid::fit::Trial| t.error.map_or("-".to_string(), |e| format!("{e:.4}"));
+        table += &format!(
+            "{} | {} | {:.4} | {} | {ms:.1}\n",
+            p.strip_prefix(root).unwrap_or(p).display(),
+            f.chosen().combination.name(),
+            f.error(),
+            f.trials.iter().map(cell).collect::<Vec<_>>().join(" | ")
+        );
+    }
+    eprintln!("corpus: {loaded} fitted, {skipped} not loadable\n{table}");
+}
+
+#[test]
+fn cli_fit_reports_a_missing_file() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+        .args([
+            "fit",
+            "does-not-exist.ies",
+            "--max-lights",
+            "1",
+            "--error",
+            "solid-angle",
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("does-not-exist.ies"));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+        .args(["fit", "x.ies", "--max-lights", "3"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "clap rejects --max-lights 3");
+}

@@ -2,6 +2,7 @@
 
 mod convert;
 mod demo;
+mod fit;
 mod info;
 mod synth;
 mod validate;
@@ -31,6 +32,8 @@ enum Command {
     Synth(synth::SynthArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),
+    /// Approximate the luminaire by at most 2 OpenGL lights (spot / point; Zotti et al. 2005).
+    Fit(fit::FitArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -78,5 +81,6 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Convert(a) => convert::run(a),
         Command::Synth(a) => synth::run(a),
         Command::Demo(a) => demo::run(a),
+        Command::Fit(a) => fit::run(a),
     }
 }

@@ -113,7 +113,7 @@ impl Samples {
             });
         }
         let i_max = d.max_cd();
-        if !(i_max > 0.0) {
+        if i_max.is_nan() || i_max <= 0.0 {
             return Err(ModelError::AllZero("fitting OpenGL lights needs some light"));
         }
         // Identical planes: keep one, so the model's axis can be fixed vertical

@@ -337,7 +337,7 @@ impl<'a> SpotSearch<'a> {
         };
         let to_xy = |d: [f64; 3]| -> Option<(f64, f64)> {
             let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            if !(n > 0.0) || d[2] * sign <= 0.0 {
+            if n.is_nan() || n <= 0.0 || d[2] * sign <= 0.0 {
                 return None;
             }
             let tilt = (d[2] * sign / n).clamp(-1.0, 1.0).acos().to_degrees();
