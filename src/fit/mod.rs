@@ -276,16 +276,27 @@ fn two_spots(s: &Samples, thin: Option<&Samples>, down: SpotFit, up: SpotFit, fr
     let overlap = bd.iter().zip(&bu).any(|(a, b)| *a > 0.0 && *b > 0.0);
     if overlap {
         // Alternate: each spot searched with the other's shape fixed (both weights free).
-        for _ in 0..3 {
+        // Cheap rounds on the thinned data while the pair moves, then one full round.
+        let rounds = 3;
+        for round in 0..rounds {
+            let last = round + 1 == rounds;
             let before = dj.prof.e;
             let mut sd = SpotSearch::new(s, thin, Hemisphere::Down, OtherSpec::Spot(u), free);
-            d = sd.refine(d);
+            d = sd.refine(d, last);
             evals += sd.evals();
             let mut su = SpotSearch::new(s, thin, Hemisphere::Up, OtherSpec::Spot(d), free);
-            u = su.refine(u);
+            u = su.refine(u, last);
             evals += su.evals();
             dj = joint(&d, &u, &mut evals);
-            if before - dj.prof.e <= 1e-12 + 1e-6 * dj.prof.e {
+            if !last && before - dj.prof.e <= 1e-12 + 1e-6 * dj.prof.e {
+                // Converged on the cheap data: skip to the full round.
+                let mut sd = SpotSearch::new(s, thin, Hemisphere::Down, OtherSpec::Spot(u), free);
+                d = sd.refine(d, true);
+                evals += sd.evals();
+                let mut su = SpotSearch::new(s, thin, Hemisphere::Up, OtherSpec::Spot(d), free);
+                u = su.refine(u, true);
+                evals += su.evals();
+                dj = joint(&d, &u, &mut evals);
                 break;
             }
         }

@@ -402,22 +402,29 @@ impl<'a> SpotSearch<'a> {
         cands.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
         let mut explored: Vec<SpotFit> = cands.iter().take(2).map(|c| self.nm(*c, 1.0, 150, 1e-3)).collect();
         explored.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
-        // Refinement on the full data from the best explored point.
-        let thinned = self.use_thin;
-        self.use_thin = false;
-        let e = self.eval(explored[0].u, explored[0].x, explored[0].y);
-        self.local(e, thinned)
+        // Refinement from the best explored point.
+        self.local(explored[0])
     }
 
     /// Local refinement from `start` only (no exploration): used when the
-    /// other light of a pair has moved a little.
-    pub fn refine(&mut self, start: SpotFit) -> SpotFit {
+    /// other light of a pair has moved a little. With `full == false` and a
+    /// thinned copy of the data, only the thinned stage runs (the result is
+    /// re-profiled on the full data).
+    pub fn refine(&mut self, start: SpotFit, full: bool) -> SpotFit {
         self.use_thin = false;
         let e = self.eval(start.u, start.x, start.y);
         if !self.free_axis {
             return self.golden(e.u - 0.3, e.u + 0.3, 0.0, 0.0, 1e-7);
         }
-        self.local(e, true)
+        if !full && self.thin.is_some() {
+            self.use_thin = true;
+            let t = self.eval(start.u, start.x, start.y);
+            let r = self.nm(t, 0.1, 150, 1e-3);
+            self.use_thin = false;
+            let r = self.eval(r.u, r.x, r.y);
+            return if r.prof.e < e.prof.e { r } else { e };
+        }
+        self.local(e)
     }
 
     /// One Nelder–Mead run in (u, x, y) with initial steps (0.3, 6°, 6°) × `scale`.
@@ -440,12 +447,26 @@ impl<'a> SpotSearch<'a> {
         }
     }
 
-    /// Nelder–Mead restarts with shrinking simplices until no gain, then an exponent polish.
-    fn local(&mut self, start: SpotFit, from_thin: bool) -> SpotFit {
+    /// Local refinement: Nelder–Mead on the thinned data (when there is
+    /// one) to 1e-4, then on the full data from a small simplex (0.18° steps),
+    /// restarted while it still gains, then an exponent polish on the full data.
+    fn local(&mut self, start: SpotFit) -> SpotFit {
         let mut best = start;
-        let scales: &[f64] = if from_thin { &[0.1, 0.03] } else { &[0.3, 0.1, 0.03] };
+        if self.thin.is_some() {
+            self.use_thin = true;
+            let e = self.eval(best.u, best.x, best.y);
+            let r = self.nm(e, 0.1, 150, 1e-4);
+            self.use_thin = false;
+            best = self.eval(r.u, r.x, r.y);
+        }
+        // From the thinned optimum a small simplex suffices on the full data.
+        let scales: &[f64] = if self.thin.is_some() {
+            &[0.02]
+        } else {
+            &[0.3, 0.1, 0.03]
+        };
         for (k, &scale) in scales.iter().enumerate() {
-            let r = self.nm(best, scale, 120, 1e-4);
+            let r = self.nm(best, scale, 80, 1e-3);
             let gain = best.prof.e - r.prof.e;
             best = r;
             if k > 0 && gain <= 1e-14 + 1e-9 * best.prof.e {
