@@ -6,7 +6,7 @@
 //!   reconstruction) and its evaluation in any direction;
 //! - [`objective`]: the seed's relative error (and a solid-angle-weighted
 //!   variant) and the exact cut-off profile;
-//! - [`optimize`](self) (private): the search over exponents and axes;
+//! - `optimize` (private): the search over exponents and axes;
 //! - [`report`]: serde output and a GLSL / JSON snippet for renderers.
 //!
 //! # What is tried ([`Combination`])
