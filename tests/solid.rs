@@ -295,9 +295,22 @@ fn all_zero_and_degenerate_inputs_are_errors() {
     // One gamma angle spans no solid angle.
     let one = Distribution::new(vec![0.0], vec![45.0], vec![1.0], Symmetry::Rotational).unwrap();
     assert!(measured_solid(&one, Units::Candela).is_err());
-    // Two planes 180 degrees apart cannot enclose the axis.
-    let two = Distribution::new(vec![0.0, 180.0], vec![0.0, 90.0], vec![1.0; 4], Symmetry::None).unwrap();
-    assert!(measured_solid(&two, Units::Candela).is_err());
+    // Two planes 180 degrees apart cannot enclose the axis alone: planes are
+    // inserted linearly in C, and the hemisphere of radius 1 closes.
+    let two = Distribution::new(
+        vec![0.0, 180.0],
+        vec![0.0, 90.0],
+        vec![1.0, 1.0, 1.0, 3.0],
+        Symmetry::None,
+    )
+    .unwrap();
+    let m = measured_solid(&two, Units::Candela).unwrap();
+    check(&m, "two planes");
+    // C0 and C180 stay vertices; the inserted C90 plane holds the mean at gamma 90.
+    assert!(m
+        .positions()
+        .iter()
+        .any(|p| (p[1] - 2.0).abs() < 1e-6 && p[2].abs() < 1e-6));
     // Negative values are clamped to zero, not mirrored through the origin.
     let neg = |_: f64, g: f64| if g < 90.0 { 1.0 } else { -1.0 };
     let m = grid_solid(&neg, &SolidGrid::uniform(12, 12).unwrap(), Units::Candela).unwrap();

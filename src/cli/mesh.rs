@@ -56,7 +56,9 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     if a.color {
         mesh.colorize(ColorMap::Viridis);
     }
-    let report = mesh.sanity_check().map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
+    let report = mesh
+        .sanity_check()
+        .map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
     export::write(&mesh, &a.output)?;
     println!(
         "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report:?}",

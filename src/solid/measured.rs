@@ -25,7 +25,11 @@
 //! Every measured direction is one vertex (each pole once, with the
 //! C-weighted mean of its plane values, [`crate::model::Distribution::with_averaged_poles`]).
 //! A rotational or single-plane distribution is constant in C; it is
-//! expanded to [`MeasuredOptions::rotational_planes`] planes. Outside the
+//! expanded to [`MeasuredOptions::rotational_planes`] planes. Planes that
+//! leave a gap of 180° or more (e.g. only C0 and C180) cannot enclose the
+//! axis: the gap is filled with planes every 90° or less, their values
+//! linear in C between the gap's ends (the bilinear reconstruction), and
+//! only those inserted directions are not measured. Outside the
 //! measured γ range the intensity is zero: an unmeasured pole is added as a
 //! zero direction, so the last measured ring is joined to the origin. Every
 //! zero direction is the merged origin vertex (see [`crate::solid`]).
@@ -49,6 +53,43 @@ impl Default for MeasuredOptions {
     fn default() -> Self {
         Self { rotational_planes: 72 }
     }
+}
+
+/// `d` unchanged when its full-circle planes leave no gap of 180° or more;
+/// otherwise a copy (no symmetry) with planes inserted in each such gap, at
+/// most 90° apart, their values linear in C between the gap's ends.
+fn close_c_gaps(d: &Distribution) -> Result<Distribution, ModelError> {
+    let planes = d.full_planes();
+    let np = planes.len();
+    if np < 2 {
+        return Ok(d.clone());
+    }
+    let gap = |i: usize| {
+        let next = if i + 1 == np {
+            planes[0].0 + 360.0
+        } else {
+            planes[i + 1].0
+        };
+        next - planes[i].0
+    };
+    if (0..np).all(|i| gap(i) < 180.0 - ANGLE_EPS) {
+        return Ok(d.clone());
+    }
+    let mut c = Vec::new();
+    for (i, p) in planes.iter().enumerate() {
+        c.push(p.0);
+        let g = gap(i);
+        if g >= 180.0 - ANGLE_EPS {
+            let pieces = (g / 90.0).ceil() as usize;
+            for k in 1..pieces {
+                c.push(crate::model::wrap360(p.0 + g * k as f64 / pieces as f64));
+            }
+        }
+    }
+    c.sort_by(f64::total_cmp);
+    c.dedup_by(|a, b| (*a - *b).abs() <= ANGLE_EPS);
+    let cd: Vec<f64> = c.iter().flat_map(|&a| crate::photometry::plane_profile(d, a)).collect();
+    Distribution::new(c, d.gamma_angles().to_vec(), cd, crate::model::Symmetry::None)
 }
 
 /// A direction inserted into a planar triangulation, with its direction index.
@@ -81,7 +122,7 @@ pub fn measured_solid(d: &Distribution, units: Units) -> Result<Mesh, ModelError
 /// the C-planes leave a gap of 180° or more (the rings cannot enclose the axis).
 pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOptions) -> Result<Mesh, ModelError> {
     let bad = |axis: &'static str, reason: String| ModelError::Angles { axis, reason };
-    let d = d.with_averaged_poles();
+    let d = close_c_gaps(&d.with_averaged_poles())?;
     // Full-circle planes (angle in degrees, stored plane index).
     let mut planes = d.full_planes();
     if planes.len() == 1 {

@@ -259,7 +259,9 @@ impl Mesh {
     /// origin where several sheets of the surface may meet (e.g. two lobes of
     /// a batwing-like distribution that is zero between them). The check
     /// splits that vertex into one copy per cycle of its link (one per sheet,
-    /// [`SanityReport::origin_sheets`]) and then requires an orientable
+    /// [`SanityReport::origin_sheets`]), does the same for any other vertex
+    /// where two sheets touch at a point ([`SanityReport::pinch_vertices`]:
+    /// a small lit sample between dark ones can make one), and then requires an orientable
     /// closed 2-manifold whose every connected component is a sphere:
     /// every edge shared by exactly two triangles with opposite directions,
     /// and Euler characteristic V − E + F = 2 per component.
@@ -362,7 +364,7 @@ impl Mesh {
         }
 
         // Split the origin vertex into one copy per simple cycle of its link.
-        let (tris, sheets, nv_split) = self.split_origin();
+        let (tris, sheets, pinch_vertices, nv_split) = self.split_pinches();
         // After the split, every undirected edge must be shared by exactly two triangles.
         let mut undirected: Vec<u64> = Vec::with_capacity(3 * nf);
         for t in &tris {
@@ -425,86 +427,37 @@ impl Mesh {
             euler_characteristic: euler,
             components,
             origin_sheets: sheets,
+            pinch_vertices,
             volume,
             area: self.area(),
         })
     }
 
-    /// Triangles with the origin vertex replaced by one new vertex per simple
-    /// cycle of its link; returns (triangles, number of cycles, vertex count).
-    fn split_origin(&self) -> (Vec<[u32; 3]>, usize, usize) {
-        let nv = self.positions.len();
-        let Some(o) = self.origin else {
-            return (self.triangles.clone(), 0, nv);
-        };
-        // Link edges x -> y of the triangles (o, x, y), with the triangle index.
-        let mut link: Vec<(u32, u32, usize)> = Vec::new();
-        for (i, t) in self.triangles.iter().enumerate() {
-            if let Some(k) = t.iter().position(|&v| v == o) {
-                link.push((t[(k + 1) % 3], t[(k + 2) % 3], i));
-            }
-        }
-        if link.is_empty() {
-            return (self.triangles.clone(), 0, nv);
-        }
-        link.sort_unstable();
-        let mut used = vec![false; link.len()];
-        let mut sheet_of = vec![0usize; link.len()];
-        let mut sheets = 0usize;
-        // Walk the link; whenever the path revisits a vertex, the loop since
-        // that vertex is one simple cycle (one sheet through the origin).
-        for start in 0..link.len() {
-            if used[start] {
-                continue;
-            }
-            let mut path_v: Vec<u32> = vec![link[start].0];
-            let mut path_e: Vec<usize> = Vec::new();
-            let mut e = start;
-            loop {
-                used[e] = true;
-                path_e.push(e);
-                let y = link[e].1;
-                if let Some(pos) = path_v.iter().rposition(|&v| v == y) {
-                    for &pe in &path_e[pos..] {
-                        sheet_of[pe] = sheets;
-                    }
-                    sheets += 1;
-                    path_e.truncate(pos);
-                    path_v.truncate(pos + 1);
-                } else {
-                    path_v.push(y);
-                }
-                let from = *path_v.last().unwrap();
-                let lo = link.partition_point(|l| l.0 < from);
-                match (lo..link.len()).take_while(|&k| link[k].0 == from).find(|&k| !used[k]) {
-                    Some(next) => e = next,
-                    None => {
-                        // An open link (only when edges are unbalanced, caught
-                        // before): close what is left as one sheet.
-                        if !path_e.is_empty() {
-                            for &pe in &path_e {
-                                sheet_of[pe] = sheets;
-                            }
-                            sheets += 1;
-                        }
-                        break;
-                    }
-                }
-            }
-        }
+    /// Triangles with every pinch vertex (a vertex whose link has several
+    /// cycles: the merged origin between sheets, or an isolated point where
+    /// two sheets of the surface touch, e.g. a tiny lit sample between dark
+    /// ones) replaced by one copy per simple cycle of its link. Returns
+    /// (triangles, sheets at the origin, other vertices split, vertex count).
+    fn split_pinches(&self) -> (Vec<[u32; 3]>, usize, usize, usize) {
+        let nv = self.positions.len() as u32;
         let mut tris = self.triangles.clone();
-        for (k, &(_, _, ti)) in link.iter().enumerate() {
-            let s = sheet_of[k];
-            if s > 0 {
-                let new_id = (nv + s - 1) as u32;
-                for v in &mut tris[ti] {
-                    if *v == o {
-                        *v = new_id;
-                    }
-                }
-            }
-        }
-        (tris, sheets, nv + sheets - 1)
+        // The origin first: other vertices' links must see its sheets apart,
+        // or a vertex joined to the origin through two sheets would look pinched there.
+        let (origin_sheets, next_id) = match self.origin {
+            Some(o) => split_vertices(&mut tris, nv, |v| v == o),
+            None => (0, nv),
+        };
+        let origin_copies = self.origin.map(|o| (o, nv..next_id));
+        let is_origin = |v: u32| origin_copies.as_ref().is_some_and(|(o, r)| v == *o || r.contains(&v));
+        let before = next_id;
+        let (_, next_id) = split_vertices(&mut tris, next_id, |v| !is_origin(v));
+        // Each pinched vertex adds at least one copy; count vertices, not copies.
+        let pinched = if next_id > before {
+            count_pinched(&self.triangles, &tris, before)
+        } else {
+            0
+        };
+        (tris, origin_sheets, pinched, next_id as usize)
     }
 }
 
@@ -555,9 +508,8 @@ pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u3
         dead.extend_from_slice(&od[..n]);
         i = j;
     }
-    if dead.is_empty() {
-        return;
-    }
+    // Even without fins, triangles dropped for touching the origin twice can
+    // leave a vertex unused: the compaction below runs in every case.
     dead.sort_unstable();
     let mut k = 0;
     let mut idx = 0;
@@ -615,6 +567,9 @@ pub struct SanityReport {
     /// Connected components after splitting the origin (1 for a solid with no
     /// zero region or a single one; more when sheets meet only at the origin).
     pub components: usize,
+    /// Vertices other than the origin where two sheets of the surface touch
+    /// at a single point (split like the origin before the topology check).
+    pub pinch_vertices: usize,
     /// Number of surface sheets meeting at the merged origin vertex (0 when
     /// the intensity is nowhere zero).
     pub origin_sheets: usize,
@@ -812,4 +767,106 @@ mod tests {
         assert_eq!((r.origin_sheets, r.components), (2, 2));
         assert!((r.volume - 2.0 / 6.0).abs() < 1e-9);
     }
+}
+
+/// Split every vertex selected by `select` whose link has several cycles
+/// into one copy per cycle (new ids from `next_id` on). Returns (cycles of
+/// the last selected vertex with any triangle, the next free id).
+fn split_vertices(tris: &mut [[u32; 3]], mut next_id: u32, select: impl Fn(u32) -> bool) -> (usize, u32) {
+    let mut link: Vec<(u32, u32, u32, usize)> = Vec::with_capacity(3 * tris.len());
+    for (i, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            if select(t[k]) {
+                link.push((t[k], t[(k + 1) % 3], t[(k + 2) % 3], i));
+            }
+        }
+    }
+    link.sort_unstable();
+    let mut last_sheets = 0;
+    let mut g = 0;
+    while g < link.len() {
+        let v = link[g].0;
+        let mut h = g;
+        while h < link.len() && link[h].0 == v {
+            h += 1;
+        }
+        let group = &link[g..h];
+        let sheet_of = link_cycles(group);
+        let sheets = sheet_of.iter().copied().max().map_or(0, |m| m + 1);
+        last_sheets = sheets;
+        for (k, e) in group.iter().enumerate() {
+            if sheet_of[k] > 0 {
+                let new_id = next_id + sheet_of[k] as u32 - 1;
+                for x in &mut tris[e.3] {
+                    if *x == v {
+                        *x = new_id;
+                    }
+                }
+            }
+        }
+        next_id += sheets.saturating_sub(1) as u32;
+        g = h;
+    }
+    (last_sheets, next_id)
+}
+
+/// Number of distinct original vertices that received copies with ids >= `first_new`.
+fn count_pinched(original: &[[u32; 3]], split: &[[u32; 3]], first_new: u32) -> usize {
+    let mut v: Vec<u32> = original
+        .iter()
+        .zip(split)
+        .flat_map(|(a, b)| (0..3).filter(move |&k| b[k] >= first_new).map(move |k| a[k]))
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v.len()
+}
+
+/// Decompose a vertex's link edges (sorted by their start) into simple
+/// cycles; returns the cycle index of each edge. Whenever the walk revisits
+/// a vertex, the loop since that vertex is one cycle (one sheet).
+fn link_cycles(group: &[(u32, u32, u32, usize)]) -> Vec<usize> {
+    let n = group.len();
+    let mut used = vec![false; n];
+    let mut sheet_of = vec![0usize; n];
+    let mut sheets = 0usize;
+    for start in 0..n {
+        if used[start] {
+            continue;
+        }
+        let mut path_v: Vec<u32> = vec![group[start].1];
+        let mut path_e: Vec<usize> = Vec::new();
+        let mut e = start;
+        loop {
+            used[e] = true;
+            path_e.push(e);
+            let y = group[e].2;
+            if let Some(pos) = path_v.iter().rposition(|&x| x == y) {
+                for &pe in &path_e[pos..] {
+                    sheet_of[pe] = sheets;
+                }
+                sheets += 1;
+                path_e.truncate(pos);
+                path_v.truncate(pos + 1);
+            } else {
+                path_v.push(y);
+            }
+            let from = *path_v.last().expect("non-empty path");
+            let lo = group.partition_point(|l| l.1 < from);
+            match (lo..n).take_while(|&k| group[k].1 == from).find(|&k| !used[k]) {
+                Some(next) => e = next,
+                None => {
+                    // An open link (unbalanced edges, reported by the edge check): one sheet.
+                    if !path_e.is_empty() {
+                        for &pe in &path_e {
+                            sheet_of[pe] = sheets;
+                        }
+                        sheets += 1;
+                    }
+                    break;
+                }
+            }
+        }
+    }
+    sheet_of
 }
