@@ -1,6 +1,8 @@
 //! Fitted OpenGL lights (Zotti et al. 2005): recovery of known lights from
 //! synthetic data, extremes, honest failures, and the corpus table.
 
+mod common;
+
 use photosolid::fit::{error_of, fit, ErrorMetric, Fit, FitOptions, FittedLights, Hemisphere, Light, Spot};
 use photosolid::model::{Distribution, Symmetry};
 
@@ -593,6 +595,9 @@ fn corpus_files_fit() {
     let (mut loaded, mut skipped) = (0, 0);
     let mut table =
         String::from("file | chosen | error | spot-down | spot-up | point | point+down | point+up | down+up | ms\n");
+    // The same table without timings is a golden snapshot (fits are deterministic).
+    let mut snap =
+        String::from("file | chosen | error | spot-down | spot-up | point | point+down | point+up | down+up\n");
     for p in &files {
         let Ok(lum) = photosolid::load(p) else {
             skipped += 1;
@@ -609,15 +614,21 @@ fn corpus_files_fit() {
         all_finite(&f);
         assert!(f.error().is_finite(), "{}", p.display());
         let cell = |t: &photosolid::fit::Trial| t.error.map_or("-".to_string(), |e| format!("{e:.4}"));
-        table += &format!(
-            "{} | {} | {:.4} | {} | {ms:.1}\n",
+        let row = format!(
+            "{} | {} | {:.4} | {}",
             p.strip_prefix(root).unwrap_or(p).display(),
             f.chosen().combination.name(),
             f.error(),
             f.trials.iter().map(cell).collect::<Vec<_>>().join(" | ")
         );
+        table += &format!("{row} | {ms:.1}\n");
+        snap += &format!("{row}\n");
     }
     eprintln!("corpus: {loaded} fitted, {skipped} not loadable\n{table}");
+    if root.is_dir() {
+        assert!(loaded >= 100, "only {loaded} corpus files fitted");
+        common::snapshot("fit_corpus.txt", &snap);
+    }
 }
 
 #[test]
