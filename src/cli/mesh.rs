@@ -31,6 +31,9 @@ pub struct MeshArgs {
     /// Output: .obj, .ply (binary), .stl (binary) or .glb.
     #[arg(short, long)]
     output: PathBuf,
+    /// Print the solid's numbers as JSON (vertices, triangles, volume, area, topology).
+    #[arg(long)]
+    json: bool,
     #[command(flatten)]
     read: ReadArgs,
 }
@@ -60,6 +63,24 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         .sanity_check()
         .map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
     export::write(&mesh, &a.output)?;
+    if a.json {
+        let v = serde_json::json!({
+            "path": a.output.display().to_string(),
+            "units": units.name(),
+            "vertices": mesh.positions().len(),
+            "triangles": mesh.triangles().len(),
+            "volume": mesh.volume(),
+            "area": mesh.area(),
+            "edges": report.edges,
+            "euler_characteristic": report.euler_characteristic,
+            "components": report.components,
+            "origin_sheets": report.origin_sheets,
+            "pinch_vertices": report.pinch_vertices,
+            "watertight": true,
+        });
+        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(0);
+    }
     println!(
         "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report:?}",
         a.output.display(),

@@ -3,6 +3,8 @@
 mod convert;
 mod demo;
 mod fit;
+mod grid;
+mod hausdorff;
 mod holdout;
 mod info;
 mod mesh;
@@ -42,6 +44,10 @@ enum Command {
     Tradeoff(tradeoff::TradeoffArgs),
     /// Build the photometric solid as a mesh (OBJ, PLY, STL, GLB).
     Mesh(mesh::MeshArgs),
+    /// Print the measured grid as JSON or CSV (for independent cross-checks).
+    Grid(grid::GridArgs),
+    /// Certified Hausdorff distance between two mesh files (PLY/OBJ).
+    Hausdorff(hausdorff::HausdorffArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),
     /// Approximate the luminaire by at most 2 OpenGL lights (spot / point; Zotti et al. 2005).
@@ -96,6 +102,8 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Holdout(a) => holdout::run(a),
         Command::Tradeoff(a) => tradeoff::run(a),
         Command::Mesh(a) => mesh::run(a),
+        Command::Grid(a) => grid::run(a),
+        Command::Hausdorff(a) => hausdorff::run(a),
         Command::Demo(a) => demo::run(a),
         Command::Fit(a) => fit::run(a),
     }

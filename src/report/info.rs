@@ -11,7 +11,8 @@
 //! I_max, in the C0-C180 plane; `null` when undefined), `beam_angles` (all
 //! four definitions x two planes), `tilt`, `absolute`, and `warnings`, an
 //! array of `{line, code, message}` (reader warnings first, then photometric
-//! consistency warnings).
+//! consistency warnings). `lamp_color` (when the file states a colour
+//! temperature): `{cct_k, xy, srgb, srgb8}` (see `report::color`).
 
 use serde::Serialize;
 
@@ -76,6 +77,8 @@ pub struct InfoReport {
     pub manufacturer: String,
     /// Catalogue number.
     pub catalogue: String,
+    /// Lamp colour temperature stated by the file (lamp set 1), K, and its display colour.
+    pub lamp_color: Option<crate::report::color::LampColor>,
     /// Reader and consistency warnings.
     pub warnings: Vec<Warning>,
 }
@@ -119,6 +122,11 @@ impl InfoReport {
             absolute: lum.declared.absolute,
             manufacturer: lum.metadata.manufacturer.clone(),
             catalogue: lum.metadata.catalogue.clone(),
+            lamp_color: lum
+                .lamp_sets
+                .first()
+                .and_then(|l| crate::report::color::parse_cct(&l.color))
+                .map(crate::report::color::lamp_color),
             warnings,
         }
     }
@@ -189,6 +197,16 @@ impl InfoReport {
             ("beam angle CIE C0-180 / C90-270", pair(self.beam_angles.cie_beam_deg)),
             ("field angle CIE C0-180 / C90-270", pair(self.beam_angles.cie_field_deg)),
             ("tilt", self.tilt.to_string()),
+            (
+                "lamp colour",
+                match &self.lamp_color {
+                    Some(c) => format!(
+                        "{:.0} K, sRGB #{:02x}{:02x}{:02x}",
+                        c.cct_k, c.srgb8[0], c.srgb8[1], c.srgb8[2]
+                    ),
+                    None => "-".into(),
+                },
+            ),
             ("absolute photometry", self.absolute.to_string()),
         ];
         for (k, v) in rows {
