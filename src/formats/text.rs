@@ -73,7 +73,8 @@ impl<'a> Source<'a> {
                 },
             });
         }
-        if let Some(pos) = b.iter().position(|&c| c == 0) {
+        // `contains` on bytes is a vectorised memchr; locate only on failure.
+        if let Some(pos) = b.contains(&0).then(|| b.iter().position(|&c| c == 0)).flatten() {
             let (line, col) = line_col(b, pos);
             return Err(ParseError {
                 path: path.to_path_buf(),
@@ -442,6 +443,54 @@ const POW10: [f64; 23] = [
     1e21, 1e22,
 ];
 
+/// Parse a plain decimal (`-12.5`, `.5`, `5.`: no exponent) starting at
+/// `b[start]`, when it takes Clinger's exact fast path (at most 19 digits,
+/// mantissa below 2^53, at most 22 fraction digits). Returns the value and
+/// the index after the last byte read. The caller checks that a separator
+/// (or the end) follows; anything else (an exponent, junk, a long number)
+/// returns `None` or stops early, and the caller falls back to [`parse_f64`]
+/// on the whole token. Both give the same, correctly rounded value.
+#[inline(always)]
+pub fn parse_plain_prefix(b: &[u8], start: usize) -> Option<(f64, usize)> {
+    let mut i = start;
+    let n = b.len();
+    let neg = i < n && b[i] == b'-';
+    if i < n && (b[i] == b'-' || b[i] == b'+') {
+        i += 1;
+    }
+    let mut mant: u64 = 0;
+    let d0 = i;
+    while i < n {
+        let d = b[i].wrapping_sub(b'0');
+        if d > 9 {
+            break;
+        }
+        mant = mant.wrapping_mul(10).wrapping_add(d as u64);
+        i += 1;
+    }
+    let mut digits = i - d0;
+    let mut frac = 0usize;
+    if i < n && b[i] == b'.' {
+        i += 1;
+        let f0 = i;
+        while i < n {
+            let d = b[i].wrapping_sub(b'0');
+            if d > 9 {
+                break;
+            }
+            mant = mant.wrapping_mul(10).wrapping_add(d as u64);
+            i += 1;
+        }
+        frac = i - f0;
+        digits += frac;
+    }
+    if digits == 0 || digits > 19 || mant > (1u64 << 53) || frac > 22 {
+        return None;
+    }
+    let v = mant as f64 / POW10[frac];
+    Some((if neg { -v } else { v }, i))
+}
+
 /// Parse a decimal number (`12`, `-3.5`, `.5`, `5.`, `1e-3`, `+2E+04`).
 ///
 /// Returns `None` for anything else, including `inf` and `NaN`: no
@@ -452,49 +501,46 @@ const POW10: [f64; 23] = [
 /// correctly rounded parser. Both give the same, correctly rounded result.
 #[inline]
 pub fn parse_f64(s: &[u8]) -> Option<f64> {
-    let mut i = 0;
-    let neg = match s.first()? {
-        b'-' => {
-            i = 1;
-            true
-        }
-        b'+' => {
-            i = 1;
-            false
-        }
-        _ => false,
+    let (neg, mut i) = match *s.first()? {
+        b'-' => (true, 1),
+        b'+' => (false, 1),
+        _ => (false, 0),
     };
+    let n = s.len();
     let mut mant: u64 = 0;
-    let mut digits = 0u32;
-    let mut frac_digits = 0i32;
-    let mut any = false;
-    while i < s.len() && s[i].is_ascii_digit() {
-        if mant == 0 && s[i] == b'0' {
-            // leading zeros do not count as significant
-        } else {
-            digits += 1;
+    let int_start = i;
+    while i < n {
+        let d = s[i].wrapping_sub(b'0');
+        if d > 9 {
+            break;
         }
-        mant = mant.wrapping_mul(10).wrapping_add((s[i] - b'0') as u64);
-        any = true;
+        mant = mant.wrapping_mul(10).wrapping_add(d as u64);
         i += 1;
     }
-    if i < s.len() && s[i] == b'.' {
+    let mut digits = i - int_start;
+    let mut frac_digits = 0usize;
+    if i < n && s[i] == b'.' {
         i += 1;
-        while i < s.len() && s[i].is_ascii_digit() {
-            if !(mant == 0 && s[i] == b'0') {
-                digits += 1;
+        let frac_start = i;
+        while i < n {
+            let d = s[i].wrapping_sub(b'0');
+            if d > 9 {
+                break;
             }
-            mant = mant.wrapping_mul(10).wrapping_add((s[i] - b'0') as u64);
-            frac_digits += 1;
-            any = true;
+            mant = mant.wrapping_mul(10).wrapping_add(d as u64);
             i += 1;
         }
+        frac_digits = i - frac_start;
+        digits += frac_digits;
     }
-    if !any {
+    if digits == 0 {
         return None;
     }
-    let mut exp: i32 = 0;
-    if i < s.len() && (s[i] == b'e' || s[i] == b'E') {
+    let mut exp: i64 = 0;
+    if i < n {
+        if s[i] != b'e' && s[i] != b'E' {
+            return None;
+        }
         i += 1;
         let eneg = match s.get(i) {
             Some(b'-') => {
@@ -508,22 +554,22 @@ pub fn parse_f64(s: &[u8]) -> Option<f64> {
             _ => false,
         };
         let estart = i;
-        while i < s.len() && s[i].is_ascii_digit() {
-            exp = exp.saturating_mul(10).saturating_add((s[i] - b'0') as i32);
+        while i < n && s[i].is_ascii_digit() {
+            exp = (exp * 10 + (s[i] - b'0') as i64).min(1 << 20);
             i += 1;
         }
-        if i == estart {
+        if i == estart || i != n {
             return None;
         }
         if eneg {
             exp = -exp;
         }
     }
-    if i != s.len() {
-        return None;
-    }
-    let e10 = exp.saturating_sub(frac_digits);
-    if digits <= 15 && (-22..=22).contains(&e10) {
+    let e10 = exp - frac_digits as i64;
+    // Clinger's fast path: at most 19 digits cannot overflow u64; a mantissa
+    // below 2^53 and a power of ten up to 1e22 are exact in f64, so one
+    // multiplication or division rounds correctly.
+    if digits <= 19 && mant <= (1u64 << 53) && (-22..=22).contains(&e10) {
         let m = mant as f64;
         let v = if e10 >= 0 {
             m * POW10[e10 as usize]
@@ -571,6 +617,29 @@ mod tests {
         ] {
             assert_eq!(parse_f64(s.as_bytes()), None, "{s}");
         }
+    }
+
+    #[test]
+    fn plain_prefix_agrees_with_std() {
+        for s in [
+            "0",
+            "12.5",
+            "-3.25",
+            ".5",
+            "5.",
+            "123456.789",
+            "9007199254740992",
+            "0.000001",
+            "+7",
+        ] {
+            let (v, end) = parse_plain_prefix(s.as_bytes(), 0).unwrap();
+            assert_eq!(end, s.len());
+            assert_eq!(v, s.parse::<f64>().unwrap(), "{s}");
+        }
+        // An exponent stops the prefix early; the caller falls back.
+        assert_eq!(parse_plain_prefix(b"1e5", 0), Some((1.0, 1)));
+        assert_eq!(parse_plain_prefix(b"-", 0), None);
+        assert_eq!(parse_plain_prefix(b"99999999999999999999", 0), None);
     }
 
     #[test]

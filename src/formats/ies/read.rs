@@ -174,7 +174,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     };
 
     // ---- First header record.
-    let remaining = tokens.count_remaining();
+    let first_record = tokens.clone();
     header.lamps = tokens.number(&src, "number of lamps")?;
     header.lumens_per_lamp = tokens.number(&src, "lumens per lamp (-1 for absolute photometry)")?;
     let mult_idx = tokens.index();
@@ -192,47 +192,109 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     header.length = tokens.number(&src, "luminous opening length")?;
     header.height = tokens.number(&src, "luminous opening height")?;
 
-    // Size check before any allocation: the counts must fit in what the file holds.
-    let after_first = remaining.saturating_sub(10) as u128;
+    // Size check before any allocation: the counts must fit in what the file
+    // holds. A byte bound first (no scan); the exact count only when it fails.
     let grid = (nv as u128) * (nh as u128) + nv as u128 + nh as u128;
-    if grid > after_first {
+    let exact_after_first = || first_record.count_remaining().saturating_sub(10) as u128;
+    let size_error = |tokens: &Stream, after_first: u128| {
         let (loc, _) = tokens.locate(nv_idx);
-        return Err(src.invalid(
+        src.invalid(
             loc,
             format!(
                 "angle counts that fit the data: {nv} vertical x {nh} horizontal angles need {grid} numbers \
                  (+3 for the ballast record)"
             ),
             format!("only {after_first} numbers after the first header record"),
-        ));
+        )
+    };
+    if grid > tokens.max_remaining() as u128 {
+        return Err(size_error(&tokens, exact_after_first()));
     }
     let (nv, nh) = (nv as usize, nh as usize);
     let grid = grid as usize;
     header.n_vertical = nv;
     header.n_horizontal = nh;
 
-    // ---- Second header record, which some generators omit: detect it by the count.
+    // ---- Second header record, which some generators omit. Read as if it
+    // is there; when that runs out of data and the token count says the
+    // record is missing, read again without it (only that rare case counts).
     let ballast_line = tokens.line_of(tokens.index());
-    if after_first as usize == grid {
-        header.ballast_record = false;
-        header.ballast_factor = 1.0;
-        header.future_use = 1.0;
-        header.input_watts = 0.0;
-        warnings.push(Warning::at(
-            ballast_line,
-            "missing-ballast-line",
-            "the ballast factor / future use / input watts record is missing (non-conformant LM-63); \
-             assumed 1, 1, 0",
-        ));
-    } else {
-        header.ballast_record = true;
-        header.ballast_factor = tokens.number(&src, "ballast factor")?;
-        header.future_use = tokens.number(
-            &src,
-            "ballast-lamp photometric factor / future use / file-generation type",
-        )?;
-        header.input_watts = tokens.number(&src, "input watts")?;
-    }
+    let read_body = |t: &mut Stream<'_>, ballast: bool| -> Result<Body, ParseError> {
+        let (mut bf, mut fu, mut w) = (1.0, 1.0, 0.0);
+        if ballast {
+            bf = t.number(&src, "ballast factor")?;
+            fu = t.number(
+                &src,
+                "ballast-lamp photometric factor / future use / file-generation type",
+            )?;
+            w = t.number(&src, "input watts")?;
+        }
+        let v_start = t.index();
+        let mut vertical = Vec::with_capacity(nv);
+        t.numbers_into(&src, nv, &mut vertical, &|i| {
+            format!("vertical angle #{} of {nv}", i + 1)
+        })?;
+        let h_start = t.index();
+        let mut horizontal = Vec::with_capacity(nh);
+        t.numbers_into(&src, nh, &mut horizontal, &|i| {
+            format!("horizontal angle #{} of {nh}", i + 1)
+        })?;
+        let mut cd = Vec::with_capacity(nv * nh);
+        t.numbers_into(&src, nv * nh, &mut cd, &|i| {
+            format!(
+                "candela value #{} of {} (horizontal angle #{}, vertical angle #{})",
+                i + 1,
+                nv * nh,
+                i / nv + 1,
+                i % nv + 1
+            )
+        })?;
+        Ok(Body {
+            ballast: (bf, fu, w),
+            v_start,
+            h_start,
+            vertical,
+            horizontal,
+            cd,
+        })
+    };
+    let mut attempt = tokens.clone();
+    let body = match read_body(&mut attempt, true) {
+        Ok(b) => {
+            tokens = attempt;
+            header.ballast_record = true;
+            b
+        }
+        Err(e) => {
+            let after_first = exact_after_first();
+            if after_first == grid as u128 {
+                let mut again = tokens.clone();
+                let b = read_body(&mut again, false)?;
+                tokens = again;
+                header.ballast_record = false;
+                warnings.push(Warning::at(
+                    ballast_line,
+                    "missing-ballast-line",
+                    "the ballast factor / future use / input watts record is missing (non-conformant LM-63); \
+                     assumed 1, 1, 0",
+                ));
+                b
+            } else if (grid as u128) > after_first {
+                return Err(size_error(&tokens, after_first));
+            } else {
+                return Err(e);
+            }
+        }
+    };
+    (header.ballast_factor, header.future_use, header.input_watts) = body.ballast;
+    let Body {
+        v_start,
+        h_start,
+        mut vertical,
+        mut horizontal,
+        mut cd,
+        ..
+    } = body;
     let mut bf = header.ballast_factor;
     if bf <= 0.0 {
         warnings.push(Warning::at(
@@ -252,31 +314,8 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         blpf = 1.0;
     }
     let scale = header.multiplier * bf * blpf;
-
-    // ---- Angles and values.
-    let v_start = tokens.index();
-    let mut vertical = Vec::with_capacity(nv);
-    tokens.numbers_into(&src, nv, &mut vertical, &|i| {
-        format!("vertical angle #{} of {nv}", i + 1)
-    })?;
-    let h_start = tokens.index();
-    let mut horizontal = Vec::with_capacity(nh);
-    tokens.numbers_into(&src, nh, &mut horizontal, &|i| {
-        format!("horizontal angle #{} of {nh}", i + 1)
-    })?;
-    let mut cd = Vec::with_capacity(nv * nh);
-    tokens.numbers_into(&src, nv * nh, &mut cd, &|i| {
-        format!(
-            "candela value #{} of {} (horizontal angle #{}, vertical angle #{})",
-            i + 1,
-            nv * nh,
-            i / nv + 1,
-            i % nv + 1
-        )
-    })?;
-    let consumed = 10 + if header.ballast_record { 3 } else { 0 } + grid;
-    if remaining > consumed {
-        let extra = remaining - consumed;
+    let extra = tokens.count_remaining();
+    if extra > 0 {
         warnings.push(Warning::at(
             tokens.line_of(tokens.index()),
             "extra-values",
@@ -778,4 +817,15 @@ mod tests {
         assert_eq!(tilt_value(b"TILTED"), None);
         assert_eq!(tilt_value(b"[TILT] x"), None);
     }
+}
+
+/// What follows the first header record: the ballast record (or its
+/// defaults), the angle lists and the raw candela values.
+struct Body {
+    ballast: (f64, f64, f64),
+    v_start: usize,
+    h_start: usize,
+    vertical: Vec<f64>,
+    horizontal: Vec<f64>,
+    cd: Vec<f64>,
 }

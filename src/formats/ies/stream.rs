@@ -7,7 +7,7 @@
 //! re-scanning with [`Tokens`] from the stream start: errors pay, data does not.
 
 use crate::error::{Location, ParseError};
-use crate::formats::text::{parse_f64, Source, Tokens};
+use crate::formats::text::{parse_f64, parse_plain_prefix, Source, Tokens};
 
 const TOKEN: u8 = 0;
 const SEP: u8 = 1;
@@ -48,9 +48,41 @@ impl<'a> Stream<'a> {
         }
     }
 
+    /// An upper bound on the tokens left (every token takes a byte and a
+    /// separator), computed without scanning: the size check before
+    /// allocating needs no exact count.
+    pub fn max_remaining(&self) -> usize {
+        (self.b.len().saturating_sub(self.pos) + 1) / 2
+    }
+
     /// Index of the next token.
     pub fn index(&self) -> usize {
         self.idx
+    }
+
+    /// Move past separators and comments; the position of the next token, if any.
+    #[inline(always)]
+    fn skip_separators(&mut self) -> Option<usize> {
+        let b = self.b;
+        let mut p = self.pos;
+        loop {
+            if p >= b.len() {
+                self.pos = p;
+                return None;
+            }
+            match CLASS[b[p] as usize] {
+                SEP => p += 1,
+                COMMENT => {
+                    while p < b.len() && b[p] != b'\n' && b[p] != b'\r' {
+                        p += 1;
+                    }
+                }
+                _ => {
+                    self.pos = p;
+                    return Some(p);
+                }
+            }
+        }
     }
 
     #[inline]
@@ -138,6 +170,18 @@ impl<'a> Stream<'a> {
         what: &dyn Fn(usize) -> String,
     ) -> Result<(), ParseError> {
         for k in 0..n {
+            // Fast path: skip separators, then parse the digits in the same
+            // pass, accepted when a separator (or the end) follows.
+            if let Some(p) = self.skip_separators() {
+                if let Some((v, end)) = parse_plain_prefix(self.b, p) {
+                    if end == self.b.len() || CLASS[self.b[end] as usize] != TOKEN {
+                        out.push(v);
+                        self.pos = end;
+                        self.idx += 1;
+                        continue;
+                    }
+                }
+            }
             let i = self.idx;
             match self.next_token() {
                 Some(t) => match parse_f64(t) {

@@ -158,10 +158,10 @@ pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distributi
     let c: Vec<f64> = (0..n_c).map(|i| (i as f64 * step).min(360.0)).collect();
     let flip = handedness == Handedness::Clockwise;
     let mut cd = Vec::with_capacity(n_c * n_gamma);
+    let trig_gamma: Vec<(f64, f64)> = gamma.iter().map(|g| g.to_radians().sin_cos()).collect();
     for &cc in &c {
         let (sc, ccos) = cc.to_radians().sin_cos();
-        for &g in &gamma {
-            let (sg, cg) = g.to_radians().sin_cos();
+        for &(sg, cg) in &trig_gamma {
             let mut d = [sg * ccos, sg * sc, -cg];
             if flip {
                 d[1] = -d[1];
