@@ -415,7 +415,7 @@ fn font_covers_printable_ascii() {
         }
     }
     // Distinct glyphs for distinct characters.
-    let all: std::collections::HashSet<[u8; 7]> = (32u8..=126).map(|b| font::glyph(char::from(b))).collect();
+    let all: std::collections::HashSet<[u8; font::ROWS]> = (32u8..=126).map(|b| font::glyph(char::from(b))).collect();
     assert_eq!(all.len(), 95);
     assert_eq!(font::glyph('\u{1F600}'), font::glyph('?'));
 }

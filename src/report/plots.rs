@@ -157,11 +157,12 @@ fn nice_step(range: f64, target: usize) -> f64 {
     }
     let mag = 10f64.powf(raw.log10().floor());
     let f = raw / mag;
-    let m = if f <= 1.0 {
+    // Tolerance: 1.2 / 6 must give 0.2, not 0.5.
+    let m = if f <= 1.0 + 1e-9 {
         1.0
-    } else if f <= 2.0 {
+    } else if f <= 2.0 + 1e-9 {
         2.0
-    } else if f <= 5.0 {
+    } else if f <= 5.0 + 1e-9 {
         5.0
     } else {
         10.0
@@ -379,7 +380,9 @@ impl Canvas {
             title.to_string()
         };
         let w = self.w();
+        // Bold: the same text twice, one pixel apart.
         self.text(w / 2.0, 18.0, &t, 2, Align::Center, INK, false);
+        self.text(w / 2.0 + 1.0, 18.0, &t, 2, Align::Center, INK, false);
     }
 }
 
@@ -436,6 +439,15 @@ fn legend(cv: &mut Canvas, series: &[Series], x: f32, y: f32, max_x: f32, dry: b
 // ---------------------------------------------------------------------------
 // Polar diagram
 
+/// The smallest 1–2–5 step that covers `vmax` (> 0) with at most 5 rings.
+fn ring_step(vmax: f64) -> f64 {
+    let mut step = nice_step(vmax, 10);
+    while (vmax / step - 1e-9).ceil() > 5.0 {
+        step = nice_step(step * 1.01, 1);
+    }
+    step
+}
+
 /// Photometric polar diagram of one plane pair (800 × 800 px); see
 /// [`polar_diagram_sized`].
 ///
@@ -484,7 +496,7 @@ pub fn polar_diagram_sized(
         .fold(0.0f64, f64::max);
     let any = series.iter().any(|s| s.points.iter().any(finite2));
     let top_v = if vmax > 0.0 { vmax } else { 1.0 };
-    let step = nice_step(top_v, 4);
+    let step = ring_step(top_v);
     let n_rings = ((top_v / step) - 1e-9).ceil().max(1.0) as usize;
     let rmax = step * n_rings as f64;
     let to_xy = |g: f64, v: f64| -> (f32, f32) {
@@ -562,7 +574,7 @@ pub fn polar_diagram_sized(
         }
     }
     if !any {
-        cv.text(cx, cy - radius / 2.0, "no data", 3, Align::Center, INK, true);
+        cv.text(cx, cy, "no data", 3, Align::Center, INK, true);
     }
     legend(&mut cv, series, 20.0, hf - legend_h - 8.0, wf - 20.0, false);
     cv.png()
@@ -573,7 +585,9 @@ pub fn polar_diagram_sized(
 
 /// Cell edges of sorted-or-not centres `c` over the axis [lo, hi]: cell k
 /// spans (edges[k].0, edges[k].1), between midpoints to its neighbours (by
-/// value), the outer cells extended by half a spacing and clamped to the axis.
+/// value); an outer cell reaches the axis end when that is at most one
+/// spacing away (no sliver of grey at C = 360 for C = 0, 15, ..., 345), half
+/// a spacing otherwise.
 /// Non-finite centres get an empty cell.
 fn cell_edges(c: &[f64], lo: f64, hi: f64) -> Vec<(f64, f64)> {
     let mut idx: Vec<usize> = (0..c.len()).filter(|&k| c[k].is_finite()).collect();
@@ -584,14 +598,24 @@ fn cell_edges(c: &[f64], lo: f64, hi: f64) -> Vec<(f64, f64)> {
         let a = if j > 0 {
             0.5 * (c[idx[j - 1]] + c[k])
         } else if n > 1 {
-            (c[k] - 0.5 * (c[idx[1]] - c[k])).max(lo)
+            let d = c[idx[1]] - c[k];
+            if c[k] - lo <= d * (1.0 + 1e-9) {
+                lo
+            } else {
+                c[k] - 0.5 * d
+            }
         } else {
             lo
         };
         let b = if j + 1 < n {
             0.5 * (c[k] + c[idx[j + 1]])
         } else if n > 1 {
-            (c[k] + 0.5 * (c[k] - c[idx[j - 1]])).min(hi)
+            let d = c[k] - c[idx[j - 1]];
+            if hi - c[k] <= d * (1.0 + 1e-9) {
+                hi
+            } else {
+                c[k] + 0.5 * d
+            }
         } else {
             hi
         };
@@ -744,8 +768,8 @@ pub fn heatmap_sized(
             false,
         );
     }
-    cv.text(left + pw / 2.0, hf - 16.0, "C angle (°)", 2, Align::Center, INK, false);
-    cv.text_vertical(18.0, top + ph / 2.0, "γ angle (°), 0 = nadir", 2, INK);
+    cv.text(left + pw / 2.0, hf - 16.0, "C (°)", 2, Align::Center, INK, false);
+    cv.text_vertical(18.0, top + ph / 2.0, "gamma (°), 0 = nadir", 2, INK);
 
     // Colour bar: top = hi, bottom = lo.
     let (bx0, bx1) = (right + 26.0, right + 48.0);
@@ -951,6 +975,14 @@ pub fn scatter_sized(
         stair.push((px(x), py(y)));
     }
     cv.polyline(&stair, PARETO, 2.0, false);
+    let stair_boxes = stair.windows(2).map(|s| {
+        [
+            s[0].0.min(s[1].0) - 1.0,
+            s[0].1.min(s[1].1) - 1.0,
+            s[0].0.max(s[1].0) + 1.0,
+            s[0].1.max(s[1].1) + 1.0,
+        ]
+    });
 
     // Points: others first, Pareto on top.
     let scale = if pts.len() <= 12 { 2 } else { 1 };
@@ -962,6 +994,7 @@ pub fn scatter_sized(
             let (x, y) = (px(p.x), py(p.y));
             [x - 6.0, y - 6.0, x + 6.0, y + 6.0]
         })
+        .chain(stair_boxes)
         .collect();
     for p in &order {
         let (x, y) = (px(p.x), py(p.y));
@@ -1021,7 +1054,7 @@ pub fn scatter_sized(
             scale,
             pick.2,
             if p.pareto { [120, 20, 20] } else { INK },
-            false,
+            true,
         );
         boxes.push(bx);
     }
@@ -1039,6 +1072,7 @@ mod tests {
     fn nice_steps_and_labels() {
         assert_eq!(nice_step(10.0, 5), 2.0);
         assert_eq!(nice_step(1e6, 4), 5e5);
+        assert_eq!(nice_step(1.2, 6), 0.2);
         assert_eq!(fmt_tick(2e6, 5e5), "2e6");
         assert_eq!(fmt_tick(1.5e6, 5e5), "1.5e6");
         assert_eq!(fmt_tick(0.25, 0.05), "0.25");
@@ -1052,6 +1086,10 @@ mod tests {
     fn cell_edges_between_midpoints() {
         let e = cell_edges(&[0.0, 10.0, 30.0], 0.0, 360.0);
         assert_eq!(e, vec![(0.0, 5.0), (5.0, 20.0), (20.0, 40.0)]);
+        let e = cell_edges(&[0.0, 15.0, 345.0, 330.0], 0.0, 360.0);
+        assert_eq!(e, vec![(0.0, 7.5), (7.5, 172.5), (337.5, 360.0), (172.5, 337.5)]);
+        let e = cell_edges(&[20.0, 30.0], 0.0, 180.0);
+        assert_eq!(e, vec![(15.0, 25.0), (25.0, 35.0)]);
         assert_eq!(cell_edges(&[7.0], 0.0, 180.0), vec![(0.0, 180.0)]);
     }
 
