@@ -346,7 +346,9 @@ impl Canvas {
             Align::Center => x - tw / 2.0,
             Align::Right => x - tw,
         }
-        .round();
+        .round()
+        .min(self.w() - tw - 2.0)
+        .max(2.0);
         let y0 = (yc - th / 2.0).round();
         if bg {
             let p = scale as i32 + 1;
@@ -876,8 +878,7 @@ pub fn scatter_sized(
     let mut cv = Canvas::new(w, h, "scatter")?;
     let (wf, hf) = (cv.w(), cv.h());
     cv.title(title);
-    let (left, top, right, bottom) = (96.0f32, 64.0f32, wf - 30.0, hf - 64.0);
-    let (pw, ph) = (right - left, bottom - top);
+    let (top, right, bottom) = (64.0f32, wf - 30.0, hf - 64.0);
 
     let pts: Vec<&ScatterPoint> = points
         .iter()
@@ -932,6 +933,11 @@ pub fn scatter_sized(
         hi: (yb / s).ceil() * s,
         log: false,
     };
+    // Left margin: the y label, then the widest tick label.
+    let y_ticks = y_axis.ticks();
+    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
+    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
+    let (pw, ph) = (right - left, bottom - top);
     let px = |x: f64| left + x_axis.t(x) as f32 * pw;
     let py = |y: f64| bottom - y_axis.t(y) as f32 * ph;
 
@@ -945,7 +951,7 @@ pub fn scatter_sized(
             cv.text(x, bottom + 16.0, &lab, 2, Align::Center, INK, false);
         }
     }
-    for (t, lab) in y_axis.ticks() {
+    for (t, lab) in y_ticks {
         let y = py(t).round() + 0.5;
         cv.line(left, y, right, y, GRID, 1.0);
         cv.line(left - 6.0, y, left, y, AXIS, 1.0);
