@@ -338,6 +338,7 @@ impl Canvas {
 
     /// Text anchored horizontally by `align` at x and vertically centred on
     /// `yc`; with a white box behind it when `bg`. Returns its box.
+    #[allow(clippy::too_many_arguments)]
     fn text(&mut self, x: f32, yc: f32, s: &str, scale: u32, align: Align, rgb: [u8; 3], bg: bool) -> [f32; 4] {
         let tw = font::text_width(s, scale) as f32;
         let th = font::text_height(scale) as f32;
