@@ -3,8 +3,8 @@
 //! Layout: the texture fills a 720 × 360 px plot (C 0–360 left to right, γ
 //! 0–180 top to bottom, nearest texel per pixel), with tick marks every 45°
 //! in C and 30° in γ labelled in degrees, and a colour bar on the right
-//! labelled in percent of I_max. tiny-skia draws no text, so labels use a
-//! built-in 5 × 7 pixel digit font.
+//! labelled in percent of I_max. tiny-skia draws no text, so labels use the
+//! crate's 5 × 7 pixel bitmap font ([`crate::report::font`]).
 //!
 //! Tone mapping: Wallner's exposure curve `y = 1 − exp(−k·x)` on `x = I/I_max`,
 //! divided by `1 − exp(−k)` so that I_max is full brightness (k > 0; larger k
@@ -15,6 +15,7 @@ use std::path::Path;
 use tiny_skia::{Pixmap, PremultipliedColorU8};
 
 use crate::error::{Error, ModelError};
+use crate::report::font;
 
 use super::texture::Rendered;
 
@@ -52,20 +53,6 @@ fn ramp(y: f64) -> [u8; 3] {
     [0, 1, 2].map(|i| (a.1[i] + f * (b.1[i] - a.1[i])).round() as u8)
 }
 
-/// 5 × 7 digits, one byte per row, bit 4 = leftmost column.
-const DIGITS: [[u8; 7]; 10] = [
-    [0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E],
-    [0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E],
-    [0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F],
-    [0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E],
-    [0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02],
-    [0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E],
-    [0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E],
-    [0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08],
-    [0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E],
-    [0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C],
-];
-
 struct Canvas {
     w: u32,
     h: u32,
@@ -87,23 +74,13 @@ impl Canvas {
     }
     /// Digits of `n` with the top-left corner at (x, y); returns the text width.
     fn number(&mut self, x: u32, y: u32, n: u32, c: [u8; 3]) -> u32 {
-        let s = n.to_string();
-        for (k, ch) in s.bytes().enumerate() {
-            let glyph = DIGITS[(ch - b'0') as usize];
-            for (row, bits) in glyph.iter().enumerate() {
-                for col in 0..5 {
-                    if bits & (0x10 >> col) != 0 {
-                        self.set(x + k as u32 * 6 + col, y + row as u32, c);
-                    }
-                }
-            }
-        }
+        font::for_each_pixel(&n.to_string(), |dx, dy| self.set(x + dx, y + dy, c));
         text_width(n)
     }
 }
 
 fn text_width(n: u32) -> u32 {
-    n.to_string().len() as u32 * 6 - 1
+    font::text_width(&n.to_string(), 1)
 }
 
 /// The preview as PNG bytes, with exposure `k` (> 0, finite).

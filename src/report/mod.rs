@@ -1,6 +1,8 @@
-//! Reports: what the CLI prints, as typed, serialisable values.
+//! Reports: what the CLI prints and draws, as typed, serialisable values and PNG plots.
 
 pub mod color;
+pub mod font;
 pub mod info;
+pub mod plots;
 
 pub use info::InfoReport;
