@@ -427,6 +427,10 @@ impl<'s, 'a> Reader<'s, 'a> {
         let cd_first = toks.next_line();
         let mut cd = Vec::with_capacity(need);
         for i in 0..need {
+            if let Some(v) = toks.fast_number() {
+                cd.push(v);
+                continue;
+            }
             let t = toks.next().ok_or_else(|| truncated(i, &toks))?;
             match parse_number(t.bytes) {
                 Some(v) => cd.push(v),
@@ -651,6 +655,24 @@ fn is_separator(c: u8) -> bool {
 }
 
 impl<'a> Stream<'a> {
+    /// The next token parsed in the same pass as the scan, when it is a
+    /// plain decimal followed by a separator (the common case); otherwise
+    /// `None` with nothing consumed, and the caller takes the token path.
+    #[inline(always)]
+    fn fast_number(&mut self) -> Option<f64> {
+        let b = self.b;
+        let mut i = self.pos;
+        while i < b.len() && is_separator(b[i]) {
+            i += 1;
+        }
+        let (v, end) = crate::formats::text::parse_plain_prefix(b, i)?;
+        if end < b.len() && !is_separator(b[end]) {
+            return None;
+        }
+        self.pos = end;
+        Some(v)
+    }
+
     #[inline(always)]
     fn next(&mut self) -> Option<Tok<'a>> {
         let b = self.b;
