@@ -24,6 +24,8 @@
 //!   mirror d_y, i.e. C ↔ −C: the target is C0-C180, planes 0..180.
 //!   Otherwise the target has no symmetry: planes 0..360 − step.
 
+use rayon::prelude::*;
+
 use crate::formats::Handedness;
 use crate::model::{Distribution, PhotometricType, SourceGrid, Symmetry};
 
@@ -157,19 +159,21 @@ pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distributi
     };
     let c: Vec<f64> = (0..n_c).map(|i| (i as f64 * step).min(360.0)).collect();
     let flip = handedness == Handedness::Clockwise;
-    let mut cd = Vec::with_capacity(n_c * n_gamma);
+    // Each target plane is independent: planes in parallel (a 1° target grid
+    // is 65 k directions, each an asin, an atan2 and a bilinear lookup).
     let trig_gamma: Vec<(f64, f64)> = gamma.iter().map(|g| g.to_radians().sin_cos()).collect();
-    for &cc in &c {
+    let mut cd = vec![0.0; n_c * n_gamma];
+    cd.par_chunks_mut(n_gamma).zip(c.par_iter()).for_each(|(plane, &cc)| {
         let (sc, ccos) = cc.to_radians().sin_cos();
-        for &(sg, cg) in &trig_gamma {
+        for (out, &(sg, cg)) in plane.iter_mut().zip(&trig_gamma) {
             let mut d = [sg * ccos, sg * sc, -cg];
             if flip {
                 d[1] = -d[1];
             }
             let (h, v) = angles_of(grid.kind, d);
-            cd.push(sample(grid, mirror, h, v));
+            *out = sample(grid, mirror, h, v);
         }
-    }
+    });
     Distribution::new(c, gamma, cd, symmetry).map_err(|e| e.to_string())
 }
 
