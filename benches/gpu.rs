@@ -39,7 +39,7 @@ fn grid(seed: usize) -> Vec<f32> {
     (0..rows * cols)
         .map(|i| {
             let (r, c) = ((i / cols) as f32 / rows as f32, (i % cols) as f32 / cols as f32);
-            (1000 + seed) as f32 * (0.5 + 0.45 * (3.0 * r).cos() * (6.28 * c + seed as f32).cos())
+            (1000 + seed) as f32 * (0.5 + 0.45 * (3.0 * r).cos() * (std::f32::consts::TAU * c + seed as f32).cos())
         })
         .collect()
 }

@@ -63,7 +63,7 @@ fn grid(rng: &mut Rng, rows: usize, cols: usize) -> Vec<f32> {
     (0..rows * cols)
         .map(|i| {
             let (r, c) = ((i / cols) as f32 / rows as f32, (i % cols) as f32 / cols as f32);
-            imax * (0.5 + 0.4 * (3.0 * r).cos() * (6.28 * c).cos() + 0.1 * rng.f32())
+            imax * (0.5 + 0.4 * (3.0 * r).cos() * (std::f32::consts::TAU * c).cos() + 0.1 * rng.f32())
         })
         .collect()
 }

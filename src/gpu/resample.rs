@@ -284,11 +284,11 @@ pub fn resample_cpu(job: &ResampleJob<'_>) -> Vec<f32> {
     let (nr, nc, cols) = (job.out_rows(), job.out_cols(), job.cols);
     let (ri, ci) = (job.row_taps.idx(), job.col_taps.idx());
     let mut out = Vec::with_capacity(nr * nc);
-    for r in 0..nr {
-        let rt = ri[r].map(|i| i as usize * cols);
-        for c in 0..nc {
+    for (r, rtaps) in ri.iter().enumerate() {
+        let rt = rtaps.map(|i| i as usize * cols);
+        for (c, ctaps) in ci.iter().enumerate() {
             let mut v = [0.0f32; 4];
-            for (j, &cj) in ci[c].iter().enumerate() {
+            for (j, &cj) in ctaps.iter().enumerate() {
                 let cj = cj as usize;
                 let y = [
                     job.src[rt[0] + cj],
