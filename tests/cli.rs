@@ -31,16 +31,8 @@ fn corpus() -> Option<PathBuf> {
 fn synth_then_info_json_has_the_contract_keys_and_closed_form_flux() {
     let t = tempfile::tempdir().unwrap();
     for (ext, args, exact) in [
-        (
-            "ldt",
-            vec!["isotropic", "--intensity", "100"],
-            400.0 * std::f64::consts::PI,
-        ),
-        (
-            "ies",
-            vec!["lambertian", "--gamma-step", "0.5"],
-            1000.0 * std::f64::consts::PI,
-        ),
+        ("ldt", vec!["isotropic", "--intensity", "100"], 400.0 * std::f64::consts::PI),
+        ("ies", vec!["lambertian", "--gamma-step", "0.5"], 1000.0 * std::f64::consts::PI),
         (
             "ldt",
             vec!["cosine-power", "--p", "5", "--gamma-step", "0.25"],
@@ -83,15 +75,9 @@ fn synth_then_info_json_has_the_contract_keys_and_closed_form_flux() {
 #[test]
 fn convert_keeps_physical_intensities() {
     let t = tempfile::tempdir().unwrap();
-    ok(&run(
-        &["synth", "roadway", "--c-step", "10", "-o", "road.ldt"],
-        t.path(),
-    ));
+    ok(&run(&["synth", "roadway", "--c-step", "10", "-o", "road.ldt"], t.path()));
     ok(&run(&["convert", "road.ldt", "road.ies"], t.path()));
-    ok(&run(
-        &["convert", "road.ies", "road2019.ies", "--ies-version", "2019"],
-        t.path(),
-    ));
+    ok(&run(&["convert", "road.ies", "road2019.ies", "--ies-version", "2019"], t.path()));
     let a = photosolid::load(t.path().join("road.ldt")).unwrap();
     let b = photosolid::load(t.path().join("road.ies")).unwrap();
     let c = photosolid::load(t.path().join("road2019.ies")).unwrap();
@@ -106,10 +92,7 @@ fn convert_keeps_physical_intensities() {
     }
     assert!(c.version.contains("2019"));
     // Rotation by 90 degrees moves the C90-C270 mirror onto C0-C180.
-    ok(&run(
-        &["convert", "road.ldt", "turned.ldt", "--rotate-c", "90"],
-        t.path(),
-    ));
+    ok(&run(&["convert", "road.ldt", "turned.ldt", "--rotate-c", "90"], t.path()));
     let turned = photosolid::load(t.path().join("turned.ldt")).unwrap();
     assert_eq!(turned.distribution.symmetry(), photosolid::Symmetry::C0C180);
 }
@@ -118,10 +101,7 @@ fn convert_keeps_physical_intensities() {
 fn validate_exit_codes_and_json_lines_in_input_order() {
     let t = tempfile::tempdir().unwrap();
     ok(&run(&["synth", "batwing", "-o", "a.ldt"], t.path()));
-    ok(&run(
-        &["synth", "spot", "--p", "8", "--cutoff", "40", "-o", "b.ies"],
-        t.path(),
-    ));
+    ok(&run(&["synth", "spot", "--p", "8", "--cutoff", "40", "-o", "b.ies"], t.path()));
     let good = run(&["validate", "--json", "b.ies", "a.ldt"], t.path());
     let out = ok(&good);
     let lines: Vec<serde_json::Value> = out.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
@@ -133,11 +113,7 @@ fn validate_exit_codes_and_json_lines_in_input_order() {
         assert!(l["errors"].as_array().unwrap().is_empty());
         assert!(l["info"]["flux_lm"].as_f64().unwrap() > 0.0);
     }
-    std::fs::write(
-        t.path().join("broken.IES"),
-        "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45\n",
-    )
-    .unwrap();
+    std::fs::write(t.path().join("broken.IES"), "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45\n").unwrap();
     let bad = run(&["validate", "--json", "."], t.path());
     assert_eq!(bad.status.code(), Some(1));
     let s = String::from_utf8_lossy(&bad.stdout);
@@ -148,10 +124,7 @@ fn validate_exit_codes_and_json_lines_in_input_order() {
         .collect();
     assert_eq!(broken.len(), 1);
     let msg = broken[0]["errors"][0].as_str().unwrap();
-    assert!(
-        msg.contains("broken.IES") && msg.contains(":5"),
-        "error must name file and line: {msg}"
-    );
+    assert!(msg.contains("broken.IES") && msg.contains(":5"), "error must name file and line: {msg}");
 }
 
 #[test]
@@ -160,10 +133,7 @@ fn validate_whole_corpus_reports_every_file() {
         eprintln!("../shared/corpus not found: skipped");
         return;
     };
-    let o = run(
-        &["validate", "--json", c.to_str().unwrap()],
-        Path::new(env!("CARGO_MANIFEST_DIR")),
-    );
+    let o = run(&["validate", "--json", c.to_str().unwrap()], Path::new(env!("CARGO_MANIFEST_DIR")));
     // Some corpus files are malformed on purpose, so the exit status is 1.
     assert_eq!(o.status.code(), Some(1));
     let n = String::from_utf8_lossy(&o.stdout).lines().count();

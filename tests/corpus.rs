@@ -45,12 +45,7 @@ fn every_file_loads_or_fails_as_the_manifest_says() {
             }
         }
     }
-    assert!(
-        problems.is_empty(),
-        "{} problems:\n{}",
-        problems.len(),
-        problems.join("\n")
-    );
+    assert!(problems.is_empty(), "{} problems:\n{}", problems.len(), problems.join("\n"));
     assert!(loaded >= 100, "only {loaded} corpus files loaded");
     snapshot("corpus_errors.txt", &messages);
 }
@@ -65,16 +60,11 @@ fn ldt_flux_agrees_with_declared_lor() {
     let (mut within, mut total) = (0, 0);
     for e in manifest(&root).iter().filter(|e| e.format == "ldt" && !e.malformed()) {
         let lum = photosolid::load(&e.path).unwrap();
-        let (Some(decl), false) = (lum.declared.lor, lum.declared.absolute) else {
-            continue;
-        };
+        let (Some(decl), false) = (lum.declared.lor, lum.declared.absolute) else { continue };
         let info = InfoReport::of(&lum);
         let Some(lor) = info.lor else { continue };
         let diff = 100.0 * (lor - decl);
-        let flagged = info
-            .warnings
-            .iter()
-            .any(|w| w.code == "lor-mismatch" || w.code == "flux-mismatch");
+        let flagged = info.warnings.iter().any(|w| w.code == "lor-mismatch" || w.code == "flux-mismatch");
         total += 1;
         if diff.abs() <= 1.0 {
             within += 1;
@@ -92,10 +82,7 @@ fn ldt_flux_agrees_with_declared_lor() {
     }
     eprintln!("{table}");
     assert!(total >= 10, "expected at least 10 relative LDT files, got {total}");
-    assert!(
-        within * 10 >= total * 7,
-        "only {within} of {total} LDT files within 1 pp of their LOR"
-    );
+    assert!(within * 10 >= total * 7, "only {within} of {total} LDT files within 1 pp of their LOR");
     snapshot("ldt_lor.tsv", &table);
 }
 
@@ -108,41 +95,18 @@ fn luxpy_ldt_ies_pairs_agree() {
     let Some(root) = corpus() else { return };
     let dir = root.join("luxpy");
     let pairs = [
-        (
-            "Testlamp_Isym1_007cfb11e343e2f42e3b476be4ab684e.ldt",
-            "Testlamp_Isym1_007cfb11e343e2f42e3b476be4ab684e.ies",
-            0.0,
-        ),
-        (
-            "Testlamp_Isym2_symmetryOverC0C180axis.ldt",
-            "Testlamp_Isym2_symmetryOverC0C180axis.ies",
-            0.0,
-        ),
-        (
-            "Testlamp_Isym3_symmetryOverC90C270axis.ldt",
-            "Testlamp_Isym3_symmetryOverC90C270axis.ies",
-            0.0,
-        ),
-        (
-            "Testlamp_Isym2_symmetryOverC0C180axis.ldt",
-            "Testlamp_Isym2_symmetryOverC0C180axis_rot.IES",
-            90.0,
-        ),
-        (
-            "Testlamp_Isym3_symmetryOverC90C270axis.ldt",
-            "Testlamp_Isym3_symmetryOverC90C270axis_rot.IES",
-            90.0,
-        ),
+        ("Testlamp_Isym1_007cfb11e343e2f42e3b476be4ab684e.ldt", "Testlamp_Isym1_007cfb11e343e2f42e3b476be4ab684e.ies", 0.0),
+        ("Testlamp_Isym2_symmetryOverC0C180axis.ldt", "Testlamp_Isym2_symmetryOverC0C180axis.ies", 0.0),
+        ("Testlamp_Isym3_symmetryOverC90C270axis.ldt", "Testlamp_Isym3_symmetryOverC90C270axis.ies", 0.0),
+        ("Testlamp_Isym2_symmetryOverC0C180axis.ldt", "Testlamp_Isym2_symmetryOverC0C180axis_rot.IES", 90.0),
+        ("Testlamp_Isym3_symmetryOverC90C270axis.ldt", "Testlamp_Isym3_symmetryOverC90C270axis_rot.IES", 90.0),
     ];
     for (l, i, turn) in pairs {
         let a = photosolid::load(dir.join(l)).unwrap();
         let b = photosolid::load(dir.join(i)).unwrap();
         let bd = b.distribution.reoriented(turn, false).unwrap();
         let peak = a.distribution.max_cd();
-        let (fa, fb) = (
-            photometry::flux(&a.distribution).total_lm,
-            photometry::flux(&bd).total_lm,
-        );
+        let (fa, fb) = (photometry::flux(&a.distribution).total_lm, photometry::flux(&bd).total_lm);
         assert!((fa - fb).abs() <= 0.01 * fa, "{l} vs {i}: flux {fa} vs {fb}");
         let full = a.distribution.expand(24);
         let mut worst: f64 = 0.0;
@@ -155,9 +119,6 @@ fn luxpy_ldt_ies_pairs_agree() {
                 }
             }
         }
-        assert!(
-            worst <= 0.01 * peak,
-            "{l} vs {i} (turned {turn}): worst difference {worst} cd, peak {peak}"
-        );
+        assert!(worst <= 0.01 * peak, "{l} vs {i} (turned {turn}): worst difference {worst} cd, peak {peak}");
     }
 }
