@@ -20,6 +20,8 @@
 
 pub mod error;
 pub mod formats;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod metrics;
 pub mod model;
 pub mod photometry;

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs Mesa's software GPU drivers so the GPU tests have adapters on a
+# machine without a GPU: lavapipe (Vulkan) and llvmpipe via EGL (GL).
+# Idempotent; never fails the caller: on any problem it prints a warning and exits 0
+# (the GPU tests then skip, unless PHOTOSOLID_REQUIRE_GPU=1).
+# Usage: bash scripts/install-gpu-drivers.sh
+set -u
+
+pkgs="mesa-vulkan-drivers libvulkan1 libegl-mesa0 libegl1 libgl1-mesa-dri"
+
+missing=""
+for p in $pkgs; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $p"
+  fi
+done
+
+if [ -z "$missing" ]; then
+  echo "gpu drivers: already installed ($pkgs)"
+  exit 0
+fi
+
+if ! command -v apt-get >/dev/null 2>&1; then
+  echo "WARNING: gpu drivers: apt-get not available; missing:$missing (GPU tests will skip)" >&2
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" != "0" ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo -n"; else
+    echo "WARNING: gpu drivers: not root and no sudo; missing:$missing (GPU tests will skip)" >&2
+    exit 0
+  fi
+fi
+
+echo "gpu drivers: installing$missing"
+if ! { $SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing; } >/tmp/photosolid-gpu-drivers.log 2>&1; then
+  echo "WARNING: gpu drivers: apt-get failed (see /tmp/photosolid-gpu-drivers.log); GPU tests will skip" >&2
+  tail -n 5 /tmp/photosolid-gpu-drivers.log >&2 || true
+  exit 0
+fi
+echo "gpu drivers: installed"
+exit 0

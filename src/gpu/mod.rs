@@ -1,0 +1,63 @@
+//! GPU rendering of light distribution textures (feature `gpu`, on by default).
+//!
+//! A headless [wgpu](https://wgpu.rs) compute pipeline that performs the
+//! table-driven tensor-product 4-tap resampling of [`resample`] (see its docs
+//! for the exact semantics) on Vulkan or GL/EGL adapters, including Mesa's
+//! software drivers (lavapipe, llvmpipe). [`resample_cpu`] is the bit-for-bit
+//! (up to FMA contraction) CPU equivalent.
+//!
+//! - [`GpuContext::global`]: instance, adapter, device and pipeline, created
+//!   once per process (honours `WGPU_BACKEND=vulkan|gl`);
+//! - [`GpuContext::render_batch`]: many textures in one submission;
+//! - [`GpuContext::upload`] / [`GpuContext::dispatch`] / [`GpuContext::read_back`]
+//!   and [`GpuContext::render_batch_timed`]: the phases, separately;
+//! - [`Backend`] / [`resolve`]: `--backend auto|gpu|cpu`.
+//!
+//! Output goes to a storage buffer rather than an `r32float` storage texture:
+//! it needs no 256-byte row padding on read-back, a whole batch fits in one
+//! binding with per-item offsets, and storage buffers in compute shaders are
+//! available on every backend we target (GLES 3.1+, which llvmpipe provides).
+
+mod backend;
+mod context;
+pub mod resample;
+
+pub use backend::{resolve, Backend, Resolved};
+pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
+pub use resample::{pchip4, resample_cpu, AxisTaps, GpuBatch, ResampleJob, Timings};
+
+/// Errors of the GPU path.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter on any of the tried backends.
+    #[error(
+        "no GPU adapter found (backends tried: {tried}; {detail}); install a Vulkan or GL driver, e.g. Mesa's \
+         software drivers (`apt-get install mesa-vulkan-drivers libvulkan1 libegl-mesa0`, see \
+         scripts/install-gpu-drivers.sh), or use --backend cpu"
+    )]
+    NoAdapter {
+        /// Backends that were tried.
+        tried: String,
+        /// wgpu's last message.
+        detail: String,
+    },
+    /// Device creation or a device operation failed.
+    #[error("GPU device error: {0}")]
+    Device(String),
+    /// A job is malformed.
+    #[error("resample job {index}: {reason}")]
+    InvalidJob {
+        /// Index of the job in the batch.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A single job does not fit the device's limits.
+    #[error("resample job {index} is too large for this device: {reason}")]
+    TooLarge {
+        /// Index of the job in the batch.
+        index: usize,
+        /// Which limit.
+        reason: String,
+    },
+}
