@@ -19,6 +19,7 @@
 #![warn(missing_docs)]
 
 pub mod error;
+pub mod fit;
 pub mod formats;
 #[cfg(feature = "gpu")]
 pub mod gpu;

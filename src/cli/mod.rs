@@ -2,6 +2,7 @@
 
 mod convert;
 mod demo;
+mod fit;
 mod holdout;
 mod info;
 mod mesh;
@@ -43,6 +44,8 @@ enum Command {
     Mesh(mesh::MeshArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),
+    /// Approximate the luminaire by at most 2 OpenGL lights (spot / point; Zotti et al. 2005).
+    Fit(fit::FitArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -94,6 +97,7 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Tradeoff(a) => tradeoff::run(a),
         Command::Mesh(a) => mesh::run(a),
         Command::Demo(a) => demo::run(a),
+        Command::Fit(a) => fit::run(a),
     }
 }
 

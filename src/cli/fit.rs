@@ -1,0 +1,58 @@
+//! `photosolid fit FILE [--max-lights 1|2] [--error relative|solid-angle] [--tolerance T] [--json]`.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
+
+use super::ReadArgs;
+
+#[derive(Args, Debug)]
+pub struct FitArgs {
+    /// An .ies or .ldt file.
+    file: PathBuf,
+    /// At most this many OpenGL lights (1 or 2).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
+    max_lights: u8,
+    /// Error minimised: the seed's relative error over the measured directions, or each weighted by its solid angle.
+    #[arg(long, default_value = "relative", value_parser = ["relative", "solid-angle"])]
+    error: String,
+    /// Pick the fewest lights whose error is within T of the best (0.01 = one percentage point).
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    tolerance: f64,
+    /// Guard constant C of the error, as a fraction of the peak intensity.
+    #[arg(long, default_value_t = DEFAULT_GUARD)]
+    guard: f64,
+    /// Print JSON (keys documented on `photosolid::fit::FitReport`).
+    #[arg(long)]
+    json: bool,
+    #[command(flatten)]
+    read: ReadArgs,
+}
+
+pub fn run(a: FitArgs) -> anyhow::Result<i32> {
+    let lum = super::load(&a.file, &a.read)?;
+    let options = FitOptions {
+        max_lights: a.max_lights as usize,
+        metric: if a.error == "solid-angle" {
+            ErrorMetric::SolidAngle
+        } else {
+            ErrorMetric::Relative
+        },
+        guard: a.guard,
+        tolerance: a.tolerance,
+        ..Default::default()
+    };
+    let result = fit(&lum.distribution, &options)?;
+    let report = FitReport::of(&result);
+    let mut out = std::io::stdout().lock();
+    if a.json {
+        serde_json::to_writer_pretty(&mut out, &report)?;
+        writeln!(out)?;
+    } else {
+        writeln!(out, "{}", a.file.display())?;
+        write!(out, "{}", report.to_text())?;
+    }
+    Ok(0)
+}

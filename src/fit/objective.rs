@@ -1,0 +1,511 @@
+//! The error functions of the fit and the exact cut-off profile.
+//!
+//! # Error (seed 002, §3 "The Error Function"; DOMAIN §6)
+//! The data are scaled to magnitudes `m = I / I_max` (max 1); for the model
+//! `a` (same scale) the error is
+//! `err = sqrt(Σ_k w_k ((a_k − m_k) / (m_k + C))²)` over every measured
+//! direction `k` of the full circle of planes (symmetry expanded), with
+//! - [`ErrorMetric::Relative`]: `w_k = 1/N`, the seed's formula (every
+//!   (θ, φ) pair counts once, so the poles, where every plane meets, count
+//!   once per plane);
+//! - [`ErrorMetric::SolidAngle`]: `w_k = ΔΩ_k / Σ ΔΩ` (= ΔΩ_k / 4π on
+//!   full-sphere data), the cell's share of the measured sphere, so the poles
+//!   are not over-weighted. Normalising by the measured solid angle keeps the
+//!   two errors on one scale for hemisphere data too.
+//!
+//! `C` ([`DEFAULT_GUARD`] = 0.02, i.e. 2 % of I_max) keeps dark directions
+//! from dividing by zero and sets where "relative" turns into "absolute":
+//! where `m ≫ C` a direction's error is its relative error (1 % off at the
+//! peak costs about 1 %), where `m ≪ C` it is the absolute error in units of
+//! `C·I_max` (light of 2 % of I_max in a dark direction costs 100 %).
+//! Negative measured values count as 0.
+//!
+//! Writing `ρ_k = w_k / (m_k + C)²`, `err² = Σ ρ_k (a_k − m_k)²` is a
+//! weighted least-squares problem that is linear in the light weights: for
+//! fixed shapes the weights come from the normal equations (DOMAIN §7.2).
+//!
+//! # Cut-off profile
+//! For one spot of fixed axis and exponent, every cut-off is tried at once:
+//! the directions are binned by their angle to the axis (900 bins, about
+//! 0.1° each), prefix
+//! sums of `ρ s²`, `ρ s m`, `ρ s b` give the optimal weights (2×2
+//! non-negative least squares with the other light `b`) for every bin
+//! boundary in O(N + bins), and the best boundary is refined exactly among
+//! the data's own breakpoints (the directions in the neighbouring bins,
+//! sorted). The cut-off reported is the midpoint between the last lit and the
+//! first dark direction: the data cannot place it better than that.
+
+use serde::Serialize;
+
+use super::model::{direction, spot_factor};
+use crate::error::ModelError;
+use crate::model::{periodic_widths, Distribution, Symmetry};
+
+/// Default guard constant `C` of the error, relative to I_max (2 %).
+pub const DEFAULT_GUARD: f64 = 0.02;
+
+/// Largest on-axis intensity of a fitted spot, relative to I_max. A spot whose
+/// axis points between measured directions could otherwise grow a huge,
+/// unmeasured spike; 10 I_max leaves any real fit free.
+pub const MAX_RELATIVE_WEIGHT: f64 = 10.0;
+
+/// Number of coarse cut-off bins over [0°, 90°].
+const N_BINS: usize = 900;
+
+/// Which error the fit minimises.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum ErrorMetric {
+    /// The seed's relative radial error, every measured (C, γ) pair weighted 1/N.
+    #[default]
+    Relative,
+    /// The same, each direction weighted by its solid angle ΔΩ_k / Σ ΔΩ.
+    SolidAngle,
+}
+
+impl ErrorMetric {
+    /// CLI name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ErrorMetric::Relative => "relative",
+            ErrorMetric::SolidAngle => "solid-angle",
+        }
+    }
+}
+
+/// The measured directions, scaled magnitudes and weights of one fit.
+#[derive(Debug, Clone)]
+pub(crate) struct Samples {
+    /// Unit directions (luminaire frame).
+    pub dir: Vec<[f64; 3]>,
+    /// Magnitudes m = max(I, 0) / I_max.
+    pub m: Vec<f64>,
+    /// ρ = w / (m + C)².
+    pub rho: Vec<f64>,
+    /// Solid-angle share of each direction (sums to 1), for mean directions.
+    pub omega: Vec<f64>,
+    /// I_max, cd.
+    pub i_max: f64,
+    /// Σ ρ m².
+    pub mm: f64,
+    /// Σ ρ.
+    pub rho_sum: f64,
+    /// Σ ρ m.
+    pub rho_m: f64,
+    /// Whether the data is rotationally symmetric (one plane kept).
+    pub rotational: bool,
+    /// Whether any direction lies strictly below / above the horizontal.
+    pub measured: [bool; 2],
+    /// Whether any direction strictly below / above the horizontal is lit (m > 0).
+    pub lit: [bool; 2],
+    /// Number of full-circle planes and of γ angles (directions are plane-major).
+    pub shape: (usize, usize),
+}
+
+impl Samples {
+    /// Directions and weights of `d` for `metric` with guard `guard` (relative to I_max).
+    pub fn new(d: &Distribution, metric: ErrorMetric, guard: f64) -> Result<Self, ModelError> {
+        if !(guard.is_finite() && guard > 0.0) {
+            return Err(ModelError::Parameter {
+                name: "guard",
+                value: guard.to_string(),
+                reason: "must be a positive fraction of I_max".into(),
+            });
+        }
+        let i_max = d.max_cd();
+        if i_max.is_nan() || i_max <= 0.0 {
+            return Err(ModelError::AllZero("fitting OpenGL lights needs some light"));
+        }
+        // Identical planes: keep one, so the model's axis can be fixed vertical
+        // and the sums are n_C times shorter (the mean error is the same).
+        let rot_d;
+        let d = if d.symmetry() != Symmetry::Rotational && d.detect_symmetry(1e-9 * i_max) == Symmetry::Rotational {
+            rot_d = d.with_symmetry(Symmetry::Rotational)?;
+            &rot_d
+        } else {
+            d
+        };
+        let rotational = d.symmetry() == Symmetry::Rotational;
+        let planes = d.full_planes();
+        let widths = periodic_widths(&planes.iter().map(|p| p.0).collect::<Vec<_>>());
+        let g = d.gamma_angles();
+        let ng = g.len();
+        // γ band of each sample: half-way to its neighbours, inside the measured range.
+        let band: Vec<f64> = (0..ng)
+            .map(|j| {
+                let lo = if j == 0 { g[0] } else { 0.5 * (g[j - 1] + g[j]) };
+                let hi = if j + 1 == ng {
+                    g[ng - 1]
+                } else {
+                    0.5 * (g[j] + g[j + 1])
+                };
+                (lo.to_radians().cos() - hi.to_radians().cos()).max(0.0)
+            })
+            .collect();
+        let n = planes.len() * ng;
+        let mut dir = Vec::with_capacity(n);
+        let mut m = Vec::with_capacity(n);
+        let mut omega = Vec::with_capacity(n);
+        let mut measured = [false; 2];
+        let mut lit = [false; 2];
+        for (&(c, ic), w) in planes.iter().zip(&widths) {
+            let v = d.plane(ic);
+            for j in 0..ng {
+                dir.push(direction(c, g[j]));
+                let mk = v[j].max(0.0) / i_max;
+                m.push(mk);
+                omega.push(w.to_radians() * band[j]);
+                let h = if g[j] < 90.0 {
+                    Some(0)
+                } else if g[j] > 90.0 {
+                    Some(1)
+                } else {
+                    None
+                };
+                if let Some(h) = h {
+                    measured[h] = true;
+                    lit[h] |= mk > 0.0;
+                }
+            }
+        }
+        let total: f64 = omega.iter().sum();
+        if total > 0.0 {
+            omega.iter_mut().for_each(|o| *o /= total);
+        } else {
+            // A single γ angle spans no solid angle: fall back to equal shares.
+            omega.iter_mut().for_each(|o| *o = 1.0 / n as f64);
+        }
+        let rho: Vec<f64> = m
+            .iter()
+            .zip(&omega)
+            .map(|(&mk, &o)| {
+                let w = match metric {
+                    ErrorMetric::Relative => 1.0 / n as f64,
+                    ErrorMetric::SolidAngle => o,
+                };
+                w / ((mk + guard) * (mk + guard))
+            })
+            .collect();
+        let mm = rho.iter().zip(&m).map(|(r, x)| r * x * x).sum();
+        let rho_sum = rho.iter().sum();
+        let rho_m = rho.iter().zip(&m).map(|(r, x)| r * x).sum();
+        Ok(Self {
+            dir,
+            m,
+            rho,
+            omega,
+            i_max,
+            mm,
+            rho_sum,
+            rho_m,
+            rotational,
+            measured,
+            lit,
+            shape: (planes.len(), ng),
+        })
+    }
+
+    /// Every other plane and every other γ angle (the last γ kept), for the
+    /// exploratory stage of the search on large grids; `None` when the grid
+    /// is small enough (under 2500 directions) to search on directly. The
+    /// weights keep their ratios, so the error is the full one's up to
+    /// sampling.
+    pub fn thinned(&self) -> Option<Samples> {
+        let (np, ng) = self.shape;
+        if self.len() < 2500 {
+            return None;
+        }
+        let mut keep = Vec::new();
+        for i in (0..np).step_by(if np >= 8 { 2 } else { 1 }) {
+            for j in 0..ng {
+                if j % 2 == 0 || j + 1 == ng {
+                    keep.push(i * ng + j);
+                }
+            }
+        }
+        let f = self.len() as f64 / keep.len() as f64;
+        let pick = |v: &Vec<f64>| keep.iter().map(|&k| v[k]).collect::<Vec<f64>>();
+        let rho: Vec<f64> = keep.iter().map(|&k| self.rho[k] * f).collect();
+        let m = pick(&self.m);
+        let mm = rho.iter().zip(&m).map(|(r, x)| r * x * x).sum();
+        let rho_sum = rho.iter().sum();
+        let rho_m = rho.iter().zip(&m).map(|(r, x)| r * x).sum();
+        Some(Samples {
+            dir: keep.iter().map(|&k| self.dir[k]).collect(),
+            omega: pick(&self.omega),
+            m,
+            rho,
+            i_max: self.i_max,
+            mm,
+            rho_sum,
+            rho_m,
+            rotational: self.rotational,
+            measured: self.measured,
+            lit: self.lit,
+            shape: (0, 0),
+        })
+    }
+
+    /// Number of directions.
+    pub fn len(&self) -> usize {
+        self.m.len()
+    }
+
+    /// err² of a model giving magnitude `a(d)` (relative to I_max), evaluated directly.
+    pub fn error_sq(&self, a: impl Fn([f64; 3]) -> f64) -> f64 {
+        self.dir
+            .iter()
+            .zip(&self.m)
+            .zip(&self.rho)
+            .map(|((&d, &m), &r)| {
+                let e = a(d) - m;
+                r * e * e
+            })
+            .sum()
+    }
+
+    /// Largest |a − m| (relative to I_max) of a model over the directions.
+    pub fn max_abs_error(&self, a: impl Fn([f64; 3]) -> f64) -> f64 {
+        self.dir
+            .iter()
+            .zip(&self.m)
+            .map(|(&d, &m)| (a(d) - m).abs())
+            .fold(0.0, f64::max)
+    }
+}
+
+/// The other light of a two-light combination, held fixed while one spot's
+/// shape is searched; its weight stays free (solved with the spot's).
+#[derive(Debug, Clone)]
+pub(crate) enum Other {
+    /// No other light.
+    None,
+    /// A point light: b ≡ 1.
+    Point,
+    /// Another spot's unit-weight factor at every direction.
+    Shape(Vec<f64>),
+}
+
+/// Best weights and cut-off for one spot shape (axis, exponent).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Profile {
+    /// err² at the optimum.
+    pub e: f64,
+    /// Cut-off, degrees in [0, 90].
+    pub cutoff_deg: f64,
+    /// Spot weight, relative to I_max.
+    pub w_spot: f64,
+    /// Other light's weight, relative to I_max (0 without one).
+    pub w_other: f64,
+}
+
+/// Evaluates the cut-off profile; owns its scratch buffers (one per thread).
+pub(crate) struct Profiler<'a> {
+    s: &'a Samples,
+    other: Other,
+    b2: f64,
+    bm: f64,
+    bin_s2: Vec<f64>,
+    bin_sm: Vec<f64>,
+    bin_sb: Vec<f64>,
+    bin_n: Vec<u32>,
+    // per candidate direction: (bin, q = sin(θ/2), ρs², ρsm, ρsb)
+    cand: Vec<(u32, f64, f64, f64, f64)>,
+    window: Vec<(f64, f64, f64, f64)>,
+    /// Number of profile evaluations so far.
+    pub evals: usize,
+}
+
+/// The bins are uniform in q = sin(θ/2) = sqrt((1 − t)/2) (no acos per
+/// direction; q is within 11 % of linear in θ on [0°, 90°]).
+const Q_MAX: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// θ in degrees of q = sin(θ/2).
+#[inline]
+fn theta_deg(q: f64) -> f64 {
+    2.0 * q.min(1.0).asin().to_degrees()
+}
+
+impl<'a> Profiler<'a> {
+    pub fn new(s: &'a Samples, other: Other) -> Self {
+        let (b2, bm) = match &other {
+            Other::None => (0.0, 0.0),
+            Other::Point => (s.rho_sum, s.rho_m),
+            Other::Shape(b) => b
+                .iter()
+                .zip(&s.rho)
+                .zip(&s.m)
+                .fold((0.0, 0.0), |(x, y), ((&b, &r), &m)| (x + r * b * b, y + r * b * m)),
+        };
+        Self {
+            s,
+            other,
+            b2,
+            bm,
+            bin_s2: vec![0.0; N_BINS],
+            bin_sm: vec![0.0; N_BINS],
+            bin_sb: vec![0.0; N_BINS],
+            bin_n: vec![0; N_BINS],
+            cand: Vec::with_capacity(s.len()),
+            window: Vec::new(),
+            evals: 0,
+        }
+    }
+
+    /// Optimal (non-negative) weights and err² for the spot sums (Σρs², Σρsm, Σρsb).
+    #[inline]
+    fn solve(&self, s2: f64, sm: f64, sb: f64) -> (f64, f64, f64) {
+        let mm = self.s.mm;
+        let mut best = (mm, 0.0, 0.0);
+        // Spot alone.
+        if s2 > 0.0 && sm > 0.0 {
+            let w = sm / s2;
+            if w <= MAX_RELATIVE_WEIGHT {
+                let e = mm - w * sm;
+                if e < best.0 {
+                    best = (e, w, 0.0);
+                }
+            }
+        }
+        if matches!(self.other, Other::None) {
+            return best;
+        }
+        let (b2, bm) = (self.b2, self.bm);
+        // Other alone.
+        if b2 > 0.0 && bm > 0.0 {
+            let w = bm / b2;
+            let e = mm - w * bm;
+            if e < best.0 {
+                best = (e, 0.0, w);
+            }
+        }
+        // Both (the 2×2 normal equations), when well conditioned and feasible.
+        let det = s2 * b2 - sb * sb;
+        if det > 1e-12 * s2 * b2 {
+            let ws = (sm * b2 - bm * sb) / det;
+            let wo = (bm * s2 - sm * sb) / det;
+            if ws >= 0.0 && wo >= 0.0 && ws <= MAX_RELATIVE_WEIGHT {
+                let e = mm - ws * sm - wo * bm;
+                if e < best.0 {
+                    best = (e, ws, wo);
+                }
+            }
+        }
+        best
+    }
+
+    /// The best cut-off and weights for a spot with unit `axis` and exponent `p`.
+    pub fn profile(&mut self, axis: [f64; 3], p: f64) -> Profile {
+        self.evals += 1;
+        let s = self.s;
+        self.bin_s2.iter_mut().for_each(|x| *x = 0.0);
+        self.bin_sm.iter_mut().for_each(|x| *x = 0.0);
+        self.bin_sb.iter_mut().for_each(|x| *x = 0.0);
+        self.bin_n.iter_mut().for_each(|x| *x = 0);
+        self.cand.clear();
+        let shape = match &self.other {
+            Other::Shape(b) => Some(b.as_slice()),
+            _ => None,
+        };
+        let point = matches!(self.other, Other::Point);
+        let scale = N_BINS as f64 / Q_MAX;
+        for k in 0..s.dir.len() {
+            let d = s.dir[k];
+            let t = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
+            // A cut-off of at most 90° never reaches directions behind the spot.
+            if t < 0.0 {
+                continue;
+            }
+            let t = t.min(1.0);
+            let q = (0.5 * (1.0 - t)).sqrt();
+            let sv = spot_factor(t, p, 0.0);
+            let rs = s.rho[k] * sv;
+            let b = match shape {
+                Some(b) => b[k],
+                None if point => 1.0,
+                None => 0.0,
+            };
+            let (a2, am, ab) = (rs * sv, rs * s.m[k], rs * b);
+            let bin = ((q * scale) as usize).min(N_BINS - 1);
+            self.bin_s2[bin] += a2;
+            self.bin_sm[bin] += am;
+            self.bin_sb[bin] += ab;
+            self.bin_n[bin] += 1;
+            self.cand.push((bin as u32, q, a2, am, ab));
+        }
+        // Coarse: every bin boundary j (bins < j lit).
+        let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
+        let mut best_j = 0;
+        let mut best_e = self.solve(0.0, 0.0, 0.0).0;
+        for j in 0..N_BINS {
+            if self.bin_n[j] == 0 {
+                continue;
+            }
+            s2 += self.bin_s2[j];
+            sm += self.bin_sm[j];
+            sb += self.bin_sb[j];
+            let e = self.solve(s2, sm, sb).0;
+            if e < best_e {
+                best_e = e;
+                best_j = j + 1;
+            }
+        }
+        // Exact: every split among the directions of the bins around the boundary.
+        let lo = best_j.saturating_sub(2);
+        let hi = (best_j + 1).min(N_BINS - 1);
+        let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
+        for j in 0..lo {
+            s2 += self.bin_s2[j];
+            sm += self.bin_sm[j];
+            sb += self.bin_sb[j];
+        }
+        let mut q_in = f64::NEG_INFINITY; // largest lit q below the window
+        let mut q_after = f64::INFINITY; // smallest dark q above the window
+        self.window.clear();
+        for &(bin, q, a2, am, ab) in &self.cand {
+            let b = bin as usize;
+            if b < lo {
+                q_in = q_in.max(q);
+            } else if b > hi {
+                q_after = q_after.min(q);
+            } else {
+                self.window.push((q, a2, am, ab));
+            }
+        }
+        self.window.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let (e0, ws0, wo0) = self.solve(s2, sm, sb);
+        let first_out = self.window.first().map_or(q_after, |w| w.0);
+        let mut best = (e0, ws0, wo0, q_in, first_out);
+        let mut i = 0;
+        while i < self.window.len() {
+            // Directions at the same angle are lit or dark together.
+            let q = self.window[i].0;
+            while i < self.window.len() && self.window[i].0 <= q + 1e-12 {
+                s2 += self.window[i].1;
+                sm += self.window[i].2;
+                sb += self.window[i].3;
+                i += 1;
+            }
+            let (e, ws, wo) = self.solve(s2, sm, sb);
+            if e < best.0 {
+                let next = self.window.get(i).map_or(q_after, |w| w.0);
+                best = (e, ws, wo, q, next);
+            }
+        }
+        let (e, ws, wo, qin, qout) = best;
+        let cutoff_deg = if ws == 0.0 || !qin.is_finite() {
+            // Nothing lit: the spot is off; any cut-off will do.
+            0.0
+        } else if !qout.is_finite() {
+            90.0
+        } else {
+            (0.5 * (theta_deg(qin) + theta_deg(qout))).clamp(0.0, 90.0)
+        };
+        Profile {
+            e: e.max(0.0),
+            cutoff_deg,
+            w_spot: ws,
+            w_other: wo,
+        }
+    }
+}

@@ -1,0 +1,482 @@
+//! The search over light shapes (exponent, axis) with the cut-off and the
+//! weights profiled out exactly.
+//!
+//! # Design
+//! For fixed shapes the weights are a linear least-squares problem
+//! (DOMAIN §7.2), and for a fixed axis and exponent every cut-off is tried
+//! at once ([`super::objective::Profiler`]). What is left to search is
+//! smooth almost everywhere (seed §4: "C2 almost everywhere"):
+//! - the exponent, as `u = ln(1 + p)` ∈ [0, ln 129] (equal steps in `u` are
+//!   equal relative steps for large p, and p = 0 stays reachable);
+//! - the axis (when the data is not rotationally symmetric), as tangent
+//!   coordinates `(x, y) = tilt · (cos az, sin az)` in degrees, which have no
+//!   singularity at the pole (a spot pointing straight down is `(0, 0)`).
+//!
+//! A fixed (vertical) axis gets a coarse grid of 17 exponents and a
+//! golden-section polish of the three best local minima. A free axis gets
+//! the coarse exponent grid at several start axes (vertical, the peak
+//! direction, the flux-weighted mean direction of the hemisphere, warm starts
+//! from other combinations, one seeded random axis), then Nelder–Mead in
+//! `(u, x, y)` from the two best starts, restarted with smaller simplices
+//! until it stops improving: a multi-start local search in the spirit of the
+//! seed's nested directional search (seed §4, Figure 1), with a fixed seed.
+//! Two spots in opposite hemispheres are independent when their cones do
+//! not overlap (seed §4: "independent subsets"); otherwise they are refined
+//! alternately, each with the other's shape fixed and both weights free.
+
+use super::model::{cos_cutoff, direction, spot_factor, Hemisphere, Spot, MAX_EXPONENT};
+use super::objective::{Other, Profile, Profiler, Samples};
+
+/// Upper end of the exponent coordinate `u = ln(1 + p)`.
+pub(crate) fn u_max() -> f64 {
+    (1.0 + MAX_EXPONENT).ln()
+}
+
+/// The exponent of `u = ln(1 + p)`, clamped to [0, 128].
+pub(crate) fn exponent_of(u: f64) -> f64 {
+    (u.exp() - 1.0).clamp(0.0, MAX_EXPONENT)
+}
+
+/// Tilt (degrees, ≤ 90) and azimuth (degrees, [0, 360)) of tangent coordinates.
+pub(crate) fn tilt_azimuth(x: f64, y: f64) -> (f64, f64) {
+    let tilt = x.hypot(y).min(90.0);
+    if tilt == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (tilt, y.atan2(x).to_degrees().rem_euclid(360.0))
+    }
+}
+
+/// Unit axis of tangent coordinates in `hemi`.
+pub(crate) fn axis_of(hemi: Hemisphere, x: f64, y: f64) -> [f64; 3] {
+    let (tilt, az) = tilt_azimuth(x, y);
+    direction(az, hemi.gamma_of_tilt(tilt))
+}
+
+/// A small deterministic PRNG (SplitMix64): no global randomness.
+#[derive(Debug, Clone)]
+pub(crate) struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// One fitted spot in search coordinates, with its profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SpotFit {
+    pub hemi: Hemisphere,
+    pub u: f64,
+    pub x: f64,
+    pub y: f64,
+    pub prof: Profile,
+}
+
+impl SpotFit {
+    /// The spot with its weight relative to I_max.
+    pub fn spot(&self) -> Spot {
+        let (tilt_deg, azimuth_deg) = tilt_azimuth(self.x, self.y);
+        Spot {
+            hemisphere: self.hemi,
+            weight_cd: self.prof.w_spot,
+            exponent: exponent_of(self.u),
+            cutoff_deg: self.prof.cutoff_deg,
+            tilt_deg,
+            azimuth_deg,
+        }
+    }
+
+    /// Unit-weight factor of the spot at every sample direction.
+    pub fn factors(&self, s: &Samples) -> Vec<f64> {
+        let a = axis_of(self.hemi, self.x, self.y);
+        let p = exponent_of(self.u);
+        let cc = cos_cutoff(self.prof.cutoff_deg);
+        s.dir
+            .iter()
+            .map(|d| spot_factor(d[0] * a[0] + d[1] * a[1] + d[2] * a[2], p, cc))
+            .collect()
+    }
+}
+
+/// Nelder–Mead minimisation of `f` from `x0` with initial steps `step`.
+/// Stops after `max_evals`, or when the simplex values agree within `ftol`
+/// (absolute) or its extent is below `xtol`. Returns (best point, value, evals).
+pub(crate) fn nelder_mead<F: FnMut(&[f64]) -> f64>(
+    f: &mut F,
+    x0: &[f64],
+    step: &[f64],
+    max_evals: usize,
+    ftol: f64,
+    xtol: f64,
+) -> (Vec<f64>, f64, usize) {
+    let n = x0.len();
+    let mut pts: Vec<Vec<f64>> = vec![x0.to_vec()];
+    for i in 0..n {
+        let mut p = x0.to_vec();
+        p[i] += step[i];
+        pts.push(p);
+    }
+    let mut vals: Vec<f64> = pts.iter().map(|p| f(p)).collect();
+    let mut evals = n + 1;
+    let combine =
+        |a: &[f64], b: &[f64], t: f64| -> Vec<f64> { a.iter().zip(b).map(|(x, y)| x + t * (y - x)).collect() };
+    while evals < max_evals {
+        let mut order: Vec<usize> = (0..=n).collect();
+        order.sort_by(|&a, &b| vals[a].total_cmp(&vals[b]));
+        pts = order.iter().map(|&i| pts[i].clone()).collect();
+        vals = order.iter().map(|&i| vals[i]).collect();
+        let extent = pts[1..]
+            .iter()
+            .map(|p| p.iter().zip(&pts[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
+            .fold(0.0, f64::max);
+        if vals[n] - vals[0] <= ftol || extent <= xtol {
+            break;
+        }
+        let mut centroid = vec![0.0; n];
+        for p in &pts[..n] {
+            for (c, v) in centroid.iter_mut().zip(p) {
+                *c += v / n as f64;
+            }
+        }
+        let xr = combine(&centroid, &pts[n], -1.0);
+        let fr = f(&xr);
+        evals += 1;
+        if fr < vals[0] {
+            let xe = combine(&centroid, &pts[n], -2.0);
+            let fe = f(&xe);
+            evals += 1;
+            if fe < fr {
+                pts[n] = xe;
+                vals[n] = fe;
+            } else {
+                pts[n] = xr;
+                vals[n] = fr;
+            }
+        } else if fr < vals[n - 1] {
+            pts[n] = xr;
+            vals[n] = fr;
+        } else {
+            // Contract towards the better of the worst point and its reflection.
+            let (xc, fc) = if fr < vals[n] {
+                let xc = combine(&centroid, &xr, 0.5);
+                let fc = f(&xc);
+                (xc, fc)
+            } else {
+                let xc = combine(&centroid, &pts[n], 0.5);
+                let fc = f(&xc);
+                (xc, fc)
+            };
+            evals += 1;
+            if fc < vals[n].min(fr) {
+                pts[n] = xc;
+                vals[n] = fc;
+            } else {
+                for i in 1..=n {
+                    pts[i] = combine(&pts[0], &pts[i], 0.5);
+                    vals[i] = f(&pts[i]);
+                }
+                evals += n;
+            }
+        }
+    }
+    let b = (0..=n).min_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap();
+    (pts[b].clone(), vals[b], evals)
+}
+
+/// Number of exponents on the coarse grid.
+const U_GRID: usize = 17;
+
+/// The other light of a combination, held fixed while a spot is searched.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum OtherSpec {
+    None,
+    Point,
+    Spot(SpotFit),
+}
+
+impl OtherSpec {
+    fn on(&self, s: &Samples) -> Other {
+        match self {
+            OtherSpec::None => Other::None,
+            OtherSpec::Point => Other::Point,
+            OtherSpec::Spot(f) => Other::Shape(f.factors(s)),
+        }
+    }
+}
+
+/// The search for one spot's shape, given the other light.
+pub(crate) struct SpotSearch<'a> {
+    full: Profiler<'a>,
+    /// A thinned copy of the data for the exploratory stage (large grids).
+    thin: Option<Profiler<'a>>,
+    use_thin: bool,
+    s: &'a Samples,
+    hemi: Hemisphere,
+    free_axis: bool,
+}
+
+impl<'a> SpotSearch<'a> {
+    pub fn new(s: &'a Samples, thin: Option<&'a Samples>, hemi: Hemisphere, other: OtherSpec, free_axis: bool) -> Self {
+        Self {
+            full: Profiler::new(s, other.on(s)),
+            thin: thin.filter(|_| free_axis).map(|t| Profiler::new(t, other.on(t))),
+            use_thin: false,
+            s,
+            hemi,
+            free_axis,
+        }
+    }
+
+    /// Profile evaluations so far (thinned ones counted by their share of the directions).
+    pub fn evals(&self) -> usize {
+        self.full.evals + self.thin.as_ref().map_or(0, |t| t.evals / 4)
+    }
+
+    fn eval(&mut self, u: f64, x: f64, y: f64) -> SpotFit {
+        let u = u.clamp(0.0, u_max());
+        let (x, y) = if self.free_axis { (x, y) } else { (0.0, 0.0) };
+        // Keep the point on the hemisphere (tilt ≤ 90°) so that reported
+        // coordinates are the evaluated ones.
+        let r = x.hypot(y);
+        let (x, y) = if r > 90.0 { (x * 90.0 / r, y * 90.0 / r) } else { (x, y) };
+        let (axis, p) = (axis_of(self.hemi, x, y), exponent_of(u));
+        let prof = match (&mut self.thin, self.use_thin) {
+            (Some(t), true) => t.profile(axis, p),
+            _ => self.full.profile(axis, p),
+        };
+        SpotFit {
+            hemi: self.hemi,
+            u,
+            x,
+            y,
+            prof,
+        }
+    }
+
+    /// Coarse grid in u at axis (x, y), sorted by grid position.
+    fn coarse(&mut self, x: f64, y: f64) -> Vec<SpotFit> {
+        let um = u_max();
+        (0..U_GRID)
+            .map(|i| self.eval(um * i as f64 / (U_GRID - 1) as f64, x, y))
+            .collect()
+    }
+
+    /// Golden-section search in u on [a, b] at axis (x, y), to `tol` in u.
+    fn golden(&mut self, a: f64, b: f64, x: f64, y: f64, tol: f64) -> SpotFit {
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (a.max(0.0), b.min(u_max()));
+        let mut c = b - g * (b - a);
+        let mut d = a + g * (b - a);
+        let mut fc = self.eval(c, x, y);
+        let mut fd = self.eval(d, x, y);
+        let ea = self.eval(a, x, y);
+        let eb = self.eval(b, x, y);
+        while b - a > tol {
+            if fc.prof.e <= fd.prof.e {
+                b = d;
+                d = c;
+                fd = fc;
+                c = b - g * (b - a);
+                fc = self.eval(c, x, y);
+            } else {
+                a = c;
+                c = d;
+                fc = fd;
+                d = a + g * (b - a);
+                fd = self.eval(d, x, y);
+            }
+        }
+        // The ends matter when the optimum is on the bound (p = 0 or 128).
+        [fc, fd, ea, eb]
+            .into_iter()
+            .min_by(|p, q| p.prof.e.total_cmp(&q.prof.e))
+            .unwrap()
+    }
+
+    /// Polish the exponent at fixed axis around the best local minima of a coarse grid.
+    fn polish_u(&mut self, grid: &[SpotFit], keep: usize) -> SpotFit {
+        let n = grid.len();
+        let mut minima: Vec<usize> = (0..n)
+            .filter(|&i| {
+                (i == 0 || grid[i].prof.e <= grid[i - 1].prof.e) && (i + 1 == n || grid[i].prof.e <= grid[i + 1].prof.e)
+            })
+            .collect();
+        minima.sort_by(|&a, &b| grid[a].prof.e.total_cmp(&grid[b].prof.e));
+        minima.truncate(keep);
+        let mut best = grid[minima[0]];
+        for i in minima {
+            let a = if i == 0 { grid[0].u } else { grid[i - 1].u };
+            let b = if i + 1 == n { grid[n - 1].u } else { grid[i + 1].u };
+            let r = self.golden(a, b, grid[i].x, grid[i].y, 1e-7);
+            if r.prof.e < best.prof.e {
+                best = r;
+            }
+        }
+        best
+    }
+
+    /// Start axes (tangent coordinates) derived from the data: peak and
+    /// flux-weighted mean direction of the hemisphere.
+    fn data_axes(&self) -> Vec<(f64, f64)> {
+        let s = self.s;
+        let sign = match self.hemi {
+            Hemisphere::Down => -1.0,
+            Hemisphere::Up => 1.0,
+        };
+        let to_xy = |d: [f64; 3]| -> Option<(f64, f64)> {
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            if n.is_nan() || n <= 0.0 || d[2] * sign <= 0.0 {
+                return None;
+            }
+            let tilt = (d[2] * sign / n).clamp(-1.0, 1.0).acos().to_degrees();
+            let az = d[1].atan2(d[0]);
+            Some((tilt * az.cos(), tilt * az.sin()))
+        };
+        let mut out = Vec::new();
+        let mut peak: Option<(f64, [f64; 3])> = None;
+        let mut mean = [0.0; 3];
+        for k in 0..s.len() {
+            let d = s.dir[k];
+            if d[2] * sign <= 0.0 {
+                continue;
+            }
+            if peak.map_or(true, |(m, _)| s.m[k] > m) {
+                peak = Some((s.m[k], d));
+            }
+            for i in 0..3 {
+                mean[i] += s.omega[k] * s.m[k] * d[i];
+            }
+        }
+        if let Some((_, d)) = peak {
+            out.extend(to_xy(d));
+        }
+        out.extend(to_xy(mean));
+        out
+    }
+
+    /// Search the spot's shape. `warm` are earlier solutions to start from.
+    pub fn run(&mut self, warm: &[SpotFit], rng: &mut Rng) -> SpotFit {
+        if !self.free_axis {
+            let mut grid = self.coarse(0.0, 0.0);
+            // Warm exponents join the grid as extra candidates.
+            for w in warm {
+                grid.push(self.eval(w.u, 0.0, 0.0));
+            }
+            grid.sort_by(|a, b| a.u.total_cmp(&b.u));
+            return self.polish_u(&grid, 3);
+        }
+        // Exploration (on the thinned data when the grid is large): the
+        // coarse exponent grid at every start axis, then Nelder–Mead from the
+        // two best.
+        self.use_thin = self.thin.is_some();
+        let mut starts: Vec<(f64, f64)> = vec![(0.0, 0.0)];
+        starts.extend(self.data_axes());
+        starts.extend(warm.iter().filter(|w| w.hemi == self.hemi).map(|w| (w.x, w.y)));
+        let (t, a) = (60.0 * rng.f64().sqrt(), std::f64::consts::TAU * rng.f64());
+        starts.push((t * a.cos(), t * a.sin()));
+        let mut cands: Vec<SpotFit> = Vec::new();
+        let hemi = self.hemi;
+        for &(x, y) in &starts {
+            let grid = self.coarse(x, y);
+            let mut best = *grid.iter().min_by(|p, q| p.prof.e.total_cmp(&q.prof.e)).unwrap();
+            for w in warm.iter().filter(|w| w.hemi == hemi) {
+                let c = self.eval(w.u, x, y);
+                if c.prof.e < best.prof.e {
+                    best = c;
+                }
+            }
+            cands.push(best);
+        }
+        cands.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
+        let mut explored: Vec<SpotFit> = cands.iter().take(2).map(|c| self.nm(*c, 1.0, 150, 1e-3)).collect();
+        explored.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
+        // Refinement from the best explored point.
+        self.local(explored[0])
+    }
+
+    /// Local refinement from `start` only (no exploration): used when the
+    /// other light of a pair has moved a little. With `full == false` and a
+    /// thinned copy of the data, only the thinned stage runs (the result is
+    /// re-profiled on the full data).
+    pub fn refine(&mut self, start: SpotFit, full: bool) -> SpotFit {
+        self.use_thin = false;
+        let e = self.eval(start.u, start.x, start.y);
+        if !self.free_axis {
+            return self.golden(e.u - 0.3, e.u + 0.3, 0.0, 0.0, 1e-7);
+        }
+        if !full && self.thin.is_some() {
+            self.use_thin = true;
+            let t = self.eval(start.u, start.x, start.y);
+            let r = self.nm(t, 0.1, 150, 1e-3);
+            self.use_thin = false;
+            let r = self.eval(r.u, r.x, r.y);
+            return if r.prof.e < e.prof.e { r } else { e };
+        }
+        self.local(e)
+    }
+
+    /// One Nelder–Mead run in (u, x, y) with initial steps (0.3, 6°, 6°) × `scale`.
+    fn nm(&mut self, start: SpotFit, scale: f64, max_evals: usize, xtol: f64) -> SpotFit {
+        let mut f = |v: &[f64]| self.eval(v[0], v[1], v[2]).prof.e;
+        let ftol = 1e-15 + 1e-10 * start.prof.e;
+        let (x, _, _) = nelder_mead(
+            &mut f,
+            &[start.u, start.x, start.y],
+            &[0.3 * scale, 6.0 * scale, 6.0 * scale],
+            max_evals,
+            ftol,
+            xtol,
+        );
+        let r = self.eval(x[0], x[1], x[2]);
+        if r.prof.e < start.prof.e {
+            r
+        } else {
+            start
+        }
+    }
+
+    /// Local refinement: Nelder–Mead on the thinned data (when there is
+    /// one) to 1e-4, then on the full data from a small simplex (0.18° steps),
+    /// restarted while it still gains, then an exponent polish on the full data.
+    fn local(&mut self, start: SpotFit) -> SpotFit {
+        let mut best = start;
+        if self.thin.is_some() {
+            self.use_thin = true;
+            let e = self.eval(best.u, best.x, best.y);
+            let r = self.nm(e, 0.1, 150, 1e-4);
+            self.use_thin = false;
+            best = self.eval(r.u, r.x, r.y);
+        }
+        // From the thinned optimum a small simplex suffices on the full data.
+        let scales: &[f64] = if self.thin.is_some() {
+            &[0.02]
+        } else {
+            &[0.3, 0.1, 0.03]
+        };
+        for (k, &scale) in scales.iter().enumerate() {
+            let r = self.nm(best, scale, 80, 1e-3);
+            let gain = best.prof.e - r.prof.e;
+            best = r;
+            if k > 0 && gain <= 1e-14 + 1e-9 * best.prof.e {
+                break;
+            }
+        }
+        let r = self.golden(best.u - 0.02, best.u + 0.02, best.x, best.y, 1e-5);
+        if r.prof.e < best.prof.e {
+            best = r;
+        }
+        best
+    }
+}
