@@ -1,77 +1,110 @@
-//! GPU resampling phases next to the CPU reference, for one 5x texture of a
-//! 73 x 181 grid (gamma x C; output 365 x 905) and for a batch of 100 such.
+//! The GPU render next to the CPU render of the same plans: adapter/device
+//! set-up, upload, dispatch and read-back separately, for one texture and for
+//! a batch of 100, at factor 5 with Catmull-Rom.
+//!
+//! Textures: the loadable files of ../shared/corpus (cycled to 100; the
+//! single texture is the 361 x 73 roadway file when present), else synthetic
+//! ones from `photosolid::synth`.
 //!
 //! `cargo bench --bench gpu` (honours `WGPU_BACKEND=vulkan|gl`). Without an
 //! adapter only the CPU benchmarks run.
 
+use std::path::Path;
 use std::time::Duration;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use photosolid::gpu::{resample_cpu, AxisTaps, GpuContext, ResampleJob};
-use rayon::prelude::*;
+use photosolid::gpu::{self, GpuContext, RenderJob};
+use photosolid::reconstruct::{render_planned, Filter, LightTexture, RenderOptions};
+use photosolid::synth::{GridSpec, Synth};
 
-const DATA_ROWS: usize = 73; // gamma 0..180 by 2.5
-const DATA_COLS: usize = 181; // C 0..360 by 2
-const FACTOR: usize = 5;
+const ROADWAY: &str = "eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies";
 
-/// Catmull-Rom taps over data padded with one ghost sample on each side.
-fn catmull_rom(n_data: usize, n_out: usize) -> AxisTaps {
-    let (mut idx, mut w) = (vec![], vec![]);
-    for k in 0..n_out {
-        let x = k as f64 * (n_data - 1) as f64 / (n_out - 1) as f64;
-        let i = (x.floor() as usize).min(n_data - 2);
-        let t = (x - i as f64) as f32;
-        let (t2, t3) = (t * t, t * t * t);
-        w.push([
-            0.5 * (-t3 + 2.0 * t2 - t),
-            0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
-            0.5 * (-3.0 * t3 + 4.0 * t2 + t),
-            0.5 * (t3 - t2),
-        ]);
-        let b = i as u32;
-        idx.push([b, b + 1, b + 2, b + 3]);
-    }
-    AxisTaps::Weights { idx, w }
-}
-
-fn grid(seed: usize) -> Vec<f32> {
-    let (rows, cols) = (DATA_ROWS + 2, DATA_COLS + 2);
-    (0..rows * cols)
-        .map(|i| {
-            let (r, c) = ((i / cols) as f32 / rows as f32, (i % cols) as f32 / cols as f32);
-            (1000 + seed) as f32 * (0.5 + 0.45 * (3.0 * r).cos() * (std::f32::consts::TAU * c + seed as f32).cos())
+fn corpus_textures() -> Vec<LightTexture> {
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus"));
+    let Ok(manifest) = std::fs::read_to_string(root.join("MANIFEST.tsv")) else {
+        return Vec::new();
+    };
+    let mut rels: Vec<&str> = manifest
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split('\t').next())
+        .filter(|r| {
+            let r = r.to_ascii_lowercase();
+            r.ends_with(".ies") || r.ends_with(".ldt")
         })
+        .collect();
+    // The roadway file first: it is the single-texture case.
+    rels.sort_by_key(|r| *r != ROADWAY);
+    rels.iter()
+        .filter_map(|r| photosolid::load(root.join(r)).ok())
+        .filter_map(|l| LightTexture::new(&l.distribution).ok())
         .collect()
 }
 
+fn synth_textures() -> Vec<LightTexture> {
+    let shapes = [
+        Synth::Roadway,
+        Synth::Batwing,
+        Synth::Spot {
+            p: 20.0,
+            cutoff_deg: 40.0,
+        },
+        Synth::CosinePower { p: 3.0 },
+    ];
+    let grids = [(5.0, 2.5), (15.0, 5.0), (10.0, 1.0)];
+    let mut out = Vec::new();
+    for (i, s) in shapes.iter().enumerate() {
+        for (j, &(c, g)) in grids.iter().enumerate() {
+            let lum = s
+                .build(&GridSpec::uniform(c, g).unwrap(), 1000.0 + (i * 3 + j) as f64)
+                .unwrap();
+            out.push(LightTexture::new(&lum.distribution).unwrap());
+        }
+    }
+    out
+}
+
 fn bench(c: &mut Criterion) {
-    let rt = catmull_rom(DATA_ROWS, DATA_ROWS * FACTOR);
-    let ct = catmull_rom(DATA_COLS, DATA_COLS * FACTOR);
-    let grids: Vec<Vec<f32>> = (0..100).map(grid).collect();
-    let jobs: Vec<ResampleJob<'_>> = grids
-        .iter()
-        .map(|g| ResampleJob {
-            src: g,
-            rows: DATA_ROWS + 2,
-            cols: DATA_COLS + 2,
-            row_taps: &rt,
-            col_taps: &ct,
-            clamp_negative: true,
-        })
-        .collect();
+    let mut texs = corpus_textures();
+    let source = if texs.is_empty() {
+        texs = synth_textures();
+        "synthetic"
+    } else {
+        "corpus"
+    };
+    let opts = RenderOptions {
+        filter: Filter::CatmullRom,
+        ..RenderOptions::default()
+    };
+    let items: Vec<(&LightTexture, RenderOptions)> = (0..100).map(|k| (&texs[k % texs.len()], opts)).collect();
+    let plans = gpu::plans(&items).unwrap();
+    let jobs: Vec<RenderJob<'_>> = gpu::jobs(&items, &plans);
+    let texels = |js: &[RenderJob<'_>]| js.iter().map(|j| j.height() * j.width()).sum::<usize>();
     let one = &jobs[..1];
+    eprintln!(
+        "{source} textures ({} distinct): single {} x {} texels; batch of 100: {} texels",
+        texs.len(),
+        one[0].height(),
+        one[0].width(),
+        texels(&jobs)
+    );
 
     let mut g = c.benchmark_group("gpu");
     g.sample_size(10)
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3));
 
-    g.bench_function("cpu/single 365x905", |b| b.iter(|| resample_cpu(black_box(&one[0]))));
-    g.bench_function("cpu/batch100 serial", |b| {
-        b.iter(|| jobs.iter().map(|j| resample_cpu(black_box(j))).collect::<Vec<_>>())
-    });
-    g.bench_function("cpu/batch100 rayon", |b| {
-        b.iter(|| jobs.par_iter().map(|j| resample_cpu(black_box(j))).collect::<Vec<_>>())
+    for (name, set) in [("single", one), ("batch100", &jobs[..])] {
+        g.bench_function(format!("cpu/{name}/render (rayon rows)"), |b| {
+            b.iter(|| {
+                set.iter()
+                    .map(|j| render_planned(j.texture, j.plan, j.clamp, true))
+                    .collect::<Vec<_>>()
+            })
+        });
+    }
+    g.bench_function("cpu/batch100/plans (tap tables)", |b| {
+        b.iter(|| gpu::plans(black_box(&items)).unwrap())
     });
 
     let ctx = match GpuContext::global() {
@@ -82,13 +115,13 @@ fn bench(c: &mut Criterion) {
         }
     };
     eprintln!("gpu adapter: {} (set-up {:.0?})", ctx.adapter(), ctx.setup_time());
-    let (_, t) = ctx.render_batch_timed(&jobs).unwrap();
+    let (_, t) = ctx.render_jobs_timed(&jobs).unwrap();
     eprintln!("batch100 phases (one run): {t:?}, total {:?}", t.total());
 
     g.bench_function("gpu/setup (instance+adapter+device+pipeline)", |b| {
         b.iter(|| GpuContext::new().unwrap())
     });
-    for (name, set) in [("single 365x905", one), ("batch100", &jobs[..])] {
+    for (name, set) in [("single", one), ("batch100", &jobs[..])] {
         g.bench_function(format!("gpu/{name}/upload"), |b| {
             b.iter(|| ctx.upload(black_box(set)).unwrap())
         });
@@ -100,7 +133,7 @@ fn bench(c: &mut Criterion) {
             b.iter(|| ctx.read_back(&batch).unwrap())
         });
         g.bench_function(format!("gpu/{name}/end-to-end"), |b| {
-            b.iter(|| ctx.render_batch(black_box(set)).unwrap())
+            b.iter(|| ctx.render_jobs(black_box(set)).unwrap())
         });
     }
     g.finish();

@@ -1,13 +1,20 @@
-//! GPU resampling against the CPU reference, on whatever adapter exists
-//! (CI: Mesa lavapipe via `WGPU_BACKEND=vulkan`, llvmpipe via `WGPU_BACKEND=gl`).
+//! The GPU render against the CPU reference `reconstruct::render_planned`,
+//! from the same plans, on whatever adapter exists (CI: Mesa lavapipe via
+//! `WGPU_BACKEND=vulkan`, llvmpipe via `WGPU_BACKEND=gl`).
 //!
 //! Without an adapter the tests print why and pass, unless
 //! `PHOTOSOLID_REQUIRE_GPU=1`, which turns a missing adapter into a failure.
 #![cfg(feature = "gpu")]
 
+use std::path::{Path, PathBuf};
 use std::sync::Once;
 
-use photosolid::gpu::{self, resample_cpu, AxisTaps, Backend, GpuContext, ResampleJob, Resolved};
+use photosolid::gpu::{self, Backend, GpuContext, GpuError, RenderJob, Resolved};
+use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions, Rendered};
+use photosolid::synth::{GridSpec, Synth};
+
+/// Largest allowed |gpu − cpu| per texel (texels are I / I_max).
+const TOL: f32 = 1e-5;
 
 fn require_gpu() -> bool {
     std::env::var("PHOTOSOLID_REQUIRE_GPU").is_ok_and(|v| v == "1")
@@ -36,181 +43,117 @@ fn ctx(test: &str) -> Option<&'static GpuContext> {
     }
 }
 
-/// SplitMix64: small, seedable, no dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn f32(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.f32()
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
+/// Every filter of the contract: the defaults plus a Mitchell with other B, C.
+fn filters() -> Vec<Filter> {
+    let mut f = Filter::ALL.to_vec();
+    f.push(Filter::Mitchell { b: 0.0, c: 0.75 });
+    f
 }
 
-/// A luminous-intensity-like grid: smooth lobe plus noise, positive.
-fn grid(rng: &mut Rng, rows: usize, cols: usize) -> Vec<f32> {
-    let imax = rng.range(10.0, 5000.0);
-    (0..rows * cols)
-        .map(|i| {
-            let (r, c) = ((i / cols) as f32 / rows as f32, (i % cols) as f32 / cols as f32);
-            imax * (0.5 + 0.4 * (3.0 * r).cos() * (std::f32::consts::TAU * c).cos() + 0.1 * rng.f32())
-        })
-        .collect()
-}
-
-/// Output sample positions for `n_src` source samples upsampled `factor`x,
-/// as (interval index, fraction).
-fn positions(n_src: usize, n_out: usize) -> impl Iterator<Item = (usize, f32)> {
-    (0..n_out).map(move |k| {
-        let x = if n_out == 1 {
-            0.0
-        } else {
-            k as f64 * (n_src - 1) as f64 / (n_out - 1) as f64
-        };
-        let i = (x.floor() as usize).min(n_src.saturating_sub(2));
-        (i, (x - i as f64) as f32)
-    })
-}
-
-/// Linear interpolation using only 2 of the 4 taps.
-fn bilinear(n_src: usize, n_out: usize) -> AxisTaps {
-    let (mut idx, mut w) = (vec![], vec![]);
-    for (i, t) in positions(n_src, n_out) {
-        let j = (i + 1).min(n_src - 1) as u32;
-        idx.push([i as u32, j, i as u32, i as u32]);
-        w.push([1.0 - t, t, 0.0, 0.0]);
-    }
-    AxisTaps::Weights { idx, w }
-}
-
-/// Catmull-Rom (negative lobes) over a source padded with one ghost sample
-/// on each side: source index = data index + 1.
-fn catmull_rom(n_data: usize, n_out: usize) -> AxisTaps {
-    let (mut idx, mut w) = (vec![], vec![]);
-    for (i, t) in positions(n_data, n_out) {
-        let (t2, t3) = (t * t, t * t * t);
-        w.push([
-            0.5 * (-t3 + 2.0 * t2 - t),
-            0.5 * (3.0 * t3 - 5.0 * t2 + 2.0),
-            0.5 * (-3.0 * t3 + 4.0 * t2 + t),
-            0.5 * (t3 - t2),
-        ]);
-        let b = i as u32; // data i-1 .. i+2 -> padded i .. i+3
-        idx.push([b, b + 1, b + 2, b + 3]);
-    }
-    AxisTaps::Weights { idx, w }
-}
-
-/// Arbitrary random taps and weights (incl. negative), random order.
-fn random_taps(rng: &mut Rng, n_src: usize, n_out: usize) -> AxisTaps {
-    let idx = (0..n_out)
-        .map(|_| [0; 4].map(|_: u32| rng.below(n_src) as u32))
-        .collect();
-    let w = (0..n_out).map(|_| [0; 4].map(|_: i32| rng.range(-0.6, 1.4))).collect();
-    AxisTaps::Weights { idx, w }
-}
-
-/// PCHIP on non-uniform knots (angles); ends marked by repeated knots.
-fn pchip(rng: &mut Rng, n_src: usize, n_out: usize) -> AxisTaps {
-    let mut x = vec![0.0f32];
-    for _ in 1..n_src {
-        let last = *x.last().unwrap();
-        x.push(last + rng.range(0.5, 10.0));
-    }
-    let (mut idx, mut knots, mut pos) = (vec![], vec![], vec![]);
-    for (i, t) in positions(n_src, n_out) {
-        let j = (i + 1).min(n_src - 1);
-        let w = [i.saturating_sub(1), i, j, (j + 1).min(n_src - 1)];
-        idx.push(w.map(|k| k as u32));
-        knots.push(w.map(|k| x[k]));
-        pos.push(x[i] + t * (x[j] - x[i]));
-    }
-    AxisTaps::Pchip { idx, knots, pos }
-}
-
-fn assert_close(gpu: &[f32], cpu: &[f32], what: &str) {
-    assert_eq!(gpu.len(), cpu.len(), "{what}: length");
-    let imax = cpu.iter().fold(0.0f32, |m, v| m.max(v.abs())).max(f32::MIN_POSITIVE);
-    let (k, err) = gpu
-        .iter()
-        .zip(cpu)
-        .map(|(g, c)| (g - c).abs())
-        .enumerate()
-        .fold((0, 0.0f32), |a, b| if b.1 > a.1 || b.1.is_nan() { b } else { a });
-    assert!(
-        err <= 1e-5 * imax,
-        "{what}: texel {k}: gpu {} cpu {} (|err| {err:e} > 1e-5 * I_max {imax})",
-        gpu[k],
-        cpu[k]
+/// Max |gpu − cpu| over the texels; panics on a size or metadata mismatch.
+fn max_diff(gpu: &Rendered, cpu: &Rendered, what: &str) -> f32 {
+    assert_eq!(gpu.mapping, cpu.mapping, "{what}: mapping");
+    assert_eq!(gpu.data.len(), cpu.data.len(), "{what}: length");
+    assert_eq!(
+        (gpu.filter, gpu.factor, gpu.i_max_cd, gpu.measured_gamma),
+        (cpu.filter, cpu.factor, cpu.i_max_cd, cpu.measured_gamma),
+        "{what}: metadata"
     );
+    let (k, err) = gpu
+        .data
+        .iter()
+        .zip(&cpu.data)
+        .map(|(g, c)| {
+            if g.is_nan() || c.is_nan() {
+                f32::INFINITY
+            } else {
+                (g - c).abs()
+            }
+        })
+        .enumerate()
+        .fold((0, 0.0f32), |a, b| if b.1 > a.1 { b } else { a });
+    assert!(
+        err <= TOL,
+        "{what}: texel {k} (row {}, col {}): gpu {} cpu {} (|diff| {err:e} > {TOL:e})",
+        k / gpu.mapping.width,
+        k % gpu.mapping.width,
+        gpu.data[k],
+        cpu.data[k]
+    );
+    err
 }
 
-struct Case {
-    name: String,
-    src: Vec<f32>,
-    rows: usize,
-    cols: usize,
-    rt: AxisTaps,
-    ct: AxisTaps,
-    clamp: bool,
+/// Compare GPU and CPU renders of the same jobs; returns the max difference.
+fn check_jobs(c: &GpuContext, jobs: &[RenderJob<'_>], names: &[String]) -> f32 {
+    let out = c.render_jobs(jobs).unwrap();
+    assert_eq!(out.len(), jobs.len());
+    let mut worst = 0.0f32;
+    for ((job, g), name) in jobs.iter().zip(&out).zip(names) {
+        let cpu = gpu::render_cpu(job);
+        worst = worst.max(max_diff(g, &cpu, name));
+        assert_eq!(g.clamped, cpu.clamped, "{name}: clamped texels");
+    }
+    worst
 }
 
-impl Case {
-    fn job(&self) -> ResampleJob<'_> {
-        ResampleJob {
-            src: &self.src,
-            rows: self.rows,
-            cols: self.cols,
-            row_taps: &self.rt,
-            col_taps: &self.ct,
-            clamp_negative: self.clamp,
+fn corpus() -> Option<PathBuf> {
+    let p = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus"));
+    if p.is_dir() {
+        Some(p.to_path_buf())
+    } else {
+        eprintln!("notice: ../shared/corpus not found; GPU corpus checks skipped");
+        None
+    }
+}
+
+/// The representative subset: full sphere, Isym 3, Isym 4, lower hemisphere,
+/// non-uniform γ, single-plane rotational, Type B, partial γ range.
+const CORPUS_SUBSET: [&str; 8] = [
+    "eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies",
+    "eulumdat-plot/sample_01_isym3.ldt",
+    "eulumdat-plot/sample_02_isym4.ldt",
+    "cl-ies/test.ies",
+    "rpr-sdk/ies_light_1.ies",
+    "ils20/NDNN74022.ies",
+    "cu-ies/flood_2.1.IES",
+    "eulumdat-rs/demo_two_lamp_sets.ldt",
+];
+
+fn texture(path: &Path) -> LightTexture {
+    let lum = photosolid::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    LightTexture::new(&lum.distribution).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn synth_textures() -> Vec<(String, LightTexture)> {
+    let grids = [
+        ("uniform 15/5", GridSpec::uniform(15.0, 5.0).unwrap()),
+        (
+            "non-uniform",
+            GridSpec::explicit(
+                vec![0.0, 10.0, 25.0, 90.0, 135.0, 180.0, 200.0, 300.0],
+                vec![0.0, 2.0, 5.0, 15.0, 30.0, 60.0, 75.0, 90.0],
+            ),
+        ),
+    ];
+    let shapes = [
+        Synth::Batwing,
+        Synth::Roadway,
+        Synth::Spot {
+            p: 20.0,
+            cutoff_deg: 40.0,
+        },
+    ];
+    let mut out = Vec::new();
+    for (gname, g) in &grids {
+        for s in &shapes {
+            let lum = s.build(g, 1000.0).unwrap();
+            out.push((
+                format!("{} on {gname}", s.name()),
+                LightTexture::new(&lum.distribution).unwrap(),
+            ));
         }
     }
-}
-
-/// Cases of every kind; `kind` cycles through the table generators.
-fn case(rng: &mut Rng, kind: usize, data_rows: usize, data_cols: usize, out_rows: usize, out_cols: usize) -> Case {
-    let clamp = kind % 2 == 1;
-    let (rows, cols) = (data_rows + 2, data_cols + 2);
-    let src = grid(rng, rows, cols);
-    let (rt, ct, name) = match kind % 5 {
-        0 => (bilinear(rows, out_rows), bilinear(cols, out_cols), "bilinear"),
-        1 => (
-            catmull_rom(data_rows, out_rows),
-            catmull_rom(data_cols, out_cols),
-            "catmull-rom",
-        ),
-        2 => (
-            random_taps(rng, rows, out_rows),
-            random_taps(rng, cols, out_cols),
-            "random",
-        ),
-        3 => (pchip(rng, rows, out_rows), pchip(rng, cols, out_cols), "pchip"),
-        _ => (
-            pchip(rng, rows, out_rows),
-            catmull_rom(data_cols, out_cols),
-            "pchip x catmull-rom",
-        ),
-    };
-    Case {
-        name: format!("{name} {rows}x{cols} -> {out_rows}x{out_cols} clamp={clamp}"),
-        src,
-        rows,
-        cols,
-        rt,
-        ct,
-        clamp,
-    }
+    out
 }
 
 #[test]
@@ -233,79 +176,174 @@ fn adapter_is_reported() {
     }
 }
 
+/// The acceptance criterion on a representative subset: every filter at factor 5.
 #[test]
-fn single_textures_of_all_kinds_and_sizes() {
-    let Some(c) = ctx("single_textures_of_all_kinds_and_sizes") else {
+fn corpus_subset_every_filter_matches_cpu() {
+    let Some(c) = ctx("corpus_subset_every_filter_matches_cpu") else {
         return;
     };
-    let mut rng = Rng(0x5EED_0001);
-    // (data rows, data cols, out rows, out cols): 1x1 up to 1805 x 905, odd sizes.
-    let sizes = [
-        (1, 1, 1, 1),
-        (2, 2, 1, 1),
-        (3, 5, 7, 3),
-        (19, 25, 91, 121),
-        (37, 73, 181, 365),
-        (73, 181, 365, 905),
-        (181, 73, 905, 365),
-        (361, 181, 1805, 905),
-        (13, 7, 63, 65),
-        (11, 11, 17, 257),
-    ];
-    for (i, &(dr, dc, or, oc)) in sizes.iter().enumerate() {
-        for kind in 0..5 {
-            let cs = case(&mut rng, kind + i, dr.max(2), dc.max(2), or, oc);
-            let job = cs.job();
-            let gpu = c.render(&job).unwrap();
-            assert_close(&gpu, &resample_cpu(&job), &cs.name);
+    let Some(root) = corpus() else { return };
+    let mut worst = 0.0f32;
+    for rel in CORPUS_SUBSET {
+        let tex = texture(&root.join(rel));
+        // One plan per filter, shared by both renders; one submission per file.
+        let items: Vec<(&LightTexture, RenderOptions)> = filters()
+            .into_iter()
+            .map(|filter| {
+                (
+                    &tex,
+                    RenderOptions {
+                        filter,
+                        ..RenderOptions::default()
+                    },
+                )
+            })
+            .collect();
+        let plans = gpu::plans(&items).unwrap();
+        let jobs = gpu::jobs(&items, &plans);
+        let names: Vec<String> = filters().iter().map(|f| format!("{rel} [{f}]")).collect();
+        let d = check_jobs(c, &jobs, &names);
+        println!("{rel}: max |gpu - cpu| = {d:.3e}");
+        worst = worst.max(d);
+    }
+    println!(
+        "corpus subset: {} files x {} filters, max |gpu - cpu| = {worst:.3e}",
+        8,
+        filters().len()
+    );
+}
+
+/// `render_gpu` / `render_batch` equal `render_with` (plans built separately, same tables).
+#[test]
+fn public_api_matches_render_with() {
+    let Some(c) = ctx("public_api_matches_render_with") else {
+        return;
+    };
+    let texs = synth_textures();
+    for (name, tex) in &texs {
+        let o = RenderOptions {
+            filter: Filter::Pchip,
+            ..RenderOptions::default()
+        };
+        let g = gpu::render_gpu(c, tex, &o).unwrap();
+        let cpu = render_with(tex, &o).unwrap();
+        max_diff(&g, &cpu, name);
+        assert_eq!(g.clamped, cpu.clamped);
+    }
+    let items: Vec<(&LightTexture, RenderOptions)> = texs
+        .iter()
+        .flat_map(|(_, t)| {
+            filters().into_iter().map(move |filter| {
+                (
+                    t,
+                    RenderOptions {
+                        filter,
+                        factor: 3,
+                        clamp: true,
+                        parallel: false,
+                    },
+                )
+            })
+        })
+        .collect();
+    let out = gpu::render_batch(c, &items).unwrap();
+    for ((t, o), g) in items.iter().zip(&out) {
+        let cpu = render_with(t, o).unwrap();
+        max_diff(g, &cpu, &format!("batch [{}]", o.filter));
+        assert_eq!(g.clamped, cpu.clamped);
+    }
+}
+
+/// Factors 1–32, clamping on and off (negative overshoot kept), every filter.
+#[test]
+fn factors_1_to_32_and_clamping() {
+    let Some(c) = ctx("factors_1_to_32_and_clamping") else {
+        return;
+    };
+    let lum = Synth::Spot {
+        p: 8.0,
+        cutoff_deg: 35.0,
+    }
+    .build(&GridSpec::uniform(30.0, 10.0).unwrap(), 500.0)
+    .unwrap();
+    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let mut items = Vec::new();
+    for factor in 1..=32 {
+        for (k, filter) in filters().into_iter().enumerate() {
+            // Every factor with clamping; every filter unclamped at a few factors.
+            items.push((
+                &tex,
+                RenderOptions {
+                    filter,
+                    factor,
+                    clamp: !(factor % 8 == 1 || (factor as usize + k) % 11 == 0),
+                    parallel: true,
+                },
+            ));
         }
     }
+    let plans = gpu::plans(&items).unwrap();
+    let jobs = gpu::jobs(&items, &plans);
+    let names: Vec<String> = items
+        .iter()
+        .map(|(_, o)| format!("factor {} [{}] clamp={}", o.factor, o.filter, o.clamp))
+        .collect();
+    check_jobs(c, &jobs, &names);
+    let out = c.render_jobs(&jobs).unwrap();
+    let negatives = out
+        .iter()
+        .zip(&items)
+        .filter(|(r, (_, o))| !o.clamp && r.data.iter().any(|&v| v < 0.0));
+    assert!(negatives.count() > 0, "unclamped cubics keep their negative overshoot");
+    let clamped: usize = out.iter().map(|r| r.clamped).sum();
+    assert!(clamped > 0, "the spot's cut-off makes cubics overshoot below 0");
+    // Out-of-range factors are errors, as on the CPU.
+    for factor in [0, 33] {
+        let o = RenderOptions {
+            factor,
+            ..RenderOptions::default()
+        };
+        let e = gpu::render_gpu(c, &tex, &o).unwrap_err();
+        assert!(matches!(e, GpuError::InvalidJob { index: 0, .. }), "{e}");
+        assert!(e.to_string().contains("factor"), "{e}");
+    }
 }
 
-#[test]
-fn clamping_on_and_off() {
-    let Some(c) = ctx("clamping_on_and_off") else { return };
-    let mut rng = Rng(7);
-    let mut cs = case(&mut rng, 2, 20, 30, 97, 151); // random taps with negative weights
-    for v in cs.src.iter_mut() {
-        *v -= 2500.0; // plenty of negative results
-    }
-    for clamp in [false, true] {
-        cs.clamp = clamp;
-        let job = cs.job();
-        let (gpu, cpu) = (c.render(&job).unwrap(), resample_cpu(&job));
-        assert_close(&gpu, &cpu, &format!("clamp={clamp}"));
-        assert_eq!(gpu.iter().any(|&v| v < 0.0), !clamp);
-    }
-}
-
+/// A batch of 100 luminaires in one submission; chunked; upload once, dispatch twice.
 #[test]
 fn batch_of_100_in_one_submission() {
     let Some(c) = ctx("batch_of_100_in_one_submission") else {
         return;
     };
-    let mut rng = Rng(0xBA7C);
-    let cases: Vec<Case> = (0..100)
+    let texs = synth_textures();
+    let items: Vec<(&LightTexture, RenderOptions)> = (0..100)
         .map(|k| {
-            let (dr, dc) = (2 + rng.below(72), 2 + rng.below(180));
-            let f = 1 + rng.below(5);
-            let (or, oc) = (dr * f + rng.below(3), dc * f + rng.below(3));
-            case(&mut rng, k, dr, dc, or, oc)
+            let f = filters();
+            (
+                &texs[k % texs.len()].1,
+                RenderOptions {
+                    filter: f[k % f.len()],
+                    factor: 1 + (k % 7) as u32,
+                    clamp: k % 5 != 0,
+                    parallel: true,
+                },
+            )
         })
         .collect();
-    let jobs: Vec<ResampleJob<'_>> = cases.iter().map(Case::job).collect();
-    let (out, t) = c.render_batch_timed(&jobs).unwrap();
+    let plans = gpu::plans(&items).unwrap();
+    let jobs = gpu::jobs(&items, &plans);
+    let (out, t) = c.render_jobs_timed(&jobs).unwrap();
     println!("batch of 100: {t:?}");
     assert_eq!(out.len(), 100);
-    for (cs, gpu) in cases.iter().zip(&out) {
-        assert_close(gpu, &resample_cpu(&cs.job()), &cs.name);
+    for (k, (job, g)) in jobs.iter().zip(&out).enumerate() {
+        let cpu = gpu::render_cpu(job);
+        max_diff(g, &cpu, &format!("batch item {k}"));
+        assert_eq!(g.clamped, cpu.clamped, "batch item {k}");
     }
-    // The one-submission path gives the same numbers.
-    assert_eq!(c.render_batch(&jobs).unwrap(), out);
+    assert_eq!(c.render_jobs(&jobs).unwrap(), out);
     // Split into many chunks (small binding limit): same numbers again.
-    let chunked = c.render_batch_chunked(&jobs, 1 << 20).unwrap();
-    assert_eq!(chunked, out);
-    // Upload once, dispatch twice, read back.
+    assert_eq!(c.render_jobs_chunked(&jobs, 1 << 20).unwrap(), out);
+    // Upload once, dispatch twice (counters are reset), read back.
     let batch = c.upload(&jobs).unwrap();
     assert!(batch.chunks() >= 1);
     c.dispatch(&batch).unwrap();
@@ -318,27 +356,23 @@ fn empty_batch_and_invalid_job() {
     let Some(c) = ctx("empty_batch_and_invalid_job") else {
         return;
     };
-    assert!(c.render_batch(&[]).unwrap().is_empty());
-    let src = vec![1.0f32; 4];
-    let good = AxisTaps::Weights {
-        idx: vec![[0, 1, 0, 0]],
-        w: vec![[0.5, 0.5, 0.0, 0.0]],
+    assert!(gpu::render_batch(c, &[]).unwrap().is_empty());
+    let texs = synth_textures();
+    let (a, b) = (&texs[0].1, &texs[3].1);
+    let plan_b = b.render_plan(Filter::Bilinear, 2).unwrap();
+    let plan_a = a.render_plan(Filter::Bilinear, 2).unwrap();
+    let ok = RenderJob {
+        texture: a,
+        plan: &plan_a,
+        clamp: true,
     };
-    let bad = AxisTaps::Weights {
-        idx: vec![[0, 9, 0, 0]],
-        w: vec![[0.5, 0.5, 0.0, 0.0]],
+    let bad = RenderJob {
+        texture: a,
+        plan: &plan_b,
+        clamp: true,
     };
-    let ok = ResampleJob {
-        src: &src,
-        rows: 2,
-        cols: 2,
-        row_taps: &good,
-        col_taps: &good,
-        clamp_negative: false,
-    };
-    assert_eq!(c.render(&ok).unwrap(), vec![1.0]);
-    let err = c.render_batch(&[ok, ResampleJob { col_taps: &bad, ..ok }]).unwrap_err();
-    assert!(err.to_string().contains("resample job 1"), "{err}");
+    let err = c.render_jobs(&[ok, bad]).unwrap_err();
+    assert!(err.to_string().contains("render job 1"), "{err}");
 }
 
 #[test]

@@ -178,7 +178,7 @@ impl GpuContext {
         .map_err(|e| GpuError::Device(format!("{summary}: {e}")))?;
 
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("photosolid resample"),
+            label: Some("photosolid render"),
             source: wgpu::ShaderSource::Wgsl(include_str!("kernel.wgsl").into()),
         });
         let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
@@ -192,16 +192,16 @@ impl GpuContext {
             count: None,
         };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("photosolid resample"),
-            entries: &[storage(0, true), storage(1, false)],
+            label: Some("photosolid render"),
+            entries: &[storage(0, true), storage(1, false), storage(2, false)],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("photosolid resample"),
+            label: Some("photosolid render"),
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("photosolid resample"),
+            label: Some("photosolid render"),
             layout: Some(&pipeline_layout),
             module: &module,
             entry_point: Some("main"),

@@ -1,168 +1,133 @@
-// photosolid: tensor-product 4-tap resampling from per-axis tap tables.
+// photosolid: the render of a light distribution texture
+// (`photosolid::reconstruct::render_planned`) on the GPU, from the same
+// `RenderPlan` tap tables and the same padded texture, with the same f32
+// arithmetic in the same order.
 //
 // One dispatch renders a whole chunk of a batch (many luminaires). All inputs
 // live in ONE read-only storage buffer of u32 words (`inp`; f32 values are
-// stored as their bit patterns), the result in ONE read-write storage buffer of
-// f32 (`outp`). Two storage buffers fit every backend's limits, including the
-// GLES 3.1 downlevel minimum of 4 storage buffers per stage. No textures and no
-// float filtering are used (the GL fallback adapter lacks float32 filtering).
+// stored as their bit patterns), the texels in ONE read-write storage buffer of
+// f32 (`outp`), the clamped-texel counts (one per item) in a third (`counts`).
+// Three storage buffers fit every backend's limits, including the GLES 3.1
+// downlevel minimum of 4 storage buffers per stage. No textures and no float
+// filtering are used (the GL fallback adapter lacks float32 filtering).
 //
 // Word layout of `inp` (see `src/gpu/resample.rs`, `pack_chunk`):
 //   [0] n_items  [1] n_tiles  [2] dispatch_x (workgroups per dispatch row)  [3] 0
 //   [4 + 16*i ..] item descriptor i (16 words):
-//      0 src_off     word offset of the source grid (rows x cols, row-major f32)
-//      1 src_rows    2 src_cols
-//      3 row_tab     word offset of the gamma (row) tap table
-//      4 col_tab     word offset of the C (column) tap table
-//      5 out_off     f32 offset of this item's output in `outp`
-//      6 out_rows    7 out_cols
-//      8 tiles_x     ceil(out_cols / TILE_X)
+//      0 tex_off     word offset of the padded texture `LightTexture::normalized()`:
+//                    column-major, value (column c, padded row r) at tex_off + c * rows + r
+//      1 rows        padded rows per column (`RenderPlan::rows_per_column`)
+//      2 columns     texture columns (`RenderPlan::columns`)
+//      3 gamma_tab   word offset of the gamma tap table (`RenderPlan::gamma`), one entry per output row
+//      4 c_tab       word offset of the C tap table (`RenderPlan::c`), one entry per output column
+//      5 out_off     f32 offset of this item's output in `outp` (row-major, rows = gamma)
+//      6 height      7 width
+//      8 tiles_x     ceil(width / TILE_X)
 //      9 tile_begin  first global tile of this item (items are sorted by it)
-//     10 flags       bit0: clamp negatives to 0, bit1: rows are PCHIP, bit2: columns are PCHIP
-//     11 row_stride  words per row-table entry (8 weights mode, 12 PCHIP mode)
-//     12 col_stride  words per column-table entry
-//     13..15 unused
-//   Tap table entry (one per output row / output column):
-//      weights mode: i0 i1 i2 i3 (u32 source indices)  w0 w1 w2 w3 (f32)
-//      PCHIP mode:   i0 i1 i2 i3 (u32)  x0 x1 x2 x3 (f32 knots)  pos (f32)  0 0 0
+//     10 flags       bit0: clamp negatives to 0 (and count them), bit1: PCHIP tables
+//     11 slot        index of this item's counter in `counts`
+//     12..15 unused
+//   Tap table entry (`AxisTaps` row k): index[k][0..4] (u32), weight[k][0..4] (f32 bits).
 //
-// Evaluation order (the CPU reference `resample_cpu` does exactly the same):
-//   for each C tap j = 0..3 (column c_j):
-//       v_j = interp_gamma(src[r0][c_j], src[r1][c_j], src[r2][c_j], src[r3][c_j])
-//   out = interp_c(v_0, v_1, v_2, v_3);  if clamp { out = max(out, 0) }
-//   weights mode: acc = w0*y0; acc = acc + w1*y1; acc = acc + w2*y2; acc = acc + w3*y3
-//   (left to right in f32; drivers may contract a*b+c into an FMA, which differs
-//   from the CPU by at most an ulp per step).
+// Evaluation, exactly `render_row` (separable, gamma first, then C):
+//   gamma entry all-zero weights -> 0 (outside the measured band);
+//   for each C tap m = 0..3 (texture column ci[m]):
+//       v[m] = combine(pchip, texture[ci[m]][gi[0..4]], gw)
+//   out = combine(pchip, v, cw);  if clamp && out < 0 { out = 0; count it }
+// where `combine` is `photosolid::reconstruct::combine` ported line by line
+// (drivers may contract a*b+c into an FMA, which differs from the CPU by at
+// most an ulp per step).
 
 @group(0) @binding(0) var<storage, read> inp: array<u32>;
 @group(0) @binding(1) var<storage, read_write> outp: array<f32>;
+@group(0) @binding(2) var<storage, read_write> counts: array<atomic<u32>>;
 
 const TILE_X: u32 = 16u;
 const TILE_Y: u32 = 4u;
 const HEADER: u32 = 4u;
 const DESC: u32 = 16u;
+const ENTRY: u32 = 8u;
+
+var<workgroup> wg_clamped: atomic<u32>;
 
 fn fv(i: u32) -> f32 {
     return bitcast<f32>(inp[i]);
 }
 
-fn sgn(v: f32) -> f32 {
-    if (v > 0.0) {
-        return 1.0;
-    }
-    if (v < 0.0) {
-        return -1.0;
-    }
-    return 0.0;
+// ---- reconstruct/filter.rs, ported line by line -------------------------
+
+// hermite_basis: (h00, h10, h01, h11) at s in [0, 1].
+fn hermite_basis(s: f32) -> vec4<f32> {
+    let one = 1.0;
+    let two = 2.0;
+    let three = 3.0;
+    let s2 = s * s;
+    let s3 = s2 * s;
+    return vec4<f32>(
+        two * s3 - three * s2 + one,
+        s3 - two * s2 + s,
+        three * s2 - two * s3,
+        s3 - s2,
+    );
 }
 
-// Fritsch-Butland slope at an interior knot (SciPy PchipInterpolator):
-// hl, hr = widths of the intervals left and right of the knot, dl, dr = their
-// secant slopes. m = 0 if sign(dl)*sign(dr) <= 0 (i.e. dl*dr <= 0, tested on
-// signs so that underflow cannot flip it), otherwise
-// m = (w1 + w2) / (w1/dl + w2/dr), w1 = 2*hr + hl, w2 = hr + 2*hl.
-fn slope_interior(hl: f32, hr: f32, dl: f32, dr: f32) -> f32 {
-    if (sgn(dl) * sgn(dr) <= 0.0) {
+// fritsch_butland: slope at a knot between secants d0 (left, spacing h0) and
+// d1 (right, spacing h1): 0 at a local extremum, else the weighted harmonic mean.
+fn fritsch_butland(d0: f32, d1: f32, h0: f32, h1: f32) -> f32 {
+    if (d0 * d1 <= 0.0) {
         return 0.0;
     }
-    let w1 = 2.0 * hr + hl;
-    let w2 = hr + 2.0 * hl;
-    return (w1 + w2) / (w1 / dl + w2 / dr);
+    let two = 2.0;
+    let w1 = two * h1 + h0;
+    let w2 = h1 + two * h0;
+    return (w1 + w2) / (w1 / d0 + w2 / d1);
 }
 
-// SciPy's one-sided three-point end slope (`_edge_case`): h0, m0 = width and
-// secant of the interval next to the end knot, h1, m1 = the next one inwards.
-// d = ((2*h0 + h1)*m0 - h0*m1) / (h0 + h1); 0 if sign(d) != sign(m0);
-// 3*m0 if sign(m0) != sign(m1) and |d| > 3|m0|; else d.
-fn slope_edge(h0: f32, h1: f32, m0: f32, m1: f32) -> f32 {
-    let d = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1);
-    if (sgn(d) != sgn(m0)) {
+// pchip_eval: w = [s, h_prev, h, h_next]; h = 0 means outside the band.
+fn pchip_eval(v: vec4<f32>, w: vec4<f32>) -> f32 {
+    let s = w.x;
+    let h_prev = w.y;
+    let h = w.z;
+    let h_next = w.w;
+    if (h <= 0.0) {
         return 0.0;
     }
-    if (sgn(m0) != sgn(m1) && abs(d) > 3.0 * abs(m0)) {
-        return 3.0 * m0;
-    }
-    return d;
+    let d_prev = (v.y - v.x) / h_prev;
+    let d = (v.z - v.y) / h;
+    let d_next = (v.w - v.z) / h_next;
+    let m0 = fritsch_butland(d_prev, d, h_prev, h);
+    let m1 = fritsch_butland(d, d_next, h, h_next);
+    let hb = hermite_basis(s);
+    return hb.x * v.y + hb.y * h * m0 + hb.z * v.z + hb.w * h * m1;
 }
 
-// PCHIP on 4 taps (x0 <= x1 < x2 <= x3), evaluated at `x` (normally in [x1, x2]).
-// A missing neighbour is encoded by a repeated knot: x0 == x1 (no left
-// neighbour: x1 is a data end) or x3 == x2 (x2 is a data end); then SciPy's end
-// formula is used; with neither neighbour the interval is linear (2-point case).
-// h1 = x2 - x1, d1 = (y2 - y1)/h1; d0, d2 likewise for the outer intervals.
-// Slopes: m1 = has_left ? slope_interior(h0, h1, d0, d1) : has_right ? slope_edge(h1, h2, d1, d2) : d1
-//         m2 = has_right ? slope_interior(h1, h2, d1, d2) : has_left ? slope_edge(h1, h0, d1, d0) : d1
-// Cubic (SciPy CubicHermiteSpline coefficients), dx = x - x1:
-//   t = (m1 + m2 - 2*d1) / h1;  c3 = t / h1;  c2 = (d1 - m1) / h1 - t
-//   y = y1 + dx * (m1 + dx * (c2 + dx * c3))
-// If h1 <= 0 the result is y1.
-fn pchip4(x0: f32, x1: f32, x2: f32, x3: f32, y0: f32, y1: f32, y2: f32, y3: f32, x: f32) -> f32 {
-    let h1 = x2 - x1;
-    if (!(h1 > 0.0)) {
-        return y1;
-    }
-    let h0 = x1 - x0;
-    let h2 = x3 - x2;
-    let d1 = (y2 - y1) / h1;
-    let has_l = h0 > 0.0;
-    let has_r = h2 > 0.0;
-    var d0 = 0.0;
-    var d2 = 0.0;
-    if (has_l) {
-        d0 = (y1 - y0) / h0;
-    }
-    if (has_r) {
-        d2 = (y3 - y2) / h2;
-    }
-    var m1 = d1;
-    var m2 = d1;
-    if (has_l) {
-        m1 = slope_interior(h0, h1, d0, d1);
-    } else if (has_r) {
-        m1 = slope_edge(h1, h2, d1, d2);
-    }
-    if (has_r) {
-        m2 = slope_interior(h1, h2, d1, d2);
-    } else if (has_l) {
-        m2 = slope_edge(h1, h0, d1, d0);
-    }
-    let t = (m1 + m2 - 2.0 * d1) / h1;
-    let c3 = t / h1;
-    let c2 = (d1 - m1) / h1 - t;
-    let dx = x - x1;
-    return y1 + dx * (m1 + dx * (c2 + dx * c3));
-}
-
-// Interpolate 4 tap values with table entry `e` (weights or PCHIP).
-fn axis_eval(e: u32, pchip: bool, y0: f32, y1: f32, y2: f32, y3: f32) -> f32 {
+// combine: the four linear weights, or PCHIP's [s, h_prev, h, h_next].
+fn combine(pchip: bool, v: vec4<f32>, w: vec4<f32>) -> f32 {
     if (pchip) {
-        return pchip4(fv(e + 4u), fv(e + 5u), fv(e + 6u), fv(e + 7u), y0, y1, y2, y3, fv(e + 8u));
+        return pchip_eval(v, w);
     }
-    var acc = fv(e + 4u) * y0;
-    acc = acc + fv(e + 5u) * y1;
-    acc = acc + fv(e + 6u) * y2;
-    acc = acc + fv(e + 7u) * y3;
-    return acc;
+    return w.x * v.x + w.y * v.y + w.z * v.z + w.w * v.w;
 }
 
-// Gamma interpolation within source column `c`.
-fn column(src_off: u32, src_cols: u32, re: u32, row_pchip: bool, c: u32) -> f32 {
-    let y0 = fv(src_off + inp[re] * src_cols + c);
-    let y1 = fv(src_off + inp[re + 1u] * src_cols + c);
-    let y2 = fv(src_off + inp[re + 2u] * src_cols + c);
-    let y3 = fv(src_off + inp[re + 3u] * src_cols + c);
-    return axis_eval(re, row_pchip, y0, y1, y2, y3);
+// ---- the render -----------------------------------------------------------
+
+fn weights(e: u32) -> vec4<f32> {
+    return vec4<f32>(fv(e + 4u), fv(e + 5u), fv(e + 6u), fv(e + 7u));
+}
+
+// The gamma pass in texture column `col`: `tmp[col]` of `render_row`.
+fn gamma_pass(tex_off: u32, rows: u32, col: u32, ge: u32, pchip: bool, gw: vec4<f32>) -> f32 {
+    let base = tex_off + col * rows;
+    let v = vec4<f32>(fv(base + inp[ge]), fv(base + inp[ge + 1u]), fv(base + inp[ge + 2u]), fv(base + inp[ge + 3u]));
+    return combine(pchip, v, gw);
 }
 
 @compute @workgroup_size(16, 4, 1)
-fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_id) lid: vec3<u32>) {
+fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lidx: u32) {
     let n_items = inp[0];
     let n_tiles = inp[1];
     let tile = wg.y * inp[2] + wg.x;
-    if (tile >= n_tiles) {
-        return;
-    }
-    // Largest item whose tile_begin <= tile (binary search; uniform per workgroup).
+    // Every item's tiles lie in one item, so `d` is uniform per workgroup.
     var lo = 0u;
     var hi = n_items;
     loop {
@@ -179,28 +144,40 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_id) lid:
     let d = HEADER + lo * DESC;
     let local_tile = tile - inp[d + 9u];
     let tiles_x = inp[d + 8u];
-    let col = (local_tile % tiles_x) * TILE_X + lid.x;
-    let row = (local_tile / tiles_x) * TILE_Y + lid.y;
-    let out_rows = inp[d + 6u];
-    let out_cols = inp[d + 7u];
-    if (row >= out_rows || col >= out_cols) {
-        return;
-    }
-    let src_off = inp[d];
-    let src_cols = inp[d + 2u];
+    let col = (local_tile % tiles_x) * TILE_X + lidx % TILE_X;
+    let row = (local_tile / tiles_x) * TILE_Y + lidx / TILE_X;
+    let height = inp[d + 6u];
+    let width = inp[d + 7u];
     let flags = inp[d + 10u];
-    let row_pchip = (flags & 2u) != 0u;
-    let col_pchip = (flags & 4u) != 0u;
-    let re = inp[d + 3u] + row * inp[d + 11u];
-    let ce = inp[d + 4u] + col * inp[d + 12u];
-
-    let v0 = column(src_off, src_cols, re, row_pchip, inp[ce]);
-    let v1 = column(src_off, src_cols, re, row_pchip, inp[ce + 1u]);
-    let v2 = column(src_off, src_cols, re, row_pchip, inp[ce + 2u]);
-    let v3 = column(src_off, src_cols, re, row_pchip, inp[ce + 3u]);
-    var r = axis_eval(ce, col_pchip, v0, v1, v2, v3);
-    if ((flags & 1u) != 0u) {
-        r = max(r, 0.0);
+    let clamp = (flags & 1u) != 0u;
+    if (tile < n_tiles && row < height && col < width) {
+        let tex_off = inp[d];
+        let rows = inp[d + 1u];
+        let pchip = (flags & 2u) != 0u;
+        let ge = inp[d + 3u] + row * ENTRY;
+        let ce = inp[d + 4u] + col * ENTRY;
+        let gw = weights(ge);
+        var r = 0.0;
+        if (any(gw != vec4<f32>(0.0))) {
+            let v = vec4<f32>(
+                gamma_pass(tex_off, rows, inp[ce], ge, pchip, gw),
+                gamma_pass(tex_off, rows, inp[ce + 1u], ge, pchip, gw),
+                gamma_pass(tex_off, rows, inp[ce + 2u], ge, pchip, gw),
+                gamma_pass(tex_off, rows, inp[ce + 3u], ge, pchip, gw),
+            );
+            r = combine(pchip, v, weights(ce));
+            if (clamp && r < 0.0) {
+                r = 0.0;
+                atomicAdd(&wg_clamped, 1u);
+            }
+        }
+        outp[inp[d + 5u] + row * width + col] = r;
     }
-    outp[inp[d + 5u] + row * out_cols + col] = r;
+    workgroupBarrier();
+    if (lidx == 0u && tile < n_tiles) {
+        let n = atomicLoad(&wg_clamped);
+        if (n > 0u) {
+            atomicAdd(&counts[inp[d + 11u]], n);
+        }
+    }
 }

@@ -1,16 +1,20 @@
 //! GPU rendering of light distribution textures (feature `gpu`, on by default).
 //!
-//! A headless [wgpu](https://wgpu.rs) compute pipeline that performs the
-//! table-driven tensor-product 4-tap resampling of [`resample`] (see its docs
-//! for the exact semantics) on Vulkan or GL/EGL adapters, including Mesa's
-//! software drivers (lavapipe, llvmpipe). [`resample_cpu`] is the bit-for-bit
-//! (up to FMA contraction) CPU equivalent.
+//! A headless [wgpu](https://wgpu.rs) compute pipeline that renders a
+//! [`LightTexture`](crate::reconstruct::LightTexture) exactly as the CPU
+//! [`crate::reconstruct::render_with`] does, from the same
+//! [`RenderPlan`](crate::reconstruct::RenderPlan) tap tables and the same
+//! padded texture, with a WGSL port of [`crate::reconstruct::combine`] (see
+//! [`resample`] for the semantics), on Vulkan or GL/EGL adapters, including
+//! Mesa's software drivers (lavapipe, llvmpipe).
 //!
 //! - [`GpuContext::global`]: instance, adapter, device and pipeline, created
 //!   once per process (honours `WGPU_BACKEND=vulkan|gl`);
-//! - [`GpuContext::render_batch`]: many textures in one submission;
-//! - [`GpuContext::upload`] / [`GpuContext::dispatch`] / [`GpuContext::read_back`]
-//!   and [`GpuContext::render_batch_timed`]: the phases, separately;
+//! - [`render_gpu`] / [`render_batch`]: one texture, or many in one submission;
+//! - [`RenderJob`] with [`GpuContext::upload`] / [`GpuContext::dispatch`] /
+//!   [`GpuContext::read_back`] and [`GpuContext::render_jobs_timed`]: the
+//!   phases, separately, for a plan built once and shared with the CPU
+//!   ([`render_cpu`]);
 //! - [`Backend`] / [`resolve`]: `--backend auto|gpu|cpu`.
 //!
 //! Output goes to a storage buffer rather than an `r32float` storage texture:
@@ -24,7 +28,7 @@ pub mod resample;
 
 pub use backend::{resolve, Backend, Resolved};
 pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
-pub use resample::{pchip4, resample_cpu, AxisTaps, GpuBatch, ResampleJob, Timings};
+pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, Timings};
 
 /// Errors of the GPU path.
 #[derive(Clone, Debug, thiserror::Error)]
@@ -45,7 +49,7 @@ pub enum GpuError {
     #[error("GPU device error: {0}")]
     Device(String),
     /// A job is malformed.
-    #[error("resample job {index}: {reason}")]
+    #[error("render job {index}: {reason}")]
     InvalidJob {
         /// Index of the job in the batch.
         index: usize,
@@ -53,7 +57,7 @@ pub enum GpuError {
         reason: String,
     },
     /// A single job does not fit the device's limits.
-    #[error("resample job {index} is too large for this device: {reason}")]
+    #[error("render job {index} is too large for this device: {reason}")]
     TooLarge {
         /// Index of the job in the batch.
         index: usize,
