@@ -20,6 +20,20 @@ fi
 cargo test --all-targets --locked
 cargo test --doc --locked
 
+echo "== GPU: the wgpu render against the CPU render (tests/gpu.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
+gpu_start=$SECONDS
+if bash scripts/install-gpu-drivers.sh; then
+  gpu_env="PHOTOSOLID_REQUIRE_GPU=1"
+else
+  echo "WARNING: GPU drivers could not be installed; running the GPU tests without PHOTOSOLID_REQUIRE_GPU (they skip without an adapter)"
+  gpu_env="PHOTOSOLID_REQUIRE_GPU=0"
+fi
+for backend in vulkan gl; do
+  echo "-- WGPU_BACKEND=$backend $gpu_env"
+  env "$gpu_env" WGPU_BACKEND="$backend" cargo test --locked --test gpu
+done
+echo "GPU tests: $((SECONDS - gpu_start)) s"
+
 echo "== benches compile"
 cargo bench --no-run --locked 2>&1 | tail -n 1
 

@@ -21,6 +21,8 @@
 pub mod error;
 pub mod fit;
 pub mod formats;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 pub mod metrics;
 pub mod model;
 pub mod photometry;

@@ -3,6 +3,7 @@
 mod convert;
 mod demo;
 mod fit;
+mod gpu_check;
 mod grid;
 mod hausdorff;
 mod holdout;
@@ -52,6 +53,8 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Approximate the luminaire by at most 2 OpenGL lights (spot / point; Zotti et al. 2005).
     Fit(fit::FitArgs),
+    /// Render every file with every filter on the GPU and the CPU; exit 1 if any texel differs by more than 1e-5.
+    GpuCheck(gpu_check::GpuCheckArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -106,20 +109,46 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Hausdorff(a) => hausdorff::run(a),
         Command::Demo(a) => demo::run(a),
         Command::Fit(a) => fit::run(a),
+        Command::GpuCheck(a) => gpu_check::run(a),
     }
 }
 
-/// Render `tex` on the backend the user asked for (`auto`, `gpu`, `cpu`).
+/// Render `tex` on the backend the user asked for (`auto`, `gpu`, `cpu`);
+/// returns the texture and where it was rendered (for the user).
+///
+/// `auto` uses a GPU adapter when one exists (honouring `WGPU_BACKEND`) and
+/// otherwise falls back to the CPU with a one-line notice on stderr; `gpu`
+/// without an adapter is an error naming the drivers tried. Built without
+/// the `gpu` feature, `auto` is the CPU and `gpu` an error.
 fn render_on(
     backend: &str,
     tex: &photosolid::reconstruct::LightTexture,
     filter: photosolid::reconstruct::Filter,
     factor: u32,
-) -> anyhow::Result<photosolid::reconstruct::Rendered> {
-    match backend {
-        "gpu" => anyhow::bail!("the GPU backend is not built into this version; use --backend cpu"),
-        _ => Ok(photosolid::reconstruct::render(tex, filter, factor)?),
+) -> anyhow::Result<(photosolid::reconstruct::Rendered, String)> {
+    let options = photosolid::reconstruct::RenderOptions {
+        filter,
+        factor,
+        ..Default::default()
+    };
+    #[cfg(feature = "gpu")]
+    {
+        use photosolid::gpu::{self, Backend, Resolved};
+        let b: Backend = backend.parse().map_err(anyhow::Error::msg)?;
+        match gpu::resolve(b)? {
+            Resolved::Gpu(ctx) => return Ok((gpu::render_gpu(ctx, tex, &options)?, format!("gpu: {}", ctx.adapter()))),
+            Resolved::Cpu { notice: Some(n) } => eprintln!("{n}"),
+            Resolved::Cpu { notice: None } => {}
+        }
     }
+    #[cfg(not(feature = "gpu"))]
+    if backend == "gpu" {
+        anyhow::bail!(
+            "--backend gpu: this photosolid binary was built without GPU support (cargo feature `gpu`); use \
+             --backend cpu or auto"
+        );
+    }
+    Ok((photosolid::reconstruct::render_with(tex, &options)?, "cpu".to_string()))
 }
 
 /// The hold-out reports as a text table.

@@ -33,6 +33,6 @@ pub use filter::{combine, Filter, Real, FILTER_NAMES};
 pub use holdout::{holdout, HoldoutReport, HoldoutSpec};
 pub use sampler::{angles, direction, Sampler};
 pub use texture::{
-    render, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping, DEFAULT_FACTOR,
-    MAX_RENDER_TEXELS,
+    render, render_planned, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping,
+    DEFAULT_FACTOR, MAX_RENDER_TEXELS,
 };

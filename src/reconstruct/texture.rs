@@ -462,12 +462,26 @@ pub fn render(texture: &LightTexture, filter: Filter, factor: u32) -> Result<Ren
 /// As [`LightTexture::render_plan`].
 pub fn render_with(texture: &LightTexture, options: &RenderOptions) -> Result<Rendered, ModelError> {
     let plan = texture.render_plan(options.filter, options.factor)?;
+    Ok(render_planned(texture, &plan, options.clamp, options.parallel))
+}
+
+/// [`render_with`] from a [`RenderPlan`] built beforehand by
+/// [`LightTexture::render_plan`] on the same texture: the CPU side of a
+/// comparison with the GPU render of the same plan (`photosolid::gpu`).
+///
+/// # Panics
+/// When `plan` was built for a texture of another layout (rows per column or
+/// column count differ).
+pub fn render_planned(texture: &LightTexture, plan: &RenderPlan, clamp: bool, parallel: bool) -> Rendered {
+    assert!(
+        plan.rows_per_column == texture.rows && plan.columns == texture.columns.len(),
+        "render plan built for another texture layout"
+    );
     let (h, w) = (plan.mapping.height, plan.mapping.width);
     let mut data = vec![0f32; h * w];
-    let clamp = options.clamp;
     let row_job =
-        |tmp: &mut Vec<f32>, (i, out): (usize, &mut [f32])| -> usize { render_row(texture, &plan, clamp, i, tmp, out) };
-    let clamped = if options.parallel {
+        |tmp: &mut Vec<f32>, (i, out): (usize, &mut [f32])| -> usize { render_row(texture, plan, clamp, i, tmp, out) };
+    let clamped = if parallel {
         data.par_chunks_mut(w)
             .enumerate()
             .map_init(|| vec![0f32; plan.columns], row_job)
@@ -476,15 +490,15 @@ pub fn render_with(texture: &LightTexture, options: &RenderOptions) -> Result<Re
         let mut tmp = vec![0f32; plan.columns];
         data.chunks_mut(w).enumerate().map(|r| row_job(&mut tmp, r)).sum()
     };
-    Ok(Rendered {
+    Rendered {
         data,
         mapping: plan.mapping,
         i_max_cd: texture.i_max_cd,
-        filter: options.filter,
-        factor: options.factor,
+        filter: plan.filter,
+        factor: plan.factor,
         measured_gamma: texture.measured_gamma,
         clamped,
-    })
+    }
 }
 
 /// One output row; returns how many texels were clamped.

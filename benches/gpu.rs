@@ -1,0 +1,143 @@
+//! The GPU render next to the CPU render of the same plans: adapter/device
+//! set-up, upload, dispatch and read-back separately, for one texture and for
+//! a batch of 100, at factor 5 with Catmull-Rom.
+//!
+//! Textures: the loadable files of ../shared/corpus (cycled to 100; the
+//! single texture is the 361 x 73 roadway file when present), else synthetic
+//! ones from `photosolid::synth`.
+//!
+//! `cargo bench --bench gpu` (honours `WGPU_BACKEND=vulkan|gl`). Without an
+//! adapter only the CPU benchmarks run.
+
+use std::path::Path;
+use std::time::Duration;
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use photosolid::gpu::{self, GpuContext, RenderJob};
+use photosolid::reconstruct::{render_planned, Filter, LightTexture, RenderOptions};
+use photosolid::synth::{GridSpec, Synth};
+
+const ROADWAY: &str = "eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies";
+
+fn corpus_textures() -> Vec<LightTexture> {
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus"));
+    let Ok(manifest) = std::fs::read_to_string(root.join("MANIFEST.tsv")) else {
+        return Vec::new();
+    };
+    let mut rels: Vec<&str> = manifest
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split('\t').next())
+        .filter(|r| {
+            let r = r.to_ascii_lowercase();
+            r.ends_with(".ies") || r.ends_with(".ldt")
+        })
+        .collect();
+    // The roadway file first: it is the single-texture case.
+    rels.sort_by_key(|r| *r != ROADWAY);
+    rels.iter()
+        .filter_map(|r| photosolid::load(root.join(r)).ok())
+        .filter_map(|l| LightTexture::new(&l.distribution).ok())
+        .collect()
+}
+
+fn synth_textures() -> Vec<LightTexture> {
+    let shapes = [
+        Synth::Roadway,
+        Synth::Batwing,
+        Synth::Spot {
+            p: 20.0,
+            cutoff_deg: 40.0,
+        },
+        Synth::CosinePower { p: 3.0 },
+    ];
+    let grids = [(5.0, 2.5), (15.0, 5.0), (10.0, 1.0)];
+    let mut out = Vec::new();
+    for (i, s) in shapes.iter().enumerate() {
+        for (j, &(c, g)) in grids.iter().enumerate() {
+            let lum = s
+                .build(&GridSpec::uniform(c, g).unwrap(), 1000.0 + (i * 3 + j) as f64)
+                .unwrap();
+            out.push(LightTexture::new(&lum.distribution).unwrap());
+        }
+    }
+    out
+}
+
+fn bench(c: &mut Criterion) {
+    let mut texs = corpus_textures();
+    let source = if texs.is_empty() {
+        texs = synth_textures();
+        "synthetic"
+    } else {
+        "corpus"
+    };
+    let opts = RenderOptions {
+        filter: Filter::CatmullRom,
+        ..RenderOptions::default()
+    };
+    let items: Vec<(&LightTexture, RenderOptions)> = (0..100).map(|k| (&texs[k % texs.len()], opts)).collect();
+    let plans = gpu::plans(&items).unwrap();
+    let jobs: Vec<RenderJob<'_>> = gpu::jobs(&items, &plans);
+    let texels = |js: &[RenderJob<'_>]| js.iter().map(|j| j.height() * j.width()).sum::<usize>();
+    let one = &jobs[..1];
+    eprintln!(
+        "{source} textures ({} distinct): single {} x {} texels; batch of 100: {} texels",
+        texs.len(),
+        one[0].height(),
+        one[0].width(),
+        texels(&jobs)
+    );
+
+    let mut g = c.benchmark_group("gpu");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(3));
+
+    for (name, set) in [("single", one), ("batch100", &jobs[..])] {
+        g.bench_function(format!("cpu/{name}/render (rayon rows)"), |b| {
+            b.iter(|| {
+                set.iter()
+                    .map(|j| render_planned(j.texture, j.plan, j.clamp, true))
+                    .collect::<Vec<_>>()
+            })
+        });
+    }
+    g.bench_function("cpu/batch100/plans (tap tables)", |b| {
+        b.iter(|| gpu::plans(black_box(&items)).unwrap())
+    });
+
+    let ctx = match GpuContext::global() {
+        Ok(ctx) => ctx,
+        Err(e) => {
+            eprintln!("no GPU adapter, GPU benchmarks skipped: {e}");
+            return;
+        }
+    };
+    eprintln!("gpu adapter: {} (set-up {:.0?})", ctx.adapter(), ctx.setup_time());
+    let (_, t) = ctx.render_jobs_timed(&jobs).unwrap();
+    eprintln!("batch100 phases (one run): {t:?}, total {:?}", t.total());
+
+    g.bench_function("gpu/setup (instance+adapter+device+pipeline)", |b| {
+        b.iter(|| GpuContext::new().unwrap())
+    });
+    for (name, set) in [("single", one), ("batch100", &jobs[..])] {
+        g.bench_function(format!("gpu/{name}/upload"), |b| {
+            b.iter(|| ctx.upload(black_box(set)).unwrap())
+        });
+        let batch = ctx.upload(set).unwrap();
+        g.bench_function(format!("gpu/{name}/dispatch"), |b| {
+            b.iter(|| ctx.dispatch(&batch).unwrap())
+        });
+        g.bench_function(format!("gpu/{name}/read-back"), |b| {
+            b.iter(|| ctx.read_back(&batch).unwrap())
+        });
+        g.bench_function(format!("gpu/{name}/end-to-end"), |b| {
+            b.iter(|| ctx.render_jobs(black_box(set)).unwrap())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

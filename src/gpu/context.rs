@@ -1,0 +1,259 @@
+//! Headless wgpu set-up: instance, adapter, device, queue and the compute
+//! pipeline, created once per process ([`GpuContext::global`]) and reused.
+
+use std::fmt;
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use super::GpuError;
+
+/// The backends this crate is compiled with (Linux: Vulkan and GL/EGL).
+pub const COMPILED_BACKENDS: wgpu::Backends = wgpu::Backends::VULKAN.union(wgpu::Backends::GL);
+
+/// What adapter was chosen, for logs and reports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AdapterSummary {
+    /// Adapter name, e.g. `llvmpipe (LLVM 15.0.6, 256 bits)`.
+    pub name: String,
+    /// Backend, e.g. `Vulkan` or `Gl`.
+    pub backend: String,
+    /// Device type, e.g. `Cpu` (software rasteriser) or `DiscreteGpu`.
+    pub device_type: String,
+    /// Driver name and version information as reported by the driver.
+    pub driver: String,
+    /// Whether this is a software (CPU) adapter such as lavapipe or llvmpipe.
+    pub software: bool,
+}
+
+impl fmt::Display for AdapterSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} [{}, {}", self.name, self.backend, self.device_type)?;
+        if !self.driver.is_empty() {
+            write!(f, ", {}", self.driver)?;
+        }
+        write!(f, "]")
+    }
+}
+
+impl AdapterSummary {
+    fn from_info(info: &wgpu::AdapterInfo) -> Self {
+        let driver = match (info.driver.is_empty(), info.driver_info.is_empty()) {
+            (false, false) => format!("{} {}", info.driver, info.driver_info),
+            (false, true) => info.driver.clone(),
+            (true, _) => info.driver_info.clone(),
+        };
+        AdapterSummary {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver,
+            software: info.device_type == wgpu::DeviceType::Cpu,
+        }
+    }
+}
+
+/// Instance, adapter, device, queue and pipeline. Cheap to share (`&'static`
+/// via [`GpuContext::global`]); `Send + Sync`.
+pub struct GpuContext {
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) pipeline: wgpu::ComputePipeline,
+    pub(crate) layout: wgpu::BindGroupLayout,
+    pub(crate) limits: wgpu::Limits,
+    summary: AdapterSummary,
+    setup_time: Duration,
+    // Kept alive for the lifetime of the device.
+    _adapter: wgpu::Adapter,
+    _instance: wgpu::Instance,
+}
+
+impl fmt::Debug for GpuContext {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("GpuContext")
+            .field("adapter", &self.summary)
+            .finish_non_exhaustive()
+    }
+}
+
+static GLOBAL: OnceLock<Result<GpuContext, GpuError>> = OnceLock::new();
+
+/// Backends requested by the environment (`WGPU_BACKEND=vulkan|gl|...`),
+/// restricted to the compiled ones; all compiled backends when unset.
+pub fn requested_backends() -> wgpu::Backends {
+    wgpu::Backends::from_env().unwrap_or(COMPILED_BACKENDS)
+}
+
+fn backend_names(b: wgpu::Backends) -> String {
+    let names: Vec<&str> = [(wgpu::Backends::VULKAN, "Vulkan"), (wgpu::Backends::GL, "GL/EGL")]
+        .iter()
+        .filter(|(flag, _)| b.contains(*flag))
+        .map(|(_, n)| *n)
+        .collect();
+    if names.is_empty() {
+        "none".to_string()
+    } else {
+        names.join(", ")
+    }
+}
+
+/// Preference order: hardware first, software last; Vulkan before GL.
+fn rank(info: &wgpu::AdapterInfo) -> (u8, u8) {
+    let t = match info.device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Other => 3,
+        wgpu::DeviceType::Cpu => 4,
+    };
+    let b = if info.backend == wgpu::Backend::Vulkan { 0 } else { 1 };
+    (t, b)
+}
+
+impl GpuContext {
+    /// The process-wide context, created on first use (honouring
+    /// `WGPU_BACKEND`). A failure is cached too, so a machine without an
+    /// adapter pays the probe once.
+    pub fn global() -> Result<&'static GpuContext, GpuError> {
+        GLOBAL.get_or_init(GpuContext::new).as_ref().map_err(Clone::clone)
+    }
+
+    /// Whether [`GpuContext::global`] has already been initialised successfully.
+    pub fn global_is_ready() -> bool {
+        matches!(GLOBAL.get(), Some(Ok(_)))
+    }
+
+    /// A fresh context (instance, adapter, device, pipeline): what the
+    /// set-up benchmark measures. Prefer [`GpuContext::global`].
+    pub fn new() -> Result<GpuContext, GpuError> {
+        let t0 = Instant::now();
+        let backends = requested_backends() & COMPILED_BACKENDS;
+        let tried = match std::env::var("WGPU_BACKEND") {
+            Ok(v) => format!("{} (WGPU_BACKEND={v})", backend_names(backends)),
+            Err(_) => backend_names(backends),
+        };
+        let no_adapter = |detail: String| GpuError::NoAdapter {
+            tried: tried.clone(),
+            detail,
+        };
+        if backends.is_empty() {
+            return Err(no_adapter("no compiled-in backend selected".into()));
+        }
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        desc.backends = backends;
+        let instance = wgpu::Instance::new(desc);
+
+        // Deterministic choice among all adapters; then wgpu's own request
+        // (without, then with, `force_fallback_adapter`) as a second chance.
+        let mut adapters = pollster::block_on(instance.enumerate_adapters(backends));
+        adapters.sort_by_key(|a| rank(&a.get_info()));
+        let mut adapter = adapters.into_iter().next();
+        let mut last_err = String::from("no adapters enumerated");
+        for fallback in [false, true] {
+            if adapter.is_some() {
+                break;
+            }
+            let opts = wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: fallback,
+                compatible_surface: None,
+                apply_limit_buckets: false,
+            };
+            match pollster::block_on(instance.request_adapter(&opts)) {
+                Ok(a) => adapter = Some(a),
+                Err(e) => last_err = e.to_string(),
+            }
+        }
+        let adapter = adapter.ok_or_else(|| no_adapter(last_err))?;
+        let info = adapter.get_info();
+        let summary = AdapterSummary::from_info(&info);
+
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("photosolid"),
+            required_features: wgpu::Features::empty(),
+            required_limits: limits.clone(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device(format!("{summary}: {e}")))?;
+
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("photosolid render"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("kernel.wgsl").into()),
+        });
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("photosolid render"),
+            entries: &[storage(0, true), storage(1, false), storage(2, false)],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("photosolid render"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("photosolid render"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Ok(GpuContext {
+            device,
+            queue,
+            pipeline,
+            layout,
+            limits,
+            summary,
+            setup_time: t0.elapsed(),
+            _adapter: adapter,
+            _instance: instance,
+        })
+    }
+
+    /// The chosen adapter.
+    pub fn adapter(&self) -> &AdapterSummary {
+        &self.summary
+    }
+
+    /// How long instance + adapter + device + pipeline creation took.
+    pub fn setup_time(&self) -> Duration {
+        self.setup_time
+    }
+
+    /// Largest storage buffer binding (bytes) this device accepts; batches are
+    /// split into chunks that fit.
+    pub fn max_binding_bytes(&self) -> u64 {
+        self.limits
+            .max_storage_buffer_binding_size
+            .min(self.limits.max_buffer_size)
+    }
+
+    /// Maximum workgroups per dispatch dimension.
+    pub fn max_workgroups_per_dim(&self) -> u32 {
+        self.limits.max_compute_workgroups_per_dimension
+    }
+}
+
+/// Adapters visible to this process (for diagnostics), without creating a device.
+pub fn list_adapters() -> Vec<AdapterSummary> {
+    let backends = requested_backends() & COMPILED_BACKENDS;
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    desc.backends = backends;
+    let instance = wgpu::Instance::new(desc);
+    let adapters = pollster::block_on(instance.enumerate_adapters(backends));
+    adapters
+        .iter()
+        .map(|a| AdapterSummary::from_info(&a.get_info()))
+        .collect()
+}

@@ -1,0 +1,67 @@
+//! GPU rendering of light distribution textures (feature `gpu`, on by default).
+//!
+//! A headless [wgpu](https://wgpu.rs) compute pipeline that renders a
+//! [`LightTexture`](crate::reconstruct::LightTexture) exactly as the CPU
+//! [`crate::reconstruct::render_with`] does, from the same
+//! [`RenderPlan`](crate::reconstruct::RenderPlan) tap tables and the same
+//! padded texture, with a WGSL port of [`crate::reconstruct::combine`] (see
+//! [`resample`] for the semantics), on Vulkan or GL/EGL adapters, including
+//! Mesa's software drivers (lavapipe, llvmpipe).
+//!
+//! - [`GpuContext::global`]: instance, adapter, device and pipeline, created
+//!   once per process (honours `WGPU_BACKEND=vulkan|gl`);
+//! - [`render_gpu`] / [`render_batch`]: one texture, or many in one submission;
+//! - [`RenderJob`] with [`GpuContext::upload`] / [`GpuContext::dispatch`] /
+//!   [`GpuContext::read_back`] and [`GpuContext::render_jobs_timed`]: the
+//!   phases, separately, for a plan built once and shared with the CPU
+//!   ([`render_cpu`]);
+//! - [`Backend`] / [`resolve`]: `--backend auto|gpu|cpu`.
+//!
+//! Output goes to a storage buffer rather than an `r32float` storage texture:
+//! it needs no 256-byte row padding on read-back, a whole batch fits in one
+//! binding with per-item offsets, and storage buffers in compute shaders are
+//! available on every backend we target (GLES 3.1+, which llvmpipe provides).
+
+mod backend;
+mod context;
+pub mod resample;
+
+pub use backend::{resolve, Backend, Resolved};
+pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
+pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, Timings};
+
+/// Errors of the GPU path.
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter on any of the tried backends.
+    #[error(
+        "no GPU adapter found (backends tried: {tried}; {detail}); install a Vulkan or GL driver, e.g. Mesa's \
+         software drivers (`apt-get install mesa-vulkan-drivers libvulkan1 libegl-mesa0`, see \
+         scripts/install-gpu-drivers.sh), or use --backend cpu"
+    )]
+    NoAdapter {
+        /// Backends that were tried.
+        tried: String,
+        /// wgpu's last message.
+        detail: String,
+    },
+    /// Device creation or a device operation failed.
+    #[error("GPU device error: {0}")]
+    Device(String),
+    /// A job is malformed.
+    #[error("render job {index}: {reason}")]
+    InvalidJob {
+        /// Index of the job in the batch.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A single job does not fit the device's limits.
+    #[error("render job {index} is too large for this device: {reason}")]
+    TooLarge {
+        /// Index of the job in the batch.
+        index: usize,
+        /// Which limit.
+        reason: String,
+    },
+}
