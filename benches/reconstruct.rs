@@ -1,4 +1,8 @@
-//! Render throughput of the light distribution texture (samples per second).
+//! Render throughput of the light distribution texture (samples per second),
+//! next to a naive per-sample baseline measured in the same run: every output
+//! texel looked up on its own through the f64 reference `Sampler` (taps and
+//! weights found per sample, no tables, one core), as a straightforward
+//! implementation would.
 //!
 //! Run briefly: `cargo bench --bench reconstruct -- --warm-up-time 1 --measurement-time 2`.
 
@@ -37,6 +41,20 @@ fn bench(cr: &mut Criterion) {
             let id = BenchmarkId::new(filter.to_string(), if parallel { "parallel" } else { "serial" });
             group.bench_with_input(id, &opts, |b, o| b.iter(|| render_with(&tex, o).unwrap()));
         }
+        let mapping = render_with(&tex, &RenderOptions { filter, ..RenderOptions::default() }).unwrap().mapping;
+        let sampler = tex.sampler(filter);
+        group.bench_function(BenchmarkId::new(filter.to_string(), "naive-per-sample-baseline"), |b| {
+            b.iter(|| {
+                let mut acc = 0.0f64;
+                for i in 0..mapping.height {
+                    let g = mapping.gamma_of_row(i);
+                    for j in 0..mapping.width {
+                        acc += sampler.normalized(mapping.c_of_column(j), g);
+                    }
+                }
+                std::hint::black_box(acc)
+            })
+        });
     }
     group.finish();
 }
