@@ -1,5 +1,6 @@
 //! Command-line arguments and dispatch. Each subcommand lives in its own file.
 
+mod compare;
 mod convert;
 mod demo;
 mod fit;
@@ -46,6 +47,8 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Approximate the luminaire by at most 2 OpenGL lights (spot / point; Zotti et al. 2005).
     Fit(fit::FitArgs),
+    /// Compare reconstructions (and other files): Hausdorff distance, radial errors, speed; HTML report.
+    Compare(compare::CompareArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -98,6 +101,7 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Mesh(a) => mesh::run(a),
         Command::Demo(a) => demo::run(a),
         Command::Fit(a) => fit::run(a),
+        Command::Compare(a) => compare::run(a),
     }
 }
 
