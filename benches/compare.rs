@@ -49,10 +49,6 @@ fn bench(c: &mut Criterion) {
     g.bench_function("hausdorff_200k_catmull-rom_vs_bilinear", |bn| {
         bn.iter(|| solid_hausdorff(&a, &b, tol))
     });
-    let opts = CompareOptions::default();
-    g.bench_function("compare_default_recons", |bn| {
-        bn.iter(|| compare(&d, None, &opts).unwrap())
-    });
     g.finish();
 }
 
