@@ -41,7 +41,15 @@ fn bench(cr: &mut Criterion) {
             let id = BenchmarkId::new(filter.to_string(), if parallel { "parallel" } else { "serial" });
             group.bench_with_input(id, &opts, |b, o| b.iter(|| render_with(&tex, o).unwrap()));
         }
-        let mapping = render_with(&tex, &RenderOptions { filter, ..RenderOptions::default() }).unwrap().mapping;
+        let mapping = render_with(
+            &tex,
+            &RenderOptions {
+                filter,
+                ..RenderOptions::default()
+            },
+        )
+        .unwrap()
+        .mapping;
         let sampler = tex.sampler(filter);
         group.bench_function(BenchmarkId::new(filter.to_string(), "naive-per-sample-baseline"), |b| {
             b.iter(|| {

@@ -1,5 +1,6 @@
 //! Command-line arguments and dispatch. Each subcommand lives in its own file.
 
+mod compare;
 mod convert;
 mod demo;
 mod fit;
@@ -55,6 +56,8 @@ enum Command {
     Fit(fit::FitArgs),
     /// Render every file with every filter on the GPU and the CPU; exit 1 if any texel differs by more than 1e-5.
     GpuCheck(gpu_check::GpuCheckArgs),
+    /// Compare reconstructions (and other files): Hausdorff distance, radial errors, speed; HTML report.
+    Compare(compare::CompareArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -110,6 +113,7 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Demo(a) => demo::run(a),
         Command::Fit(a) => fit::run(a),
         Command::GpuCheck(a) => gpu_check::run(a),
+        Command::Compare(a) => compare::run(a),
     }
 }
 

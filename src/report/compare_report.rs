@@ -1,0 +1,355 @@
+//! The comparison report: a text table, `report.md`, `report.json`,
+//! a self-contained `index.html` (inline PNG data URIs, no network, no
+//! external CSS or JS) and the PNGs (polar diagrams, error maps, the
+//! speed/accuracy scatter), all written atomically.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::compare::{Comparison, ReconResult};
+use crate::error::Error;
+use crate::formats::write_atomic;
+use crate::report::plots::{self, ScatterPoint, Series, SeriesStyle};
+
+/// "12.31 (+0.05)" with a precision that suits the magnitude.
+fn num(x: f64) -> String {
+    let a = x.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if a >= 1000.0 {
+        format!("{x:.1}")
+    } else if a >= 1.0 {
+        format!("{x:.3}")
+    } else {
+        format!("{x:.4e}")
+    }
+}
+
+/// "H = 12.31 cd (+0.05)".
+pub fn hausdorff_text(r: &ReconResult, unit: &str) -> String {
+    format!("H = {} {unit} (+{})", num(r.hausdorff_cd), num(r.hausdorff_bound_cd))
+}
+
+fn header(c: &Comparison) -> Vec<String> {
+    let mut l = vec![format!("file: {}", c.file)];
+    if let Some(v) = &c.vs {
+        l.push(format!("vs: {v}"));
+    }
+    l.push(format!(
+        "reference: {} (I_max {} {}, {} triangles)",
+        c.reference,
+        num(c.i_max_cd),
+        c.units,
+        c.reference_triangles
+    ));
+    l.push(format!(
+        "normalisation: {:?} (unit {}); grid solids refined x{}; Hausdorff tolerance {} % of I_max = {} {}",
+        c.normalize,
+        c.units,
+        c.factor,
+        100.0 * c.tolerance,
+        num(c.tolerance_cd),
+        c.units
+    ));
+    l.push(format!(
+        "radial metrics over {} directions ({}), Zotti C = {} of I_max",
+        c.n_directions, c.directions, c.zotti_c
+    ));
+    if let Some(a) = &c.alignment {
+        l.push(format!(
+            "alignment: FILE rotated {} deg{} (step {} deg, {} candidates): RMS {:.3} % -> {:.3} % of I_max",
+            a.rotate_deg,
+            if a.mirror { " after mirroring C" } else { "" },
+            a.step_deg,
+            a.candidates,
+            a.rms_pct_unaligned,
+            a.rms_pct
+        ));
+    }
+    l
+}
+
+const COLS: [&str; 13] = [
+    "reconstruction",
+    "H",
+    "+bound",
+    "h(recon->ref)",
+    "h(ref->recon)",
+    "mean dist",
+    "radial bound",
+    "radial max %",
+    "radial rms %",
+    "Zotti err",
+    "flux %",
+    "misplaced",
+    "ns/sample",
+];
+
+fn row(r: &ReconResult) -> Vec<String> {
+    vec![
+        format!("{}{}", r.name, if r.pareto { " *" } else { "" }),
+        num(r.hausdorff_cd),
+        num(r.hausdorff_bound_cd),
+        num(r.recon_to_ref.value),
+        num(r.ref_to_recon.value),
+        num(r.mean_surface_distance_cd),
+        num(r.radial_bound_cd),
+        format!("{:.3}", r.radial_max_pct),
+        format!("{:.3}", r.radial_rms_pct),
+        format!("{:.4}", r.zotti_err),
+        format!("{:+.3}", r.flux_error_pct),
+        format!("{:.4}", r.misplaced_flux),
+        r.time_per_sample_ns.map_or("-".into(), |t| format!("{t:.1}")),
+    ]
+}
+
+/// The plain-text summary printed by `photosolid compare`.
+pub fn to_text(c: &Comparison) -> String {
+    let mut s = header(c).join("\n");
+    s.push('\n');
+    let rows: Vec<Vec<String>> = c.results.iter().map(row).collect();
+    let w: Vec<usize> = (0..COLS.len())
+        .map(|k| {
+            rows.iter()
+                .map(|r| r[k].len())
+                .chain([COLS[k].len()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |cells: &[String]| -> String {
+        let mut l = String::new();
+        for (k, cell) in cells.iter().enumerate() {
+            if k == 0 {
+                let _ = write!(l, "{:<w$}", cell, w = w[k]);
+            } else {
+                let _ = write!(l, "  {:>w$}", cell, w = w[k]);
+            }
+        }
+        l.push('\n');
+        l
+    };
+    s += &line(&COLS.map(String::from));
+    for r in &rows {
+        s += &line(r);
+    }
+    let _ = writeln!(
+        s,
+        "lengths in {}; H certified: the true value lies in [H, H + bound]; radial max is the radial bound (>= H); * = Pareto (time vs H)",
+        c.units
+    );
+    s
+}
+
+fn md_table(c: &Comparison) -> String {
+    let mut s = format!("| {} |\n|{}\n", COLS.join(" | "), "---|".repeat(COLS.len()));
+    for r in &c.results {
+        let _ = writeln!(s, "| {} |", row(r).join(" | "));
+    }
+    s
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+fn slug(s: &str) -> String {
+    s.chars()
+        .map(|ch| if ch.is_ascii_alphanumeric() { ch } else { '-' })
+        .collect()
+}
+
+/// One figure: file name, caption, PNG bytes.
+pub struct Figure {
+    /// File name inside the report directory.
+    pub file: String,
+    /// Caption.
+    pub caption: String,
+    /// The PNG.
+    pub png: Vec<u8>,
+}
+
+/// Draw the report's figures (needs the comparison's plot data; none without it).
+pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
+    let Some(p) = &c.plots else { return Ok(Vec::new()) };
+    let mut out = Vec::new();
+    let names = ["polar_c0_c180.png", "polar_c90_c270.png", "polar_cmax.png"];
+    for (k, plane) in p.planes.iter().enumerate() {
+        let mut series: Vec<Series> = plane
+            .curves
+            .iter()
+            .enumerate()
+            .map(|(i, (name, pts))| Series {
+                label: name.clone(),
+                points: pts.clone(),
+                color: plots::palette(i),
+                style: if name.ends_with("(reference)") {
+                    SeriesStyle::Dashed
+                } else {
+                    SeriesStyle::Line
+                },
+            })
+            .collect();
+        for (j, (label, pts)) in plane.measured.iter().enumerate() {
+            series.push(Series {
+                label: label.clone(),
+                points: pts.clone(),
+                color: if j == 0 { [0, 0, 0] } else { [110, 110, 110] },
+                style: SeriesStyle::Markers,
+            });
+        }
+        let title = if k == 2 {
+            format!(
+                "Plane of maximum intensity: C{:.1} - C{:.1}",
+                plane.right_c, plane.left_c
+            )
+        } else {
+            format!("C{:.0} - C{:.0}", plane.right_c, plane.left_c)
+        };
+        let (l, r) = (format!("C{:.1}", plane.left_c), format!("C{:.1}", plane.right_c));
+        let png = plots::polar_diagram(&title, &l, &r, &c.units, &series)?;
+        out.push(Figure {
+            file: names[k.min(2)].into(),
+            caption: format!("{title}: every reconstruction over the measured points ({})", c.units),
+            png,
+        });
+    }
+    for m in &p.error_maps {
+        let title = format!("{} - {}: signed error, % of I_max", m.name, c.reference);
+        let png = plots::heatmap(&title, &m.xs, &m.ys, &m.values, "% of I_max", true)?;
+        out.push(Figure {
+            file: format!("error_{}.png", slug(&m.name)),
+            caption: format!(
+                "Signed error of {} against {} over C x gamma (degrees), % of I_max",
+                m.name, c.reference
+            ),
+            png,
+        });
+    }
+    let pts: Vec<ScatterPoint> = c
+        .results
+        .iter()
+        .filter_map(|r| {
+            r.time_per_sample_ns.map(|t| ScatterPoint {
+                label: r.name.clone(),
+                x: t,
+                y: r.hausdorff_pct,
+                pareto: r.pareto,
+            })
+        })
+        .collect();
+    if !pts.is_empty() {
+        let png = plots::scatter(
+            "Speed vs accuracy",
+            "time per sample (ns)",
+            "Hausdorff distance (% of I_max)",
+            &pts,
+            true,
+        )?;
+        out.push(Figure {
+            file: "scatter.png".into(),
+            caption: "Time per sample vs Hausdorff distance; the Pareto front is marked".into(),
+            png,
+        });
+    }
+    Ok(out)
+}
+
+/// `report.md`: the header, the table and the figures by file name.
+pub fn to_markdown(c: &Comparison, figs: &[Figure]) -> String {
+    let mut s = String::from("# Photometric solid comparison\n\n");
+    for l in header(c) {
+        let _ = writeln!(s, "- {l}");
+    }
+    let _ = writeln!(s, "\n## Metrics\n\n{}", md_table(c));
+    let _ = writeln!(
+        s,
+        "Lengths in {}. H is certified: the true Hausdorff distance lies in [H, H + bound]. \
+         The radial max is the cheap radial bound (>= H). * marks the Pareto front (time vs H).\n",
+        c.units
+    );
+    for r in &c.results {
+        let _ = writeln!(s, "- {}: {}", r.name, hausdorff_text(r, &c.units));
+    }
+    if !figs.is_empty() {
+        s.push_str("\n## Figures\n\n");
+        for f in figs {
+            let _ = writeln!(s, "![{}]({})\n", f.caption, f.file);
+        }
+    }
+    s
+}
+
+/// `index.html`: self-contained, images inline.
+pub fn to_html(c: &Comparison, figs: &[Figure]) -> String {
+    let mut s = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>Photometric solid comparison</title>\n<style>\n\
+body{font-family:sans-serif;margin:2em;max-width:1200px;color:#222}\n\
+table{border-collapse:collapse;font-size:0.9em}\n\
+th,td{border:1px solid #bbb;padding:3px 6px;text-align:right}\n\
+th:first-child,td:first-child{text-align:left}\n\
+tr.pareto td:first-child{font-weight:bold}\n\
+figure{display:inline-block;margin:1em;vertical-align:top}\n\
+img{max-width:100%;border:1px solid #ddd}\n\
+</style>\n</head>\n<body>\n<h1>Photometric solid comparison</h1>\n<ul>\n",
+    );
+    for l in header(c) {
+        let _ = writeln!(s, "<li>{}</li>", esc(&l));
+    }
+    s.push_str("</ul>\n<h2>Metrics</h2>\n<table>\n<tr>");
+    for h in COLS {
+        let _ = write!(s, "<th>{}</th>", esc(h));
+    }
+    s.push_str("</tr>\n");
+    for r in &c.results {
+        let _ = write!(s, "<tr{}>", if r.pareto { " class=\"pareto\"" } else { "" });
+        for cell in row(r) {
+            let _ = write!(s, "<td>{}</td>", esc(&cell));
+        }
+        s.push_str("</tr>\n");
+    }
+    let _ = writeln!(
+        s,
+        "</table>\n<p>Lengths in {}. H is certified: the true Hausdorff distance lies in [H, H + bound]. \
+         The radial max is the cheap radial bound (&ge; H). * marks the Pareto front (time vs H).</p>",
+        esc(&c.units)
+    );
+    if !figs.is_empty() {
+        s.push_str("<h2>Figures</h2>\n");
+        for f in figs {
+            let _ = writeln!(
+                s,
+                "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>",
+                plots::png_data_uri(&f.png),
+                esc(&f.caption),
+                esc(&f.caption)
+            );
+        }
+    }
+    s.push_str("</body>\n</html>\n");
+    s
+}
+
+/// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir` (created); returns the paths written.
+pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let figs = figures(c)?;
+    let mut written = Vec::new();
+    let mut put = |name: &str, bytes: &[u8]| -> Result<(), Error> {
+        let p = dir.join(name);
+        write_atomic(&p, bytes)?;
+        written.push(p);
+        Ok(())
+    };
+    for f in &figs {
+        put(&f.file, &f.png)?;
+    }
+    let json = serde_json::to_string_pretty(c).map_err(|e| Error::Unsupported(e.to_string()))?;
+    put("report.json", format!("{json}\n").as_bytes())?;
+    put("report.md", to_markdown(c, &figs).as_bytes())?;
+    put("index.html", to_html(c, &figs).as_bytes())?;
+    Ok(written)
+}

@@ -1,0 +1,357 @@
+//! `compare`: closed forms on analytic solids, alignment, the CLI and its
+//! report, the corpus, and (when `chromium` is on PATH) the HTML rendering.
+
+mod common;
+
+use photosolid::compare::{compare, sphere_sag, CompareOptions, Directions, Normalize, Prepared, Recon};
+use photosolid::model::{Distribution, Symmetry};
+use photosolid::reconstruct::Filter;
+use photosolid::synth::{GridSpec, Synth};
+
+fn synth(s: Synth, i: f64) -> Distribution {
+    s.build(&GridSpec::uniform(15.0, 5.0).unwrap(), i).unwrap().distribution
+}
+
+fn quick(recons: Vec<Recon>) -> CompareOptions {
+    CompareOptions {
+        recons,
+        directions: Directions::Dense(4000),
+        timing_samples: 2000,
+        timing_repeats: 1,
+        ..Default::default()
+    }
+}
+
+/// f32 vertex rounding of the meshes, as a distance.
+fn f32_eps(r: f64) -> f64 {
+    4.0 * r * f64::from(f32::EPSILON)
+}
+
+/// Two isotropic solids of radii r1, r2: H = h both ways = |r1 − r2|, within
+/// the certified bound plus the polygon sag of both meshes.
+#[test]
+fn isotropic_spheres_match_the_closed_form() {
+    let (r1, r2) = (100.0, 130.0);
+    let (d1, d2) = (synth(Synth::Isotropic, r1), synth(Synth::Isotropic, r2));
+    let c = compare(
+        &d1,
+        Some(&d2),
+        &quick(vec![Recon::Measured, Recon::Filter(Filter::CatmullRom)]),
+    )
+    .unwrap();
+    let (p1, p2) = (Prepared::new(d1, false).unwrap(), Prepared::new(d2, false).unwrap());
+    let sag2 = sphere_sag(&p2.measured, [0.0; 3], r2);
+    for (res, r) in c
+        .results
+        .iter()
+        .zip([Recon::Measured, Recon::Filter(Filter::CatmullRom)])
+    {
+        let sag1 = sphere_sag(&p1.solid(r, c.factor).unwrap(), [0.0; 3], r1);
+        let slack = sag1 + sag2 + f32_eps(r2);
+        let want = (r1 - r2).abs();
+        eprintln!(
+            "iso {}: H = {:.4} (+{:.4}), h = {:.4} / {:.4}, closed form {want}, sag {sag1:.4} + {sag2:.4}, radial bound {:.4}",
+            res.name,
+            res.hausdorff_cd,
+            res.hausdorff_bound_cd,
+            res.recon_to_ref.value,
+            res.ref_to_recon.value,
+            res.radial_bound_cd
+        );
+        for (v, b) in [
+            (res.hausdorff_cd, res.hausdorff_bound_cd),
+            (res.recon_to_ref.value, res.recon_to_ref.bound),
+            (res.ref_to_recon.value, res.ref_to_recon.bound),
+        ] {
+            assert!(v <= want + slack + 1e-9, "{}: {v} > {want} + {slack}", res.name);
+            assert!(
+                v + b >= want - slack - 1e-9,
+                "{}: {v} + {b} < {want} - {slack}",
+                res.name
+            );
+        }
+        assert!(res.hausdorff_bound_cd <= 1e-3 * r2 + 1e-9);
+        assert!(
+            (res.radial_bound_cd - want).abs() <= slack,
+            "radial {}",
+            res.radial_bound_cd
+        );
+        assert!(
+            (res.radial_max_pct / 100.0 * r2 - want).abs() <= slack,
+            "{}",
+            res.radial_max_pct
+        );
+    }
+}
+
+/// Sphere (isotropic r) vs Lambertian I0 cos γ: the Lambertian solid is the
+/// sphere of radius R = I0/2 centred at (0, 0, −R). For p on the sphere S,
+/// d(p, L) = ||p − c| − R| with |p − c| in [|r − R|, r + R], so
+/// h(S → L) = r (at the zenith). For q on L, d(q, S) = ||q| − r| with |q| in
+/// [0, I0], so h(L → S) = max(r, |I0 − r|).
+#[test]
+fn sphere_vs_lambertian_matches_the_closed_form() {
+    let (r, i0) = (30.0, 100.0);
+    let lam = synth(Synth::Lambertian, i0);
+    let iso = synth(Synth::Isotropic, r);
+    let c = compare(
+        &lam,
+        Some(&iso),
+        &quick(vec![Recon::Measured, Recon::Filter(Filter::Bilinear)]),
+    )
+    .unwrap();
+    let (pl, pi) = (Prepared::new(lam, false).unwrap(), Prepared::new(iso, false).unwrap());
+    let sag_s = sphere_sag(&pi.measured, [0.0; 3], r);
+    let (h_ls, h_sl) = (r.max((i0 - r).abs()), r);
+    for (res, rc) in c.results.iter().zip([Recon::Measured, Recon::Filter(Filter::Bilinear)]) {
+        let sag_l = sphere_sag(&pl.solid(rc, c.factor).unwrap(), [0.0, 0.0, -i0 / 2.0], i0 / 2.0);
+        let slack = sag_l + sag_s + f32_eps(i0);
+        eprintln!(
+            "lambertian {}: h(L->S) = {:.4} (+{:.4}) vs {h_ls}, h(S->L) = {:.4} (+{:.4}) vs {h_sl}, sag {sag_l:.4} + {sag_s:.4}",
+            res.name, res.recon_to_ref.value, res.recon_to_ref.bound, res.ref_to_recon.value, res.ref_to_recon.bound
+        );
+        let one = |v: f64, b: f64, want: f64| {
+            assert!(
+                v <= want + slack + 1e-9 && v + b >= want - slack - 1e-9,
+                "{}: {v} (+{b}) vs {want} ± {slack}",
+                res.name
+            );
+        };
+        one(res.recon_to_ref.value, res.recon_to_ref.bound, h_ls);
+        one(res.ref_to_recon.value, res.ref_to_recon.bound, h_sl);
+        one(res.hausdorff_cd, res.hausdorff_bound_cd, h_ls.max(h_sl));
+        assert!(res.radial_bound_cd >= res.hausdorff_cd - slack);
+    }
+}
+
+#[test]
+fn identical_inputs_give_zero_and_normalisations_scale() {
+    let d = synth(Synth::Roadway, 5000.0);
+    let twice = d.scaled(2.0).unwrap();
+    for (n, want) in [(Normalize::Cd, 5000.0), (Normalize::Peak, 0.0), (Normalize::Klm, 0.0)] {
+        let mut o = quick(vec![Recon::Measured]);
+        o.normalize = n;
+        let c = compare(&d, Some(&twice), &o).unwrap();
+        let h = c.results[0].hausdorff_cd;
+        assert!(
+            (h - want).abs() <= c.results[0].hausdorff_bound_cd + 1e-3 * c.i_max_cd,
+            "{n:?}: {h}"
+        );
+    }
+}
+
+/// The same lamp turned by 90 degrees (luxpy Testlamp, LDT vs rotated IES).
+#[test]
+fn alignment_finds_the_testlamp_rotation() {
+    let Some(root) = common::corpus() else { return };
+    let a = photosolid::load(root.join("luxpy/Testlamp_Isym3_symmetryOverC90C270axis.ldt")).unwrap();
+    let b = photosolid::load(root.join("luxpy/Testlamp_Isym3_symmetryOverC90C270axis_rot.IES")).unwrap();
+    let mut o = quick(vec![Recon::Measured]);
+    o.normalize = Normalize::Peak;
+    let plain = compare(&a.distribution, Some(&b.distribution), &o).unwrap();
+    o.align = true;
+    let aligned = compare(&a.distribution, Some(&b.distribution), &o).unwrap();
+    let al = aligned.alignment.unwrap();
+    eprintln!(
+        "testlamp: {al:?}; H {:.4} -> {:.4}",
+        plain.results[0].hausdorff_cd, aligned.results[0].hausdorff_cd
+    );
+    assert!(!al.mirror || al.rotate_deg % 90.0 == 0.0);
+    assert!(al.rotate_deg % 90.0 == 0.0 && al.rotate_deg != 0.0, "{al:?}");
+    assert!(al.rms_pct < 0.2 * al.rms_pct_unaligned, "{al:?}");
+    assert!(aligned.results[0].hausdorff_cd < 0.5 * plain.results[0].hausdorff_cd);
+}
+
+/// A roadway without any mirror symmetry, mirrored and turned by 40 degrees.
+#[test]
+fn alignment_finds_a_synthetic_mirror() {
+    let c: Vec<f64> = (0..72).map(|k| k as f64 * 5.0).collect();
+    let g: Vec<f64> = (0..=72).map(|k| k as f64 * 2.5).collect();
+    let mut cd = Vec::new();
+    for &cc in &c {
+        for &gg in &g {
+            cd.push(8000.0 * Synth::Roadway.relative(cc, gg) * (1.0 + 0.3 * cc.to_radians().cos()));
+        }
+    }
+    let a = Distribution::new(c, g, cd, Symmetry::None).unwrap();
+    let b = a.reoriented(40.0, true).unwrap();
+    let mut o = quick(vec![Recon::Measured, Recon::Filter(Filter::CatmullRom)]);
+    o.align = true;
+    let r = compare(&a, Some(&b), &o).unwrap();
+    let al = r.alignment.unwrap();
+    eprintln!("mirror: {al:?}");
+    assert!(al.mirror && (al.rotate_deg - 40.0).abs() < 1e-9, "{al:?}");
+    assert!(
+        r.results[0].hausdorff_cd <= 1e-3 * r.i_max_cd,
+        "{}",
+        r.results[0].hausdorff_cd
+    );
+}
+
+fn bin() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+}
+
+#[test]
+fn cli_json_has_the_contract_keys_and_report_is_self_contained() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("road.ldt");
+    photosolid::save(
+        &Synth::Roadway
+            .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
+            .unwrap(),
+        &file,
+        &Default::default(),
+    )
+    .unwrap();
+    let rep = dir.path().join("rep");
+    let o = bin()
+        .arg("compare")
+        .arg(&file)
+        .args(["--json", "--directions", "dense:3000", "--report"])
+        .arg(&rep)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["directions"], "fibonacci 3000");
+    assert_eq!(v["units"], "cd");
+    let rows = v["results"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    assert_eq!(
+        names,
+        ["bilinear", "catmull-rom", "mitchell", "bspline", "pchip", "fitted-gl"]
+    );
+    for r in rows {
+        for k in [
+            "hausdorff_cd",
+            "hausdorff_bound_cd",
+            "radial_max_pct",
+            "radial_rms_pct",
+            "zotti_err",
+            "flux_error_pct",
+            "misplaced_flux",
+            "time_per_sample_ns",
+            "radial_bound_cd",
+        ] {
+            assert!(r[k].as_f64().is_some_and(f64::is_finite), "{k}: {}", r[k]);
+        }
+        assert!(r["recon_to_ref"]["value"].is_number() && r["ref_to_recon"]["rms"].is_number());
+    }
+    for f in [
+        "index.html",
+        "report.md",
+        "report.json",
+        "polar_c0_c180.png",
+        "polar_c90_c270.png",
+        "polar_cmax.png",
+        "scatter.png",
+        "error_catmull-rom.png",
+    ] {
+        assert!(rep.join(f).is_file(), "{f}");
+    }
+    let html = std::fs::read_to_string(rep.join("index.html")).unwrap();
+    assert!(html.contains("data:image/png;base64,"));
+    for bad in ["http://", "https://", "<script", "<link", "src=\"/", "url("] {
+        assert!(!html.contains(bad), "index.html refers outside: {bad}");
+    }
+    chromium_renders(&rep.join("index.html"));
+}
+
+/// Headless Chromium renders the report without console errors (skipped with a notice when absent).
+fn chromium_renders(index: &std::path::Path) {
+    let Some(exe) = ["chromium", "chromium-browser", "google-chrome"].into_iter().find(|e| {
+        std::process::Command::new(e)
+            .arg("--version")
+            .output()
+            .is_ok_and(|o| o.status.success())
+    }) else {
+        eprintln!("notice: chromium not on PATH; HTML rendering check skipped");
+        return;
+    };
+    let shot = index.with_file_name("screenshot.png");
+    let o = std::process::Command::new(exe)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--enable-logging=stderr",
+            "--v=0",
+        ])
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg("--window-size=1200,2000")
+        .arg(format!("file://{}", index.display()))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !err.contains("Uncaught") && !err.contains("ERROR:CONSOLE"),
+        "console errors:\n{err}"
+    );
+    let n = std::fs::metadata(&shot).map(|m| m.len()).unwrap_or(0);
+    assert!(n > 1000, "no screenshot ({n} bytes):\n{err}");
+    eprintln!("chromium: screenshot {} bytes", n);
+}
+
+/// Every loadable corpus file runs through `compare` at modest settings.
+#[test]
+fn corpus_runs_through_compare() {
+    let Some(root) = common::corpus() else { return };
+    let files: Vec<_> = common::manifest(&root)
+        .into_iter()
+        .filter(|e| e.photometric() && !e.malformed())
+        .collect();
+    let t0 = std::time::Instant::now();
+    let (mut ok, mut skipped) = (0, 0);
+    let opts = CompareOptions {
+        recons: vec![
+            Recon::Filter(Filter::Bilinear),
+            Recon::Filter(Filter::CatmullRom),
+            Recon::FittedGl,
+        ],
+        directions: Directions::Dense(2000),
+        factor: 1,
+        tolerance: 0.01,
+        timing_samples: 500,
+        timing_repeats: 1,
+        plots: true,
+        ..Default::default()
+    };
+    for e in &files {
+        let Ok(lum) = photosolid::load(&e.path) else {
+            skipped += 1;
+            continue;
+        };
+        if lum.distribution.max_cd() <= 0.0 {
+            skipped += 1;
+            continue;
+        }
+        let t = std::time::Instant::now();
+        let c = compare(&lum.distribution, None, &opts).unwrap_or_else(|err| panic!("{}: {err}", e.rel));
+        let dt = t.elapsed().as_secs_f64();
+        if dt > 0.5 {
+            eprintln!("slow: {} {dt:.2} s ({} triangles)", e.rel, c.results[0].triangles);
+        }
+        for r in &c.results {
+            assert!(
+                r.hausdorff_cd.is_finite() && r.hausdorff_bound_cd <= 1e-2 * c.i_max_cd * 1.0001 + 1e-12,
+                "{}: {} {:?}",
+                e.rel,
+                r.name,
+                r.hausdorff_bound_cd
+            );
+            assert!(
+                r.radial_rms_pct.is_finite() && r.zotti_err.is_finite(),
+                "{}: {}",
+                e.rel,
+                r.name
+            );
+        }
+        ok += 1;
+    }
+    eprintln!(
+        "corpus: {ok} compared, {skipped} not loadable, {:.1} s",
+        t0.elapsed().as_secs_f64()
+    );
+    assert!(ok >= 90, "only {ok}");
+}
