@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# Runs the cross-check notebooks (notebooks/*.ipynb) headless; exits non-zero when any cell fails.
+# Usage: bash scripts/notebooks.sh [NOTEBOOK.ipynb ...]   (from anywhere; default: every notebook)
+#
+# - creates/updates the virtual environment .venv-notebooks/ from notebooks/requirements.txt (pinned);
+#   the install is skipped when the requirements did not change since the last one (stamp file);
+# - builds the release binary (cargo build --release) and hands its path to the notebooks
+#   (PHOTOSOLID_BIN = ${CARGO_TARGET_DIR:-target}/release/photosolid);
+# - executes each notebook with nbclient (no network needed at run time) and writes the executed copy to
+#   target/notebooks/<name>.ipynb; the notebooks write their scratch files and speed.json there too.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT="$(pwd)"
+VENV="$ROOT/.venv-notebooks"
+REQ="$ROOT/notebooks/requirements.txt"
+OUT="$ROOT/target/notebooks"
+
+if [ ! -x "$VENV/bin/python" ]; then
+  echo "== notebooks: creating $VENV"
+  python3 -m venv "$VENV"
+fi
+STAMP="$VENV/.requirements.sha256"
+WANT="$(sha256sum "$REQ" | cut -d' ' -f1)"
+if [ "$(cat "$STAMP" 2>/dev/null || true)" != "$WANT" ]; then
+  echo "== notebooks: installing notebooks/requirements.txt"
+  "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r "$REQ"
+  echo "$WANT" > "$STAMP"
+fi
+
+echo "== notebooks: release binary"
+cargo build --release --quiet
+export PHOTOSOLID_BIN="$(cd "${CARGO_TARGET_DIR:-target}" && pwd)/release/photosolid"
+export PHOTOSOLID_ROOT="$ROOT"
+export PHOTOSOLID_NB_OUT="$OUT"
+export MPLBACKEND=module://matplotlib_inline.backend_inline
+"$PHOTOSOLID_BIN" --version
+
+mkdir -p "$OUT"
+if [ "$#" -gt 0 ]; then NBS=("$@"); else NBS=(notebooks/*.ipynb); fi
+status=0
+for nb in "${NBS[@]}"; do
+  name="$(basename "$nb")"
+  echo "== notebook $name"
+  start=$SECONDS
+  if "$VENV/bin/python" - "$nb" "$OUT/$name" <<'PY'
+import sys, os, nbformat
+from nbclient import NotebookClient
+from nbclient.exceptions import CellExecutionError
+src, dst = sys.argv[1], sys.argv[2]
+nb = nbformat.read(src, as_version=4)
+client = NotebookClient(nb, timeout=600, kernel_name="python3",
+                        resources={"metadata": {"path": os.path.dirname(os.path.abspath(src))}})
+try:
+    client.execute()
+    ok = True
+except CellExecutionError as e:
+    print(str(e)[-4000:], file=sys.stderr)
+    ok = False
+finally:
+    nbformat.write(nb, dst)
+# echo the notebook's own printed lines (the check summary) so the test log shows them
+for cell in nb.cells:
+    if cell.cell_type == "code" and "summary" in cell.metadata.get("tags", []):
+        for o in cell.get("outputs", []):
+            if o.get("output_type") == "stream":
+                sys.stdout.write(o.get("text", ""))
+sys.exit(0 if ok else 1)
+PY
+  then
+    echo "   ok ($((SECONDS - start)) s; executed copy: target/notebooks/$name)"
+  else
+    echo "   FAILED ($((SECONDS - start)) s; executed copy: target/notebooks/$name)"
+    status=1
+  fi
+done
+[ -f "$OUT/speed.json" ] && echo "speed: $(cat "$OUT/speed.json")"
+exit $status
