@@ -47,4 +47,7 @@ echo "== CLI smoke: demo and validate on the project's own data/"
 cargo run --release --locked --quiet -- demo --output target/demo-smoke
 cargo run --release --locked --quiet -- validate data
 
+echo "== notebooks: cross-checks with trimesh / colour-science (executed copies and speed.json in target/notebooks/)"
+bash scripts/notebooks.sh
+
 echo "all tests passed"

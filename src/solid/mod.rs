@@ -160,9 +160,12 @@ pub fn check_measured(d: &Distribution) -> Result<SanityReport, CheckError> {
     Ok(mesh.sanity_check()?)
 }
 
+/// Intensities below this fraction of the peak are zero in a solid.
+pub const ZERO_FRACTION: f64 = 1e-9;
+
 /// Scaled intensity → the radius stored: NaN and too-large values are
 /// refused; negative values, values below the smallest normal f32 (they
-/// would collapse onto the origin in the file) and values below 1e-15 of the
+/// would collapse onto the origin in the file) and values below [`ZERO_FRACTION`] (1e-9) of the
 /// peak (round-off of a zero, e.g. I0 cos 90° = 6e-17 I0) are zero, i.e. the
 /// merged origin vertex. `peak` is the peak in the same units.
 #[inline]
@@ -170,7 +173,10 @@ pub(crate) fn stored_radius(v_units: f64, peak: f64) -> Result<f64, ModelError> 
     if v_units.is_nan() {
         return Err(ModelError::Intensities("an intensity is NaN".into()));
     }
-    if v_units < (f32::MIN_POSITIVE as f64).max(1e-15 * peak) {
+    // Below 1e-9 of the peak a value is rounding noise (cubic weights summing
+    // to zero on zero data give about 1e-11 of I_max): such values would make
+    // spurious sheets through the origin, so they count as zero.
+    if v_units < (f32::MIN_POSITIVE as f64).max(ZERO_FRACTION * peak) {
         return Ok(0.0);
     }
     // Leave headroom so that products of coordinates stay finite in f32 readers.
