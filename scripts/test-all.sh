@@ -11,6 +11,17 @@ rustc --version
 echo "== build (all targets, tests profile)"
 cargo build --all-targets --locked 2>&1 | tail -n 3
 
+echo "== headless Chromium for the HTML report test (tests/compare.rs skips with a notice without it)"
+if ! command -v chromium >/dev/null 2>&1; then
+  if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
+    (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) \
+      || echo "WARNING: chromium could not be installed; the HTML rendering check will be skipped"
+  else
+    echo "WARNING: no root/apt to install chromium; the HTML rendering check will be skipped"
+  fi
+fi
+command -v chromium >/dev/null 2>&1 && chromium --version || true
+
 echo "== cargo test (library, integration, doc tests; corpus at ../shared/corpus when present)"
 if [ -d ../shared/corpus ]; then
   echo "corpus: $(cd ../shared/corpus && pwd)"

@@ -270,14 +270,22 @@ fn chromium_renders(index: &std::path::Path) {
         return;
     };
     let shot = index.with_file_name("screenshot.png");
+    let profile = tempfile::tempdir().unwrap();
+    // The background-networking flags keep Chromium off the (closed) network.
     let o = std::process::Command::new(exe)
         .args([
             "--headless",
             "--no-sandbox",
             "--disable-gpu",
+            "--disable-quic",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
             "--enable-logging=stderr",
             "--v=0",
         ])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
         .arg(format!("--screenshot={}", shot.display()))
         .arg("--window-size=1200,2000")
         .arg(format!("file://{}", index.display()))

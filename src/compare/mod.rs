@@ -554,8 +554,11 @@ fn plot_data(pa: &Prepared, refp: &Prepared, vs: bool, recons: &[Recon], against
             }
         })
         .collect();
-    let xs: Vec<f64> = (0..=72).map(|k| k as f64 * 5.0).collect();
-    let ys: Vec<f64> = (0..=72).map(|k| k as f64 * 2.5).collect();
+    // Cell centres of a 2° x 1° grid: between the knots of the usual
+    // measurement grids, where reconstructions differ (at a knot every
+    // interpolating filter equals the measurement).
+    let xs: Vec<f64> = (0..180).map(|k| 1.0 + k as f64 * 2.0).collect();
+    let ys: Vec<f64> = (0..180).map(|k| 0.5 + k as f64).collect();
     let dirs: Vec<(f64, f64)> = ys.iter().flat_map(|&g| xs.iter().map(move |&c| (c, g))).collect();
     let m = refp.eval_all(against, &dirs);
     let error_maps = recons

@@ -209,7 +209,14 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         } else {
             format!("C{:.0} - C{:.0}", plane.right_c, plane.left_c)
         };
-        let (l, r) = (format!("C{:.1}", plane.left_c), format!("C{:.1}", plane.right_c));
+        let c_name = |c: f64| {
+            if c.fract() == 0.0 {
+                format!("C{c:.0}")
+            } else {
+                format!("C{c:.1}")
+            }
+        };
+        let (l, r) = (c_name(plane.left_c), c_name(plane.right_c));
         let png = plots::polar_diagram(&title, &l, &r, &c.units, &series)?;
         out.push(Figure {
             file: names[k.min(2)].into(),
