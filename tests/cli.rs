@@ -186,3 +186,27 @@ fn demo_runs_without_files() {
     assert!(out.contains("flux"), "{out}");
     assert!(t.path().join("d/demo_roadway.ldt").exists());
 }
+
+#[test]
+fn mesh_from_filter_texture_fitted_lights_and_measured() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(
+        &["synth", "isotropic", "--intensity", "100", "-o", "iso.ldt"],
+        t.path(),
+    ));
+    let exact = 4.0 / 3.0 * std::f64::consts::PI * 1e6;
+    for args in [
+        vec!["--filter", "catmull-rom"],
+        vec!["--filter", "bilinear", "--texture"],
+        vec!["--filter", "fitted-gl"],
+        vec!["--measured"],
+    ] {
+        let mut a = vec!["mesh", "iso.ldt", "-o", "s.ply", "--json"];
+        a.extend(args.iter().copied());
+        let v: serde_json::Value = serde_json::from_str(&ok(&run(&a, t.path()))).unwrap();
+        let vol = v["volume"].as_f64().unwrap();
+        // Inscribed polyhedra of a 100 cd sphere: within 1 % of 4/3 pi r^3 on these grids.
+        assert!((vol - exact).abs() < 0.01 * exact, "{args:?}: volume {vol} vs {exact}");
+        assert_eq!(v["watertight"], true);
+    }
+}

@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::reconstruct::{Filter, LightTexture};
+use photosolid::compare::Recon;
+use photosolid::fit::{fit, FitOptions};
+use photosolid::reconstruct::{render, LightTexture};
 use photosolid::solid::{export, grid_solid, measured_solid, ColorMap, SolidGrid, Units};
 
 use super::ReadArgs;
@@ -13,9 +15,15 @@ use super::ReadArgs;
 pub struct MeshArgs {
     /// An .ies or .ldt file.
     file: PathBuf,
-    /// Reconstruct with this filter on a grid `--factor` times denser than the file's.
+    /// Reconstruct with this filter (nearest, bilinear, catmull-rom, mitchell[:B,C], bspline, pchip)
+    /// or the fitted OpenGL lights (`fitted-gl`), on a grid `--factor` times denser than the file's.
     #[arg(long, conflicts_with = "measured")]
-    filter: Option<Filter>,
+    filter: Option<Recon>,
+    /// With a filter: build the solid from the filter's rendered float texture (`--factor`
+    /// times supersampled, texel centres as vertices, as the GPU path produces it)
+    /// instead of sampling the filter on the refined measurement grid.
+    #[arg(long, requires = "filter")]
+    texture: bool,
     /// The measured points alone, Delaunay-triangulated (no interpolation).
     #[arg(long)]
     measured: bool,
@@ -48,10 +56,25 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     };
     let mut mesh = if a.measured {
         measured_solid(d, units)?
-    } else if let Some(f) = a.filter {
-        let tex = LightTexture::new(d).context("building the light distribution texture")?;
+    } else if let Some(recon) = a.filter {
         let grid = SolidGrid::refined(d, a.factor)?;
-        grid_solid(&tex.sampler(f), &grid, units)?
+        match recon {
+            Recon::Filter(f) if a.texture => {
+                let tex = LightTexture::new(d).context("building the light distribution texture")?;
+                let factor = u32::try_from(a.factor).unwrap_or(u32::MAX);
+                let rendered = render(&tex, f, factor)?;
+                grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
+            }
+            Recon::Filter(f) => {
+                let tex = LightTexture::new(d).context("building the light distribution texture")?;
+                grid_solid(&tex.sampler(f), &grid, units)?
+            }
+            Recon::FittedGl => {
+                let model = fit(d, &FitOptions::default())?.model().clone();
+                grid_solid(&|c: f64, g: f64| model.intensity(c, g), &grid, units)?
+            }
+            Recon::Measured => measured_solid(d, units)?,
+        }
     } else {
         anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)");
     };

@@ -452,6 +452,29 @@ const POW10: [f64; 23] = [
 /// on the whole token. Both give the same, correctly rounded value.
 #[inline(always)]
 pub fn parse_plain_prefix(b: &[u8], start: usize) -> Option<(f64, usize)> {
+    let d = scan_decimal(b, start);
+    if d.digits == 0 || d.digits > 19 || d.mant > (1u64 << 53) || d.frac > 22 {
+        return None;
+    }
+    let v = d.mant as f64 / POW10[d.frac];
+    Some((if d.neg { -v } else { v }, d.end))
+}
+
+/// The sign, digits and fraction of a decimal at `b[start..]`, read once.
+struct Decimal {
+    neg: bool,
+    /// The digits as an integer (wrapping past 19 digits; callers check `digits`).
+    mant: u64,
+    /// Digits before and after the point.
+    digits: usize,
+    /// Digits after the point.
+    frac: usize,
+    /// Index after the last byte read.
+    end: usize,
+}
+
+#[inline(always)]
+fn scan_decimal(b: &[u8], start: usize) -> Decimal {
     let mut i = start;
     let n = b.len();
     let neg = i < n && b[i] == b'-';
@@ -459,36 +482,31 @@ pub fn parse_plain_prefix(b: &[u8], start: usize) -> Option<(f64, usize)> {
         i += 1;
     }
     let mut mant: u64 = 0;
-    let d0 = i;
-    while i < n {
-        let d = b[i].wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        mant = mant.wrapping_mul(10).wrapping_add(d as u64);
-        i += 1;
-    }
-    let mut digits = i - d0;
-    let mut frac = 0usize;
-    if i < n && b[i] == b'.' {
-        i += 1;
-        let f0 = i;
-        while i < n {
-            let d = b[i].wrapping_sub(b'0');
+    let mut digits_loop = |i: &mut usize| {
+        let s = *i;
+        while *i < n {
+            let d = b[*i].wrapping_sub(b'0');
             if d > 9 {
                 break;
             }
             mant = mant.wrapping_mul(10).wrapping_add(d as u64);
-            i += 1;
+            *i += 1;
         }
-        frac = i - f0;
-        digits += frac;
+        *i - s
+    };
+    let int = digits_loop(&mut i);
+    let mut frac = 0;
+    if i < n && b[i] == b'.' {
+        i += 1;
+        frac = digits_loop(&mut i);
     }
-    if digits == 0 || digits > 19 || mant > (1u64 << 53) || frac > 22 {
-        return None;
+    Decimal {
+        neg,
+        mant,
+        digits: int + frac,
+        frac,
+        end: i,
     }
-    let v = mant as f64 / POW10[frac];
-    Some((if neg { -v } else { v }, i))
 }
 
 /// Parse a decimal number (`12`, `-3.5`, `.5`, `5.`, `1e-3`, `+2E+04`).
@@ -501,38 +519,15 @@ pub fn parse_plain_prefix(b: &[u8], start: usize) -> Option<(f64, usize)> {
 /// correctly rounded parser. Both give the same, correctly rounded result.
 #[inline]
 pub fn parse_f64(s: &[u8]) -> Option<f64> {
-    let (neg, mut i) = match *s.first()? {
-        b'-' => (true, 1),
-        b'+' => (false, 1),
-        _ => (false, 0),
-    };
-    let n = s.len();
-    let mut mant: u64 = 0;
-    let int_start = i;
-    while i < n {
-        let d = s[i].wrapping_sub(b'0');
-        if d > 9 {
-            break;
-        }
-        mant = mant.wrapping_mul(10).wrapping_add(d as u64);
-        i += 1;
-    }
-    let mut digits = i - int_start;
-    let mut frac_digits = 0usize;
-    if i < n && s[i] == b'.' {
-        i += 1;
-        let frac_start = i;
-        while i < n {
-            let d = s[i].wrapping_sub(b'0');
-            if d > 9 {
-                break;
-            }
-            mant = mant.wrapping_mul(10).wrapping_add(d as u64);
-            i += 1;
-        }
-        frac_digits = i - frac_start;
-        digits += frac_digits;
-    }
+    s.first()?;
+    let Decimal {
+        neg,
+        mant,
+        digits,
+        frac,
+        end,
+    } = scan_decimal(s, 0);
+    let (n, mut i, frac_digits) = (s.len(), end, frac);
     if digits == 0 {
         return None;
     }

@@ -365,3 +365,46 @@ impl IntensityField for crate::reconstruct::Sampler<'_> {
         format!("filter {}", self.filter())
     }
 }
+
+/// A rendered light distribution texture is an intensity field: bilinear
+/// between texel centres (row i at γ = (i + ½)·180/H, column j at
+/// C = (j + ½)·360/W), periodic in C, the first and last rows held towards
+/// the poles; texel values times I_max give cd.
+impl IntensityField for crate::reconstruct::Rendered {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        let (h, w) = (self.mapping.height, self.mapping.width);
+        if h == 0 || w == 0 {
+            return 0.0;
+        }
+        let y = (gamma_deg / 180.0 * h as f64 - 0.5).clamp(0.0, (h - 1) as f64);
+        let x = (crate::model::wrap360(c_deg) / 360.0 * w as f64 - 0.5).rem_euclid(w as f64);
+        let (i0, j0) = (y.floor() as usize, x.floor() as usize % w);
+        let (i1, j1) = ((i0 + 1).min(h - 1), (j0 + 1) % w);
+        let (ty, tx) = (y - i0 as f64, x - x.floor());
+        let at = |i: usize, j: usize| self.data[i * w + j] as f64;
+        let top = at(i0, j0) * (1.0 - tx) + at(i0, j1) * tx;
+        let bottom = at(i1, j0) * (1.0 - tx) + at(i1, j1) * tx;
+        (top * (1.0 - ty) + bottom * ty) * self.i_max_cd
+    }
+
+    fn describe(&self) -> String {
+        format!("rendered texture ({} x{})", self.filter, self.factor)
+    }
+}
+
+impl SolidGrid {
+    /// The texel centres of a rendered texture (plus the poles): a solid on
+    /// this grid has one vertex per texel, at exactly the texel's value. A
+    /// texture narrower than 72 columns (rotational data stores one plane,
+    /// so its render is only `factor` columns wide) gets 72 evenly spaced
+    /// columns instead, sampled between its texels.
+    pub fn of_texture(t: &crate::reconstruct::Rendered) -> Result<Self, ModelError> {
+        let c = if t.mapping.width >= 72 {
+            (0..t.mapping.width).map(|j| t.mapping.c_of_column(j)).collect()
+        } else {
+            (0..72).map(|j| j as f64 * 5.0).collect()
+        };
+        let g = (0..t.mapping.height).map(|i| t.mapping.gamma_of_row(i)).collect();
+        SolidGrid::new(c, g)
+    }
+}

@@ -88,22 +88,7 @@ impl<'a> Stream<'a> {
     #[inline]
     fn next_token(&mut self) -> Option<&'a [u8]> {
         let b = self.b;
-        let mut p = self.pos;
-        loop {
-            if p >= b.len() {
-                self.pos = p;
-                return None;
-            }
-            match CLASS[b[p] as usize] {
-                SEP => p += 1,
-                COMMENT => {
-                    while p < b.len() && b[p] != b'\n' && b[p] != b'\r' {
-                        p += 1;
-                    }
-                }
-                _ => break,
-            }
-        }
+        let mut p = self.skip_separators()?;
         let s = p;
         while p < b.len() && CLASS[b[p] as usize] == TOKEN {
             p += 1;
