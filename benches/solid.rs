@@ -67,6 +67,28 @@ fn bench(cr: &mut Criterion) {
     g.bench_function("measured 72x361 (spade)", |b| {
         b.iter(|| measured_solid(black_box(&d), Units::Candela).unwrap())
     });
+    // The case: a 5x Catmull-Rom solid of a real 361 x 73 file built
+    // and written as binary PLY (texture and solid built inside the loop).
+    let road = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/corpus/eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies");
+    if let Ok(lum) = photosolid::load(&road) {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("road.ply");
+        g.bench_function("catmull-rom x5 solid of the 361x73 roadway + binary PLY", |b| {
+            b.iter(|| {
+                let d = &lum.distribution;
+                let tex = photosolid::reconstruct::LightTexture::new(d).unwrap();
+                let grid = photosolid::solid::SolidGrid::refined(d, 5).unwrap();
+                let mesh = photosolid::solid::grid_solid(
+                    &tex.sampler(photosolid::reconstruct::Filter::CatmullRom),
+                    &grid,
+                    Units::Candela,
+                )
+                .unwrap();
+                photosolid::solid::export::write(&mesh, &out).unwrap();
+            })
+        });
+    }
     g.finish();
 }
 
