@@ -210,3 +210,37 @@ fn mesh_from_filter_texture_fitted_lights_and_measured() {
         assert_eq!(v["watertight"], true);
     }
 }
+
+#[test]
+fn texture_counts_clamped_overshoot_unless_unclamped() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(
+        &["synth", "spot", "--p", "8", "--cutoff", "40", "-o", "spot.ldt"],
+        t.path(),
+    ));
+    let clamped = |extra: &[&str]| -> usize {
+        let mut a = vec![
+            "texture",
+            "spot.ldt",
+            "--filter",
+            "catmull-rom",
+            "--backend",
+            "cpu",
+            "-o",
+            "t.exr",
+        ];
+        a.extend_from_slice(extra);
+        let out = ok(&run(&a, t.path()));
+        let n = out.split(" texels clamped").next().unwrap().rsplit(' ').next().unwrap();
+        n.parse().unwrap()
+    };
+    // Catmull-Rom rings below zero past the spot's cut-off: counted when clamped, kept when not.
+    assert!(clamped(&[]) > 0);
+    assert_eq!(clamped(&["--unclamped"]), 0);
+    let (tex, meta) = photosolid::reconstruct::exr_io::read_exr(t.path().join("t.exr")).unwrap();
+    assert!(
+        tex.data.iter().any(|&v| v < 0.0),
+        "unclamped texture keeps negative overshoot"
+    );
+    assert!(meta.source.unwrap().contains("spot.ldt"));
+}

@@ -129,10 +129,12 @@ fn render_on(
     tex: &photosolid::reconstruct::LightTexture,
     filter: photosolid::reconstruct::Filter,
     factor: u32,
+    clamp: bool,
 ) -> anyhow::Result<(photosolid::reconstruct::Rendered, String)> {
     let options = photosolid::reconstruct::RenderOptions {
         filter,
         factor,
+        clamp,
         ..Default::default()
     };
     #[cfg(feature = "gpu")]

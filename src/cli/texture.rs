@@ -27,6 +27,9 @@ pub struct TextureArgs {
     /// Exposure k of the preview's tone map y = 1 - exp(-k x).
     #[arg(long, default_value_t = preview::DEFAULT_EXPOSURE)]
     exposure: f64,
+    /// Keep cubic overshoot below zero (default: clamped to 0, and the clamped texels counted).
+    #[arg(long)]
+    unclamped: bool,
     /// Where to render: auto (GPU when an adapter exists, else CPU, with a notice), gpu, or cpu.
     /// WGPU_BACKEND=vulkan|gl restricts the GPU drivers tried. Same result on every backend.
     #[arg(long, default_value = "auto", value_parser = ["auto", "gpu", "cpu"])]
@@ -38,7 +41,7 @@ pub struct TextureArgs {
 pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
     let lum = super::load(&a.file, &a.read)?;
     let tex = LightTexture::new(&lum.distribution).context("building the light distribution texture")?;
-    let (rendered, on) = super::render_on(&a.backend, &tex, a.filter, a.factor)?;
+    let (rendered, on) = super::render_on(&a.backend, &tex, a.filter, a.factor, !a.unclamped)?;
     let (h, w) = (rendered.mapping.height, rendered.mapping.width);
     println!(
         "{}: {} x {} texels (gamma x C), filter {}, factor {}, I_max {:.3} cd, {} texels clamped ({on})",
