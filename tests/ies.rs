@@ -8,32 +8,22 @@ use photosolid::formats::{Handedness, ReadOptions};
 use photosolid::model::{PhotometricType, Symmetry, Tilt};
 use photosolid::{Distribution, Luminaire};
 
+mod common;
+
 const CORPUS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
 
-/// Every .ies file of the corpus with its MANIFEST note, or None when the corpus is missing.
+/// (path, malformed) of every .ies file of the corpus manifest (the shared
+/// manifest reader of `tests/common`); None when the corpus is missing.
 fn corpus() -> Option<Vec<(PathBuf, bool)>> {
-    let root = Path::new(CORPUS);
-    let manifest = match std::fs::read_to_string(root.join("MANIFEST.tsv")) {
-        Ok(m) => m,
-        Err(_) => {
-            eprintln!("notice: corpus not found at {CORPUS}; corpus tests skipped");
-            return None;
-        }
-    };
-    let mut out = Vec::new();
-    for line in manifest.lines() {
-        let cols: Vec<&str> = line.split('\t').collect();
-        let path = cols[0];
-        if !path.to_ascii_lowercase().ends_with(".ies") {
-            continue;
-        }
-        // A TILT file that does not exist is an error by contract (the
-        // manifest notes it without the MALFORMED mark).
-        let malformed = cols
-            .last()
-            .is_some_and(|n| n.contains("MALFORMED") || n.contains("does not exist"));
-        out.push((root.join(path), malformed));
-    }
+    let root = common::corpus()?;
+    let out: Vec<(PathBuf, bool)> = common::manifest(&root)
+        .into_iter()
+        .filter(|e| e.format == "ies")
+        .map(|e| {
+            let m = e.malformed();
+            (e.path, m)
+        })
+        .collect();
     assert!(!out.is_empty(), "no .ies files in the manifest");
     Some(out)
 }

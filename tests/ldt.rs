@@ -8,29 +8,23 @@ use photosolid::formats::ldt::{self, LampSetLayout, SIGNIFICANT_DIGITS};
 use photosolid::formats::{LampSetFlux, ReadOptions};
 use photosolid::model::{Distribution, Luminaire, Symmetry};
 
+mod common;
+
 const CORPUS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
 
-/// (path, malformed) of every .ldt in the corpus manifest; None when the corpus is missing.
+/// (path, malformed) of every .ldt file of the corpus manifest (the shared
+/// manifest reader of `tests/common`); None when the corpus is missing.
 fn corpus() -> Option<Vec<(PathBuf, bool)>> {
-    let root = Path::new(CORPUS);
-    let manifest = match std::fs::read_to_string(root.join("MANIFEST.tsv")) {
-        Ok(m) => m,
-        Err(_) => {
-            eprintln!("notice: corpus not found at {CORPUS}; skipping");
-            return None;
-        }
-    };
-    let mut out = Vec::new();
-    for line in manifest.lines().skip(1) {
-        let cols: Vec<&str> = line.split('\t').collect();
-        let path = cols[0].trim_matches('"');
-        if !path.to_ascii_lowercase().ends_with(".ldt") {
-            continue;
-        }
-        let notes = cols.last().copied().unwrap_or("");
-        out.push((root.join(path), notes.contains("MALFORMED")));
-    }
-    assert!(!out.is_empty(), "no .ldt in the manifest");
+    let root = common::corpus()?;
+    let out: Vec<(PathBuf, bool)> = common::manifest(&root)
+        .into_iter()
+        .filter(|e| e.format == "ldt")
+        .map(|e| {
+            let m = e.malformed();
+            (e.path, m)
+        })
+        .collect();
+    assert!(!out.is_empty(), "no .ldt files in the manifest");
     Some(out)
 }
 
