@@ -3,6 +3,11 @@
 # Usage: bash scripts/test-all.sh   (from anywhere; CI calls it through .ci/run)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Mesa's drivers want a runtime directory; without one they print a harmless "error:" line.
+if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
+  XDG_RUNTIME_DIR=$(mktemp -d)
+  export XDG_RUNTIME_DIR
+fi
 
 echo "== toolchain"
 cargo --version
