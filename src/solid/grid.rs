@@ -14,7 +14,7 @@
 
 use rayon::prelude::*;
 
-use super::mesh::{cross, p64, remove_fins, sub, Mesh, SolidInfo};
+use super::mesh::{cross, p64, sub, Mesh, SolidInfo};
 use super::{stored_radius, Units};
 use crate::error::ModelError;
 use crate::model::{periodic_widths, Distribution, ANGLE_EPS};
@@ -311,15 +311,7 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
         units,
         units_per_cd: scale,
     };
-    let (mut positions, mut triangles, mut origin) = (positions, triangles, origin);
-    remove_fins(&mut positions, &mut triangles, &mut origin);
-    if triangles.is_empty() {
-        // Nothing but zero-thickness fins: non-zero only on a set of no solid angle.
-        return Err(ModelError::AllZero("photometric solid (it encloses no volume)"));
-    }
-    let mut mesh = Mesh::from_parts(positions, triangles, origin, info)?;
-    mesh.compute_normals();
-    Ok(mesh)
+    Mesh::finish(positions, triangles, origin, info)
 }
 
 #[cfg(test)]

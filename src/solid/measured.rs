@@ -36,7 +36,7 @@
 
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use super::mesh::{remove_fins, Mesh, SolidInfo};
+use super::mesh::{Mesh, SolidInfo};
 use super::{stored_radius, Units};
 use crate::error::ModelError;
 use crate::model::{Distribution, ANGLE_EPS};
@@ -286,13 +286,5 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
         units,
         units_per_cd: scale,
     };
-    let (mut positions, mut triangles, mut origin) = (positions, triangles, origin);
-    remove_fins(&mut positions, &mut triangles, &mut origin);
-    if triangles.is_empty() {
-        // Nothing but zero-thickness fins: non-zero only on a set of no solid angle.
-        return Err(ModelError::AllZero("photometric solid (it encloses no volume)"));
-    }
-    let mut mesh = Mesh::from_parts(positions, triangles, origin, info)?;
-    mesh.compute_normals();
-    Ok(mesh)
+    Mesh::finish(positions, triangles, origin, info)
 }

@@ -251,6 +251,25 @@ impl Mesh {
         self.colors = None;
     }
 
+    /// The last step of every solid builder: drop zero-thickness fins at the
+    /// origin (and vertices left unused), refuse a solid that encloses
+    /// nothing, build the mesh and its normals.
+    pub(crate) fn finish(
+        mut positions: Vec<[f32; 3]>,
+        mut triangles: Vec<[u32; 3]>,
+        mut origin: Option<u32>,
+        info: SolidInfo,
+    ) -> Result<Mesh, ModelError> {
+        remove_fins(&mut positions, &mut triangles, &mut origin);
+        if triangles.is_empty() {
+            // Nothing but zero-thickness fins: non-zero only on a set of no solid angle.
+            return Err(ModelError::AllZero("photometric solid (it encloses no volume)"));
+        }
+        let mut mesh = Mesh::from_parts(positions, triangles, origin, info)?;
+        mesh.compute_normals();
+        Ok(mesh)
+    }
+
     /// Check every invariant a photometric solid must hold; see [`SanityError`]
     /// for the list. On success, returns the mesh's topology and quantities.
     ///
@@ -470,7 +489,7 @@ impl Mesh {
 /// vertex then unused is dropped (indices renumbered, order kept). Fins always
 /// contain the origin (no other merge makes two triangles share all three
 /// vertices), so only triangles at the origin are examined.
-pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u32; 3]>, origin: &mut Option<u32>) {
+fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u32; 3]>, origin: &mut Option<u32>) {
     let Some(o) = *origin else { return };
     // (canonical vertex set, +1/-1 parity of the winding, triangle index)
     let mut at_o: Vec<([u32; 3], bool, usize)> = triangles
