@@ -568,30 +568,19 @@ fn report_has_gl_units_and_snippets() {
     assert!(r.to_text().contains("* spot-down"));
 }
 
-/// The lead runs this after merging the readers: every loadable corpus file
-/// fits with a finite error, and the table is printed (`--nocapture`).
+/// Every loadable corpus file (all that the manifest does not mark
+/// malformed) fits with a finite error; the table of every combination is a
+/// golden snapshot, printed with timings under `--nocapture`.
 #[test]
 fn corpus_files_fit() {
-    let root = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus"));
-    let mut files = Vec::new();
-    let mut stack = vec![root.to_path_buf()];
-    while let Some(dir) = stack.pop() {
-        for e in std::fs::read_dir(&dir).into_iter().flatten().flatten() {
-            let p = e.path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if matches!(
-                p.extension()
-                    .and_then(|e| e.to_str())
-                    .map(|e| e.to_ascii_lowercase())
-                    .as_deref(),
-                Some("ies" | "ldt")
-            ) {
-                files.push(p);
-            }
-        }
-    }
-    files.sort();
+    let Some(root) = common::corpus() else { return };
+    let root = root.as_path();
+    let mut entries: Vec<_> = common::manifest(root)
+        .into_iter()
+        .filter(|e| e.photometric() && !e.malformed())
+        .collect();
+    entries.sort_by(|a, b| a.path.cmp(&b.path));
+    let files: Vec<std::path::PathBuf> = entries.into_iter().map(|e| e.path).collect();
     let (mut loaded, mut skipped) = (0, 0);
     let mut table =
         String::from("file | chosen | error | spot-down | spot-up | point | point+down | point+up | down+up | ms\n");
@@ -599,10 +588,7 @@ fn corpus_files_fit() {
     let mut snap =
         String::from("file | chosen | error | spot-down | spot-up | point | point+down | point+up | down+up\n");
     for p in &files {
-        let Ok(lum) = photosolid::load(p) else {
-            skipped += 1;
-            continue;
-        };
+        let lum = photosolid::load(p).unwrap_or_else(|e| panic!("{e}"));
         if lum.distribution.max_cd() <= 0.0 {
             skipped += 1;
             continue;
@@ -625,10 +611,8 @@ fn corpus_files_fit() {
         snap += &format!("{row}\n");
     }
     eprintln!("corpus: {loaded} fitted, {skipped} not loadable\n{table}");
-    if root.is_dir() {
-        assert!(loaded >= 100, "only {loaded} corpus files fitted");
-        common::snapshot("fit_corpus.txt", &snap);
-    }
+    assert!(loaded >= 100, "only {loaded} corpus files fitted");
+    common::snapshot("fit_corpus.txt", &snap);
 }
 
 #[test]
