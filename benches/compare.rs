@@ -7,8 +7,8 @@
 //! ~0.81 s median, bound 3.2 cd against a tolerance of 5.9 cd.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use photosolid::compare::{solid_hausdorff, Prepared, Recon};
-use photosolid::reconstruct::Filter;
+use photosolid::compare::solid_hausdorff;
+use photosolid::reconstruct::{Filter, Recon, Reconstructions};
 
 fn input() -> (String, photosolid::Distribution, usize) {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -26,7 +26,7 @@ fn input() -> (String, photosolid::Distribution, usize) {
 
 fn bench(c: &mut Criterion) {
     let (name, d, factor) = input();
-    let p = Prepared::new(d.clone(), false).unwrap();
+    let p = Reconstructions::new(d.clone(), &[]).unwrap();
     let a = p.solid(Recon::Filter(Filter::CatmullRom), factor).unwrap();
     let b = p.solid(Recon::Filter(Filter::Bilinear), factor).unwrap();
     let tol = 1e-3 * d.max_cd();

@@ -102,6 +102,10 @@ pub enum ModelError {
     /// A computation needs a non-zero distribution (normalisation, fitting).
     #[error("the distribution is zero everywhere: {0}")]
     AllZero(&'static str),
+    /// An internal invariant does not hold: a bug in photosolid, reported
+    /// instead of a panic.
+    #[error("internal error (a bug in photosolid, please report it): {0}")]
+    Internal(String),
     /// A parameter is outside its documented domain.
     #[error("{name} = {value}: {reason}")]
     Parameter {

@@ -15,7 +15,8 @@
 use std::f64::consts::PI;
 
 use crate::error::ModelError;
-use crate::model::{Distribution, Luminaire, Symmetry};
+use crate::model::frame::direction;
+use crate::model::{Distribution, IntensityField, Luminaire, Symmetry};
 
 /// An analytic distribution kind.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -86,13 +87,8 @@ impl Synth {
             }
             Synth::Roadway => {
                 // Evaluate on the folded angle so the mirror symmetry holds bit for bit.
-                let c = Symmetry::C90C270.fold(c_deg).to_radians();
-                let d = [g.sin() * c.cos(), g.sin() * c.sin(), -g.cos()];
-                let lobe = |ca: f64| {
-                    let (ca, ga) = (ca.to_radians(), 65f64.to_radians());
-                    let a = [ga.sin() * ca.cos(), ga.sin() * ca.sin(), -ga.cos()];
-                    (d[0] * a[0] + d[1] * a[1] + d[2] * a[2]).max(0.0).powi(8)
-                };
+                let d = direction(Symmetry::C90C270.fold(c_deg), g_deg);
+                let lobe = |ca: f64| d.dot(direction(ca, 65.0)).max(0.0).powi(8);
                 let house = if lower { 0.15 * g.cos() } else { 0.0 };
                 lobe(60.0).max(lobe(120.0)).max(house)
             }
@@ -180,7 +176,7 @@ impl Synth {
         let d = Distribution::new(c, grid.gamma.clone(), cd, sym)?;
         let mut lum = Luminaire::from_distribution(d);
         lum.metadata.manufacturer = "photosolid".into();
-        lum.metadata.luminaire = format!("synthetic {}", self.describe());
+        lum.metadata.luminaire = format!("{}{}", Truth::PREFIX, self.truth(intensity_cd));
         lum.metadata.catalogue = format!("SYNTH-{}", self.name().to_uppercase());
         lum.metadata.lamp = "analytic".into();
         lum.lamp_sets[0].lamp_type = "analytic".into();
@@ -197,6 +193,110 @@ impl Synth {
             Synth::Spot { p, cutoff_deg } => format!("spot p={p} cutoff={cutoff_deg}deg"),
             _ => self.name().to_string(),
         }
+    }
+}
+
+/// The closed-form distribution of a [`Synth`] kind with its peak: the
+/// truth that errors of reconstructions of its sampled files are measured
+/// against.
+///
+/// Files written by `photosolid synth` record it in the luminaire name
+/// (`synthetic cosine-power p=5 peak=1000cd`, IES `[LUMINAIRE]`, EULUMDAT
+/// line 9), which both readers keep and both writers round-trip, so
+/// [`Truth::of_luminaire`] finds it again.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Truth {
+    /// The analytic kind.
+    pub kind: Synth,
+    /// The peak intensity I0 (cd) the relative distribution is scaled by.
+    pub peak_cd: f64,
+}
+
+impl Synth {
+    /// The closed-form distribution of this kind with peak `peak_cd` (cd).
+    pub fn truth(&self, peak_cd: f64) -> Truth {
+        Truth { kind: *self, peak_cd }
+    }
+
+    /// The kind from its [`Synth::describe`] text (`cosine-power p=5`,
+    /// `spot p=8 cutoff=40deg`, `roadway`).
+    pub fn from_description(text: &str) -> Option<Synth> {
+        let mut words = text.split_whitespace();
+        let name = words.next()?;
+        let mut p = None;
+        let mut cutoff = None;
+        for w in words {
+            let (k, v) = w.split_once('=')?;
+            let v: f64 = v.trim_end_matches("deg").parse().ok()?;
+            match k {
+                "p" => p = Some(v),
+                "cutoff" => cutoff = Some(v),
+                _ => return None,
+            }
+        }
+        let kind = match name {
+            "isotropic" => Synth::Isotropic,
+            "lambertian" => Synth::Lambertian,
+            "cosine-power" => Synth::CosinePower { p: p? },
+            "spot" => Synth::Spot {
+                p: p?,
+                cutoff_deg: cutoff?,
+            },
+            "batwing" => Synth::Batwing,
+            "roadway" => Synth::Roadway,
+            _ => return None,
+        };
+        kind.check().ok().map(|()| kind)
+    }
+}
+
+impl Truth {
+    /// What a luminaire name starts with when it records its truth.
+    pub const PREFIX: &'static str = "synthetic ";
+
+    /// The truth a luminaire written by `photosolid synth` records, if any.
+    pub fn of_luminaire(lum: &Luminaire) -> Option<Truth> {
+        lum.metadata.luminaire.trim().strip_prefix(Self::PREFIX)?.parse().ok()
+    }
+}
+
+impl std::fmt::Display for Truth {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} peak={}cd", self.kind.describe(), self.peak_cd)
+    }
+}
+
+impl std::str::FromStr for Truth {
+    type Err = ModelError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = || ModelError::Parameter {
+            name: "truth",
+            value: s.to_string(),
+            reason: "expected a synth description such as `cosine-power p=5 peak=1000cd`".into(),
+        };
+        let (kind, peak) = s.trim().rsplit_once(" peak=").ok_or_else(bad)?;
+        let peak_cd: f64 = peak.trim_end_matches("cd").parse().map_err(|_| bad())?;
+        let kind = Synth::from_description(kind).ok_or_else(bad)?;
+        if !(peak_cd.is_finite() && peak_cd > 0.0) {
+            return Err(bad());
+        }
+        Ok(Truth { kind, peak_cd })
+    }
+}
+
+/// The closed form, evaluated exactly (no grid) in any direction.
+impl IntensityField for Truth {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.peak_cd * self.kind.relative(c_deg, gamma_deg.clamp(0.0, 180.0))
+    }
+    fn name(&self) -> String {
+        format!("truth {}", self.kind.describe())
+    }
+    fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
     }
 }
 
@@ -286,6 +386,36 @@ mod tests {
         let d = &lum.distribution;
         assert_eq!(d.detect_symmetry(1e-9), Symmetry::C90C270);
         assert!((d.max_cd() - 1000.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn files_record_their_truth() {
+        let g = GridSpec::uniform(15.0, 5.0).unwrap();
+        for kind in [
+            Synth::Isotropic,
+            Synth::Lambertian,
+            Synth::CosinePower { p: 5.0 },
+            Synth::Spot {
+                p: 8.0,
+                cutoff_deg: 40.0,
+            },
+            Synth::Batwing,
+            Synth::Roadway,
+        ] {
+            let lum = kind.build(&g, 1234.5).unwrap();
+            let t = Truth::of_luminaire(&lum).unwrap();
+            assert_eq!(t, kind.truth(1234.5));
+            // The truth agrees with the samples at every measured direction.
+            let d = &lum.distribution;
+            for (ic, &c) in d.c_angles().iter().enumerate() {
+                for (ig, &gm) in d.gamma_angles().iter().enumerate() {
+                    assert_eq!(t.intensity_cd(c, gm), d.value(ic, ig), "{kind:?} ({c}, {gm})");
+                }
+            }
+        }
+        assert!("spot p=8 peak=1cd".parse::<Truth>().is_err());
+        assert!("cosine-power p=5 peak=-1cd".parse::<Truth>().is_err());
+        assert!("unknown peak=1cd".parse::<Truth>().is_err());
     }
 
     #[test]

@@ -123,7 +123,7 @@ fn check(want: &FittedLights, f: &Fit, tol: Tol, what: &str) -> [f64; 4] {
         if let (Light::Spot(a), Light::Spot(b)) = (a, b) {
             let dp = (a.exponent - b.exponent).abs() / a.exponent.max(1.0);
             let dc = (a.cutoff_deg - b.cutoff_deg).abs();
-            let dx = angle_between(a.axis(), b.axis());
+            let dx = angle_between(a.axis().to_array(), b.axis().to_array());
             worst[0] = worst[0].max(dp);
             worst[1] = worst[1].max(dc);
             worst[2] = worst[2].max(dx);

@@ -1,8 +1,9 @@
 //! Reconstruction on the sphere: filters, light distribution textures, render, files, hold-out.
 
 use glam::DVec3;
+use photosolid::model::frame::{angles, direction};
 use photosolid::reconstruct::{
-    angles, direction, exr_io, holdout, preview, render, render_with, Filter, HoldoutSpec, LightTexture, RenderOptions,
+    exr_io, holdout, preview, render, render_with, Filter, HoldoutSpec, LightTexture, RenderOptions,
 };
 use photosolid::{Distribution, ModelError, Symmetry};
 use proptest::prelude::*;

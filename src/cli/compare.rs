@@ -1,18 +1,23 @@
 //! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm]
 //! [--align] [--directions measured|dense[:N]] [--tolerance T] [--factor K] [--json] [--report DIR]`.
 //!
-//! Without `--vs`: each reconstruction of FILE against FILE's reference
-//! (`--against`, default its measured solid). With `--vs OTHER`: each
-//! reconstruction of FILE (default list starts with `measured`) against
-//! OTHER's reference, FILE first aligned onto OTHER with `--align`.
+//! Without `--vs`: each reconstruction of FILE against the truth (`--against
+//! truth`, the default for files written by `photosolid synth`, which record
+//! their closed form), against FILE's own withheld measurements (`withheld`,
+//! k-fold hold-out, the default otherwise), or against another
+//! reconstruction of FILE (named as such). With `--vs OTHER` (a denser
+//! measurement): against OTHER reconstructed by `--against` (default
+//! catmull-rom), FILE first aligned onto OTHER with `--align`.
 //! Metrics: see `photosolid::compare`; JSON keys: `photosolid::compare::Comparison`.
 
 use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::compare::{compare, CompareOptions, Directions, Normalize, Recon};
+use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
+use photosolid::reconstruct::Recon;
 use photosolid::report::compare_report;
+use photosolid::synth::Truth;
 
 use super::ReadArgs;
 
@@ -26,9 +31,15 @@ pub struct CompareArgs {
     /// Reconstructions of FILE (comma separated): measured, fitted-gl, or filters.
     #[arg(long, value_delimiter = ',')]
     recon: Option<Vec<Recon>>,
-    /// The reference: measured, fitted-gl or a filter.
-    #[arg(long, default_value = "measured")]
-    against: Recon,
+    /// The reference: truth (the closed form a synth file records), withheld
+    /// (k-fold hold-out of FILE's measurements), or a reconstruction (measured,
+    /// fitted-gl, a filter) of OTHER with --vs, of FILE without. Default: truth
+    /// when FILE records it, else withheld; with --vs, catmull-rom of OTHER.
+    #[arg(long)]
+    against: Option<Against>,
+    /// Folds of the withheld reference (k >= 2).
+    #[arg(long, default_value_t = 2)]
+    folds: usize,
     /// Normalisation: cd (absolute), peak (I_max = 1), klm (cd/klm, equal flux).
     #[arg(long, default_value = "cd")]
     normalize: Normalize,
@@ -60,16 +71,12 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
     if a.align && other.is_none() {
         anyhow::bail!("--align needs --vs OTHER");
     }
-    let recons = a.recon.clone().unwrap_or_else(|| {
-        let mut v = photosolid::compare::DEFAULT_RECONS.to_vec();
-        if other.is_some() {
-            v.insert(0, Recon::Measured);
-        }
-        v
-    });
+    let defaults = CompareOptions::default();
     let opts = CompareOptions {
-        recons,
+        recons: a.recon.clone().unwrap_or(defaults.recons),
         against: a.against,
+        truth: Truth::of_luminaire(&lum),
+        folds: a.folds,
         normalize: a.normalize,
         directions: a.directions,
         tolerance: a.tolerance,

@@ -4,9 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::compare::Recon;
-use photosolid::fit::{fit, FitOptions};
-use photosolid::reconstruct::{render, LightTexture};
+use photosolid::reconstruct::{render, LightTexture, Recon, Reconstructions};
 use photosolid::solid::{export, grid_solid, measured_solid, ColorMap, SolidGrid, Units};
 
 use super::ReadArgs;
@@ -57,7 +55,6 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     let mut mesh = if a.measured {
         measured_solid(d, units)?
     } else if let Some(recon) = a.filter {
-        let grid = SolidGrid::refined(d, a.factor)?;
         match recon {
             Recon::Filter(f) if a.texture => {
                 let tex = LightTexture::new(d).context("building the light distribution texture")?;
@@ -65,15 +62,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
                 let rendered = render(&tex, f, factor)?;
                 grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
             }
-            Recon::Filter(f) => {
-                let tex = LightTexture::new(d).context("building the light distribution texture")?;
-                grid_solid(&tex.sampler(f), &grid, units)?
-            }
-            Recon::FittedGl => {
-                let model = fit(d, &FitOptions::default())?.model().clone();
-                grid_solid(&|c: f64, g: f64| model.intensity(c, g), &grid, units)?
-            }
-            Recon::Measured => measured_solid(d, units)?,
+            _ => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, a.factor, units)?,
         }
     } else {
         anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)");

@@ -32,21 +32,25 @@
 //! flux). Every length (`*_cd` keys) is in that unit; `units` says which.
 
 pub mod align;
-pub mod raycast;
-pub mod recon;
+mod plot_data;
+mod withheld;
 
 use std::str::FromStr;
 
 use serde::Serialize;
 
 pub use align::{best_alignment, Alignment};
-pub use raycast::RadialMesh;
-pub use recon::{Prepared, Recon, DEFAULT_RECONS};
+pub use plot_data::{ErrorMap, PlotData, PolarPlane};
 
 use crate::error::ModelError;
-use crate::metrics::{hausdorff, radial_errors, DirectionSet, Hausdorff, MeshRef, OneSided, ZOTTI_C};
-use crate::model::Distribution;
-use crate::solid::Mesh;
+use crate::metrics::{
+    hausdorff, pareto_front, radial_errors, random_directions, time_per_sample_ns, DirectionSet, Hausdorff, MeshRef,
+    OneSided, ZOTTI_C,
+};
+use crate::model::{Distribution, IntensityField};
+use crate::reconstruct::{eval_all, Recon, Reconstructions, DEFAULT_RECONS};
+use crate::solid::{grid_solid, Mesh, RadialMesh, SolidGrid, Units};
+use crate::synth::Truth;
 
 /// How the distributions are scaled before comparing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -135,13 +139,60 @@ impl FromStr for Directions {
     }
 }
 
+/// What the reconstructions are measured against.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Against {
+    /// The closed-form distribution the file was sampled from ([`Truth`]).
+    Truth,
+    /// The measurements themselves, by k-fold hold-out: each reconstruction
+    /// is rebuilt without the withheld planes (rows) and measured at them.
+    Withheld,
+    /// A reconstruction: of OTHER with `vs` (a denser measurement: `dense`),
+    /// or of FILE itself (one reconstruction against another, not the truth).
+    Recon(Recon),
+}
+
+impl std::fmt::Display for Against {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Against::Truth => f.write_str("truth"),
+            Against::Withheld => f.write_str("withheld"),
+            Against::Recon(r) => write!(f, "{r}"),
+        }
+    }
+}
+
+impl FromStr for Against {
+    type Err = ModelError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "truth" => Ok(Against::Truth),
+            "withheld" => Ok(Against::Withheld),
+            x => x.parse().map(Against::Recon).map_err(|_| ModelError::Parameter {
+                name: "against",
+                value: x.to_string(),
+                reason: format!(
+                    "expected truth, withheld, measured, {} or a filter ({})",
+                    crate::fit::RECONSTRUCTION_NAME,
+                    crate::reconstruct::FILTER_NAMES
+                ),
+            }),
+        }
+    }
+}
+
 /// Options of [`compare`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompareOptions {
-    /// Reconstructions of FILE to compare. Default: [`DEFAULT_RECONS`] (with `vs`, `measured` first).
+    /// Reconstructions of FILE to compare. Default: [`DEFAULT_RECONS`] and `measured`.
     pub recons: Vec<Recon>,
-    /// The reference (of FILE, or of OTHER with `vs`). Default: measured.
-    pub against: Recon,
+    /// The reference. Default (`None`): with `vs`, Catmull–Rom of OTHER
+    /// (`dense`); else `truth` when [`CompareOptions::truth`] is known, else `withheld`.
+    pub against: Option<Against>,
+    /// FILE's closed-form truth, when it has one ([`Truth::of_luminaire`]), in cd.
+    pub truth: Option<Truth>,
+    /// Folds of the `withheld` reference (k ≥ 2). Default: 2.
+    pub folds: usize,
     /// Scaling. Default: cd.
     pub normalize: Normalize,
     /// Direction set of the radial metrics. Default: dense 20000.
@@ -154,7 +205,7 @@ pub struct CompareOptions {
     pub align: bool,
     /// Zotti's constant C, fraction of I_max. Default: [`ZOTTI_C`].
     pub zotti_c: f64,
-    /// Directions timed per reconstruction. Default: 20000.
+    /// Unit directions timed per reconstruction. Default: 20000.
     pub timing_samples: usize,
     /// Timing repeats (median). Default: 5.
     pub timing_repeats: usize,
@@ -164,9 +215,13 @@ pub struct CompareOptions {
 
 impl Default for CompareOptions {
     fn default() -> Self {
+        let mut recons = vec![Recon::Measured];
+        recons.extend(DEFAULT_RECONS);
         Self {
-            recons: DEFAULT_RECONS.to_vec(),
-            against: Recon::Measured,
+            recons,
+            against: None,
+            truth: None,
+            folds: 2,
             normalize: Normalize::Cd,
             directions: Directions::default(),
             tolerance: 1e-3,
@@ -185,21 +240,27 @@ impl Default for CompareOptions {
 pub struct ReconResult {
     /// The reconstruction (`measured`, a filter name, `fitted-gl`).
     pub name: String,
-    /// Symmetric Hausdorff distance H (attained), in `units`.
+    /// Bytes the reconstruction holds to answer lookups.
+    pub bytes: usize,
+    /// Hausdorff distance (attained), in `units`: symmetric between the
+    /// solids for a field reference; for `withheld`, the largest distance
+    /// from a withheld measured point to the solid rebuilt without it.
     pub hausdorff_cd: f64,
-    /// Certified gap: H ≤ hausdorff_cd + hausdorff_bound_cd.
+    /// Certified gap: H ≤ hausdorff_cd + hausdorff_bound_cd (0 for `withheld`: exact point distances).
     pub hausdorff_bound_cd: f64,
     /// H as % of the reference I_max.
     pub hausdorff_pct: f64,
-    /// One-sided h(reconstruction → reference): value, bound, mean, rms, queries.
-    pub recon_to_ref: OneSided,
-    /// One-sided h(reference → reconstruction).
+    /// One-sided h(reconstruction → reference) (null for `withheld`).
+    pub recon_to_ref: Option<OneSided>,
+    /// One-sided h(reference → reconstruction); for `withheld`, the withheld points to the rebuilt solids.
     pub ref_to_recon: OneSided,
-    /// Mean surface distance (mean of the two one-sided area-weighted means).
+    /// Mean surface distance (mean of the one-sided area-weighted means; withheld: mean point distance).
     pub mean_surface_distance_cd: f64,
-    /// RMS surface distance (both directions pooled).
+    /// RMS surface distance (both directions pooled; withheld: RMS point distance).
     pub rms_surface_distance_cd: f64,
-    /// The radial bound: max |r_recon(ω) − r_ref(ω)| of the two solids (meshes, ray cast) over the direction set (≥ H up to the set's density).
+    /// The radial bound: max |r_recon(ω) − r_ref(ω)| of the two solids
+    /// (meshes, ray cast) over the direction set (≥ H up to the set's
+    /// density); for `withheld`, equal to `radial_max_cd`.
     pub radial_bound_cd: f64,
     /// Largest radial difference of the fields, in `units`.
     pub radial_max_cd: f64,
@@ -219,47 +280,12 @@ pub struct ReconResult {
     pub flux_error_pct: f64,
     /// Misplaced-flux fraction, in [0, 2].
     pub misplaced_flux: f64,
-    /// Median time (ns) per sample of evaluating the reconstruction (one thread); null for `measured`.
+    /// Median time (ns) per lookup from a unit direction (one thread).
     pub time_per_sample_ns: Option<f64>,
     /// Triangles of the reconstruction's solid.
     pub triangles: usize,
-    /// On the speed/accuracy Pareto front (time per sample vs H).
+    /// On the Pareto front of (time per sample, bytes, H).
     pub pareto: bool,
-}
-
-/// Curves of one pair of half-planes for a polar diagram: points are (signed γ, value).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PolarPlane {
-    /// C of the half-plane drawn with negative γ.
-    pub left_c: f64,
-    /// C of the half-plane drawn with positive γ.
-    pub right_c: f64,
-    /// `(name, points)` of each reconstruction (and the reference field when it is not the measured data).
-    pub curves: Vec<(String, Vec<(f64, f64)>)>,
-    /// `(label, points)` of measured data (the reference's; with `vs`, FILE's too).
-    pub measured: Vec<(String, Vec<(f64, f64)>)>,
-}
-
-/// Signed error of one reconstruction over C x γ, % of I_max: `values[iy * xs.len() + ix]`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ErrorMap {
-    /// The reconstruction.
-    pub name: String,
-    /// C angles, degrees.
-    pub xs: Vec<f64>,
-    /// γ angles, degrees.
-    pub ys: Vec<f64>,
-    /// (recon − reference) / I_max · 100.
-    pub values: Vec<f64>,
-}
-
-/// What the report draws.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
-pub struct PlotData {
-    /// C0-C180, C90-C270, and the plane of maximum intensity.
-    pub planes: Vec<PolarPlane>,
-    /// One per reconstruction.
-    pub error_maps: Vec<ErrorMap>,
 }
 
 /// The result of [`compare`].
@@ -269,8 +295,13 @@ pub struct Comparison {
     pub file: String,
     /// OTHER, with `vs`.
     pub vs: Option<String>,
-    /// The reference, e.g. `measured` or `catmull-rom (OTHER)`.
+    /// What the errors are measured against, in words: e.g. `truth
+    /// (cosine-power p=5 peak=1000cd)`, `withheld (2-fold hold-out of the
+    /// measured planes and rows)`, `dense: catmull-rom of OTHER`, or
+    /// `catmull-rom of FILE (a reconstruction, not the truth)`.
     pub reference: String,
+    /// `truth`, `withheld`, `dense` or `reconstruction`.
+    pub reference_kind: String,
     /// Normalisation.
     pub normalize: Normalize,
     /// Unit of every `*_cd` value.
@@ -287,7 +318,7 @@ pub struct Comparison {
     pub factor: usize,
     /// Reference I_max, in `units`.
     pub i_max_cd: f64,
-    /// Triangles of the reference solid.
+    /// Triangles of the reference solid (0 for `withheld`).
     pub reference_triangles: usize,
     /// Zotti's constant C, fraction of I_max.
     pub zotti_c: f64,
@@ -317,30 +348,20 @@ pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {
     )
 }
 
-/// The polygon sag of a mesh whose vertices lie on the sphere (`centre`, `radius`):
+/// The polygon sag of a mesh whose vertices lie on the sphere of `radius` about the origin:
 /// the largest distance between a triangle's plane region and the sphere,
 /// `max_t (radius − sqrt(radius² − ρ_t²))` with ρ_t the triangle's circumradius
 /// (half the longest edge for degenerate triangles). Each point of the mesh is
 /// within it of the sphere and each point of the sphere within it of the
 /// mesh (for a closed mesh around the centre), so H(mesh, sphere) ≤ sag.
-pub fn sphere_sag(mesh: &Mesh, centre: [f64; 3], radius: f64) -> f64 {
+pub fn sphere_sag(mesh: &Mesh, radius: f64) -> f64 {
     let p = mesh.positions();
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let norm = |a: [f64; 3]| (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    let _ = centre;
     mesh.triangles()
         .iter()
         .map(|t| {
-            let v = t.map(|i| p[i as usize].map(f64::from));
-            let (a, b, c) = (norm(sub(v[1], v[2])), norm(sub(v[2], v[0])), norm(sub(v[0], v[1])));
-            let u = sub(v[1], v[0]);
-            let w = sub(v[2], v[0]);
-            let cr = [
-                u[1] * w[2] - u[2] * w[1],
-                u[2] * w[0] - u[0] * w[2],
-                u[0] * w[1] - u[1] * w[0],
-            ];
-            let area2 = norm(cr);
+            let v = t.map(|i| glam::Vec3::from_array(p[i as usize]).as_dvec3());
+            let (a, b, c) = ((v[1] - v[2]).length(), (v[2] - v[0]).length(), (v[0] - v[1]).length());
+            let area2 = (v[1] - v[0]).cross(v[2] - v[0]).length();
             let longest = a.max(b).max(c);
             let rho = if area2 > 1e-12 * longest * longest {
                 a * b * c / (2.0 * area2)
@@ -356,14 +377,15 @@ pub fn sphere_sag(mesh: &Mesh, centre: [f64; 3], radius: f64) -> f64 {
 /// Compare the reconstructions of `file` with the reference (see the module docs).
 ///
 /// # Errors
-/// All-zero data, unknown grids, a failed fit, or `against` = measured
-/// with a distribution whose measured solid cannot be built.
+/// All-zero data, unknown grids, a failed fit, `truth` without a known
+/// truth, `withheld` on a grid with nothing to withhold.
 pub fn compare(
     file: &Distribution,
     vs: Option<&Distribution>,
     opts: &CompareOptions,
 ) -> Result<Comparison, ModelError> {
-    let mut a = file.scaled(opts.normalize.factor(file)?)?;
+    let k = opts.normalize.factor(file)?;
+    let mut a = file.scaled(k)?;
     let b_dist = match vs {
         Some(o) => Some(o.scaled(opts.normalize.factor(o)?)?),
         None => None,
@@ -376,49 +398,124 @@ pub fn compare(
         }
         alignment = Some(al);
     }
-    let needs_fit = |r: Recon| r == Recon::FittedGl;
-    let recons: Vec<Recon> = if vs.is_some() {
-        opts.recons.clone()
-    } else {
-        opts.recons.iter().copied().filter(|r| *r != opts.against).collect()
+    let against = opts.against.unwrap_or(match (&b_dist, opts.truth) {
+        (Some(_), _) => Against::Recon(Recon::Filter(crate::reconstruct::Filter::CatmullRom)),
+        (None, Some(_)) => Against::Truth,
+        (None, None) => Against::Withheld,
+    });
+    let mut comparison = match (against, &b_dist) {
+        (Against::Withheld, None) => withheld::compare_withheld(&a, opts)?,
+        (Against::Withheld, Some(_)) => {
+            return Err(ModelError::Parameter {
+                name: "against",
+                value: "withheld".into(),
+                reason: "withheld measurements are FILE's own; without --vs OTHER".into(),
+            })
+        }
+        (Against::Truth, Some(_)) => {
+            return Err(ModelError::Parameter {
+                name: "against",
+                value: "truth".into(),
+                reason: "the truth is FILE's closed form; without --vs OTHER".into(),
+            })
+        }
+        (Against::Truth, None) => {
+            let truth = opts.truth.ok_or_else(|| ModelError::Parameter {
+                name: "against",
+                value: "truth".into(),
+                reason: "this file records no closed-form truth (only files written by `photosolid synth` do); \
+                         use withheld, or --vs a denser measurement"
+                    .into(),
+            })?;
+            let truth = Truth {
+                peak_cd: truth.peak_cd * k,
+                ..truth
+            };
+            let reference = FieldReference {
+                label: format!("truth ({})", truth),
+                kind: "truth",
+                field: &truth,
+                dist: &a,
+                solid: grid_solid(&truth, &SolidGrid::refined(&a, opts.factor)?, Units::Candela)?,
+                file_dist: None,
+            };
+            compare_fields(&a, &reference, opts)?
+        }
+        (Against::Recon(r), other) => {
+            let ref_dist = other.as_ref().unwrap_or(&a);
+            let refs = Reconstructions::new(ref_dist.clone(), &[r])?;
+            let field = refs.field(r)?;
+            let (label, kind) = match other {
+                Some(_) => (format!("dense: {r} of OTHER"), "dense"),
+                None => (
+                    format!("{r} of FILE (a reconstruction, not the truth)"),
+                    "reconstruction",
+                ),
+            };
+            let recons: Vec<Recon> = if other.is_some() {
+                opts.recons.clone()
+            } else {
+                opts.recons.iter().copied().filter(|x| *x != r).collect()
+            };
+            let reference = FieldReference {
+                label,
+                kind,
+                field: &*field,
+                dist: ref_dist,
+                solid: refs.solid(r, opts.factor)?,
+                file_dist: other.as_ref().map(|_| &a),
+            };
+            compare_fields(&a, &reference, &CompareOptions { recons, ..opts.clone() })?
+        }
     };
-    let pa = Prepared::new(
-        a,
-        recons.iter().any(|r| needs_fit(*r)) || (vs.is_none() && needs_fit(opts.against)),
-    )?;
-    let pb = match b_dist {
-        Some(b) => Some(Prepared::new(b, needs_fit(opts.against))?),
-        None => None,
-    };
-    let refp = pb.as_ref().unwrap_or(&pa);
-    let reference = if vs.is_some() {
-        format!("{} (OTHER)", opts.against)
-    } else {
-        opts.against.to_string()
-    };
-    let ref_solid = refp.solid(opts.against, opts.factor)?;
-    let ref_rm = RadialMesh::new(&ref_solid);
-    let i_max = refp.dist.max_cd();
+    comparison.alignment = alignment;
+    Ok(comparison)
+}
+
+/// A field reference and what its metrics need.
+struct FieldReference<'a> {
+    label: String,
+    kind: &'static str,
+    field: &'a dyn IntensityField,
+    /// The reference's own data (I_max, measured direction set, plots).
+    dist: &'a Distribution,
+    solid: Mesh,
+    /// FILE's data when the reference is another file (plots).
+    file_dist: Option<&'a Distribution>,
+}
+
+/// Every reconstruction of `a` against a field reference.
+fn compare_fields(
+    a: &Distribution,
+    reference: &FieldReference<'_>,
+    opts: &CompareOptions,
+) -> Result<Comparison, ModelError> {
+    let recs = Reconstructions::new(a.clone(), &opts.recons)?;
+    let ref_rm = RadialMesh::new(&reference.solid);
+    let i_max = reference.dist.max_cd();
     let tol = opts.tolerance.max(0.0) * i_max;
     let set = match opts.directions {
-        Directions::Measured => DirectionSet::measured(&refp.dist),
+        Directions::Measured => DirectionSet::measured(reference.dist),
         Directions::Dense(n) => DirectionSet::fibonacci(n),
     };
-    let m = refp.eval_all(opts.against, &set.directions);
-    let timing = DirectionSet::fibonacci(opts.timing_samples.max(1)).directions;
-    let mut results = Vec::with_capacity(recons.len());
-    for &r in &recons {
-        let solid = pa.solid(r, opts.factor)?;
-        let h = solid_hausdorff(&solid, &ref_solid, tol);
-        let av = pa.eval_all(r, &set.directions);
+    let m = eval_all(reference.field, &set.directions);
+    let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
+    let mut results = Vec::with_capacity(opts.recons.len());
+    let mut fields = Vec::with_capacity(opts.recons.len());
+    for &r in &opts.recons {
+        let field = recs.field(r)?;
+        let solid = recs.solid(r, opts.factor)?;
+        let h = solid_hausdorff(&solid, &reference.solid, tol);
+        let av = eval_all(&*field, &set.directions);
         let rad = radial_errors(&set, &m, &av, i_max, opts.zotti_c);
         let (ab, ba) = (h.a_to_b, h.b_to_a);
         results.push(ReconResult {
             name: r.to_string(),
+            bytes: field.bytes(),
             hausdorff_cd: h.value,
             hausdorff_bound_cd: h.bound,
             hausdorff_pct: 100.0 * h.value / i_max,
-            recon_to_ref: ab,
+            recon_to_ref: Some(ab),
             ref_to_recon: ba,
             mean_surface_distance_cd: 0.5 * (ab.mean + ba.mean),
             rms_surface_distance_cd: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
@@ -432,21 +529,28 @@ pub fn compare(
             zotti_err_solid_angle: rad.zotti_err_solid_angle,
             flux_error_pct: rad.flux_error_pct,
             misplaced_flux: rad.misplaced_flux,
-            time_per_sample_ns: pa.time_per_sample_ns(r, &timing, opts.timing_repeats),
+            time_per_sample_ns: Some(time_per_sample_ns(&*field, &timing, opts.timing_repeats)),
             triangles: solid.n_triangles(),
             pareto: false,
         });
+        fields.push((r.to_string(), field));
     }
     mark_pareto(&mut results);
-    let plots = if opts.plots {
-        Some(plot_data(&pa, refp, vs.is_some(), &recons, opts.against, i_max))
-    } else {
-        None
-    };
+    let plots = opts.plots.then(|| {
+        let named: Vec<(String, &dyn IntensityField)> = fields.iter().map(|(n, f)| (n.clone(), &**f)).collect();
+        plot_data::plot_data(
+            &named,
+            Some((reference.label.as_str(), reference.field)),
+            reference.dist,
+            reference.file_dist,
+            i_max,
+        )
+    });
     Ok(Comparison {
         file: String::new(),
         vs: None,
-        reference,
+        reference: reference.label.clone(),
+        reference_kind: reference.kind.into(),
         normalize: opts.normalize,
         units: opts.normalize.unit().into(),
         directions: set.label.clone(),
@@ -455,9 +559,9 @@ pub fn compare(
         tolerance_cd: tol,
         factor: opts.factor,
         i_max_cd: i_max,
-        reference_triangles: ref_solid.n_triangles(),
+        reference_triangles: reference.solid.n_triangles(),
         zotti_c: opts.zotti_c,
-        alignment,
+        alignment: None,
         results,
         plots,
     })
@@ -468,110 +572,19 @@ fn radial_bound(a: &RadialMesh, b: &RadialMesh, dirs: &[(f64, f64)]) -> f64 {
     use rayon::prelude::*;
     dirs.par_iter()
         .map(|&(c, g)| {
-            let w = raycast::direction(c, g);
+            let w = crate::model::frame::direction(c, g);
             (a.radius(w) - b.radius(w)).abs()
         })
         .reduce(|| 0.0, f64::max)
 }
 
-/// Mark the rows no other timed row beats in both time and H.
-fn mark_pareto(rows: &mut [ReconResult]) {
-    let key: Vec<Option<(f64, f64)>> = rows
+/// Mark the rows on the Pareto front of (time per sample, bytes, H).
+pub(crate) fn mark_pareto(rows: &mut [ReconResult]) {
+    let costs: Vec<Vec<f64>> = rows
         .iter()
-        .map(|r| r.time_per_sample_ns.map(|t| (t, r.hausdorff_cd)))
+        .map(|r| vec![r.time_per_sample_ns.unwrap_or(f64::NAN), r.bytes as f64, r.hausdorff_cd])
         .collect();
-    for (i, r) in rows.iter_mut().enumerate() {
-        r.pareto = match key[i] {
-            None => false,
-            Some((t, h)) => !key
-                .iter()
-                .flatten()
-                .any(|&(t2, h2)| t2 <= t && h2 <= h && (t2 < t || h2 < h)),
-        };
+    for (r, p) in rows.iter_mut().zip(pareto_front(&costs)) {
+        r.pareto = p;
     }
-}
-
-fn plot_data(pa: &Prepared, refp: &Prepared, vs: bool, recons: &[Recon], against: Recon, i_max: f64) -> PlotData {
-    // The plane of maximum intensity of the reference.
-    let d = &refp.dist;
-    let ng = d.n_gamma();
-    let (mut best, mut c_max) = (f64::NEG_INFINITY, 0.0);
-    for (c, ic) in d.full_planes() {
-        for ig in 0..ng {
-            if d.value(ic, ig) > best {
-                best = d.value(ic, ig);
-                c_max = c;
-            }
-        }
-    }
-    let gammas: Vec<f64> = (0..=360).map(|k| k as f64 * 0.5).collect();
-    let curve = |p: &Prepared, r: Recon, right: f64, left: f64| -> Vec<(f64, f64)> {
-        let mut pts: Vec<(f64, f64)> = gammas.iter().rev().map(|&g| (-g, p.eval(r, left, g))).collect();
-        pts.extend(gammas.iter().skip(1).map(|&g| (g, p.eval(r, right, g))));
-        pts
-    };
-    let points = |p: &Prepared, right: f64, left: f64| -> Vec<(f64, f64)> {
-        let g = p.dist.gamma_angles();
-        let (r, l) = (
-            crate::photometry::plane_profile(&p.dist, right),
-            crate::photometry::plane_profile(&p.dist, left),
-        );
-        let mut pts: Vec<(f64, f64)> = g.iter().zip(&l).rev().map(|(&g, &v)| (-g, v)).collect();
-        pts.extend(g.iter().zip(&r).filter(|(&g, _)| g > 0.0).map(|(&g, &v)| (g, v)));
-        pts
-    };
-    let pairs = [
-        (0.0, 180.0),
-        (90.0, 270.0),
-        (c_max, crate::model::wrap360(c_max + 180.0)),
-    ];
-    let planes = pairs
-        .iter()
-        .map(|&(right, left)| {
-            let mut curves: Vec<(String, Vec<(f64, f64)>)> = recons
-                .iter()
-                .map(|&r| (r.to_string(), curve(pa, r, right, left)))
-                .collect();
-            if against != Recon::Measured {
-                curves.push((format!("{against} (reference)"), curve(refp, against, right, left)));
-            }
-            let mut measured = vec![(
-                if vs {
-                    "measured (OTHER)".to_string()
-                } else {
-                    "measured".to_string()
-                },
-                points(refp, right, left),
-            )];
-            if vs {
-                measured.push(("measured (FILE)".into(), points(pa, right, left)));
-            }
-            PolarPlane {
-                left_c: left,
-                right_c: right,
-                curves,
-                measured,
-            }
-        })
-        .collect();
-    // Cell centres of a 2° x 1° grid: between the knots of the usual
-    // measurement grids, where reconstructions differ (at a knot every
-    // interpolating filter equals the measurement).
-    let xs: Vec<f64> = (0..180).map(|k| 1.0 + k as f64 * 2.0).collect();
-    let ys: Vec<f64> = (0..180).map(|k| 0.5 + k as f64).collect();
-    let dirs: Vec<(f64, f64)> = ys.iter().flat_map(|&g| xs.iter().map(move |&c| (c, g))).collect();
-    let m = refp.eval_all(against, &dirs);
-    let error_maps = recons
-        .iter()
-        .map(|&r| {
-            let v = pa.eval_all(r, &dirs);
-            ErrorMap {
-                name: r.to_string(),
-                xs: xs.clone(),
-                ys: ys.clone(),
-                values: v.iter().zip(&m).map(|(a, b)| 100.0 * (a - b) / i_max).collect(),
-            }
-        })
-        .collect();
-    PlotData { planes, error_maps }
 }

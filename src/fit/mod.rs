@@ -43,7 +43,7 @@ pub mod report;
 use rayon::prelude::*;
 use serde::Serialize;
 
-pub use model::{direction, from_gl, to_gl, FittedLights, Hemisphere, Light, Spot, RECONSTRUCTION_NAME};
+pub use model::{FittedLights, Hemisphere, Light, PreparedLights, Spot, RECONSTRUCTION_NAME};
 pub use objective::{ErrorMetric, DEFAULT_GUARD, MAX_RELATIVE_WEIGHT};
 pub use report::FitReport;
 
@@ -435,7 +435,7 @@ pub fn fit(d: &Distribution, options: &FitOptions) -> Result<Fit, ModelError> {
                         })
                         .collect(),
                 );
-                let a = |dir: [f64; 3]| k * model.intensity_dir(dir);
+                let a = |dir: glam::DVec3| k * model.intensity_dir(dir);
                 let error = s.error_sq(a).sqrt();
                 let max_error = s.max_abs_error(a);
                 let flux_ratio = model

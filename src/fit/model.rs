@@ -25,9 +25,11 @@
 //! y-up frame `(x, z, −y)` (a proper rotation of −90° about x: C0 stays +x,
 //! zenith becomes +y, C90 becomes −z).
 
+use glam::DVec3;
 use serde::Serialize;
 
 use crate::error::ModelError;
+use crate::model::frame::{direction, to_gl};
 use crate::model::{Distribution, Symmetry};
 
 /// The name of this reconstruction among the filters (`--filter fitted-gl`).
@@ -36,48 +38,6 @@ pub const RECONSTRUCTION_NAME: &str = "fitted-gl";
 pub const MAX_EXPONENT: f64 = 128.0;
 /// Largest spot cut-off OpenGL accepts besides the point-light value 180 (degrees).
 pub const MAX_CUTOFF_DEG: f64 = 90.0;
-
-/// cos of an angle in degrees, exact at multiples of 90 so that directions
-/// on the horizon or at the poles have exact zero components (a spot with a
-/// 90° cut-off then includes the horizon in both hemispheres alike).
-#[inline]
-pub(crate) fn cos_deg(a: f64) -> f64 {
-    let r = a.rem_euclid(360.0);
-    if r == 90.0 || r == 270.0 {
-        0.0
-    } else if r == 0.0 {
-        1.0
-    } else if r == 180.0 {
-        -1.0
-    } else {
-        a.to_radians().cos()
-    }
-}
-
-/// sin of an angle in degrees, exact at multiples of 90 (see [`cos_deg`]).
-#[inline]
-pub(crate) fn sin_deg(a: f64) -> f64 {
-    cos_deg(a - 90.0)
-}
-
-/// Unit direction of (C, γ) in degrees, luminaire frame (z up, γ from nadir).
-#[inline]
-pub fn direction(c_deg: f64, gamma_deg: f64) -> [f64; 3] {
-    let (sg, cg) = (sin_deg(gamma_deg), cos_deg(gamma_deg));
-    [sg * cos_deg(c_deg), sg * sin_deg(c_deg), -cg]
-}
-
-/// A luminaire-frame vector (z up) in the y-up OpenGL frame of the seed: `(x, z, −y)`.
-#[inline]
-pub fn to_gl(v: [f64; 3]) -> [f64; 3] {
-    [v[0], v[2], -v[1]]
-}
-
-/// A y-up OpenGL-frame vector back in the luminaire frame (inverse of [`to_gl`]).
-#[inline]
-pub fn from_gl(v: [f64; 3]) -> [f64; 3] {
-    [v[0], -v[2], v[1]]
-}
 
 /// cos of the cut-off (degrees), with exact values at 0 and 90 so that the
 /// inclusion test `d·a ≥ cos c` matches the geometry at the extremes.
@@ -170,20 +130,19 @@ impl Spot {
     }
 
     /// The unit axis (`GL_SPOT_DIRECTION`) in the luminaire frame (z up).
-    pub fn axis(&self) -> [f64; 3] {
+    pub fn axis(&self) -> DVec3 {
         direction(self.azimuth_deg, self.hemisphere.gamma_of_tilt(self.tilt_deg))
     }
 
     /// The unit axis in the y-up OpenGL frame of the seed (see [`to_gl`]).
-    pub fn axis_gl(&self) -> [f64; 3] {
+    pub fn axis_gl(&self) -> DVec3 {
         to_gl(self.axis())
     }
 
     /// Intensity (cd) in the unit direction `d` (luminaire frame).
     #[inline]
-    pub fn intensity_dir(&self, d: [f64; 3]) -> f64 {
-        let a = self.axis();
-        let t = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+    pub fn intensity_dir(&self, d: DVec3) -> f64 {
+        let t = d.dot(self.axis());
         self.weight_cd * spot_factor(t, self.exponent, cos_cutoff(self.cutoff_deg))
     }
 
@@ -231,7 +190,7 @@ pub enum Light {
 impl Light {
     /// Intensity (cd) in the unit direction `d` (luminaire frame).
     #[inline]
-    pub fn intensity_dir(&self, d: [f64; 3]) -> f64 {
+    pub fn intensity_dir(&self, d: DVec3) -> f64 {
         match self {
             Light::Spot(s) => s.intensity_dir(d),
             Light::Point { weight_cd } => *weight_cd,
@@ -265,12 +224,10 @@ impl FittedLights {
 
     /// Intensity (cd) in direction `d` (luminaire frame, z up; need not be
     /// unit length). The zero vector and non-finite vectors give 0.
-    pub fn intensity_dir(&self, d: [f64; 3]) -> f64 {
-        let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        if !(n.is_finite() && n > 0.0) {
+    pub fn intensity_dir(&self, d: DVec3) -> f64 {
+        let Some(u) = d.try_normalize() else {
             return 0.0;
-        }
-        let u = [d[0] / n, d[1] / n, d[2] / n];
+        };
         self.lights.iter().map(|l| l.intensity_dir(u)).sum()
     }
 
@@ -316,17 +273,109 @@ impl FittedLights {
     }
 }
 
+/// The fitted lights are an intensity field, evaluated from their GL
+/// parameters on every call (see [`PreparedLights`] for a renderer's cost).
+impl crate::model::IntensityField for FittedLights {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.intensity(c_deg, gamma_deg).max(0.0)
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        self.intensity_dir(d).max(0.0)
+    }
+    fn name(&self) -> String {
+        RECONSTRUCTION_NAME.into()
+    }
+    fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>() + self.lights.len() * std::mem::size_of::<Light>()
+    }
+}
+
+/// One spot with what a shader holds in its uniforms: the unit axis, the
+/// exponent, the cosine of the cut-off and the weight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PreparedSpot {
+    axis: DVec3,
+    exponent: f64,
+    cos_cutoff: f64,
+    weight_cd: f64,
+}
+
+/// The fitted lights as a renderer evaluates them: axes and cut-off cosines
+/// computed once ([`FittedLights::prepare`]), point lights summed into one
+/// constant. Gives exactly [`FittedLights::intensity_dir`] for unit vectors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreparedLights {
+    spots: Vec<PreparedSpot>,
+    point_cd: f64,
+}
+
+impl FittedLights {
+    /// Precompute what every evaluation needs (a renderer's uniforms).
+    pub fn prepare(&self) -> PreparedLights {
+        let mut spots = Vec::new();
+        let mut point_cd = 0.0;
+        for l in &self.lights {
+            match l {
+                Light::Spot(s) => spots.push(PreparedSpot {
+                    axis: s.axis(),
+                    exponent: s.exponent,
+                    cos_cutoff: cos_cutoff(s.cutoff_deg),
+                    weight_cd: s.weight_cd,
+                }),
+                Light::Point { weight_cd } => point_cd += weight_cd,
+            }
+        }
+        PreparedLights { spots, point_cd }
+    }
+}
+
+impl PreparedLights {
+    /// Intensity (cd, ≥ 0) in the unit direction `u` (luminaire frame; not normalised here).
+    #[inline]
+    pub fn intensity_unit(&self, u: DVec3) -> f64 {
+        let mut v = self.point_cd;
+        for s in &self.spots {
+            v += s.weight_cd * spot_factor(u.dot(s.axis), s.exponent, s.cos_cutoff);
+        }
+        v.max(0.0)
+    }
+}
+
+impl crate::model::IntensityField for PreparedLights {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.intensity_unit(direction(c_deg, gamma_deg))
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        d.try_normalize().map_or(0.0, |u| self.intensity_unit(u))
+    }
+    fn name(&self) -> String {
+        RECONSTRUCTION_NAME.into()
+    }
+    fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>() + self.spots.len() * std::mem::size_of::<PreparedSpot>()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn directions_are_exact_at_the_axes() {
-        assert_eq!(direction(0.0, 0.0), [0.0, 0.0, -1.0]);
-        assert_eq!(direction(0.0, 180.0), [0.0, 0.0, 1.0]);
-        assert_eq!(direction(90.0, 90.0), [0.0, 1.0, 0.0]);
-        assert_eq!(to_gl([0.0, 0.0, 1.0]), [0.0, 1.0, 0.0]);
-        assert_eq!(from_gl(to_gl([1.0, 2.0, 3.0])), [1.0, 2.0, 3.0]);
+        assert_eq!(direction(0.0, 0.0), DVec3::new(0.0, 0.0, -1.0));
+        assert_eq!(direction(0.0, 180.0), DVec3::new(0.0, 0.0, 1.0));
+        assert_eq!(direction(90.0, 90.0), DVec3::new(0.0, 1.0, 0.0));
+        assert_eq!(to_gl(DVec3::Z), DVec3::Y);
+        assert_eq!(
+            crate::model::frame::from_gl(to_gl(DVec3::new(1.0, 2.0, 3.0))),
+            DVec3::new(1.0, 2.0, 3.0)
+        );
     }
 
     #[test]
@@ -339,7 +388,7 @@ mod tests {
         assert_eq!(u.intensity_dir(direction(0.0, 90.0)), 2.0);
         // cut-off 0: only the axis itself.
         let s = Spot::vertical(Hemisphere::Down, 1.0, 128.0, 0.0);
-        assert_eq!(s.intensity_dir([0.0, 0.0, -1.0]), 1.0);
+        assert_eq!(s.intensity_dir(DVec3::NEG_Z), 1.0);
         assert_eq!(s.intensity_dir(direction(0.0, 0.01)), 0.0);
         // p = 128 far off-axis underflows to 0, never NaN.
         let s = Spot::vertical(Hemisphere::Down, 1.0, 128.0, 90.0);
@@ -359,11 +408,34 @@ mod tests {
         };
         let a = s.axis();
         let want = direction(90.0, 160.0);
-        for k in 0..3 {
-            assert!((a[k] - want[k]).abs() < 1e-15);
-        }
+        assert!((a - want).abs().max_element() < 1e-15);
         assert!((s.intensity(90.0, 160.0) - 1.0).abs() < 1e-12);
-        assert_eq!(FittedLights::new(vec![Light::Spot(s)]).intensity_dir([0.0; 3]), 0.0);
+        assert_eq!(FittedLights::new(vec![Light::Spot(s)]).intensity_dir(DVec3::ZERO), 0.0);
+    }
+
+    #[test]
+    fn prepared_lights_agree_with_the_parameters() {
+        use crate::model::IntensityField;
+        let m = FittedLights::new(vec![
+            Light::Spot(Spot {
+                hemisphere: Hemisphere::Down,
+                weight_cd: 100.0,
+                exponent: 12.0,
+                cutoff_deg: 50.0,
+                tilt_deg: 25.0,
+                azimuth_deg: 30.0,
+            }),
+            Light::Point { weight_cd: 3.0 },
+        ]);
+        let p = m.prepare();
+        for ic in 0..24 {
+            for ig in 0..=36 {
+                let (c, g) = (ic as f64 * 15.0, ig as f64 * 5.0);
+                assert_eq!(p.intensity_cd(c, g), m.intensity_cd(c, g), "({c}, {g})");
+            }
+        }
+        assert_eq!(p.intensity_dir_cd(DVec3::ZERO), 0.0);
+        assert!(p.bytes() < m.bytes() + 100);
     }
 
     impl Spot {

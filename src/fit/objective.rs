@@ -37,8 +37,11 @@
 
 use serde::Serialize;
 
-use super::model::{direction, spot_factor};
+use glam::DVec3;
+
+use super::model::spot_factor;
 use crate::error::ModelError;
+use crate::model::frame::direction;
 use crate::model::{periodic_widths, Distribution, Symmetry};
 
 /// Default guard constant `C` of the error, relative to I_max (2 %).
@@ -77,7 +80,7 @@ impl ErrorMetric {
 #[derive(Debug, Clone)]
 pub(crate) struct Samples {
     /// Unit directions (luminaire frame).
-    pub dir: Vec<[f64; 3]>,
+    pub dir: Vec<DVec3>,
     /// Magnitudes m = max(I, 0) / I_max.
     pub m: Vec<f64>,
     /// ρ = w / (m + C)².
@@ -252,7 +255,7 @@ impl Samples {
     }
 
     /// err² of a model giving magnitude `a(d)` (relative to I_max), evaluated directly.
-    pub fn error_sq(&self, a: impl Fn([f64; 3]) -> f64) -> f64 {
+    pub fn error_sq(&self, a: impl Fn(DVec3) -> f64) -> f64 {
         self.dir
             .iter()
             .zip(&self.m)
@@ -265,7 +268,7 @@ impl Samples {
     }
 
     /// Largest |a − m| (relative to I_max) of a model over the directions.
-    pub fn max_abs_error(&self, a: impl Fn([f64; 3]) -> f64) -> f64 {
+    pub fn max_abs_error(&self, a: impl Fn(DVec3) -> f64) -> f64 {
         self.dir
             .iter()
             .zip(&self.m)
@@ -395,7 +398,7 @@ impl<'a> Profiler<'a> {
     }
 
     /// The best cut-off and weights for a spot with unit `axis` and exponent `p`.
-    pub fn profile(&mut self, axis: [f64; 3], p: f64) -> Profile {
+    pub fn profile(&mut self, axis: DVec3, p: f64) -> Profile {
         self.evals += 1;
         let s = self.s;
         self.bin_s2.iter_mut().for_each(|x| *x = 0.0);
@@ -411,7 +414,7 @@ impl<'a> Profiler<'a> {
         let scale = N_BINS as f64 / Q_MAX;
         for k in 0..s.dir.len() {
             let d = s.dir[k];
-            let t = d[0] * axis[0] + d[1] * axis[1] + d[2] * axis[2];
+            let t = d.dot(axis);
             // A cut-off of at most 90° never reaches directions behind the spot.
             if t < 0.0 {
                 continue;

@@ -24,8 +24,11 @@
 //! not overlap (seed §4: "independent subsets"); otherwise they are refined
 //! alternately, each with the other's shape fixed and both weights free.
 
-use super::model::{cos_cutoff, direction, spot_factor, Hemisphere, Spot, MAX_EXPONENT};
+use glam::DVec3;
+
+use super::model::{cos_cutoff, spot_factor, Hemisphere, Spot, MAX_EXPONENT};
 use super::objective::{Other, Profile, Profiler, Samples};
+use crate::model::frame::direction;
 
 /// Upper end of the exponent coordinate `u = ln(1 + p)`.
 pub(crate) fn u_max() -> f64 {
@@ -48,7 +51,7 @@ pub(crate) fn tilt_azimuth(x: f64, y: f64) -> (f64, f64) {
 }
 
 /// Unit axis of tangent coordinates in `hemi`.
-pub(crate) fn axis_of(hemi: Hemisphere, x: f64, y: f64) -> [f64; 3] {
+pub(crate) fn axis_of(hemi: Hemisphere, x: f64, y: f64) -> DVec3 {
     let (tilt, az) = tilt_azimuth(x, y);
     direction(az, hemi.gamma_of_tilt(tilt))
 }
@@ -335,29 +338,27 @@ impl<'a> SpotSearch<'a> {
             Hemisphere::Down => -1.0,
             Hemisphere::Up => 1.0,
         };
-        let to_xy = |d: [f64; 3]| -> Option<(f64, f64)> {
-            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            if n.is_nan() || n <= 0.0 || d[2] * sign <= 0.0 {
+        let to_xy = |d: DVec3| -> Option<(f64, f64)> {
+            let n = d.length();
+            if n.is_nan() || n <= 0.0 || d.z * sign <= 0.0 {
                 return None;
             }
-            let tilt = (d[2] * sign / n).clamp(-1.0, 1.0).acos().to_degrees();
-            let az = d[1].atan2(d[0]);
+            let tilt = (d.z * sign / n).clamp(-1.0, 1.0).acos().to_degrees();
+            let az = d.y.atan2(d.x);
             Some((tilt * az.cos(), tilt * az.sin()))
         };
         let mut out = Vec::new();
-        let mut peak: Option<(f64, [f64; 3])> = None;
-        let mut mean = [0.0; 3];
+        let mut peak: Option<(f64, DVec3)> = None;
+        let mut mean = DVec3::ZERO;
         for k in 0..s.len() {
             let d = s.dir[k];
-            if d[2] * sign <= 0.0 {
+            if d.z * sign <= 0.0 {
                 continue;
             }
             if peak.map_or(true, |(m, _)| s.m[k] > m) {
                 peak = Some((s.m[k], d));
             }
-            for i in 0..3 {
-                mean[i] += s.omega[k] * s.m[k] * d[i];
-            }
+            mean += s.omega[k] * s.m[k] * d;
         }
         if let Some((_, d)) = peak {
             out.extend(to_xy(d));

@@ -55,8 +55,8 @@ impl GlLight {
                 cutoff_deg: s.cutoff_deg,
                 tilt_deg: Some(s.tilt_deg),
                 azimuth_deg: Some(s.azimuth_deg),
-                direction_luminaire: Some(s.axis()),
-                direction_gl: Some(s.axis_gl()),
+                direction_luminaire: Some(s.axis().to_array()),
+                direction_gl: Some(s.axis_gl().to_array()),
                 attenuation: [0.0, 0.0, 1.0],
             },
             Light::Point { weight_cd } => Self {
@@ -215,7 +215,7 @@ pub fn gl_fixed(model: &FittedLights) -> Vec<GlFixed> {
         .iter()
         .map(|l| {
             let (dir, p, c) = match l {
-                Light::Spot(s) => (s.axis_gl(), s.exponent, s.cutoff_deg),
+                Light::Spot(s) => (s.axis_gl().to_array(), s.exponent, s.cutoff_deg),
                 Light::Point { .. } => ([0.0, -1.0, 0.0], 0.0, 180.0),
             };
             GlFixed {

@@ -19,7 +19,7 @@
 
 use serde::Serialize;
 
-use crate::model::{periodic_widths, Distribution};
+use crate::model::{periodic_widths, Distribution, ANGLE_EPS};
 
 /// Directions (C, γ in degrees) with solid-angle weights (sr).
 #[derive(Debug, Clone, PartialEq)]
@@ -38,6 +38,14 @@ impl DirectionSet {
     /// measured γ range, periodic in C). A pole (γ = 0 or 180) is one
     /// direction whose cell is the polar cap, not one per plane.
     pub fn measured(d: &Distribution) -> Self {
+        Self::measured_where(d, "measured", |_, _| true)
+    }
+
+    /// The measured directions of `d` whose stored sample `(ic, ig)` passes
+    /// `keep`, with the weights of [`DirectionSet::measured`]; `label` names
+    /// the subset (e.g. `withheld`). A pole direction is kept when any
+    /// plane's sample there is.
+    pub fn measured_where(d: &Distribution, label: &str, keep: impl Fn(usize, usize) -> bool) -> Self {
         let planes = d.full_planes();
         let c: Vec<f64> = planes.iter().map(|p| p.0).collect();
         let wc = periodic_widths(&c);
@@ -49,19 +57,23 @@ impl DirectionSet {
             let lo = if i == 0 { g[0] } else { 0.5 * (g[i - 1] + g[i]) };
             let hi = if i + 1 == n { g[n - 1] } else { 0.5 * (g[i] + g[i + 1]) };
             let band = lo.to_radians().cos() - hi.to_radians().cos();
-            let pole = g[i] <= 1e-9 || g[i] >= 180.0 - 1e-9;
+            let pole = g[i] <= ANGLE_EPS || g[i] >= 180.0 - ANGLE_EPS;
             if pole {
-                directions.push((0.0, g[i]));
-                weights.push(2.0 * std::f64::consts::PI * band);
+                if (0..d.n_c()).any(|ic| keep(ic, i)) {
+                    directions.push((0.0, g[i]));
+                    weights.push(2.0 * std::f64::consts::PI * band);
+                }
                 continue;
             }
-            for (k, &cc) in c.iter().enumerate() {
-                directions.push((cc, g[i]));
-                weights.push(wc[k].to_radians() * band);
+            for (k, &(cc, ic)) in planes.iter().enumerate() {
+                if keep(ic, i) {
+                    directions.push((cc, g[i]));
+                    weights.push(wc[k].to_radians() * band);
+                }
             }
         }
         Self {
-            label: format!("measured {}x{}", c.len(), n),
+            label: format!("{label} {}x{}", c.len(), n),
             directions,
             weights,
         }

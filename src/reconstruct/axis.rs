@@ -62,6 +62,11 @@ pub(crate) struct Axis {
 }
 
 impl Axis {
+    /// Bytes held by the knot and storage tables.
+    pub fn bytes(&self) -> usize {
+        self.knots.len() * 8 + self.store.len() * 4
+    }
+
     /// Knot `k` (any integer for a periodic axis, −1..=n for a band) as (position, storage index).
     #[inline]
     fn knot(&self, k: isize) -> (f64, u32) {

@@ -21,7 +21,7 @@
 use serde::Serialize;
 
 use crate::error::ModelError;
-use crate::model::{Distribution, Symmetry};
+use crate::model::{Distribution, Symmetry, ANGLE_EPS};
 
 use super::filter::Filter;
 use super::texture::LightTexture;
@@ -62,8 +62,119 @@ pub struct HoldoutReport {
 
 /// Kept indices of an axis of `n` angles.
 fn kept(n: usize, step: usize, keep_last: bool) -> Vec<usize> {
+    kept_with_offset(n, step, 0, keep_last)
+}
+
+/// Kept indices of an axis of `n` angles: those `≡ offset (mod step)`, the
+/// first one, and the last one when `keep_last`.
+fn kept_with_offset(n: usize, step: usize, offset: usize, keep_last: bool) -> Vec<usize> {
     let step = step.max(1);
-    (0..n).filter(|&i| i % step == 0 || (keep_last && i + 1 == n)).collect()
+    (0..n)
+        .filter(|&i| i % step == offset % step || i == 0 || (keep_last && i + 1 == n))
+        .collect()
+}
+
+/// The distribution on the kept stored planes `kc` and γ rows `kg` of `dist`.
+fn thinned(dist: &Distribution, kc: &[usize], kg: &[usize]) -> Result<Distribution, ModelError> {
+    let (c, g) = (dist.c_angles(), dist.gamma_angles());
+    Distribution::new(
+        kc.iter().map(|&i| c[i]).collect(),
+        kg.iter().map(|&i| g[i]).collect(),
+        kc.iter()
+            .flat_map(|&ic| kg.iter().map(move |&ig| dist.value(ic, ig)))
+            .collect(),
+        dist.symmetry(),
+    )
+}
+
+/// One fold of a k-fold hold-out ([`kfold`]): the data that is kept, and the
+/// stored samples `(ic, ig)` of the original grid that are withheld from it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fold {
+    /// `C` when whole C-planes are withheld, `gamma` for whole γ rows.
+    pub axis: &'static str,
+    /// The kept data.
+    pub kept: Distribution,
+    /// Withheld samples, indices into the original stored grid.
+    pub withheld: Vec<(usize, usize)>,
+}
+
+/// k-fold hold-out folds of the measured grid (k ≥ 2). On each axis with at
+/// least 3 angles, fold `f` keeps every k-th plane (row) starting at index
+/// `f` and withholds the rest, so over the k folds of an axis every sample
+/// is withheld k − 1 times: with k = 2, exactly once per axis. The first
+/// plane and the first and last γ rows (poles, band ends) and, unless C is
+/// periodic (symmetry none), the last stored plane are always kept:
+/// withholding a band end would test extrapolation, which the
+/// reconstructions do not do (zero outside the band).
+///
+/// # Errors
+/// [`ModelError::Parameter`] for k < 2 or a grid with nothing to withhold.
+pub fn kfold(dist: &Distribution, k: usize) -> Result<Vec<Fold>, ModelError> {
+    if k < 2 {
+        return Err(ModelError::Parameter {
+            name: "folds",
+            value: k.to_string(),
+            reason: "a k-fold hold-out needs k >= 2".into(),
+        });
+    }
+    let periodic = dist.symmetry() == Symmetry::None;
+    let all_c: Vec<usize> = (0..dist.n_c()).collect();
+    let all_g: Vec<usize> = (0..dist.n_gamma()).collect();
+    let mut folds = Vec::new();
+    for axis in ["C", "gamma"] {
+        let n = if axis == "C" { dist.n_c() } else { dist.n_gamma() };
+        if n < 3 {
+            continue;
+        }
+        for f in 0..k {
+            let keep = kept_with_offset(n, k, f, axis == "gamma" || !periodic);
+            if keep.len() == n {
+                continue;
+            }
+            let (kc, kg) = if axis == "C" {
+                (keep.clone(), all_g.clone())
+            } else {
+                (all_c.clone(), keep.clone())
+            };
+            let dropped: Vec<usize> = (0..n).filter(|i| keep.binary_search(i).is_err()).collect();
+            // A pole is one direction shared by every plane: dropping planes does not withhold it.
+            let g = dist.gamma_angles();
+            let off_pole: Vec<usize> = all_g
+                .iter()
+                .copied()
+                .filter(|&ig| g[ig] > ANGLE_EPS && g[ig] < 180.0 - ANGLE_EPS)
+                .collect();
+            let withheld = if axis == "C" {
+                dropped
+                    .iter()
+                    .flat_map(|&ic| off_pole.iter().map(move |&ig| (ic, ig)))
+                    .collect()
+            } else {
+                all_c
+                    .iter()
+                    .flat_map(|&ic| dropped.iter().map(move |&ig| (ic, ig)))
+                    .collect()
+            };
+            folds.push(Fold {
+                axis,
+                kept: thinned(dist, &kc, &kg)?,
+                withheld,
+            });
+        }
+    }
+    if folds.is_empty() {
+        return Err(ModelError::Parameter {
+            name: "folds",
+            value: k.to_string(),
+            reason: format!(
+                "a {} x {} grid has nothing to withhold (an axis needs 3 or more angles)",
+                dist.n_c(),
+                dist.n_gamma()
+            ),
+        });
+    }
+    Ok(folds)
 }
 
 /// Flux (lm) of `cd` (C-major on the stored planes of `d`), by the one
@@ -101,14 +212,7 @@ pub fn holdout(dist: &Distribution, spec: HoldoutSpec, filters: &[Filter]) -> Re
     }
     let c = dist.c_angles();
     let g = dist.gamma_angles();
-    let thin = Distribution::new(
-        kc.iter().map(|&i| c[i]).collect(),
-        kg.iter().map(|&i| g[i]).collect(),
-        kc.iter()
-            .flat_map(|&ic| kg.iter().map(move |&ig| dist.value(ic, ig)))
-            .collect(),
-        dist.symmetry(),
-    )?;
+    let thin = thinned(dist, &kc, &kg)?;
     let tex = LightTexture::new(&thin)?;
     let is_kept_c: Vec<bool> = (0..dist.n_c()).map(|i| kc.binary_search(&i).is_ok()).collect();
     let is_kept_g: Vec<bool> = (0..dist.n_gamma()).map(|i| kg.binary_search(&i).is_ok()).collect();
@@ -184,5 +288,37 @@ mod tests {
         assert_eq!(kept(8, 4, true), vec![0, 4, 7]);
         assert_eq!(kept(8, 4, false), vec![0, 4]);
         assert_eq!(kept(5, 1, true), vec![0, 1, 2, 3, 4]);
+        assert_eq!(kept_with_offset(7, 2, 1, true), vec![0, 1, 3, 5, 6]);
+    }
+
+    #[test]
+    fn two_folds_withhold_every_inner_sample_once_per_axis() {
+        let c: Vec<f64> = (0..8).map(|k| k as f64 * 45.0).collect();
+        let g: Vec<f64> = (0..=6).map(|k| k as f64 * 30.0).collect();
+        let d = Distribution::new(c, g, vec![1.0; 56], Symmetry::None).unwrap();
+        let folds = kfold(&d, 2).unwrap();
+        assert_eq!(folds.len(), 4);
+        for axis in ["C", "gamma"] {
+            let mut count = vec![0; 56];
+            for f in folds.iter().filter(|f| f.axis == axis) {
+                for &(ic, ig) in &f.withheld {
+                    count[ic * 7 + ig] += 1;
+                }
+            }
+            for ic in 0..8 {
+                for ig in 0..7 {
+                    // Periodic C: every plane but the first, off the poles; γ: every row but the ends.
+                    let inner = if axis == "C" {
+                        ic != 0 && ig != 0 && ig != 6
+                    } else {
+                        ig != 0 && ig != 6
+                    };
+                    assert_eq!(count[ic * 7 + ig], usize::from(inner), "{axis} ({ic}, {ig})");
+                }
+            }
+        }
+        assert!(kfold(&d, 1).is_err());
+        let one = Distribution::new(vec![0.0], vec![0.0, 90.0], vec![1.0, 1.0], Symmetry::Rotational).unwrap();
+        assert!(kfold(&one, 2).is_err());
     }
 }

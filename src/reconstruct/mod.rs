@@ -24,14 +24,18 @@ mod axis;
 pub mod exr_io;
 mod filter;
 pub mod holdout;
+mod lookup;
 pub mod preview;
+pub mod recon;
 mod sampler;
 pub mod texture;
 
 pub use axis::AxisTaps;
 pub use filter::{combine, Filter, Real, FILTER_NAMES};
-pub use holdout::{holdout, HoldoutReport, HoldoutSpec};
-pub use sampler::{angles, direction, Sampler};
+pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
+pub use lookup::{Lookup, TextureField};
+pub use recon::{eval_all, Recon, Reconstructions, DEFAULT_RECONS};
+pub use sampler::Sampler;
 pub use texture::{
     render, render_planned, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping,
     DEFAULT_FACTOR, MAX_RENDER_TEXELS,

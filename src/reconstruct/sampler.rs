@@ -1,33 +1,17 @@
 //! Point lookups (f64 reference) of a [`LightTexture`] by angle or direction.
 //!
-//! # Frame
-//! The luminaire frame of [`crate::model`]: C0 = +x, C90 = +y, γ = 0 = −z:
-//! `d = (sin γ cos C, sin γ sin C, −cos γ)`, and back
-//! `γ = acos(−d_z)`, `C = atan2(d_y, d_x) mod 360` (degrees). At a pole C is
-//! whatever `atan2` gives (0 at the exact pole); the value there does not
-//! depend on it for interpolating filters (pole values are averaged).
+//! Directions are in the luminaire frame of [`crate::model::frame`]. At a
+//! pole C is 0; the value there does not depend on it for interpolating
+//! filters (pole values are averaged).
 
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::model::frame::angles;
+use crate::model::IntensityField;
+
 use super::filter::Filter;
 use super::texture::LightTexture;
-
-/// The unit direction of (C, γ) in degrees.
-pub fn direction(c_deg: f64, gamma_deg: f64) -> DVec3 {
-    let (sg, cg) = gamma_deg.to_radians().sin_cos();
-    let (sc, cc) = c_deg.to_radians().sin_cos();
-    DVec3::new(sg * cc, sg * sc, -cg)
-}
-
-/// (C, γ) in degrees of a direction (any length; it is normalised), C in
-/// [0, 360), γ in [0, 180]. `None` for a zero or non-finite vector.
-pub fn angles(d: DVec3) -> Option<(f64, f64)> {
-    let u = d.try_normalize()?;
-    let gamma = (-u.z).clamp(-1.0, 1.0).acos().to_degrees();
-    let c = crate::model::wrap360(u.y.atan2(u.x).to_degrees());
-    Some((c, gamma))
-}
 
 /// Samples one texture with one filter, in f64: the reference the f32 render
 /// and the GPU path are checked against.
@@ -107,5 +91,23 @@ impl<'t> Sampler<'t> {
                 usize::from(clamped)
             })
             .sum()
+    }
+}
+
+/// A filter on the measured data is an intensity field (the reference f64
+/// sampler, clamped at 0 unless [`Sampler::unclamped`]). Its bytes are the
+/// texture's: the normalised grid and its axis tables.
+impl IntensityField for Sampler<'_> {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        self.cd(c_deg, gamma_deg)
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        self.cd_dir(d)
+    }
+    fn name(&self) -> String {
+        self.filter.to_string()
+    }
+    fn bytes(&self) -> usize {
+        self.texture.bytes()
     }
 }

@@ -224,6 +224,16 @@ impl LightTexture {
         })
     }
 
+    /// Bytes held: the candela and normalised grids and both axis tables.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + self.cd.len() * 8
+            + self.norm.len() * 4
+            + (self.columns.len() + self.gamma.len()) * 8
+            + self.gamma_axis.bytes()
+            + self.c_axis.bytes()
+    }
+
     /// The largest intensity (cd) the normalised values are divided by.
     pub fn i_max_cd(&self) -> f64 {
         self.i_max_cd

@@ -90,7 +90,7 @@ fn row(r: &ReconResult) -> Vec<String> {
         format!("{}{}", r.name, if r.pareto { " *" } else { "" }),
         num(r.hausdorff_cd),
         num(r.hausdorff_bound_cd),
-        num(r.recon_to_ref.value),
+        r.recon_to_ref.map_or("-".into(), |h| num(h.value)),
         num(r.ref_to_recon.value),
         num(r.mean_surface_distance_cd),
         num(r.radial_bound_cd),

@@ -12,49 +12,10 @@
 //! The volume of a smooth solid converges as h² in the grid step (the
 //! polyhedron inscribed in the surface).
 
-use rayon::prelude::*;
-
 use super::mesh::{cross, p64, sub, Mesh, SolidInfo};
 use super::{stored_radius, Units};
 use crate::error::ModelError;
-use crate::model::{periodic_widths, Distribution, ANGLE_EPS};
-
-/// Any intensity distribution on the whole sphere: a filter on measured
-/// data, a rendered texture, a fitted model, an analytic function.
-///
-/// Implemented for every `Fn(c_deg, gamma_deg) -> cd` closure that is `Sync`.
-pub trait IntensityField: Sync {
-    /// Intensity (cd) in the direction (C, γ), degrees; C in [0, 360), γ in
-    /// [0, 180]. Zero where nothing is emitted; negative values are clamped
-    /// to 0 by the builders; NaN is an error.
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64;
-
-    /// Fill `out` (C-major, γ fastest: `out[ic * gamma.len() + ig]`) with the
-    /// intensity (cd) at every grid direction. The default evaluates
-    /// [`IntensityField::intensity_cd`] per point, C-planes in parallel; a
-    /// separable sampler may override it with a faster tensor evaluation.
-    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
-        let ng = gamma_deg.len();
-        out.par_chunks_mut(ng.max(1))
-            .zip(c_deg.par_iter())
-            .for_each(|(row, &c)| {
-                for (o, &g) in row.iter_mut().zip(gamma_deg) {
-                    *o = self.intensity_cd(c, g);
-                }
-            });
-    }
-
-    /// A short description for the solid's metadata (e.g. `catmull-rom x5`).
-    fn describe(&self) -> String {
-        "intensity field".into()
-    }
-}
-
-impl<F: Fn(f64, f64) -> f64 + Sync> IntensityField for F {
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        self(c_deg, gamma_deg)
-    }
-}
+use crate::model::{periodic_widths, Distribution, IntensityField, ANGLE_EPS};
 
 /// The C x γ angles (degrees) a reconstruction is sampled at.
 ///
@@ -303,7 +264,7 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
     let info = SolidInfo {
         kind: format!(
             "grid solid of {} ({} C x {} gamma angles, poles single vertices)",
-            field.describe(),
+            field.name(),
             nc,
             ng
         ),
@@ -344,43 +305,6 @@ mod tests {
         assert_eq!(g.gamma_angles(), &[0.0, 22.5, 45.0, 67.5, 90.0, 135.0, 180.0]);
         assert!(SolidGrid::new(vec![0.0, 180.0], vec![90.0]).is_err());
         assert!(SolidGrid::new(vec![0.0, 10.0, 20.0], vec![90.0]).is_err());
-    }
-}
-
-/// A filter on the measured data is an intensity field (the reference f64 sampler, clamped at 0).
-impl IntensityField for crate::reconstruct::Sampler<'_> {
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        self.cd(c_deg, gamma_deg)
-    }
-
-    fn describe(&self) -> String {
-        format!("filter {}", self.filter())
-    }
-}
-
-/// A rendered light distribution texture is an intensity field: bilinear
-/// between texel centres (row i at γ = (i + ½)·180/H, column j at
-/// C = (j + ½)·360/W), periodic in C, the first and last rows held towards
-/// the poles; texel values times I_max give cd.
-impl IntensityField for crate::reconstruct::Rendered {
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        let (h, w) = (self.mapping.height, self.mapping.width);
-        if h == 0 || w == 0 {
-            return 0.0;
-        }
-        let y = (gamma_deg / 180.0 * h as f64 - 0.5).clamp(0.0, (h - 1) as f64);
-        let x = (crate::model::wrap360(c_deg) / 360.0 * w as f64 - 0.5).rem_euclid(w as f64);
-        let (i0, j0) = (y.floor() as usize, x.floor() as usize % w);
-        let (i1, j1) = ((i0 + 1).min(h - 1), (j0 + 1) % w);
-        let (ty, tx) = (y - i0 as f64, x - x.floor());
-        let at = |i: usize, j: usize| self.data[i * w + j] as f64;
-        let top = at(i0, j0) * (1.0 - tx) + at(i0, j1) * tx;
-        let bottom = at(i1, j0) * (1.0 - tx) + at(i1, j1) * tx;
-        (top * (1.0 - ty) + bottom * ty) * self.i_max_cd
-    }
-
-    fn describe(&self) -> String {
-        format!("rendered texture ({} x{})", self.filter, self.factor)
     }
 }
 

@@ -2,7 +2,7 @@
 //!
 //! Two builders make one [`Mesh`] type:
 //! - [`grid_solid`]: any reconstruction (a filter on the measured data, a
-//!   rendered texture, a fitted model), given as an [`IntensityField`] and
+//!   rendered texture, a fitted model), given as an [`IntensityField`](crate::model::IntensityField) and
 //!   sampled on a C x γ [`SolidGrid`];
 //! - [`measured_solid`]: the measured directions of a [`Distribution`]
 //!   alone, no interpolation, triangulated by Delaunay triangulation
@@ -37,7 +37,7 @@
 //! # Example (what `photosolid mesh` does)
 //! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`
 //! is: load, pick the units, build ([`measured_solid`], or [`grid_solid`]
-//! with the filter's sampler as the [`IntensityField`] on
+//! with the filter's sampler as the [`IntensityField`](crate::model::IntensityField) on
 //! [`SolidGrid::refined`]`(d, factor)`), optionally [`Mesh::colorize`], then
 //! [`export::write`] (format from the extension).
 //! ```
@@ -65,11 +65,13 @@ pub mod export;
 pub mod grid;
 pub mod measured;
 pub mod mesh;
+pub mod radial;
 
 pub use colormap::ColorMap;
-pub use grid::{grid_solid, IntensityField, SolidGrid};
+pub use grid::{grid_solid, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};
 pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo};
+pub use radial::RadialMesh;
 
 use crate::error::ModelError;
 use crate::model::Distribution;

@@ -7,8 +7,11 @@
 //! their edges (sampled along the great arcs, plus one bucket of margin;
 //! triangles whose cone holds a pole take whole rows).
 
+use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::model::frame::{direction, unit_angles};
+use crate::model::IntensityField;
 use crate::solid::Mesh;
 
 const NC: usize = 180;
@@ -17,61 +20,30 @@ const NG: usize = 90;
 /// A ray-castable star-shaped mesh.
 #[derive(Debug, Clone)]
 pub struct RadialMesh {
-    tris: Vec<[[f64; 3]; 3]>,
+    tris: Vec<[DVec3; 3]>,
     buckets: Vec<Vec<u32>>,
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// (C, γ) degrees of a direction (luminaire frame: γ = 0 is −z).
-fn angles(d: [f64; 3]) -> (f64, f64) {
-    let n = norm(d);
-    let g = (-d[2] / n).clamp(-1.0, 1.0).acos().to_degrees();
-    let c = d[1].atan2(d[0]).to_degrees().rem_euclid(360.0);
-    (c, g)
-}
-
-/// The unit direction of (C, γ) in degrees.
-pub fn direction(c_deg: f64, gamma_deg: f64) -> [f64; 3] {
-    let (sg, cg) = gamma_deg.to_radians().sin_cos();
-    let (sc, cc) = c_deg.to_radians().sin_cos();
-    [sg * cc, sg * sc, -cg]
-}
-
 /// Distance along the ray `w` (unit) to triangle `t`, if the ray passes through it.
-fn hit(t: &[[f64; 3]; 3], w: [f64; 3]) -> Option<f64> {
+fn hit(t: &[DVec3; 3], w: DVec3) -> Option<f64> {
     let s = [
-        dot(w, cross(t[0], t[1])),
-        dot(w, cross(t[1], t[2])),
-        dot(w, cross(t[2], t[0])),
+        w.dot(t[0].cross(t[1])),
+        w.dot(t[1].cross(t[2])),
+        w.dot(t[2].cross(t[0])),
     ];
-    let scale = norm(t[0]) * norm(t[1]) + norm(t[1]) * norm(t[2]) + norm(t[2]) * norm(t[0]);
+    let (l0, l1, l2) = (t[0].length(), t[1].length(), t[2].length());
+    let scale = l0 * l1 + l1 * l2 + l2 * l0;
     let eps = 1e-9 * scale;
     let inside = (s[0] >= -eps && s[1] >= -eps && s[2] >= -eps) || (s[0] <= eps && s[1] <= eps && s[2] <= eps);
     if !inside {
         return None;
     }
-    let n = cross(
-        [t[1][0] - t[0][0], t[1][1] - t[0][1], t[1][2] - t[0][2]],
-        [t[2][0] - t[0][0], t[2][1] - t[0][1], t[2][2] - t[0][2]],
-    );
-    let den = dot(n, w);
-    if den.abs() <= 1e-12 * norm(n) {
+    let n = (t[1] - t[0]).cross(t[2] - t[0]);
+    let den = n.dot(w);
+    if den.abs() <= 1e-12 * n.length() {
         return None;
     }
-    let r = dot(n, t[0]) / den;
+    let r = n.dot(t[0]) / den;
     (r >= 0.0).then_some(r)
 }
 
@@ -80,11 +52,11 @@ impl RadialMesh {
     pub fn new(mesh: &Mesh) -> Self {
         let p = mesh.positions();
         let scale = mesh.max_radius().max(f64::MIN_POSITIVE);
-        let tris: Vec<[[f64; 3]; 3]> = mesh
+        let tris: Vec<[DVec3; 3]> = mesh
             .triangles()
             .iter()
-            .map(|t| t.map(|i| p[i as usize].map(f64::from)))
-            .filter(|v| v.iter().all(|x| norm(*x) > 1e-9 * scale))
+            .map(|t| t.map(|i| glam::Vec3::from_array(p[i as usize]).as_dvec3()))
+            .filter(|v| v.iter().all(|x| x.length() > 1e-9 * scale))
             .collect();
         let cells: Vec<Vec<usize>> = tris.par_iter().map(cells_of).collect();
         let mut buckets = vec![Vec::new(); NC * NG];
@@ -97,8 +69,8 @@ impl RadialMesh {
     }
 
     /// r(ω) for the unit direction `w`.
-    pub fn radius(&self, w: [f64; 3]) -> f64 {
-        let (c, g) = angles(w);
+    pub fn radius(&self, w: DVec3) -> f64 {
+        let (c, g) = unit_angles(w);
         let b = bucket(c, g);
         let best = self.buckets[b]
             .iter()
@@ -119,22 +91,17 @@ fn bucket(c: f64, g: f64) -> usize {
     ig * NC + ic
 }
 
-fn cells_of(t: &[[f64; 3]; 3]) -> Vec<usize> {
-    let pole = |z: f64| hit(t, [0.0, 0.0, z]).is_some();
+fn cells_of(t: &[DVec3; 3]) -> Vec<usize> {
+    let pole = |z: f64| hit(t, DVec3::new(0.0, 0.0, z)).is_some();
     // Angles of points along the three edges (great arcs through the cone).
     let mut pts = Vec::with_capacity(27);
     for i in 0..3 {
         let (a, b) = (t[i], t[(i + 1) % 3]);
-        let (ua, ub) = (a.map(|x| x / norm(a)), b.map(|x| x / norm(b)));
+        let (ua, ub) = (a.normalize(), b.normalize());
         for k in 0..9 {
-            let s = k as f64 / 9.0;
-            let v = [
-                ua[0] * (1.0 - s) + ub[0] * s,
-                ua[1] * (1.0 - s) + ub[1] * s,
-                ua[2] * (1.0 - s) + ub[2] * s,
-            ];
-            if norm(v) > 1e-12 {
-                pts.push(angles(v));
+            let v = ua.lerp(ub, k as f64 / 9.0);
+            if v.length() > 1e-12 {
+                pts.push(unit_angles(v.normalize()));
             }
         }
     }
@@ -182,4 +149,29 @@ fn cells_of(t: &[[f64; 3]; 3]) -> Vec<usize> {
         }
     }
     out
+}
+
+/// The measured solid's radial function is an intensity field: exact at the
+/// measured directions, linear on the Delaunay triangles between them.
+impl IntensityField for RadialMesh {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.radius_at(c_deg, gamma_deg)
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        d.try_normalize().map_or(0.0, |u| self.radius(u))
+    }
+    fn name(&self) -> String {
+        "measured".into()
+    }
+    fn bytes(&self) -> usize {
+        self.tris.len() * std::mem::size_of::<[DVec3; 3]>()
+            + self
+                .buckets
+                .iter()
+                .map(|b| b.len() * 4 + std::mem::size_of::<Vec<u32>>())
+                .sum::<usize>()
+    }
 }

@@ -1,0 +1,119 @@
+//! The seam of the pipeline: anything that answers an intensity in a direction.
+//!
+//! A filter on the measured grid, a rendered texture and its lookup, the
+//! fitted OpenGL lights, the measured solid's radial function, an analytic
+//! distribution and a scene's source are all [`IntensityField`]s. Solids,
+//! metrics, the trade table, scenes and engine emulations take a field, so a
+//! new reconstruction plugs in once: implement this trait.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::frame;
+
+/// An intensity distribution on the whole sphere, in candela.
+///
+/// Implemented by every reconstruction in the crate and by every
+/// `Fn(c_deg, gamma_deg) -> cd` closure that is `Sync` (named `function`,
+/// holding no bytes of its own).
+pub trait IntensityField: Sync {
+    /// Intensity (cd) in the direction (C, γ), degrees; C any real (periodic),
+    /// γ in [0, 180]. Zero where nothing is emitted; never NaN for finite
+    /// angles (non-finite angles give 0).
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64;
+
+    /// Intensity (cd) in direction `d` of the luminaire frame
+    /// ([`crate::model::frame`]); `d` need not be unit length. The zero and
+    /// non-finite vectors give 0. The default converts to angles; a field
+    /// that works on vectors (the fitted lights) overrides it.
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        frame::angles(d).map_or(0.0, |(c, g)| self.intensity_cd(c, g))
+    }
+
+    /// Fill `out` (C-major, γ fastest: `out[ic * gamma.len() + ig]`) with the
+    /// intensity (cd) at every grid direction. The default evaluates
+    /// [`IntensityField::intensity_cd`] per point, C-planes in parallel.
+    ///
+    /// # Panics
+    /// If `out.len() != c_deg.len() * gamma_deg.len()`.
+    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            c_deg.len() * gamma_deg.len(),
+            "one output per grid direction"
+        );
+        let ng = gamma_deg.len();
+        if ng == 0 {
+            return;
+        }
+        out.par_chunks_mut(ng).zip(c_deg.par_iter()).for_each(|(row, &c)| {
+            for (o, &g) in row.iter_mut().zip(gamma_deg) {
+                *o = self.intensity_cd(c, g);
+            }
+        });
+    }
+
+    /// A short name for reports and metadata (e.g. `catmull-rom`,
+    /// `texture catmull-rom x5 / bilinear`, `fitted-gl`, `truth cosine p=5`).
+    fn name(&self) -> String;
+
+    /// Bytes this representation holds to answer lookups (tables, texels,
+    /// light parameters), not counting what it borrows from its source data
+    /// when that data is needed anyway (documented per implementation).
+    fn bytes(&self) -> usize;
+}
+
+impl<F: Fn(f64, f64) -> f64 + Sync> IntensityField for F {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        self(c_deg, gamma_deg)
+    }
+    fn name(&self) -> String {
+        "function".into()
+    }
+    fn bytes(&self) -> usize {
+        std::mem::size_of_val(self)
+    }
+}
+
+/// A borrowed field as an owned value (for `Box<dyn IntensityField + 'a>`
+/// holding either an owned or a borrowed field). A blanket impl for `&T`
+/// would overlap the closure impl, hence this newtype.
+#[derive(Clone, Copy)]
+pub struct Borrowed<'a>(pub &'a dyn IntensityField);
+
+impl IntensityField for Borrowed<'_> {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        self.0.intensity_cd(c_deg, gamma_deg)
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        self.0.intensity_dir_cd(d)
+    }
+    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
+        self.0.sample_grid(c_deg, gamma_deg, out)
+    }
+    fn name(&self) -> String {
+        self.0.name()
+    }
+    fn bytes(&self) -> usize {
+        self.0.bytes()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn closures_are_fields() {
+        let f = |_c: f64, g: f64| frame::cos_deg(g).max(0.0) * 10.0;
+        assert_eq!(f.intensity_cd(0.0, 0.0), 10.0);
+        assert_eq!(f.intensity_dir_cd(DVec3::new(0.0, 0.0, -5.0)), 10.0);
+        assert_eq!(f.intensity_dir_cd(DVec3::ZERO), 0.0);
+        let mut out = vec![0.0; 6];
+        f.sample_grid(&[0.0, 90.0], &[0.0, 90.0, 180.0], &mut out);
+        assert_eq!(out, vec![10.0, 0.0, 0.0, 10.0, 0.0, 0.0]);
+        let boxed: Box<dyn IntensityField> = Box::new(f);
+        assert_eq!(boxed.intensity_cd(0.0, 0.0), 10.0);
+        assert_eq!(boxed.name(), "function");
+    }
+}
