@@ -3,8 +3,10 @@
 //! Builds the synthetic asymmetric road luminaire, writes it as EULUMDAT and
 //! IES into the output directory, reads both back and prints their `info`
 //! side by side; then renders a texture with every filter (sizes printed),
-//! runs the 2/2 hold-out, fits the OpenGL lights, and writes the comparison
-//! report (`index.html`, `report.md`, `report.json`, PNGs) into the output directory.
+//! runs the 2/2 hold-out, fits the OpenGL lights, measures every
+//! reconstruction against the luminaire's closed form (the truth) and writes
+//! the comparison report (`index.html`, `report.md`, `report.json`, PNGs)
+//! into the output directory.
 
 use std::path::PathBuf;
 
@@ -13,7 +15,7 @@ use photosolid::compare::{compare, CompareOptions};
 use photosolid::fit::{fit, FitOptions, FitReport};
 use photosolid::reconstruct::{holdout, render, Filter, HoldoutSpec, LightTexture};
 use photosolid::report::{compare_report, InfoReport};
-use photosolid::synth::{GridSpec, Synth};
+use photosolid::synth::{GridSpec, Synth, Truth};
 
 #[derive(Args, Debug)]
 pub struct DemoArgs {
@@ -61,8 +63,15 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     println!("== fitted OpenGL lights ==");
     print!("{}", FitReport::of(&fit(d, &FitOptions::default())?).to_text());
 
-    println!("\n== comparison with the measured solid ==");
+    // The built-in luminaire is analytic: every reconstruction, the measured
+    // solid included, is measured against its closed form.
+    let truth = Truth::of_luminaire(&lum);
+    println!(
+        "\n== every reconstruction against the truth ({}) ==",
+        truth.map_or("none".into(), |t| t.to_string())
+    );
     let opts = CompareOptions {
+        truth,
         plots: true,
         ..Default::default()
     };

@@ -157,6 +157,17 @@ fn render_on(
     Ok((photosolid::reconstruct::render_with(tex, &options)?, "cpu".to_string()))
 }
 
+/// A progress bar on stderr for work that may take over a second (hidden
+/// when stderr is not a terminal).
+fn progress_bar(what: &str) -> indicatif::ProgressBar {
+    let b = indicatif::ProgressBar::new(0);
+    b.set_style(
+        indicatif::ProgressStyle::with_template(&format!("{{bar:40}} {{pos}}/{{len}} {what} {{elapsed}} {{msg}}"))
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    b
+}
+
 /// The hold-out reports as a text table.
 fn holdout_table(reports: &[photosolid::reconstruct::HoldoutReport]) -> String {
     use std::fmt::Write;

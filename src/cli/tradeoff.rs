@@ -1,17 +1,18 @@
-//! `photosolid tradeoff FILE [--json]`: the speed/accuracy trade of each filter.
-//!
-//! For each filter and a few factors: the time per output sample of a CPU
-//! render (measured in-process, median of repeats, both cores) and the
-//! filter's hold-out error (keep every 2nd C-plane and γ row). A row is
-//! Pareto-optimal when no other row is both faster and more accurate.
+//! `photosolid tradeoff FILE [--reference truth|withheld|FILE] [--json] [--report DIR]`:
+//! every representation a renderer could hold (filters on the native grid,
+//! rendered textures at several factors with each lookup, f16 and
+//! symmetry-reduced storage, the fitted lights, the measured solid), its
+//! bytes and time per lookup, and its error against the reference
+//! (`photosolid::compare::trade`). JSON keys: `photosolid::compare::trade::TradeTable`.
 
 use std::io::Write;
 use std::path::PathBuf;
-use std::time::Instant;
 
 use clap::Args;
-use photosolid::reconstruct::{holdout, render, Filter, HoldoutSpec, LightTexture};
-use serde::Serialize;
+use photosolid::compare::trade::{trade_table, TradeOptions, TradeTable};
+use photosolid::compare::{Against, CompareOptions, Directions};
+use photosolid::report::compare_report;
+use photosolid::synth::Truth;
 
 use super::ReadArgs;
 
@@ -19,116 +20,117 @@ use super::ReadArgs;
 pub struct TradeoffArgs {
     /// An .ies or .ldt file.
     file: PathBuf,
-    /// Factors to time (comma separated).
-    #[arg(long, value_delimiter = ',', default_value = "1,5,10")]
+    /// What errors are measured against: truth (the closed form a synth file
+    /// records), withheld (k-fold hold-out of FILE's measurements), or a
+    /// denser measurement FILE. Default: truth when FILE records it, else withheld.
+    #[arg(long)]
+    reference: Option<String>,
+    /// Texture render factors (comma separated).
+    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10")]
     factors: Vec<u32>,
-    /// Timing repeats per row (the median is reported).
-    #[arg(long, default_value_t = 7)]
+    /// Grid refinement of the solids the Hausdorff distance is measured on.
+    #[arg(long, default_value_t = 2)]
+    factor: usize,
+    /// Timing repeats per representation (the median is reported).
+    #[arg(long, default_value_t = 5)]
     repeats: usize,
     /// Print JSON.
     #[arg(long)]
     json: bool,
+    /// Write index.html, report.md, report.json and the plots into DIR.
+    #[arg(long)]
+    report: Option<PathBuf>,
     #[command(flatten)]
     read: ReadArgs,
 }
 
-/// One row of the trade-off table.
-#[derive(Debug, Clone, Serialize)]
-pub struct Row {
-    filter: Filter,
-    factor: u32,
-    samples: usize,
-    time_per_sample_ns: f64,
-    samples_per_second: f64,
-    holdout_rms_pct: f64,
-    holdout_max_pct: f64,
-    pareto: bool,
-}
-
 pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
+    if a.factors.is_empty() || a.factors.iter().any(|k| !(1..=32).contains(k)) {
+        anyhow::bail!("--factors: every factor must be an integer from 1 to 32");
+    }
+    if a.factor == 0 || a.repeats == 0 {
+        anyhow::bail!("--factor and --repeats must be at least 1");
+    }
     let lum = super::load(&a.file, &a.read)?;
-    let tex = LightTexture::new(&lum.distribution)?;
-    let filters = Filter::ALL;
-    let spec = HoldoutSpec {
-        c_step: 2,
-        gamma_step: 2,
+    let (against, other) = match a.reference.as_deref() {
+        None => (None, None),
+        Some("truth") => (Some(Against::Truth), None),
+        Some("withheld") => (Some(Against::Withheld), None),
+        Some(path) => (None, Some(super::load(&PathBuf::from(path), &a.read)?)),
     };
-    // Hold-out needs something to drop on each axis; fall back to γ only for single-plane data.
-    let errors = holdout(&lum.distribution, spec, &filters).or_else(|_| {
-        holdout(
-            &lum.distribution,
-            HoldoutSpec {
-                c_step: 1,
-                gamma_step: 2,
-            },
-            &filters,
-        )
-    })?;
-    let mut rows = Vec::new();
-    for (k, &f) in filters.iter().enumerate() {
-        for &factor in &a.factors {
-            let mut times = Vec::with_capacity(a.repeats.max(1));
-            let mut samples = 0;
-            for _ in 0..a.repeats.max(1) {
-                let t0 = Instant::now();
-                let r = render(&tex, f, factor)?;
-                times.push(t0.elapsed().as_secs_f64());
-                samples = r.data.len();
-            }
-            times.sort_by(f64::total_cmp);
-            let median = times[times.len() / 2];
-            rows.push(Row {
-                filter: f,
-                factor,
-                samples,
-                time_per_sample_ns: 1e9 * median / samples.max(1) as f64,
-                samples_per_second: samples as f64 / median.max(1e-12),
-                holdout_rms_pct: errors[k].rms_percent,
-                holdout_max_pct: errors[k].max_percent,
-                pareto: false,
-            });
-        }
-    }
-    let dominated = |r: &Row| {
-        rows.iter().any(|o| {
-            o.time_per_sample_ns <= r.time_per_sample_ns
-                && o.holdout_rms_pct <= r.holdout_rms_pct
-                && (o.time_per_sample_ns < r.time_per_sample_ns || o.holdout_rms_pct < r.holdout_rms_pct)
-        })
+    let opts = TradeOptions {
+        factors: a.factors.clone(),
+        compare: CompareOptions {
+            against,
+            truth: Truth::of_luminaire(&lum),
+            factor: a.factor,
+            timing_repeats: a.repeats,
+            directions: Directions::default(),
+            plots: a.report.is_some(),
+            ..CompareOptions::default()
+        },
     };
-    let flags: Vec<bool> = rows.iter().map(|r| !dominated(r)).collect();
-    for (r, p) in rows.iter_mut().zip(flags) {
-        r.pareto = p;
-    }
+    let bar = super::progress_bar("representations");
+    let progress = |done: usize, total: usize, what: &str| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+        bar.set_message(what.to_string());
+    };
+    let mut t = trade_table(
+        &lum.distribution,
+        other.as_ref().map(|o| &o.distribution),
+        &opts,
+        &progress,
+    )?;
+    bar.finish_and_clear();
+    t.file = a.file.display().to_string();
+    t.comparison.file = t.file.clone();
+    t.comparison.vs = a.reference.clone().filter(|r| r != "truth" && r != "withheld");
     let mut out = std::io::stdout().lock();
     if a.json {
-        serde_json::to_writer_pretty(&mut out, &rows)?;
+        serde_json::to_writer_pretty(&mut out, &t)?;
         writeln!(out)?;
-        return Ok(0);
+    } else {
+        write!(out, "{}", to_text(&t))?;
     }
-    writeln!(
-        out,
-        "{}: CPU render time vs hold-out error (keep every 2nd plane/row)",
-        a.file.display()
-    )?;
-    writeln!(
-        out,
-        "{:<16} {:>6} {:>10} {:>10} {:>10} {:>9} {:>9}  pareto",
-        "filter", "factor", "samples", "ns/sample", "Msamples/s", "rms %", "max %"
-    )?;
-    for r in &rows {
-        writeln!(
-            out,
-            "{:<16} {:>6} {:>10} {:>10.2} {:>10.1} {:>9.3} {:>9.3}  {}",
-            r.filter.to_string(),
-            r.factor,
-            r.samples,
-            r.time_per_sample_ns,
-            r.samples_per_second / 1e6,
-            r.holdout_rms_pct,
-            r.holdout_max_pct,
-            if r.pareto { "*" } else { "" }
-        )?;
+    if let Some(dir) = &a.report {
+        compare_report::write_report(&t.comparison, dir)?;
+        eprintln!("report written to {}", dir.join("index.html").display());
     }
     Ok(0)
+}
+
+/// The table as text: one row per representation, Pareto rows starred.
+fn to_text(t: &TradeTable) -> String {
+    use std::fmt::Write;
+    let mut s = format!(
+        "{}\nreference: {}\ndirections: {}\n{:<36} {:>10} {:>9} {:>10} {:>9} {:>9} {:>9} {:>9}  pareto\n",
+        t.file,
+        t.reference,
+        t.directions,
+        "representation",
+        "bytes",
+        "ns/sample",
+        "H %",
+        "+bound %",
+        "max %",
+        "rms %",
+        "flux %"
+    );
+    for r in &t.rows {
+        let _ = writeln!(
+            s,
+            "{:<36} {:>10} {:>9.1} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>+9.4}  {}",
+            r.representation,
+            r.bytes,
+            r.ns_per_sample,
+            r.hausdorff_pct,
+            r.hausdorff_bound_pct,
+            r.radial_max_pct,
+            r.radial_rms_pct,
+            r.flux_error_pct,
+            if r.pareto { "*" } else { "" }
+        );
+    }
+    s
 }

@@ -33,6 +33,7 @@
 
 pub mod align;
 mod plot_data;
+pub mod trade;
 mod withheld;
 
 use std::str::FromStr;
@@ -384,6 +385,19 @@ pub fn compare(
     vs: Option<&Distribution>,
     opts: &CompareOptions,
 ) -> Result<Comparison, ModelError> {
+    compare_with_progress(file, vs, opts, &|_, _, _| {})
+}
+
+/// A progress report: `(done, total, what is being measured now)`.
+pub type Progress<'a> = dyn Fn(usize, usize, &str) + Sync + 'a;
+
+/// [`compare`], calling `progress` before each reconstruction is measured.
+pub fn compare_with_progress(
+    file: &Distribution,
+    vs: Option<&Distribution>,
+    opts: &CompareOptions,
+    progress: &Progress<'_>,
+) -> Result<Comparison, ModelError> {
     let k = opts.normalize.factor(file)?;
     let mut a = file.scaled(k)?;
     let b_dist = match vs {
@@ -404,7 +418,7 @@ pub fn compare(
         (None, None) => Against::Withheld,
     });
     let mut comparison = match (against, &b_dist) {
-        (Against::Withheld, None) => withheld::compare_withheld(&a, opts)?,
+        (Against::Withheld, None) => withheld::compare_withheld(&a, opts, progress)?,
         (Against::Withheld, Some(_)) => {
             return Err(ModelError::Parameter {
                 name: "against",
@@ -439,7 +453,7 @@ pub fn compare(
                 solid: grid_solid(&truth, &SolidGrid::refined(&a, opts.factor)?, Units::Candela)?,
                 file_dist: None,
             };
-            compare_fields(&a, &reference, opts)?
+            compare_fields(&a, &reference, opts, progress)?
         }
         (Against::Recon(r), other) => {
             let ref_dist = other.as_ref().unwrap_or(&a);
@@ -465,7 +479,7 @@ pub fn compare(
                 solid: refs.solid(r, opts.factor)?,
                 file_dist: other.as_ref().map(|_| &a),
             };
-            compare_fields(&a, &reference, &CompareOptions { recons, ..opts.clone() })?
+            compare_fields(&a, &reference, &CompareOptions { recons, ..opts.clone() }, progress)?
         }
     };
     comparison.alignment = alignment;
@@ -489,6 +503,7 @@ fn compare_fields(
     a: &Distribution,
     reference: &FieldReference<'_>,
     opts: &CompareOptions,
+    progress: &Progress<'_>,
 ) -> Result<Comparison, ModelError> {
     let recs = Reconstructions::new(a.clone(), &opts.recons)?;
     let ref_rm = RadialMesh::new(&reference.solid);
@@ -502,9 +517,10 @@ fn compare_fields(
     let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
     let mut results = Vec::with_capacity(opts.recons.len());
     let mut fields = Vec::with_capacity(opts.recons.len());
-    for &r in &opts.recons {
+    for (i, &r) in opts.recons.iter().enumerate() {
+        progress(i, opts.recons.len(), &r.to_string());
         let field = recs.field(r)?;
-        let solid = recs.solid(r, opts.factor)?;
+        let solid = grid_or_own_solid(&recs, r, &*field, a, opts.factor)?;
         let h = solid_hausdorff(&solid, &reference.solid, tol);
         let av = eval_all(&*field, &set.directions);
         let rad = radial_errors(&set, &m, &av, i_max, opts.zotti_c);
@@ -535,6 +551,7 @@ fn compare_fields(
         });
         fields.push((r.to_string(), field));
     }
+    progress(opts.recons.len(), opts.recons.len(), "done");
     mark_pareto(&mut results);
     let plots = opts.plots.then(|| {
         let named: Vec<(String, &dyn IntensityField)> = fields.iter().map(|(n, f)| (n.clone(), &**f)).collect();
@@ -565,6 +582,21 @@ fn compare_fields(
         results,
         plots,
     })
+}
+
+/// The solid of reconstruction `r` of `a`: the measured solid itself, else
+/// the grid solid of `field` (already built, so a texture is not rendered twice).
+pub(crate) fn grid_or_own_solid(
+    recs: &Reconstructions,
+    r: Recon,
+    field: &dyn IntensityField,
+    a: &Distribution,
+    factor: usize,
+) -> Result<Mesh, ModelError> {
+    match r {
+        Recon::Measured => recs.solid(r, factor),
+        _ => grid_solid(field, &SolidGrid::refined(a, factor)?, Units::Candela),
+    }
 }
 
 /// max over `dirs` of |r_a − r_b|.

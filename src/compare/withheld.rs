@@ -8,7 +8,7 @@
 //! Hausdorff figure is one-sided and exact: the largest distance from a
 //! withheld measured point `I·d` to the solid rebuilt without it.
 
-use super::{mark_pareto, CompareOptions, Comparison, ReconResult};
+use super::{grid_or_own_solid, mark_pareto, CompareOptions, Comparison, Progress, ReconResult};
 use crate::error::ModelError;
 use crate::metrics::hausdorff::distances;
 use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, OneSided};
@@ -17,7 +17,11 @@ use crate::model::{Distribution, IntensityField};
 use crate::reconstruct::{eval_all, kfold, Reconstructions};
 
 /// Every reconstruction of `a` against its own withheld measurements.
-pub(super) fn compare_withheld(a: &Distribution, opts: &CompareOptions) -> Result<Comparison, ModelError> {
+pub(super) fn compare_withheld(
+    a: &Distribution,
+    opts: &CompareOptions,
+    progress: &Progress<'_>,
+) -> Result<Comparison, ModelError> {
     let folds = kfold(a, opts.folds)?;
     let i_max = a.max_cd();
     if i_max.is_nan() || i_max <= 0.0 {
@@ -59,7 +63,8 @@ pub(super) fn compare_withheld(a: &Distribution, opts: &CompareOptions) -> Resul
     let full = Reconstructions::new(a.clone(), &opts.recons)?;
     let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
     let mut results = Vec::with_capacity(opts.recons.len());
-    for &r in &opts.recons {
+    for (i, &r) in opts.recons.iter().enumerate() {
+        progress(i, opts.recons.len(), &r.to_string());
         let mut recon_all = Vec::with_capacity(m_all.len());
         let mut dist_all = Vec::with_capacity(m_all.len());
         let mut triangles = 0;
@@ -86,7 +91,7 @@ pub(super) fn compare_withheld(a: &Distribution, opts: &CompareOptions) -> Resul
                 Some(recs) => {
                     let field = recs.field(r)?;
                     recon_all.extend(eval_all(&*field, &set.directions));
-                    match recs.solid(r, opts.factor) {
+                    match grid_or_own_solid(recs, r, &*field, &fold.kept, opts.factor) {
                         Ok(solid) => {
                             triangles = triangles.max(solid.n_triangles());
                             let pos: Vec<[f64; 3]> = solid.positions().iter().map(|p| p.map(f64::from)).collect();
@@ -136,6 +141,7 @@ pub(super) fn compare_withheld(a: &Distribution, opts: &CompareOptions) -> Resul
             pareto: false,
         });
     }
+    progress(opts.recons.len(), opts.recons.len(), "done");
     mark_pareto(&mut results);
     let plots = opts.plots.then(|| {
         let fields: Vec<(String, Box<dyn IntensityField + '_>)> = opts

@@ -16,7 +16,7 @@ use serde::Serialize;
 use super::filter::Filter;
 use super::texture::Rendered;
 use crate::error::ModelError;
-use crate::model::{wrap360, IntensityField};
+use crate::model::{wrap360, IntensityField, Symmetry};
 
 /// How a stored texture is read back.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -63,27 +63,165 @@ impl FromStr for Lookup {
     }
 }
 
-impl Rendered {
-    /// The stored value (dimensionless, I / I_max) at texel (row, column),
-    /// rows clamped, columns periodic.
-    #[inline]
-    fn texel(&self, i: isize, j: isize) -> f64 {
-        let (h, w) = (self.mapping.height as isize, self.mapping.width as isize);
-        let i = i.clamp(0, h - 1) as usize;
-        let j = j.rem_euclid(w) as usize;
-        self.data[i * w as usize + j] as f64
+/// How a rendered texture is stored for the renderer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Precision {
+    /// 32-bit floats (`R32F`).
+    F32,
+    /// 16-bit floats (`R16F`): values rounded to the nearest f16 (10-bit
+    /// mantissa; I/I_max under 6.1e-5 become subnormal, under 3e-8 zero).
+    F16,
+}
+
+/// A rendered texture as a renderer stores it: all of it or only the C
+/// sector its symmetry needs, in f32 or f16, with the lookup it is read with.
+///
+/// A symmetry-reduced texture keeps the columns of the full render whose
+/// centres lie in [`Symmetry::stored_range`]; a query's C is folded into
+/// that range ([`Symmetry::fold`]) and the taps beyond the sector's edges
+/// are mirrored back into it (exact when the edges lie on texel boundaries,
+/// as they do for renders of symmetric data). Rotational data keeps one column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StoredTexture {
+    /// The stored texels (already rounded to `precision`), row-major, `columns` wide.
+    data: Vec<f32>,
+    height: usize,
+    /// Columns of the full render (the C step is 360 / `full_width`).
+    full_width: usize,
+    /// First stored column of the full render, and how many are stored.
+    first_column: usize,
+    columns: usize,
+    /// `Some` when only the symmetry's sector is stored.
+    reduced: Option<Symmetry>,
+    precision: Precision,
+    lookup: Lookup,
+    i_max_cd: f64,
+    /// What the texture was rendered with, for its name.
+    filter: Filter,
+    factor: u32,
+}
+
+impl StoredTexture {
+    /// Store `rendered` (reduced to `symmetry`'s sector when given) in
+    /// `precision`, to be read with `lookup`.
+    pub fn new(rendered: &Rendered, reduced: Option<Symmetry>, precision: Precision, lookup: Lookup) -> Self {
+        let (h, w) = (rendered.mapping.height, rendered.mapping.width);
+        let (first_column, columns) = match reduced {
+            Some(Symmetry::Rotational) => (0, 1.min(w)),
+            Some(sym) if sym != Symmetry::None && w > 0 => {
+                let (lo, hi) = sym.stored_range();
+                let cols: Vec<usize> = (0..w)
+                    .filter(|&j| {
+                        let c = rendered.mapping.c_of_column(j);
+                        c >= lo && c <= hi
+                    })
+                    .collect();
+                match (cols.first(), cols.last()) {
+                    (Some(&a), Some(&b)) => (a, b - a + 1),
+                    _ => (0, w),
+                }
+            }
+            _ => (0, w),
+        };
+        let reduced = reduced.filter(|&s| s != Symmetry::None && columns < w);
+        let round = |v: f32| match precision {
+            Precision::F32 => v,
+            Precision::F16 => half::f16::from_f32(v).to_f32(),
+        };
+        let mut data = Vec::with_capacity(h * columns);
+        for i in 0..h {
+            let row = &rendered.data[i * w..][..w];
+            data.extend(row[first_column..first_column + columns].iter().map(|&v| round(v)));
+        }
+        Self {
+            data,
+            height: h,
+            full_width: w,
+            first_column,
+            columns,
+            reduced,
+            precision,
+            lookup,
+            i_max_cd: rendered.i_max_cd,
+            filter: rendered.filter,
+            factor: rendered.factor,
+        }
     }
 
-    /// Intensity (cd) at (C, γ) degrees read with `lookup`; 0 for an empty
-    /// texture or non-finite angles.
-    pub fn lookup_cd(&self, lookup: Lookup, c_deg: f64, gamma_deg: f64) -> f64 {
-        let (h, w) = (self.mapping.height, self.mapping.width);
-        if h == 0 || w == 0 || !(c_deg.is_finite() && gamma_deg.is_finite()) {
+    /// Bytes of the stored texels (4 per texel in f32, 2 in f16).
+    pub fn texel_bytes(&self) -> usize {
+        self.data.len()
+            * match self.precision {
+                Precision::F32 => 4,
+                Precision::F16 => 2,
+            }
+    }
+
+    fn view(&self) -> TexelView<'_> {
+        TexelView {
+            data: &self.data,
+            height: self.height,
+            full_width: self.full_width,
+            first_column: self.first_column,
+            columns: self.columns,
+            reduced: self.reduced,
+        }
+    }
+
+    /// Intensity (cd, ≥ 0) at (C, γ) degrees; 0 for an empty texture or non-finite angles.
+    pub fn cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        (self.view().sample(self.lookup, c_deg, gamma_deg) * self.i_max_cd).max(0.0)
+    }
+}
+
+/// Texels of a render, whole or a sector, borrowed for a lookup.
+#[derive(Debug, Clone, Copy)]
+struct TexelView<'a> {
+    data: &'a [f32],
+    height: usize,
+    full_width: usize,
+    first_column: usize,
+    columns: usize,
+    reduced: Option<Symmetry>,
+}
+
+impl TexelView<'_> {
+    /// The stored value (I / I_max) at row `i` and full-render column `j`:
+    /// rows clamped, columns periodic (whole) or clamped to the sector (reduced).
+    #[inline]
+    fn texel(&self, i: isize, j: isize) -> f64 {
+        let i = i.clamp(0, self.height as isize - 1) as usize;
+        let j = match self.reduced {
+            None => j.rem_euclid(self.full_width as isize) as usize,
+            Some(_) => {
+                // Mirror about the sector's edges (they lie on texel boundaries), then clamp.
+                let n = self.columns as isize;
+                let mut k = j - self.first_column as isize;
+                if k < 0 {
+                    k = -1 - k;
+                } else if k >= n {
+                    k = 2 * n - 1 - k;
+                }
+                k.clamp(0, n - 1) as usize
+            }
+        };
+        self.data[i * self.columns + j] as f64
+    }
+
+    /// The value (I / I_max, unclamped) at (C, γ) degrees read with `lookup`.
+    fn sample(&self, lookup: Lookup, c_deg: f64, gamma_deg: f64) -> f64 {
+        let (h, w) = (self.height, self.full_width);
+        if h == 0 || w == 0 || self.columns == 0 || !(c_deg.is_finite() && gamma_deg.is_finite()) {
             return 0.0;
         }
+        let c = match self.reduced {
+            Some(sym) => sym.fold(c_deg),
+            None => wrap360(c_deg),
+        };
         let y = gamma_deg.clamp(0.0, 180.0) / 180.0 * h as f64 - 0.5;
-        let x = wrap360(c_deg) / 360.0 * w as f64 - 0.5;
-        let v = match lookup {
+        let x = c / 360.0 * w as f64 - 0.5;
+        match lookup {
             Lookup::Nearest => self.texel((y + 0.5).floor() as isize, (x + 0.5).floor() as isize),
             Lookup::Bilinear => {
                 let (i0, j0) = (y.floor(), x.floor());
@@ -107,13 +245,7 @@ impl Rendered {
                 }
                 acc
             }
-        };
-        (v * self.i_max_cd).max(0.0)
-    }
-
-    /// Bytes of the stored texels (f32).
-    pub fn texel_bytes(&self) -> usize {
-        self.data.len() * std::mem::size_of::<f32>()
+        }
     }
 }
 
@@ -125,47 +257,60 @@ fn uniform_catmull_rom(s: f64) -> [f64; 4] {
         .unwrap_or([0.0, 1.0 - s, s, 0.0])
 }
 
-/// A rendered texture is an intensity field read bilinearly (the default
-/// hardware lookup); [`TextureField`] chooses another lookup.
-impl IntensityField for Rendered {
+impl IntensityField for StoredTexture {
     fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        self.lookup_cd(Lookup::Bilinear, c_deg, gamma_deg)
+        self.cd(c_deg, gamma_deg)
     }
     fn name(&self) -> String {
-        format!("texture {} x{} / bilinear", self.filter, self.factor)
+        let mut n = format!("{}@x{}/{}", self.filter, self.factor, self.lookup);
+        if self.precision == Precision::F16 {
+            n.push_str("+f16");
+        }
+        if self.reduced.is_some() {
+            n.push_str("+reduced");
+        }
+        n
     }
     fn bytes(&self) -> usize {
         self.texel_bytes()
     }
 }
 
-/// A stored texture with the lookup a renderer reads it with.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TextureField {
-    /// The stored texels.
-    pub rendered: Rendered,
-    /// How they are read.
-    pub lookup: Lookup,
+impl Rendered {
+    /// Intensity (cd) at (C, γ) degrees read from the whole f32 texture with
+    /// `lookup`; 0 for an empty texture or non-finite angles.
+    pub fn lookup_cd(&self, lookup: Lookup, c_deg: f64, gamma_deg: f64) -> f64 {
+        let view = TexelView {
+            data: &self.data,
+            height: self.mapping.height,
+            full_width: self.mapping.width,
+            first_column: 0,
+            columns: self.mapping.width,
+            reduced: None,
+        };
+        (view.sample(lookup, c_deg, gamma_deg) * self.i_max_cd).max(0.0)
+    }
 }
 
-impl IntensityField for TextureField {
+/// A rendered texture is an intensity field read bilinearly from all of its
+/// f32 texels (the default hardware lookup); [`StoredTexture`] stores and
+/// reads it otherwise.
+impl IntensityField for Rendered {
     fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        self.rendered.lookup_cd(self.lookup, c_deg, gamma_deg)
+        self.lookup_cd(Lookup::Bilinear, c_deg, gamma_deg)
     }
     fn name(&self) -> String {
-        format!(
-            "texture {} x{} / {}",
-            self.rendered.filter, self.rendered.factor, self.lookup
-        )
+        format!("{}@x{}/bilinear", self.filter, self.factor)
     }
     fn bytes(&self) -> usize {
-        self.rendered.texel_bytes()
+        self.data.len() * std::mem::size_of::<f32>()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::Symmetry;
     use crate::reconstruct::{render, LightTexture};
     use crate::synth::{GridSpec, Synth};
 
@@ -191,7 +336,46 @@ mod tests {
             }
         }
         assert_eq!(r.lookup_cd(Lookup::Bilinear, f64::NAN, 3.0), 0.0);
+        let s = StoredTexture::new(&r, None, Precision::F32, Lookup::CatmullRom);
+        assert_eq!(s.bytes(), 4 * h * w);
+        assert_eq!(s.name(), "catmull-rom@x2/catmull-rom");
         assert_eq!("catmull-rom".parse::<Lookup>().unwrap(), Lookup::CatmullRom);
         assert!("cubic".parse::<Lookup>().is_err());
+    }
+
+    /// Storing only the symmetry's sector changes no value (beyond f32
+    /// rounding), only the bytes;
+    /// f16 storage changes values by at most half an f16 ulp of I_max.
+    #[test]
+    fn reduced_and_half_storage() {
+        let g = GridSpec::uniform(15.0, 5.0).unwrap();
+        let lum = Synth::Roadway.build(&g, 1000.0).unwrap();
+        let d = lum.distribution.with_symmetry(Symmetry::C90C270).unwrap();
+        let tex = LightTexture::new(&d).unwrap();
+        let r = render(&tex, Filter::CatmullRom, 2).unwrap();
+        for l in Lookup::ALL {
+            let full = StoredTexture::new(&r, None, Precision::F32, l);
+            let part = StoredTexture::new(&r, Some(Symmetry::C90C270), Precision::F32, l);
+            let half = StoredTexture::new(&r, None, Precision::F16, l);
+            assert!(
+                2 * part.bytes() <= full.bytes() + 4 * r.mapping.height,
+                "{} vs {}",
+                part.bytes(),
+                full.bytes()
+            );
+            assert_eq!(2 * half.bytes(), full.bytes());
+            for ic in 0..72 {
+                for ig in 0..=36 {
+                    let (c, gm) = (ic as f64 * 5.0 + 0.3, ig as f64 * 5.0);
+                    let (a, b) = (full.cd(c, gm), part.cd(c, gm));
+                    // The render's mirrored columns agree to f32 rounding, not bit for bit.
+                    assert!(
+                        (a - b).abs() <= 4.0 * f64::from(f32::EPSILON) * 1000.0,
+                        "{l} ({c}, {gm}): {a} vs {b}"
+                    );
+                    assert!((a - half.cd(c, gm)).abs() <= 1000.0 * 2f64.powi(-11), "{l} f16");
+                }
+            }
+        }
     }
 }

@@ -33,8 +33,8 @@ pub mod texture;
 pub use axis::AxisTaps;
 pub use filter::{combine, Filter, Real, FILTER_NAMES};
 pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
-pub use lookup::{Lookup, TextureField};
-pub use recon::{eval_all, Recon, Reconstructions, DEFAULT_RECONS};
+pub use lookup::{Lookup, Precision, StoredTexture};
+pub use recon::{eval_all, Recon, Reconstructions, TextureSpec, DEFAULT_RECONS};
 pub use sampler::Sampler;
 pub use texture::{
     render, render_planned, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping,

@@ -6,13 +6,15 @@ use std::str::FromStr;
 use serde::{Serialize, Serializer};
 
 use super::filter::Filter;
-use super::texture::LightTexture;
+use super::lookup::{Lookup, Precision, StoredTexture};
+use super::texture::{render, LightTexture};
 use crate::error::ModelError;
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField};
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
-/// What is compared: the measured solid, one filter's reconstruction, or the fitted OpenGL lights.
+/// A reconstruction: the measured solid, a filter on the measured grid, the
+/// fitted OpenGL lights, or a stored texture read back with a lookup.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Recon {
     /// The measured solid (Delaunay of the measured directions, [`measured_solid`]).
@@ -24,6 +26,74 @@ pub enum Recon {
     Filter(Filter),
     /// The fitted OpenGL lights ([`crate::fit`], name `fitted-gl`).
     FittedGl,
+    /// A texture rendered once and read back as a renderer does ([`StoredTexture`]).
+    Texture(TextureSpec),
+}
+
+/// A rendered texture as a renderer stores and reads it. Written
+/// `FILTER@xK/LOOKUP[+f16][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TextureSpec {
+    /// The filter the texture is rendered with.
+    pub filter: Filter,
+    /// Oversampling factor of the render (1–32).
+    pub factor: u32,
+    /// How it is read back.
+    pub lookup: Lookup,
+    /// Storage precision.
+    pub precision: Precision,
+    /// Only the C sector the data's symmetry needs is stored.
+    pub reduced: bool,
+}
+
+impl fmt::Display for TextureSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}@x{}/{}", self.filter, self.factor, self.lookup)?;
+        if self.precision == Precision::F16 {
+            f.write_str("+f16")?;
+        }
+        if self.reduced {
+            f.write_str("+reduced")?;
+        }
+        Ok(())
+    }
+}
+
+impl FromStr for TextureSpec {
+    type Err = ModelError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let bad = |why: &str| ModelError::Parameter {
+            name: "texture",
+            value: s.to_string(),
+            reason: format!("{why}; expected FILTER@xK/LOOKUP[+f16][+reduced], e.g. catmull-rom@x5/bilinear"),
+        };
+        let (filter, rest) = s.trim().split_once('@').ok_or_else(|| bad("no @"))?;
+        let mut parts = rest.split('+');
+        let (factor, lookup) = parts
+            .next()
+            .and_then(|p| p.split_once('/'))
+            .ok_or_else(|| bad("no /LOOKUP"))?;
+        let factor: u32 = factor
+            .strip_prefix('x')
+            .and_then(|k| k.parse().ok())
+            .filter(|k| (1..=32).contains(k))
+            .ok_or_else(|| bad("the factor is xK with K from 1 to 32"))?;
+        let mut spec = TextureSpec {
+            filter: filter.parse().map_err(|_| bad("unknown filter"))?,
+            factor,
+            lookup: lookup.parse().map_err(|_| bad("unknown lookup"))?,
+            precision: Precision::F32,
+            reduced: false,
+        };
+        for p in parts {
+            match p {
+                "f16" => spec.precision = Precision::F16,
+                "reduced" => spec.reduced = true,
+                _ => return Err(bad("unknown option")),
+            }
+        }
+        Ok(spec)
+    }
 }
 
 /// The default reconstructions of `photosolid compare`.
@@ -45,6 +115,7 @@ impl fmt::Display for Recon {
             Recon::Measured => f.write_str("measured"),
             Recon::Filter(x) => write!(f, "{x}"),
             Recon::FittedGl => f.write_str(crate::fit::RECONSTRUCTION_NAME),
+            Recon::Texture(t) => write!(f, "{t}"),
         }
     }
 }
@@ -55,6 +126,7 @@ impl FromStr for Recon {
         match s.trim() {
             "measured" => Ok(Recon::Measured),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
+            x if x.contains('@') => x.parse().map(Recon::Texture),
             x => x
                 .parse::<Filter>()
                 .map(Recon::Filter)
@@ -62,7 +134,7 @@ impl FromStr for Recon {
                     name: "recon",
                     value: x.to_string(),
                     reason: format!(
-                        "expected measured, {}, or a filter ({})",
+                        "expected measured, {}, a texture FILTER@xK/LOOKUP, or a filter ({})",
                         crate::fit::RECONSTRUCTION_NAME,
                         super::filter::FILTER_NAMES
                     ),
@@ -116,7 +188,7 @@ impl Reconstructions {
         })
     }
 
-    /// Reconstruction `r` as an intensity field (cd).
+    /// Reconstruction `r` as an intensity field (cd). A texture is rendered here.
     ///
     /// # Errors
     /// [`ModelError::Internal`] when `r` was not asked for in [`Reconstructions::new`] (a bug).
@@ -126,6 +198,11 @@ impl Reconstructions {
             Recon::Measured => Box::new(Borrowed(&self.measured.as_ref().ok_or_else(missing)?.1)),
             Recon::Filter(f) => Box::new(self.texture.sampler(f)),
             Recon::FittedGl => Box::new(Borrowed(self.fitted.as_ref().ok_or_else(missing)?)),
+            Recon::Texture(t) => {
+                let rendered = render(&self.texture, t.filter, t.factor)?;
+                let reduced = t.reduced.then(|| self.dist.symmetry());
+                Box::new(StoredTexture::new(&rendered, reduced, t.precision, t.lookup))
+            }
         })
     }
 

@@ -69,8 +69,9 @@ fn header(c: &Comparison) -> Vec<String> {
     l
 }
 
-const COLS: [&str; 13] = [
+const COLS: [&str; 14] = [
     "reconstruction",
+    "bytes",
     "H",
     "+bound",
     "h(recon->ref)",
@@ -88,6 +89,7 @@ const COLS: [&str; 13] = [
 fn row(r: &ReconResult) -> Vec<String> {
     vec![
         format!("{}{}", r.name, if r.pareto { " *" } else { "" }),
+        r.bytes.to_string(),
         num(r.hausdorff_cd),
         num(r.hausdorff_bound_cd),
         r.recon_to_ref.map_or("-".into(), |h| num(h.value)),
@@ -135,7 +137,7 @@ pub fn to_text(c: &Comparison) -> String {
     }
     let _ = writeln!(
         s,
-        "lengths in {}; H certified: the true value lies in [H, H + bound]; radial max is the radial bound (>= H); * = Pareto (time vs H)",
+        "lengths in {}; H certified: the true value lies in [H, H + bound]; radial max is the radial bound (>= H); * = Pareto (time, bytes, H)",
         c.units
     );
     s
@@ -259,6 +261,31 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         out.push(Figure {
             file: "scatter.png".into(),
             caption: "Time per sample vs Hausdorff distance; the Pareto front is marked".into(),
+            png,
+        });
+    }
+    let by_bytes: Vec<ScatterPoint> = c
+        .results
+        .iter()
+        .filter(|r| r.bytes > 0)
+        .map(|r| ScatterPoint {
+            label: r.name.clone(),
+            x: r.bytes as f64,
+            y: r.hausdorff_pct,
+            pareto: r.pareto,
+        })
+        .collect();
+    if !by_bytes.is_empty() {
+        let png = plots::scatter(
+            "Memory vs accuracy",
+            "bytes held",
+            "Hausdorff distance (% of I_max)",
+            &by_bytes,
+            true,
+        )?;
+        out.push(Figure {
+            file: "scatter_bytes.png".into(),
+            caption: "Bytes held vs Hausdorff distance; Pareto front over time, bytes and error".into(),
             png,
         });
     }

@@ -1,0 +1,163 @@
+//! The speed/accuracy trade: every representation a renderer could hold, its
+//! cost (bytes, time per lookup from a unit direction) and its error against
+//! the truth, the withheld measurements, or a denser file.
+//!
+//! Representations ([`representations`]): the measured solid; every filter
+//! evaluated on the native grid (the texture of measured values, f64);
+//! Catmull–Rom textures rendered at factors k read back with nearest,
+//! bilinear and Catmull–Rom lookups; the k = 5 bilinear texture stored in
+//! f16 and/or only in the symmetry's C sector; the fitted OpenGL lights with
+//! precomputed axes and cut-off cosines. Errors come from [`compare`]
+//! (same metrics, same reference rules); a row is on the Pareto front when
+//! no other row is at most as costly in time, bytes and Hausdorff error and
+//! cheaper in one.
+
+use serde::Serialize;
+
+use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress};
+use crate::error::ModelError;
+use crate::model::{Distribution, Symmetry};
+use crate::reconstruct::{Filter, Lookup, Precision, Recon, TextureSpec};
+
+/// The representations of the trade table for data with `symmetry`:
+/// textures at each of `factors` (see the module docs).
+pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
+    let mut out = vec![Recon::Measured];
+    out.extend(Filter::ALL.into_iter().map(Recon::Filter));
+    let tex = |factor, lookup, precision, reduced| {
+        Recon::Texture(TextureSpec {
+            filter: Filter::CatmullRom,
+            factor,
+            lookup,
+            precision,
+            reduced,
+        })
+    };
+    for &k in factors {
+        for l in Lookup::ALL {
+            out.push(tex(k, l, Precision::F32, false));
+        }
+    }
+    out.push(tex(5, Lookup::Bilinear, Precision::F16, false));
+    if symmetry != Symmetry::None {
+        out.push(tex(5, Lookup::Bilinear, Precision::F32, true));
+        out.push(tex(5, Lookup::Bilinear, Precision::F16, true));
+    }
+    out.push(Recon::FittedGl);
+    out
+}
+
+/// One representation's costs and errors.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TradeRow {
+    /// The representation (`catmull-rom`, `catmull-rom@x5/bilinear+f16`, `fitted-gl`, `measured`).
+    pub representation: String,
+    /// Bytes it holds to answer lookups.
+    pub bytes: usize,
+    /// Median ns per lookup from a unit direction vector, one thread, f64.
+    pub ns_per_sample: f64,
+    /// The same on the GPU: null (no GPU lookup kernel is timed yet).
+    pub ns_per_sample_gpu: Option<f64>,
+    /// Hausdorff distance, % of the reference I_max (certified for a field
+    /// reference: the true value is at most this plus `hausdorff_bound_pct`).
+    pub hausdorff_pct: f64,
+    /// Certified gap of `hausdorff_pct`, % of I_max.
+    pub hausdorff_bound_pct: f64,
+    /// Largest radial error, % of I_max.
+    pub radial_max_pct: f64,
+    /// Solid-angle weighted RMS radial error, % of I_max.
+    pub radial_rms_pct: f64,
+    /// Flux error over the direction set, % of the reference flux.
+    pub flux_error_pct: f64,
+    /// On the Pareto front of (ns_per_sample, bytes, hausdorff_pct).
+    pub pareto: bool,
+}
+
+/// The trade table of one file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct TradeTable {
+    /// FILE (set by the caller).
+    pub file: String,
+    /// What the errors are measured against, in words.
+    pub reference: String,
+    /// `truth`, `withheld`, `dense` or `reconstruction`.
+    pub reference_kind: String,
+    /// Direction set of the radial metrics.
+    pub directions: String,
+    /// One per representation.
+    pub rows: Vec<TradeRow>,
+    /// The comparison the rows come from (plots, full metrics), not in the JSON.
+    #[serde(skip)]
+    pub comparison: Comparison,
+}
+
+/// Options of [`trade_table`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeOptions {
+    /// Texture factors. Default: 1, 2, 5, 10.
+    pub factors: Vec<u32>,
+    /// The comparison's options; its `recons` are replaced by [`representations`].
+    pub compare: CompareOptions,
+}
+
+impl Default for TradeOptions {
+    fn default() -> Self {
+        Self {
+            factors: vec![1, 2, 5, 10],
+            compare: CompareOptions {
+                factor: 2,
+                ..CompareOptions::default()
+            },
+        }
+    }
+}
+
+/// Measure every representation of `file` against the reference (the
+/// rules of [`compare`](super::compare): `truth` when known, else
+/// `withheld`; with `vs`, the denser file).
+pub fn trade_table(
+    file: &Distribution,
+    vs: Option<&Distribution>,
+    opts: &TradeOptions,
+    progress: &Progress<'_>,
+) -> Result<TradeTable, ModelError> {
+    let mut recons = representations(file.symmetry(), &opts.factors);
+    if matches!(opts.compare.against, Some(Against::Recon(_))) && vs.is_none() {
+        // A reconstruction of FILE as its own reference is not a row.
+        recons.retain(|r| Some(Against::Recon(*r)) != opts.compare.against);
+    }
+    let c = compare_with_progress(
+        file,
+        vs,
+        &CompareOptions {
+            recons,
+            ..opts.compare.clone()
+        },
+        progress,
+    )?;
+    let pct = |v: f64| if c.i_max_cd > 0.0 { 100.0 * v / c.i_max_cd } else { 0.0 };
+    let rows = c
+        .results
+        .iter()
+        .map(|r| TradeRow {
+            representation: r.name.clone(),
+            bytes: r.bytes,
+            ns_per_sample: r.time_per_sample_ns.unwrap_or_default(),
+            ns_per_sample_gpu: None,
+            hausdorff_pct: r.hausdorff_pct,
+            hausdorff_bound_pct: pct(r.hausdorff_bound_cd),
+            radial_max_pct: r.radial_max_pct,
+            radial_rms_pct: r.radial_rms_pct,
+            flux_error_pct: r.flux_error_pct,
+            pareto: r.pareto,
+        })
+        .collect();
+    Ok(TradeTable {
+        file: String::new(),
+        reference: c.reference.clone(),
+        reference_kind: c.reference_kind.clone(),
+        directions: c.directions.clone(),
+        rows,
+        comparison: c,
+    })
+}
