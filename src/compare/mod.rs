@@ -289,6 +289,55 @@ pub struct ReconResult {
     pub pareto: bool,
 }
 
+/// The distance figures of one row, however they were measured.
+pub(crate) struct Distances {
+    pub value: f64,
+    pub bound: f64,
+    pub recon_to_ref: Option<OneSided>,
+    pub ref_to_recon: OneSided,
+    pub mean: f64,
+    pub rms: f64,
+    pub radial_bound: f64,
+}
+
+impl ReconResult {
+    /// One row from its distances, radial errors (against a reference of peak `i_max`) and costs.
+    pub(crate) fn new(
+        name: String,
+        bytes: usize,
+        d: Distances,
+        rad: &crate::metrics::RadialErrors,
+        i_max: f64,
+        time_ns: f64,
+        triangles: usize,
+    ) -> Self {
+        Self {
+            name,
+            bytes,
+            hausdorff_cd: d.value,
+            hausdorff_bound_cd: d.bound,
+            hausdorff_pct: if i_max > 0.0 { 100.0 * d.value / i_max } else { 0.0 },
+            recon_to_ref: d.recon_to_ref,
+            ref_to_recon: d.ref_to_recon,
+            mean_surface_distance_cd: d.mean,
+            rms_surface_distance_cd: d.rms,
+            radial_bound_cd: d.radial_bound,
+            radial_max_cd: rad.max_abs_cd,
+            radial_max_pct: rad.max_pct,
+            radial_max_at_deg: rad.max_at_deg,
+            radial_rms_cd: rad.rms_cd,
+            radial_rms_pct: rad.rms_pct,
+            zotti_err: rad.zotti_err,
+            zotti_err_solid_angle: rad.zotti_err_solid_angle,
+            flux_error_pct: rad.flux_error_pct,
+            misplaced_flux: rad.misplaced_flux,
+            time_per_sample_ns: Some(time_ns),
+            triangles,
+            pareto: false,
+        }
+    }
+}
+
 /// The result of [`compare`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Comparison {
@@ -525,30 +574,23 @@ fn compare_fields(
         let av = eval_all(&*field, &set.directions);
         let rad = radial_errors(&set, &m, &av, i_max, opts.zotti_c);
         let (ab, ba) = (h.a_to_b, h.b_to_a);
-        results.push(ReconResult {
-            name: r.to_string(),
-            bytes: field.bytes(),
-            hausdorff_cd: h.value,
-            hausdorff_bound_cd: h.bound,
-            hausdorff_pct: 100.0 * h.value / i_max,
-            recon_to_ref: Some(ab),
-            ref_to_recon: ba,
-            mean_surface_distance_cd: 0.5 * (ab.mean + ba.mean),
-            rms_surface_distance_cd: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
-            radial_bound_cd: radial_bound(&RadialMesh::new(&solid), &ref_rm, &set.directions),
-            radial_max_cd: rad.max_abs_cd,
-            radial_max_pct: rad.max_pct,
-            radial_max_at_deg: rad.max_at_deg,
-            radial_rms_cd: rad.rms_cd,
-            radial_rms_pct: rad.rms_pct,
-            zotti_err: rad.zotti_err,
-            zotti_err_solid_angle: rad.zotti_err_solid_angle,
-            flux_error_pct: rad.flux_error_pct,
-            misplaced_flux: rad.misplaced_flux,
-            time_per_sample_ns: Some(time_per_sample_ns(&*field, &timing, opts.timing_repeats)),
-            triangles: solid.n_triangles(),
-            pareto: false,
-        });
+        results.push(ReconResult::new(
+            r.to_string(),
+            field.bytes(),
+            Distances {
+                value: h.value,
+                bound: h.bound,
+                recon_to_ref: Some(ab),
+                ref_to_recon: ba,
+                mean: 0.5 * (ab.mean + ba.mean),
+                rms: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
+                radial_bound: radial_bound(&RadialMesh::new(&solid), &ref_rm, &set.directions),
+            },
+            &rad,
+            i_max,
+            time_per_sample_ns(&*field, &timing, opts.timing_repeats),
+            solid.n_triangles(),
+        ));
         fields.push((r.to_string(), field));
     }
     progress(opts.recons.len(), opts.recons.len(), "done");

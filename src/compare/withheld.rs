@@ -8,7 +8,7 @@
 //! Hausdorff figure is one-sided and exact: the largest distance from a
 //! withheld measured point `I·d` to the solid rebuilt without it.
 
-use super::{grid_or_own_solid, mark_pareto, CompareOptions, Comparison, Progress, ReconResult};
+use super::{grid_or_own_solid, mark_pareto, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
 use crate::metrics::hausdorff::distances;
 use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, OneSided};
@@ -110,36 +110,29 @@ pub(super) fn compare_withheld(
         let mean = dist_all.iter().sum::<f64>() / n;
         let rms = (dist_all.iter().map(|d| d * d).sum::<f64>() / n).sqrt();
         let field = full.field(r)?;
-        results.push(ReconResult {
-            name: r.to_string(),
-            bytes: field.bytes(),
-            hausdorff_cd: h,
-            hausdorff_bound_cd: 0.0,
-            hausdorff_pct: 100.0 * h / i_max,
-            recon_to_ref: None,
-            ref_to_recon: OneSided {
+        results.push(ReconResult::new(
+            r.to_string(),
+            field.bytes(),
+            Distances {
                 value: h,
                 bound: 0.0,
+                recon_to_ref: None,
+                ref_to_recon: OneSided {
+                    value: h,
+                    bound: 0.0,
+                    mean,
+                    rms,
+                    queries: dist_all.len(),
+                },
                 mean,
                 rms,
-                queries: dist_all.len(),
+                radial_bound: rad.max_abs_cd,
             },
-            mean_surface_distance_cd: mean,
-            rms_surface_distance_cd: rms,
-            radial_bound_cd: rad.max_abs_cd,
-            radial_max_cd: rad.max_abs_cd,
-            radial_max_pct: rad.max_pct,
-            radial_max_at_deg: rad.max_at_deg,
-            radial_rms_cd: rad.rms_cd,
-            radial_rms_pct: rad.rms_pct,
-            zotti_err: rad.zotti_err,
-            zotti_err_solid_angle: rad.zotti_err_solid_angle,
-            flux_error_pct: rad.flux_error_pct,
-            misplaced_flux: rad.misplaced_flux,
-            time_per_sample_ns: Some(time_per_sample_ns(&*field, &timing, opts.timing_repeats)),
+            &rad,
+            i_max,
+            time_per_sample_ns(&*field, &timing, opts.timing_repeats),
             triangles,
-            pareto: false,
-        });
+        ));
     }
     progress(opts.recons.len(), opts.recons.len(), "done");
     mark_pareto(&mut results);
