@@ -7,7 +7,7 @@ use clap::Args;
 use photosolid::compare::Recon;
 use photosolid::fit::{fit, FitOptions};
 use photosolid::reconstruct::{render, LightTexture};
-use photosolid::solid::{export, grid_solid, measured_solid, ColorMap, SolidGrid, Units};
+use photosolid::solid::{export, grid_solid, measured_solid, topology, ColorMap, SolidGrid, Units};
 
 use super::ReadArgs;
 
@@ -86,32 +86,40 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         .sanity_check()
         .map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
     export::write(&mesh, &a.output)?;
+    // What a reader of the file gets: read it back, merge vertices by position, check.
+    let written = export::read(&a.output)?;
+    let topo = topology(written.positions(), written.triangles());
     if a.json {
         let v = serde_json::json!({
             "path": a.output.display().to_string(),
             "units": units.name(),
-            "vertices": mesh.positions().len(),
-            "triangles": mesh.triangles().len(),
+            "vertices": written.positions().len(),
+            "triangles": written.triangles().len(),
             "volume": mesh.volume(),
             "area": mesh.area(),
             "edges": report.edges,
             "euler_characteristic": report.euler_characteristic,
-            "components": report.components,
+            "components": topo.components,
             "origin_sheets": report.origin_sheets,
             "pinch_vertices": report.pinch_vertices,
-            "watertight": true,
+            "watertight": topo.watertight,
+            "manifold": topo.manifold,
+            "file_topology": topo,
         });
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
     println!(
-        "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report:?}",
+        "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report}; as read back: {}, {}, {} component(s)",
         a.output.display(),
-        mesh.positions().len(),
-        mesh.triangles().len(),
+        written.positions().len(),
+        written.triangles().len(),
         mesh.volume(),
         mesh.area(),
-        u = units.name()
+        if topo.watertight { "watertight" } else { "NOT watertight" },
+        if topo.manifold { "manifold" } else { "NOT manifold" },
+        topo.components,
+        u = units.name(),
     );
     Ok(0)
 }

@@ -48,7 +48,7 @@ enum Command {
     Mesh(mesh::MeshArgs),
     /// Print the measured grid as JSON or CSV (for independent cross-checks).
     Grid(grid::GridArgs),
-    /// Certified Hausdorff distance between two mesh files (PLY/OBJ).
+    /// Certified Hausdorff distance between two mesh files (PLY, OBJ, STL, GLB).
     Hausdorff(hausdorff::HausdorffArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),

@@ -65,11 +65,13 @@ pub mod export;
 pub mod grid;
 pub mod measured;
 pub mod mesh;
+pub mod topology;
 
 pub use colormap::ColorMap;
 pub use grid::{grid_solid, IntensityField, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};
-pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo};
+pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo, SHEET_SEPARATION};
+pub use topology::{topology, MeshTopology};
 
 use crate::error::ModelError;
 use crate::model::Distribution;
