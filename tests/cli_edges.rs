@@ -40,3 +40,192 @@ fn mesh_json_reports_the_written_files_topology() {
         assert_eq!(v["vertices"], back.positions().len(), "{ext}");
     }
 }
+
+/// `texture`: the encoder follows the extension (PNG bytes in .png, EXR in .exr),
+/// a flag/extension mismatch or no output at all is refused before rendering.
+#[test]
+fn texture_encoder_follows_the_extension_or_refuses() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "isotropic", "-o", "iso.ldt"], t.path()));
+    let tex = |extra: &[&str]| {
+        let mut a = vec!["texture", "iso.ldt", "--backend", "cpu"];
+        a.extend_from_slice(extra);
+        run(&a, t.path())
+    };
+    ok(&tex(&["-o", "a.png"]));
+    assert_eq!(
+        &std::fs::read(t.path().join("a.png")).unwrap()[..8],
+        b"\x89PNG\r\n\x1a\n"
+    );
+    ok(&tex(&["-o", "a.exr", "--png", "b.png"]));
+    assert_eq!(
+        &std::fs::read(t.path().join("a.exr")).unwrap()[..4],
+        &[0x76, 0x2f, 0x31, 0x01]
+    );
+    assert_eq!(&std::fs::read(t.path().join("b.png")).unwrap()[..4], b"\x89PNG");
+    let e = fails(&tex(&["--png", "c.exr"]), 1);
+    assert!(e.contains("c.exr") && e.contains(".png"), "{e}");
+    let e = fails(&tex(&["-o", "c.tif"]), 1);
+    assert!(e.contains("c.tif") && e.contains(".exr"), "{e}");
+    let e = fails(&tex(&[]), 1);
+    assert!(e.contains("nothing to write"), "{e}");
+    assert!(!t.path().join("c.exr").exists() && !t.path().join("c.tif").exists());
+}
+
+/// `gpu-check` that would check nothing fails, naming why, before looking for a GPU.
+#[test]
+fn gpu_check_that_checks_nothing_fails() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "isotropic", "-o", "iso.ldt"], t.path()));
+    ok(&run(&["mesh", "iso.ldt", "--measured", "-o", "m.ply"], t.path()));
+    let e = fails(&run(&["gpu-check", "/nonexistent"], t.path()), 1);
+    assert!(e.contains("/nonexistent") && e.contains("nothing to check"), "{e}");
+    let e = fails(&run(&["gpu-check", "m.ply"], t.path()), 1);
+    assert!(e.contains("checked nothing"), "{e}");
+    // No argument: the default ../shared/corpus does not exist next to a temporary directory.
+    let e = fails(&run(&["gpu-check"], t.path()), 1);
+    assert!(e.contains("corpus") && e.contains("nothing to check"), "{e}");
+}
+
+/// Zero factors, zero steps and negative tolerances are usage errors (exit 2)
+/// naming the flag, found before any file is read (the file does not exist).
+#[test]
+fn bad_numeric_arguments_are_refused_before_loading() {
+    let t = tempfile::tempdir().unwrap();
+    for args in [
+        vec!["holdout", "missing.ies", "--drop-c", "0"],
+        vec!["holdout", "missing.ies", "--drop-gamma", "0"],
+        vec!["mesh", "missing.ies", "--measured", "--factor", "0", "-o", "m.ply"],
+        vec!["texture", "missing.ies", "--factor", "0", "-o", "t.exr"],
+        vec!["texture", "missing.ies", "--factor", "33", "-o", "t.exr"],
+        vec!["texture", "missing.ies", "-o", "t.exr", "--exposure=-1"],
+        vec!["gpu-check", "missing.ies", "--tolerance=-1e-5"],
+        vec!["compare", "missing.ies", "--tolerance=-0.1"],
+        vec!["compare", "missing.ies", "--factor", "0"],
+        vec!["tradeoff", "missing.ies", "--factors", "1,0"],
+        vec!["tradeoff", "missing.ies", "--repeats", "0"],
+        vec!["fit", "missing.ies", "--tolerance=-1"],
+        vec!["fit", "missing.ies", "--guard", "0"],
+        vec!["hausdorff", "a.ply", "b.ply", "--tolerance", "0"],
+        vec!["synth", "isotropic", "--c-step", "0", "-o", "s.ldt"],
+        vec!["synth", "isotropic", "-o", "s.ldt", "--gamma-step=-5"],
+        vec!["synth", "isotropic", "--intensity", "nan", "-o", "s.ldt"],
+        vec!["info", "missing.ies", "--tilt", "inf"],
+    ] {
+        let last = args
+            .iter()
+            .rev()
+            .find(|a| a.starts_with("--") && **a != "--measured")
+            .unwrap();
+        let flag = last.split('=').next().unwrap();
+        let e = fails(&run(&args, t.path()), 2);
+        assert!(e.contains(flag) && !e.contains("missing.ies"), "{args:?}: {e}");
+    }
+    // Missing outputs and choices too: before the (missing) file is read.
+    let e = fails(&run(&["mesh", "missing.ies", "-o", "m.ply"], t.path()), 1);
+    assert!(e.contains("--measured") && !e.contains("missing.ies"), "{e}");
+    let e = fails(&run(&["mesh", "missing.ies", "--measured", "-o", "m.xyz"], t.path()), 1);
+    assert!(e.contains("m.xyz") && !e.contains("missing.ies"), "{e}");
+}
+
+/// Every command stops quietly with status 0 when its stdout is closed
+/// before it writes (`| head -c1`), never with an error or a panic (101).
+#[test]
+fn closed_stdout_is_a_quiet_success() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "batwing", "-o", "b.ldt"], t.path()));
+    ok(&run(&["mesh", "b.ldt", "--measured", "-o", "b.ply"], t.path()));
+    for args in [
+        vec!["validate", "--json", "b.ldt"],
+        vec!["validate", "b.ldt"],
+        vec!["info", "b.ldt", "--json"],
+        vec!["fit", "b.ldt", "--json", "--max-lights", "1"],
+        vec!["texture", "b.ldt", "--backend", "cpu", "-o", "t.exr"],
+        vec!["mesh", "b.ldt", "--measured", "-o", "m.ply", "--json"],
+        vec!["grid", "b.ldt", "--csv"],
+        vec!["holdout", "b.ldt", "--filters", "bilinear"],
+        vec!["hausdorff", "b.ply", "b.ply"],
+        vec!["synth", "isotropic", "-o", "i.ldt"],
+        vec!["convert", "b.ldt", "b2.ies"],
+    ] {
+        let mut child = bin()
+            .args(&args)
+            .current_dir(t.path())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take()); // the reader is gone before anything is written
+        let o = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {err}");
+        assert!(
+            !err.contains("Broken pipe") && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
+    }
+}
+
+/// I/O errors name the path once; the OS message is not repeated.
+#[test]
+fn io_errors_name_the_path_once() {
+    let t = tempfile::tempdir().unwrap();
+    let e = fails(&run(&["info", "nope.ies"], t.path()), 1);
+    assert!(e.contains("nope.ies"), "{e}");
+    let os = "No such file or directory";
+    assert_eq!(e.matches(os).count(), 1, "{e}");
+    // An output directory that cannot be created: under a regular file.
+    std::fs::write(t.path().join("file"), "x").unwrap();
+    let e = fails(&run(&["demo", "-o", "file/demo"], t.path()), 1);
+    assert!(e.contains("file/demo"), "{e}");
+    let o = run(&["validate", "no-dir"], t.path());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(out.matches(os).count(), 1, "{out}");
+}
+
+/// Mesa's "XDG_RUNTIME_DIR is invalid or not set" must not reach the user
+/// when the variable is unset (the CLI gives the drivers a private directory).
+#[test]
+fn gpu_runs_without_xdg_runtime_dir_print_no_driver_noise() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "isotropic", "-o", "iso.ldt"], t.path()));
+    let o = bin()
+        .args(["texture", "iso.ldt", "--backend", "auto", "-o", "t.exr"])
+        .env_remove("XDG_RUNTIME_DIR")
+        .current_dir(t.path())
+        .output()
+        .unwrap();
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("XDG_RUNTIME_DIR"), "{err}");
+}
+
+/// `hausdorff` reads every format `mesh` writes: the same solid in PLY, STL
+/// and GLB is at distance 0 from itself across formats.
+#[test]
+fn hausdorff_reads_every_written_format() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "batwing", "-o", "b.ldt"], t.path()));
+    for ext in ["ply", "obj", "stl", "glb"] {
+        ok(&run(
+            &[
+                "mesh",
+                "b.ldt",
+                "--filter",
+                "bilinear",
+                "--factor",
+                "2",
+                "-o",
+                &format!("b.{ext}"),
+            ],
+            t.path(),
+        ));
+    }
+    for (a, b) in [("b.ply", "b.stl"), ("b.stl", "b.glb"), ("b.glb", "b.obj")] {
+        let v: serde_json::Value = serde_json::from_str(&ok(&run(&["hausdorff", a, b, "--json"], t.path()))).unwrap();
+        // OBJ stores text: allow its rounding, relative to the solid's size.
+        assert!(v["hausdorff"].as_f64().unwrap() < 1e-3, "{a} {b}: {v}");
+        assert_eq!(v["triangles"][0], v["triangles"][1], "{a} {b}");
+    }
+}

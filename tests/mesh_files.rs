@@ -42,7 +42,8 @@ fn check_files(m: &Mesh, what: &str) {
 /// manifold); every written file is manifold.
 #[test]
 fn pinched_solids_are_written_as_manifolds() {
-    let cases: [(&str, fn(f64, f64) -> f64, usize); 3] = [
+    type Case = (&'static str, fn(f64, f64) -> f64, usize);
+    let cases: [Case; 3] = [
         ("two lobes", |_, g| (g.to_radians().cos().abs() - 0.2).max(0.0), 2),
         (
             "dimple under a flat top",

@@ -39,10 +39,10 @@ pub struct CompareArgs {
     #[arg(long, default_value = "dense:20000")]
     directions: Directions,
     /// Hausdorff tolerance, fraction of I_max.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, value_parser = super::parse::positive)]
     tolerance: f64,
     /// Refinement factor of the grid solids.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, value_parser = super::parse::at_least_one)]
     factor: usize,
     /// Print JSON.
     #[arg(long)]

@@ -18,7 +18,7 @@ pub struct HausdorffArgs {
     /// Second mesh (.ply, .obj, .stl or .glb).
     b: PathBuf,
     /// Certified gap to reach, in mesh units (default: 0.1 % of the larger mesh's largest radius).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse::positive)]
     tolerance: Option<f64>,
     /// Print JSON.
     #[arg(long)]
@@ -36,7 +36,10 @@ struct Out {
     seconds: f64,
 }
 
-fn read(p: &Path) -> anyhow::Result<(Vec<[f64; 3]>, Vec<[u32; 3]>)> {
+/// Vertex positions (f64) and triangles of a mesh file.
+type Triangles = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+fn read(p: &Path) -> anyhow::Result<Triangles> {
     let mesh = export::read(p)?;
     let pos = mesh.positions().iter().map(|v| v.map(f64::from)).collect();
     Ok((pos, mesh.triangles().to_vec()))

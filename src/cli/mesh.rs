@@ -28,7 +28,7 @@ pub struct MeshArgs {
     #[arg(long)]
     measured: bool,
     /// Grid refinement of a filtered solid: each measured interval cut into this many steps.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
     factor: usize,
     /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd/klm).
     #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm"])]
@@ -47,6 +47,20 @@ pub struct MeshArgs {
 }
 
 pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
+    // Check the arguments before loading anything.
+    let recon = match (a.measured, a.filter) {
+        (true, _) => Recon::Measured,
+        (false, Some(r)) => r,
+        (false, None) => {
+            anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)")
+        }
+    };
+    if export::MeshFormat::from_path(&a.output).is_none() {
+        anyhow::bail!(
+            "-o {}: cannot tell the mesh format; use the extension .obj, .ply, .stl or .glb",
+            a.output.display()
+        );
+    }
     let lum = super::load(&a.file, &a.read)?;
     let d = &lum.distribution;
     let units = match a.units.as_str() {
@@ -54,29 +68,23 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         "klm" => Units::per_kilolumen(d)?,
         _ => Units::Candela,
     };
-    let mut mesh = if a.measured {
-        measured_solid(d, units)?
-    } else if let Some(recon) = a.filter {
-        let grid = SolidGrid::refined(d, a.factor)?;
-        match recon {
-            Recon::Filter(f) if a.texture => {
-                let tex = LightTexture::new(d).context("building the light distribution texture")?;
-                let factor = u32::try_from(a.factor).unwrap_or(u32::MAX);
-                let rendered = render(&tex, f, factor)?;
-                grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
-            }
-            Recon::Filter(f) => {
-                let tex = LightTexture::new(d).context("building the light distribution texture")?;
-                grid_solid(&tex.sampler(f), &grid, units)?
-            }
-            Recon::FittedGl => {
-                let model = fit(d, &FitOptions::default())?.model().clone();
-                grid_solid(&|c: f64, g: f64| model.intensity(c, g), &grid, units)?
-            }
-            Recon::Measured => measured_solid(d, units)?,
+    let grid = || SolidGrid::refined(d, a.factor);
+    let mut mesh = match recon {
+        Recon::Filter(f) if a.texture => {
+            let tex = LightTexture::new(d).context("building the light distribution texture")?;
+            let factor = u32::try_from(a.factor).unwrap_or(u32::MAX);
+            let rendered = render(&tex, f, factor)?;
+            grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
         }
-    } else {
-        anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)");
+        Recon::Filter(f) => {
+            let tex = LightTexture::new(d).context("building the light distribution texture")?;
+            grid_solid(&tex.sampler(f), &grid()?, units)?
+        }
+        Recon::FittedGl => {
+            let model = fit(d, &FitOptions::default())?.model().clone();
+            grid_solid(&|c: f64, g: f64| model.intensity(c, g), &grid()?, units)?
+        }
+        Recon::Measured => measured_solid(d, units)?,
     };
     mesh.info_mut().source = a.file.display().to_string();
     if a.color {
@@ -106,10 +114,10 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             "manifold": topo.manifold,
             "file_topology": topo,
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
-    println!(
+    outln!(
         "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report}; as read back: {}, {}, {} component(s)",
         a.output.display(),
         written.positions().len(),

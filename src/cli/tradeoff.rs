@@ -20,10 +20,10 @@ pub struct TradeoffArgs {
     /// An .ies or .ldt file.
     file: PathBuf,
     /// Factors to time (comma separated).
-    #[arg(long, value_delimiter = ',', default_value = "1,5,10")]
+    #[arg(long, value_delimiter = ',', default_value = "1,5,10", value_parser = super::parse::texture_factor)]
     factors: Vec<u32>,
     /// Timing repeats per row (the median is reported).
-    #[arg(long, default_value_t = 7)]
+    #[arg(long, default_value_t = 7, value_parser = super::parse::at_least_one)]
     repeats: usize,
     /// Print JSON.
     #[arg(long)]
