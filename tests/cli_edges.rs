@@ -229,3 +229,20 @@ fn hausdorff_reads_every_written_format() {
         assert_eq!(v["triangles"][0], v["triangles"][1], "{a} {b}");
     }
 }
+
+/// A file renamed to the other format's extension: the error says what the content looks like.
+#[test]
+fn extension_and_content_disagreeing_is_named() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "batwing", "-o", "b.ldt"], t.path()));
+    ok(&run(&["synth", "batwing", "-o", "b.ies"], t.path()));
+    std::fs::copy(t.path().join("b.ldt"), t.path().join("ldt-renamed.ies")).unwrap();
+    std::fs::copy(t.path().join("b.ies"), t.path().join("ies-renamed.ldt")).unwrap();
+    let e = fails(&run(&["info", "ldt-renamed.ies"], t.path()), 1);
+    assert!(
+        e.contains("looks like EULUMDAT") && e.contains("rename it to .ldt"),
+        "{e}"
+    );
+    let e = fails(&run(&["info", "ies-renamed.ldt"], t.path()), 1);
+    assert!(e.contains("looks like IES") && e.contains("rename it to .ies"), "{e}");
+}

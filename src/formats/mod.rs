@@ -73,12 +73,30 @@ pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire
         .into());
     }
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let format = Format::from_extension(path).unwrap_or_else(|| sniff(&bytes));
-    let lum = match format {
-        Format::Ies => ies::read(&bytes, path, opts)?,
-        Format::Ldt => ldt::read(&bytes, path, opts)?,
-    };
-    Ok(lum)
+    let by_extension = Format::from_extension(path);
+    let format = by_extension.unwrap_or_else(|| sniff(&bytes));
+    parse(&bytes, path, format, opts).map_err(|mut e| {
+        // A file renamed to the other format's extension: say what it looks like.
+        let content = sniff(&bytes);
+        if by_extension.is_some() && content != format {
+            let name = |f: Format| match f {
+                Format::Ies => "IES LM-63 (it has a TILT= line)",
+                Format::Ldt => "EULUMDAT (it has no TILT= line)",
+            };
+            let ext = |f: Format| match f {
+                Format::Ies => ".ies",
+                Format::Ldt => ".ldt",
+            };
+            e.found = format!(
+                "{}; the extension says {} but the content looks like {}: rename it to {}",
+                e.found,
+                ext(format),
+                name(content),
+                ext(content)
+            );
+        }
+        e.into()
+    })
 }
 
 /// Parse bytes as the given format; `path` is used for messages and, for
