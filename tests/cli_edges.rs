@@ -246,3 +246,61 @@ fn extension_and_content_disagreeing_is_named() {
     let e = fails(&run(&["info", "ies-renamed.ldt"], t.path()), 1);
     assert!(e.contains("looks like IES") && e.contains("rename it to .ies"), "{e}");
 }
+
+/// cd/klm is per 1000 lm of *lamp* flux (EULUMDAT practice); `flux` is the
+/// equal-luminaire-flux scaling; absolute files refuse klm with a reason.
+#[test]
+fn klm_is_lamp_flux_and_flux_is_equal_flux() {
+    let t = tempfile::tempdir().unwrap();
+    let gamma: Vec<f64> = (0..=36).map(|k| 5.0 * k as f64).collect();
+    let cd = vec![100.0; gamma.len()];
+    write_ies(t.path(), "iso.ies", 2000.0, &gamma, &cd);
+    write_ies(t.path(), "abs.ies", -1.0, &gamma, &cd);
+    let volume = |file: &str, units: &str| -> f64 {
+        let v: serde_json::Value = serde_json::from_str(&ok(&run(
+            &["mesh", file, "--measured", "--units", units, "-o", "m.ply", "--json"],
+            t.path(),
+        )))
+        .unwrap();
+        v["volume"].as_f64().unwrap()
+    };
+    let sphere = |r: f64| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
+    // 100 cd per 2000 lm of lamp flux = 50 cd/klm.
+    let v = volume("iso.ies", "klm");
+    assert!((v / sphere(50.0) - 1.0).abs() < 0.01, "klm: {v}");
+    // Equal flux: the 100 cd sphere emits 400 pi lm: 1000 * 100 / (400 pi) cd/klm.
+    let v = volume("iso.ies", "flux");
+    assert!(
+        (v / sphere(250.0 / std::f64::consts::PI) - 1.0).abs() < 0.01,
+        "flux: {v}"
+    );
+    let e = fails(
+        &run(
+            &["mesh", "abs.ies", "--measured", "--units", "klm", "-o", "m.ply"],
+            t.path(),
+        ),
+        1,
+    );
+    assert!(e.contains("absolute photometry") && e.contains("--units flux"), "{e}");
+    let e = fails(
+        &run(
+            &["compare", "abs.ies", "--normalize", "klm", "--recon", "bilinear"],
+            t.path(),
+        ),
+        1,
+    );
+    assert!(e.contains("absolute photometry"), "{e}");
+    let o = ok(&run(
+        &[
+            "compare",
+            "iso.ies",
+            "--normalize",
+            "flux",
+            "--recon",
+            "bilinear",
+            "--json",
+        ],
+        t.path(),
+    ));
+    assert!(o.contains("luminaire flux"), "{o}");
+}

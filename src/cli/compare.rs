@@ -1,4 +1,4 @@
-//! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm]
+//! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm|flux]
 //! [--align] [--directions measured|dense[:N]] [--tolerance T] [--factor K] [--json] [--report DIR]`.
 //!
 //! Without `--vs`: each reconstruction of FILE against FILE's reference
@@ -29,7 +29,9 @@ pub struct CompareArgs {
     /// The reference: measured, fitted-gl or a filter.
     #[arg(long, default_value = "measured")]
     against: Recon,
-    /// Normalisation: cd (absolute), peak (I_max = 1), klm (cd/klm, equal flux).
+    /// Normalisation: cd (absolute), peak (I_max = 1), klm (cd per 1000 lm of the file's lamp flux,
+    /// as in EULUMDAT; not for absolute photometry), flux (equal luminaire flux: cd per 1000 lm of
+    /// the computed flux).
     #[arg(long, default_value = "cd")]
     normalize: Normalize,
     /// Search the best C rotation and mirror of FILE onto OTHER (with --vs).
@@ -71,6 +73,10 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         recons,
         against: a.against,
         normalize: a.normalize,
+        lamp_flux_lm: [
+            lum.declared.lamp_flux_lm,
+            other.as_ref().and_then(|o| o.declared.lamp_flux_lm),
+        ],
         directions: a.directions,
         tolerance: a.tolerance,
         factor: a.factor,

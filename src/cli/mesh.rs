@@ -1,4 +1,4 @@
-//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`.
+//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm|flux] [--color] -o solid.{obj,ply,stl,glb}`.
 
 use std::path::PathBuf;
 
@@ -30,8 +30,10 @@ pub struct MeshArgs {
     /// Grid refinement of a filtered solid: each measured interval cut into this many steps.
     #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
     factor: usize,
-    /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd/klm).
-    #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm"])]
+    /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd per 1000 lm
+    /// of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux (cd per 1000 lm of
+    /// the computed luminaire flux: solids of equal flux).
+    #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm", "flux"])]
     units: String,
     /// Per-vertex colour from the viridis map of intensity (not in STL).
     #[arg(long)]
@@ -65,7 +67,15 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     let d = &lum.distribution;
     let units = match a.units.as_str() {
         "peak" => Units::Peak,
-        "klm" => Units::per_kilolumen(d)?,
+        "klm" => match lum.declared.lamp_flux_lm {
+            Some(flux_lm) if flux_lm.is_finite() && flux_lm > 0.0 => Units::PerKilolumen { flux_lm },
+            _ => anyhow::bail!(
+                "{}: --units klm is per 1000 lm of lamp flux, and this file has absolute photometry (no lamp \
+                 flux); use --units flux (equal luminaire flux) or peak",
+                a.file.display()
+            ),
+        },
+        "flux" => Units::per_kilolumen(d)?,
         _ => Units::Candela,
     };
     let grid = || SolidGrid::refined(d, a.factor);
