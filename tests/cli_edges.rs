@@ -304,3 +304,62 @@ fn klm_is_lamp_flux_and_flux_is_equal_flux() {
     ));
     assert!(o.contains("luminaire flux"), "{o}");
 }
+
+/// Numbers: a written IES file carries no arithmetic noise (0.1 x 3 is
+/// written 0.3, not 0.30000000000000004); the compare table prints every
+/// number with the same 4 significant digits (no 7.5821e-1 next to 6.427).
+#[test]
+fn numbers_are_written_without_noise_and_tables_with_one_precision() {
+    use photosolid::formats::ies::{write, IesWriteVersion};
+    use photosolid::synth::{GridSpec, Synth};
+    let mut lum = Synth::Isotropic
+        .build(&GridSpec::uniform(90.0, 45.0).unwrap(), 0.1)
+        .unwrap();
+    lum.distribution = lum.distribution.scaled(3.0).unwrap();
+    assert_eq!(lum.distribution.max_cd(), 0.30000000000000004);
+    let text = write(&lum, IesWriteVersion::Lm63_2002);
+    assert!(!text.contains("0.30000000000000004"), "{text}");
+    assert!(
+        text.lines().last().unwrap().split_whitespace().all(|v| v == "0.3"),
+        "{text}"
+    );
+
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "batwing", "-o", "b.ldt"], t.path()));
+    let out = ok(&run(
+        &["compare", "b.ldt", "--recon", "nearest,bilinear,catmull-rom"],
+        t.path(),
+    ));
+    let rows: Vec<Vec<&str>> = out
+        .lines()
+        .skip_while(|l| !l.starts_with("reconstruction"))
+        .skip(1)
+        .take(3)
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    assert_eq!(rows.len(), 3, "{out}");
+    let significant = |cell: &str| -> Option<usize> {
+        let v: f64 = cell.parse().ok()?;
+        if v == 0.0 {
+            return Some(0);
+        }
+        let mantissa = cell.trim_start_matches(['+', '-']).split('e').next().unwrap();
+        let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+        let digits = digits.trim_start_matches('0');
+        Some(if mantissa.contains('.') {
+            digits.len()
+        } else {
+            digits.trim_end_matches('0').len()
+        })
+    };
+    for row in &rows {
+        for cell in row.iter().skip(1).filter(|c| **c != "*") {
+            if let Some(n) = significant(cell) {
+                assert!(n <= 4, "{cell} in\n{out}");
+                if n > 0 && cell.contains('.') && !cell.contains('e') {
+                    assert_eq!(n, 4, "{cell} in\n{out}");
+                }
+            }
+        }
+    }
+}

@@ -21,7 +21,13 @@ fn probe_reports_each_group_and_ci_requires_gpu_chromium_notebooks() {
     let (code, out) = probe(false);
     assert_eq!(code, Some(0), "{out}");
     // Every group on one line: ok, or SKIP with a reason after the colon.
-    for group in ["corpus", "HTML report rendering", "WGPU_BACKEND=vulkan", "WGPU_BACKEND=gl", "notebooks"] {
+    for group in [
+        "corpus",
+        "HTML report rendering",
+        "WGPU_BACKEND=vulkan",
+        "WGPU_BACKEND=gl",
+        "notebooks",
+    ] {
         let lines: Vec<&str> = out
             .lines()
             .filter(|l| l.contains(group) && (l.starts_with("ok ") || l.starts_with("SKIP ")))
@@ -42,6 +48,11 @@ fn probe_reports_each_group_and_ci_requires_gpu_chromium_notebooks() {
         assert_eq!(code, Some(0), "{ci_out}");
     } else {
         assert_eq!(code, Some(1), "{ci_out}");
-        assert!(ci_out.lines().any(|l| l.starts_with("FAIL ") && l.contains("required with CI=true")), "{ci_out}");
+        assert!(
+            ci_out
+                .lines()
+                .any(|l| l.starts_with("FAIL ") && l.contains("required with CI=true")),
+            "{ci_out}"
+        );
     }
 }
