@@ -363,3 +363,40 @@ fn numbers_are_written_without_noise_and_tables_with_one_precision() {
         }
     }
 }
+
+/// `info` names the definition of each beam angle row and shows the declared
+/// lamp flux that LOR and cd/klm refer to (JSON `lamp_flux_lm`).
+#[test]
+fn info_names_beam_definitions_and_lamp_flux() {
+    let t = tempfile::tempdir().unwrap();
+    let gamma: Vec<f64> = (0..=18).map(|k| 10.0 * k as f64).collect();
+    let cd: Vec<f64> = gamma
+        .iter()
+        .map(|&g| if g <= 90.0 { 100.0 * g.to_radians().cos() } else { 0.0 })
+        .collect();
+    write_ies(t.path(), "lamb.ies", 2000.0, &gamma, &cd);
+    write_ies(t.path(), "abs.ies", -1.0, &gamma, &cd);
+    let text = ok(&run(&["info", "lamb.ies"], t.path()));
+    for want in [
+        "50 % of I_max",
+        "10 % of I_max",
+        "50 % of centre I",
+        "10 % of centre I",
+        "C0-C180",
+        "C90-C270",
+    ] {
+        assert!(text.contains(want), "{want} missing:\n{text}");
+    }
+    let lamp = text
+        .lines()
+        .find(|l| l.starts_with("lamp flux"))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(lamp.contains("2000.00 lm"), "{lamp}");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "lamb.ies", "--json"], t.path()))).unwrap();
+    assert_eq!(v["lamp_flux_lm"], 2000.0);
+    // LOR is the computed flux over that lamp flux.
+    let lor = v["lor"].as_f64().unwrap();
+    assert!((lor - v["flux_lm"].as_f64().unwrap() / 2000.0).abs() < 1e-9, "{v}");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "abs.ies", "--json"], t.path()))).unwrap();
+    assert!(v["lamp_flux_lm"].is_null(), "{v}");
+}
