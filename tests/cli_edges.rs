@@ -400,3 +400,22 @@ fn info_names_beam_definitions_and_lamp_flux() {
     let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "abs.ies", "--json"], t.path()))).unwrap();
     assert!(v["lamp_flux_lm"].is_null(), "{v}");
 }
+
+/// The README tells a new user where `demo` writes (checked against what it
+/// does), how to put `photosolid` on the PATH, and what the test command costs.
+#[test]
+fn readme_says_where_demo_writes_and_how_to_install() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    assert!(readme.contains("cargo install --path ."), "install line missing");
+    assert!(
+        readme.contains("SKIP group: reason") && readme.contains("GB"),
+        "test command cost missing"
+    );
+    assert!(readme.contains("`out/demo/`"), "demo output directory missing");
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["demo"], t.path()));
+    assert!(
+        t.path().join("out/demo/index.html").is_file(),
+        "demo did not write out/demo/"
+    );
+}
