@@ -3,7 +3,12 @@
 # src/synth.rs). tests/data.rs checks that data/ matches what this script writes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-ps() { cargo run --release --quiet -- synth "$@"; }
+# PHOTOSOLID_BIN (set by scripts/test-all.sh) avoids a second, release build.
+if [ -n "${PHOTOSOLID_BIN:-}" ]; then
+  ps() { "$PHOTOSOLID_BIN" synth "$@"; }
+else
+  ps() { cargo run --release --quiet -- synth "$@"; }
+fi
 for ext in ldt ies; do
   ps isotropic --intensity 1000 -o data/isotropic.$ext
   ps lambertian --intensity 1000 --gamma-step 2.5 -o data/lambertian.$ext

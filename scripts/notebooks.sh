@@ -4,8 +4,8 @@
 #
 # - creates/updates the virtual environment .venv-notebooks/ from notebooks/requirements.txt (pinned);
 #   the install is skipped when the requirements did not change since the last one (stamp file);
-# - builds the release binary (cargo build --release) and hands its path to the notebooks
-#   (PHOTOSOLID_BIN = ${CARGO_TARGET_DIR:-target}/release/photosolid);
+# - hands the binary PHOTOSOLID_BIN to the notebooks; when unset, builds the release binary
+#   (cargo build --release) and uses ${CARGO_TARGET_DIR:-target}/release/photosolid;
 # - executes each notebook with nbclient (no network needed at run time) and writes the executed copy to
 #   target/notebooks/<name>.ipynb; the notebooks write their scratch files and speed.json there too.
 set -euo pipefail
@@ -15,21 +15,27 @@ VENV="$ROOT/.venv-notebooks"
 REQ="$ROOT/notebooks/requirements.txt"
 OUT="$ROOT/target/notebooks"
 
+# Exit status 3: the environment could not be set up (scripts/test-all.sh reports it as a skip, or as a
+# failure with CI=true); 1: a notebook failed.
 if [ ! -x "$VENV/bin/python" ]; then
   echo "== notebooks: creating $VENV"
-  python3 -m venv "$VENV"
+  python3 -m venv "$VENV" || { echo "notebooks: python3 -m venv failed"; exit 3; }
 fi
 STAMP="$VENV/.requirements.sha256"
 WANT="$(sha256sum "$REQ" | cut -d' ' -f1)"
 if [ "$(cat "$STAMP" 2>/dev/null || true)" != "$WANT" ]; then
   echo "== notebooks: installing notebooks/requirements.txt"
-  "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r "$REQ"
+  "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r "$REQ" \
+    || { echo "notebooks: pip install -r notebooks/requirements.txt failed"; exit 3; }
   echo "$WANT" > "$STAMP"
 fi
 
-echo "== notebooks: release binary"
-cargo build --release --quiet
-export PHOTOSOLID_BIN="$(cd "${CARGO_TARGET_DIR:-target}" && pwd)/release/photosolid"
+if [ -z "${PHOTOSOLID_BIN:-}" ]; then
+  echo "== notebooks: release binary"
+  cargo build --release --quiet
+  PHOTOSOLID_BIN="$(cd "${CARGO_TARGET_DIR:-target}" && pwd)/release/photosolid"
+fi
+export PHOTOSOLID_BIN
 export PHOTOSOLID_ROOT="$ROOT"
 export PHOTOSOLID_NB_OUT="$OUT"
 export MPLBACKEND=module://matplotlib_inline.backend_inline

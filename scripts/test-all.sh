@@ -1,38 +1,136 @@
 #!/usr/bin/env bash
 # Runs every test of photosolid on a fresh machine, installing what the tests need.
-# Usage: bash scripts/test-all.sh   (from anywhere; CI calls it through .ci/run)
+# Usage: bash scripts/test-all.sh            (from anywhere; CI calls it through .ci/run)
+#        bash scripts/test-all.sh --probe    (only report which test groups can run here, and why not)
+#
+# Every test group that cannot run here is reported on one line, "SKIP <group>: <reason>", when it is
+# found out and again in the summary at the end (the tests' own notices are captured by cargo and do not
+# reach the log). With CI=true a missing GPU adapter, Chromium or notebook environment is a failure
+# (exit 1), not a skip; a missing corpus (third-party files next to the checkout) is a skip everywhere.
+#
+# One build: the dev and test profiles share their settings (Cargo.toml), so `cargo build --all-targets`
+# compiles the dependencies once, and the smoke run, data/ regeneration and notebooks use that binary
+# (target/debug/photosolid) instead of building a release one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+PROBE_ONLY=0
+[ "${1:-}" = "--probe" ] && PROBE_ONLY=1
+CI_MODE=0
+[ "${CI:-}" = "true" ] && CI_MODE=1
 # Mesa's drivers want a runtime directory; without one they print a harmless "error:" line.
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
   XDG_RUNTIME_DIR=$(mktemp -d)
   export XDG_RUNTIME_DIR
 fi
 
+SKIPS=()
+MISSING_REQUIRED=()
+# skip GROUP REASON: a group that cannot run here (never required).
+skip() {
+  echo "SKIP $1: $2"
+  SKIPS+=("SKIP $1: $2")
+}
+# need GROUP REASON: a group that must run in CI (CI=true); elsewhere a skip.
+need() {
+  if [ "$CI_MODE" = 1 ]; then
+    echo "FAIL $1: $2 (required with CI=true)"
+    MISSING_REQUIRED+=("FAIL $1: $2 (required with CI=true)")
+  else
+    skip "$1" "$2"
+  fi
+}
+chromium_exe() {
+  for e in chromium chromium-browser google-chrome; do
+    if command -v "$e" >/dev/null 2>&1; then
+      echo "$e"
+      return 0
+    fi
+  done
+  return 1
+}
+# gpu_adapter BACKEND: 0 when the CLI finds a GPU adapter with WGPU_BACKEND=BACKEND.
+gpu_adapter() {
+  local tmp
+  tmp=$(mktemp -d)
+  "$PHOTOSOLID_BIN" synth isotropic --c-step 90 --gamma-step 45 -o "$tmp/iso.ldt" >/dev/null 2>&1 &&
+    WGPU_BACKEND="$1" "$PHOTOSOLID_BIN" texture "$tmp/iso.ldt" --backend gpu --factor 1 -o "$tmp/t.exr" \
+      >/dev/null 2>"$tmp/err"
+  local rc=$?
+  [ $rc = 0 ] || GPU_ERR=$(head -c 300 "$tmp/err" | tr '\n' ' ')
+  rm -rf "$tmp"
+  return $rc
+}
+# probe: one line per test group (ok, or SKIP/FAIL with the reason); sets GPU_BACKENDS.
+probe() {
+  echo "== test groups on this machine (CI=${CI:-unset})"
+  if [ -d ../shared/corpus ]; then
+    echo "ok   corpus: $(cd ../shared/corpus && pwd)"
+  else
+    skip "corpus tests" "../shared/corpus not found; corpus tests check only built-in data"
+  fi
+  if exe=$(chromium_exe); then
+    echo "ok   HTML report rendering: $exe"
+  else
+    need "HTML report rendering (tests/compare.rs)" "no chromium, chromium-browser or google-chrome on PATH"
+  fi
+  GPU_BACKENDS=()
+  for backend in vulkan gl; do
+    GPU_ERR=""
+    if gpu_adapter "$backend"; then
+      echo "ok   GPU tests, WGPU_BACKEND=$backend"
+      GPU_BACKENDS+=("$backend")
+    else
+      need "GPU tests, WGPU_BACKEND=$backend (tests/gpu.rs)" "no GPU adapter: ${GPU_ERR:-unknown}"
+    fi
+  done
+  if [ -x .venv-notebooks/bin/python ] || python3 -c "import venv, ensurepip" >/dev/null 2>&1; then
+    echo "ok   notebooks: python3 with venv"
+  else
+    need "notebooks (trimesh / colour-science cross-checks)" "python3 with the venv and ensurepip modules not found"
+  fi
+}
+summary() {
+  echo "== skipped test groups: ${#SKIPS[@]}"
+  for s in "${SKIPS[@]+"${SKIPS[@]}"}"; do echo "$s"; done
+  if [ "${#MISSING_REQUIRED[@]}" -gt 0 ]; then
+    for s in "${MISSING_REQUIRED[@]}"; do echo "$s"; done
+    return 1
+  fi
+}
+
+if [ "$PROBE_ONLY" = 1 ]; then
+  PHOTOSOLID_BIN="${PHOTOSOLID_BIN:-target/debug/photosolid}"
+  [ -x "$PHOTOSOLID_BIN" ] || { echo "no photosolid binary at $PHOTOSOLID_BIN: run cargo build first"; exit 1; }
+  probe
+  summary
+  exit $?
+fi
+
+start_all=$SECONDS
 echo "== toolchain"
 cargo --version
 rustc --version
 
-echo "== build (all targets, tests profile)"
+echo "== build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
 cargo build --all-targets --locked 2>&1 | tail -n 3
+PHOTOSOLID_BIN="$(pwd)/target/debug/photosolid"
+export PHOTOSOLID_BIN
 
-echo "== headless Chromium for the HTML report test (tests/compare.rs skips with a notice without it)"
-if ! command -v chromium >/dev/null 2>&1; then
+echo "== install what the optional groups need (headless Chromium, Mesa's software GPU drivers)"
+if ! chromium_exe >/dev/null; then
   if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
-    (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) \
-      || echo "WARNING: chromium could not be installed; the HTML rendering check will be skipped"
+    (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) || echo "chromium could not be installed"
   else
-    echo "WARNING: no root/apt to install chromium; the HTML rendering check will be skipped"
+    echo "no root/apt to install chromium"
   fi
 fi
-command -v chromium >/dev/null 2>&1 && chromium --version || true
-
-echo "== cargo test (library, integration, doc tests; corpus at ../shared/corpus when present)"
-if [ -d ../shared/corpus ]; then
-  echo "corpus: $(cd ../shared/corpus && pwd)"
-else
-  echo "corpus: ../shared/corpus not found; corpus tests print a notice and check only built-in data"
+bash scripts/install-gpu-drivers.sh || true
+probe
+if [ "${#MISSING_REQUIRED[@]}" -gt 0 ]; then
+  summary || exit 1
 fi
+
+echo "== cargo test (library, integration, doc tests)"
 cargo test --all-targets --locked
 cargo test --doc --locked
 
@@ -43,20 +141,11 @@ cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 
 
 echo "== GPU: the wgpu render against the CPU render (tests/gpu.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
 gpu_start=$SECONDS
-if bash scripts/install-gpu-drivers.sh; then
-  gpu_env="PHOTOSOLID_REQUIRE_GPU=1"
-else
-  echo "WARNING: GPU drivers could not be installed; running the GPU tests without PHOTOSOLID_REQUIRE_GPU (they skip without an adapter)"
-  gpu_env="PHOTOSOLID_REQUIRE_GPU=0"
-fi
-for backend in vulkan gl; do
-  echo "-- WGPU_BACKEND=$backend $gpu_env"
-  env "$gpu_env" WGPU_BACKEND="$backend" cargo test --locked --test gpu
+for backend in "${GPU_BACKENDS[@]+"${GPU_BACKENDS[@]}"}"; do
+  echo "-- WGPU_BACKEND=$backend PHOTOSOLID_REQUIRE_GPU=1"
+  PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND="$backend" cargo test --locked --test gpu
 done
 echo "GPU tests: $((SECONDS - gpu_start)) s"
-
-echo "== benches compile"
-cargo bench --no-run --locked 2>&1 | tail -n 1
 
 echo "== data/ is reproducible from the code (scripts/make-data.sh)"
 bash scripts/make-data.sh 2>/dev/null
@@ -65,10 +154,19 @@ if git rev-parse --git-dir >/dev/null 2>&1; then
 fi
 
 echo "== CLI smoke: demo and validate on the project's own data/"
-cargo run --release --locked --quiet -- demo --output target/demo-smoke
-cargo run --release --locked --quiet -- validate data
+"$PHOTOSOLID_BIN" demo --output target/demo-smoke
+"$PHOTOSOLID_BIN" validate data
 
 echo "== notebooks: cross-checks with trimesh / colour-science (executed copies and speed.json in target/notebooks/)"
-bash scripts/notebooks.sh
+nb_rc=0
+bash scripts/notebooks.sh || nb_rc=$?
+if [ "$nb_rc" = 3 ]; then
+  need "notebooks (trimesh / colour-science cross-checks)" "the virtual environment could not be set up (see above)"
+elif [ "$nb_rc" != 0 ]; then
+  echo "notebooks failed"
+  exit 1
+fi
 
+echo "== done in $((SECONDS - start_all)) s; target/ uses $(du -sh target 2>/dev/null | cut -f1)"
+summary || exit 1
 echo "all tests passed"

@@ -140,16 +140,30 @@ fn sphere_vs_lambertian_matches_the_closed_form() {
 fn identical_inputs_give_zero_and_normalisations_scale() {
     let d = synth(Synth::Roadway, 5000.0);
     let twice = d.scaled(2.0).unwrap();
-    for (n, want) in [(Normalize::Cd, 5000.0), (Normalize::Peak, 0.0), (Normalize::Klm, 0.0)] {
+    // klm divides by each file's lamp flux: OTHER with twice the intensity and
+    // twice the lamp flux is the same in cd/klm; with equal lamp flux it differs as in cd.
+    for (n, lamps, want) in [
+        (Normalize::Cd, [None, None], 5000.0),
+        (Normalize::Peak, [None, None], 0.0),
+        (Normalize::Flux, [None, None], 0.0),
+        (Normalize::Klm, [Some(1000.0), Some(2000.0)], 0.0),
+        (Normalize::Klm, [Some(1000.0), Some(1000.0)], 5000.0),
+    ] {
         let mut o = quick(vec![Recon::Measured]);
         o.normalize = n;
+        o.lamp_flux_lm = lamps;
         let c = compare(&d, Some(&twice), &o).unwrap();
         let h = c.results[0].hausdorff_cd;
         assert!(
             (h - want).abs() <= c.results[0].hausdorff_bound_cd + 1e-3 * c.i_max_cd,
-            "{n:?}: {h}"
+            "{n:?} {lamps:?}: {h}"
         );
     }
+    // Absolute photometry has no lamp flux: klm does not apply, and says so.
+    let mut o = quick(vec![Recon::Measured]);
+    o.normalize = Normalize::Klm;
+    let e = compare(&d, None, &o).unwrap_err().to_string();
+    assert!(e.contains("absolute photometry") && e.contains("flux"), "{e}");
 }
 
 /// The same lamp turned by 90 degrees (luxpy Testlamp, LDT vs rotated IES).

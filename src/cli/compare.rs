@@ -1,4 +1,4 @@
-//! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm]
+//! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm|flux]
 //! [--align] [--directions measured|dense[:N]] [--tolerance T] [--factor K] [--json] [--report DIR]`.
 //!
 //! Without `--vs`: each reconstruction of FILE against the truth (`--against
@@ -40,7 +40,9 @@ pub struct CompareArgs {
     /// Folds of the withheld reference (k >= 2).
     #[arg(long, default_value_t = 2)]
     folds: usize,
-    /// Normalisation: cd (absolute), peak (I_max = 1), klm (cd/klm, equal flux).
+    /// Normalisation: cd (absolute), peak (I_max = 1), klm (cd per 1000 lm of the file's lamp flux,
+    /// as in EULUMDAT; not for absolute photometry), flux (equal luminaire flux: cd per 1000 lm of
+    /// the computed flux).
     #[arg(long, default_value = "cd")]
     normalize: Normalize,
     /// Search the best C rotation and mirror of FILE onto OTHER (with --vs).
@@ -50,10 +52,10 @@ pub struct CompareArgs {
     #[arg(long, default_value = "dense:20000")]
     directions: Directions,
     /// Hausdorff tolerance, fraction of I_max.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = 1e-3, value_parser = super::parse::positive)]
     tolerance: f64,
     /// Refinement factor of the grid solids.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, value_parser = super::parse::at_least_one)]
     factor: usize,
     /// Print JSON.
     #[arg(long)]
@@ -78,6 +80,10 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         truth: Truth::of_luminaire(&lum),
         folds: a.folds,
         normalize: a.normalize,
+        lamp_flux_lm: [
+            lum.declared.lamp_flux_lm,
+            other.as_ref().and_then(|o| o.declared.lamp_flux_lm),
+        ],
         directions: a.directions,
         tolerance: a.tolerance,
         factor: a.factor,

@@ -23,7 +23,7 @@ pub struct ConvertArgs {
     #[arg(long, default_value = "2002", value_parser = ["2002", "2019"])]
     ies_version: String,
     /// Rotate the C angles by this many degrees (counter-clockwise seen from above).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = super::parse::finite)]
     rotate_c: f64,
     /// Mirror C -> -C (before rotating).
     #[arg(long)]

@@ -25,10 +25,10 @@ pub struct DemoArgs {
 }
 
 pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
-    std::fs::create_dir_all(&a.output)?;
+    std::fs::create_dir_all(&a.output).map_err(|e| photosolid::Error::io(&a.output, e))?;
     let grid = GridSpec::uniform(5.0, 2.5)?;
     let lum = Synth::Roadway.build(&grid, 12_000.0)?;
-    println!("built-in luminaire: synthetic road luminaire, peak 12000 cd, 5° x 2.5° grid");
+    outln!("built-in luminaire: synthetic road luminaire, peak 12000 cd, 5° x 2.5° grid");
     let mut text = String::new();
     for ext in ["ldt", "ies"] {
         let path = a.output.join(format!("demo_roadway.{ext}"));
@@ -37,14 +37,14 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
         text.push_str(&format!("\n== {} ==\n", path.display()));
         text.push_str(&InfoReport::of(&back).to_text());
     }
-    println!("{text}");
+    outln!("{text}");
     let d = &lum.distribution;
 
-    println!("== textures (factor 5) ==");
+    outln!("== textures (factor 5) ==");
     let tex = LightTexture::new(d)?;
     for f in Filter::ALL {
         let r = render(&tex, f, 5)?;
-        println!(
+        outln!(
             "{:<16} {} x {} texels ({} clamped)",
             f.to_string(),
             r.mapping.width,
@@ -57,16 +57,16 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
         c_step: 2,
         gamma_step: 2,
     };
-    println!("\n== hold-out: keep every 2 C-plane(s) and every 2 gamma row(s); errors in % of I_max ==");
-    println!("{}", super::holdout_table(&holdout(d, spec, &Filter::ALL)?));
+    outln!("\n== hold-out: keep every 2 C-plane(s) and every 2 gamma row(s); errors in % of I_max ==");
+    outln!("{}", super::holdout_table(&holdout(d, spec, &Filter::ALL)?));
 
-    println!("== fitted OpenGL lights ==");
+    outln!("== fitted OpenGL lights ==");
     print!("{}", FitReport::of(&fit(d, &FitOptions::default())?).to_text());
 
     // The built-in luminaire is analytic: every reconstruction, the measured
     // solid included, is measured against its closed form.
     let truth = Truth::of_luminaire(&lum);
-    println!(
+    outln!(
         "\n== every reconstruction against the truth ({}) ==",
         truth.map_or("none".into(), |t| t.to_string())
     );
@@ -79,6 +79,6 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     c.file = "built-in synthetic road luminaire".into();
     print!("{}", compare_report::to_text(&c));
     compare_report::write_report(&c, &a.output)?;
-    println!("report written to {}", a.output.join("index.html").display());
+    outln!("report written to {}", a.output.join("index.html").display());
     Ok(0)
 }

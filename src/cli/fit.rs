@@ -19,10 +19,10 @@ pub struct FitArgs {
     #[arg(long, default_value = "relative", value_parser = ["relative", "solid-angle"])]
     error: String,
     /// Pick the fewest lights whose error is within T of the best (0.01 = one percentage point).
-    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_parser = super::parse::non_negative)]
     tolerance: f64,
     /// Guard constant C of the error, as a fraction of the peak intensity.
-    #[arg(long, default_value_t = DEFAULT_GUARD)]
+    #[arg(long, default_value_t = DEFAULT_GUARD, value_parser = super::parse::positive)]
     guard: f64,
     /// Print JSON (keys documented on `photosolid::fit::FitReport`).
     #[arg(long)]

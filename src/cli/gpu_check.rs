@@ -4,7 +4,9 @@
 //!
 //! Prints the largest |gpu − cpu| (texels are I / I_max) per file and an
 //! overall line; exit status 1 when any exceeds the tolerance. Files that do
-//! not load (or have no positive intensity) are counted and skipped.
+//! not load (or have no positive intensity) are counted and skipped; a path
+//! that does not exist, or a run where no file loads, is an error (a check
+//! that checked nothing fails).
 //! `WGPU_BACKEND=vulkan|gl` selects the driver.
 
 use std::path::{Path, PathBuf};
@@ -20,23 +22,24 @@ pub struct GpuCheckArgs {
     #[arg(default_value = "../shared/corpus")]
     paths: Vec<PathBuf>,
     /// Supersampling factor in both axes (1-32).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor)]
     factor: u32,
     /// Filters to check (repeatable). Default: every filter (nearest, bilinear,
     /// catmull-rom, mitchell, bspline, pchip) and mitchell:0,0.75.
     #[arg(long)]
     filter: Vec<Filter>,
     /// Largest allowed |gpu - cpu| per texel (fraction of I_max).
-    #[arg(long, default_value_t = 1e-5)]
+    #[arg(long, default_value_t = 1e-5, value_parser = super::parse::non_negative)]
     tolerance: f64,
     #[command(flatten)]
     read: ReadArgs,
 }
 
 #[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-fn collect(path: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+fn collect(path: &Path, out: &mut Vec<PathBuf>) -> photosolid::Result<()> {
     if path.is_dir() {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)?
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
+            .map_err(|e| photosolid::Error::io(path, e))?
             .filter_map(|e| e.ok().map(|e| e.path()))
             .collect();
         entries.sort();
@@ -63,7 +66,6 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
     use photosolid::gpu::{self, GpuContext};
     use photosolid::reconstruct::{LightTexture, RenderOptions};
 
-    let ctx = GpuContext::global()?;
     let filters = if a.filter.is_empty() {
         let mut f = Filter::ALL.to_vec();
         f.push(Filter::Mitchell { b: 0.0, c: 0.75 });
@@ -73,40 +75,59 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
     };
     let mut files = Vec::new();
     for p in &a.paths {
-        collect(p, &mut files).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
+        if !p.exists() {
+            anyhow::bail!("{}: no such file or directory: nothing to check", p.display());
+        }
+        collect(p, &mut files)?;
     }
-    println!(
+    // Load every file before touching the GPU: a run that would check nothing fails early.
+    let opts = a.read.options();
+    let mut textures = Vec::new();
+    let mut skipped = 0usize;
+    for f in &files {
+        match photosolid::load_with(f, &opts)
+            .map_err(anyhow::Error::from)
+            .and_then(|l| Ok(LightTexture::new(&l.distribution)?))
+        {
+            Ok(t) => textures.push((f, t)),
+            Err(e) => {
+                skipped += 1;
+                outln!(
+                    "{}: skipped ({})",
+                    f.display(),
+                    e.to_string().lines().next().unwrap_or("")
+                );
+            }
+        }
+    }
+    if textures.is_empty() {
+        anyhow::bail!(
+            "gpu-check checked nothing: none of the {} file(s) found under {} loaded",
+            files.len(),
+            a.paths
+                .iter()
+                .map(|p| p.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    let ctx = GpuContext::global()?;
+    outln!(
         "gpu-check: {} files, {} filters, factor {}, adapter {}",
         files.len(),
         filters.len(),
         a.factor,
         ctx.adapter()
     );
-    let opts = a.read.options();
     let t0 = std::time::Instant::now();
-    let (mut checked, mut skipped, mut failed, mut clamp_mismatch) = (0usize, 0usize, 0usize, 0usize);
+    let (mut checked, mut failed, mut clamp_mismatch) = (0usize, 0usize, 0usize);
     let mut worst = (0.0f64, String::new());
-    for f in &files {
-        let tex = match photosolid::load_with(f, &opts)
-            .map_err(anyhow::Error::from)
-            .and_then(|l| Ok(LightTexture::new(&l.distribution)?))
-        {
-            Ok(t) => t,
-            Err(e) => {
-                skipped += 1;
-                println!(
-                    "{}: skipped ({})",
-                    f.display(),
-                    e.to_string().lines().next().unwrap_or("")
-                );
-                continue;
-            }
-        };
+    for (f, tex) in &textures {
         let items: Vec<(&LightTexture, RenderOptions)> = filters
             .iter()
             .map(|&filter| {
                 (
-                    &tex,
+                    tex,
                     RenderOptions {
                         filter,
                         factor: a.factor,
@@ -149,7 +170,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
                 }
                 if g.clamped != cpu.clamped {
                     clamp_mismatch += 1;
-                    println!(
+                    outln!(
                         "{}: [{}] clamped texels differ: gpu {} cpu {}",
                         f.display(),
                         job.plan.filter,
@@ -165,7 +186,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
             start = end;
         }
         let (h, w) = (plans[0].mapping.height, plans[0].mapping.width);
-        println!(
+        outln!(
             "{}: {h} x {w} texels, max |gpu - cpu| = {:.3e} ({}){}",
             f.display(),
             file_max.0,
@@ -177,7 +198,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
         }
     }
     let loaded = files.len() - skipped;
-    println!(
+    outln!(
         "overall: {loaded} files x {} filters = {checked} renders at factor {} on {}: max |gpu - cpu| = {:.3e} \
          (at {}), tolerance {:e}; {failed} over tolerance; {clamp_mismatch} clamped-count mismatches; {skipped} \
          files skipped; {:.1?}",
@@ -189,5 +210,8 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
         a.tolerance,
         t0.elapsed()
     );
+    if checked == 0 {
+        anyhow::bail!("gpu-check checked nothing: no render was compared");
+    }
     Ok(if failed > 0 { 1 } else { 0 })
 }

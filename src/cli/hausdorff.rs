@@ -1,12 +1,11 @@
 //! `photosolid hausdorff A B [--tolerance T] [--json]`: certified Hausdorff
-//! distance between two mesh files (binary PLY or OBJ as photosolid writes
-//! them), in the meshes' units.
+//! distance between two mesh files (PLY, OBJ, STL or GLB as photosolid
+//! writes them), in the meshes' units.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::Context;
 use clap::Args;
 use photosolid::metrics::{hausdorff, MeshRef};
 use photosolid::solid::export;
@@ -14,12 +13,12 @@ use serde::Serialize;
 
 #[derive(Args, Debug)]
 pub struct HausdorffArgs {
-    /// First mesh (.ply or .obj).
+    /// First mesh (.ply, .obj, .stl or .glb).
     a: PathBuf,
-    /// Second mesh (.ply or .obj).
+    /// Second mesh (.ply, .obj, .stl or .glb).
     b: PathBuf,
     /// Certified gap to reach, in mesh units (default: 0.1 % of the larger mesh's largest radius).
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse::positive)]
     tolerance: Option<f64>,
     /// Print JSON.
     #[arg(long)]
@@ -37,19 +36,11 @@ struct Out {
     seconds: f64,
 }
 
-fn read(p: &Path) -> anyhow::Result<(Vec<[f64; 3]>, Vec<[u32; 3]>)> {
-    let bytes = std::fs::read(p).with_context(|| format!("{}", p.display()))?;
-    let ext = p
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    let mesh = match ext.as_str() {
-        "ply" => export::ply::read(&bytes),
-        "obj" => export::obj::read(&bytes),
-        _ => anyhow::bail!("{}: expected a .ply or .obj mesh", p.display()),
-    }
-    .with_context(|| format!("{}", p.display()))?;
+/// Vertex positions (f64) and triangles of a mesh file.
+type Triangles = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+fn read(p: &Path) -> anyhow::Result<Triangles> {
+    let mesh = export::read(p)?;
     let pos = mesh.positions().iter().map(|v| v.map(f64::from)).collect();
     Ok((pos, mesh.triangles().to_vec()))
 }

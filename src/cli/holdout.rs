@@ -19,10 +19,10 @@ pub struct HoldoutArgs {
     /// An .ies or .ldt file.
     file: PathBuf,
     /// Keep every K-th C-plane, reconstruct the others.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]
     drop_c: usize,
     /// Keep every K-th gamma row, reconstruct the others.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]
     drop_gamma: usize,
     /// Filters to compare (comma separated).
     #[arg(

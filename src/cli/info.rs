@@ -16,7 +16,7 @@ pub struct InfoArgs {
     #[arg(long)]
     json: bool,
     /// Report the distribution at this installed tilt angle (degrees), using the file's tilt table.
-    #[arg(long)]
+    #[arg(long, value_parser = super::parse::finite)]
     tilt: Option<f64>,
     #[command(flatten)]
     read: ReadArgs,

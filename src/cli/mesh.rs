@@ -1,11 +1,11 @@
-//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`.
+//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm|flux] [--color] -o solid.{obj,ply,stl,glb}`.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
 use photosolid::reconstruct::{render, LightTexture, Recon, Reconstructions};
-use photosolid::solid::{export, grid_solid, measured_solid, ColorMap, SolidGrid, Units};
+use photosolid::solid::{export, grid_solid, topology, ColorMap, SolidGrid, Units};
 
 use super::ReadArgs;
 
@@ -26,10 +26,12 @@ pub struct MeshArgs {
     #[arg(long)]
     measured: bool,
     /// Grid refinement of a filtered solid: each measured interval cut into this many steps.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
     factor: usize,
-    /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd/klm).
-    #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm"])]
+    /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd per 1000 lm
+    /// of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux (cd per 1000 lm of
+    /// the computed luminaire flux: solids of equal flux).
+    #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm", "flux"])]
     units: String,
     /// Per-vertex colour from the viridis map of intensity (not in STL).
     #[arg(long)]
@@ -45,27 +47,43 @@ pub struct MeshArgs {
 }
 
 pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
+    // Check the arguments before loading anything.
+    let recon = match (a.measured, a.filter) {
+        (true, _) => Recon::Measured,
+        (false, Some(r)) => r,
+        (false, None) => {
+            anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)")
+        }
+    };
+    if export::MeshFormat::from_path(&a.output).is_none() {
+        anyhow::bail!(
+            "-o {}: cannot tell the mesh format; use the extension .obj, .ply, .stl or .glb",
+            a.output.display()
+        );
+    }
     let lum = super::load(&a.file, &a.read)?;
     let d = &lum.distribution;
     let units = match a.units.as_str() {
         "peak" => Units::Peak,
-        "klm" => Units::per_kilolumen(d)?,
+        "klm" => match lum.declared.lamp_flux_lm {
+            Some(flux_lm) if flux_lm.is_finite() && flux_lm > 0.0 => Units::PerKilolumen { flux_lm },
+            _ => anyhow::bail!(
+                "{}: --units klm is per 1000 lm of lamp flux, and this file has absolute photometry (no lamp \
+                 flux); use --units flux (equal luminaire flux) or peak",
+                a.file.display()
+            ),
+        },
+        "flux" => Units::per_kilolumen(d)?,
         _ => Units::Candela,
     };
-    let mut mesh = if a.measured {
-        measured_solid(d, units)?
-    } else if let Some(recon) = a.filter {
-        match recon {
-            Recon::Filter(f) if a.texture => {
-                let tex = LightTexture::new(d).context("building the light distribution texture")?;
-                let factor = u32::try_from(a.factor).unwrap_or(u32::MAX);
-                let rendered = render(&tex, f, factor)?;
-                grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
-            }
-            _ => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, a.factor, units)?,
+    let mut mesh = match recon {
+        Recon::Filter(f) if a.texture => {
+            let tex = LightTexture::new(d).context("building the light distribution texture")?;
+            let factor = u32::try_from(a.factor).unwrap_or(u32::MAX);
+            let rendered = render(&tex, f, factor)?;
+            grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
         }
-    } else {
-        anyhow::bail!("choose --filter F (reconstructed solid) or --measured (measured points only)");
+        _ => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, a.factor, units)?,
     };
     mesh.info_mut().source = a.file.display().to_string();
     if a.color {
@@ -75,32 +93,40 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         .sanity_check()
         .map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
     export::write(&mesh, &a.output)?;
+    // What a reader of the file gets: read it back, merge vertices by position, check.
+    let written = export::read(&a.output)?;
+    let topo = topology(written.positions(), written.triangles());
     if a.json {
         let v = serde_json::json!({
             "path": a.output.display().to_string(),
             "units": units.name(),
-            "vertices": mesh.positions().len(),
-            "triangles": mesh.triangles().len(),
+            "vertices": written.positions().len(),
+            "triangles": written.triangles().len(),
             "volume": mesh.volume(),
             "area": mesh.area(),
             "edges": report.edges,
             "euler_characteristic": report.euler_characteristic,
-            "components": report.components,
+            "components": topo.components,
             "origin_sheets": report.origin_sheets,
             "pinch_vertices": report.pinch_vertices,
-            "watertight": true,
+            "watertight": topo.watertight,
+            "manifold": topo.manifold,
+            "file_topology": topo,
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        outln!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
-    println!(
-        "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report:?}",
+    outln!(
+        "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report}; as read back: {}, {}, {} component(s)",
         a.output.display(),
-        mesh.positions().len(),
-        mesh.triangles().len(),
+        written.positions().len(),
+        written.triangles().len(),
         mesh.volume(),
         mesh.area(),
-        u = units.name()
+        if topo.watertight { "watertight" } else { "NOT watertight" },
+        if topo.manifold { "manifold" } else { "NOT manifold" },
+        topo.components,
+        u = units.name(),
     );
     Ok(0)
 }

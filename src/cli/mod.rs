@@ -1,5 +1,14 @@
 //! Command-line arguments and dispatch. Each subcommand lives in its own file.
 
+/// `println!` that returns the write error (`?`) instead of panicking, so a
+/// closed stdout (`| head`) ends the command quietly through `main`.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout().lock(), $($arg)*)?
+    }};
+}
+
 mod compare;
 mod convert;
 mod demo;
@@ -48,7 +57,7 @@ enum Command {
     Mesh(mesh::MeshArgs),
     /// Print the measured grid as JSON or CSV (for independent cross-checks).
     Grid(grid::GridArgs),
-    /// Certified Hausdorff distance between two mesh files (PLY/OBJ).
+    /// Certified Hausdorff distance between two mesh files (PLY, OBJ, STL, GLB).
     Hausdorff(hausdorff::HausdorffArgs),
     /// Run the main job on a built-in example luminaire (no file needed).
     Demo(demo::DemoArgs),
@@ -189,4 +198,111 @@ fn holdout_table(reports: &[photosolid::reconstruct::HoldoutReport]) -> String {
         );
     }
     s
+}
+
+/// Value parsers of numeric arguments: clap applies them while parsing, so a
+/// bad value is a usage error (exit 2) naming the flag, before any file is loaded.
+pub(crate) mod parse {
+    fn number<T: std::str::FromStr>(s: &str) -> Result<T, String> {
+        s.trim().parse().map_err(|_| format!("`{s}` is not a number"))
+    }
+    /// An integer >= 1 (a factor, a step, a count).
+    pub fn at_least_one(s: &str) -> Result<usize, String> {
+        match number::<usize>(s)? {
+            0 => Err("must be at least 1".into()),
+            n => Ok(n),
+        }
+    }
+    /// A supersampling factor of a texture: 1 to 32.
+    pub fn texture_factor(s: &str) -> Result<u32, String> {
+        match number::<u32>(s)? {
+            n @ 1..=32 => Ok(n),
+            n => Err(format!("{n} is outside 1..=32")),
+        }
+    }
+    /// A finite number > 0.
+    pub fn positive(s: &str) -> Result<f64, String> {
+        let x = number::<f64>(s)?;
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(format!("{x} must be a finite number > 0"))
+        }
+    }
+    /// A finite number >= 0.
+    pub fn non_negative(s: &str) -> Result<f64, String> {
+        let x = number::<f64>(s)?;
+        if x.is_finite() && x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(format!("{x} must be a finite number >= 0"))
+        }
+    }
+    /// A finite number (an angle, an offset).
+    pub fn finite(s: &str) -> Result<f64, String> {
+        let x = number::<f64>(s)?;
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(format!("{x} must be a finite number"))
+        }
+    }
+}
+
+/// A private `XDG_RUNTIME_DIR` for the GPU drivers when the environment has none.
+pub(crate) mod runtime_dir {
+    use std::path::PathBuf;
+
+    /// Removes the directory it created when dropped.
+    pub struct Guard(Option<PathBuf>);
+
+    impl Drop for Guard {
+        fn drop(&mut self) {
+            if let Some(d) = self.0.take() {
+                let _ = std::fs::remove_dir_all(d);
+            }
+        }
+    }
+
+    /// When `XDG_RUNTIME_DIR` is unset or not a directory, create a fresh
+    /// directory only this user can enter (mode 0700, a new name: never one
+    /// that someone else made) and point the variable at it. Called at the
+    /// start of `main`, before any thread exists, so setting the variable is sound.
+    pub fn ensure() -> Guard {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|d| PathBuf::from(d).is_dir()) {
+            return Guard(None);
+        }
+        for attempt in 0..8u32 {
+            let dir = std::env::temp_dir().join(format!("photosolid-runtime-{}-{attempt}", std::process::id()));
+            let mut builder = std::fs::DirBuilder::new();
+            #[cfg(unix)]
+            std::os::unix::fs::DirBuilderExt::mode(&mut builder, 0o700);
+            if builder.create(&dir).is_ok() {
+                std::env::set_var("XDG_RUNTIME_DIR", &dir);
+                return Guard(Some(dir));
+            }
+        }
+        Guard(None)
+    }
+
+    #[cfg(test)]
+    mod tests {
+        /// Unset: a fresh 0700 directory is set and removed again by the guard.
+        #[test]
+        fn sets_a_private_directory_when_unset() {
+            std::env::remove_var("XDG_RUNTIME_DIR");
+            let guard = super::ensure();
+            let dir = std::path::PathBuf::from(std::env::var_os("XDG_RUNTIME_DIR").expect("set"));
+            assert!(dir.is_dir());
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                assert_eq!(std::fs::metadata(&dir).unwrap().permissions().mode() & 0o777, 0o700);
+            }
+            // Set and valid: left alone.
+            assert!(super::ensure().0.is_none());
+            drop(guard);
+            assert!(!dir.exists());
+        }
+    }
 }

@@ -21,19 +21,19 @@ pub struct SynthArgs {
     /// Distribution kind.
     kind: Kind,
     /// Exponent p (cosine-power, spot).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = super::parse::non_negative)]
     p: f64,
     /// Cut-off angle in degrees (spot), in (0, 90].
-    #[arg(long, default_value_t = 90.0)]
+    #[arg(long, default_value_t = 90.0, value_parser = super::parse::positive)]
     cutoff: f64,
     /// Peak intensity, cd.
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(long, default_value_t = 1000.0, value_parser = super::parse::positive)]
     intensity: f64,
     /// C step of a uniform grid, degrees.
-    #[arg(long, default_value_t = 15.0)]
+    #[arg(long, default_value_t = 15.0, value_parser = super::parse::positive)]
     c_step: f64,
     /// Gamma step of a uniform grid, degrees.
-    #[arg(long, default_value_t = 5.0)]
+    #[arg(long, default_value_t = 5.0, value_parser = super::parse::positive)]
     gamma_step: f64,
     /// Explicit C angles (comma separated, degrees); overrides --c-step.
     #[arg(long, value_delimiter = ',')]

@@ -1,4 +1,5 @@
-//! `photosolid texture FILE --filter F [--factor 5] [-o out.exr] [--png out.png] [--backend auto|gpu|cpu]`.
+//! `photosolid texture FILE --filter F [--factor 5] [-o out.exr|out.png] [--png out.png] [--backend auto|gpu|cpu]`:
+//! at least one output; the encoder follows the extension.
 
 use std::path::PathBuf;
 
@@ -16,16 +17,17 @@ pub struct TextureArgs {
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
     /// Supersampling factor in both axes (1-32).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor)]
     factor: u32,
-    /// EXR output (single float channel, I / I_max; metadata in the header).
+    /// Output, format from the extension: .exr (single float channel, I / I_max;
+    /// metadata in the header) or .png (the preview, as --png).
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// PNG preview (Wallner's exposure tone map, colour bar, axes in degrees).
+    /// PNG preview (Wallner's exposure tone map, colour bar, axes in degrees); the name must end in .png.
     #[arg(long)]
     png: Option<PathBuf>,
     /// Exposure k of the preview's tone map y = 1 - exp(-k x).
-    #[arg(long, default_value_t = preview::DEFAULT_EXPOSURE)]
+    #[arg(long, default_value_t = preview::DEFAULT_EXPOSURE, value_parser = super::parse::positive)]
     exposure: f64,
     /// Keep cubic overshoot below zero (default: clamped to 0, and the clamped texels counted).
     #[arg(long)]
@@ -38,12 +40,55 @@ pub struct TextureArgs {
     read: ReadArgs,
 }
 
+/// What a texture output path gets, from its extension.
+#[derive(Clone, Copy, PartialEq)]
+enum Encoding {
+    Exr,
+    Png,
+}
+
+/// The encoder of `path` from its extension (any case), or an error naming
+/// the flag, the path and the extensions it accepts.
+fn encoding(flag: &str, path: &std::path::Path, allowed: &[Encoding]) -> anyhow::Result<Encoding> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let e = match ext.as_deref() {
+        Some("exr") => Some(Encoding::Exr),
+        Some("png") => Some(Encoding::Png),
+        _ => None,
+    };
+    match e {
+        Some(e) if allowed.contains(&e) => Ok(e),
+        _ => {
+            let names: Vec<&str> = allowed
+                .iter()
+                .map(|e| if *e == Encoding::Exr { ".exr" } else { ".png" })
+                .collect();
+            anyhow::bail!(
+                "{flag} {}: cannot tell the format from the extension; expected {}",
+                path.display(),
+                names.join(" or ")
+            )
+        }
+    }
+}
+
 pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
+    // Check the outputs before loading and rendering anything.
+    let mut outputs = Vec::new();
+    if let Some(out) = &a.output {
+        outputs.push((out, encoding("-o", out, &[Encoding::Exr, Encoding::Png])?));
+    }
+    if let Some(png) = &a.png {
+        outputs.push((png, encoding("--png", png, &[Encoding::Png])?));
+    }
+    if outputs.is_empty() {
+        anyhow::bail!("nothing to write: give -o OUT.exr (float texture) and/or --png OUT.png (preview)");
+    }
     let lum = super::load(&a.file, &a.read)?;
     let tex = LightTexture::new(&lum.distribution).context("building the light distribution texture")?;
     let (rendered, on) = super::render_on(&a.backend, &tex, a.filter, a.factor, !a.unclamped)?;
     let (h, w) = (rendered.mapping.height, rendered.mapping.width);
-    println!(
+    outln!(
         "{}: {} x {} texels (gamma x C), filter {}, factor {}, I_max {:.3} cd, {} texels clamped ({on})",
         a.file.display(),
         h,
@@ -53,19 +98,18 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
         rendered.i_max_cd,
         rendered.clamped
     );
-    if let Some(out) = &a.output {
-        exr_io::write_exr(
-            out,
-            &rendered,
-            &exr_io::ExrMeta {
-                source: Some(a.file.display().to_string()),
-            },
-        )?;
-        println!("wrote {}", out.display());
-    }
-    if let Some(png) = &a.png {
-        preview::write_preview(png, &rendered, a.exposure)?;
-        println!("wrote {}", png.display());
+    for (path, e) in outputs {
+        match e {
+            Encoding::Exr => exr_io::write_exr(
+                path,
+                &rendered,
+                &exr_io::ExrMeta {
+                    source: Some(a.file.display().to_string()),
+                },
+            )?,
+            Encoding::Png => preview::write_preview(path, &rendered, a.exposure)?,
+        }
+        outln!("wrote {}", path.display());
     }
     Ok(0)
 }

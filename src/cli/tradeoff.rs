@@ -26,13 +26,13 @@ pub struct TradeoffArgs {
     #[arg(long)]
     reference: Option<String>,
     /// Texture render factors (comma separated).
-    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10")]
+    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10", value_parser = super::parse::texture_factor)]
     factors: Vec<u32>,
     /// Grid refinement of the solids the Hausdorff distance is measured on.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]
     factor: usize,
     /// Timing repeats per representation (the median is reported).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
     repeats: usize,
     /// Print JSON.
     #[arg(long)]
@@ -45,12 +45,6 @@ pub struct TradeoffArgs {
 }
 
 pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
-    if a.factors.is_empty() || a.factors.iter().any(|k| !(1..=32).contains(k)) {
-        anyhow::bail!("--factors: every factor must be an integer from 1 to 32");
-    }
-    if a.factor == 0 || a.repeats == 0 {
-        anyhow::bail!("--factor and --repeats must be at least 1");
-    }
     let lum = super::load(&a.file, &a.read)?;
     let (against, other) = match a.reference.as_deref() {
         None => (None, None),

@@ -41,9 +41,10 @@ fn is_photometric(p: &Path) -> bool {
     photosolid::model::Format::from_extension(p).is_some()
 }
 
-fn collect(path: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
+fn collect(path: &Path, out: &mut Vec<PathBuf>) -> photosolid::Result<()> {
     if path.is_dir() {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)?
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
+            .map_err(|e| photosolid::Error::io(path, e))?
             .filter_map(|e| e.ok().map(|e| e.path()))
             .collect();
         entries.sort();
@@ -64,7 +65,7 @@ fn collect(path: &Path, out: &mut Vec<PathBuf>) -> std::io::Result<()> {
 pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     let mut files = Vec::new();
     for p in &a.paths {
-        collect(p, &mut files).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?;
+        collect(p, &mut files)?;
     }
     let opts = a.read.options();
     let bar = (std::io::stderr().is_terminal() && files.len() > 20).then(|| {

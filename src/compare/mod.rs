@@ -62,17 +62,35 @@ pub enum Normalize {
     Cd,
     /// I_max = 1 (each distribution by its own peak).
     Peak,
-    /// Equal flux: cd/klm (each distribution by its own flux).
+    /// cd/klm as in EULUMDAT and lighting practice: candela per 1000 lm of
+    /// *lamp* flux (each distribution by its file's declared lamp flux,
+    /// [`CompareOptions::lamp_flux_lm`]). Does not apply to absolute photometry.
     Klm,
+    /// Equal flux: each distribution divided by its own computed luminaire
+    /// flux (x 1000: cd per 1000 lm of luminaire flux).
+    Flux,
 }
 
 impl Normalize {
-    /// The scale factor of `d`.
-    pub fn factor(self, d: &Distribution) -> Result<f64, ModelError> {
+    /// The scale factor of `d`, whose file declares the lamp flux
+    /// `lamp_flux_lm` (lm; `None` for absolute photometry).
+    pub fn factor(self, d: &Distribution, lamp_flux_lm: Option<f64>) -> Result<f64, ModelError> {
         let k = match self {
             Normalize::Cd => 1.0,
             Normalize::Peak => 1.0 / d.max_cd(),
-            Normalize::Klm => 1000.0 / crate::photometry::flux(d).total_lm,
+            Normalize::Klm => match lamp_flux_lm {
+                Some(lm) => 1000.0 / lm,
+                None => {
+                    return Err(ModelError::Parameter {
+                        name: "normalize",
+                        value: "klm".into(),
+                        reason: "cd/klm is per 1000 lm of lamp flux, and this file has absolute photometry (no \
+                                 lamp flux); use --normalize flux (equal luminaire flux) or peak"
+                            .into(),
+                    })
+                }
+            },
+            Normalize::Flux => 1000.0 / crate::photometry::flux(d).total_lm,
         };
         if k.is_finite() && k > 0.0 {
             Ok(k)
@@ -86,6 +104,7 @@ impl Normalize {
             Normalize::Cd => "cd",
             Normalize::Peak => "I/I_max",
             Normalize::Klm => "cd/klm",
+            Normalize::Flux => "cd/klm of luminaire flux",
         }
     }
 }
@@ -97,10 +116,11 @@ impl FromStr for Normalize {
             "cd" => Ok(Normalize::Cd),
             "peak" => Ok(Normalize::Peak),
             "klm" => Ok(Normalize::Klm),
+            "flux" => Ok(Normalize::Flux),
             _ => Err(ModelError::Parameter {
                 name: "normalize",
                 value: s.into(),
-                reason: "expected cd, peak or klm".into(),
+                reason: "expected cd, peak, klm (lamp flux) or flux (equal luminaire flux)".into(),
             }),
         }
     }
@@ -196,6 +216,9 @@ pub struct CompareOptions {
     pub folds: usize,
     /// Scaling. Default: cd.
     pub normalize: Normalize,
+    /// Declared lamp flux (lm) of FILE and of OTHER, `None` for absolute
+    /// photometry: what [`Normalize::Klm`] divides by. Default: none.
+    pub lamp_flux_lm: [Option<f64>; 2],
     /// Direction set of the radial metrics. Default: dense 20000.
     pub directions: Directions,
     /// Hausdorff tolerance as a fraction of the reference I_max. Default: 0.001 (0.1 %).
@@ -224,6 +247,7 @@ impl Default for CompareOptions {
             truth: None,
             folds: 2,
             normalize: Normalize::Cd,
+            lamp_flux_lm: [None, None],
             directions: Directions::default(),
             tolerance: 1e-3,
             factor: 3,
@@ -447,10 +471,10 @@ pub fn compare_with_progress(
     opts: &CompareOptions,
     progress: &Progress<'_>,
 ) -> Result<Comparison, ModelError> {
-    let k = opts.normalize.factor(file)?;
+    let k = opts.normalize.factor(file, opts.lamp_flux_lm[0])?;
     let mut a = file.scaled(k)?;
     let b_dist = match vs {
-        Some(o) => Some(o.scaled(opts.normalize.factor(o)?)?),
+        Some(o) => Some(o.scaled(opts.normalize.factor(o, opts.lamp_flux_lm[1])?)?),
         None => None,
     };
     let mut alignment = None;

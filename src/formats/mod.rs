@@ -73,12 +73,44 @@ pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire
         .into());
     }
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let format = Format::from_extension(path).unwrap_or_else(|| sniff(&bytes));
-    let lum = match format {
-        Format::Ies => ies::read(&bytes, path, opts)?,
-        Format::Ldt => ldt::read(&bytes, path, opts)?,
-    };
-    Ok(lum)
+    let by_extension = Format::from_extension(path);
+    let format = by_extension.unwrap_or_else(|| sniff(&bytes));
+    parse(&bytes, path, format, opts).map_err(|mut e| {
+        // A file renamed to the other format's extension: say what it looks like.
+        let content = sniff(&bytes);
+        if by_extension.is_some() && content != format && looks_like(&bytes, content) {
+            let name = |f: Format| match f {
+                Format::Ies => "IES LM-63 (it has a TILT= line)",
+                Format::Ldt => "EULUMDAT (it has no TILT= line)",
+            };
+            let ext = |f: Format| match f {
+                Format::Ies => ".ies",
+                Format::Ldt => ".ldt",
+            };
+            e.found = format!(
+                "{}; the extension says {} but the content looks like {}: rename it to {}",
+                e.found,
+                ext(format),
+                name(content),
+                ext(content)
+            );
+        }
+        e.into()
+    })
+}
+
+/// Positive evidence that `bytes` are `format` (used only to explain a failed
+/// read): a `TILT=` line for IES; for EULUMDAT, lines 2, 3, 4 and 6 (type,
+/// symmetry, number of C-planes, number of gamma angles) are integers.
+fn looks_like(bytes: &[u8], format: Format) -> bool {
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
+    match format {
+        Format::Ies => head.to_ascii_uppercase().contains("TILT="),
+        Format::Ldt => {
+            let lines: Vec<&str> = head.lines().take(6).collect();
+            lines.len() == 6 && [1, 2, 3, 5].iter().all(|&i| lines[i].trim().parse::<u32>().is_ok())
+        }
+    }
 }
 
 /// Parse bytes as the given format; `path` is used for messages and, for

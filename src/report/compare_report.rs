@@ -11,18 +11,12 @@ use crate::error::Error;
 use crate::formats::write_atomic;
 use crate::report::plots::{self, ScatterPoint, Series, SeriesStyle};
 
-/// "12.31 (+0.05)" with a precision that suits the magnitude.
+/// Significant digits of every number in the tables and texts of a comparison.
+const DIGITS: usize = 4;
+
+/// A number of the comparison tables: [`DIGITS`] significant digits at every magnitude.
 fn num(x: f64) -> String {
-    let a = x.abs();
-    if a == 0.0 {
-        "0".into()
-    } else if a >= 1000.0 {
-        format!("{x:.1}")
-    } else if a >= 1.0 {
-        format!("{x:.3}")
-    } else {
-        format!("{x:.4e}")
-    }
+    super::significant(x, DIGITS)
 }
 
 /// "H = 12.31 cd (+0.05)".
@@ -96,12 +90,16 @@ fn row(r: &ReconResult) -> Vec<String> {
         num(r.ref_to_recon.value),
         num(r.mean_surface_distance_cd),
         num(r.radial_bound_cd),
-        format!("{:.3}", r.radial_max_pct),
-        format!("{:.3}", r.radial_rms_pct),
-        format!("{:.4}", r.zotti_err),
-        format!("{:+.3}", r.flux_error_pct),
-        format!("{:.4}", r.misplaced_flux),
-        r.time_per_sample_ns.map_or("-".into(), |t| format!("{t:.1}")),
+        num(r.radial_max_pct),
+        num(r.radial_rms_pct),
+        num(r.zotti_err),
+        format!(
+            "{}{}",
+            if r.flux_error_pct > 0.0 { "+" } else { "" },
+            num(r.flux_error_pct)
+        ),
+        num(r.misplaced_flux),
+        r.time_per_sample_ns.map_or("-".into(), num),
     ]
 }
 

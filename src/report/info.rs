@@ -6,7 +6,7 @@
 //! `c90-c270`, `quadrant`), `n_c` (stored C-planes), `n_c_full` (planes on
 //! the full circle), `n_gamma`, `gamma_range`, `max_cd`, `max_direction_deg`
 //! ([C, γ]), `flux_lm`, `downward_flux_lm`, `upward_flux_lm`,
-//! `declared_flux_lm`, `flux_ratio`, `lor`, `dlor`, `ulor`, `dff` (fractions,
+//! `declared_flux_lm`, `lamp_flux_lm` (declared bare-lamp flux; `null` when absolute), `flux_ratio`, `lor`, `dlor`, `ulor`, `dff` (fractions,
 //! not percent), `beam_angle_deg` / `field_angle_deg` (IES definition, of
 //! I_max, in the C0-C180 plane; `null` when undefined), `beam_angles` (all
 //! four definitions x two planes), `tilt`, `absolute`, and `warnings`, an
@@ -51,6 +51,10 @@ pub struct InfoReport {
     pub upward_flux_lm: f64,
     /// Flux the file declares, lm.
     pub declared_flux_lm: Option<f64>,
+    /// Bare-lamp flux the file declares (IES: lamps x lumens per lamp;
+    /// EULUMDAT: the lamp sets' flux), lm: the denominator of LOR and of
+    /// cd/klm. `null` for absolute photometry.
+    pub lamp_flux_lm: Option<f64>,
     /// flux_lm / declared_flux_lm.
     pub flux_ratio: Option<f64>,
     /// Light output ratio (fraction).
@@ -105,6 +109,7 @@ impl InfoReport {
             downward_flux_lm: s.flux.downward_lm,
             upward_flux_lm: s.flux.upward_lm,
             declared_flux_lm: s.declared_flux_lm,
+            lamp_flux_lm: lum.declared.lamp_flux_lm,
             flux_ratio: s.flux_ratio,
             lor: s.lor,
             dlor: s.dlor,
@@ -139,7 +144,13 @@ impl InfoReport {
             Some(x) => format!("{:.2}{unit}", x * scale),
             None => "-".to_string(),
         };
-        let pair = |a: [Option<f64>; 2]| format!("{} / {}", opt(a[0], 1.0, "°"), opt(a[1], 1.0, "°"));
+        let pair = |a: [Option<f64>; 2]| {
+            format!(
+                "{} in C0-C180, {} in C90-C270",
+                opt(a[0], 1.0, "°"),
+                opt(a[1], 1.0, "°")
+            )
+        };
         let range = match self.gamma_range {
             GammaRange::Full => "0-180 (full sphere)".to_string(),
             GammaRange::Lower => "0-90 (lower hemisphere)".to_string(),
@@ -182,6 +193,13 @@ impl InfoReport {
                 },
             ),
             (
+                "lamp flux",
+                match self.lamp_flux_lm {
+                    Some(l) => format!("{l:.2} lm (declared; LOR = flux / lamp flux, cd/klm per 1000 lm of it)"),
+                    None => "- (absolute photometry: no lamp flux, no LOR)".into(),
+                },
+            ),
+            (
                 "LOR / DLOR / ULOR",
                 format!(
                     "{} / {} / {}",
@@ -192,10 +210,13 @@ impl InfoReport {
             ),
             ("declared LOR", opt(self.declared_lor, 100.0, " %")),
             ("DFF", opt(self.dff, 100.0, " %")),
-            ("beam angle IES C0-180 / C90-270", pair(self.beam_angles.ies_beam_deg)),
-            ("field angle IES C0-180 / C90-270", pair(self.beam_angles.ies_field_deg)),
-            ("beam angle CIE C0-180 / C90-270", pair(self.beam_angles.cie_beam_deg)),
-            ("field angle CIE C0-180 / C90-270", pair(self.beam_angles.cie_field_deg)),
+            ("beam angle IES, 50 % of I_max", pair(self.beam_angles.ies_beam_deg)),
+            ("field angle IES, 10 % of I_max", pair(self.beam_angles.ies_field_deg)),
+            ("beam angle CIE, 50 % of centre I", pair(self.beam_angles.cie_beam_deg)),
+            (
+                "field angle CIE, 10 % of centre I",
+                pair(self.beam_angles.cie_field_deg),
+            ),
             ("tilt", self.tilt.to_string()),
             (
                 "lamp colour",

@@ -466,7 +466,9 @@ pub fn polar_diagram(title: &str, left: &str, right: &str, unit: &str, series: &
 /// half-plane (e.g. C0), negative on the `left` one (C180). Nadir (γ = 0)
 /// points down, zenith up. Lines are interpolated in polar coordinates
 /// (1° steps) after sorting each series by γ; negative values are drawn at
-/// the centre; non-finite points are skipped.
+/// the centre; non-finite points are skipped. Marker series are drawn under
+/// the curves and thinned to one marker per 12 px (the legend then says
+/// "(k of n shown)"), so that dense measurements do not hide the curves.
 ///
 /// # Errors
 /// [`Error::Unsupported`] for a size outside 120..=8192 px or if encoding fails.
@@ -483,7 +485,24 @@ pub fn polar_diagram_sized(
     let (wf, hf) = (cv.w(), cv.h());
     cv.title(title);
 
-    let legend_h = legend(&mut cv, series, 20.0, 0.0, wf - 20.0, true);
+    // Dense measured points (e.g. 361 gamma angles) would hide every curve:
+    // markers are thinned to one per MARKER_GAP px of the diagram and drawn
+    // under the curves; the legend says how many are shown.
+    let mut shown_markers: Vec<Vec<(f64, f64)>> = Vec::with_capacity(series.len());
+    let mut labels: Vec<Series> = series.to_vec();
+    // Measure the legend with the longest marker labels it may get.
+    let widest: Vec<Series> = series
+        .iter()
+        .map(|s| {
+            let mut s = s.clone();
+            if s.style == SeriesStyle::Markers {
+                let n = s.points.len();
+                s.label = format!("{} ({n} of {n} shown)", s.label);
+            }
+            s
+        })
+        .collect();
+    let legend_h = legend(&mut cv, &widest, 20.0, 0.0, wf - 20.0, true);
     let top = 40.0;
     let bottom = hf - legend_h - 14.0;
     let side = 20.0 + font::text_width(left, 2).max(font::text_width(right, 2)).max(48) as f32;
@@ -544,16 +563,38 @@ pub fn polar_diagram_sized(
     cv.line(cx - radius, cy, cx + radius, cy, AXIS, 1.0);
     cv.line(cx, cy - radius, cx, cy + radius, AXIS, 1.0);
 
+    for (s, lab) in series.iter().zip(labels.iter_mut()) {
+        let mut pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite2).collect();
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut kept: Vec<(f64, f64)> = Vec::new();
+        if s.style == SeriesStyle::Markers {
+            let mut last: Option<(f32, f32)> = None;
+            for &(g, v) in &pts {
+                let (x, y) = to_xy(g, v);
+                if last.is_none_or(|(lx, ly)| (x - lx).hypot(y - ly) >= MARKER_GAP) {
+                    kept.push((g, v));
+                    last = Some((x, y));
+                }
+            }
+            if kept.len() < pts.len() {
+                lab.label = format!("{} ({} of {} shown)", s.label, kept.len(), pts.len());
+            }
+        }
+        shown_markers.push(kept);
+    }
+    for (s, kept) in series.iter().zip(&shown_markers) {
+        if s.style == SeriesStyle::Markers {
+            for &(g, v) in kept {
+                let (x, y) = to_xy(g, v);
+                cv.circle(x, y, 3.0, s.color, None);
+            }
+        }
+    }
     for s in series {
         let mut pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite2).collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
         match s.style {
-            SeriesStyle::Markers => {
-                for &(g, v) in &pts {
-                    let (x, y) = to_xy(g, v);
-                    cv.circle(x, y, 3.5, s.color, None);
-                }
-            }
+            SeriesStyle::Markers => {}
             SeriesStyle::Line | SeriesStyle::Dashed => {
                 if pts.len() == 1 {
                     let (x, y) = to_xy(pts[0].0, pts[0].1);
@@ -579,9 +620,12 @@ pub fn polar_diagram_sized(
     if !any {
         cv.text(cx, cy, "no data", 3, Align::Center, INK, true);
     }
-    legend(&mut cv, series, 20.0, hf - legend_h - 8.0, wf - 20.0, false);
+    legend(&mut cv, &labels, 20.0, hf - legend_h - 8.0, wf - 20.0, false);
     cv.png()
 }
+
+/// Smallest distance (px) between two measured markers drawn on a polar diagram.
+const MARKER_GAP: f32 = 12.0;
 
 // ---------------------------------------------------------------------------
 // Heat map
@@ -810,6 +854,10 @@ pub fn scatter(
     scatter_sized(SCATTER_SIZE.0, SCATTER_SIZE.1, title, x_label, y_label, points, log_x)
 }
 
+/// Ratio of the largest to the smallest positive ordinate from which
+/// [`scatter_sized`] draws its y axis logarithmic.
+const LOG_Y_RATIO: f64 = 20.0;
+
 /// Axis mapping of the scatter plot.
 struct Axis {
     lo: f64,
@@ -844,7 +892,10 @@ impl Axis {
                 if lv < self.lo - 1e-9 || lv > self.hi + 1e-9 {
                     continue;
                 }
-                let labelled = m == 1 || (decades <= 2 && (m == 2 || m == 5));
+                // Enough labels on a short log axis: every mantissa within
+                // about a decade, 1-2-5 over two, powers of ten beyond.
+                let span = self.hi - self.lo;
+                let labelled = m == 1 || (span <= 1.2 && m != 7 && m != 9) || (decades <= 2 && (m == 2 || m == 5));
                 let text = if !labelled {
                     String::new()
                 } else if (-3..5).contains(&e) {
@@ -863,7 +914,9 @@ impl Axis {
 /// `log_x`; points with x ≤ 0 are then skipped), y = e.g. RMS error. Every
 /// point is named; Pareto-optimal points are drawn larger in red and joined
 /// by the Pareto front, a staircase through them in x order (lower is better
-/// on both axes). The y axis starts at 0 when all y are non-negative.
+/// on both axes). The y axis starts at 0 when all y are non-negative, and is
+/// logarithmic when all y are positive and span a ratio of 20 or more.
+/// Names are placed where they overlap no other name, point or front.
 ///
 /// # Errors
 /// [`Error::Unsupported`] for a size outside 120..=8192 px or if encoding fails.
@@ -921,18 +974,31 @@ pub fn scatter_sized(
     if pts.is_empty() {
         (ya, yb) = (0.0, 1.0);
     }
-    if ya >= 0.0 {
-        ya = 0.0;
-    }
-    if yb <= ya {
-        yb = if ya == 0.0 { 1.0 } else { ya + ya.abs() };
-    }
-    let yb = yb + (yb - ya) * 0.08;
-    let s = nice_step(yb - ya, 6);
-    let y_axis = Axis {
-        lo: (ya / s).floor() * s,
-        hi: (yb / s).ceil() * s,
-        log: false,
+    // Errors spanning more than LOG_Y_RATIO (a fitted model next to filters)
+    // would sit on the floor of a linear axis: log axis then.
+    let log_y = ya > 0.0 && yb / ya >= LOG_Y_RATIO;
+    let y_axis = if log_y {
+        let (la, lb) = (ya.log10(), yb.log10());
+        let pad = (lb - la) * 0.08;
+        Axis {
+            lo: la - pad,
+            hi: lb + pad,
+            log: true,
+        }
+    } else {
+        if ya >= 0.0 {
+            ya = 0.0;
+        }
+        if yb <= ya {
+            yb = if ya == 0.0 { 1.0 } else { ya + ya.abs() };
+        }
+        let yb = yb + (yb - ya) * 0.08;
+        let s = nice_step(yb - ya, 6);
+        Axis {
+            lo: (ya / s).floor() * s,
+            hi: (yb / s).ceil() * s,
+            log: false,
+        }
     };
     // Left margin: the y label, then the widest tick label.
     let y_ticks = y_axis.ticks();
@@ -954,9 +1020,12 @@ pub fn scatter_sized(
     }
     for (t, lab) in y_ticks {
         let y = py(t).round() + 0.5;
-        cv.line(left, y, right, y, GRID, 1.0);
-        cv.line(left - 6.0, y, left, y, AXIS, 1.0);
-        cv.text(left - 10.0, y, &lab, 2, Align::Right, INK, false);
+        let major = !lab.is_empty();
+        cv.line(left, y, right, y, if major { GRID } else { [240, 240, 240] }, 1.0);
+        cv.line(left - if major { 6.0 } else { 3.0 }, y, left, y, AXIS, 1.0);
+        if major {
+            cv.text(left - 10.0, y, &lab, 2, Align::Right, INK, false);
+        }
     }
     cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
     cv.text(left + pw / 2.0, hf - 16.0, x_label, 2, Align::Center, INK, false);
@@ -1016,7 +1085,9 @@ pub fn scatter_sized(
     for p in &order {
         let (x, y) = (px(p.x), py(p.y));
         let tw = font::text_width(&p.label, scale) as f32;
-        let cands = [
+        // Right, left, above, below; then right and left shifted up or down
+        // by one and two text rows, so that neighbours' names never overlap.
+        let mut cands = vec![
             (
                 x + 9.0,
                 y,
@@ -1042,6 +1113,21 @@ pub fn scatter_sized(
                 [x - tw / 2.0, y + 9.0, x + tw / 2.0, y + 9.0 + th],
             ),
         ];
+        for k in [1.0f32, -1.0, 2.0, -2.0, 3.0, -3.0] {
+            let yc = y + k * (th + 4.0);
+            cands.push((
+                x + 9.0,
+                yc,
+                Align::Left,
+                [x + 9.0, yc - th / 2.0, x + 9.0 + tw, yc + th / 2.0],
+            ));
+            cands.push((
+                x - 9.0,
+                yc,
+                Align::Right,
+                [x - 9.0 - tw, yc - th / 2.0, x - 9.0, yc + th / 2.0],
+            ));
+        }
         let inside =
             |b: &[f32; 4]| b[0] >= left + 2.0 && b[2] <= right - 2.0 && b[1] >= top + 2.0 && b[3] <= bottom - 2.0;
         let free = |b: &[f32; 4]| {
@@ -1054,6 +1140,15 @@ pub fn scatter_sized(
             .find(|c| inside(&c.3) && free(&c.3))
             .or_else(|| cands.iter().find(|c| inside(&c.3)))
             .unwrap_or(&cands[0]);
+        // A name moved off its point's row gets a leader line to the point.
+        if (pick.1 - y).abs() > 1.0 && pick.2 != Align::Center {
+            let ex = if pick.2 == Align::Left {
+                pick.3[0] - 1.0
+            } else {
+                pick.3[2] + 1.0
+            };
+            cv.line(x, y, ex, pick.1, AXIS, 1.0);
+        }
         let bx = cv.text(
             pick.0,
             pick.1,

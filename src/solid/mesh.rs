@@ -8,8 +8,10 @@
 //! positions and are wound counter-clockwise seen from outside (outward
 //! normals, right-hand rule). Quantities are accumulated in `f64`.
 
+use std::borrow::Cow;
 use std::fmt;
 
+use super::topology::{count_pinched, remove_fins, split_vertices};
 use super::{Units, UNIT_FRAME};
 use crate::error::ModelError;
 
@@ -452,6 +454,108 @@ impl Mesh {
         })
     }
 
+    /// This mesh as it is written to files: every pinch vertex (the merged
+    /// origin where several sheets meet, or any other point where two sheets
+    /// touch) split into one vertex per sheet, so that the file is a
+    /// 2-manifold for readers that merge vertices by position (STL readers,
+    /// trimesh, Blender, slicers). Each sheet's copy is moved by
+    /// up to [`SHEET_SEPARATION`] x [`Mesh::max_radius`] along the mean unit
+    /// direction to its sheet's neighbours (into the cone the sheet forms
+    /// there; for a flat sheet, a little along its normal away from the
+    /// other sheets): copies at one position would be merged again on reading.
+    /// Normals are recomputed, colours copied. Borrowed when nothing is pinched.
+    pub fn separate_sheets(&self) -> Cow<'_, Mesh> {
+        let nv = self.positions.len();
+        let (tris, _, _, nv_split) = self.split_pinches();
+        if nv_split == nv {
+            return Cow::Borrowed(self);
+        }
+        let mut source: Vec<u32> = (0..nv_split as u32).collect();
+        let mut moved = vec![false; nv_split];
+        for (t0, t1) in self.triangles.iter().zip(&tris) {
+            for k in 0..3 {
+                if t1[k] as usize >= nv {
+                    source[t1[k] as usize] = t0[k];
+                    moved[t1[k] as usize] = true;
+                    moved[t0[k] as usize] = true;
+                }
+            }
+        }
+        let mut positions: Vec<[f32; 3]> = source.iter().map(|&s| self.positions[s as usize]).collect();
+        // Per moved vertex: mean unit direction to its sheet's neighbours, and the fan's normal.
+        let mut mean_dir = vec![[0.0f64; 3]; nv_split];
+        let mut count = vec![0u32; nv_split];
+        let mut fan_normal = vec![[0.0f64; 3]; nv_split];
+        for t in &tris {
+            let [a, b, c] = t.map(|i| p64(&positions[i as usize]));
+            let n = cross(sub(b, a), sub(c, a));
+            for k in 0..3 {
+                let v = t[k] as usize;
+                if !moved[v] {
+                    continue;
+                }
+                let p = p64(&positions[v]);
+                for q in [t[(k + 1) % 3], t[(k + 2) % 3]].map(|i| p64(&positions[i as usize])) {
+                    if let Some(u) = unit(sub(q, p)) {
+                        mean_dir[v] = [mean_dir[v][0] + u[0], mean_dir[v][1] + u[1], mean_dir[v][2] + u[2]];
+                        count[v] += 1;
+                    }
+                }
+                fan_normal[v] = [
+                    fan_normal[v][0] + n[0],
+                    fan_normal[v][1] + n[1],
+                    fan_normal[v][2] + n[2],
+                ];
+            }
+        }
+        for v in 0..nv_split {
+            let n = f64::from(count[v].max(1));
+            mean_dir[v] = mean_dir[v].map(|x| x / n);
+        }
+        // The mean direction lies inside the cone the sheet's link spans, and
+        // its length (the cosine of a circular cone's half-angle) orders
+        // nested coaxial cones: apexes moved by it keep the sheets apart. A
+        // flat sheet (link on a great circle, mean ~ 0) moves a little along
+        // its normal, away from the other sheets at the point.
+        let mut others = vec![[0.0f64; 3]; nv];
+        for v in (0..nv_split).filter(|&v| moved[v]) {
+            let s = &mut others[source[v] as usize];
+            *s = [s[0] + mean_dir[v][0], s[1] + mean_dir[v][1], s[2] + mean_dir[v][2]];
+        }
+        let step = SHEET_SEPARATION * self.max_radius();
+        for v in (0..nv_split).filter(|&v| moved[v] && count[v] > 0) {
+            let m = mean_dir[v];
+            let offset = if norm(m) > 1e-3 {
+                Some(m)
+            } else {
+                unit(fan_normal[v]).map(|n| {
+                    let o = sub(others[source[v] as usize], m);
+                    let sign = if dot(n, o) > 0.0 { -1e-3 } else { 1e-3 };
+                    n.map(|x| sign * x)
+                })
+            };
+            if let Some(d) = offset {
+                let p = p64(&positions[v]);
+                positions[v] = [0, 1, 2].map(|k| (p[k] + step * d[k]) as f32);
+            }
+        }
+        let mut out = Mesh {
+            positions,
+            triangles: tris,
+            normals: None,
+            colors: self
+                .colors
+                .as_ref()
+                .map(|c| source.iter().map(|&s| c[s as usize]).collect()),
+            origin: self.origin.filter(|&o| !moved[o as usize]),
+            info: self.info.clone(),
+        };
+        if self.normals.is_some() {
+            out.compute_normals();
+        }
+        Cow::Owned(out)
+    }
+
     /// Triangles with every pinch vertex (a vertex whose link has several
     /// cycles: the merged origin between sheets, or an isolated point where
     /// two sheets of the surface touch, e.g. a tiny lit sample between dark
@@ -480,97 +584,11 @@ impl Mesh {
     }
 }
 
-/// Remove zero-thickness fins at the origin, then drop unused vertices.
-///
-/// Merging zero samples into the origin can leave a triangle and its mirror
-/// image (same three vertices, opposite winding): a flat fin of no volume,
-/// e.g. a single non-zero ring between zero rings. Such a pair cancels as a
-/// surface (its edges are matched within the pair), so both are removed; any
-/// vertex then unused is dropped (indices renumbered, order kept). Fins always
-/// contain the origin (no other merge makes two triangles share all three
-/// vertices), so only triangles at the origin are examined.
-fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u32; 3]>, origin: &mut Option<u32>) {
-    let Some(o) = *origin else { return };
-    // (canonical vertex set, +1/-1 parity of the winding, triangle index)
-    let mut at_o: Vec<([u32; 3], bool, usize)> = triangles
-        .iter()
-        .enumerate()
-        .filter(|(_, t)| t.contains(&o))
-        .map(|(i, t)| {
-            let mut s = *t;
-            s.sort_unstable();
-            // Even permutation of the sorted order = same winding as sorted.
-            let k = t.iter().position(|&v| v == s[0]).unwrap();
-            let even = t[(k + 1) % 3] == s[1];
-            (s, even, i)
-        })
-        .collect();
-    at_o.sort_unstable();
-    let mut dead = Vec::new();
-    let mut i = 0;
-    while i < at_o.len() {
-        let mut j = i;
-        while j < at_o.len() && at_o[j].0 == at_o[i].0 {
-            j += 1;
-        }
-        // Pair off opposite windings within the group.
-        let (mut ev, mut od): (Vec<usize>, Vec<usize>) = (Vec::new(), Vec::new());
-        for e in &at_o[i..j] {
-            if e.1 {
-                ev.push(e.2)
-            } else {
-                od.push(e.2)
-            }
-        }
-        let n = ev.len().min(od.len());
-        dead.extend_from_slice(&ev[..n]);
-        dead.extend_from_slice(&od[..n]);
-        i = j;
-    }
-    // Even without fins, triangles dropped for touching the origin twice can
-    // leave a vertex unused: the compaction below runs in every case.
-    dead.sort_unstable();
-    let mut k = 0;
-    let mut idx = 0;
-    triangles.retain(|_| {
-        let keep = !(k < dead.len() && dead[k] == idx);
-        if !keep {
-            k += 1;
-        }
-        idx += 1;
-        keep
-    });
-    let mut used = vec![false; positions.len()];
-    for t in triangles.iter() {
-        for &v in t {
-            used[v as usize] = true;
-        }
-    }
-    if used.iter().all(|&u| u) {
-        return;
-    }
-    let mut remap = vec![u32::MAX; positions.len()];
-    let mut next = 0u32;
-    let mut kept = Vec::with_capacity(positions.len());
-    for (v, p) in positions.iter().enumerate() {
-        if used[v] {
-            remap[v] = next;
-            next += 1;
-            kept.push(*p);
-        }
-    }
-    *positions = kept;
-    for t in triangles.iter_mut() {
-        for v in t.iter_mut() {
-            *v = remap[*v as usize];
-        }
-    }
-    *origin = if used[o as usize] {
-        Some(remap[o as usize])
-    } else {
-        None
-    };
-}
+/// How far [`Mesh::separate_sheets`] moves each sheet's copy of a pinch
+/// vertex, relative to the largest radius: far above `f32` resolution and
+/// the merge tolerances of mesh readers (trimesh: 1e-8 absolute), far below
+/// any measurement's precision.
+pub const SHEET_SEPARATION: f64 = 1e-5;
 
 /// The result of a successful [`Mesh::sanity_check`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -786,106 +804,4 @@ mod tests {
         assert_eq!((r.origin_sheets, r.components), (2, 2));
         assert!((r.volume - 2.0 / 6.0).abs() < 1e-9);
     }
-}
-
-/// Split every vertex selected by `select` whose link has several cycles
-/// into one copy per cycle (new ids from `next_id` on). Returns (cycles of
-/// the last selected vertex with any triangle, the next free id).
-fn split_vertices(tris: &mut [[u32; 3]], mut next_id: u32, select: impl Fn(u32) -> bool) -> (usize, u32) {
-    let mut link: Vec<(u32, u32, u32, usize)> = Vec::with_capacity(3 * tris.len());
-    for (i, t) in tris.iter().enumerate() {
-        for k in 0..3 {
-            if select(t[k]) {
-                link.push((t[k], t[(k + 1) % 3], t[(k + 2) % 3], i));
-            }
-        }
-    }
-    link.sort_unstable();
-    let mut last_sheets = 0;
-    let mut g = 0;
-    while g < link.len() {
-        let v = link[g].0;
-        let mut h = g;
-        while h < link.len() && link[h].0 == v {
-            h += 1;
-        }
-        let group = &link[g..h];
-        let sheet_of = link_cycles(group);
-        let sheets = sheet_of.iter().copied().max().map_or(0, |m| m + 1);
-        last_sheets = sheets;
-        for (k, e) in group.iter().enumerate() {
-            if sheet_of[k] > 0 {
-                let new_id = next_id + sheet_of[k] as u32 - 1;
-                for x in &mut tris[e.3] {
-                    if *x == v {
-                        *x = new_id;
-                    }
-                }
-            }
-        }
-        next_id += sheets.saturating_sub(1) as u32;
-        g = h;
-    }
-    (last_sheets, next_id)
-}
-
-/// Number of distinct original vertices that received copies with ids >= `first_new`.
-fn count_pinched(original: &[[u32; 3]], split: &[[u32; 3]], first_new: u32) -> usize {
-    let mut v: Vec<u32> = original
-        .iter()
-        .zip(split)
-        .flat_map(|(a, b)| (0..3).filter(move |&k| b[k] >= first_new).map(move |k| a[k]))
-        .collect();
-    v.sort_unstable();
-    v.dedup();
-    v.len()
-}
-
-/// Decompose a vertex's link edges (sorted by their start) into simple
-/// cycles; returns the cycle index of each edge. Whenever the walk revisits
-/// a vertex, the loop since that vertex is one cycle (one sheet).
-fn link_cycles(group: &[(u32, u32, u32, usize)]) -> Vec<usize> {
-    let n = group.len();
-    let mut used = vec![false; n];
-    let mut sheet_of = vec![0usize; n];
-    let mut sheets = 0usize;
-    for start in 0..n {
-        if used[start] {
-            continue;
-        }
-        let mut path_v: Vec<u32> = vec![group[start].1];
-        let mut path_e: Vec<usize> = Vec::new();
-        let mut e = start;
-        loop {
-            used[e] = true;
-            path_e.push(e);
-            let y = group[e].2;
-            if let Some(pos) = path_v.iter().rposition(|&x| x == y) {
-                for &pe in &path_e[pos..] {
-                    sheet_of[pe] = sheets;
-                }
-                sheets += 1;
-                path_e.truncate(pos);
-                path_v.truncate(pos + 1);
-            } else {
-                path_v.push(y);
-            }
-            let from = *path_v.last().expect("non-empty path");
-            let lo = group.partition_point(|l| l.1 < from);
-            match (lo..n).take_while(|&k| group[k].1 == from).find(|&k| !used[k]) {
-                Some(next) => e = next,
-                None => {
-                    // An open link (unbalanced edges, reported by the edge check): one sheet.
-                    if !path_e.is_empty() {
-                        for &pe in &path_e {
-                            sheet_of[pe] = sheets;
-                        }
-                        sheets += 1;
-                    }
-                    break;
-                }
-            }
-        }
-    }
-    sheet_of
 }

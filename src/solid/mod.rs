@@ -66,12 +66,14 @@ pub mod grid;
 pub mod measured;
 pub mod mesh;
 pub mod radial;
+pub mod topology;
 
 pub use colormap::ColorMap;
 pub use grid::{grid_solid, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};
-pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo};
+pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo, SHEET_SEPARATION};
 pub use radial::RadialMesh;
+pub use topology::{topology, MeshTopology};
 
 use crate::error::ModelError;
 use crate::model::Distribution;

@@ -3,6 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
+pub mod cli;
+
 /// The third-party corpus next to the checkout, when present.
 pub fn corpus() -> Option<PathBuf> {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/corpus");

@@ -366,7 +366,10 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         let min = cd.iter().cloned().fold(f64::INFINITY, f64::min);
         warnings.push(Warning::new(
             "negative-intensity",
-            format!("{negatives} negative candela value(s) kept (lowest {min} cd)"),
+            format!(
+                "{negatives} negative candela value(s) kept (lowest {} cd)",
+                crate::report::significant(min, 6)
+            ),
         ));
     }
 
@@ -405,7 +408,10 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         if spread > 1e-9 * peak {
             warnings.push(Warning::new(
                 "pole-mismatch",
-                format!("the {name} value differs between planes by {spread} cd; kept as measured"),
+                format!(
+                    "the {name} value differs between planes by {} cd; kept as measured",
+                    crate::report::significant(spread, 6)
+                ),
             ));
         }
     }
@@ -657,8 +663,9 @@ fn type_c(
                     warnings.push(Warning::new(
                         "seam-mismatch",
                         format!(
-                            "the 360-degree plane differs from the 0-degree plane by up to {diff} cd; \
-                             the 0-degree plane is kept"
+                            "the 360-degree plane differs from the 0-degree plane by up to {} cd; \
+                             the 0-degree plane is kept",
+                            crate::report::significant(diff, 6)
                         ),
                     ));
                 }

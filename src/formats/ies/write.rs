@@ -213,7 +213,7 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
             w.nums(p);
         } else {
             for &v in p {
-                w.num(round15(v / scale));
+                w.num(v / scale);
             }
             w.end();
         }
@@ -251,7 +251,10 @@ impl Writer {
         }
     }
 
+    /// Append `v` rounded to 15 significant digits: what the data can carry,
+    /// without the last-digit noise of arithmetic (770.0160000000001).
     fn num(&mut self, v: f64) {
+        let v = round15(v);
         let start = self.out.len();
         if self.col > 0 {
             self.out.push(' ');

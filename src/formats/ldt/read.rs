@@ -515,7 +515,10 @@ impl<'s, 'a> Reader<'s, 'a> {
             self.warn(
                 c_first,
                 "c360-plane",
-                format!("C = 360 duplicates C = 0 and was dropped (largest difference {diff} cd)"),
+                format!(
+                    "C = 360 duplicates C = 0 and was dropped (largest difference {} cd)",
+                    crate::report::significant(diff, 6)
+                ),
             );
             c_model.pop();
             cd.truncate(last * ng);

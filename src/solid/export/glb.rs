@@ -8,7 +8,8 @@
 
 use serde_json::json;
 
-use crate::solid::Mesh;
+use crate::error::ModelError;
+use crate::solid::{Mesh, SolidInfo};
 
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
@@ -96,10 +97,10 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
         "accessors": accessors,
     });
     let mut json_bytes = serde_json::to_vec(&doc).expect("serialisable JSON");
-    while json_bytes.len() % 4 != 0 {
+    while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
     }
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
@@ -114,4 +115,91 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
     out.extend_from_slice(b"BIN\0");
     out.extend_from_slice(&bin);
     out
+}
+
+/// Read the first triangle primitive of a .glb file of the kind [`encode`]
+/// writes: `POSITION` as float VEC3 (tightly packed), indices as unsigned
+/// byte, short or int (or none: consecutive triples). The node transform is
+/// not applied: the coordinates are the buffer's, the luminaire frame.
+/// The vertex at exactly (0, 0, 0), if any, is taken as the origin vertex.
+pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
+    let err = |m: &str| ModelError::Intensities(format!("glTF: {m}"));
+    let u32_at = |o: usize| -> Result<usize, ModelError> {
+        let b = bytes.get(o..o + 4).ok_or_else(|| err("truncated"))?;
+        Ok(u32::from_le_bytes(b.try_into().expect("4 bytes")) as usize)
+    };
+    if bytes.get(..4) != Some(b"glTF".as_slice()) || u32_at(4)? != 2 {
+        return Err(err("not a glTF 2.0 binary (.glb) file"));
+    }
+    let json_len = u32_at(12)?;
+    let json_bytes = bytes
+        .get(20..20 + json_len)
+        .ok_or_else(|| err("truncated JSON chunk"))?;
+    let doc: serde_json::Value = serde_json::from_slice(json_bytes).map_err(|e| err(&format!("JSON chunk: {e}")))?;
+    let bin_at = 20 + json_len;
+    let bin_len = u32_at(bin_at)?;
+    let bin = bytes
+        .get(bin_at + 8..bin_at + 8 + bin_len)
+        .ok_or_else(|| err("truncated BIN chunk"))?;
+    let prim = &doc["meshes"][0]["primitives"][0];
+    if prim.get("mode").and_then(|m| m.as_u64()).unwrap_or(4) != 4 {
+        return Err(err("the first primitive is not a triangle list (mode 4)"));
+    }
+    // (data of an accessor, its count, component type)
+    let accessor = |a: &serde_json::Value| -> Result<(&[u8], usize, u64), ModelError> {
+        let i = a.as_u64().ok_or_else(|| err("missing accessor"))? as usize;
+        let acc = &doc["accessors"][i];
+        let view = &doc["bufferViews"][acc["bufferView"]
+            .as_u64()
+            .ok_or_else(|| err("accessor without bufferView"))? as usize];
+        if view.get("byteStride").is_some() {
+            return Err(err("interleaved buffer views (byteStride) are not read"));
+        }
+        let start =
+            view["byteOffset"].as_u64().unwrap_or(0) as usize + acc["byteOffset"].as_u64().unwrap_or(0) as usize;
+        let len = view["byteLength"]
+            .as_u64()
+            .ok_or_else(|| err("bufferView without byteLength"))? as usize;
+        let data = bin
+            .get(start..start + len)
+            .ok_or_else(|| err("bufferView past the BIN chunk"))?;
+        let count = acc["count"].as_u64().ok_or_else(|| err("accessor without count"))? as usize;
+        Ok((data, count, acc["componentType"].as_u64().unwrap_or(0)))
+    };
+    let (pdata, nv, ptype) = accessor(&prim["attributes"]["POSITION"])?;
+    if ptype != u64::from(FLOAT) || pdata.len() < 12 * nv {
+        return Err(err("POSITION is not float VEC3"));
+    }
+    let positions: Vec<[f32; 3]> = pdata[..12 * nv]
+        .chunks_exact(12)
+        .map(|c| [0, 1, 2].map(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().expect("4 bytes"))))
+        .collect();
+    let indices: Vec<u32> = match prim.get("indices") {
+        None => (0..nv as u32).collect(),
+        Some(a) => {
+            let (data, n, t) = accessor(a)?;
+            let size = match t {
+                5121 => 1,
+                5123 => 2,
+                5125 => 4,
+                _ => return Err(err("indices are not unsigned byte, short or int")),
+            };
+            let data = data
+                .get(..size * n)
+                .ok_or_else(|| err("index accessor past its bufferView"))?;
+            data.chunks_exact(size)
+                .map(|c| match size {
+                    1 => u32::from(c[0]),
+                    2 => u32::from(u16::from_le_bytes([c[0], c[1]])),
+                    _ => u32::from_le_bytes(c.try_into().expect("4 bytes")),
+                })
+                .collect()
+        }
+    };
+    if !indices.len().is_multiple_of(3) {
+        return Err(err("index count is not a multiple of 3"));
+    }
+    let triangles = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
+    Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
 }

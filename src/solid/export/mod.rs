@@ -13,7 +13,9 @@
 //! that the glTF node carries a −90° rotation about x, because glTF is +Y
 //! up: viewers (and Blender's importer) then show nadir down. When importing
 //! OBJ into Blender, choose "Up: Z" (its OBJ default is Y up).
-//! The readers here ([`ply::read`], [`obj::read`]) read back what the
+//! Pinch points (the origin where several sheets meet) are split per sheet
+//! in every file ([`Mesh::separate_sheets`]).
+//! The readers here ([`read`]: [`ply::read`], [`obj::read`], [`stl::read`], [`glb::read`]) read back what the
 //! writers write (and simple files like it); they are for tests and for
 //! loading reference solids, not general-purpose importers.
 
@@ -63,8 +65,12 @@ impl MeshFormat {
     }
 }
 
-/// The file's bytes for `mesh` in `format`.
+/// The file's bytes for `mesh` in `format`: the mesh with its sheets
+/// separated at pinch points ([`Mesh::separate_sheets`]), so that every
+/// format (STL included, which has no shared vertices) reads back as a
+/// closed 2-manifold.
 pub fn encode(mesh: &Mesh, format: MeshFormat) -> Vec<u8> {
+    let mesh = &*mesh.separate_sheets();
     match format {
         MeshFormat::Obj => obj::encode(mesh),
         MeshFormat::Ply => ply::encode(mesh),
@@ -94,6 +100,25 @@ pub fn write_as(mesh: &Mesh, path: &Path, format: MeshFormat) -> Result<()> {
         )));
     }
     crate::formats::write_atomic(path, &encode(mesh, format))
+}
+
+/// Read a mesh file in any format this module writes (format from the
+/// extension), with [`ply::read`], [`obj::read`], [`stl::read`] or [`glb::read`].
+pub fn read(path: &Path) -> Result<Mesh> {
+    let format = MeshFormat::from_path(path).ok_or_else(|| {
+        Error::Unsupported(format!(
+            "{}: cannot tell the mesh format; expected the extension .obj, .ply, .stl or .glb",
+            path.display()
+        ))
+    })?;
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let mesh = match format {
+        MeshFormat::Obj => obj::read(&bytes),
+        MeshFormat::Ply => ply::read(&bytes),
+        MeshFormat::Stl => stl::read(&bytes),
+        MeshFormat::Glb => glb::read(&bytes),
+    };
+    mesh.map_err(|e| Error::Unsupported(format!("{}: {e}", path.display())))
 }
 
 /// Mesh metadata lines, ASCII only (STL headers and some PLY readers need

@@ -6,7 +6,10 @@
 
 use super::ascii_lines;
 use crate::solid::mesh::{cross, p64, sub, unit};
-use crate::solid::Mesh;
+use std::collections::HashMap;
+
+use crate::error::ModelError;
+use crate::solid::{Mesh, SolidInfo};
 
 /// The STL file's bytes.
 pub fn encode(mesh: &Mesh) -> Vec<u8> {
@@ -37,4 +40,41 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
         out.extend_from_slice(&[0, 0]);
     }
     out
+}
+
+/// Read a binary STL file: vertices at the same position merged (−0.0 and
+/// 0.0 being one position), so the mesh has the topology the triangles
+/// describe; the facet normals are ignored. The vertex at exactly (0, 0, 0),
+/// if any, is taken as the origin vertex. Metadata is not restored.
+pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
+    let err = |m: String| ModelError::Intensities(format!("STL: {m}"));
+    if bytes.len() < 84 {
+        return Err(err(format!("{} bytes, shorter than the 84-byte header", bytes.len())));
+    }
+    let n = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes")) as usize;
+    let want = 84 + 50 * n;
+    if bytes.len() != want {
+        return Err(err(format!(
+            "{n} triangles need {want} bytes, the file has {} (ASCII STL is not read)",
+            bytes.len()
+        )));
+    }
+    let mut index: HashMap<[u32; 3], u32> = HashMap::with_capacity(n / 2 + 3);
+    let mut positions: Vec<[f32; 3]> = Vec::new();
+    let mut triangles = Vec::with_capacity(n);
+    for rec in bytes[84..].chunks_exact(50) {
+        let mut t = [0u32; 3];
+        for (k, v) in t.iter_mut().enumerate() {
+            let o = 12 + 12 * k;
+            let p: [f32; 3] =
+                [0, 1, 2].map(|j| f32::from_le_bytes(rec[o + 4 * j..o + 4 * j + 4].try_into().expect("4 bytes")) + 0.0);
+            *v = *index.entry(p.map(f32::to_bits)).or_insert_with(|| {
+                positions.push(p);
+                positions.len() as u32 - 1
+            });
+        }
+        triangles.push(t);
+    }
+    let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
+    Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
 }

@@ -1,0 +1,51 @@
+//! Running the real `photosolid` binary in a test directory.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// The binary under test.
+pub fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_photosolid"))
+}
+
+/// Run `photosolid ARGS` in `dir`.
+pub fn run(args: &[&str], dir: &Path) -> Output {
+    bin().args(args).current_dir(dir).output().expect("run photosolid")
+}
+
+/// Stdout of a run that must have succeeded (panics with both streams otherwise).
+pub fn ok(o: &Output) -> String {
+    assert!(
+        o.status.success(),
+        "exit {:?}\nstdout:\n{}\nstderr:\n{}",
+        o.status.code(),
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Stderr of a run that must have failed with exit code `code`.
+pub fn fails(o: &Output, code: i32) -> String {
+    assert_eq!(
+        o.status.code(),
+        Some(code),
+        "stdout:\n{}\nstderr:\n{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A one-plane Type C IES file (1 lamp, `lumens` lm, metres) with these
+/// gamma angles and intensities (cd), written to `dir/name`.
+pub fn write_ies(dir: &Path, name: &str, lumens: f64, gamma: &[f64], cd: &[f64]) {
+    let list = |v: &[f64]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
+    let text = format!(
+        "IESNA:LM-63-2002\n[TEST] photosolid test file\nTILT=NONE\n1 {lumens} 1 {} 1 1 2 0 0 0\n1 1 0\n{}\n0\n{}\n",
+        gamma.len(),
+        list(gamma),
+        list(cd)
+    );
+    std::fs::write(dir.join(name), text).unwrap();
+}

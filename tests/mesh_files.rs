@@ -1,0 +1,95 @@
+//! Written mesh files as a reader sees them: every format read back with the
+//! crate's own readers, vertices merged by position (as STL readers, trimesh
+//! and Blender do), must be a closed 2-manifold with the solid's components,
+//! also where several sheets of the solid meet at the origin.
+
+mod common;
+
+use photosolid::solid::export::{self, MeshFormat};
+use photosolid::solid::{grid_solid, measured_solid, topology, Mesh, SolidGrid, Units, SHEET_SEPARATION};
+
+const FORMATS: [MeshFormat; 4] = [MeshFormat::Obj, MeshFormat::Ply, MeshFormat::Stl, MeshFormat::Glb];
+
+/// Write `m` in every format, read each file back, check its topology and volume.
+fn check_files(m: &Mesh, what: &str) {
+    let r = m.sanity_check().unwrap_or_else(|e| panic!("{what}: {e}"));
+    let dir = tempfile::tempdir().unwrap();
+    for f in FORMATS {
+        let path = dir.path().join(format!("solid.{}", f.extension()));
+        export::write(m, &path).unwrap();
+        let back = export::read(&path).unwrap_or_else(|e| panic!("{what} {f:?}: {e}"));
+        let t = topology(back.positions(), back.triangles());
+        assert!(t.watertight && t.manifold, "{what} {f:?}: {t:?}");
+        assert_eq!(t.components, r.components, "{what} {f:?}");
+        assert_eq!(t.euler_characteristic, 2 * r.components as i64, "{what} {f:?}");
+        // The separated copies move by at most SHEET_SEPARATION x the largest radius.
+        let dv = (back.volume() - m.volume()).abs() / m.volume();
+        assert!(dv < 1e-4, "{what} {f:?}: volume {} vs {}", back.volume(), m.volume());
+        let r_back = back
+            .sanity_check()
+            .unwrap_or_else(|e| panic!("{what} {f:?} read back: {e}"));
+        assert_eq!(
+            (r_back.pinch_vertices, r_back.components),
+            (0, r.components),
+            "{what} {f:?}"
+        );
+    }
+}
+
+/// Several sheets meeting at the origin: two lobes; a dark nadir dimple under
+/// a flat top (zero above 90°); a thin lit band between dark bands (three
+/// coaxial sheets). Before the split the mesh is pinched (watertight, not
+/// manifold); every written file is manifold.
+#[test]
+fn pinched_solids_are_written_as_manifolds() {
+    type Case = (&'static str, fn(f64, f64) -> f64, usize);
+    let cases: [Case; 3] = [
+        ("two lobes", |_, g| (g.to_radians().cos().abs() - 0.2).max(0.0), 2),
+        (
+            "dimple under a flat top",
+            |_, g| if g > 0.0 && g <= 90.0 { 100.0 } else { 0.0 },
+            1,
+        ),
+        (
+            "thin band",
+            |_, g| if g < 74.0 || (g > 82.0 && g < 89.0) { 100.0 } else { 0.0 },
+            2,
+        ),
+    ];
+    for (what, f, components) in cases {
+        let m = grid_solid(&f, &SolidGrid::uniform(48, 72).unwrap(), Units::Candela).unwrap();
+        let r = m.sanity_check().unwrap();
+        assert!(r.origin_sheets >= 2, "{what}: {r:?}");
+        assert_eq!(r.components, components, "{what}");
+        let pinched = topology(m.positions(), m.triangles());
+        assert!(pinched.watertight && !pinched.manifold, "{what}: {pinched:?}");
+        let sep = m.separate_sheets();
+        let moved = m.max_radius() * SHEET_SEPARATION * 1.0001;
+        assert!(sep
+            .positions()
+            .iter()
+            .all(|p| p.iter().map(|x| x * x).sum::<f32>().sqrt() <= moved as f32 || m.positions().contains(p)));
+        check_files(&m, what);
+    }
+}
+
+/// Every corpus file that loads: its measured solid, written in every format, reads back as a manifold.
+#[test]
+fn corpus_measured_solids_are_written_as_manifolds() {
+    let Some(root) = common::corpus() else { return };
+    let mut pinched = 0;
+    for e in common::manifest(&root)
+        .into_iter()
+        .filter(|e| e.photometric() && !e.malformed())
+    {
+        let Ok(lum) = photosolid::load(&e.path) else { continue };
+        let Ok(m) = measured_solid(&lum.distribution, Units::Candela) else {
+            continue;
+        };
+        if m.sanity_check().unwrap().origin_sheets > 1 {
+            pinched += 1;
+        }
+        check_files(&m, &e.rel);
+    }
+    assert!(pinched > 0, "the corpus has solids with several sheets at the origin");
+}
