@@ -11,7 +11,7 @@
 use std::borrow::Cow;
 use std::fmt;
 
-use super::topology::{count_pinched, remove_fins, split_vertices};
+use super::topology::{count_pinched, remove_fins, split_vertices, SHEET_SEPARATION};
 use super::{Units, UNIT_FRAME};
 use crate::error::ModelError;
 
@@ -584,12 +584,6 @@ impl Mesh {
     }
 }
 
-/// How far [`Mesh::separate_sheets`] moves each sheet's copy of a pinch
-/// vertex, relative to the largest radius: far above `f32` resolution and
-/// the merge tolerances of mesh readers (trimesh: 1e-8 absolute), far below
-/// any measurement's precision.
-pub const SHEET_SEPARATION: f64 = 1e-5;
-
 /// The result of a successful [`Mesh::sanity_check`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SanityReport {
@@ -788,20 +782,5 @@ mod tests {
         p[3] = [0.5, 0.5, 0.0]; // on the hypotenuse of the face 0-1-2 plane: face 1-2-3 collinear
         let d = Mesh::from_parts(p, m.triangles.clone(), None, SolidInfo::default()).unwrap();
         assert!(matches!(d.sanity_check(), Err(SanityError::Degenerate { .. })));
-    }
-
-    /// Two tetrahedra sharing only the origin vertex: one component after the
-    /// split would be wrong; the check sees two spheres meeting at the origin.
-    #[test]
-    fn pinched_origin_splits_into_sheets() {
-        let mut p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        p.extend([[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]]);
-        let mut t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-        // The mirror image (det −1) with the winding flipped back.
-        t.extend([[0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]]);
-        let m = Mesh::from_parts(p, t, Some(0), SolidInfo::default()).unwrap();
-        let r = m.sanity_check().unwrap();
-        assert_eq!((r.origin_sheets, r.components), (2, 2));
-        assert!((r.volume - 2.0 / 6.0).abs() < 1e-9);
     }
 }

@@ -71,9 +71,9 @@ pub mod topology;
 pub use colormap::ColorMap;
 pub use grid::{grid_solid, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};
-pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo, SHEET_SEPARATION};
+pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo};
 pub use radial::RadialMesh;
-pub use topology::{topology, MeshTopology};
+pub use topology::{topology, MeshTopology, SHEET_SEPARATION};
 
 use crate::error::ModelError;
 use crate::model::Distribution;

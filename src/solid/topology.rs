@@ -197,6 +197,12 @@ fn link_cycles(group: &[(u32, u32, u32, usize)]) -> Vec<usize> {
     sheet_of
 }
 
+/// How far [`Mesh::separate_sheets`](crate::solid::Mesh::separate_sheets) moves each sheet's copy of a pinch
+/// vertex, relative to the largest radius: far above `f32` resolution and
+/// the merge tolerances of mesh readers (trimesh: 1e-8 absolute), far below
+/// any measurement's precision.
+pub const SHEET_SEPARATION: f64 = 1e-5;
+
 /// The topology of a mesh as a file reader sees it: vertices at the same
 /// position merged (STL has no shared vertices at all; trimesh, Blender and
 /// slicers merge by position), then every edge and vertex examined.
@@ -302,6 +308,22 @@ pub fn topology(positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> MeshTopology 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solid::{Mesh, SolidInfo};
+
+    /// Two tetrahedra sharing only the origin vertex: one component after the
+    /// split would be wrong; the check sees two spheres meeting at the origin.
+    #[test]
+    fn pinched_origin_splits_into_sheets() {
+        let mut p = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        p.extend([[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]]);
+        let mut t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        // The mirror image (det −1) with the winding flipped back.
+        t.extend([[0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]]);
+        let m = Mesh::from_parts(p, t, Some(0), SolidInfo::default()).unwrap();
+        let r = m.sanity_check().unwrap();
+        assert_eq!((r.origin_sheets, r.components), (2, 2));
+        assert!((r.volume - 2.0 / 6.0).abs() < 1e-9);
+    }
 
     /// Two tetrahedra sharing one vertex: watertight, not manifold, 2 components.
     #[test]
