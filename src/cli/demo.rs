@@ -4,7 +4,8 @@
 //! IES into the output directory, reads both back and prints their `info`
 //! side by side; then renders a texture with every filter (sizes printed),
 //! runs the 2/2 hold-out, fits the OpenGL lights, and writes the comparison
-//! report (`index.html`, `report.md`, `report.json`, PNGs) into the output directory.
+//! report (`index.html`, `report.md`, `report.json`, PNGs) into the output directory;
+//! finally evaluates and plans the built-in scene (`photosolid::scene::demo_scene`).
 
 use std::path::PathBuf;
 
@@ -71,5 +72,11 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     print!("{}", compare_report::to_text(&c));
     compare_report::write_report(&c, &a.output)?;
     println!("report written to {}", a.output.join("index.html").display());
+
+    println!("\n== built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it ==");
+    let scene = photosolid::scene::demo_scene()?;
+    print!("{}", super::scene::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?));
+    let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
+    print!("{}", super::scene::plan_text(&plan));
     Ok(0)
 }

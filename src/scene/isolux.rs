@@ -4,7 +4,7 @@
 //! calculation points (held at the edges), contour lines (marching squares
 //! on the point grid) at 1–2–5 × 10^k lux levels, and every luminaire's
 //! photometric centre projected onto the plane (a white-ringed black dot
-//! with its number). The plane's u edge runs left to right, v bottom to top.
+//! with its number, also in the margins around the map). The plane's u edge runs left to right, v bottom to top.
 
 use std::path::{Path, PathBuf};
 
@@ -152,11 +152,13 @@ pub fn isolux_png(scene: &Scene, index: usize, e: &[f64]) -> Result<Option<Vec<u
     // Luminaires.
     for (k, l) in scene.luminaires.iter().enumerate() {
         let (s, t) = plane_coords(origin, u, v, l.pose.position);
-        let shown = -0.05..=1.05;
-        if !(shown.contains(&s) && shown.contains(&t)) {
+        if !(s.is_finite() && t.is_finite()) {
             continue;
         }
         let (x, y) = to_px(s, t);
+        if !(x >= 0.0 && y >= 0.0 && x < width as f32 && y < height as f32) {
+            continue; // beyond the picture's margins
+        }
         for (radius, rgb) in [(7.0, [255u8, 255, 255]), (5.0, [0, 0, 0])] {
             if let Some(c) = PathBuilder::from_circle(x, y, radius) {
                 paint.set_color_rgba8(rgb[0], rgb[1], rgb[2], 255);
@@ -181,7 +183,7 @@ pub fn isolux_png(scene: &Scene, index: usize, e: &[f64]) -> Result<Option<Vec<u
         "no contour levels (uniform or dark)".to_string()
     } else {
         format!(
-            "contours (white) at {} lx; colour 0 to {:.3} lx (viridis)",
+            "contours at {} lx; colour 0-{:.1} lx",
             levels.iter().map(|l| format!("{l}")).collect::<Vec<_>>().join(", "),
             emax
         )
@@ -189,7 +191,7 @@ pub fn isolux_png(scene: &Scene, index: usize, e: &[f64]) -> Result<Option<Vec<u
     font::draw_text(
         &mut pm,
         MARGIN as i32,
-        (h + MARGIN + 12) as i32,
+        (h + 2 * MARGIN + 12) as i32,
         &levels_text,
         2,
         [40, 40, 40],

@@ -351,7 +351,7 @@ impl Scene {
 /// The built-in scene of `photosolid demo`: the synthetic road luminaire
 /// (peak 12,000 cd, 5° × 2.5° grid, a 0.6 m × 0.25 m opening) 8 m over a
 /// 40 m × 7 m road, tilted 10° towards the road, MF 0.8, and a sensor
-/// 0.5 m below the opening (one luminaire size away: near field).
+/// 1 m below the opening (1.5 luminaire sizes away: near field).
 pub fn demo_scene() -> Result<Scene, crate::ModelError> {
     use crate::synth::{GridSpec, Synth};
     let lum = Synth::Roadway.build(&GridSpec::uniform(5.0, 2.5)?, 12_000.0)?;
@@ -386,7 +386,7 @@ pub fn demo_scene() -> Result<Scene, crate::ModelError> {
     let scene = Scene {
         path: None,
         luminaires: vec![luminaire],
-        receivers: vec![road, Receiver::point("sensor", DVec3::new(0.0, 0.0, 7.5), DVec3::Z)],
+        receivers: vec![road, Receiver::point("sensor", DVec3::new(0.0, 0.0, 7.0), DVec3::Z)],
         occluders: Vec::new(),
     };
     Ok(scene)
