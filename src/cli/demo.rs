@@ -75,7 +75,10 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
 
     println!("\n== built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it ==");
     let scene = photosolid::scene::demo_scene()?;
-    print!("{}", super::scene::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?));
+    print!(
+        "{}",
+        super::scene::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?)
+    );
     let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
     print!("{}", super::scene::plan_text(&plan));
     Ok(0)

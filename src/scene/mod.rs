@@ -79,6 +79,9 @@ pub enum SceneError {
         /// The opening, in words.
         opening: String,
     },
+    /// An option is outside its domain (e.g. a negative tolerance).
+    #[error(transparent)]
+    Parameter(crate::ModelError),
     /// A model could not be built (e.g. a render past its size limit).
     #[error("luminaire {luminaire:?}: {source}")]
     Model {

@@ -380,14 +380,11 @@ fn candidate_representations(lum: &SceneLuminaire, visible: Option<(f64, f64)>) 
 /// line per luminaire and candidate.
 pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)>) -> Result<PlanResult, SceneError> {
     if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
-        return Err(SceneError::Model {
-            luminaire: String::new(),
-            source: ModelError::Parameter {
-                name: "tolerance",
-                value: options.tolerance.to_string(),
-                reason: "expected a finite fraction >= 0".into(),
-            },
-        });
+        return Err(SceneError::Parameter(ModelError::Parameter {
+            name: "tolerance",
+            value: options.tolerance.to_string(),
+            reason: "expected a finite fraction >= 0".into(),
+        }));
     }
     scene.check_points()?;
     let points = scene.points();
