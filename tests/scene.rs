@@ -566,3 +566,46 @@ fn the_cli_writes_the_contract_keys_and_isolux_maps() {
         .unwrap();
     assert!(!bad.status.success());
 }
+
+#[test]
+fn a_wall_seen_through_a_small_sector_is_planned_with_the_cropped_grid() {
+    // The road luminaire (72 planes, gamma every 2.5 deg) 5 m up, a wall 10 m away along C0:
+    // the scene sees gamma 63-84 deg and C within about 17 deg of C0.
+    let lum = placed(
+        "road",
+        synth(Synth::Roadway, 12_000.0),
+        DVec3::new(0.0, 0.0, 5.0),
+        Aim::default(),
+    );
+    let wall = Receiver::plane(
+        "wall",
+        DVec3::new(10.0, 3.0, 0.0),
+        DVec3::new(0.0, -6.0, 0.0),
+        DVec3::new(0.0, 0.0, 4.0),
+        6,
+        4,
+    );
+    assert!(wall.normal.x < -0.99, "faces the luminaire");
+    let s = scene(vec![lum], vec![wall]);
+    let p = plan(
+        &s,
+        &PlanOptions {
+            timing_directions: 256,
+            ..PlanOptions::default()
+        },
+        None,
+    )
+    .unwrap();
+    let l = &p.luminaires[0];
+    assert!(
+        l.representation.contains(", C ") && l.representation.ends_with(" only"),
+        "{}",
+        l.chosen
+    );
+    assert_eq!(
+        l.max_error_pct, 0.0,
+        "the cropped grid answers exactly what the scene looks up"
+    );
+    let native = photosolid::reconstruct::LightTexture::new(&s.luminaires[0].luminaire.distribution).unwrap();
+    assert!(l.bytes * 10 < native.bytes(), "{} vs {}", l.bytes, native.bytes());
+}

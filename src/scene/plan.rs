@@ -7,8 +7,8 @@
 //!
 //! **Candidates** ([`Representation`]): every filter on the native grid,
 //! Catmull-Rom renders at factors 1, 2 and 5 read with every texture lookup,
-//! the fitted OpenGL lights (≤ 2), the native grid cropped to the γ rows the
-//! scene's receivers can see, and the grid re-stored with the symmetry the
+//! the fitted OpenGL lights (≤ 2), the native grid cropped to the γ rows and
+//! the C sector the scene's receivers can see, and the grid re-stored with the symmetry the
 //! data has; each as a point source and, where the opening has a size, as
 //! the area source.
 //!
@@ -54,7 +54,9 @@ pub enum Representation {
     },
     /// The fitted OpenGL lights (at most 2).
     Fitted,
-    /// The native grid cropped to the γ rows between `gamma_from` and `gamma_to` (degrees).
+    /// The native grid cropped to the γ rows between `gamma_from` and
+    /// `gamma_to` and, when given, to the C planes from `c.0` counter-clockwise
+    /// to `c.1` (degrees; the sector may wrap through C = 0).
     Cropped {
         /// The filter.
         filter: Filter,
@@ -62,6 +64,8 @@ pub enum Representation {
         gamma_from: f64,
         /// Last kept γ row, degrees.
         gamma_to: f64,
+        /// First and last kept C plane, degrees.
+        c: Option<(f64, f64)>,
     },
     /// The native grid re-stored with a smaller symmetry the data has.
     Symmetric {
@@ -82,7 +86,14 @@ impl fmt::Display for Representation {
                 filter,
                 gamma_from,
                 gamma_to,
-            } => write!(f, "{filter}, gamma {gamma_from}-{gamma_to} deg only"),
+                c,
+            } => {
+                write!(f, "{filter}, gamma {gamma_from}-{gamma_to} deg")?;
+                if let Some((a, b)) = c {
+                    write!(f, ", C {a}-{b} deg")?;
+                }
+                f.write_str(" only")
+            }
             Representation::Symmetric { filter, symmetry } => write!(f, "{filter}, stored {}", symmetry.describe()),
         }
     }
@@ -194,47 +205,103 @@ impl<'a> Models<'a> {
                 filter,
                 gamma_from,
                 gamma_to,
-            } => owned(crop_gamma(self.dist, *gamma_from, *gamma_to)?, *filter)?,
+                c,
+            } => owned(crop(self.dist, *gamma_from, *gamma_to, *c)?, *filter)?,
             Representation::Symmetric { filter, symmetry } => owned(self.dist.with_symmetry(*symmetry)?, *filter)?,
         })
     }
 }
 
-/// `d` with only the γ rows in [from, to] (degrees).
-fn crop_gamma(d: &Distribution, from: f64, to: f64) -> Result<Distribution, ModelError> {
+/// `d` with only the γ rows in [from, to] and, when `c` is given, only the
+/// C planes of the full circle from `c.0` counter-clockwise to `c.1` (degrees),
+/// stored without symmetry.
+fn crop(d: &Distribution, from: f64, to: f64, c: Option<(f64, f64)>) -> Result<Distribution, ModelError> {
     let g = d.gamma_angles();
     let keep: Vec<usize> = (0..g.len()).filter(|&i| g[i] >= from && g[i] <= to).collect();
-    let gamma = keep.iter().map(|&i| g[i]).collect();
-    let cd = (0..d.n_c())
-        .flat_map(|ic| keep.iter().map(move |&ig| d.value(ic, ig)))
-        .collect();
-    Distribution::new(d.c_angles().to_vec(), gamma, cd, d.symmetry())
+    let gamma: Vec<f64> = keep.iter().map(|&i| g[i]).collect();
+    let rows = |d: &Distribution, ic: usize| keep.iter().map(|&ig| d.value(ic, ig)).collect::<Vec<f64>>();
+    let Some((c0, c1)) = c else {
+        let cd = (0..d.n_c()).flat_map(|ic| rows(d, ic)).collect();
+        return Distribution::new(d.c_angles().to_vec(), gamma, cd, d.symmetry());
+    };
+    let full = d.with_symmetry(Symmetry::None)?;
+    let eps = crate::model::ANGLE_EPS;
+    let inside = |a: f64| {
+        if c0 <= c1 {
+            a >= c0 - eps && a <= c1 + eps
+        } else {
+            a >= c0 - eps || a <= c1 + eps
+        }
+    };
+    let planes: Vec<usize> = (0..full.n_c()).filter(|&i| inside(full.c_angles()[i])).collect();
+    let angles = planes.iter().map(|&i| full.c_angles()[i]).collect();
+    let cd = planes.iter().flat_map(|&ic| rows(&full, ic)).collect();
+    Distribution::new(angles, gamma, cd, Symmetry::None)
 }
 
-/// The γ rows (first, last, degrees) the scene can see from `lum` through
-/// `patches`, widened by two rows each side (the cubic taps), or `None`
-/// when that is every row.
-fn visible_gamma_rows(lum: &SceneLuminaire, patches: &[(DVec3, f64)], points: &[ScenePoint]) -> Option<(f64, f64)> {
+/// The part of the grid the scene sees.
+type Visible = (f64, f64, Option<(f64, f64)>);
+
+/// What the scene can see of `lum` through `patches`: the γ rows (first,
+/// last, degrees) and, when no kept row touches a pole (whose cubic taps
+/// read the plane C + 180) and the data is not rotational, the C planes
+/// (first, last counter-clockwise), each widened by two knots each side (the
+/// cubic taps). `None` when that is the whole grid or nothing is seen.
+fn visible_grid(lum: &SceneLuminaire, patches: &[(DVec3, f64)], points: &[ScenePoint]) -> Option<Visible> {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut cs = Vec::new();
     for p in points {
         for &(local, _) in patches {
             let v = p.position - lum.pose.point_to_world(local);
             if p.normal.dot(v) >= 0.0 {
                 continue; // arrives from behind the receiver: never looked up
             }
-            if let Some((_, g)) = crate::model::frame::angles(lum.pose.to_local(v)) {
+            if let Some((c, g)) = crate::model::frame::angles(lum.pose.to_local(v)) {
                 lo = lo.min(g);
                 hi = hi.max(g);
+                cs.push(c);
             }
         }
     }
-    let g = lum.luminaire.distribution.gamma_angles();
+    let d = &lum.luminaire.distribution;
+    let g = d.gamma_angles();
     if lo > hi || lo.is_nan() || hi.is_nan() {
         return None;
     }
     let first = g.partition_point(|&x| x <= lo).saturating_sub(1).saturating_sub(2);
     let last = (g.partition_point(|&x| x < hi) + 2).min(g.len() - 1);
-    (first > 0 || last < g.len() - 1).then(|| (g[first], g[last]))
+    let pole = g[first] <= 0.0 || g[last] >= 180.0;
+    let c = if pole || d.symmetry() == Symmetry::Rotational {
+        None
+    } else {
+        visible_planes(d, &mut cs)
+    };
+    (first > 0 || last < g.len() - 1 || c.is_some()).then(|| (g[first], g[last], c))
+}
+
+/// The smallest arc of full-circle C planes holding every angle of `cs`
+/// (degrees), widened by two planes each side; `None` when that is (almost) every plane.
+fn visible_planes(d: &Distribution, cs: &mut [f64]) -> Option<(f64, f64)> {
+    let planes: Vec<f64> = d.full_planes().iter().map(|p| p.0).collect();
+    let n = planes.len();
+    if cs.is_empty() || n < 8 {
+        return None;
+    }
+    cs.sort_by(f64::total_cmp);
+    // The arc is the circle minus the largest gap between consecutive seen angles.
+    let mut gap = (cs[0] + 360.0 - cs[cs.len() - 1], cs.len() - 1);
+    for k in 1..cs.len() {
+        if cs[k] - cs[k - 1] > gap.0 {
+            gap = (cs[k] - cs[k - 1], k - 1);
+        }
+    }
+    let (start, end) = (cs[(gap.1 + 1) % cs.len()], cs[gap.1]);
+    // Plane index at or below `start`, and at or above `end` (periodic), then two more each way.
+    let below = (planes.partition_point(|&a| a <= start) + n - 1) % n;
+    let above = planes.partition_point(|&a| a < end) % n;
+    let (i0, i1) = ((below + n - 2) % n, (above + 2) % n);
+    let count = (i1 + n - i0) % n + 1;
+    (count + 2 < n).then(|| (planes[i0], planes[i1]))
 }
 
 /// One candidate's measured cost and error.
@@ -342,7 +409,10 @@ impl Default for PlanOptions {
 }
 
 /// Every candidate representation of `lum` for this scene.
-fn candidate_representations(lum: &SceneLuminaire, visible: Option<(f64, f64)>) -> Vec<Representation> {
+fn candidate_representations(
+    lum: &SceneLuminaire,
+    visible: Option<Visible>,
+) -> Vec<Representation> {
     let mut reps: Vec<Representation> = Filter::ALL.into_iter().map(Representation::Filter).collect();
     for factor in TEXTURE_FACTORS {
         for lookup in Lookup::ALL {
@@ -354,11 +424,12 @@ fn candidate_representations(lum: &SceneLuminaire, visible: Option<(f64, f64)>) 
         }
     }
     reps.push(Representation::Fitted);
-    if let Some((gamma_from, gamma_to)) = visible {
+    if let Some((gamma_from, gamma_to, c)) = visible {
         reps.push(Representation::Cropped {
             filter: Filter::CatmullRom,
             gamma_from,
             gamma_to,
+            c,
         });
     }
     let d = &lum.luminaire.distribution;
@@ -440,7 +511,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
     for (li, (lum, tex)) in scene.luminaires.iter().zip(&textures).enumerate() {
         let (ref_lux, point_ref_lux, patches, refinement, far_field, ref_name, _) = &references[li];
         let models = Models::new(lum, tex.as_ref());
-        let visible = visible_gamma_rows(lum, patches, &points);
+        let visible = visible_grid(lum, patches, &points);
         let mut measured: Vec<(Candidate, Vec<f64>)> = Vec::new();
         let mut unavailable = Vec::new();
         let reps = if tex.is_some() {
