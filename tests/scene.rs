@@ -609,3 +609,52 @@ fn a_wall_seen_through_a_small_sector_is_planned_with_the_cropped_grid() {
     let native = photosolid::reconstruct::LightTexture::new(&s.luminaires[0].luminaire.distribution).unwrap();
     assert!(l.bytes * 10 < native.bytes(), "{} vs {}", l.bytes, native.bytes());
 }
+
+#[test]
+fn the_opening_a_file_declares_drives_the_area_source() {
+    // A Lambertian disk of luminance L and radius r written as IES (W = L = -2r: a disk)
+    // and as EULUMDAT (luminous diameter 2r, width 0), read back through a scene file.
+    let (l, r) = (4000.0, 0.25);
+    let t = tempfile::tempdir().unwrap();
+    let mut lum = synth(Synth::Lambertian, l * PI * r * r);
+    lum.luminous_opening = photosolid::model::Dimensions {
+        length_m: -2.0 * r,
+        width_m: -2.0 * r,
+        height_m: 0.0,
+    };
+    photosolid::save(&lum, &t.path().join("disk.ies"), &Default::default()).unwrap();
+    lum.luminous_opening = photosolid::model::Dimensions {
+        length_m: 2.0 * r,
+        width_m: 0.0,
+        height_m: 0.0,
+    };
+    photosolid::save(&lum, &t.path().join("disk.ldt"), &Default::default()).unwrap();
+    for file in ["disk.ies", "disk.ldt"] {
+        let text = format!(
+            "[[luminaire]]\nfile = \"{file}\"\nposition = [0.0, 0.0, 2.0]\n\n[[receiver]]\nname = \"axis\"\nkind = \"point\"\n\
+             position = [0.0, 0.0, 1.5]\nnormal = [0.0, 0.0, 1.0]\n"
+        );
+        let path = t.path().join("s.toml");
+        std::fs::write(&path, text).unwrap();
+        let s = Scene::load(&path).unwrap();
+        match s.luminaires[0].opening {
+            Opening::Ellipse { length_m, width_m } => {
+                assert!(
+                    (length_m - 2.0 * r).abs() < 1e-6 && (width_m - 2.0 * r).abs() < 1e-6,
+                    "{file}"
+                )
+            }
+            o => panic!("{file}: {o:?}"),
+        }
+        let res = evaluate(&s, None).unwrap();
+        let want = lambert_disk_on_axis_lux(l, r, 0.5);
+        let got = res.receivers[0].e_avg_lux;
+        assert!((got - want).abs() < 2e-3 * want, "{file}: {got} vs {want}");
+        let point = res.receivers[0].points[0].clone();
+        assert!(
+            (point.far_field_error_pct / 100.0 - r * r / 0.25).abs() < 0.2 * r * r / 0.25,
+            "{point:?}"
+        );
+        assert!((point.distance_ratio.unwrap() - 1.0).abs() < 1e-9);
+    }
+}

@@ -257,6 +257,9 @@ pub struct PointResult {
     pub e_lux: f64,
     /// Error (%) of treating every luminaire as a point source here.
     pub far_field_error_pct: f64,
+    /// Smallest distance / largest luminous dimension over the luminaires
+    /// with an opening of some size (null when every one is a point).
+    pub distance_ratio: Option<f64>,
 }
 
 /// One receiver's result.
@@ -391,6 +394,12 @@ pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Resul
                 position: p.to_array(),
                 e_lux: e,
                 far_field_error_pct: 100.0 * ff,
+                distance_ratio: scene
+                    .luminaires
+                    .iter()
+                    .filter(|l| !l.opening.is_point())
+                    .map(|l| (*p - l.pose.position).length() / l.opening.largest_dimension_m())
+                    .reduce(f64::min),
             })
             .collect();
         offset += n;

@@ -6,7 +6,9 @@
 //! scene) declares an opening with a size, as a point source otherwise.
 //!
 //! **Candidates** ([`Representation`]): every filter on the native grid,
-//! Catmull-Rom renders at factors 1, 2 and 5 read with every texture lookup,
+//! every filter rendered at factors 1, 2 and 5 read bilinearly (the trade
+//! table's rows) and the Catmull-Rom renders also with the nearest and
+//! Catmull-Rom lookups,
 //! the fitted OpenGL lights (≤ 2), the native grid cropped to the γ rows and
 //! the C sector the scene's receivers can see, and the grid re-stored with the symmetry the
 //! data has; each as a point source and, where the opening has a size, as
@@ -409,18 +411,17 @@ impl Default for PlanOptions {
 }
 
 /// Every candidate representation of `lum` for this scene.
-fn candidate_representations(
-    lum: &SceneLuminaire,
-    visible: Option<Visible>,
-) -> Vec<Representation> {
+fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Representation> {
     let mut reps: Vec<Representation> = Filter::ALL.into_iter().map(Representation::Filter).collect();
+    // The trade table's rows: every filter rendered at each factor, read with
+    // the hardware's bilinear lookup; the Catmull-Rom render also with the others.
     for factor in TEXTURE_FACTORS {
-        for lookup in Lookup::ALL {
-            reps.push(Representation::Texture {
-                filter: Filter::CatmullRom,
-                factor,
-                lookup,
-            });
+        for filter in Filter::ALL {
+            for lookup in Lookup::ALL {
+                if lookup == Lookup::Bilinear || filter == Filter::CatmullRom {
+                    reps.push(Representation::Texture { filter, factor, lookup });
+                }
+            }
         }
     }
     reps.push(Representation::Fitted);
