@@ -11,8 +11,8 @@
 //! floored at 1e-3 of the receiver's largest reference value: a point a
 //! thousand times darker than the brightest point of its receiver is judged
 //! in lux relative to that floor, so darkness cannot demand infinite
-//! precision. Where a whole receiver is dark the floor is 0 and equal values
-//! differ by 0.
+//! precision. Where a whole receiver is dark the floor is 0: equal values
+//! differ by 0, and light where the reference has none counts as 100 %.
 
 use glam::DVec3;
 use rayon::prelude::*;
