@@ -29,6 +29,7 @@ pub mod model;
 pub mod photometry;
 pub mod reconstruct;
 pub mod report;
+pub mod scene;
 pub mod solid;
 pub mod synth;
 

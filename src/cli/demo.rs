@@ -6,7 +6,8 @@
 //! runs the 2/2 hold-out, fits the OpenGL lights, measures every
 //! reconstruction against the luminaire's closed form (the truth) and writes
 //! the comparison report (`index.html`, `report.md`, `report.json`, PNGs)
-//! into the output directory.
+//! into the output directory; finally evaluates and plans the built-in scene
+//! (`photosolid::scene::demo_scene`).
 
 use std::path::PathBuf;
 
@@ -80,5 +81,14 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     print!("{}", compare_report::to_text(&c));
     compare_report::write_report(&c, &a.output)?;
     outln!("report written to {}", a.output.join("index.html").display());
+
+    outln!("\n== built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it ==");
+    let scene = photosolid::scene::demo_scene()?;
+    outln!(
+        "{}",
+        super::scene::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?)
+    );
+    let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
+    outln!("{}", super::scene::plan_text(&plan));
     Ok(0)
 }

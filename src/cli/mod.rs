@@ -19,6 +19,7 @@ mod hausdorff;
 mod holdout;
 mod info;
 mod mesh;
+mod scene;
 mod synth;
 mod texture;
 mod tradeoff;
@@ -67,6 +68,10 @@ enum Command {
     GpuCheck(gpu_check::GpuCheckArgs),
     /// Compare reconstructions (and other files): Hausdorff distance, radial errors, speed; HTML report.
     Compare(compare::CompareArgs),
+    /// Illuminance of a scene (TOML: luminaires, receivers, occluders) at every receiver point; isolux maps.
+    Scene(scene::SceneArgs),
+    /// Per luminaire of a scene, the cheapest representation within a tolerance, measured on the scene.
+    Plan(scene::PlanArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -123,6 +128,8 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Fit(a) => fit::run(a),
         Command::GpuCheck(a) => gpu_check::run(a),
         Command::Compare(a) => compare::run(a),
+        Command::Scene(a) => scene::run_scene(a),
+        Command::Plan(a) => scene::run_plan(a),
     }
 }
 

@@ -1,0 +1,329 @@
+//! The scene file (TOML, metres and degrees; schema in `docs/scene.md`).
+//!
+//! Parsing is serde into the `*Spec` structs (unknown keys are errors), then
+//! [`Scene::from_spec`] checks every value and resolves files relative to the
+//! scene file. Every error names the scene file, the line of the offending
+//! table and what was expected.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+use serde::Deserialize;
+
+use super::aim::{Aim, Pose};
+use super::opening::Opening;
+use super::plan::Representation;
+use super::{Occluder, Receiver, Scene, SceneError, SceneLuminaire, SourceKind};
+
+/// Most receiver points a scene may ask for (a typo in a spacing must not
+/// allocate gigabytes).
+pub const MAX_POINTS: usize = 1_000_000;
+
+/// The whole file.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// `[[luminaire]]` tables.
+    #[serde(default, rename = "luminaire")]
+    pub luminaires: Vec<LuminaireSpec>,
+    /// `[[receiver]]` tables.
+    #[serde(default, rename = "receiver")]
+    pub receivers: Vec<ReceiverSpec>,
+    /// `[[occluder]]` tables.
+    #[serde(default, rename = "occluder")]
+    pub occluders: Vec<OccluderSpec>,
+}
+
+/// One `[[luminaire]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LuminaireSpec {
+    /// Photometric file (.ies or .ldt), relative to the scene file.
+    pub file: PathBuf,
+    /// A name for reports; default: the file name.
+    pub name: Option<String>,
+    /// Photometric centre, world metres.
+    pub position: [f64; 3],
+    /// LM-72 aiming angles, degrees.
+    pub aim: Option<AimSpec>,
+    /// Point the nadir at this world point (metres) instead of `aim`.
+    pub aim_at: Option<[f64; 3]>,
+    /// Maintenance factor in (0, 1]; default 1.
+    pub maintenance_factor: Option<f64>,
+    /// Representation of the distribution; default: the reference (Catmull-Rom on the native grid).
+    pub representation: Option<String>,
+    /// `point` or `area`; default: `area` when the opening has a size, else `point`.
+    pub source: Option<String>,
+    /// Overrides the luminous opening the file declares.
+    pub opening: Option<Opening>,
+}
+
+/// LM-72 aim angles (degrees), each 0 when omitted.
+#[derive(Debug, Clone, Copy, Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct AimSpec {
+    /// About world Z.
+    #[serde(default)]
+    pub orient: f64,
+    /// About local Y (nadir towards C0).
+    #[serde(default)]
+    pub tilt: f64,
+    /// About local X (nadir towards C90).
+    #[serde(default)]
+    pub roll: f64,
+    /// About local Z.
+    #[serde(default)]
+    pub spin: f64,
+}
+
+/// Grid spacing of a plane receiver.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum SpacingSpec {
+    /// `"en12464"`.
+    Named(String),
+    /// `[du, dv]`, metres.
+    Metres([f64; 2]),
+}
+
+/// One `[[receiver]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ReceiverSpec {
+    /// A rectangle: origin + s u + t v, normal u × v.
+    Plane {
+        /// Name for reports.
+        name: String,
+        /// A corner, metres.
+        origin: [f64; 3],
+        /// First edge, metres.
+        u: [f64; 3],
+        /// Second edge, metres.
+        v: [f64; 3],
+        /// `"en12464"` or `[du, dv]` metres.
+        spacing: SpacingSpec,
+    },
+    /// One point with a normal.
+    Point {
+        /// Name for reports.
+        name: String,
+        /// Position, metres.
+        position: [f64; 3],
+        /// Facing direction (any length > 0).
+        normal: [f64; 3],
+    },
+}
+
+/// One `[[occluder]]`: an opaque planar polygon.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OccluderSpec {
+    /// At least 3 coplanar vertices, metres.
+    pub vertices: Vec<[f64; 3]>,
+}
+
+/// EN 12464-1 grid spacing (m) for a side of length `d` (m): `0.2 · 5^log10(d)`, at most 10 m.
+pub fn en12464_spacing(d: f64) -> f64 {
+    (0.2 * 5f64.powf(d.log10())).min(10.0)
+}
+
+/// The 1-based line of the `k`-th (0-based) `[[table]]` header in `text`, 0 when not found.
+fn table_line(text: &str, table: &str, k: usize) -> usize {
+    let header = format!("[[{table}]]");
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| l.trim_start().starts_with(&header))
+        .nth(k)
+        .map_or(0, |(i, _)| i + 1)
+}
+
+fn vec3(a: [f64; 3]) -> DVec3 {
+    DVec3::from_array(a)
+}
+
+impl Scene {
+    /// Read and check a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        Scene::from_toml(&text, path)
+    }
+
+    /// Parse scene text; files are resolved relative to `path`'s directory
+    /// (which need not exist for scenes without luminaire files to read).
+    pub fn from_toml(text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let spec: SceneSpec = toml::from_str(text).map_err(|e| {
+            let start = e.span().map_or(0, |s| s.start.min(text.len()));
+            let line = e.span().map_or(0, |_| text[..start].matches('\n').count() + 1);
+            let shown = text
+                .lines()
+                .nth(line.saturating_sub(1))
+                .filter(|_| line > 0)
+                .unwrap_or("")
+                .trim();
+            SceneError::Invalid {
+                path: path.to_path_buf(),
+                line,
+                message: if shown.is_empty() {
+                    e.message().to_string()
+                } else {
+                    format!("{} (in `{shown}`)", e.message())
+                },
+            }
+        })?;
+        Scene::from_spec(&spec, text, path)
+    }
+
+    /// Check and resolve a parsed scene (see [`Scene::from_toml`]); `text` is
+    /// only used to find table lines for messages.
+    pub fn from_spec(spec: &SceneSpec, text: &str, path: &Path) -> Result<Scene, SceneError> {
+        let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let err = |table: &str, k: usize, message: String| SceneError::Invalid {
+            path: path.to_path_buf(),
+            line: table_line(text, table, k),
+            message: format!("{table} #{}: {message}", k + 1),
+        };
+        let finite3 = |a: &[f64; 3]| a.iter().all(|v| v.is_finite());
+        let mut luminaires = Vec::new();
+        for (k, l) in spec.luminaires.iter().enumerate() {
+            let bad = |m: String| err("luminaire", k, m);
+            if !finite3(&l.position) {
+                return Err(bad(format!("position {:?}: expected 3 finite numbers (m)", l.position)));
+            }
+            let position = vec3(l.position);
+            let aim = match (&l.aim, &l.aim_at) {
+                (Some(_), Some(_)) => return Err(bad("give either aim or aim_at, not both".into())),
+                (Some(a), None) => {
+                    if ![a.orient, a.tilt, a.roll, a.spin].iter().all(|v| v.is_finite()) {
+                        return Err(bad(format!("aim {a:?}: expected finite degrees")));
+                    }
+                    Aim {
+                        orient: a.orient,
+                        tilt: a.tilt,
+                        roll: a.roll,
+                        spin: a.spin,
+                    }
+                }
+                (None, Some(t)) => {
+                    if !finite3(t) {
+                        return Err(bad(format!("aim_at {t:?}: expected 3 finite numbers (m)")));
+                    }
+                    Aim::at(position, vec3(*t))
+                        .ok_or_else(|| bad("aim_at is the luminaire's own position: no direction".into()))?
+                }
+                (None, None) => Aim::default(),
+            };
+            let mf = l.maintenance_factor.unwrap_or(1.0);
+            if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
+                return Err(bad(format!("maintenance_factor = {mf}: expected a number in (0, 1]")));
+            }
+            let representation = match &l.representation {
+                None => None,
+                Some(r) => Some(r.parse::<Representation>().map_err(|e| bad(e.to_string()))?),
+            };
+            let source = match l.source.as_deref() {
+                None => None,
+                Some("point") => Some(SourceKind::Point),
+                Some("area") => Some(SourceKind::Area),
+                Some(s) => return Err(bad(format!("source = {s:?}: expected \"point\" or \"area\""))),
+            };
+            let file = base.join(&l.file);
+            let luminaire = crate::load(&file).map_err(|e| bad(format!("{}: {e}", l.file.display())))?;
+            let opening = match l.opening {
+                Some(o) => {
+                    Opening::check(&o).map_err(|m| bad(format!("opening: {m}")))?;
+                    o
+                }
+                None => Opening::of_luminaire(&luminaire).map_err(|m| {
+                    bad(format!(
+                        "{}: {m}; give the opening in the scene (opening = {{ shape = \"point\" }})",
+                        l.file.display()
+                    ))
+                })?,
+            };
+            let name = l.name.clone().unwrap_or_else(|| l.file.display().to_string());
+            luminaires.push(SceneLuminaire {
+                name,
+                luminaire,
+                pose: Pose::new(position, aim),
+                maintenance_factor: mf,
+                opening,
+                representation,
+                source,
+            });
+        }
+        let mut receivers = Vec::new();
+        let mut total = 0usize;
+        for (k, r) in spec.receivers.iter().enumerate() {
+            let bad = |m: String| err("receiver", k, m);
+            let rec = match r {
+                ReceiverSpec::Point { name, position, normal } => {
+                    if !finite3(position) || !finite3(normal) {
+                        return Err(bad("position and normal: expected 3 finite numbers each".into()));
+                    }
+                    let n = vec3(*normal)
+                        .try_normalize()
+                        .ok_or_else(|| bad(format!("normal {normal:?}: expected a non-zero vector")))?;
+                    Receiver::point(name, vec3(*position), n)
+                }
+                ReceiverSpec::Plane {
+                    name,
+                    origin,
+                    u,
+                    v,
+                    spacing,
+                } => {
+                    if !finite3(origin) || !finite3(u) || !finite3(v) {
+                        return Err(bad("origin, u and v: expected 3 finite numbers each".into()));
+                    }
+                    let (o, u, v) = (vec3(*origin), vec3(*u), vec3(*v));
+                    if u.cross(v).try_normalize().is_none() {
+                        return Err(bad("u and v: expected two non-zero, non-parallel edges".into()));
+                    }
+                    let (du, dv) = match spacing {
+                        SpacingSpec::Named(s) if s == "en12464" => {
+                            let p = en12464_spacing(u.length().max(v.length()));
+                            (p, p)
+                        }
+                        SpacingSpec::Named(s) => {
+                            return Err(bad(format!(
+                                "spacing = {s:?}: expected \"en12464\" or [du, dv] in metres"
+                            )))
+                        }
+                        SpacingSpec::Metres([a, b]) => {
+                            if !(a.is_finite() && b.is_finite() && *a > 0.0 && *b > 0.0) {
+                                return Err(bad(format!("spacing [{a}, {b}]: expected two positive metres")));
+                            }
+                            (*a, *b)
+                        }
+                    };
+                    let (nu, nv) = ((u.length() / du).ceil().max(1.0), (v.length() / dv).ceil().max(1.0));
+                    if nu * nv > MAX_POINTS as f64 {
+                        return Err(bad(format!(
+                            "{nu} x {nv} points: more than {MAX_POINTS}; use a coarser spacing"
+                        )));
+                    }
+                    Receiver::plane(name, o, u, v, nu as usize, nv as usize)
+                }
+            };
+            total += rec.points.len();
+            if total > MAX_POINTS {
+                return Err(bad(format!("the scene has more than {MAX_POINTS} receiver points")));
+            }
+            receivers.push(rec);
+        }
+        let mut occluders = Vec::new();
+        for (k, o) in spec.occluders.iter().enumerate() {
+            let verts: Vec<DVec3> = o.vertices.iter().map(|v| vec3(*v)).collect();
+            occluders.push(Occluder::new(verts).map_err(|m| err("occluder", k, m))?);
+        }
+        Ok(Scene {
+            path: Some(path.to_path_buf()),
+            luminaires,
+            receivers,
+            occluders,
+        })
+    }
+}

@@ -1,0 +1,616 @@
+//! Luminous openings as files declare them, and their directional area
+//! source (equal-share patches; see [`super::near_field`] for the models).
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::model::{Format, Luminaire};
+
+/// A luminous opening, in metres, in the luminaire frame (centred on the
+/// photometric centre; a flat opening lies in the plane z = 0 and emits
+/// downwards, as the far-field distribution says).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "shape", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Opening {
+    /// No luminous dimensions: a point source.
+    Point,
+    /// A horizontal rectangle, `length_m` along C0 (x), `width_m` along C90 (y).
+    Rectangle {
+        /// Along x, m.
+        length_m: f64,
+        /// Along y, m.
+        width_m: f64,
+    },
+    /// A horizontal ellipse (a disk when both diameters are equal).
+    Ellipse {
+        /// Diameter along x, m.
+        length_m: f64,
+        /// Diameter along y, m.
+        width_m: f64,
+    },
+    /// A vertical ellipse in the y–z plane (facing ±x).
+    VerticalEllipse {
+        /// Diameter along y, m.
+        width_m: f64,
+        /// Diameter along z, m.
+        height_m: f64,
+    },
+    /// A box with luminous sides, centred on the photometric centre.
+    Box {
+        /// Along x, m.
+        length_m: f64,
+        /// Along y, m.
+        width_m: f64,
+        /// Along z, m.
+        height_m: f64,
+    },
+    /// A cylinder along one axis (0 = x, 1 = y, 2 = z), centred.
+    Cylinder {
+        /// The axis: 0 = x, 1 = y, 2 = z.
+        axis: u8,
+        /// Length along the axis, m.
+        length_m: f64,
+        /// Cross-section diameter along the first other axis (x for a z cylinder, else y), m.
+        diameter_a_m: f64,
+        /// Cross-section diameter along the second other axis (y for a z cylinder, else z), m.
+        diameter_b_m: f64,
+    },
+    /// An ellipsoid (a sphere when all three diameters are equal), centred.
+    Ellipsoid {
+        /// Diameter along x, m.
+        length_m: f64,
+        /// Diameter along y, m.
+        width_m: f64,
+        /// Diameter along z, m.
+        height_m: f64,
+    },
+    /// An EULUMDAT luminous area: a horizontal rectangle (or a disk when
+    /// `width_m` is 0) at z = 0 with luminous sides rising to the heights
+    /// declared for the C0, C90, C180 and C270 planes.
+    LdtArea {
+        /// Length (or diameter), m.
+        length_m: f64,
+        /// Width, m; 0 for a circular area.
+        width_m: f64,
+        /// Luminous heights on the C0, C90, C180, C270 sides, m.
+        heights_m: [f64; 4],
+    },
+}
+
+impl Opening {
+    /// The opening `lum` declares: IES LM-63 signs (DOMAIN §1.3; the
+    /// 1986/1991 and 1995 encodings by the file's version) or the EULUMDAT
+    /// luminous area and heights.
+    ///
+    /// # Errors
+    /// A sign combination no LM-63 version defines, as a sentence naming the values.
+    pub fn of_luminaire(lum: &Luminaire) -> Result<Opening, String> {
+        let o = lum.luminous_opening;
+        if lum.format == Format::Ldt {
+            let heights = lum
+                .ldt
+                .as_ref()
+                .map_or([o.height_m; 4], |h| h.luminous_heights_mm.map(|x| x / 1000.0));
+            return Self::ldt(o.length_m, o.width_m, heights);
+        }
+        let old = matches!(lum.version.as_str(), "LM-63-1986" | "LM-63-1991");
+        Self::ies(o.width_m, o.length_m, o.height_m, old, lum.version == "LM-63-1995")
+    }
+
+    /// An EULUMDAT luminous area (metres; width 0 = circular).
+    pub fn ldt(length_m: f64, width_m: f64, heights_m: [f64; 4]) -> Result<Opening, String> {
+        let all = [
+            length_m,
+            width_m,
+            heights_m[0],
+            heights_m[1],
+            heights_m[2],
+            heights_m[3],
+        ];
+        if all.iter().any(|v| !v.is_finite() || *v < 0.0) {
+            return Err(format!(
+                "luminous area {length_m} x {width_m} m, heights {heights_m:?} m: expected finite values >= 0"
+            ));
+        }
+        Ok(match (length_m > 0.0, heights_m.iter().any(|&h| h > 0.0)) {
+            (false, _) => Opening::Point,
+            (true, false) if width_m == 0.0 => Opening::Ellipse {
+                length_m,
+                width_m: length_m,
+            },
+            (true, false) => Opening::Rectangle { length_m, width_m },
+            (true, true) => Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            },
+        })
+    }
+
+    /// An IES opening from the signed width, length and height (metres).
+    /// `old`: LM-63-1986/1991 rules (width first); `v1995`: the 1995 sphere.
+    pub fn ies(w: f64, l: f64, h: f64, old: bool, v1995: bool) -> Result<Opening, String> {
+        if ![w, l, h].iter().all(|v| v.is_finite()) {
+            return Err(format!(
+                "luminous opening W {w}, L {l}, H {h} m: expected finite numbers"
+            ));
+        }
+        let s = |v: f64| {
+            if v > 0.0 {
+                1
+            } else if v < 0.0 {
+                -1
+            } else {
+                0
+            }
+        };
+        let (aw, al, ah) = (w.abs(), l.abs(), h.abs());
+        Ok(match (s(w), s(l), s(h)) {
+            (0, 0, 0) => Opening::Point,
+            (1, 1, 0) => Opening::Rectangle {
+                length_m: al,
+                width_m: aw,
+            },
+            (1, 1, 1) => Opening::Box {
+                length_m: al,
+                width_m: aw,
+                height_m: ah,
+            },
+            (-1, -1, 0) => Opening::Ellipse {
+                length_m: al,
+                width_m: aw,
+            },
+            (-1, 0, 0) if old => Opening::Ellipse {
+                length_m: aw,
+                width_m: aw,
+            },
+            (-1, -1, 1) => Opening::Cylinder {
+                axis: 2,
+                length_m: ah,
+                diameter_a_m: al,
+                diameter_b_m: aw,
+            },
+            (-1, 0, 1) if old => Opening::Cylinder {
+                axis: 2,
+                length_m: ah,
+                diameter_a_m: aw,
+                diameter_b_m: aw,
+            },
+            (-1, -1, -1) => Opening::Ellipsoid {
+                length_m: al,
+                width_m: aw,
+                height_m: ah,
+            },
+            (-1, 0, -1) if v1995 => Opening::Ellipsoid {
+                length_m: aw,
+                width_m: aw,
+                height_m: aw,
+            },
+            (-1, 1, -1) => Opening::Cylinder {
+                axis: 0,
+                length_m: al,
+                diameter_a_m: aw,
+                diameter_b_m: ah,
+            },
+            (1, -1, -1) => Opening::Cylinder {
+                axis: 1,
+                length_m: aw,
+                diameter_a_m: al,
+                diameter_b_m: ah,
+            },
+            (-1, 0, -1) => Opening::VerticalEllipse {
+                width_m: aw,
+                height_m: ah,
+            },
+            (0, -1, -1) => Opening::VerticalEllipse {
+                width_m: al,
+                height_m: ah,
+            },
+            _ => {
+                return Err(format!(
+                    "luminous opening signs W {w}, L {l}, H {h} m match no LM-63 shape (point, rectangle, box, disk or \
+                     ellipse, cylinder, sphere or ellipsoid, vertical disk)"
+                ))
+            }
+        })
+    }
+
+    /// Check an opening given in a scene: every size finite and ≥ 0, a cylinder axis 0, 1 or 2.
+    pub fn check(&self) -> Result<(), String> {
+        let sizes: Vec<f64> = match *self {
+            Opening::Point => vec![],
+            Opening::Rectangle { length_m, width_m } | Opening::Ellipse { length_m, width_m } => {
+                vec![length_m, width_m]
+            }
+            Opening::VerticalEllipse { width_m, height_m } => vec![width_m, height_m],
+            Opening::Box {
+                length_m,
+                width_m,
+                height_m,
+            }
+            | Opening::Ellipsoid {
+                length_m,
+                width_m,
+                height_m,
+            } => vec![length_m, width_m, height_m],
+            Opening::Cylinder {
+                axis,
+                length_m,
+                diameter_a_m,
+                diameter_b_m,
+            } => {
+                if axis > 2 {
+                    return Err(format!("cylinder axis {axis}: expected 0 (x), 1 (y) or 2 (z)"));
+                }
+                vec![length_m, diameter_a_m, diameter_b_m]
+            }
+            Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            } => [length_m, width_m].into_iter().chain(heights_m).collect(),
+        };
+        match sizes.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+            Some(v) => Err(format!("size {v}: expected finite metres >= 0")),
+            None => Ok(()),
+        }
+    }
+
+    /// Whether the opening has no extent (a point source).
+    pub fn is_point(&self) -> bool {
+        self.largest_dimension_m() == 0.0
+    }
+
+    /// The largest extent of the opening, m (what the five-times rule scales).
+    pub fn largest_dimension_m(&self) -> f64 {
+        match *self {
+            Opening::Point => 0.0,
+            Opening::Rectangle { length_m, width_m } => length_m.hypot(width_m),
+            Opening::Ellipse { length_m, width_m } => length_m.max(width_m),
+            Opening::VerticalEllipse { width_m, height_m } => width_m.max(height_m),
+            Opening::Box {
+                length_m,
+                width_m,
+                height_m,
+            } => DVec3::new(length_m, width_m, height_m).length(),
+            Opening::Cylinder {
+                length_m,
+                diameter_a_m,
+                diameter_b_m,
+                ..
+            } => length_m.hypot(diameter_a_m.max(diameter_b_m)),
+            Opening::Ellipsoid {
+                length_m,
+                width_m,
+                height_m,
+            } => length_m.max(width_m).max(height_m),
+            Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            } => {
+                let foot = if width_m == 0.0 {
+                    length_m
+                } else {
+                    length_m.hypot(width_m)
+                };
+                foot.hypot(heights_m.iter().copied().fold(0.0, f64::max))
+            }
+        }
+    }
+
+    /// Whether `p` (luminaire frame, m) lies on or inside the opening: a
+    /// receiver there has no defined illuminance. A flat opening counts
+    /// points within 1e-9 of its size from its plane.
+    pub fn contains(&self, p: DVec3) -> bool {
+        let tol = 1e-9 * self.largest_dimension_m().max(1e-3);
+        let in_ellipse = |a: f64, b: f64, da: f64, db: f64| {
+            da > 0.0 && db > 0.0 && (2.0 * a / da).powi(2) + (2.0 * b / db).powi(2) <= 1.0 + 1e-12
+        };
+        let within = |v: f64, size: f64| v.abs() <= size / 2.0 + tol;
+        match *self {
+            Opening::Point => p.length() <= tol,
+            Opening::Rectangle { length_m, width_m } => {
+                p.z.abs() <= tol && within(p.x, length_m) && within(p.y, width_m)
+            }
+            Opening::Ellipse { length_m, width_m } => p.z.abs() <= tol && in_ellipse(p.x, p.y, length_m, width_m),
+            Opening::VerticalEllipse { width_m, height_m } => {
+                p.x.abs() <= tol && in_ellipse(p.y, p.z, width_m, height_m)
+            }
+            Opening::Box {
+                length_m,
+                width_m,
+                height_m,
+            } => within(p.x, length_m) && within(p.y, width_m) && within(p.z, height_m),
+            Opening::Cylinder {
+                axis,
+                length_m,
+                diameter_a_m,
+                diameter_b_m,
+            } => {
+                let (along, a, b) = cylinder_coords(axis, p);
+                within(along, length_m) && in_ellipse(a, b, diameter_a_m, diameter_b_m)
+            }
+            Opening::Ellipsoid {
+                length_m,
+                width_m,
+                height_m,
+            } => {
+                length_m > 0.0
+                    && width_m > 0.0
+                    && height_m > 0.0
+                    && (2.0 * p.x / length_m).powi(2) + (2.0 * p.y / width_m).powi(2) + (2.0 * p.z / height_m).powi(2)
+                        <= 1.0 + 1e-12
+            }
+            Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            } => {
+                let top = heights_m.iter().copied().fold(0.0, f64::max);
+                let foot = if width_m == 0.0 {
+                    in_ellipse(p.x, p.y, length_m, length_m)
+                } else {
+                    within(p.x, length_m) && within(p.y, width_m)
+                };
+                foot && p.z >= -tol && p.z <= top + tol
+            }
+        }
+    }
+
+    /// The directional area source at subdivision `n` (≥ 1): patch centres
+    /// (luminaire frame, m) and their shares (summing to 1). A point opening
+    /// is one patch at the centre whatever `n`. Patch counts: n² for a
+    /// rectangle, 4n² for an ellipse (n equal-area rings × 4n sectors), n³
+    /// for a box, 4n³ for a cylinder or an ellipsoid, up to 5n² (4n² + n² per
+    /// lit side) for an EULUMDAT area.
+    pub fn patches(&self, n: usize) -> Vec<(DVec3, f64)> {
+        let n = n.max(1);
+        let mid = |i: usize, k: usize| (i as f64 + 0.5) / k as f64; // in (0, 1)
+        let mut out = Vec::new();
+        match *self {
+            Opening::Point => out.push((DVec3::ZERO, 1.0)),
+            Opening::Rectangle { length_m, width_m } => {
+                for i in 0..n {
+                    for j in 0..n {
+                        let p = DVec3::new((mid(i, n) - 0.5) * length_m, (mid(j, n) - 0.5) * width_m, 0.0);
+                        out.push((p, 1.0));
+                    }
+                }
+            }
+            Opening::Ellipse { length_m, width_m } => {
+                for (a, b, w) in disk_points(n) {
+                    out.push((DVec3::new(a * length_m / 2.0, b * width_m / 2.0, 0.0), w));
+                }
+            }
+            Opening::VerticalEllipse { width_m, height_m } => {
+                for (a, b, w) in disk_points(n) {
+                    out.push((DVec3::new(0.0, a * width_m / 2.0, b * height_m / 2.0), w));
+                }
+            }
+            Opening::Box {
+                length_m,
+                width_m,
+                height_m,
+            } => {
+                for i in 0..n {
+                    for j in 0..n {
+                        for k in 0..n {
+                            let p = DVec3::new(
+                                (mid(i, n) - 0.5) * length_m,
+                                (mid(j, n) - 0.5) * width_m,
+                                (mid(k, n) - 0.5) * height_m,
+                            );
+                            out.push((p, 1.0));
+                        }
+                    }
+                }
+            }
+            Opening::Cylinder {
+                axis,
+                length_m,
+                diameter_a_m,
+                diameter_b_m,
+            } => {
+                for (a, b, w) in disk_points(n) {
+                    for k in 0..n {
+                        let along = (mid(k, n) - 0.5) * length_m;
+                        let (a, b) = (a * diameter_a_m / 2.0, b * diameter_b_m / 2.0);
+                        let p = match axis {
+                            0 => DVec3::new(along, a, b),
+                            1 => DVec3::new(a, along, b),
+                            _ => DVec3::new(a, b, along),
+                        };
+                        out.push((p, w));
+                    }
+                }
+            }
+            Opening::Ellipsoid {
+                length_m,
+                width_m,
+                height_m,
+            } => {
+                // Equal-volume cells: uniform in r³, cos θ and φ.
+                for i in 0..n {
+                    let r = mid(i, n).cbrt();
+                    for j in 0..n {
+                        let ct = 2.0 * mid(j, n) - 1.0;
+                        let st = (1.0 - ct * ct).max(0.0).sqrt();
+                        for k in 0..4 * n {
+                            let (sp, cp) = crate::model::frame::sin_cos_deg(360.0 * mid(k, 4 * n));
+                            let u = DVec3::new(st * cp, st * sp, ct) * r;
+                            out.push((u * DVec3::new(length_m, width_m, height_m) / 2.0, 1.0));
+                        }
+                    }
+                }
+            }
+            Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            } => ldt_patches(length_m, width_m, heights_m, n, &mut out),
+        }
+        let total: f64 = out.iter().map(|p| p.1).sum();
+        if total > 0.0 {
+            for p in &mut out {
+                p.1 /= total;
+            }
+        }
+        out
+    }
+}
+
+/// (along, a, b) coordinates of `p` for a cylinder along `axis`.
+fn cylinder_coords(axis: u8, p: DVec3) -> (f64, f64, f64) {
+    match axis {
+        0 => (p.x, p.y, p.z),
+        1 => (p.y, p.x, p.z),
+        _ => (p.z, p.x, p.y),
+    }
+}
+
+/// Equal-area points of the unit disk: n rings (uniform in ρ²) × 4n sectors,
+/// each with weight 1 (midpoint rule in ρ² and angle).
+fn disk_points(n: usize) -> Vec<(f64, f64, f64)> {
+    let mut out = Vec::with_capacity(4 * n * n);
+    for i in 0..n {
+        let rho = ((i as f64 + 0.5) / n as f64).sqrt();
+        for k in 0..4 * n {
+            let (s, c) = crate::model::frame::sin_cos_deg(360.0 * (k as f64 + 0.5) / (4 * n) as f64);
+            out.push((rho * c, rho * s, 1.0));
+        }
+    }
+    out
+}
+
+/// Patches of an EULUMDAT area: the base (rectangle or disk) and the lit
+/// sides, each weighted by its area.
+fn ldt_patches(length: f64, width: f64, heights: [f64; 4], n: usize, out: &mut Vec<(DVec3, f64)>) {
+    let mid = |i: usize, k: usize| (i as f64 + 0.5) / k as f64;
+    if width == 0.0 {
+        let r = length / 2.0;
+        let base_w = PI * r * r / (4 * n * n) as f64;
+        for (a, b, _) in disk_points(n) {
+            out.push((DVec3::new(a * r, b * r, 0.0), base_w));
+        }
+        // The wall: 4n sectors, each as high as the nearest of the four C planes.
+        for k in 0..4 * n {
+            let deg = 360.0 * mid(k, 4 * n);
+            let h = heights[((deg + 45.0) / 90.0) as usize % 4];
+            let (s, c) = crate::model::frame::sin_cos_deg(deg);
+            let w = 2.0 * PI * r / (4 * n) as f64 * h / n as f64;
+            for j in 0..n {
+                if h > 0.0 {
+                    out.push((DVec3::new(r * c, r * s, mid(j, n) * h), w));
+                }
+            }
+        }
+        return;
+    }
+    let base_w = length * width / (n * n) as f64;
+    for i in 0..n {
+        for j in 0..n {
+            out.push((
+                DVec3::new((mid(i, n) - 0.5) * length, (mid(j, n) - 0.5) * width, 0.0),
+                base_w,
+            ));
+        }
+    }
+    // Sides: C0 at x = +L/2, C90 at y = +W/2, C180 at x = −L/2, C270 at y = −W/2.
+    for (side, &h) in heights.iter().enumerate() {
+        if h <= 0.0 {
+            continue;
+        }
+        let span = if side % 2 == 0 { width } else { length };
+        let w = span * h / (n * n) as f64;
+        for i in 0..n {
+            for j in 0..n {
+                let t = (mid(i, n) - 0.5) * span;
+                let z = mid(j, n) * h;
+                let p = match side {
+                    0 => DVec3::new(length / 2.0, t, z),
+                    1 => DVec3::new(t, width / 2.0, z),
+                    2 => DVec3::new(-length / 2.0, t, z),
+                    _ => DVec3::new(t, -width / 2.0, z),
+                };
+                out.push((p, w));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ies_signs() {
+        assert_eq!(Opening::ies(0.0, 0.0, 0.0, false, false).unwrap(), Opening::Point);
+        assert!(matches!(
+            Opening::ies(-0.2, -0.2, 0.0, false, false).unwrap(),
+            Opening::Ellipse { .. }
+        ));
+        assert!(matches!(
+            Opening::ies(-0.2, 0.5, -0.2, false, false).unwrap(),
+            Opening::Cylinder { axis: 0, .. }
+        ));
+        assert!(matches!(
+            Opening::ies(-0.2, 0.0, -0.2, false, true).unwrap(),
+            Opening::Ellipsoid { .. }
+        ));
+        assert!(matches!(
+            Opening::ies(-0.2, 0.0, -0.2, false, false).unwrap(),
+            Opening::VerticalEllipse { .. }
+        ));
+        assert!(Opening::ies(0.3, 0.0, 0.0, false, false).is_err());
+        assert!(Opening::ies(f64::NAN, 0.0, 0.0, false, false).is_err());
+    }
+
+    #[test]
+    fn patches_share_one_and_stay_inside() {
+        let shapes = [
+            Opening::Rectangle {
+                length_m: 0.6,
+                width_m: 0.3,
+            },
+            Opening::Ellipse {
+                length_m: 0.4,
+                width_m: 0.4,
+            },
+            Opening::VerticalEllipse {
+                width_m: 0.3,
+                height_m: 0.2,
+            },
+            Opening::Box {
+                length_m: 0.3,
+                width_m: 0.2,
+                height_m: 0.1,
+            },
+            Opening::Cylinder {
+                axis: 1,
+                length_m: 1.2,
+                diameter_a_m: 0.1,
+                diameter_b_m: 0.1,
+            },
+            Opening::Ellipsoid {
+                length_m: 0.3,
+                width_m: 0.3,
+                height_m: 0.3,
+            },
+            Opening::ldt(0.5, 0.2, [0.05, 0.0, 0.05, 0.0]).unwrap(),
+            Opening::ldt(0.5, 0.0, [0.05, 0.05, 0.05, 0.05]).unwrap(),
+        ];
+        for s in shapes {
+            for n in [1, 3, 8] {
+                let p = s.patches(n);
+                let sum: f64 = p.iter().map(|x| x.1).sum();
+                assert!((sum - 1.0).abs() < 1e-12, "{s:?}");
+                assert!(p.iter().all(|(x, _)| s.contains(*x)), "{s:?} n {n}");
+                let centre = p.iter().map(|(x, w)| *x * *w).sum::<DVec3>();
+                assert!(centre.x.abs() < 1e-12 && centre.y.abs() < 1e-12, "{s:?} {centre}");
+            }
+        }
+    }
+}

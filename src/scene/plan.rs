@@ -1,0 +1,635 @@
+//! The cheapest representation of each luminaire that keeps the scene's
+//! illuminance within a tolerance of the reference, measured on the scene.
+//!
+//! **Reference** per luminaire: Catmull-Rom on the native grid, as a
+//! directional area source refined to convergence when the file (or the
+//! scene) declares an opening with a size, as a point source otherwise.
+//!
+//! **Candidates** ([`Representation`]): every filter on the native grid,
+//! every filter rendered at factors 1, 2 and 5 read bilinearly (the trade
+//! table's rows) and the Catmull-Rom renders also with the nearest and
+//! Catmull-Rom lookups,
+//! the fitted OpenGL lights (≤ 2), the native grid cropped to the γ rows and
+//! the C sector the scene's receivers can see, and the grid re-stored with the symmetry the
+//! data has; each as a point source and, where the opening has a size, as
+//! the area source.
+//!
+//! **Error**: each candidate replaces its luminaire's reference while the
+//! others stay; at every receiver point the total illuminance is compared
+//! with the all-reference total ([`super::illuminance::relative_errors`]).
+//! **Cost**: bytes held ([`IntensityField::bytes`], plus 32 bytes per patch
+//! of an area source), then time per illuminance evaluation
+//! ([`time_per_sample_ns`] on [`random_directions`], times the patch
+//! count). The chosen candidate is the first within the tolerance in that
+//! order; the reference always is (error 0), so a plan always exists.
+
+use std::fmt;
+use std::str::FromStr;
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::illuminance::{area_source, relative_difference, AreaRefinement, FarField, Source};
+use super::{Dark, Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
+use crate::error::ModelError;
+use crate::fit::{fit, FitOptions};
+use crate::metrics::{random_directions, time_per_sample_ns};
+use crate::model::{Distribution, IntensityField, Symmetry};
+use crate::reconstruct::{render, Filter, LightTexture, Lookup, Precision, StoredTexture};
+
+/// Render factors of the texture candidates.
+pub const TEXTURE_FACTORS: [u32; 3] = [1, 2, 5];
+
+/// A representation of a luminaire's distribution.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Representation {
+    /// A filter sampling the native grid (f64).
+    Filter(Filter),
+    /// A rendered f32 texture read back with a lookup.
+    Texture {
+        /// Filter of the render.
+        filter: Filter,
+        /// Render factor.
+        factor: u32,
+        /// Lookup of the read-back.
+        lookup: Lookup,
+    },
+    /// The fitted OpenGL lights (at most 2).
+    Fitted,
+    /// The native grid cropped to the γ rows between `gamma_from` and
+    /// `gamma_to` and, when given, to the C planes from `c.0` counter-clockwise
+    /// to `c.1` (degrees; the sector may wrap through C = 0).
+    Cropped {
+        /// The filter.
+        filter: Filter,
+        /// First kept γ row, degrees.
+        gamma_from: f64,
+        /// Last kept γ row, degrees.
+        gamma_to: f64,
+        /// First and last kept C plane, degrees.
+        c: Option<(f64, f64)>,
+    },
+    /// The native grid re-stored with a smaller symmetry the data has.
+    Symmetric {
+        /// The filter.
+        filter: Filter,
+        /// The symmetry it is stored with.
+        symmetry: Symmetry,
+    },
+}
+
+impl fmt::Display for Representation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Representation::Filter(x) => write!(f, "{x}"),
+            Representation::Texture { filter, factor, lookup } => write!(f, "texture {filter} x{factor} / {lookup}"),
+            Representation::Fitted => f.write_str(crate::fit::RECONSTRUCTION_NAME),
+            Representation::Cropped {
+                filter,
+                gamma_from,
+                gamma_to,
+                c,
+            } => {
+                write!(f, "{filter}, gamma {gamma_from}-{gamma_to} deg")?;
+                if let Some((a, b)) = c {
+                    write!(f, ", C {a}-{b} deg")?;
+                }
+                f.write_str(" only")
+            }
+            Representation::Symmetric { filter, symmetry } => write!(f, "{filter}, stored {}", symmetry.describe()),
+        }
+    }
+}
+
+impl FromStr for Representation {
+    type Err = ModelError;
+    /// A filter name, `fitted-gl`, or `texture FILTER xFACTOR / LOOKUP`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let t = s.trim();
+        if t == crate::fit::RECONSTRUCTION_NAME {
+            return Ok(Representation::Fitted);
+        }
+        if let Some(rest) = t.strip_prefix("texture ") {
+            let bad = || ModelError::Parameter {
+                name: "representation",
+                value: s.to_string(),
+                reason: "expected `texture FILTER xFACTOR / LOOKUP`, e.g. `texture catmull-rom x5 / bilinear`".into(),
+            };
+            let (left, lookup) = rest.split_once('/').ok_or_else(bad)?;
+            let (filter, factor) = left.trim().rsplit_once(' ').ok_or_else(bad)?;
+            let factor: u32 = factor
+                .trim()
+                .strip_prefix('x')
+                .and_then(|x| x.parse().ok())
+                .ok_or_else(bad)?;
+            return Ok(Representation::Texture {
+                filter: filter.parse()?,
+                factor,
+                lookup: lookup.parse()?,
+            });
+        }
+        t.parse::<Filter>()
+            .map(Representation::Filter)
+            .map_err(|_| ModelError::Parameter {
+                name: "representation",
+                value: s.to_string(),
+                reason: format!(
+                    "expected a filter ({}), {}, or `texture FILTER xFACTOR / LOOKUP`",
+                    crate::reconstruct::FILTER_NAMES,
+                    crate::fit::RECONSTRUCTION_NAME
+                ),
+            })
+    }
+}
+
+/// A filter over a texture it owns (the cropped and re-stored grids).
+#[derive(Debug, Clone)]
+pub struct OwnedSampler {
+    /// The texture.
+    pub texture: LightTexture,
+    /// The filter.
+    pub filter: Filter,
+    /// The name reported.
+    pub name: String,
+}
+
+impl IntensityField for OwnedSampler {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        self.texture.sampler(self.filter).cd(c_deg, gamma_deg)
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        self.texture.sampler(self.filter).cd_dir(d)
+    }
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+    fn bytes(&self) -> usize {
+        self.texture.bytes()
+    }
+}
+
+/// What the representations of one luminaire are built from.
+pub struct Models<'a> {
+    dist: &'a Distribution,
+    texture: Option<&'a LightTexture>,
+}
+
+impl<'a> Models<'a> {
+    /// The models of `lum`; `texture` is its light texture (`None`: all-zero).
+    pub fn new(lum: &'a SceneLuminaire, texture: Option<&'a LightTexture>) -> Self {
+        Self {
+            dist: &lum.luminaire.distribution,
+            texture,
+        }
+    }
+
+    /// Representation `r` as an intensity field (cd); every representation
+    /// of an all-zero distribution is [`Dark`].
+    pub fn field(&self, r: &Representation) -> Result<Box<dyn IntensityField + 'a>, ModelError> {
+        let Some(tex) = self.texture else {
+            return Ok(Box::new(Dark));
+        };
+        let owned = |d: Distribution, filter: Filter| -> Result<Box<dyn IntensityField + 'a>, ModelError> {
+            Ok(Box::new(OwnedSampler {
+                texture: LightTexture::new(&d)?,
+                filter,
+                name: r.to_string(),
+            }))
+        };
+        Ok(match r {
+            Representation::Filter(f) => Box::new(tex.sampler(*f)),
+            Representation::Texture { filter, factor, lookup } => Box::new(StoredTexture::new(
+                &render(tex, *filter, *factor)?,
+                None,
+                Precision::F32,
+                *lookup,
+            )),
+            Representation::Fitted => Box::new(fit(self.dist, &FitOptions::default())?.model().prepare()),
+            Representation::Cropped {
+                filter,
+                gamma_from,
+                gamma_to,
+                c,
+            } => owned(crop(self.dist, *gamma_from, *gamma_to, *c)?, *filter)?,
+            Representation::Symmetric { filter, symmetry } => owned(self.dist.with_symmetry(*symmetry)?, *filter)?,
+        })
+    }
+}
+
+/// `d` with only the γ rows in [from, to] and, when `c` is given, only the
+/// C planes of the full circle from `c.0` counter-clockwise to `c.1` (degrees),
+/// stored without symmetry.
+fn crop(d: &Distribution, from: f64, to: f64, c: Option<(f64, f64)>) -> Result<Distribution, ModelError> {
+    let g = d.gamma_angles();
+    let keep: Vec<usize> = (0..g.len()).filter(|&i| g[i] >= from && g[i] <= to).collect();
+    let gamma: Vec<f64> = keep.iter().map(|&i| g[i]).collect();
+    let rows = |d: &Distribution, ic: usize| keep.iter().map(|&ig| d.value(ic, ig)).collect::<Vec<f64>>();
+    let Some((c0, c1)) = c else {
+        let cd = (0..d.n_c()).flat_map(|ic| rows(d, ic)).collect();
+        return Distribution::new(d.c_angles().to_vec(), gamma, cd, d.symmetry());
+    };
+    let full = d.with_symmetry(Symmetry::None)?;
+    let eps = crate::model::ANGLE_EPS;
+    let inside = |a: f64| {
+        if c0 <= c1 {
+            a >= c0 - eps && a <= c1 + eps
+        } else {
+            a >= c0 - eps || a <= c1 + eps
+        }
+    };
+    let planes: Vec<usize> = (0..full.n_c()).filter(|&i| inside(full.c_angles()[i])).collect();
+    let angles = planes.iter().map(|&i| full.c_angles()[i]).collect();
+    let cd = planes.iter().flat_map(|&ic| rows(&full, ic)).collect();
+    Distribution::new(angles, gamma, cd, Symmetry::None)
+}
+
+/// The part of the grid the scene sees.
+type Visible = (f64, f64, Option<(f64, f64)>);
+
+/// What the scene can see of `lum` through `patches`: the γ rows (first,
+/// last, degrees) and, when no kept row touches a pole (whose cubic taps
+/// read the plane C + 180) and the data is not rotational, the C planes
+/// (first, last counter-clockwise), each widened by two knots each side (the
+/// cubic taps). `None` when that is the whole grid or nothing is seen.
+fn visible_grid(lum: &SceneLuminaire, patches: &[(DVec3, f64)], points: &[ScenePoint]) -> Option<Visible> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut cs = Vec::new();
+    for p in points {
+        for &(local, _) in patches {
+            let v = p.position - lum.pose.point_to_world(local);
+            if p.normal.dot(v) >= 0.0 {
+                continue; // arrives from behind the receiver: never looked up
+            }
+            if let Some((c, g)) = crate::model::frame::angles(lum.pose.to_local(v)) {
+                lo = lo.min(g);
+                hi = hi.max(g);
+                cs.push(c);
+            }
+        }
+    }
+    let d = &lum.luminaire.distribution;
+    let g = d.gamma_angles();
+    if lo > hi || lo.is_nan() || hi.is_nan() {
+        return None;
+    }
+    let first = g.partition_point(|&x| x <= lo).saturating_sub(1).saturating_sub(2);
+    let last = (g.partition_point(|&x| x < hi) + 2).min(g.len() - 1);
+    let pole = g[first] <= 0.0 || g[last] >= 180.0;
+    let c = if pole || d.symmetry() == Symmetry::Rotational {
+        None
+    } else {
+        visible_planes(d, &mut cs)
+    };
+    (first > 0 || last < g.len() - 1 || c.is_some()).then(|| (g[first], g[last], c))
+}
+
+/// The smallest arc of full-circle C planes holding every angle of `cs`
+/// (degrees), widened by two planes each side; `None` when that is (almost) every plane.
+fn visible_planes(d: &Distribution, cs: &mut [f64]) -> Option<(f64, f64)> {
+    let planes: Vec<f64> = d.full_planes().iter().map(|p| p.0).collect();
+    let n = planes.len();
+    if cs.is_empty() || n < 8 {
+        return None;
+    }
+    cs.sort_by(f64::total_cmp);
+    // The arc is the circle minus the largest gap between consecutive seen angles.
+    let mut gap = (cs[0] + 360.0 - cs[cs.len() - 1], cs.len() - 1);
+    for k in 1..cs.len() {
+        if cs[k] - cs[k - 1] > gap.0 {
+            gap = (cs[k] - cs[k - 1], k - 1);
+        }
+    }
+    let (start, end) = (cs[(gap.1 + 1) % cs.len()], cs[gap.1]);
+    // Plane index at or below `start`, and at or above `end` (periodic), then two more each way.
+    let below = (planes.partition_point(|&a| a <= start) + n - 1) % n;
+    let above = planes.partition_point(|&a| a < end) % n;
+    let (i0, i1) = ((below + n - 2) % n, (above + 2) % n);
+    let count = (i1 + n - i0) % n + 1;
+    (count + 2 < n).then(|| (planes[i0], planes[i1]))
+}
+
+/// One candidate's measured cost and error.
+#[derive(Debug, Clone, Serialize)]
+pub struct Candidate {
+    /// The representation.
+    pub representation: String,
+    /// Point or area source.
+    pub source: SourceKind,
+    /// Bytes held (field + 32 per area patch).
+    pub bytes: usize,
+    /// Time per illuminance evaluation on one thread, ns (field time × patches).
+    pub ns_per_eval: f64,
+    /// Largest error over the scene's points, %.
+    pub max_error_pct: f64,
+    /// Mean error over the scene's points, %.
+    pub mean_error_pct: f64,
+}
+
+/// A candidate that could not be built, and why.
+#[derive(Debug, Clone, Serialize)]
+pub struct Unavailable {
+    /// The representation.
+    pub representation: String,
+    /// Why.
+    pub reason: String,
+}
+
+/// The plan for one luminaire.
+#[derive(Debug, Clone, Serialize)]
+pub struct LuminairePlan {
+    /// Luminaire name.
+    pub name: String,
+    /// The chosen candidate, `representation, source`.
+    pub chosen: String,
+    /// Its representation.
+    pub representation: String,
+    /// Its source model.
+    pub source: SourceKind,
+    /// Its bytes.
+    pub bytes: usize,
+    /// Its time per evaluation, ns.
+    pub ns_per_eval: f64,
+    /// Its largest error on the scene, %.
+    pub max_error_pct: f64,
+    /// Its mean error on the scene, %.
+    pub mean_error_pct: f64,
+    /// Whether the point source (reference field) stays within the tolerance at every point.
+    pub far_field_ok: bool,
+    /// The five-times rule measured on this scene.
+    pub far_field: FarField,
+    /// The reference it was measured against.
+    pub reference: String,
+    /// The reference area source's refinement.
+    pub area: AreaRefinement,
+    /// Candidates tried.
+    pub candidates: usize,
+    /// Candidates over the tolerance, with their errors (cheapest first).
+    pub rejected: Vec<Candidate>,
+    /// Candidates that could not be built.
+    pub unavailable: Vec<Unavailable>,
+}
+
+/// Everything `photosolid plan` reports.
+#[derive(Debug, Clone, Serialize)]
+pub struct PlanResult {
+    /// The scene file.
+    pub scene: String,
+    /// The tolerance, %.
+    pub tolerance_pct: f64,
+    /// How errors are measured.
+    pub error_definition: &'static str,
+    /// Per luminaire.
+    pub luminaires: Vec<LuminairePlan>,
+    /// Every chosen representation at once against the all-reference scene: largest error, %.
+    pub combined_max_error_pct: f64,
+    /// Mean of the same, %.
+    pub combined_mean_error_pct: f64,
+}
+
+/// What [`plan`] writes in `error_definition`.
+pub const ERROR_DEFINITION: &str = "per receiver point: |E(candidate in place of its luminaire's reference) - \
+     E(all references)| / max(E(all references), 1e-3 x the receiver's largest reference E); reference: catmull-rom \
+     on the native grid, area source refined to convergence when the opening has a size, else point source";
+
+/// Options of [`plan`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanOptions {
+    /// Largest error allowed at any point, as a fraction (0.01 = 1 %).
+    pub tolerance: f64,
+    /// Directions timed per field.
+    pub timing_directions: usize,
+    /// Timing repeats (median).
+    pub timing_repeats: usize,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 0.01,
+            timing_directions: 4096,
+            timing_repeats: 5,
+        }
+    }
+}
+
+/// Every candidate representation of `lum` for this scene.
+fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Representation> {
+    let mut reps: Vec<Representation> = Filter::ALL.into_iter().map(Representation::Filter).collect();
+    // The trade table's rows: every filter rendered at each factor, read with
+    // the hardware's bilinear lookup; the Catmull-Rom render also with the others.
+    for factor in TEXTURE_FACTORS {
+        for filter in Filter::ALL {
+            for lookup in Lookup::ALL {
+                if lookup == Lookup::Bilinear || filter == Filter::CatmullRom {
+                    reps.push(Representation::Texture { filter, factor, lookup });
+                }
+            }
+        }
+    }
+    reps.push(Representation::Fitted);
+    if let Some((gamma_from, gamma_to, c)) = visible {
+        reps.push(Representation::Cropped {
+            filter: Filter::CatmullRom,
+            gamma_from,
+            gamma_to,
+            c,
+        });
+    }
+    let d = &lum.luminaire.distribution;
+    let found = d.detect_symmetry(1e-9 * d.max_cd());
+    if found != d.symmetry() {
+        if let Ok(s) = d.with_symmetry(found) {
+            if s.n_c() < d.n_c() {
+                reps.push(Representation::Symmetric {
+                    filter: Filter::CatmullRom,
+                    symmetry: found,
+                });
+            }
+        }
+    }
+    reps
+}
+
+/// Plan every luminaire of `scene` (see the module docs). `progress` gets a
+/// line per luminaire and candidate.
+pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)>) -> Result<PlanResult, SceneError> {
+    if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
+        return Err(SceneError::Parameter(ModelError::Parameter {
+            name: "tolerance",
+            value: options.tolerance.to_string(),
+            reason: "expected a finite fraction >= 0".into(),
+        }));
+    }
+    scene.check_points()?;
+    let points = scene.points();
+    let say = |m: &str| {
+        if let Some(f) = progress {
+            f(m)
+        }
+    };
+    let model_err = |l: &SceneLuminaire| {
+        let name = l.name.clone();
+        move |e| SceneError::Model {
+            luminaire: name,
+            source: e,
+        }
+    };
+    // References, one luminaire at a time (they borrow their textures).
+    let textures: Vec<Option<LightTexture>> = scene
+        .luminaires
+        .iter()
+        .map(SceneLuminaire::texture)
+        .collect::<Result<_, _>>()?;
+    let mut references = Vec::new();
+    for (lum, tex) in scene.luminaires.iter().zip(&textures) {
+        say(&format!("{}: reference", lum.name));
+        let models = Models::new(lum, tex.as_ref());
+        let field = models.field(&Representation::default()).map_err(model_err(lum))?;
+        let point = Source {
+            field: &*field,
+            pose: lum.pose,
+            maintenance_factor: lum.maintenance_factor,
+            patches: vec![(DVec3::ZERO, 1.0)],
+        };
+        let point_lux = point.lux_all(&points, &scene.occluders, None);
+        let (area, area_lux, refinement) = area_source(&*field, lum, &points, &scene.occluders);
+        let far_field = FarField::measure(lum, &points, &point_lux, &area_lux);
+        let kind = if lum.opening.is_point() {
+            SourceKind::Point
+        } else {
+            SourceKind::Area
+        };
+        let name = format!("{}, {kind} source", field.name());
+        references.push((area_lux, point_lux, area.patches, refinement, far_field, name, kind));
+    }
+    let mut total_ref = vec![0.0; points.len()];
+    for r in &references {
+        for (t, e) in total_ref.iter_mut().zip(&r.0) {
+            *t += e;
+        }
+    }
+    let dirs = random_directions(options.timing_directions.max(1), 0x5CE7E);
+    let mut plans = Vec::new();
+    let mut total_chosen = vec![0.0; points.len()];
+    for (li, (lum, tex)) in scene.luminaires.iter().zip(&textures).enumerate() {
+        let (ref_lux, point_ref_lux, patches, refinement, far_field, ref_name, _) = &references[li];
+        let models = Models::new(lum, tex.as_ref());
+        let visible = visible_grid(lum, patches, &points);
+        let mut measured: Vec<(Candidate, Vec<f64>)> = Vec::new();
+        let mut unavailable = Vec::new();
+        let reps = if tex.is_some() {
+            candidate_representations(lum, visible)
+        } else {
+            vec![Representation::default()] // all-zero: every representation is the same dark field
+        };
+        for rep in reps {
+            say(&format!("{}: {rep}", lum.name));
+            let field = match models.field(&rep) {
+                Ok(f) => f,
+                Err(e) => {
+                    unavailable.push(Unavailable {
+                        representation: rep.to_string(),
+                        reason: e.to_string(),
+                    });
+                    continue;
+                }
+            };
+            let ns = time_per_sample_ns(&*field, &dirs, options.timing_repeats);
+            let mut kinds = vec![SourceKind::Point];
+            if !lum.opening.is_point() {
+                kinds.push(SourceKind::Area);
+            }
+            for kind in kinds {
+                let src = Source {
+                    field: &*field,
+                    pose: lum.pose,
+                    maintenance_factor: lum.maintenance_factor,
+                    patches: match kind {
+                        SourceKind::Point => vec![(DVec3::ZERO, 1.0)],
+                        SourceKind::Area => patches.clone(),
+                    },
+                };
+                let values = src.lux_all(&points, &scene.occluders, None);
+                let total: Vec<f64> = total_ref
+                    .iter()
+                    .zip(ref_lux)
+                    .zip(&values)
+                    .map(|((t, r), v)| t - r + v)
+                    .collect();
+                let (max, mean) = relative_difference(&total, &total_ref, &points);
+                let n = src.patches.len();
+                measured.push((
+                    Candidate {
+                        representation: field.name(),
+                        source: kind,
+                        bytes: field.bytes() + if kind == SourceKind::Area { n * 32 } else { 0 },
+                        ns_per_eval: ns * n as f64,
+                        max_error_pct: 100.0 * max,
+                        mean_error_pct: 100.0 * mean,
+                    },
+                    values,
+                ));
+            }
+        }
+        measured.sort_by(|a, b| {
+            a.0.bytes
+                .cmp(&b.0.bytes)
+                .then(a.0.ns_per_eval.total_cmp(&b.0.ns_per_eval))
+        });
+        let tol_pct = 100.0 * options.tolerance;
+        let chosen_at = measured.iter().position(|(c, _)| c.max_error_pct <= tol_pct);
+        let Some(chosen_at) = chosen_at else {
+            return Err(SceneError::Model {
+                luminaire: lum.name.clone(),
+                source: ModelError::Internal("the reference itself is not within the tolerance".into()),
+            });
+        };
+        let (chosen, values) = measured[chosen_at].clone();
+        for (t, v) in total_chosen.iter_mut().zip(&values) {
+            *t += v;
+        }
+        let (ff_max, _) = relative_difference(
+            &total_ref
+                .iter()
+                .zip(ref_lux)
+                .zip(point_ref_lux)
+                .map(|((t, r), p)| t - r + p)
+                .collect::<Vec<_>>(),
+            &total_ref,
+            &points,
+        );
+        plans.push(LuminairePlan {
+            name: lum.name.clone(),
+            chosen: format!("{}, {} source", chosen.representation, chosen.source),
+            representation: chosen.representation.clone(),
+            source: chosen.source,
+            bytes: chosen.bytes,
+            ns_per_eval: chosen.ns_per_eval,
+            max_error_pct: chosen.max_error_pct,
+            mean_error_pct: chosen.mean_error_pct,
+            far_field_ok: 100.0 * ff_max <= tol_pct,
+            far_field: *far_field,
+            reference: ref_name.clone(),
+            area: *refinement,
+            candidates: measured.len(),
+            rejected: measured
+                .iter()
+                .filter(|(c, _)| c.max_error_pct > tol_pct)
+                .map(|(c, _)| c.clone())
+                .collect(),
+            unavailable,
+        });
+    }
+    let (cmax, cmean) = relative_difference(&total_chosen, &total_ref, &points);
+    Ok(PlanResult {
+        scene: scene
+            .path
+            .as_ref()
+            .map_or("built-in scene".into(), |p| p.display().to_string()),
+        tolerance_pct: 100.0 * options.tolerance,
+        error_definition: ERROR_DEFINITION,
+        luminaires: plans,
+        combined_max_error_pct: 100.0 * cmax,
+        combined_mean_error_pct: 100.0 * cmean,
+    })
+}
