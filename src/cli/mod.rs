@@ -3,6 +3,8 @@
 mod compare;
 mod convert;
 mod demo;
+mod engines;
+mod export;
 mod fit;
 mod gpu_check;
 mod grid;
@@ -58,6 +60,10 @@ enum Command {
     GpuCheck(gpu_check::GpuCheckArgs),
     /// Compare reconstructions (and other files): Hausdorff distance, radial errors, speed; HTML report.
     Compare(compare::CompareArgs),
+    /// Write one renderer's light-profile layout (pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf).
+    Export(export::ExportArgs),
+    /// How far each renderer's lookup is from the file: trade-table metrics per engine, defect rows.
+    Engines(engines::EnginesArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -114,6 +120,8 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Fit(a) => fit::run(a),
         Command::GpuCheck(a) => gpu_check::run(a),
         Command::Compare(a) => compare::run(a),
+        Command::Export(a) => export::run(a),
+        Command::Engines(a) => engines::run(a),
     }
 }
 
