@@ -393,3 +393,111 @@ fn cli_export_and_engines() {
     assert!(html.contains("Engines: lookup errors") && html.contains("The reference over C x gamma"));
     assert!(report.join("reference.png").exists() && report.join("error_pbrt.png").exists());
 }
+
+/// Write `text` to `dir/name` and load it.
+fn load_text(dir: &Path, name: &str, text: &str) -> Luminaire {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    photosolid::load(&p).unwrap()
+}
+
+#[test]
+fn tilt_and_type_b_rows_appear_for_such_files() {
+    let dir = tempfile::tempdir().unwrap();
+    // TILT=INCLUDE with multipliers 1, 0.9, 0.8 at 0, 45, 90 degrees; rotational, 0..90.
+    let tilted = load_text(
+        dir.path(),
+        "tilt.ies",
+        "IESNA:LM-63-2002\n[TEST] t\n[MANUFAC] photosolid test\nTILT=INCLUDE\n1\n3\n0 45 90\n1.0 0.9 0.8\n\
+         1 -1 1 3 1 1 2 0 0 0\n1 1 100\n0 45 90\n0\n100 80 10\n",
+    );
+    let r = measure(&tilted, &quick(vec![Engine::Threejs, Engine::Blender, Engine::Ue5])).unwrap();
+    for name in [
+        "threejs: ignores TILT (at tilt 90 deg)",
+        "blender: ignores TILT (at tilt 90 deg)",
+    ] {
+        let row = r
+            .rows
+            .iter()
+            .find(|x| x.name == name)
+            .unwrap_or_else(|| panic!("no row {name}"));
+        // The untilted profile against 0.8 x the profile: 20 % of the peak at the peak.
+        assert!(
+            (row.metrics.radial_max_pct - 20.0).abs() < 0.5,
+            "{name}: {}",
+            row.metrics.radial_max_pct
+        );
+        assert!(
+            (row.metrics.flux_error_pct - 25.0).abs() < 0.5,
+            "{name}: {}",
+            row.metrics.flux_error_pct
+        );
+    }
+    assert!(
+        !r.rows.iter().any(|x| x.name.starts_with("ue5:")),
+        "UE has no TILT row (it refuses such files)"
+    );
+    // A Type B floodlight: the beam along the B axis (h = 0, v = 0).
+    let mut cd = String::new();
+    for h in [-90.0f64, -45.0, 0.0, 45.0, 90.0] {
+        for v in [-90.0f64, -45.0, 0.0, 45.0, 90.0] {
+            let x = (h.to_radians().cos() * v.to_radians().cos()).max(0.0);
+            cd.push_str(&format!("{:.3} ", 1000.0 * x.powi(4)));
+        }
+        cd.push('\n');
+    }
+    let flood = load_text(
+        dir.path(),
+        "flood.ies",
+        &format!(
+            "IESNA:LM-63-2002\n[TEST] b\n[MANUFAC] photosolid test\nTILT=NONE\n1 -1 1 5 5 2 2 0 0 0\n1 1 100\n\
+             -90 -45 0 45 90\n-90 -45 0 45 90\n{cd}"
+        ),
+    );
+    assert!(flood.source_grid.is_some());
+    let r = measure(&flood, &quick(vec![Engine::Babylon, Engine::Ue5, Engine::Blender])).unwrap();
+    for name in ["babylon: Type B read as Type C", "ue5: Type B read as Type C"] {
+        let row = r
+            .rows
+            .iter()
+            .find(|x| x.name == name)
+            .unwrap_or_else(|| panic!("no row {name}"));
+        assert!(
+            row.metrics.hausdorff_pct > 20.0,
+            "{name}: {}",
+            row.metrics.hausdorff_pct
+        );
+        assert!(
+            row.source.as_deref().unwrap().contains("hotometricType")
+                || row.source.as_deref().unwrap().contains("Type B")
+        );
+    }
+    // Every engine's row is finite on these small grids.
+    assert!(r
+        .rows
+        .iter()
+        .all(|x| x.metrics.hausdorff_cd.is_finite() && x.metrics.radial_rms_cd.is_finite()));
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    use photosolid::model::{Distribution, Symmetry};
+    let zero = Luminaire::from_distribution(
+        Distribution::new(vec![0.0], vec![0.0, 90.0, 180.0], vec![0.0; 3], Symmetry::Rotational).unwrap(),
+    );
+    assert!(measure(&zero, &quick(vec![Engine::Pbrt])).is_err());
+    let dir = tempfile::tempdir().unwrap();
+    for e in Engine::ALL {
+        let path = dir.path().join(format!("zero.{}", e.extension()));
+        assert!(export(e, &zero, &path, &EngineOptions::default()).is_err(), "{e}");
+    }
+    let lum = load("cosine_p5.ldt");
+    let bad = EngineOptions {
+        resolution: Some(3),
+        ..Default::default()
+    };
+    assert!(emulate(Engine::Pbrt, &lum.distribution, &bad).is_err());
+    let mut o = quick(vec![Engine::Pbrt]);
+    o.reference = Against::Withheld;
+    assert!(measure(&lum, &o).is_err());
+}

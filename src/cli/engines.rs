@@ -118,6 +118,9 @@ fn text(r: &EnginesReport) -> String {
     for row in r.rows.iter().filter(|x| x.source.is_some()) {
         let _ = writeln!(s, "  {}: {}", row.name, row.source.as_deref().unwrap_or(""));
     }
+    for sk in &r.skipped {
+        let _ = writeln!(s, "{} skipped: {}", sk.engine, sk.reason);
+    }
     for search in &r.resolutions {
         let tried: Vec<String> = search
             .tried

@@ -4,9 +4,9 @@
 //! ([`super::measure`] reports it as a separate row).
 
 use super::table::IesTable;
-use super::{blender, web, Engine};
+use super::{blender, ue, web, Engine};
 use crate::error::ModelError;
-use crate::model::{IntensityField, Luminaire, Symmetry};
+use crate::model::{IntensityField, Luminaire, PhotometricType, Symmetry};
 
 /// One defect of one engine on one file.
 pub struct Defect {
@@ -36,6 +36,12 @@ const BABYLON_ROW: &str = "Babylon.js iesLoader.ts `RawTexture.CreateRTexture(ar
 const BABYLON_TILT: &str = "Babylon.js iesLoader.ts, LoadIESData: `// Not supported yet` for TILT=INCLUDE";
 const BLENDER_ROTATE: &str = "Blender intern/cycles/util/ies.cpp, IESFile::process_type_c: \
     `if (h_angles[0] == 90.0f) { ... h_angles[i] -= 90.0f; }` turns 90-270 files by 90 degrees";
+const THREE_TYPE: &str = "three.js examples/jsm/loaders/IESLoader.js, IESLamp: readLampValues stores \
+    `_self.gonioType = Number( values[ 5 ] )`, which nothing reads: Type A/B angles are used as Type C";
+const BABYLON_TYPE: &str = "Babylon.js iesLoader.ts, LoadIESData: \
+    `data.photometricType = header[5]; // We ignore cylindrical type for now`";
+const UE_TYPE_B: &str = "UE IESLoader.cpp, FIESLoader::Interpolate2D: only `EIESPhotometricType::TypeA` is \
+    converted; Type B takes the Type C path";
 const BLENDER_TILT: &str = "Blender intern/cycles/util/ies.cpp, IESFile::parse: \
     TILT=INCLUDE angles and factors are read and skipped";
 
@@ -69,7 +75,10 @@ pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
 /// C-plane; Babylon's shader reads row 0 of its 360-wide texture; Blender
 /// turns 90-270 files by 90° (only for such files); three.js, Babylon and
 /// Blender ignore TILT (only for files with a tilt table: the error at the
-/// table's angle furthest from a multiplier of 1).
+/// table's angle furthest from a multiplier of 1); three.js and Babylon read
+/// Type A/B angles as Type C, and UE reads Type B as Type C (only for such
+/// files: the file's own grid taken as a Type C table, against the engine
+/// on photosolid's Type C conversion).
 ///
 /// # Errors
 /// A table Blender refuses.
@@ -82,6 +91,16 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
         None => None,
     };
     let tilt_name = |a: f64| format!("ignores TILT (at tilt {a} deg)");
+    // The file's own Type A/B grid, read as if it were Type C.
+    let as_type_c = lum.source_grid.as_ref().map(|sg| {
+        let kind = if sg.kind == PhotometricType::A { "A" } else { "B" };
+        let t = IesTable {
+            h: sg.horizontal.clone(),
+            v: sg.vertical.clone(),
+            cd: sg.cd.clone(),
+        };
+        (sg.kind, format!("Type {kind} read as Type C"), t)
+    });
     let mut out = Vec::new();
     match engine {
         Engine::Threejs | Engine::Babylon => {
@@ -110,6 +129,15 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                 with: web_field(&t, lookup, i_max),
                 without: web_field(&t, all, i_max),
             });
+            if let Some((_, name, tab)) = &as_type_c {
+                out.push(Defect {
+                    engine,
+                    name: name.clone(),
+                    source: if three { THREE_TYPE } else { BABYLON_TYPE },
+                    with: web_field(tab, all, tab.max_cd()),
+                    without: web_field(&t, all, i_max),
+                });
+            }
             if let Some((angle, tt)) = &tilted {
                 out.push(Defect {
                     engine,
@@ -144,6 +172,30 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     }),
                     without: Box::new(blender::BlenderField {
                         table: blender::process(tt, false)?,
+                    }),
+                });
+            }
+        }
+        Engine::Ue5 | Engine::Ue4 => {
+            if let Some((PhotometricType::B, name, tab)) = &as_type_c {
+                let bake = |t: &IesTable| {
+                    if engine == Engine::Ue5 {
+                        ue::bake_ue5(t)
+                    } else {
+                        ue::bake_ue4(t)
+                    }
+                };
+                out.push(Defect {
+                    engine,
+                    name: name.clone(),
+                    source: UE_TYPE_B,
+                    with: Box::new(ue::UeField {
+                        image: bake(tab)?,
+                        i_max_cd: tab.max_cd(),
+                    }),
+                    without: Box::new(ue::UeField {
+                        image: bake(&t)?,
+                        i_max_cd: i_max,
                     }),
                 });
             }

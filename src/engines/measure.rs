@@ -111,6 +111,15 @@ pub struct ResolutionSearch {
     pub tried: Vec<ResolutionTrial>,
 }
 
+/// An engine left out of the table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SkippedEngine {
+    /// The engine.
+    pub engine: Engine,
+    /// Why.
+    pub reason: String,
+}
+
 /// The result of [`measure`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EnginesReport {
@@ -136,6 +145,8 @@ pub struct EnginesReport {
     pub rows: Vec<EngineRow>,
     /// The resolution searches (with a tolerance).
     pub resolutions: Vec<ResolutionSearch>,
+    /// Engines that cannot take this file, with the reason (e.g. a grid Cycles refuses).
+    pub skipped: Vec<SkippedEngine>,
     /// Plot data (with `plots`), not in the JSON.
     #[serde(skip)]
     pub plots: Option<PlotData>,
@@ -254,8 +265,22 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
     let mut rows = Vec::new();
     let mut fields: Vec<(String, Box<dyn IntensityField>)> = Vec::new();
     let mut defect_rows = Vec::new();
+    let mut skipped = Vec::new();
     for &engine in &opts.engines {
-        let em = emulate(engine, dist, &opts.layout)?;
+        // A file an engine refuses (or a fit that fails) leaves that engine out, with the reason;
+        // a bad option (resolution) is the caller's error.
+        super::resolution(engine, &opts.layout)?;
+        let (em, found) =
+            match emulate(engine, dist, &opts.layout).and_then(|em| Ok((em, defects::defects(engine, lum)?))) {
+                Ok(x) => x,
+                Err(e) => {
+                    skipped.push(SkippedEngine {
+                        engine,
+                        reason: e.to_string(),
+                    });
+                    continue;
+                }
+            };
         rows.push(EngineRow {
             engine,
             kind: "layout".into(),
@@ -267,7 +292,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
             metrics: metrics(engine.name(), &*em.field, &reference, &setup)?,
         });
         fields.push((engine.name().into(), em.field));
-        for d in defects::defects(engine, lum)? {
+        for d in found {
             let name = format!("{engine}: {}", d.name);
             let own = Reference::new(&*d.without, &setup, i_max)?;
             defect_rows.push(EngineRow {
@@ -293,7 +318,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
         Some(tol) => opts
             .engines
             .iter()
-            .filter(|e| e.resolution_range().is_some())
+            .filter(|e| e.resolution_range().is_some() && !skipped.iter().any(|s| s.engine == **e))
             .map(|&e| search(e, lum, tol, &reference, &setup, &opts.layout))
             .collect::<Result<Vec<_>, _>>()?,
         None => Vec::new(),
@@ -323,6 +348,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
         hausdorff_tolerance: opts.hausdorff_tolerance,
         rows,
         resolutions,
+        skipped,
         plots,
         reference_map,
     })

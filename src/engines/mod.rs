@@ -34,7 +34,7 @@ use serde::Serialize;
 use crate::error::{Error, ModelError};
 use crate::model::{Distribution, IntensityField, Luminaire};
 use crate::reconstruct::{Filter, LightTexture};
-pub use measure::{measure, EngineRow, EnginesOptions, EnginesReport, ResolutionSearch};
+pub use measure::{measure, EngineRow, EnginesOptions, EnginesReport, ResolutionSearch, SkippedEngine};
 use table::{IesTable, Image};
 
 /// A renderer whose light-profile layout photosolid writes and emulates.
@@ -362,6 +362,9 @@ fn exr_attrs(engine: Engine, lum: &Luminaire, layout: &str, unit: &str, i_max: f
 pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions) -> Result<Exported, Error> {
     let dist = &lum.distribution;
     let i_max = dist.max_cd();
+    if !(i_max > 0.0 && i_max.is_finite()) {
+        return Err(ModelError::AllZero("an engine layout needs a positive maximum intensity").into());
+    }
     match engine {
         Engine::Blender => {
             resolution(engine, opts)?;

@@ -148,7 +148,9 @@ impl IntensityField for WebField {
                 lerp(f64::from(self.data[k0]), f64::from(self.data[k1]), t - k0 as f64)
             }
         };
-        self.i_max_cd * v
+        // The loaders extrapolate the last interval beyond the file's angles; a
+        // negative texel emits nothing.
+        self.i_max_cd * v.max(0.0)
     }
     fn name(&self) -> String {
         format!("{:?} 1-degree grid", self.lookup)

@@ -79,6 +79,9 @@ fn notes(r: &EnginesReport) -> Vec<String> {
             tried.join("; ")
         ));
     }
+    for sk in &r.skipped {
+        lines.push(format!("{} skipped: {}", sk.engine, sk.reason));
+    }
     for row in r.rows.iter().filter(|x| x.kind == "layout") {
         lines.push(format!("{}: {}", row.name, row.layout));
     }
