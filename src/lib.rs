@@ -6,7 +6,8 @@
 //! - [`model`]: the one canonical model, a [`Luminaire`] holding a Type C
 //!   [`Distribution`] in absolute candela;
 //! - [`photometry`]: flux, light output ratios, beam and field angles;
-//! - [`synth`]: analytic distributions with closed-form answers.
+//! - [`synth`]: analytic distributions with closed-form answers;
+//! - [`engines`]: renderers' light-profile layouts and emulated lookups.
 //!
 //! ```
 //! use photosolid::{photometry, synth};
@@ -19,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod compare;
+pub mod engines;
 pub mod error;
 pub mod fit;
 pub mod formats;

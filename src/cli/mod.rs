@@ -12,6 +12,8 @@ macro_rules! outln {
 mod compare;
 mod convert;
 mod demo;
+mod engines;
+mod export;
 mod fit;
 mod gpu_check;
 mod grid;
@@ -72,6 +74,10 @@ enum Command {
     Scene(scene::SceneArgs),
     /// Per luminaire of a scene, the cheapest representation within a tolerance, measured on the scene.
     Plan(scene::PlanArgs),
+    /// Write one renderer's light-profile layout (pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf).
+    Export(export::ExportArgs),
+    /// How far each renderer's lookup is from the file: trade-table metrics per engine, defect rows.
+    Engines(engines::EnginesArgs),
 }
 
 /// Reader options shared by every command that loads files.
@@ -130,6 +136,8 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Compare(a) => compare::run(a),
         Command::Scene(a) => scene::run_scene(a),
         Command::Plan(a) => scene::run_plan(a),
+        Command::Export(a) => export::run(a),
+        Command::Engines(a) => engines::run(a),
     }
 }
 

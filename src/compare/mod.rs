@@ -41,6 +41,7 @@ use std::str::FromStr;
 use serde::Serialize;
 
 pub use align::{best_alignment, Alignment};
+pub(crate) use plot_data::plot_data;
 pub use plot_data::{ErrorMap, PlotData, PolarPlane};
 
 use crate::error::ModelError;
@@ -666,7 +667,7 @@ pub(crate) fn grid_or_own_solid(
 }
 
 /// max over `dirs` of |r_a − r_b|.
-fn radial_bound(a: &RadialMesh, b: &RadialMesh, dirs: &[(f64, f64)]) -> f64 {
+pub(crate) fn radial_bound(a: &RadialMesh, b: &RadialMesh, dirs: &[(f64, f64)]) -> f64 {
     use rayon::prelude::*;
     dirs.par_iter()
         .map(|&(c, g)| {

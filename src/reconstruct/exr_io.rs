@@ -41,8 +41,9 @@ pub struct ExrMeta {
     pub source: Option<String>,
 }
 
-/// exr's `Text` holds bytes; carry UTF-8 by mapping each byte to one char.
-fn text(s: &str) -> Text {
+/// exr's `Text` holds bytes; carry UTF-8 by mapping each byte to one char
+/// (the inverse of reading the bytes back as UTF-8).
+pub fn text(s: &str) -> Text {
     Text::new_or_none(s.bytes().map(char::from).collect::<String>()).expect("every byte is a Latin-1 char")
 }
 
@@ -86,9 +87,36 @@ pub fn write_exr(path: impl AsRef<Path>, tex: &Rendered, meta: &ExrMeta) -> Resu
         "photosolid.clamped",
         AttributeValue::I32(tex.clamped.min(i32::MAX as usize) as i32),
     );
-    let channel = AnyChannel::new(CHANNEL, FlatSamples::F32(tex.data.clone()));
+    write_layer(path, (w, h), attrs, CHANNEL, FlatSamples::F32(tex.data.clone()))
+}
+
+/// Write one layer with one channel (`samples`, row-major, `size` = (width,
+/// height)) and the layer attributes `attrs` to `path`, atomically (a
+/// temporary file next to it, renamed over it). The one EXR writer of the
+/// crate: light textures and the engines' layouts ([`crate::engines`]) go through it.
+///
+/// # Errors
+/// [`Error::Io`] when the file cannot be written, [`Error::Unsupported`]
+/// when the image cannot be encoded (e.g. a sample count that is not width × height).
+pub fn write_layer(
+    path: &Path,
+    size: (usize, usize),
+    attrs: LayerAttributes,
+    channel: &str,
+    samples: FlatSamples,
+) -> Result<(), Error> {
+    if samples.len() != size.0 * size.1 {
+        return Err(Error::Unsupported(format!(
+            "{}: {} samples for a {} x {} image",
+            path.display(),
+            samples.len(),
+            size.0,
+            size.1
+        )));
+    }
+    let channel = AnyChannel::new(channel, samples);
     let layer = Layer::new(
-        (w, h),
+        size,
         attrs,
         Encoding::SMALL_LOSSLESS,
         AnyChannels::sort(SmallVec::from_vec(vec![channel])),

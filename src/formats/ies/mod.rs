@@ -28,7 +28,7 @@ mod write;
 use serde::Serialize;
 
 pub use read::read;
-pub use write::write;
+pub use write::{type_c_planes, write};
 
 /// One text line before `TILT=`, kept for lossless write-back.
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]

@@ -114,29 +114,8 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
             sg.cd.clone(),
         ),
         None => {
-            let d = &lum.distribution;
-            let ng = d.n_gamma();
-            let mut h = d.c_angles().to_vec();
-            let mut cd = d.intensities().to_vec();
-            if d.symmetry() == Symmetry::None {
-                if h[0] > 1e-9 {
-                    // No C0 plane: interpolate it across the seam so the file
-                    // starts at 0 as LM-63 wants.
-                    let (c_last, c_first) = (h[h.len() - 1], h[0]);
-                    let t = (360.0 - c_last) / (c_first + 360.0 - c_last);
-                    let last = d.plane(h.len() - 1);
-                    let first = d.plane(0);
-                    let p0: Vec<f64> = (0..ng).map(|i| last[i] + t * (first[i] - last[i])).collect();
-                    h.insert(0, 0.0);
-                    let mut v = p0;
-                    v.extend_from_slice(&cd);
-                    cd = v;
-                }
-                h.push(360.0);
-                let p0 = cd[..ng].to_vec();
-                cd.extend_from_slice(&p0);
-            }
-            (1, d.gamma_angles().to_vec(), h, cd)
+            let (h, cd) = type_c_planes(&lum.distribution);
+            (1, lum.distribution.gamma_angles().to_vec(), h, cd)
         }
     };
 
@@ -320,4 +299,34 @@ impl Writer {
             prefix = "[MORE]".into();
         }
     }
+}
+
+/// The horizontal angles and planes (each plane = values at every vertical
+/// angle, cd) an IES file holds for a Type C distribution: the stored planes
+/// (rotational {0}, quadrant 0..90, C0-C180 0..180, C90-C270 90..270) and,
+/// without symmetry, a closing 360 plane equal to C0 (a missing C0 plane is
+/// interpolated across the seam first). Engines that read IES files see this table.
+pub fn type_c_planes(d: &crate::model::Distribution) -> (Vec<f64>, Vec<f64>) {
+    let ng = d.n_gamma();
+    let mut h = d.c_angles().to_vec();
+    let mut cd = d.intensities().to_vec();
+    if d.symmetry() == Symmetry::None {
+        if h[0] > 1e-9 {
+            // No C0 plane: interpolate it across the seam so the file
+            // starts at 0 as LM-63 wants.
+            let (c_last, c_first) = (h[h.len() - 1], h[0]);
+            let t = (360.0 - c_last) / (c_first + 360.0 - c_last);
+            let last = d.plane(h.len() - 1);
+            let first = d.plane(0);
+            let p0: Vec<f64> = (0..ng).map(|i| last[i] + t * (first[i] - last[i])).collect();
+            h.insert(0, 0.0);
+            let mut v = p0;
+            v.extend_from_slice(&cd);
+            cd = v;
+        }
+        h.push(360.0);
+        let p0 = cd[..ng].to_vec();
+        cd.extend_from_slice(&p0);
+    }
+    (h, cd)
 }

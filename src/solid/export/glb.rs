@@ -19,6 +19,15 @@ const UNSIGNED_INT: u32 = 5125;
 
 /// The .glb file's bytes.
 pub fn encode(mesh: &Mesh) -> Vec<u8> {
+    let (doc, bin) = document(mesh);
+    pack(&doc, bin)
+}
+
+/// The glTF JSON document and the binary buffer of `mesh`, before packing:
+/// callers that add to the scene (lights, more buffer views) extend both and
+/// then [`pack`] them. Node 0 is the solid (luminaire frame → glTF +Y up);
+/// `buffers[0].byteLength` must be updated when `bin` grows (see [`pack`]).
+pub fn document(mesh: &Mesh) -> (serde_json::Value, Vec<u8>) {
     let nv = mesh.n_vertices();
     let nf = mesh.n_triangles();
     let normals = mesh.normals();
@@ -96,6 +105,14 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
         "bufferViews": views,
         "accessors": accessors,
     });
+    (doc, bin)
+}
+
+/// Pack a glTF document and its binary buffer into .glb bytes; the buffer is
+/// padded to 4 bytes and `buffers[0].byteLength` set to its unpadded length.
+pub fn pack(doc: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
+    let mut doc = doc.clone();
+    doc["buffers"] = json!([{"byteLength": bin.len()}]);
     let mut json_bytes = serde_json::to_vec(&doc).expect("serialisable JSON");
     while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');

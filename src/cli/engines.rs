@@ -1,0 +1,142 @@
+//! `photosolid engines FILE [--engines ...] [--reference ...] [--json] [--report DIR] [--tolerance T]`:
+//! each engine's emulated lookup against the reference, with the trade-table metrics; one row per
+//! documented loader defect. JSON keys: `photosolid::engines::EnginesReport`.
+
+use std::fmt::Write as _;
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::Args;
+use photosolid::compare::Against;
+use photosolid::engines::{measure, Engine, EngineOptions, EnginesOptions, EnginesReport};
+use photosolid::reconstruct::Filter;
+use photosolid::synth::Truth;
+
+use super::ReadArgs;
+
+#[derive(Args, Debug)]
+pub struct EnginesArgs {
+    /// An .ies or .ldt file.
+    file: PathBuf,
+    /// Engines (comma separated). Default: all.
+    #[arg(long, value_delimiter = ',')]
+    engines: Option<Vec<Engine>>,
+    /// The reference: truth (the closed form a synth file records) or a reconstruction of FILE
+    /// (a filter, measured, fitted-gl). Default: catmull-rom on the native grid.
+    #[arg(long, default_value = "catmull-rom")]
+    reference: Against,
+    /// Resolution search: for each engine whose resolution is a choice, the smallest power of two
+    /// whose certified Hausdorff distance (plus its bound) is within T, a fraction of I_max (0.01 = 1 %).
+    #[arg(long)]
+    tolerance: Option<f64>,
+    /// Resolution of the engines where it is a choice (pbrt, unity-point, unity-spot).
+    #[arg(long)]
+    resolution: Option<usize>,
+    /// Filter of pbrt's bake.
+    #[arg(long, default_value = "catmull-rom")]
+    filter: Filter,
+    /// Refinement factor of the solids' grid.
+    #[arg(long, default_value_t = 3)]
+    factor: usize,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write index.html, report.md, report.json and PNGs (error maps next to the reference) into DIR.
+    #[arg(long)]
+    report: Option<PathBuf>,
+    #[command(flatten)]
+    read: ReadArgs,
+}
+
+pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
+    if let Some(t) = a.tolerance {
+        if !(t.is_finite() && t > 0.0) {
+            anyhow::bail!("--tolerance {t}: expected a positive fraction of I_max (0.01 = 1 %)");
+        }
+    }
+    let lum = super::load(&a.file, &a.read)?;
+    let opts = EnginesOptions {
+        engines: a.engines.clone().unwrap_or_else(|| Engine::ALL.to_vec()),
+        reference: a.reference,
+        truth: Truth::of_luminaire(&lum),
+        layout: EngineOptions {
+            resolution: a.resolution,
+            filter: a.filter,
+        },
+        factor: a.factor,
+        tolerance: a.tolerance,
+        plots: a.report.is_some(),
+        ..Default::default()
+    };
+    let mut r = measure(&lum, &opts)?;
+    r.file = a.file.display().to_string();
+    let mut out = std::io::stdout().lock();
+    if a.json {
+        serde_json::to_writer_pretty(&mut out, &r)?;
+        writeln!(out)?;
+    } else {
+        write!(out, "{}", text(&r))?;
+    }
+    if let Some(dir) = &a.report {
+        photosolid::report::engines_report::write_report(&r, dir)?;
+        let msg = format!("report written to {}", dir.join("index.html").display());
+        if a.json {
+            eprintln!("{msg}");
+        } else {
+            writeln!(out, "{msg}")?;
+        }
+    }
+    Ok(0)
+}
+
+/// The table as text.
+fn text(r: &EnginesReport) -> String {
+    let mut s = format!(
+        "{}\nreference: {} (I_max {:.4} cd); {} directions; solids refined x{}\n",
+        r.file, r.reference, r.i_max_cd, r.directions, r.factor
+    );
+    let _ = writeln!(
+        s,
+        "{:<34} {:>6} {:>10} {:>10} {:>10} {:>9} {:>9}  against",
+        "row", "res", "H %", "rad max %", "rad rms %", "flux %", "misplaced"
+    );
+    for row in &r.rows {
+        let m = &row.metrics;
+        let _ = writeln!(
+            s,
+            "{:<34} {:>6} {:>10.4} {:>10.4} {:>10.4} {:>+9.4} {:>9.5}  {}",
+            row.name,
+            row.resolution.map_or("-".into(), |n| n.to_string()),
+            m.hausdorff_pct,
+            m.radial_max_pct,
+            m.radial_rms_pct,
+            m.flux_error_pct,
+            m.misplaced_flux,
+            row.against
+        );
+    }
+    for row in r.rows.iter().filter(|x| x.source.is_some()) {
+        let _ = writeln!(s, "  {}: {}", row.name, row.source.as_deref().unwrap_or(""));
+    }
+    for sk in &r.skipped {
+        let _ = writeln!(s, "{} skipped: {}", sk.engine, sk.reason);
+    }
+    for search in &r.resolutions {
+        let tried: Vec<String> = search
+            .tried
+            .iter()
+            .map(|t| format!("{}: {:.4}%", t.resolution, t.hausdorff_pct + t.hausdorff_bound_pct))
+            .collect();
+        let _ = writeln!(
+            s,
+            "{} within {} % of I_max: {} (tried {})",
+            search.engine,
+            100.0 * search.tolerance,
+            search
+                .resolution
+                .map_or("none up to the largest".into(), |n| n.to_string()),
+            tried.join(", ")
+        );
+    }
+    s
+}

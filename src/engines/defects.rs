@@ -1,0 +1,206 @@
+//! Documented defects of the engines' loaders, each as a pair of lookups:
+//! the engine with the defect and the same engine without it. The error the
+//! defect causes on a file is the distance between the two
+//! ([`super::measure`] reports it as a separate row).
+
+use super::table::IesTable;
+use super::{blender, ue, web, Engine};
+use crate::error::ModelError;
+use crate::model::{IntensityField, Luminaire, PhotometricType, Symmetry};
+
+/// One defect of one engine on one file.
+pub struct Defect {
+    /// The engine.
+    pub engine: Engine,
+    /// Short name (`squared candela`, `single C-plane`, ...).
+    pub name: String,
+    /// Where the engine's source does it (file, function and the statement).
+    pub source: &'static str,
+    /// The engine's lookup with the defect, cd.
+    pub with: Box<dyn IntensityField>,
+    /// The same lookup without it, cd.
+    pub without: Box<dyn IntensityField>,
+}
+
+const THREE_SQUARE: &str = "three.js examples/jsm/loaders/IESLoader.js, IESLamp: \
+    `_self.candelaValues[ i ][ j ] *= _self.candelaValues[ i ][ j ] * _self.multiplier * _self.ballFactor * _self.blpFactor;`";
+const THREE_PLANE: &str = "three.js examples/jsm/loaders/IESLoader.js, parse: \
+    `new DataTexture( data, 180, 1, RedFormat, type )` uploads data[0..180], the theta = 0 plane";
+const THREE_TILT: &str =
+    "three.js examples/jsm/loaders/IESLoader.js, IESLamp: readTilt() fills tiltData, which nothing applies";
+const BABYLON_SQUARE: &str = "Babylon.js packages/dev/core/src/Lights/IES/iesLoader.ts, LoadIESData: \
+    `data.candelaValues[index][subIndex] *= data.candelaValues[index][subIndex] * data.candelaMultiplier * ...`";
+const BABYLON_ROW: &str = "Babylon.js iesLoader.ts `RawTexture.CreateRTexture(arrayBuffer, width=360, height=180)` \
+    filled at `arrayBuffer[phi + theta * height]`, read by lightsFragmentFunctions getIESAttenuation \
+    `texture(iesLightSampler, vec2(acos(cosAngle)/PI, 0.))`: row 0 = theta 0 and 1, gamma doubled";
+const BABYLON_TILT: &str = "Babylon.js iesLoader.ts, LoadIESData: `// Not supported yet` for TILT=INCLUDE";
+const BLENDER_ROTATE: &str = "Blender intern/cycles/util/ies.cpp, IESFile::process_type_c: \
+    `if (h_angles[0] == 90.0f) { ... h_angles[i] -= 90.0f; }` turns 90-270 files by 90 degrees";
+const THREE_TYPE: &str = "three.js examples/jsm/loaders/IESLoader.js, IESLamp: readLampValues stores \
+    `_self.gonioType = Number( values[ 5 ] )`, which nothing reads: Type A/B angles are used as Type C";
+const BABYLON_TYPE: &str = "Babylon.js iesLoader.ts, LoadIESData: \
+    `data.photometricType = header[5]; // We ignore cylindrical type for now`";
+const UE_TYPE_B: &str = "UE IESLoader.cpp, FIESLoader::Interpolate2D: only `EIESPhotometricType::TypeA` is \
+    converted; Type B takes the Type C path";
+const BLENDER_TILT: &str = "Blender intern/cycles/util/ies.cpp, IESFile::parse: \
+    TILT=INCLUDE angles and factors are read and skipped";
+
+fn web_field(t: &IesTable, lookup: web::WebLookup, i_max: f64) -> Box<dyn IntensityField> {
+    let half = matches!(
+        lookup,
+        web::WebLookup::ThreeAllPlanes | web::WebLookup::ThreeSinglePlane
+    );
+    Box::new(web::WebField {
+        data: web::bake_grid(t, half),
+        lookup,
+        i_max_cd: i_max,
+    })
+}
+
+/// The tilt angle (degrees) of the file's tilt table whose multiplier is
+/// furthest from 1, with that multiplier; `None` without a table.
+pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
+    let t = lum.tilt.table()?;
+    t.angles
+        .iter()
+        .zip(&t.multipliers)
+        .map(|(&a, &m)| (a, m))
+        .max_by(|a, b| (a.1 - 1.0).abs().total_cmp(&(b.1 - 1.0).abs()))
+}
+
+/// The defects of `engine` that apply to `lum` (none for the engines
+/// without documented defects: pbrt, UE, Unity, glTF).
+///
+/// Rows: three.js and Babylon square each candela value; three.js keeps one
+/// C-plane; Babylon's shader reads row 0 of its 360-wide texture; Blender
+/// turns 90-270 files by 90° (only for such files); three.js, Babylon and
+/// Blender ignore TILT (only for files with a tilt table: the error at the
+/// table's angle furthest from a multiplier of 1); three.js and Babylon read
+/// Type A/B angles as Type C, and UE reads Type B as Type C (only for such
+/// files: the file's own grid taken as a Type C table, against the engine
+/// on photosolid's Type C conversion).
+///
+/// # Errors
+/// A table Blender refuses.
+pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelError> {
+    let dist = &lum.distribution;
+    let t = IesTable::of(dist);
+    let i_max = t.max_cd();
+    let tilted = match worst_tilt(lum) {
+        Some((angle, _)) => Some((angle, IesTable::of(&lum.tilted_distribution(angle)?))),
+        None => None,
+    };
+    let tilt_name = |a: f64| format!("ignores TILT (at tilt {a} deg)");
+    // The file's own Type A/B grid, read as if it were Type C.
+    let as_type_c = lum.source_grid.as_ref().map(|sg| {
+        let kind = if sg.kind == PhotometricType::A { "A" } else { "B" };
+        let t = IesTable {
+            h: sg.horizontal.clone(),
+            v: sg.vertical.clone(),
+            cd: sg.cd.clone(),
+        };
+        (sg.kind, format!("Type {kind} read as Type C"), t)
+    });
+    let mut out = Vec::new();
+    match engine {
+        Engine::Threejs | Engine::Babylon => {
+            let three = engine == Engine::Threejs;
+            let all = if three {
+                web::WebLookup::ThreeAllPlanes
+            } else {
+                web::WebLookup::BabylonAllPlanes
+            };
+            out.push(Defect {
+                engine,
+                name: "squared candela".into(),
+                source: if three { THREE_SQUARE } else { BABYLON_SQUARE },
+                with: web_field(&t.squared(), all, i_max),
+                without: web_field(&t, all, i_max),
+            });
+            let (name, source, lookup) = if three {
+                ("single C-plane", THREE_PLANE, web::WebLookup::ThreeSinglePlane)
+            } else {
+                ("row-0 lookup", BABYLON_ROW, web::WebLookup::BabylonRowZero)
+            };
+            out.push(Defect {
+                engine,
+                name: name.into(),
+                source,
+                with: web_field(&t, lookup, i_max),
+                without: web_field(&t, all, i_max),
+            });
+            if let Some((_, name, tab)) = &as_type_c {
+                out.push(Defect {
+                    engine,
+                    name: name.clone(),
+                    source: if three { THREE_TYPE } else { BABYLON_TYPE },
+                    with: web_field(tab, all, tab.max_cd()),
+                    without: web_field(&t, all, i_max),
+                });
+            }
+            if let Some((angle, tt)) = &tilted {
+                out.push(Defect {
+                    engine,
+                    name: tilt_name(*angle),
+                    source: if three { THREE_TILT } else { BABYLON_TILT },
+                    with: web_field(&t, all, i_max),
+                    without: web_field(tt, all, tt.max_cd()),
+                });
+            }
+        }
+        Engine::Blender => {
+            if dist.symmetry() == Symmetry::C90C270 {
+                out.push(Defect {
+                    engine,
+                    name: "90-270 file turned by 90 deg".into(),
+                    source: BLENDER_ROTATE,
+                    with: Box::new(blender::BlenderField {
+                        table: blender::process(&t, true)?,
+                    }),
+                    without: Box::new(blender::BlenderField {
+                        table: blender::process(&t, false)?,
+                    }),
+                });
+            }
+            if let Some((angle, tt)) = &tilted {
+                out.push(Defect {
+                    engine,
+                    name: tilt_name(*angle),
+                    source: BLENDER_TILT,
+                    with: Box::new(blender::BlenderField {
+                        table: blender::process(&t, false)?,
+                    }),
+                    without: Box::new(blender::BlenderField {
+                        table: blender::process(tt, false)?,
+                    }),
+                });
+            }
+        }
+        Engine::Ue5 | Engine::Ue4 => {
+            if let Some((PhotometricType::B, name, tab)) = &as_type_c {
+                let bake = |t: &IesTable| {
+                    if engine == Engine::Ue5 {
+                        ue::bake_ue5(t)
+                    } else {
+                        ue::bake_ue4(t)
+                    }
+                };
+                out.push(Defect {
+                    engine,
+                    name: name.clone(),
+                    source: UE_TYPE_B,
+                    with: Box::new(ue::UeField {
+                        image: bake(tab)?,
+                        i_max_cd: tab.max_cd(),
+                    }),
+                    without: Box::new(ue::UeField {
+                        image: bake(&t)?,
+                        i_max_cd: i_max,
+                    }),
+                });
+            }
+        }
+        _ => {}
+    }
+    Ok(out)
+}

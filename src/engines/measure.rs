@@ -1,0 +1,399 @@
+//! How far each engine's lookup is from the file: the trade-table metrics
+//! ([`crate::compare::ReconResult`]) of every emulation against one
+//! reference, one row per engine layout and one per documented defect.
+//!
+//! - Reference: a reconstruction of the file on its native grid (default
+//!   Catmull–Rom) or the closed-form truth of a `photosolid synth` file.
+//! - Certified Hausdorff distance between grid solids on
+//!   [`SolidGrid::refined`]`(file, factor)` (the same grid for every field),
+//!   radial max/RMS, flux error and misplaced flux over a Fibonacci set.
+//! - A defect row measures the engine with the defect against the same
+//!   engine without it (`against` says so): the error the defect adds.
+//! - With a tolerance (fraction of I_max), each engine whose resolution is a
+//!   choice gets the smallest power-of-two resolution whose certified
+//!   Hausdorff distance to the reference is within it.
+
+use serde::Serialize;
+
+use super::{defects, emulate, Engine, EngineOptions};
+use crate::compare::{mark_pareto, radial_bound, solid_hausdorff, Against, ErrorMap, PlotData, ReconResult};
+use crate::error::ModelError;
+use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, DirectionSet, ZOTTI_C};
+use crate::model::{IntensityField, Luminaire};
+use crate::reconstruct::{eval_all, Filter, Recon, Reconstructions};
+use crate::solid::{grid_solid, Mesh, RadialMesh, SolidGrid, Units};
+use crate::synth::Truth;
+
+/// Options of [`measure`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnginesOptions {
+    /// Engines to emulate. Default: all.
+    pub engines: Vec<Engine>,
+    /// The reference: `truth` or a reconstruction of the file. Default: Catmull–Rom.
+    pub reference: Against,
+    /// The file's closed form, when it records one ([`Truth::of_luminaire`]).
+    pub truth: Option<Truth>,
+    /// Layout choices (resolution, pbrt's bake filter).
+    pub layout: EngineOptions,
+    /// Refinement factor of the solids' grid. Default: 3.
+    pub factor: usize,
+    /// Fibonacci directions of the radial metrics. Default: 20000.
+    pub directions: usize,
+    /// Hausdorff certification tolerance, fraction of I_max. Default: 0.001.
+    pub hausdorff_tolerance: f64,
+    /// Resolution search: the largest Hausdorff distance allowed, fraction of I_max.
+    pub tolerance: Option<f64>,
+    /// Unit directions timed per lookup. Default: 20000.
+    pub timing_samples: usize,
+    /// Compute the report's plot data.
+    pub plots: bool,
+}
+
+impl Default for EnginesOptions {
+    fn default() -> Self {
+        Self {
+            engines: Engine::ALL.to_vec(),
+            reference: Against::Recon(Recon::Filter(Filter::CatmullRom)),
+            truth: None,
+            layout: EngineOptions::default(),
+            factor: 3,
+            directions: 20_000,
+            hausdorff_tolerance: 1e-3,
+            tolerance: None,
+            timing_samples: 20_000,
+            plots: false,
+        }
+    }
+}
+
+/// One row of the engines table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EngineRow {
+    /// The engine.
+    pub engine: Engine,
+    /// `layout` (the engine's lookup) or `defect` (the error one loader defect adds).
+    pub kind: String,
+    /// Row name: the engine, or `engine: defect`.
+    pub name: String,
+    /// The layout in words, or the defect.
+    pub layout: String,
+    /// Resolution used, for engines with a choice.
+    pub resolution: Option<usize>,
+    /// What the row is measured against: `reference`, or `<engine> without the defect`.
+    pub against: String,
+    /// The source line of a defect (file, function, statement).
+    pub source: Option<String>,
+    /// The metrics (lengths in cd).
+    pub metrics: ReconResult,
+}
+
+/// One resolution tried by the search.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ResolutionTrial {
+    /// The resolution.
+    pub resolution: usize,
+    /// Certified Hausdorff distance, % of I_max.
+    pub hausdorff_pct: f64,
+    /// Its certification gap, % of I_max.
+    pub hausdorff_bound_pct: f64,
+}
+
+/// The smallest resolution of one engine within the tolerance.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ResolutionSearch {
+    /// The engine.
+    pub engine: Engine,
+    /// The tolerance, fraction of I_max (H + its bound must not exceed it).
+    pub tolerance: f64,
+    /// The smallest power-of-two resolution within it; `null` when none up to the engine's largest.
+    pub resolution: Option<usize>,
+    /// Every resolution tried, ascending.
+    pub tried: Vec<ResolutionTrial>,
+}
+
+/// An engine left out of the table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SkippedEngine {
+    /// The engine.
+    pub engine: Engine,
+    /// Why.
+    pub reason: String,
+}
+
+/// The result of [`measure`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EnginesReport {
+    /// The file (set by the caller).
+    pub file: String,
+    /// The reference in words.
+    pub reference: String,
+    /// `truth` or `reconstruction`.
+    pub reference_kind: String,
+    /// Unit of every `*_cd` value.
+    pub units: String,
+    /// The reference's maximum, cd.
+    pub i_max_cd: f64,
+    /// Direction set of the radial metrics.
+    pub directions: String,
+    /// Its size.
+    pub n_directions: usize,
+    /// Grid refinement factor of the solids.
+    pub factor: usize,
+    /// Hausdorff certification tolerance, fraction of I_max.
+    pub hausdorff_tolerance: f64,
+    /// Layout rows, then defect rows.
+    pub rows: Vec<EngineRow>,
+    /// The resolution searches (with a tolerance).
+    pub resolutions: Vec<ResolutionSearch>,
+    /// Engines that cannot take this file, with the reason (e.g. a grid Cycles refuses).
+    pub skipped: Vec<SkippedEngine>,
+    /// Plot data (with `plots`), not in the JSON.
+    #[serde(skip)]
+    pub plots: Option<PlotData>,
+    /// The reference itself over the error maps' C x γ cells, % of I_max (with `plots`), not in the JSON.
+    #[serde(skip)]
+    pub reference_map: Option<ErrorMap>,
+}
+
+/// A field reference with what every row's metrics need.
+struct Reference {
+    solid: Mesh,
+    radial: RadialMesh,
+    values: Vec<f64>,
+    i_max: f64,
+}
+
+struct Setup<'a> {
+    grid: &'a SolidGrid,
+    set: &'a DirectionSet,
+    timing: &'a [glam::DVec3],
+    tol_cd: f64,
+}
+
+impl Reference {
+    fn new(field: &dyn IntensityField, s: &Setup<'_>, i_max: f64) -> Result<Self, ModelError> {
+        let solid = grid_solid(field, s.grid, Units::Candela)?;
+        Ok(Self {
+            radial: RadialMesh::new(&solid),
+            values: eval_all(field, &s.set.directions),
+            solid,
+            i_max,
+        })
+    }
+}
+
+/// The metrics of `field` against `r` (lengths in cd, percentages of `r.i_max`).
+fn metrics(name: &str, field: &dyn IntensityField, r: &Reference, s: &Setup<'_>) -> Result<ReconResult, ModelError> {
+    let solid = grid_solid(field, s.grid, Units::Candela)?;
+    let h = solid_hausdorff(&solid, &r.solid, s.tol_cd);
+    let av = eval_all(field, &s.set.directions);
+    let rad = radial_errors(s.set, &r.values, &av, r.i_max, ZOTTI_C);
+    let (ab, ba) = (h.a_to_b, h.b_to_a);
+    Ok(ReconResult {
+        name: name.to_string(),
+        bytes: field.bytes(),
+        hausdorff_cd: h.value,
+        hausdorff_bound_cd: h.bound,
+        hausdorff_pct: 100.0 * h.value / r.i_max,
+        recon_to_ref: Some(ab),
+        ref_to_recon: ba,
+        mean_surface_distance_cd: 0.5 * (ab.mean + ba.mean),
+        rms_surface_distance_cd: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
+        radial_bound_cd: radial_bound(&RadialMesh::new(&solid), &r.radial, &s.set.directions),
+        radial_max_cd: rad.max_abs_cd,
+        radial_max_pct: rad.max_pct,
+        radial_max_at_deg: rad.max_at_deg,
+        radial_rms_cd: rad.rms_cd,
+        radial_rms_pct: rad.rms_pct,
+        zotti_err: rad.zotti_err,
+        zotti_err_solid_angle: rad.zotti_err_solid_angle,
+        flux_error_pct: rad.flux_error_pct,
+        misplaced_flux: rad.misplaced_flux,
+        time_per_sample_ns: (!s.timing.is_empty()).then(|| time_per_sample_ns(field, s.timing, 3)),
+        triangles: solid.n_triangles(),
+        pareto: false,
+    })
+}
+
+/// Emulate every engine of `opts` on `lum` and measure it against the reference.
+///
+/// # Errors
+/// `withheld` as the reference (it is not a field), `truth` without a
+/// recorded truth, all-zero data, a failed emulation.
+pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, ModelError> {
+    let dist = &lum.distribution;
+    let grid = SolidGrid::refined(dist, opts.factor)?;
+    let set = DirectionSet::fibonacci(opts.directions.max(100));
+    let timing = random_directions(opts.timing_samples, 0x5eed);
+    let recon_holder: Reconstructions;
+    let recon_field: Box<dyn IntensityField + '_>;
+    let truth_holder: Truth;
+    let (ref_field, label, kind): (&dyn IntensityField, String, &str) = match opts.reference {
+        Against::Truth => {
+            truth_holder = opts.truth.ok_or_else(|| ModelError::Parameter {
+                name: "reference",
+                value: "truth".into(),
+                reason: "this file records no closed-form truth (only files written by `photosolid synth` do)".into(),
+            })?;
+            (&truth_holder, format!("truth ({truth_holder})"), "truth")
+        }
+        Against::Withheld => {
+            return Err(ModelError::Parameter {
+                name: "reference",
+                value: "withheld".into(),
+                reason: "engines are measured against a field: truth or a reconstruction (e.g. catmull-rom)".into(),
+            })
+        }
+        Against::Recon(r) => {
+            recon_holder = Reconstructions::new(dist.clone(), &[r])?;
+            recon_field = recon_holder.field(r)?;
+            (
+                &*recon_field,
+                format!("{r} of FILE on its native grid (a reconstruction, not the truth)"),
+                "reconstruction",
+            )
+        }
+    };
+    let i_max = dist.max_cd();
+    let setup = Setup {
+        grid: &grid,
+        set: &set,
+        timing: &timing,
+        tol_cd: opts.hausdorff_tolerance.max(0.0) * i_max,
+    };
+    let reference = Reference::new(ref_field, &setup, i_max)?;
+    let mut rows = Vec::new();
+    let mut fields: Vec<(String, Box<dyn IntensityField>)> = Vec::new();
+    let mut defect_rows = Vec::new();
+    let mut skipped = Vec::new();
+    for &engine in &opts.engines {
+        // A file an engine refuses (or a fit that fails) leaves that engine out, with the reason;
+        // a bad option (resolution) is the caller's error.
+        super::resolution(engine, &opts.layout)?;
+        let (em, found) =
+            match emulate(engine, dist, &opts.layout).and_then(|em| Ok((em, defects::defects(engine, lum)?))) {
+                Ok(x) => x,
+                Err(e) => {
+                    skipped.push(SkippedEngine {
+                        engine,
+                        reason: e.to_string(),
+                    });
+                    continue;
+                }
+            };
+        rows.push(EngineRow {
+            engine,
+            kind: "layout".into(),
+            name: engine.name().into(),
+            layout: em.layout.clone(),
+            resolution: em.resolution,
+            against: "reference".into(),
+            source: None,
+            metrics: metrics(engine.name(), &*em.field, &reference, &setup)?,
+        });
+        fields.push((engine.name().into(), em.field));
+        for d in found {
+            let name = format!("{engine}: {}", d.name);
+            let own = Reference::new(&*d.without, &setup, i_max)?;
+            defect_rows.push(EngineRow {
+                engine,
+                kind: "defect".into(),
+                name: name.clone(),
+                layout: d.name.clone(),
+                resolution: em.resolution,
+                against: format!("{engine} without the defect"),
+                source: Some(d.source.to_string()),
+                metrics: metrics(&name, &*d.with, &own, &setup)?,
+            });
+            fields.push((name, d.with));
+        }
+    }
+    rows.extend(defect_rows);
+    let mut metrics_rows: Vec<ReconResult> = rows.iter().map(|r| r.metrics.clone()).collect();
+    mark_pareto(&mut metrics_rows);
+    for (r, m) in rows.iter_mut().zip(metrics_rows) {
+        r.metrics.pareto = m.pareto;
+    }
+    let resolutions = match opts.tolerance {
+        Some(tol) => opts
+            .engines
+            .iter()
+            .filter(|e| e.resolution_range().is_some() && !skipped.iter().any(|s| s.engine == **e))
+            .map(|&e| search(e, lum, tol, &reference, &setup, &opts.layout))
+            .collect::<Result<Vec<_>, _>>()?,
+        None => Vec::new(),
+    };
+    let plots = opts.plots.then(|| {
+        let named: Vec<(String, &dyn IntensityField)> = fields.iter().map(|(n, f)| (n.clone(), &**f)).collect();
+        crate::compare::plot_data(&named, Some((label.as_str(), ref_field)), dist, None, i_max)
+    });
+    let reference_map = plots.as_ref().and_then(|p| p.error_maps.first()).map(|m| {
+        let dirs: Vec<(f64, f64)> = m.ys.iter().flat_map(|&g| m.xs.iter().map(move |&c| (c, g))).collect();
+        ErrorMap {
+            name: label.clone(),
+            xs: m.xs.clone(),
+            ys: m.ys.clone(),
+            values: eval_all(ref_field, &dirs).iter().map(|v| 100.0 * v / i_max).collect(),
+        }
+    });
+    Ok(EnginesReport {
+        file: String::new(),
+        reference: label,
+        reference_kind: kind.into(),
+        units: "cd".into(),
+        i_max_cd: i_max,
+        directions: set.label.clone(),
+        n_directions: set.len(),
+        factor: opts.factor,
+        hausdorff_tolerance: opts.hausdorff_tolerance,
+        rows,
+        resolutions,
+        skipped,
+        plots,
+        reference_map,
+    })
+}
+
+/// The smallest power-of-two resolution of `engine` within `tol` (fraction of I_max).
+fn search(
+    engine: Engine,
+    lum: &Luminaire,
+    tol: f64,
+    reference: &Reference,
+    setup: &Setup<'_>,
+    layout: &EngineOptions,
+) -> Result<ResolutionSearch, ModelError> {
+    let (_, lo, hi) = engine.resolution_range().expect("engines with a resolution choice");
+    let mut tried = Vec::new();
+    let mut found = None;
+    let mut n = lo.next_power_of_two();
+    while n <= hi {
+        let em = emulate(
+            engine,
+            &lum.distribution,
+            &EngineOptions {
+                resolution: Some(n),
+                ..*layout
+            },
+        )?;
+        let solid = grid_solid(&*em.field, setup.grid, Units::Candela)?;
+        let h = solid_hausdorff(&solid, &reference.solid, setup.tol_cd);
+        let pct = |x: f64| 100.0 * x / reference.i_max;
+        tried.push(ResolutionTrial {
+            resolution: n,
+            hausdorff_pct: pct(h.value),
+            hausdorff_bound_pct: pct(h.bound),
+        });
+        if h.value + h.bound <= tol * reference.i_max {
+            found = Some(n);
+            break;
+        }
+        n *= 2;
+    }
+    Ok(ResolutionSearch {
+        engine,
+        tolerance: tol,
+        resolution: found,
+        tried,
+    })
+}

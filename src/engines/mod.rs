@@ -1,0 +1,419 @@
+//! Light profiles for real renderers: each engine's layout, written out, and
+//! each engine's lookup emulated as an [`IntensityField`] so that the metrics
+//! of the trade table measure what the engine loses ([`measure`]).
+//!
+//! One file per engine, each citing the engine's own source:
+//! [`pbrt`] (pbrt-v4 goniometric light), [`ue`] (Unreal Engine 5 and 4),
+//! [`unity`] (HDRP point and spot), [`web`] (three.js, Babylon.js),
+//! [`blender`] (Cycles), [`gltf`] (`KHR_lights_punctual` + `EXT_lights_ies`).
+//! `docs/engines.md` describes every layout and its orientation.
+//!
+//! Every emulation reads the file as the engine would: the engines that read
+//! IES files themselves see the table photosolid's IES writer writes
+//! ([`table::IesTable`]); pbrt has no IES reader, so photosolid bakes its
+//! image with a filter of the native grid (`filter`, default Catmull–Rom).
+//! Intensities are absolute candela: the engines that normalise to the
+//! maximum get the file's maximum candela as the light's intensity.
+
+pub mod blender;
+pub mod defects;
+pub mod gltf;
+pub mod measure;
+pub mod pbrt;
+pub mod table;
+pub mod ue;
+pub mod unity;
+pub mod web;
+
+use std::fmt;
+use std::path::Path;
+use std::str::FromStr;
+
+use serde::Serialize;
+
+use crate::error::{Error, ModelError};
+use crate::model::{Distribution, IntensityField, Luminaire};
+use crate::reconstruct::{Filter, LightTexture};
+pub use measure::{measure, EngineRow, EnginesOptions, EnginesReport, ResolutionSearch, SkippedEngine};
+use table::{IesTable, Image};
+
+/// A renderer whose light-profile layout photosolid writes and emulates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Engine {
+    /// pbrt-v4 goniometric light (equal-area octahedral image, nearest texel).
+    Pbrt,
+    /// Unreal Engine 5 (256 x 256, bilinear).
+    Ue5,
+    /// Unreal Engine 4 (256 x 1, averaged over C).
+    Ue4,
+    /// Unity HDRP point light (2N x 2N cylindrical buffer).
+    UnityPoint,
+    /// Unity HDRP spot light (N x N gnomonic cookie).
+    UnitySpot,
+    /// three.js `IESLoader` (1° grid).
+    Threejs,
+    /// Babylon.js `LoadIESData` (1° grid).
+    Babylon,
+    /// Blender Cycles (the IES table, Catmull–Rom).
+    Blender,
+    /// glTF 2.0 (`KHR_lights_punctual` + `EXT_lights_ies`).
+    Gltf,
+}
+
+/// The spellings of [`Engine`] on the command line.
+pub const ENGINE_NAMES: &str = "pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf";
+
+impl Engine {
+    /// Every engine, in report order.
+    pub const ALL: [Engine; 9] = [
+        Engine::Pbrt,
+        Engine::Ue5,
+        Engine::Ue4,
+        Engine::UnityPoint,
+        Engine::UnitySpot,
+        Engine::Threejs,
+        Engine::Babylon,
+        Engine::Blender,
+        Engine::Gltf,
+    ];
+
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::Pbrt => "pbrt",
+            Engine::Ue5 => "ue5",
+            Engine::Ue4 => "ue4",
+            Engine::UnityPoint => "unity-point",
+            Engine::UnitySpot => "unity-spot",
+            Engine::Threejs => "threejs",
+            Engine::Babylon => "babylon",
+            Engine::Blender => "blender",
+            Engine::Gltf => "gltf",
+        }
+    }
+
+    /// `(default, smallest, largest)` resolution when the engine's resolution
+    /// is a choice: pbrt's image side, Unity's N (the point buffer is 2N x 2N).
+    pub fn resolution_range(self) -> Option<(usize, usize, usize)> {
+        match self {
+            Engine::Pbrt => Some((256, 4, 4096)),
+            Engine::UnityPoint => Some((unity::DEFAULT_SIZE, 4, unity::MAX_SIDE / 2)),
+            Engine::UnitySpot => Some((unity::DEFAULT_SIZE, 8, unity::MAX_SIDE)),
+            _ => None,
+        }
+    }
+
+    /// The file extension of the export.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Engine::Blender => "ies",
+            Engine::Gltf => "glb",
+            _ => "exr",
+        }
+    }
+}
+
+impl fmt::Display for Engine {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl Serialize for Engine {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl FromStr for Engine {
+    type Err = ModelError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Engine::ALL
+            .into_iter()
+            .find(|e| e.name() == s.trim())
+            .ok_or_else(|| ModelError::Parameter {
+                name: "engine",
+                value: s.to_string(),
+                reason: format!("expected one of {ENGINE_NAMES}"),
+            })
+    }
+}
+
+/// Choices of a layout.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EngineOptions {
+    /// The resolution, for engines whose resolution is a choice (default: the engine's).
+    pub resolution: Option<usize>,
+    /// The filter photosolid bakes pbrt's image with (the other engines interpolate the table themselves).
+    pub filter: Filter,
+}
+
+impl Default for EngineOptions {
+    fn default() -> Self {
+        Self {
+            resolution: None,
+            filter: Filter::CatmullRom,
+        }
+    }
+}
+
+/// One engine's emulated lookup and, for image layouts, the image.
+pub struct Emulation {
+    /// The engine.
+    pub engine: Engine,
+    /// The resolution used (engines with a choice).
+    pub resolution: Option<usize>,
+    /// The layout in words (size, mapping, filter).
+    pub layout: String,
+    /// The engine's lookup, cd.
+    pub field: Box<dyn IntensityField>,
+    /// The image the engine holds (texture layouts).
+    pub image: Option<Image>,
+}
+
+/// The resolution `opts` asks of `engine`, checked against its range.
+///
+/// # Errors
+/// [`ModelError::Parameter`] for a resolution on an engine without a choice, or out of range.
+pub fn resolution(engine: Engine, opts: &EngineOptions) -> Result<Option<usize>, ModelError> {
+    match (engine.resolution_range(), opts.resolution) {
+        (None, None) => Ok(None),
+        (None, Some(n)) => Err(ModelError::Parameter {
+            name: "resolution",
+            value: n.to_string(),
+            reason: format!("{engine}'s layout has a fixed size"),
+        }),
+        (Some((d, _, _)), None) => Ok(Some(d)),
+        (Some((_, lo, hi)), Some(n)) if (lo..=hi).contains(&n) => Ok(Some(n)),
+        (Some((_, lo, hi)), Some(n)) => Err(ModelError::Parameter {
+            name: "resolution",
+            value: n.to_string(),
+            reason: format!("{engine} takes {lo}..={hi}"),
+        }),
+    }
+}
+
+/// Emulate `engine`'s lookup of the distribution `dist` (cd).
+///
+/// # Errors
+/// All-zero data, a bad resolution, a table the engine refuses (Blender), a failed fit (glTF).
+pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Result<Emulation, ModelError> {
+    let n = resolution(engine, opts)?;
+    let table = IesTable::of(dist);
+    let i_max = table.max_cd();
+    if !(i_max > 0.0 && i_max.is_finite()) {
+        return Err(ModelError::AllZero(
+            "an engine layout needs a positive maximum intensity",
+        ));
+    }
+    let texture = LightTexture::new(dist)?;
+    let (layout, field, image): (String, Box<dyn IntensityField>, Option<Image>) = match engine {
+        Engine::Pbrt => {
+            let n = n.unwrap_or(256);
+            let image = pbrt::bake(&texture.sampler(opts.filter), n)?;
+            let f = pbrt::PbrtField { image: image.clone() };
+            (
+                format!(
+                    "{n}x{n} equal-area octahedral, Y in cd, {} bake, nearest lookup",
+                    opts.filter
+                ),
+                Box::new(f),
+                Some(image),
+            )
+        }
+        Engine::Ue5 | Engine::Ue4 => {
+            let image = if engine == Engine::Ue5 {
+                ue::bake_ue5(&table)?
+            } else {
+                ue::bake_ue4(&table)?
+            };
+            let layout = format!(
+                "{}x{} half float, x -> gamma = 180x/256{}, I/I_max, bilinear",
+                image.width,
+                image.height,
+                if engine == Engine::Ue5 {
+                    ", y -> C = 360y/256"
+                } else {
+                    ", averaged over C"
+                }
+            );
+            (
+                layout,
+                Box::new(ue::UeField {
+                    image: image.clone(),
+                    i_max_cd: i_max,
+                }),
+                Some(image),
+            )
+        }
+        Engine::UnityPoint | Engine::UnitySpot => {
+            let n = n.unwrap_or(unity::DEFAULT_SIZE);
+            let bilinear = texture.sampler(Filter::Bilinear);
+            let (image, cone, layout) = if engine == Engine::UnityPoint {
+                (
+                    unity::bake_point(&bilinear, i_max, n)?,
+                    None,
+                    format!(
+                        "{0}x{0} cylindrical, 8-bit I/I_max, bilinear (cube map not modelled)",
+                        2 * n
+                    ),
+                )
+            } else {
+                let cone = unity::DEFAULT_CONE_DEG;
+                (
+                    unity::bake_spot(&bilinear, i_max, n, cone)?,
+                    Some(cone),
+                    format!("{n}x{n} gnomonic cookie, cone {cone} deg, attenuation on, 8-bit I/I_max, bilinear"),
+                )
+            };
+            let f = unity::UnityField {
+                image: image.clone(),
+                i_max_cd: i_max,
+                spot_cone_deg: cone,
+            };
+            (layout, Box::new(f), Some(image))
+        }
+        Engine::Threejs | Engine::Babylon => {
+            let three = engine == Engine::Threejs;
+            let data = web::bake_grid(&table, three);
+            let image = web::grid_image(&data, !three)?;
+            let lookup = if three {
+                web::WebLookup::ThreeAllPlanes
+            } else {
+                web::WebLookup::BabylonAllPlanes
+            };
+            let layout = if three {
+                "1-degree grid data[phi + theta*180], half float, I/I_max, every plane, linear (gamma read 0.5 deg early)"
+            } else {
+                "1-degree grid data[phi + theta*180] in a 360x180 R32F, I/I_max, every plane, bilinear on the knots"
+            };
+            let f = web::WebField {
+                data,
+                lookup,
+                i_max_cd: i_max,
+            };
+            (layout.to_string(), Box::new(f), Some(image))
+        }
+        Engine::Blender => {
+            let t = blender::process(&table, false)?;
+            let layout = format!(
+                "IES table {} x {} (0..360), separable Catmull-Rom, clamped at 0",
+                t.h.len(),
+                t.v.len()
+            );
+            (layout, Box::new(blender::BlenderField { table: t }), None)
+        }
+        Engine::Gltf => {
+            let fitted = crate::fit::fit(dist, &crate::fit::FitOptions::default())?;
+            let lights = gltf::khr_lights(fitted.model());
+            let layout = format!(
+                "KHR_lights_punctual fallback: {} fitted light(s); EXT_lights_ies embeds the IES file",
+                lights.len()
+            );
+            (layout, Box::new(gltf::KhrField { lights }), None)
+        }
+    };
+    Ok(Emulation {
+        engine,
+        resolution: n,
+        layout,
+        field,
+        image,
+    })
+}
+
+/// What [`export`] wrote.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Exported {
+    /// The engine.
+    pub engine: Engine,
+    /// The layout in words.
+    pub layout: String,
+    /// Image size (width, height), for image layouts.
+    pub size: Option<(usize, usize)>,
+    /// For pbrt: 4π × the image mean, lm (the flux pbrt's `power` scales by).
+    pub pbrt_flux_lm: Option<f64>,
+}
+
+fn exr_attrs(engine: Engine, lum: &Luminaire, layout: &str, unit: &str, i_max: f64) -> exr::prelude::LayerAttributes {
+    use crate::reconstruct::exr_io::text;
+    use exr::prelude::{AttributeValue, LayerAttributes, Text};
+    let mut attrs = LayerAttributes::named(format!("photosolid-{engine}").as_str());
+    let source = lum.path.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
+    for (k, v) in [
+        ("photosolid.engine", engine.name().to_string()),
+        ("photosolid.source", source),
+        ("photosolid.layout", layout.to_string()),
+        ("photosolid.unit", unit.to_string()),
+    ] {
+        attrs.other.insert(Text::from(k), AttributeValue::Text(text(&v)));
+    }
+    attrs
+        .other
+        .insert(Text::from("photosolid.i_max_cd"), AttributeValue::F64(i_max));
+    attrs
+}
+
+/// Write `engine`'s layout of `lum` to `path`: an EXR (channel `Y`) for the
+/// image layouts, an IES file for Blender, a GLB for glTF.
+///
+/// # Errors
+/// What [`emulate`] fails on, and I/O errors.
+pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions) -> Result<Exported, Error> {
+    let dist = &lum.distribution;
+    let i_max = dist.max_cd();
+    if !(i_max > 0.0 && i_max.is_finite()) {
+        return Err(ModelError::AllZero("an engine layout needs a positive maximum intensity").into());
+    }
+    match engine {
+        Engine::Blender => {
+            resolution(engine, opts)?;
+            let text = crate::formats::ies::write(lum, Default::default());
+            crate::formats::write_atomic(path, text.as_bytes())?;
+            Ok(Exported {
+                engine,
+                layout: "IES LM-63-2002 (Cycles reads the file itself)".into(),
+                size: None,
+                pbrt_flux_lm: None,
+            })
+        }
+        Engine::Gltf => {
+            resolution(engine, opts)?;
+            let texture = LightTexture::new(dist)?;
+            let grid = crate::solid::SolidGrid::refined(dist, 3)?;
+            let mesh = crate::solid::grid_solid(&texture.sampler(opts.filter), &grid, crate::solid::Units::Peak)?;
+            let fitted = crate::fit::fit(dist, &crate::fit::FitOptions::default())?;
+            let lights = gltf::khr_lights(fitted.model());
+            let ies = crate::formats::ies::write(lum, Default::default());
+            crate::formats::write_atomic(path, &gltf::encode(&mesh, ies.as_bytes(), &lights))?;
+            Ok(Exported {
+                engine,
+                layout: format!(
+                    "GLB: solid (I/I_max = 1), EXT_lights_ies profile, {} KHR_lights_punctual light(s)",
+                    lights.len()
+                ),
+                size: None,
+                pbrt_flux_lm: None,
+            })
+        }
+        _ => {
+            let em = emulate(engine, dist, opts)?;
+            let image = em.image.expect("image layouts have an image");
+            let unit = if engine == Engine::Pbrt { "cd" } else { "I/I_max" };
+            let attrs = exr_attrs(engine, lum, &em.layout, unit, i_max);
+            let half = matches!(engine, Engine::Ue5 | Engine::Ue4 | Engine::Threejs);
+            let samples = if half {
+                exr::prelude::FlatSamples::F16(image.data.iter().map(|&v| exr::prelude::f16::from_f32(v)).collect())
+            } else {
+                exr::prelude::FlatSamples::F32(image.data.clone())
+            };
+            crate::reconstruct::exr_io::write_layer(path, (image.width, image.height), attrs, "Y", samples)?;
+            Ok(Exported {
+                engine,
+                layout: em.layout,
+                size: Some((image.width, image.height)),
+                pbrt_flux_lm: (engine == Engine::Pbrt).then(|| pbrt::flux_lm(&image)),
+            })
+        }
+    }
+}

@@ -1,0 +1,132 @@
+//! The engines report ([`crate::engines::EnginesReport`]): the comparison
+//! report's table, polar diagrams and error maps (one per engine row, signed,
+//! % of I_max, C x γ) with the reference's own map first, then each defect's
+//! source line and the resolution searches. `report.json` is the engines JSON.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::compare::{Comparison, Normalize};
+use crate::engines::EnginesReport;
+use crate::error::Error;
+use crate::formats::write_atomic;
+use crate::report::compare_report::{self, esc, Figure};
+use crate::report::plots;
+
+/// The engines table as a [`Comparison`] (one result per row), so the
+/// comparison report draws it.
+pub fn to_comparison(r: &EnginesReport) -> Comparison {
+    Comparison {
+        file: r.file.clone(),
+        vs: None,
+        reference: r.reference.clone(),
+        reference_kind: r.reference_kind.clone(),
+        normalize: Normalize::Cd,
+        units: r.units.clone(),
+        directions: r.directions.clone(),
+        n_directions: r.n_directions,
+        tolerance: r.hausdorff_tolerance,
+        tolerance_cd: r.hausdorff_tolerance * r.i_max_cd,
+        factor: r.factor,
+        i_max_cd: r.i_max_cd,
+        reference_triangles: 0,
+        zotti_c: crate::metrics::ZOTTI_C,
+        alignment: None,
+        results: r.rows.iter().map(|row| row.metrics.clone()).collect(),
+        plots: r.plots.clone(),
+    }
+}
+
+/// The figures: the reference's map, then the comparison report's.
+pub fn figures(r: &EnginesReport) -> Result<Vec<Figure>, Error> {
+    let mut out = Vec::new();
+    if let Some(m) = &r.reference_map {
+        let title = format!("Reference: {} (% of I_max)", m.name);
+        out.push(Figure {
+            file: "reference.png".into(),
+            caption: format!("The reference over C x gamma (degrees), % of I_max: {}", m.name),
+            png: plots::heatmap(&title, &m.xs, &m.ys, &m.values, "% of I_max", false)?,
+        });
+    }
+    out.extend(compare_report::figures(&to_comparison(r))?);
+    Ok(out)
+}
+
+/// Defect sources and resolution searches, as `(heading, lines)`.
+fn notes(r: &EnginesReport) -> Vec<String> {
+    let mut lines = Vec::new();
+    for row in &r.rows {
+        let _ = row.source.as_ref().map(|src| {
+            lines.push(format!("{} (against {}): {}", row.name, row.against, src));
+        });
+    }
+    for s in &r.resolutions {
+        let tried: Vec<String> = s
+            .tried
+            .iter()
+            .map(|t| {
+                format!(
+                    "{}: H {:.4} % (+{:.4})",
+                    t.resolution, t.hausdorff_pct, t.hausdorff_bound_pct
+                )
+            })
+            .collect();
+        lines.push(format!(
+            "{} within {} % of I_max: {} (tried {})",
+            s.engine,
+            100.0 * s.tolerance,
+            s.resolution.map_or("none up to the largest".into(), |n| n.to_string()),
+            tried.join("; ")
+        ));
+    }
+    for sk in &r.skipped {
+        lines.push(format!("{} skipped: {}", sk.engine, sk.reason));
+    }
+    for row in r.rows.iter().filter(|x| x.kind == "layout") {
+        lines.push(format!("{}: {}", row.name, row.layout));
+    }
+    lines
+}
+
+/// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir`; returns the paths written.
+pub fn write_report(r: &EnginesReport, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let figs = figures(r)?;
+    let c = to_comparison(r);
+    let notes = notes(r);
+    let mut written = Vec::new();
+    let mut put = |name: &str, bytes: &[u8]| -> Result<(), Error> {
+        let p = dir.join(name);
+        write_atomic(&p, bytes)?;
+        written.push(p);
+        Ok(())
+    };
+    for f in &figs {
+        put(&f.file, &f.png)?;
+    }
+    let json = serde_json::to_string_pretty(r).map_err(|e| Error::Unsupported(e.to_string()))?;
+    put("report.json", format!("{json}\n").as_bytes())?;
+    let mut md = compare_report::to_markdown(&c, &figs).replacen(
+        "# Photometric solid comparison",
+        "# Engines: lookup errors",
+        1,
+    );
+    md.push_str("\n## Layouts, defects and resolutions\n\n");
+    for l in &notes {
+        let _ = writeln!(md, "- {l}");
+    }
+    put("report.md", md.as_bytes())?;
+    let mut section = String::from("<h2>Layouts, defects and resolutions</h2>\n<ul>\n");
+    for l in &notes {
+        let _ = writeln!(section, "<li>{}</li>", esc(l));
+    }
+    section.push_str("</ul>\n</body>");
+    let html = compare_report::to_html(&c, &figs)
+        .replace(
+            "<h1>Photometric solid comparison</h1>",
+            "<h1>Engines: lookup errors</h1>",
+        )
+        .replacen("</body>", &section, 1);
+    put("index.html", html.as_bytes())?;
+    Ok(written)
+}

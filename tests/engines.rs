@@ -1,0 +1,503 @@
+//! `engines` and `export`: every export read back with an independent reader
+//! (the `exr` crate for EXR, our IES reader for IES, a GLB chunk parser and
+//! serde_json for GLB), pbrt's flux convergence, the texel each layout puts
+//! the peak on, and the defect rows.
+
+use std::path::{Path, PathBuf};
+
+use exr::prelude::{read_first_flat_layer_from_file, AttributeValue, FlatSamples, Text};
+use photosolid::compare::Against;
+use photosolid::engines::{emulate, export, measure, pbrt, ue, unity, Engine, EngineOptions, EnginesOptions};
+use photosolid::model::{frame, Luminaire};
+use photosolid::synth::Synth;
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
+}
+
+fn load(name: &str) -> Luminaire {
+    photosolid::load(data(name)).unwrap()
+}
+
+/// The `Y` channel of an EXR as f32, with its size and `photosolid.engine` attribute.
+fn read_exr(path: &Path) -> (usize, usize, Vec<f32>, String) {
+    let image = read_first_flat_layer_from_file(path).unwrap();
+    let layer = &image.layer_data;
+    let channel = layer
+        .channel_data
+        .list
+        .iter()
+        .find(|c| c.name.eq("Y"))
+        .expect("channel Y");
+    let values: Vec<f32> = match &channel.sample_data {
+        FlatSamples::F32(v) => v.clone(),
+        FlatSamples::F16(v) => v.iter().map(|x| x.to_f32()).collect(),
+        FlatSamples::U32(_) => panic!("integer channel"),
+    };
+    let engine = match layer.attributes.other.get(&Text::from("photosolid.engine")) {
+        Some(AttributeValue::Text(t)) => t.to_string(),
+        other => panic!("no engine attribute: {other:?}"),
+    };
+    (layer.size.width(), layer.size.height(), values, engine)
+}
+
+#[test]
+fn exr_exports_read_back_equal_to_the_emulated_images() {
+    let dir = tempfile::tempdir().unwrap();
+    let lum = load("roadway.ldt");
+    let image_engines = [
+        (Engine::Pbrt, (256, 256)),
+        (Engine::Ue5, (256, 256)),
+        (Engine::Ue4, (256, 1)),
+        (Engine::UnityPoint, (256, 256)),
+        (Engine::UnitySpot, (128, 128)),
+        (Engine::Threejs, (180, 360)),
+        (Engine::Babylon, (360, 180)),
+    ];
+    for (engine, size) in image_engines {
+        let path = dir.path().join(format!("{engine}.exr"));
+        let opts = EngineOptions::default();
+        let e = export(engine, &lum, &path, &opts).unwrap();
+        assert_eq!(e.size, Some(size), "{engine}");
+        let (w, h, values, name) = read_exr(&path);
+        assert_eq!((w, h), size, "{engine}");
+        assert_eq!(name, engine.name());
+        let em = emulate(engine, &lum.distribution, &opts).unwrap();
+        let image = em.image.unwrap();
+        assert_eq!(values.len(), image.data.len());
+        // f32 layouts bit for bit; half-float layouts were rounded to f16 before writing.
+        assert!(
+            values.iter().zip(&image.data).all(|(a, b)| a == b),
+            "{engine}: texels differ"
+        );
+        assert!(values.iter().all(|v| v.is_finite() && *v >= 0.0), "{engine}");
+    }
+}
+
+#[test]
+fn ies_export_reads_back_as_the_same_distribution() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["roadway.ldt", "cosine_p5.ldt"] {
+        let lum = load(name);
+        let path = dir.path().join("blender.ies");
+        export(Engine::Blender, &lum, &path, &EngineOptions::default()).unwrap();
+        let back = photosolid::load(&path).unwrap();
+        let (a, b) = (&lum.distribution, &back.distribution);
+        assert_eq!(a.c_angles(), b.c_angles(), "{name}");
+        assert_eq!(a.gamma_angles(), b.gamma_angles(), "{name}");
+        for (x, y) in a.intensities().iter().zip(b.intensities()) {
+            assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "{name}: {x} vs {y}");
+        }
+    }
+}
+
+/// The JSON and BIN chunks of a GLB.
+fn glb_chunks(bytes: &[u8]) -> (serde_json::Value, Vec<u8>) {
+    assert_eq!(&bytes[0..4], b"glTF");
+    let u32_at = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().unwrap()) as usize;
+    assert_eq!(u32_at(4), 2, "glTF 2");
+    assert_eq!(u32_at(8), bytes.len(), "declared length");
+    let json_len = u32_at(12);
+    assert_eq!(&bytes[16..20], b"JSON");
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + json_len]).unwrap();
+    let bin_at = 20 + json_len;
+    let bin_len = u32_at(bin_at);
+    assert_eq!(&bytes[bin_at + 4..bin_at + 8], b"BIN\0");
+    (doc, bytes[bin_at + 8..bin_at + 8 + bin_len].to_vec())
+}
+
+#[test]
+fn glb_embeds_the_ies_profile_and_the_fitted_lights() {
+    let dir = tempfile::tempdir().unwrap();
+    let lum = load("spot_p8_c40.ldt");
+    let path = dir.path().join("spot.glb");
+    export(Engine::Gltf, &lum, &path, &EngineOptions::default()).unwrap();
+    let (doc, bin) = glb_chunks(&std::fs::read(&path).unwrap());
+    let used: Vec<&str> = doc["extensionsUsed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert!(used.contains(&"KHR_lights_punctual") && used.contains(&"EXT_lights_ies"));
+    let profile = &doc["extensions"]["EXT_lights_ies"]["lights"][0];
+    assert_eq!(profile["mimeType"], "application/x-ies-lm-63");
+    let view = &doc["bufferViews"][profile["bufferView"].as_u64().unwrap() as usize];
+    let (off, len) = (
+        view["byteOffset"].as_u64().unwrap() as usize,
+        view["byteLength"].as_u64().unwrap() as usize,
+    );
+    let ies = &bin[off..off + len];
+    let back = photosolid::formats::parse(
+        ies,
+        Path::new("embedded.ies"),
+        photosolid::model::Format::Ies,
+        &Default::default(),
+    )
+    .unwrap();
+    assert_eq!(back.distribution.gamma_angles(), lum.distribution.gamma_angles());
+    let peak = lum.distribution.max_cd();
+    assert!((back.distribution.max_cd() - peak).abs() <= 1e-9 * peak);
+    // A node instantiates the profile; every KHR light has a node; the spot's cone is valid.
+    let nodes = doc["nodes"].as_array().unwrap();
+    assert!(nodes.iter().any(|n| n["extensions"]["EXT_lights_ies"]["light"] == 0));
+    let khr = doc["extensions"]["KHR_lights_punctual"]["lights"].as_array().unwrap();
+    assert!(!khr.is_empty());
+    for (i, l) in khr.iter().enumerate() {
+        assert!(nodes
+            .iter()
+            .any(|n| n["extensions"]["KHR_lights_punctual"]["light"] == i));
+        if l["type"] == "spot" {
+            let (inner, outer) = (
+                l["spot"]["innerConeAngle"].as_f64().unwrap(),
+                l["spot"]["outerConeAngle"].as_f64().unwrap(),
+            );
+            assert!(0.0 <= inner && inner < outer && outer <= std::f64::consts::FRAC_PI_2 + 1e-12);
+        }
+    }
+    // The solid's accessor counts match the buffer.
+    let pos = &doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]
+        .as_u64()
+        .unwrap() as usize];
+    assert!(pos["count"].as_u64().unwrap() > 100);
+}
+
+#[test]
+fn pbrt_four_pi_mean_converges_to_the_flux() {
+    // Against the closed form: the image of the truth at texel centres is the
+    // midpoint rule on equal-area cells, so 4π·mean converges to the exact flux.
+    let truth = Synth::CosinePower { p: 5.0 }.truth(1000.0);
+    let exact = Synth::CosinePower { p: 5.0 }.exact_flux(1000.0).unwrap();
+    let errs: Vec<f64> = [16, 32, 64, 128, 256]
+        .iter()
+        .map(|&n| (pbrt::flux_lm(&pbrt::bake(&truth, n).unwrap()) / exact - 1.0).abs())
+        .collect();
+    for w in errs.windows(2) {
+        assert!(w[1] < 0.6 * w[0], "not converging: {errs:?}");
+    }
+    assert!(errs[4] < 1e-3, "{errs:?}");
+    // Against the file's flux (its own quadrature of the measured grid): the
+    // Catmull-Rom bake converges to within the two quadratures' difference.
+    let lum = load("roadway.ldt");
+    let flux = photosolid::photometry::flux(&lum.distribution).total_lm;
+    let rel = |n: usize| {
+        let em = emulate(
+            Engine::Pbrt,
+            &lum.distribution,
+            &EngineOptions {
+                resolution: Some(n),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        (pbrt::flux_lm(&em.image.unwrap()) / flux - 1.0).abs()
+    };
+    let (coarse, fine) = (rel(32), rel(512));
+    assert!(fine < coarse && fine < 2e-3, "32: {coarse}, 512: {fine}");
+}
+
+#[test]
+fn the_peak_lands_on_the_predicted_texel() {
+    // roadway.ldt: two equal lobes at (C, γ) = (60, 65) and (120, 65) (mirror
+    // symmetric about the C90-C270 plane, not about C0-C180: C240 and C300
+    // hold 1/16 of the peak), so a C90 <-> C270 flip of a layout would move
+    // the peak to a dark texel.
+    let lum = load("roadway.ldt");
+    let d = &lum.distribution;
+    let ng = d.n_gamma();
+    let peaks: Vec<(f64, f64)> = (0..d.n_c() * ng)
+        .filter(|&i| d.intensities()[i] == d.max_cd())
+        .map(|i| (d.c_angles()[i / ng], d.gamma_angles()[i % ng]))
+        .collect();
+    assert_eq!(peaks, vec![(60.0, 65.0), (120.0, 65.0)]);
+    let dark = (240.0, 65.0);
+    let opts = EngineOptions::default();
+    let image = |e| emulate(e, d, &opts).unwrap().image.unwrap();
+    type Predict = Box<dyn Fn((f64, f64), usize, usize) -> (usize, usize)>;
+    let layouts: Vec<(Engine, Predict, usize)> = vec![
+        // pbrt: the texel whose cell holds the direction (swapYZ, equal-area map); the
+        // brightest texel centre may sit in the neighbouring cell.
+        (
+            Engine::Pbrt,
+            Box::new(|(c, g), w, _| pbrt::texel_of(frame::direction(c, g), w)),
+            1,
+        ),
+        // UE5: x = γ·256/180, y = C·256/360.
+        (Engine::Ue5, Box::new(|(c, g), _, _| ue::texel_of(c, g)), 0),
+        // three.js: data[phi + theta * 180] read as 180 columns (φ) x 360 rows (θ).
+        (Engine::Threejs, Box::new(|(c, g), _, _| (g as usize, c as usize)), 0),
+        // Babylon: the same array as a 360-wide texture.
+        (
+            Engine::Babylon,
+            Box::new(|(c, g), _, _| {
+                let k = g as usize + 180 * c as usize;
+                (k % 360, k / 360)
+            }),
+            0,
+        ),
+        // Unity's cylindrical buffer: the texel nearest the direction (8-bit
+        // steps make its neighbours tie with it, and argmax takes the first).
+        (
+            Engine::UnityPoint,
+            Box::new(|(c, g), w, h| {
+                let (x, y) = unity::cylindrical_coords(c, g, w, h);
+                (x.round() as usize, y.round() as usize)
+            }),
+            1,
+        ),
+    ];
+    for (engine, predict, slack) in layouts {
+        let im = image(engine);
+        let best = im.data.iter().copied().fold(f32::MIN, f32::max);
+        let (mx, my) = im.argmax();
+        let predicted: Vec<(usize, usize)> = peaks.iter().map(|&p| predict(p, im.width, im.height)).collect();
+        assert!(
+            predicted
+                .iter()
+                .any(|&(px, py)| mx.abs_diff(px) <= slack && my.abs_diff(py) <= slack),
+            "{engine}: brightest texel {:?}, predicted {predicted:?}",
+            (mx, my)
+        );
+        for &(px, py) in &predicted {
+            assert!(
+                im.texel(px, py) >= 0.9 * best,
+                "{engine}: predicted texel {:?} is not near the peak",
+                (px, py)
+            );
+        }
+        let (dx, dy) = predict(dark, im.width, im.height);
+        assert!(
+            im.texel(dx, dy) < 0.1 * best,
+            "{engine}: C240 is bright at {:?}",
+            (dx, dy)
+        );
+    }
+}
+
+fn quick(engines: Vec<Engine>) -> EnginesOptions {
+    EnginesOptions {
+        engines,
+        directions: 4000,
+        timing_samples: 0,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn single_plane_row_is_zero_when_rotational_and_large_on_a_roadway() {
+    let row = |file: &str| {
+        let r = measure(&load(file), &quick(vec![Engine::Threejs])).unwrap();
+        r.rows
+            .into_iter()
+            .find(|x| x.name == "threejs: single C-plane")
+            .expect("the single-plane row")
+    };
+    let sym = row("cosine_p5.ldt");
+    assert_eq!(sym.kind, "defect");
+    assert!(sym.source.as_deref().unwrap().contains("DataTexture( data, 180, 1"));
+    // Identical fields: the radial difference is exactly 0, the certified
+    // Hausdorff distance 0 up to the point-triangle arithmetic.
+    assert_eq!(sym.metrics.radial_max_cd, 0.0);
+    assert!(sym.metrics.hausdorff_cd < 1e-9 * 1000.0, "{}", sym.metrics.hausdorff_cd);
+    let road = row("roadway.ldt");
+    assert!(road.metrics.hausdorff_pct > 10.0, "{}", road.metrics.hausdorff_pct);
+    assert!(road.metrics.misplaced_flux > 0.05, "{}", road.metrics.misplaced_flux);
+}
+
+#[test]
+fn squared_candela_rows_and_reference_choice() {
+    let lum = load("cosine_p5.ldt");
+    let mut o = quick(vec![Engine::Babylon, Engine::Blender]);
+    o.reference = Against::Truth;
+    assert!(measure(&lum, &o).is_err(), "truth without a recorded truth");
+    o.truth = photosolid::synth::Truth::of_luminaire(&lum);
+    assert!(o.truth.is_some(), "data/ files are written by `photosolid synth`");
+    let t = measure(&lum, &o).unwrap();
+    assert_eq!(t.reference_kind, "truth");
+    let r = measure(&lum, &quick(vec![Engine::Babylon, Engine::Blender])).unwrap();
+    assert_eq!(r.reference_kind, "reconstruction");
+    let sq = r.rows.iter().find(|x| x.name == "babylon: squared candela").unwrap();
+    // (I/I_max)² instead of I/I_max: cos^10 instead of cos^5, the flux goes from 2π/6 to 2π/11 of I_max.
+    let expected = 100.0 * (6.0 / 11.0 - 1.0);
+    assert!(
+        (sq.metrics.flux_error_pct - expected).abs() < 1.0,
+        "{} vs {expected}",
+        sq.metrics.flux_error_pct
+    );
+    // Blender interpolates like the Catmull-Rom reference on this uniform rotational grid.
+    let b = r.rows.iter().find(|x| x.name == "blender").unwrap();
+    assert!(b.metrics.radial_max_pct < 0.5, "{}", b.metrics.radial_max_pct);
+}
+
+#[test]
+fn cli_export_and_engines() {
+    let dir = tempfile::tempdir().unwrap();
+    let bin = env!("CARGO_BIN_EXE_photosolid");
+    let out = dir.path().join("ue5.exr");
+    let o = std::process::Command::new(bin)
+        .args([
+            "export",
+            data("roadway.ldt").to_str().unwrap(),
+            "--engine",
+            "ue5",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(read_exr(&out).0, 256);
+    // A fixed-size layout refuses --resolution; a wrong extension is refused.
+    for args in [
+        vec!["--engine", "ue5", "--resolution", "512", "-o", out.to_str().unwrap()],
+        vec!["--engine", "pbrt", "-o", dir.path().join("x.png").to_str().unwrap()],
+    ] {
+        let o = std::process::Command::new(bin)
+            .arg("export")
+            .arg(data("roadway.ldt"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        assert!(!String::from_utf8_lossy(&o.stderr).contains("panicked"));
+    }
+    let report = dir.path().join("report");
+    let o = std::process::Command::new(bin)
+        .arg("engines")
+        .arg(data("cosine_p5.ldt"))
+        .args(["--engines", "pbrt,threejs", "--tolerance", "0.05", "--json", "--report"])
+        .arg(&report)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["reference_kind"], "reconstruction");
+    let rows = v["rows"].as_array().unwrap();
+    assert!(rows
+        .iter()
+        .any(|r| r["name"] == "pbrt" && r["metrics"]["hausdorff_pct"].as_f64().unwrap() > 0.0));
+    assert!(rows
+        .iter()
+        .any(|r| r["kind"] == "defect" && r["source"].as_str().unwrap().contains("IESLoader.js")));
+    let search = &v["resolutions"][0];
+    assert_eq!(search["engine"], "pbrt");
+    let chosen = search["resolution"].as_u64().unwrap();
+    let tried = search["tried"].as_array().unwrap();
+    let last = tried.last().unwrap();
+    assert_eq!(last["resolution"].as_u64().unwrap(), chosen);
+    assert!(last["hausdorff_pct"].as_f64().unwrap() + last["hausdorff_bound_pct"].as_f64().unwrap() <= 5.0);
+    for t in &tried[..tried.len() - 1] {
+        assert!(t["hausdorff_pct"].as_f64().unwrap() + t["hausdorff_bound_pct"].as_f64().unwrap() > 5.0);
+    }
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    assert!(html.contains("Engines: lookup errors") && html.contains("The reference over C x gamma"));
+    assert!(report.join("reference.png").exists() && report.join("error_pbrt.png").exists());
+}
+
+/// Write `text` to `dir/name` and load it.
+fn load_text(dir: &Path, name: &str, text: &str) -> Luminaire {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    photosolid::load(&p).unwrap()
+}
+
+#[test]
+fn tilt_and_type_b_rows_appear_for_such_files() {
+    let dir = tempfile::tempdir().unwrap();
+    // TILT=INCLUDE with multipliers 1, 0.9, 0.8 at 0, 45, 90 degrees; rotational, 0..90.
+    let tilted = load_text(
+        dir.path(),
+        "tilt.ies",
+        "IESNA:LM-63-2002\n[TEST] t\n[MANUFAC] photosolid test\nTILT=INCLUDE\n1\n3\n0 45 90\n1.0 0.9 0.8\n\
+         1 -1 1 3 1 1 2 0 0 0\n1 1 100\n0 45 90\n0\n100 80 10\n",
+    );
+    let r = measure(&tilted, &quick(vec![Engine::Threejs, Engine::Blender, Engine::Ue5])).unwrap();
+    for name in [
+        "threejs: ignores TILT (at tilt 90 deg)",
+        "blender: ignores TILT (at tilt 90 deg)",
+    ] {
+        let row = r
+            .rows
+            .iter()
+            .find(|x| x.name == name)
+            .unwrap_or_else(|| panic!("no row {name}"));
+        // The untilted profile against 0.8 x the profile: 20 % of the peak at the peak.
+        assert!(
+            (row.metrics.radial_max_pct - 20.0).abs() < 0.5,
+            "{name}: {}",
+            row.metrics.radial_max_pct
+        );
+        assert!(
+            (row.metrics.flux_error_pct - 25.0).abs() < 0.5,
+            "{name}: {}",
+            row.metrics.flux_error_pct
+        );
+    }
+    assert!(
+        !r.rows.iter().any(|x| x.name.starts_with("ue5:")),
+        "UE has no TILT row (it refuses such files)"
+    );
+    // A Type B floodlight: the beam along the B axis (h = 0, v = 0).
+    let mut cd = String::new();
+    for h in [-90.0f64, -45.0, 0.0, 45.0, 90.0] {
+        for v in [-90.0f64, -45.0, 0.0, 45.0, 90.0] {
+            let x = (h.to_radians().cos() * v.to_radians().cos()).max(0.0);
+            cd.push_str(&format!("{:.3} ", 1000.0 * x.powi(4)));
+        }
+        cd.push('\n');
+    }
+    let flood = load_text(
+        dir.path(),
+        "flood.ies",
+        &format!(
+            "IESNA:LM-63-2002\n[TEST] b\n[MANUFAC] photosolid test\nTILT=NONE\n1 -1 1 5 5 2 2 0 0 0\n1 1 100\n\
+             -90 -45 0 45 90\n-90 -45 0 45 90\n{cd}"
+        ),
+    );
+    assert!(flood.source_grid.is_some());
+    let r = measure(&flood, &quick(vec![Engine::Babylon, Engine::Ue5, Engine::Blender])).unwrap();
+    for name in ["babylon: Type B read as Type C", "ue5: Type B read as Type C"] {
+        let row = r
+            .rows
+            .iter()
+            .find(|x| x.name == name)
+            .unwrap_or_else(|| panic!("no row {name}"));
+        assert!(
+            row.metrics.hausdorff_pct > 20.0,
+            "{name}: {}",
+            row.metrics.hausdorff_pct
+        );
+        assert!(
+            row.source.as_deref().unwrap().contains("hotometricType")
+                || row.source.as_deref().unwrap().contains("Type B")
+        );
+    }
+    // Every engine's row is finite on these small grids.
+    assert!(r
+        .rows
+        .iter()
+        .all(|x| x.metrics.hausdorff_cd.is_finite() && x.metrics.radial_rms_cd.is_finite()));
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    use photosolid::model::{Distribution, Symmetry};
+    let zero = Luminaire::from_distribution(
+        Distribution::new(vec![0.0], vec![0.0, 90.0, 180.0], vec![0.0; 3], Symmetry::Rotational).unwrap(),
+    );
+    assert!(measure(&zero, &quick(vec![Engine::Pbrt])).is_err());
+    let dir = tempfile::tempdir().unwrap();
+    for e in Engine::ALL {
+        let path = dir.path().join(format!("zero.{}", e.extension()));
+        assert!(export(e, &zero, &path, &EngineOptions::default()).is_err(), "{e}");
+    }
+    let lum = load("cosine_p5.ldt");
+    let bad = EngineOptions {
+        resolution: Some(3),
+        ..Default::default()
+    };
+    assert!(emulate(Engine::Pbrt, &lum.distribution, &bad).is_err());
+    let mut o = quick(vec![Engine::Pbrt]);
+    o.reference = Against::Withheld;
+    assert!(measure(&lum, &o).is_err());
+}
