@@ -1,6 +1,5 @@
 //! `photosolid fit FILE [--max-lights 1|2] [--error relative|solid-angle] [--tolerance T] [--json]`.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -46,13 +45,6 @@ pub fn run(a: FitArgs) -> anyhow::Result<i32> {
     };
     let result = fit(&lum.distribution, &options)?;
     let report = FitReport::of(&result);
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &report)?;
-        writeln!(out)?;
-    } else {
-        writeln!(out, "{}", a.file.display())?;
-        write!(out, "{}", report.to_text())?;
-    }
+    super::print_report(a.json, &a.file, &report, &report.to_text())?;
     Ok(0)
 }

@@ -9,7 +9,7 @@
 //! that checked nothing fails).
 //! `WGPU_BACKEND=vulkan|gl` selects the driver.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Args;
 use photosolid::reconstruct::Filter;
@@ -35,27 +35,6 @@ pub struct GpuCheckArgs {
     read: ReadArgs,
 }
 
-#[cfg_attr(not(feature = "gpu"), allow(dead_code))]
-fn collect(path: &Path, out: &mut Vec<PathBuf>) -> photosolid::Result<()> {
-    if path.is_dir() {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
-            .map_err(|e| photosolid::Error::io(path, e))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .collect();
-        entries.sort();
-        for e in entries {
-            if e.is_dir() {
-                collect(&e, out)?;
-            } else if photosolid::model::Format::from_extension(&e).is_some() {
-                out.push(e);
-            }
-        }
-    } else {
-        out.push(path.to_path_buf());
-    }
-    Ok(())
-}
-
 #[cfg(not(feature = "gpu"))]
 pub fn run(_a: GpuCheckArgs) -> anyhow::Result<i32> {
     anyhow::bail!("gpu-check: this photosolid binary was built without GPU support (cargo feature `gpu`)")
@@ -78,7 +57,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
         if !p.exists() {
             anyhow::bail!("{}: no such file or directory: nothing to check", p.display());
         }
-        collect(p, &mut files)?;
+        photosolid::formats::collect_files(p, &mut files)?;
     }
     // Load every file before touching the GPU: a run that would check nothing fails early.
     let opts = a.read.options();

@@ -1,6 +1,5 @@
 //! `photosolid info FILE [--json]`.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -28,13 +27,6 @@ pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
         lum.distribution = lum.tilted_distribution(t)?;
     }
     let report = InfoReport::of(&lum);
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &report)?;
-        writeln!(out)?;
-    } else {
-        writeln!(out, "{}", a.file.display())?;
-        write!(out, "{}", report.to_text())?;
-    }
+    super::print_report(a.json, &a.file, &report, &report.to_text())?;
     Ok(0)
 }

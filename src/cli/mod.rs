@@ -181,6 +181,20 @@ fn render_on(
     Ok((photosolid::reconstruct::render_with(tex, &options)?, "cpu".to_string()))
 }
 
+/// Print `report` as pretty JSON, or as `FILE` followed by its text form.
+fn print_report(json: bool, file: &std::path::Path, report: &impl serde::Serialize, text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if json {
+        serde_json::to_writer_pretty(&mut out, report)?;
+        writeln!(out)?;
+    } else {
+        writeln!(out, "{}", file.display())?;
+        write!(out, "{text}")?;
+    }
+    Ok(())
+}
+
 /// A progress bar on stderr for work that may take over a second (hidden
 /// when stderr is not a terminal).
 fn progress_bar(what: &str) -> indicatif::ProgressBar {

@@ -6,7 +6,7 @@
 //! terminal and there are many files.
 
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Args;
 use photosolid::report::InfoReport;
@@ -37,35 +37,10 @@ struct Line {
     info: Option<InfoReport>,
 }
 
-fn is_photometric(p: &Path) -> bool {
-    photosolid::model::Format::from_extension(p).is_some()
-}
-
-fn collect(path: &Path, out: &mut Vec<PathBuf>) -> photosolid::Result<()> {
-    if path.is_dir() {
-        let mut entries: Vec<PathBuf> = std::fs::read_dir(path)
-            .map_err(|e| photosolid::Error::io(path, e))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .collect();
-        entries.sort();
-        for e in entries {
-            if e.is_dir() {
-                collect(&e, out)?;
-            } else if is_photometric(&e) {
-                out.push(e);
-            }
-        }
-    } else {
-        // A file named explicitly is checked whatever its extension.
-        out.push(path.to_path_buf());
-    }
-    Ok(())
-}
-
 pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     let mut files = Vec::new();
     for p in &a.paths {
-        collect(p, &mut files)?;
+        photosolid::formats::collect_files(p, &mut files)?;
     }
     let opts = a.read.options();
     let bar = (std::io::stderr().is_terminal() && files.len() > 20).then(|| {

@@ -180,3 +180,29 @@ pub fn save(lum: &Luminaire, path: &Path, opts: &WriteOptions) -> Result<()> {
     };
     write_atomic(path, text.as_bytes())
 }
+
+/// The photometric files at `path`: a file named explicitly, whatever its
+/// extension, or every `.ies`/`.ldt` file below a directory (recursive,
+/// sorted by path), appended to `out`.
+///
+/// # Errors
+/// [`Error::Io`] naming the directory that cannot be read.
+pub fn collect_files(path: &std::path::Path, out: &mut Vec<std::path::PathBuf>) -> Result<()> {
+    if path.is_dir() {
+        let mut entries: Vec<std::path::PathBuf> = std::fs::read_dir(path)
+            .map_err(|e| Error::io(path, e))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        entries.sort();
+        for e in entries {
+            if e.is_dir() {
+                collect_files(&e, out)?;
+            } else if Format::from_extension(&e).is_some() {
+                out.push(e);
+            }
+        }
+    } else {
+        out.push(path.to_path_buf());
+    }
+    Ok(())
+}
