@@ -4,7 +4,7 @@ pub mod color;
 pub mod compare_report;
 pub mod font;
 pub mod info;
-pub mod plots;
+pub mod plot;
 
 pub use info::InfoReport;
 
