@@ -1,5 +1,5 @@
 //! Axis ticks for the plots: steps on the 1–2–5 × 10^k sequence, degree
-//! steps, tick labels, and the linear-or-log value axis of [`super::scatter`].
+//! steps, tick labels, and the linear-or-log value axis of [`super::scatter()`].
 
 /// A step on the 1–2–5 × 10^k sequence giving about `target` intervals over `range`.
 pub(super) fn nice_step(range: f64, target: usize) -> f64 {

@@ -50,7 +50,7 @@ fn cell_edges(c: &[f64], lo: f64, hi: f64) -> Vec<(f64, f64)> {
     out
 }
 
-/// How [`heatmap`] maps a value to a colour.
+/// How [`heatmap()`] maps a value to a colour.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ColorScale {
     /// Viridis over the range, linear.
@@ -74,7 +74,7 @@ impl ColorScale {
     }
 }
 
-/// What [`heatmap`] draws. `Default` gives an empty 900 × 500 px map.
+/// What [`heatmap()`] draws. `Default` gives an empty 900 × 500 px map.
 #[derive(Debug, Clone, Copy)]
 pub struct HeatmapSpec<'a> {
     /// Title at the top.

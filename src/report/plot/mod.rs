@@ -5,9 +5,9 @@
 //! standard size:
 //! - [`polar_diagram`] ([`PolarSpec`]): the photometric polar diagram of one
 //!   plane pair (C0–C180, C90–C270, ...), nadir down, as lighting engineers draw it;
-//! - [`heatmap`] ([`HeatmapSpec`]): a value over C × γ (e.g. the relative error
+//! - [`heatmap()`] ([`HeatmapSpec`]): a value over C × γ (e.g. the relative error
 //!   of a reconstruction), viridis or a diverging blue–white–red map;
-//! - [`scatter`] ([`ScatterSpec`]): cost versus error of several methods, with
+//! - [`scatter()`] ([`ScatterSpec`]): cost versus error of several methods, with
 //!   the Pareto front;
 //! - [`texture_preview`] ([`TexturePreview`]): a rendered light texture as a
 //!   C × γ heat map in candela through an exposure tone curve.
@@ -58,7 +58,7 @@ pub struct Series {
     pub style: SeriesStyle,
 }
 
-/// One point of a [`scatter`] plot.
+/// One point of a [`scatter()`] plot.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ScatterPoint {
     /// Name drawn next to the point.
@@ -73,9 +73,9 @@ pub struct ScatterPoint {
 
 /// Default size of [`polar_diagram`].
 pub const POLAR_SIZE: (u32, u32) = (800, 800);
-/// Default size of [`heatmap`].
+/// Default size of [`heatmap()`].
 pub const HEATMAP_SIZE: (u32, u32) = (900, 500);
-/// Default size of [`scatter`].
+/// Default size of [`scatter()`].
 pub const SCATTER_SIZE: (u32, u32) = (800, 550);
 
 pub(crate) const WHITE: [u8; 3] = [255, 255, 255];

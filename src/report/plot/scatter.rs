@@ -8,10 +8,10 @@ use super::canvas::{Align, Canvas};
 use super::{ScatterPoint, AXIS, GRID, INK, OTHER, PARETO, SCATTER_SIZE};
 
 /// Ratio of the largest to the smallest positive ordinate from which
-/// [`scatter`] draws its y axis logarithmic.
+/// [`scatter()`] draws its y axis logarithmic.
 const LOG_Y_RATIO: f64 = 20.0;
 
-/// What [`scatter`] draws. `Default` gives an empty 800 × 550 px plot with a
+/// What [`scatter()`] draws. `Default` gives an empty 800 × 550 px plot with a
 /// linear x axis.
 #[derive(Debug, Clone, Copy)]
 pub struct ScatterSpec<'a> {
