@@ -1,9 +1,15 @@
 //! PNG plots of reports: valid PNGs for all inputs, geometry, font, data URIs.
 
 use photosolid::report::font;
-use photosolid::report::plots::{
-    colormap, heatmap, palette, png_data_uri, polar_diagram, scatter, ScatterPoint, Series, SeriesStyle,
+use std::path::Path;
+
+use photosolid::reconstruct::{render, Filter, LightTexture};
+use photosolid::report::plot::{
+    heatmap, palette, png_data_uri, polar_diagram, scatter, texture_preview, tone_map, ColorScale, HeatmapSpec,
+    PolarSpec, ScatterPoint, ScatterSpec, Series, SeriesStyle, TexturePreview, DEFAULT_EXPOSURE, HEATMAP_SIZE,
+    POLAR_SIZE, SCATTER_SIZE, TEXTURE_SIZE,
 };
+use photosolid::solid::ColorMap;
 use tiny_skia::Pixmap;
 
 /// Checks the PNG signature and IHDR; returns (width, height).
@@ -72,7 +78,15 @@ fn series_set(scale: f64) -> Vec<Series> {
 #[test]
 fn polar_renders_for_all_inputs() {
     let typical = series_set(420.0);
-    let png = polar_diagram("C0-C180: luminaire X", "C180", "C0", "cd", &typical).unwrap();
+    let png = polar_diagram(&PolarSpec {
+        title: "C0-C180: luminaire X",
+        left: "C180",
+        right: "C0",
+        unit: "cd",
+        series: &typical,
+        ..PolarSpec::default()
+    })
+    .unwrap();
     assert_eq!(png_size(&png), (800, 800));
     keep("polar_typical.png", &png);
 
@@ -124,7 +138,15 @@ fn polar_renders_for_all_inputs() {
         ),
     ];
     for (name, s) in cases {
-        let png = polar_diagram(name, "C180", "C0", "cd", &s).unwrap();
+        let png = polar_diagram(&PolarSpec {
+            title: name,
+            left: "C180",
+            right: "C0",
+            unit: "cd",
+            series: &s,
+            ..PolarSpec::default()
+        })
+        .unwrap();
         assert_eq!(png_size(&png), (800, 800), "{name}");
         assert!(Pixmap::decode_png(&png).is_ok(), "{name}");
         keep(&format!("polar_{name}.png"), &png);
@@ -144,7 +166,15 @@ fn polar_nadir_points_down() {
         color,
         style: SeriesStyle::Line,
     }];
-    let png = polar_diagram("down", "C180", "C0", "cd", &s).unwrap();
+    let png = polar_diagram(&PolarSpec {
+        title: "down",
+        left: "C180",
+        right: "C0",
+        unit: "cd",
+        series: &s,
+        ..PolarSpec::default()
+    })
+    .unwrap();
     keep("polar_down.png", &png);
     let pm = Pixmap::decode_png(&png).unwrap();
     let (w, h) = (pm.width(), pm.height());
@@ -188,7 +218,16 @@ fn heatmap_renders_for_all_inputs() {
             vals.push(100.0 * (g.to_radians().cos().max(0.0)) * (0.8 + 0.2 * (2.0 * f64::to_radians(c)).cos()));
         }
     }
-    let png = heatmap("I / I_max", &xs, &ys, &vals, "% of I_max", false).unwrap();
+    let png = heatmap(&HeatmapSpec {
+        title: "I / I_max",
+        xs: &xs,
+        ys: &ys,
+        values: &vals,
+        unit: "% of I_max",
+        scale: ColorScale::Sequential,
+        ..HeatmapSpec::default()
+    })
+    .unwrap();
     assert_eq!(png_size(&png), (900, 500));
     keep("heat_typical.png", &png);
     let signed: Vec<f64> = vals
@@ -196,7 +235,16 @@ fn heatmap_renders_for_all_inputs() {
         .enumerate()
         .map(|(k, v)| (v - 50.0) * 0.1 * ((k % 7) as f64 - 3.0))
         .collect();
-    let png = heatmap("signed error", &xs, &ys, &signed, "% of I_max", true).unwrap();
+    let png = heatmap(&HeatmapSpec {
+        title: "signed error",
+        xs: &xs,
+        ys: &ys,
+        values: &signed,
+        unit: "% of I_max",
+        scale: ColorScale::Diverging,
+        ..HeatmapSpec::default()
+    })
+    .unwrap();
     keep("heat_diverging.png", &png);
 
     let nanvals: Vec<f64> = vals
@@ -217,7 +265,9 @@ fn heatmap_renders_for_all_inputs() {
     let all_nan = vec![f64::NAN; vals.len()];
     let mut bad_xs = xs.clone();
     bad_xs[3] = f64::NAN;
-    let cases: Vec<(&str, Vec<f64>, Vec<f64>, Vec<f64>, bool)> = vec![
+    // (name, xs, ys, values, diverging)
+    type Case<'a> = (&'a str, Vec<f64>, Vec<f64>, Vec<f64>, bool);
+    let cases: Vec<Case> = vec![
         ("empty", vec![], vec![], vec![], false),
         ("empty_div", vec![], vec![], vec![], true),
         ("nan", xs.clone(), ys.clone(), nanvals, false),
@@ -229,11 +279,33 @@ fn heatmap_renders_for_all_inputs() {
         ("nan_axis", bad_xs, ys.clone(), vals.clone(), false),
     ];
     for (name, x, y, v, div) in cases {
-        let png = heatmap(name, &x, &y, &v, "cd", div).unwrap();
+        let png = heatmap(&HeatmapSpec {
+            title: name,
+            xs: &x,
+            ys: &y,
+            values: &v,
+            unit: "cd",
+            scale: if div {
+                ColorScale::Diverging
+            } else {
+                ColorScale::Sequential
+            },
+            ..HeatmapSpec::default()
+        })
+        .unwrap();
         assert_eq!(png_size(&png), (900, 500), "{name}");
         keep(&format!("heat_{name}.png"), &png);
     }
-    assert!(heatmap("mismatch", &xs, &ys, &vals[1..], "cd", false).is_err());
+    assert!(heatmap(&HeatmapSpec {
+        title: "mismatch",
+        xs: &xs,
+        ys: &ys,
+        values: &vals[1..],
+        unit: "cd",
+        scale: ColorScale::Sequential,
+        ..HeatmapSpec::default()
+    })
+    .is_err());
 }
 
 /// Top-left cell colour of the default-size heat map (plot area starts at x = 92, y = 56;
@@ -247,30 +319,40 @@ fn top_left(png: &[u8]) -> [u8; 3] {
 fn heatmap_top_left_is_value_zero() {
     let (xs, ys) = grid();
     let n = xs.len() * ys.len();
+    let corner = |values: &[f64], scale: ColorScale| {
+        top_left(
+            &heatmap(&HeatmapSpec {
+                title: "t",
+                xs: &xs,
+                ys: &ys,
+                values,
+                unit: "cd",
+                scale,
+                ..HeatmapSpec::default()
+            })
+            .unwrap(),
+        )
+    };
     // values[0] is the minimum: colour map at 0.
     let v: Vec<f64> = (0..n).map(|k| k as f64).collect();
-    assert_eq!(
-        top_left(&heatmap("t", &xs, &ys, &v, "cd", false).unwrap()),
-        colormap(0.0, false)
-    );
+    assert_eq!(corner(&v, ColorScale::Sequential), ColorMap::Viridis.rgb8(0.0));
     // values[0] is the maximum: colour map at 1.
     let v: Vec<f64> = (0..n).map(|k| (n - k) as f64).collect();
-    assert_eq!(
-        top_left(&heatmap("t", &xs, &ys, &v, "cd", false).unwrap()),
-        colormap(1.0, false)
-    );
+    assert_eq!(corner(&v, ColorScale::Sequential), ColorMap::Viridis.rgb8(1.0));
     // Diverging: 0 is the middle of the map; -max is its low end.
     let mut v: Vec<f64> = (0..n).map(|k| k as f64 - 40.0).collect();
     v[0] = 0.0;
-    assert_eq!(
-        top_left(&heatmap("t", &xs, &ys, &v, "cd", true).unwrap()),
-        colormap(0.5, true)
-    );
+    assert_eq!(corner(&v, ColorScale::Diverging), ColorMap::RdBu.rgb8(0.5));
     let v: Vec<f64> = (0..n).map(|k| -(((k + 1) % 9) as f64)).collect();
     // values[0] = -1, range ±8: t = 7/16.
+    assert_eq!(corner(&v, ColorScale::Diverging), ColorMap::RdBu.rgb8(7.0 / 16.0));
+    // Exposure: values[0] = 1 of range 0..4 is at tone_map(0.25, k) on viridis.
+    let mut v = vec![0.0; n];
+    v[0] = 1.0;
+    v[1] = 4.0;
     assert_eq!(
-        top_left(&heatmap("t", &xs, &ys, &v, "cd", true).unwrap()),
-        colormap(7.0 / 16.0, true)
+        corner(&v, ColorScale::Exposure(3.0)),
+        ColorMap::Viridis.rgb8(tone_map(0.25, 3.0))
     );
 }
 
@@ -298,23 +380,25 @@ fn methods() -> Vec<ScatterPoint> {
 #[test]
 fn scatter_renders_for_all_inputs() {
     let pts = methods();
-    let png = scatter(
-        "cost vs error",
-        "time per sample (ns)",
-        "RMS error (% of I_max)",
-        &pts,
-        true,
-    )
+    let png = scatter(&ScatterSpec {
+        title: "cost vs error",
+        x_label: "time per sample (ns)",
+        y_label: "RMS error (% of I_max)",
+        points: &pts,
+        log_x: true,
+        ..ScatterSpec::default()
+    })
     .unwrap();
     assert_eq!(png_size(&png), (800, 550));
     keep("scatter_typical.png", &png);
-    let png = scatter(
-        "linear x",
-        "time per sample (ns)",
-        "RMS error (% of I_max)",
-        &pts,
-        false,
-    )
+    let png = scatter(&ScatterSpec {
+        title: "linear x",
+        x_label: "time per sample (ns)",
+        y_label: "RMS error (% of I_max)",
+        points: &pts,
+        log_x: false,
+        ..ScatterSpec::default()
+    })
     .unwrap();
     keep("scatter_linear.png", &png);
 
@@ -353,7 +437,15 @@ fn scatter_renders_for_all_inputs() {
         ("negative_y", vec![p(1.0, -2.0, true), p(2.0, 3.0, false)], false),
     ];
     for (name, pts, log) in cases {
-        let png = scatter(name, "x (ns)", "y (%)", &pts, log).unwrap();
+        let png = scatter(&ScatterSpec {
+            title: name,
+            x_label: "x (ns)",
+            y_label: "y (%)",
+            points: &pts,
+            log_x: log,
+            ..ScatterSpec::default()
+        })
+        .unwrap();
         assert_eq!(png_size(&png), (800, 550), "{name}");
         keep(&format!("scatter_{name}.png"), &png);
     }
@@ -396,7 +488,15 @@ fn data_uri_round_trips() {
     }
     assert_eq!(png_data_uri(b"Man"), "data:image/png;base64,TWFu");
     assert_eq!(png_data_uri(b"Ma"), "data:image/png;base64,TWE=");
-    let png = scatter("s", "x", "y", &methods(), true).unwrap();
+    let png = scatter(&ScatterSpec {
+        title: "s",
+        x_label: "x",
+        y_label: "y",
+        points: &methods(),
+        log_x: true,
+        ..ScatterSpec::default()
+    })
+    .unwrap();
     let uri = png_data_uri(&png);
     assert_eq!(b64_decode(uri.strip_prefix("data:image/png;base64,").unwrap()), png);
 }
@@ -435,4 +535,131 @@ fn font_width_is_monotonic() {
         last = w;
     }
     assert_eq!(font::text_width("ab", 3), 3 * font::text_width("ab", 1));
+}
+
+fn decoded_size(png: &[u8]) -> (u32, u32) {
+    let pm = Pixmap::decode_png(png).expect("our PNG decodes");
+    (pm.width(), pm.height())
+}
+
+/// Every plot kind drawn from its spec's `Default` (plus the texture's
+/// `new`) is a PNG of the stated size that tiny-skia's decoder (the `png`
+/// crate) reads back; a spec's size is honoured and a bad one refused.
+#[test]
+fn spec_defaults_give_decodable_pngs_of_the_stated_size() {
+    assert_eq!(POLAR_SIZE, (800, 800));
+    assert_eq!(HEATMAP_SIZE, (900, 500));
+    assert_eq!(SCATTER_SIZE, (800, 550));
+    assert_eq!(decoded_size(&polar_diagram(&PolarSpec::default()).unwrap()), POLAR_SIZE);
+    assert_eq!(decoded_size(&heatmap(&HeatmapSpec::default()).unwrap()), HEATMAP_SIZE);
+    assert_eq!(decoded_size(&scatter(&ScatterSpec::default()).unwrap()), SCATTER_SIZE);
+    let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
+    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let r = render(&tex, Filter::Bilinear, 2).unwrap();
+    assert_eq!(
+        decoded_size(&texture_preview(&TexturePreview::new(&r)).unwrap()),
+        TEXTURE_SIZE
+    );
+
+    for size in [(320, 200), (1203, 911)] {
+        let s = (size.0.max(300), size.1.max(240));
+        assert_eq!(
+            decoded_size(
+                &polar_diagram(&PolarSpec {
+                    size: s,
+                    ..PolarSpec::default()
+                })
+                .unwrap()
+            ),
+            s
+        );
+        assert_eq!(
+            decoded_size(
+                &heatmap(&HeatmapSpec {
+                    size: s,
+                    ..HeatmapSpec::default()
+                })
+                .unwrap()
+            ),
+            s
+        );
+        assert_eq!(
+            decoded_size(
+                &scatter(&ScatterSpec {
+                    size: s,
+                    ..ScatterSpec::default()
+                })
+                .unwrap()
+            ),
+            s
+        );
+        let t = TexturePreview {
+            size: s,
+            ..TexturePreview::new(&r)
+        };
+        assert_eq!(decoded_size(&texture_preview(&t).unwrap()), s);
+    }
+    assert!(polar_diagram(&PolarSpec {
+        size: (100, 800),
+        ..PolarSpec::default()
+    })
+    .is_err());
+    assert!(heatmap(&HeatmapSpec {
+        size: (900, 9000),
+        ..HeatmapSpec::default()
+    })
+    .is_err());
+    assert!(scatter(&ScatterSpec {
+        size: (0, 0),
+        ..ScatterSpec::default()
+    })
+    .is_err());
+    assert!(texture_preview(&TexturePreview {
+        size: (119, 478),
+        ..TexturePreview::new(&r)
+    })
+    .is_err());
+    // A bad colour range or exposure is an error, not a blank map.
+    let bad_range = HeatmapSpec {
+        range: Some((1.0, 1.0)),
+        ..HeatmapSpec::default()
+    };
+    assert!(heatmap(&bad_range).is_err());
+    let bad_k = HeatmapSpec {
+        scale: ColorScale::Exposure(f64::NAN),
+        ..HeatmapSpec::default()
+    };
+    assert!(heatmap(&bad_k).is_err());
+}
+
+/// The texture preview's colour bar (x = width - 124 .. width - 102, rows
+/// 56 .. height - 62, as in every heat map) runs from viridis(0) at 0 cd to
+/// viridis(1) at I_max, and the texel at the roadway's peak is its brightest
+/// colour: the preview shows the texture, in candela.
+#[test]
+fn texture_preview_bar_and_peak() {
+    let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
+    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let r = render(&tex, Filter::CatmullRom, 5).unwrap();
+    let png = texture_preview(&TexturePreview::new(&r)).unwrap();
+    keep("texture_roadway.png", &png);
+    let pm = Pixmap::decode_png(&png).unwrap();
+    let (w, h) = (pm.width(), pm.height());
+    let near = |a: [u8; 3], b: [u8; 3]| a.iter().zip(b).all(|(x, y)| (i32::from(*x) - i32::from(y)).abs() <= 3);
+    let top = rgb_at(&pm, w - 113, 57);
+    let bottom = rgb_at(&pm, w - 113, h - 63);
+    assert!(near(top, ColorMap::Viridis.rgb8(1.0)), "bar top {top:?}");
+    assert!(near(bottom, ColorMap::Viridis.rgb8(0.0)), "bar bottom {bottom:?}");
+    // The brightest texel, at its pixel in the plot (C across 92 .. w - 150,
+    // gamma down 56 .. h - 62), has the colour of I_max.
+    let m = &r.mapping;
+    let k = (0..r.data.len())
+        .max_by(|&a, &b| r.data[a].total_cmp(&r.data[b]))
+        .unwrap();
+    let (c, g) = (m.c_of_column(k % m.width), m.gamma_of_row(k / m.width));
+    let x = 92.0 + c / 360.0 * f64::from(w - 150 - 92);
+    let y = 56.0 + g / 180.0 * f64::from(h - 62 - 56);
+    let peak = rgb_at(&pm, x as u32, y as u32);
+    let want = ColorMap::Viridis.rgb8(tone_map(f64::from(r.data[k]), DEFAULT_EXPOSURE));
+    assert!(near(peak, want), "peak at C{c:.1} gamma {g:.1}: {peak:?} vs {want:?}");
 }

@@ -2,7 +2,9 @@
 //! not hide the curves of a polar diagram, and errors spanning decades are
 //! not squashed onto the floor of the speed/accuracy scatter.
 
-use photosolid::report::plots::{palette, polar_diagram, scatter, ScatterPoint, Series, SeriesStyle};
+use photosolid::report::plot::{
+    palette, polar_diagram, scatter, PolarSpec, ScatterPoint, ScatterSpec, Series, SeriesStyle,
+};
 use tiny_skia::Pixmap;
 
 fn pixels_like(pm: &Pixmap, rgb: [u8; 3], tol: i32) -> Vec<(u32, u32)> {
@@ -50,8 +52,30 @@ fn dense_measured_points_leave_the_curves_visible() {
         color: [0, 0, 0],
         style: SeriesStyle::Markers,
     };
-    let alone = Pixmap::decode_png(&polar_diagram("t", "C180", "C0", "cd", &[line.clone()]).unwrap()).unwrap();
-    let both = Pixmap::decode_png(&polar_diagram("t", "C180", "C0", "cd", &[line, measured]).unwrap()).unwrap();
+    let alone = Pixmap::decode_png(
+        &polar_diagram(&PolarSpec {
+            title: "t",
+            left: "C180",
+            right: "C0",
+            unit: "cd",
+            series: std::slice::from_ref(&line),
+            ..PolarSpec::default()
+        })
+        .unwrap(),
+    )
+    .unwrap();
+    let both = Pixmap::decode_png(
+        &polar_diagram(&PolarSpec {
+            title: "t",
+            left: "C180",
+            right: "C0",
+            unit: "cd",
+            series: &[line, measured],
+            ..PolarSpec::default()
+        })
+        .unwrap(),
+    )
+    .unwrap();
     let (n_alone, n_both) = (
         pixels_like(&alone, palette(1), 40).len(),
         pixels_like(&both, palette(1), 40).len(),
@@ -103,7 +127,18 @@ fn errors_spanning_decades_are_spread_out() {
             pareto: false,
         })
         .collect();
-    let pm = Pixmap::decode_png(&scatter("t", "ns", "%", &pts, true).unwrap()).unwrap();
+    let pm = Pixmap::decode_png(
+        &scatter(&ScatterSpec {
+            title: "t",
+            x_label: "ns",
+            y_label: "%",
+            points: &pts,
+            log_x: true,
+            ..ScatterSpec::default()
+        })
+        .unwrap(),
+    )
+    .unwrap();
     // The points' blue discs, below the legend row at the top.
     let mut centres: Vec<(f64, f64)> = blobs(&pixels_like(&pm, [70, 120, 180], 10))
         .into_iter()

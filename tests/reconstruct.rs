@@ -2,9 +2,8 @@
 
 use glam::DVec3;
 use photosolid::model::frame::{angles, direction};
-use photosolid::reconstruct::{
-    exr_io, holdout, preview, render, render_with, Filter, HoldoutSpec, LightTexture, RenderOptions,
-};
+use photosolid::reconstruct::{exr_io, holdout, render, render_with, Filter, HoldoutSpec, LightTexture, RenderOptions};
+use photosolid::report::plot;
 use photosolid::{Distribution, ModelError, Symmetry};
 use proptest::prelude::*;
 
@@ -472,12 +471,17 @@ fn png_preview_is_written() {
     let r = render(&tex, Filter::CatmullRom, 5).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("ldt.png");
-    preview::write_preview(&path, &r, preview::DEFAULT_EXPOSURE).unwrap();
+    plot::write_texture_preview(&path, &plot::TexturePreview::new(&r)).unwrap();
     let bytes = std::fs::read(&path).unwrap();
-    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
-    assert!(preview::preview_png(&r, 0.0).is_err());
-    assert_eq!(preview::tone_map(1.0, 4.0), 1.0);
-    assert_eq!(preview::tone_map(0.0, 4.0), 0.0);
+    let pm = tiny_skia::Pixmap::decode_png(&bytes).unwrap();
+    assert_eq!((pm.width(), pm.height()), plot::texture::TEXTURE_SIZE);
+    let bad = plot::TexturePreview {
+        exposure: 0.0,
+        ..plot::TexturePreview::new(&r)
+    };
+    assert!(plot::texture_preview(&bad).is_err());
+    assert_eq!(plot::tone_map(1.0, 4.0), 1.0);
+    assert_eq!(plot::tone_map(0.0, 4.0), 0.0);
 }
 
 #[test]

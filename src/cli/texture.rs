@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::reconstruct::{exr_io, preview, Filter, LightTexture};
+use photosolid::reconstruct::{exr_io, Filter, LightTexture};
+use photosolid::report::plot::{write_texture_preview, TexturePreview, DEFAULT_EXPOSURE};
 
 use super::ReadArgs;
 
@@ -23,11 +24,11 @@ pub struct TextureArgs {
     /// metadata in the header) or .png (the preview, as --png).
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// PNG preview (Wallner's exposure tone map, colour bar, axes in degrees); the name must end in .png.
+    /// PNG preview (Wallner's exposure tone map, viridis, colour bar in cd, axes in degrees); the name must end in .png.
     #[arg(long)]
     png: Option<PathBuf>,
     /// Exposure k of the preview's tone map y = 1 - exp(-k x).
-    #[arg(long, default_value_t = preview::DEFAULT_EXPOSURE, value_parser = super::parse::positive)]
+    #[arg(long, default_value_t = DEFAULT_EXPOSURE, value_parser = super::parse::positive)]
     exposure: f64,
     /// Keep cubic overshoot below zero (default: clamped to 0, and the clamped texels counted).
     #[arg(long)]
@@ -107,7 +108,13 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
                     source: Some(a.file.display().to_string()),
                 },
             )?,
-            Encoding::Png => preview::write_preview(path, &rendered, a.exposure)?,
+            Encoding::Png => write_texture_preview(
+                path,
+                &TexturePreview {
+                    exposure: a.exposure,
+                    ..TexturePreview::new(&rendered)
+                },
+            )?,
         }
         outln!("wrote {}", path.display());
     }

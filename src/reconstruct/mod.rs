@@ -25,7 +25,6 @@ pub mod exr_io;
 mod filter;
 pub mod holdout;
 mod lookup;
-pub mod preview;
 pub mod recon;
 mod sampler;
 pub mod texture;

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use crate::compare::{Comparison, ReconResult};
 use crate::error::Error;
 use crate::formats::write_atomic;
-use crate::report::plots::{self, ScatterPoint, Series, SeriesStyle};
+use crate::report::plot::{self, ColorScale, HeatmapSpec, PolarSpec, ScatterPoint, ScatterSpec, Series, SeriesStyle};
 
 /// Significant digits of every number in the tables and texts of a comparison.
 const DIGITS: usize = 4;
@@ -185,7 +185,7 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
             .map(|(i, (name, pts))| Series {
                 label: name.clone(),
                 points: pts.clone(),
-                color: plots::palette(i),
+                color: plot::palette(i),
                 style: if name.ends_with("(reference)") {
                     SeriesStyle::Dashed
                 } else {
@@ -217,7 +217,14 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
             }
         };
         let (l, r) = (c_name(plane.left_c), c_name(plane.right_c));
-        let png = plots::polar_diagram(&title, &l, &r, &c.units, &series)?;
+        let png = plot::polar_diagram(&PolarSpec {
+            title: &title,
+            left: &l,
+            right: &r,
+            unit: &c.units,
+            series: &series,
+            ..PolarSpec::default()
+        })?;
         out.push(Figure {
             file: names[k.min(2)].into(),
             caption: format!("{title}: every reconstruction over the measured points ({})", c.units),
@@ -226,7 +233,15 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
     }
     for m in &p.error_maps {
         let title = format!("{} - {}: signed error, % of I_max", m.name, c.reference);
-        let png = plots::heatmap(&title, &m.xs, &m.ys, &m.values, "% of I_max", true)?;
+        let png = plot::heatmap(&HeatmapSpec {
+            title: &title,
+            xs: &m.xs,
+            ys: &m.ys,
+            values: &m.values,
+            unit: "% of I_max",
+            scale: ColorScale::Diverging,
+            ..HeatmapSpec::default()
+        })?;
         out.push(Figure {
             file: format!("error_{}.png", slug(&m.name)),
             caption: format!(
@@ -249,13 +264,14 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         })
         .collect();
     if !pts.is_empty() {
-        let png = plots::scatter(
-            "Speed vs accuracy",
-            "time per sample (ns)",
-            "Hausdorff distance (% of I_max)",
-            &pts,
-            true,
-        )?;
+        let png = plot::scatter(&ScatterSpec {
+            title: "Speed vs accuracy",
+            x_label: "time per sample (ns)",
+            y_label: "Hausdorff distance (% of I_max)",
+            points: &pts,
+            log_x: true,
+            ..ScatterSpec::default()
+        })?;
         out.push(Figure {
             file: "scatter.png".into(),
             caption: "Time per sample vs Hausdorff distance; the Pareto front is marked".into(),
@@ -274,13 +290,14 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         })
         .collect();
     if !by_bytes.is_empty() {
-        let png = plots::scatter(
-            "Memory vs accuracy",
-            "bytes held",
-            "Hausdorff distance (% of I_max)",
-            &by_bytes,
-            true,
-        )?;
+        let png = plot::scatter(&ScatterSpec {
+            title: "Memory vs accuracy",
+            x_label: "bytes held",
+            y_label: "Hausdorff distance (% of I_max)",
+            points: &by_bytes,
+            log_x: true,
+            ..ScatterSpec::default()
+        })?;
         out.push(Figure {
             file: "scatter_bytes.png".into(),
             caption: "Bytes held vs Hausdorff distance; Pareto front over time, bytes and error".into(),
@@ -355,7 +372,7 @@ img{max-width:100%;border:1px solid #ddd}\n\
             let _ = writeln!(
                 s,
                 "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>",
-                plots::png_data_uri(&f.png),
+                plot::png_data_uri(&f.png),
                 esc(&f.caption),
                 esc(&f.caption)
             );

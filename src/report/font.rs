@@ -170,24 +170,25 @@ fn opaque(rgb: [u8; 3]) -> PremultipliedColorU8 {
     PremultipliedColorU8::from_rgba(rgb[0], rgb[1], rgb[2], 255).unwrap_or(PremultipliedColorU8::TRANSPARENT)
 }
 
+/// Calls `f(u, v)` for every screen pixel of `text` drawn at `scale`
+/// (0 taken as 1): u along the text, v down from its top.
+fn for_each_scaled_pixel(text: &str, scale: u32, mut f: impl FnMut(i64, i64)) {
+    for_each_pixel(text, |dx, dy| {
+        for sy in 0..scale {
+            for sx in 0..scale {
+                f(i64::from(dx * scale + sx), i64::from(dy * scale + sy));
+            }
+        }
+    });
+}
+
 /// Draw `text` with its top-left corner at (x, y), opaque `rgb`, each font
 /// pixel a `scale × scale` square (scale 0 is taken as 1). Pixels outside the
 /// pixmap are clipped. Returns the text width in pixels.
 pub fn draw_text(pm: &mut Pixmap, x: i32, y: i32, text: &str, scale: u32, rgb: [u8; 3]) -> u32 {
     let s = scale.max(1);
     let c = opaque(rgb);
-    for_each_pixel(text, |dx, dy| {
-        for sy in 0..s {
-            for sx in 0..s {
-                put_px(
-                    pm,
-                    i64::from(x) + i64::from(dx * s + sx),
-                    i64::from(y) + i64::from(dy * s + sy),
-                    c,
-                );
-            }
-        }
-    });
+    for_each_scaled_pixel(text, s, |u, v| put_px(pm, i64::from(x) + u, i64::from(y) + v, c));
     text_width(text, s)
 }
 
@@ -197,13 +198,6 @@ pub fn draw_text(pm: &mut Pixmap, x: i32, y: i32, text: &str, scale: u32, rgb: [
 pub fn draw_text_vertical(pm: &mut Pixmap, x: i32, y: i32, text: &str, scale: u32, rgb: [u8; 3]) -> u32 {
     let s = scale.max(1);
     let c = opaque(rgb);
-    for_each_pixel(text, |dx, dy| {
-        for sy in 0..s {
-            for sx in 0..s {
-                let (u, v) = (i64::from(dx * s + sx), i64::from(dy * s + sy));
-                put_px(pm, i64::from(x) + v, i64::from(y) - 1 - u, c);
-            }
-        }
-    });
+    for_each_scaled_pixel(text, s, |u, v| put_px(pm, i64::from(x) + v, i64::from(y) - 1 - u, c));
     text_width(text, s)
 }

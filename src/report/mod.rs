@@ -5,7 +5,7 @@ pub mod compare_report;
 pub mod engines_report;
 pub mod font;
 pub mod info;
-pub mod plots;
+pub mod plot;
 
 pub use info::InfoReport;
 

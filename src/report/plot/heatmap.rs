@@ -1,0 +1,285 @@
+//! A value over C × γ as coloured cells, with a colour bar.
+
+use crate::error::Error;
+use crate::report::font;
+use crate::solid::ColorMap;
+
+use super::axis::{degree_step, fmt_tick, nice_step, ticks_in};
+use super::canvas::{Align, Canvas};
+use super::texture::tone_map;
+use super::{AXIS, HEATMAP_SIZE, INK, NO_DATA};
+
+/// Cell edges of sorted-or-not centres `c` over the axis [lo, hi]: cell k
+/// spans (edges[k].0, edges[k].1), between midpoints to its neighbours (by
+/// value); an outer cell reaches the axis end when that is at most one
+/// spacing away (no sliver of grey at C = 360 for C = 0, 15, ..., 345), half
+/// a spacing otherwise.
+/// Non-finite centres get an empty cell.
+fn cell_edges(c: &[f64], lo: f64, hi: f64) -> Vec<(f64, f64)> {
+    let mut idx: Vec<usize> = (0..c.len()).filter(|&k| c[k].is_finite()).collect();
+    idx.sort_by(|&a, &b| c[a].total_cmp(&c[b]));
+    let mut out = vec![(f64::NAN, f64::NAN); c.len()];
+    let n = idx.len();
+    for (j, &k) in idx.iter().enumerate() {
+        let a = if j > 0 {
+            0.5 * (c[idx[j - 1]] + c[k])
+        } else if n > 1 {
+            let d = c[idx[1]] - c[k];
+            if c[k] - lo <= d * (1.0 + 1e-9) {
+                lo
+            } else {
+                c[k] - 0.5 * d
+            }
+        } else {
+            lo
+        };
+        let b = if j + 1 < n {
+            0.5 * (c[k] + c[idx[j + 1]])
+        } else if n > 1 {
+            let d = c[k] - c[idx[j - 1]];
+            if hi - c[k] <= d * (1.0 + 1e-9) {
+                hi
+            } else {
+                c[k] + 0.5 * d
+            }
+        } else {
+            hi
+        };
+        out[k] = (a, b);
+    }
+    out
+}
+
+/// How [`heatmap()`] maps a value to a colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ColorScale {
+    /// Viridis over the range, linear.
+    Sequential,
+    /// Blue–white–red over ±max |value| (0 is white), for signed errors.
+    Diverging,
+    /// Viridis of Wallner's exposure curve [`tone_map`] with this k (> 0)
+    /// on (value − lo) / (hi − lo): dim regions lifted, as a rendered light
+    /// looks; the colour bar keeps its ticks in the values' unit.
+    Exposure(f64),
+}
+
+impl ColorScale {
+    /// The colour map and the position on it of `t` in [0, 1] along the range.
+    fn color(self, t: f64) -> [u8; 3] {
+        match self {
+            ColorScale::Sequential => ColorMap::Viridis.rgb8(t),
+            ColorScale::Diverging => ColorMap::RdBu.rgb8(t),
+            ColorScale::Exposure(k) => ColorMap::Viridis.rgb8(tone_map(t, k)),
+        }
+    }
+}
+
+/// What [`heatmap()`] draws. `Default` gives an empty 900 × 500 px map.
+#[derive(Debug, Clone, Copy)]
+pub struct HeatmapSpec<'a> {
+    /// Title at the top.
+    pub title: &'a str,
+    /// Cell centres in C (degrees).
+    pub xs: &'a [f64],
+    /// Cell centres in γ (degrees).
+    pub ys: &'a [f64],
+    /// `values[iy * xs.len() + ix]`; NaN cells stay grey.
+    pub values: &'a [f64],
+    /// Unit of the values, written over the colour bar.
+    pub unit: &'a str,
+    /// Value-to-colour mapping.
+    pub scale: ColorScale,
+    /// Colour range (lo, hi) in the values' unit; `None`: from the finite
+    /// values (min..max, or ±max |value| when diverging).
+    pub range: Option<(f64, f64)>,
+    /// Width × height, px (each 120..=8192).
+    pub size: (u32, u32),
+}
+
+impl Default for HeatmapSpec<'_> {
+    fn default() -> Self {
+        Self {
+            title: "",
+            xs: &[],
+            ys: &[],
+            values: &[],
+            unit: "",
+            scale: ColorScale::Sequential,
+            range: None,
+            size: HEATMAP_SIZE,
+        }
+    }
+}
+
+/// Heat map over C (x, degrees, axis 0–360) × γ (y, degrees, axis 0–180, 0 at
+/// the top), `spec.size` px: `values[iy * xs.len() + ix]` at centres
+/// `xs[ix]`, `ys[iy]` (any spacing; cells reach halfway to their neighbours).
+/// The colour range is `range` when given, else the finite values'
+/// min..max, or ±max |value| around 0 when [`ColorScale::Diverging`]. NaN cells stay
+/// grey. The axes widen to take in centres outside 0–360 / 0–180.
+///
+/// # Errors
+/// [`Error::Unsupported`] for a size outside 120..=8192 px, if
+/// `values.len() != xs.len() * ys.len()`, for a `range` that is not finite
+/// with lo < hi, for an exposure k that is not positive and finite, or if
+/// encoding fails.
+pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
+    let HeatmapSpec {
+        title,
+        xs,
+        ys,
+        values,
+        unit,
+        scale,
+        range,
+        size: (w, h),
+    } = *spec;
+    let diverging = scale == ColorScale::Diverging;
+    if let ColorScale::Exposure(k) = scale {
+        if !(k.is_finite() && k > 0.0) {
+            return Err(Error::Unsupported(format!(
+                "heat map exposure k = {k}: must be a positive finite number"
+            )));
+        }
+    }
+    if values.len() != xs.len() * ys.len() {
+        return Err(Error::Unsupported(format!(
+            "heat map: {} values for a {} x {} grid",
+            values.len(),
+            xs.len(),
+            ys.len()
+        )));
+    }
+    let mut cv = Canvas::new(w, h, "heat map")?;
+    let (wf, hf) = (cv.w(), cv.h());
+    cv.title(title);
+    let (left, top, right, bottom) = (92.0f32, 56.0f32, wf - 150.0, hf - 62.0);
+    let (pw, ph) = (right - left, bottom - top);
+
+    let fin = |v: &&f64| v.is_finite();
+    let x0 = xs.iter().filter(fin).fold(0.0f64, |a, &b| a.min(b));
+    let x1 = xs.iter().filter(fin).fold(360.0f64, |a, &b| a.max(b));
+    let y0 = ys.iter().filter(fin).fold(0.0f64, |a, &b| a.min(b));
+    let y1 = ys.iter().filter(fin).fold(180.0f64, |a, &b| a.max(b));
+    let px = |x: f64| left + ((x - x0) / (x1 - x0)) as f32 * pw;
+    let py = |y: f64| top + ((y - y0) / (y1 - y0)) as f32 * ph;
+
+    // Colour range.
+    let (mut lo, mut hi) = values
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let any = lo <= hi;
+    if let Some((a, b)) = range {
+        if !(a.is_finite() && b.is_finite() && a < b) {
+            return Err(Error::Unsupported(format!(
+                "heat map colour range {a} .. {b}: must be finite with lo < hi"
+            )));
+        }
+        (lo, hi) = (a, b);
+    } else if diverging {
+        let m = if any { lo.abs().max(hi.abs()) } else { 0.0 };
+        let m = if m > 0.0 { m } else { 1.0 };
+        (lo, hi) = (-m, m);
+    } else if !any {
+        (lo, hi) = (0.0, 1.0);
+    } else if hi <= lo {
+        let d = if lo == 0.0 { 1.0 } else { lo.abs() * 0.1 };
+        (lo, hi) = if lo == 0.0 { (0.0, 1.0) } else { (lo - d, hi + d) };
+    }
+    let color_of = |v: f64| {
+        if v.is_finite() {
+            scale.color((v - lo) / (hi - lo))
+        } else {
+            NO_DATA
+        }
+    };
+
+    // Cells.
+    cv.rect(left as i32, top as i32, right as i32, bottom as i32, NO_DATA);
+    let ex = cell_edges(xs, x0, x1);
+    let ey = cell_edges(ys, y0, y1);
+    for (iy, &(ya, yb)) in ey.iter().enumerate() {
+        if !(ya.is_finite() && yb.is_finite()) {
+            continue;
+        }
+        let (r0, r1) = (py(ya).round() as i32, py(yb).round() as i32);
+        for (ix, &(xa, xb)) in ex.iter().enumerate() {
+            if !(xa.is_finite() && xb.is_finite()) {
+                continue;
+            }
+            let c = color_of(values[iy * xs.len() + ix]);
+            cv.rect(px(xa).round() as i32, r0, px(xb).round() as i32, r1, c);
+        }
+    }
+    if !any {
+        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+    }
+    cv.frame(left - 1.0, top - 1.0, right + 1.0, bottom + 1.0, AXIS);
+
+    // Axes: ticks in degrees.
+    let sx = degree_step(x1 - x0, 8);
+    for t in ticks_in(x0, x1, sx) {
+        let x = px(t).round() + 0.5;
+        cv.line(x, bottom + 1.0, x, bottom + 6.0, AXIS, 1.0);
+        cv.text(
+            x,
+            bottom + 16.0,
+            &format!("{}°", fmt_tick(t, sx)),
+            2,
+            Align::Center,
+            INK,
+            false,
+        );
+    }
+    let sy = degree_step(y1 - y0, 6);
+    for t in ticks_in(y0, y1, sy) {
+        let y = py(t).round() + 0.5;
+        cv.line(left - 6.0, y, left - 1.0, y, AXIS, 1.0);
+        cv.text(
+            left - 10.0,
+            y,
+            &format!("{}°", fmt_tick(t, sy)),
+            2,
+            Align::Right,
+            INK,
+            false,
+        );
+    }
+    cv.text(left + pw / 2.0, hf - 16.0, "C (°)", 2, Align::Center, INK, false);
+    cv.text_vertical(18.0, top + ph / 2.0, "gamma (°), 0 = nadir", 2, INK);
+
+    // Colour bar: top = hi, bottom = lo.
+    let (bx0, bx1) = (right + 26.0, right + 48.0);
+    for r in top as i32..bottom as i32 {
+        let t = 1.0 - (f64::from(r) + 0.5 - f64::from(top)) / f64::from(ph);
+        cv.rect(bx0 as i32, r, bx1 as i32, r + 1, scale.color(t));
+    }
+    cv.frame(bx0 - 1.0, top - 1.0, bx1 + 1.0, bottom + 1.0, AXIS);
+    let sb = nice_step(hi - lo, 5);
+    for t in ticks_in(lo, hi, sb) {
+        let y = (top + ((hi - t) / (hi - lo)) as f32 * ph).round() + 0.5;
+        cv.line(bx1 + 1.0, y, bx1 + 6.0, y, AXIS, 1.0);
+        cv.text(bx1 + 9.0, y, &fmt_tick(t, sb), 2, Align::Left, INK, false);
+    }
+    let uw = font::text_width(unit, 2) as f32;
+    let ux = ((bx0 + bx1) / 2.0).min(wf - 8.0 - uw / 2.0);
+    cv.text(ux, top - 18.0, unit, 2, Align::Center, INK, false);
+    cv.png()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cell_edges_between_midpoints() {
+        let e = cell_edges(&[0.0, 10.0, 30.0], 0.0, 360.0);
+        assert_eq!(e, vec![(0.0, 5.0), (5.0, 20.0), (20.0, 40.0)]);
+        let e = cell_edges(&[0.0, 15.0, 345.0, 330.0], 0.0, 360.0);
+        assert_eq!(e, vec![(0.0, 7.5), (7.5, 172.5), (337.5, 360.0), (172.5, 337.5)]);
+        let e = cell_edges(&[20.0, 30.0], 0.0, 180.0);
+        assert_eq!(e, vec![(15.0, 25.0), (25.0, 35.0)]);
+        assert_eq!(cell_edges(&[7.0], 0.0, 180.0), vec![(0.0, 180.0)]);
+    }
+}

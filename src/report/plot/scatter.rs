@@ -1,0 +1,299 @@
+//! Cost versus error of several methods, with the Pareto front.
+
+use crate::error::Error;
+use crate::report::font;
+
+use super::axis::{nice_step, Axis};
+use super::canvas::{Align, Canvas};
+use super::{ScatterPoint, AXIS, GRID, INK, OTHER, PARETO, SCATTER_SIZE};
+
+/// Ratio of the largest to the smallest positive ordinate from which
+/// [`scatter()`] draws its y axis logarithmic.
+const LOG_Y_RATIO: f64 = 20.0;
+
+/// What [`scatter()`] draws. `Default` gives an empty 800 × 550 px plot with a
+/// linear x axis.
+#[derive(Debug, Clone, Copy)]
+pub struct ScatterSpec<'a> {
+    /// Title at the top.
+    pub title: &'a str,
+    /// Abscissa title with its unit, e.g. "time per sample (ns)".
+    pub x_label: &'a str,
+    /// Ordinate title with its unit, e.g. "RMS error (% of I_max)".
+    pub y_label: &'a str,
+    /// The named points.
+    pub points: &'a [ScatterPoint],
+    /// Logarithmic x axis (points with x ≤ 0 are then skipped).
+    pub log_x: bool,
+    /// Width × height, px (each 120..=8192).
+    pub size: (u32, u32),
+}
+
+impl Default for ScatterSpec<'_> {
+    fn default() -> Self {
+        Self {
+            title: "",
+            x_label: "",
+            y_label: "",
+            points: &[],
+            log_x: false,
+            size: SCATTER_SIZE,
+        }
+    }
+}
+
+/// Cost–error scatter, `spec.size` px: x = e.g. time per sample (log axis when
+/// `log_x`; points with x ≤ 0 are then skipped), y = e.g. RMS error. Every
+/// point is named; Pareto-optimal points are drawn larger in red and joined
+/// by the Pareto front, a staircase through them in x order (lower is better
+/// on both axes). The y axis starts at 0 when all y are non-negative, and is
+/// logarithmic when all y are positive and span a ratio of 20 or more.
+/// Names are placed where they overlap no other name, point or front.
+///
+/// # Errors
+/// [`Error::Unsupported`] for a size outside 120..=8192 px or if encoding fails.
+pub fn scatter(spec: &ScatterSpec) -> Result<Vec<u8>, Error> {
+    let ScatterSpec {
+        title,
+        x_label,
+        y_label,
+        points,
+        log_x,
+        size: (w, h),
+    } = *spec;
+    let mut cv = Canvas::new(w, h, "scatter")?;
+    let (wf, hf) = (cv.w(), cv.h());
+    cv.title(title);
+    let (top, right, bottom) = (64.0f32, wf - 30.0, hf - 64.0);
+
+    let pts: Vec<&ScatterPoint> = points
+        .iter()
+        .filter(|p| p.x.is_finite() && p.y.is_finite() && (!log_x || p.x > 0.0))
+        .collect();
+
+    // Ranges, padded so that no point sits on the frame.
+    let xv = |p: &ScatterPoint| if log_x { p.x.log10() } else { p.x };
+    let (mut xa, mut xb) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+        (a.min(xv(p)), b.max(xv(p)))
+    });
+    if pts.is_empty() {
+        (xa, xb) = if log_x { (0.0, 2.0) } else { (0.0, 1.0) };
+    }
+    if xb - xa < 1e-12 * xa.abs().max(1e-300) || xb <= xa {
+        let d = if log_x { 0.5 } else { xa.abs().max(1e-300) * 0.5 };
+        let d = if d > 0.0 && d.is_finite() { d } else { 1.0 };
+        (xa, xb) = (xa - d, xb + d);
+    }
+    let pad = (xb - xa) * 0.08;
+    let (xa, xb) = (xa - pad, xb + pad);
+    let x_axis = if log_x {
+        Axis {
+            lo: xa,
+            hi: xb,
+            log: true,
+        }
+    } else {
+        let s = nice_step(xb - xa, 6);
+        Axis {
+            lo: (xa / s).floor() * s,
+            hi: (xb / s).ceil() * s,
+            log: false,
+        }
+    };
+    let (mut ya, mut yb) = pts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.y), b.max(p.y)));
+    if pts.is_empty() {
+        (ya, yb) = (0.0, 1.0);
+    }
+    // Errors spanning more than LOG_Y_RATIO (a fitted model next to filters)
+    // would sit on the floor of a linear axis: log axis then.
+    let log_y = ya > 0.0 && yb / ya >= LOG_Y_RATIO;
+    let y_axis = if log_y {
+        let (la, lb) = (ya.log10(), yb.log10());
+        let pad = (lb - la) * 0.08;
+        Axis {
+            lo: la - pad,
+            hi: lb + pad,
+            log: true,
+        }
+    } else {
+        if ya >= 0.0 {
+            ya = 0.0;
+        }
+        if yb <= ya {
+            yb = if ya == 0.0 { 1.0 } else { ya + ya.abs() };
+        }
+        let yb = yb + (yb - ya) * 0.08;
+        let s = nice_step(yb - ya, 6);
+        Axis {
+            lo: (ya / s).floor() * s,
+            hi: (yb / s).ceil() * s,
+            log: false,
+        }
+    };
+    // Left margin: the y label, then the widest tick label.
+    let y_ticks = y_axis.ticks();
+    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
+    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
+    let (pw, ph) = (right - left, bottom - top);
+    let px = |x: f64| left + x_axis.t(x) as f32 * pw;
+    let py = |y: f64| bottom - y_axis.t(y) as f32 * ph;
+
+    // Grid and ticks.
+    for (t, lab) in x_axis.ticks() {
+        let x = px(t).round() + 0.5;
+        let major = !lab.is_empty();
+        cv.line(x, top, x, bottom, if major { GRID } else { [240, 240, 240] }, 1.0);
+        cv.line(x, bottom, x, bottom + if major { 6.0 } else { 3.0 }, AXIS, 1.0);
+        if major {
+            cv.text(x, bottom + 16.0, &lab, 2, Align::Center, INK, false);
+        }
+    }
+    for (t, lab) in y_ticks {
+        let y = py(t).round() + 0.5;
+        let major = !lab.is_empty();
+        cv.line(left, y, right, y, if major { GRID } else { [240, 240, 240] }, 1.0);
+        cv.line(left - if major { 6.0 } else { 3.0 }, y, left, y, AXIS, 1.0);
+        if major {
+            cv.text(left - 10.0, y, &lab, 2, Align::Right, INK, false);
+        }
+    }
+    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
+    cv.text(left + pw / 2.0, hf - 16.0, x_label, 2, Align::Center, INK, false);
+    cv.text_vertical(16.0, top + ph / 2.0, y_label, 2, INK);
+
+    // Legend above the plot, right-aligned.
+    let lx = right - font::text_width("Pareto front", 2) as f32;
+    cv.text(lx, top - 16.0, "Pareto front", 2, Align::Left, INK, false);
+    cv.line(lx - 46.0, top - 16.0, lx - 10.0, top - 16.0, PARETO, 2.0);
+    cv.circle(lx - 28.0, top - 16.0, 5.0, PARETO, Some([120, 20, 20]));
+    let lx2 = lx - 70.0 - font::text_width("other", 2) as f32;
+    cv.text(lx2, top - 16.0, "other", 2, Align::Left, INK, false);
+    cv.circle(lx2 - 12.0, top - 16.0, 4.0, OTHER, None);
+
+    // Pareto front: staircase through the Pareto points in x order.
+    let mut front: Vec<(f64, f64)> = pts.iter().filter(|p| p.pareto).map(|p| (p.x, p.y)).collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut stair = Vec::new();
+    for (k, &(x, y)) in front.iter().enumerate() {
+        if k > 0 {
+            stair.push((px(x), py(front[k - 1].1)));
+        }
+        stair.push((px(x), py(y)));
+    }
+    cv.polyline(&stair, PARETO, 2.0, false);
+    let stair_boxes = stair.windows(2).map(|s| {
+        [
+            s[0].0.min(s[1].0) - 1.0,
+            s[0].1.min(s[1].1) - 1.0,
+            s[0].0.max(s[1].0) + 1.0,
+            s[0].1.max(s[1].1) + 1.0,
+        ]
+    });
+
+    // Points: others first, Pareto on top.
+    let scale = if pts.len() <= 12 { 2 } else { 1 };
+    let mut order: Vec<&&ScatterPoint> = pts.iter().collect();
+    order.sort_by_key(|p| p.pareto);
+    let mut boxes: Vec<[f32; 4]> = pts
+        .iter()
+        .map(|p| {
+            let (x, y) = (px(p.x), py(p.y));
+            [x - 6.0, y - 6.0, x + 6.0, y + 6.0]
+        })
+        .chain(stair_boxes)
+        .collect();
+    for p in &order {
+        let (x, y) = (px(p.x), py(p.y));
+        if p.pareto {
+            cv.circle(x, y, 6.0, PARETO, Some([120, 20, 20]));
+        } else {
+            cv.circle(x, y, 4.5, OTHER, None);
+        }
+    }
+    // Labels: first free spot among right, left, above, below.
+    let th = font::text_height(scale) as f32;
+    for p in &order {
+        let (x, y) = (px(p.x), py(p.y));
+        let tw = font::text_width(&p.label, scale) as f32;
+        // Right, left, above, below; then right and left shifted up or down
+        // by one and two text rows, so that neighbours' names never overlap.
+        let mut cands = vec![
+            (
+                x + 9.0,
+                y,
+                Align::Left,
+                [x + 9.0, y - th / 2.0, x + 9.0 + tw, y + th / 2.0],
+            ),
+            (
+                x - 9.0,
+                y,
+                Align::Right,
+                [x - 9.0 - tw, y - th / 2.0, x - 9.0, y + th / 2.0],
+            ),
+            (
+                x,
+                y - 9.0 - th / 2.0,
+                Align::Center,
+                [x - tw / 2.0, y - 9.0 - th, x + tw / 2.0, y - 9.0],
+            ),
+            (
+                x,
+                y + 9.0 + th / 2.0,
+                Align::Center,
+                [x - tw / 2.0, y + 9.0, x + tw / 2.0, y + 9.0 + th],
+            ),
+        ];
+        for k in [1.0f32, -1.0, 2.0, -2.0, 3.0, -3.0] {
+            let yc = y + k * (th + 4.0);
+            cands.push((
+                x + 9.0,
+                yc,
+                Align::Left,
+                [x + 9.0, yc - th / 2.0, x + 9.0 + tw, yc + th / 2.0],
+            ));
+            cands.push((
+                x - 9.0,
+                yc,
+                Align::Right,
+                [x - 9.0 - tw, yc - th / 2.0, x - 9.0, yc + th / 2.0],
+            ));
+        }
+        let inside =
+            |b: &[f32; 4]| b[0] >= left + 2.0 && b[2] <= right - 2.0 && b[1] >= top + 2.0 && b[3] <= bottom - 2.0;
+        let free = |b: &[f32; 4]| {
+            boxes
+                .iter()
+                .all(|o| b[2] + 2.0 <= o[0] || b[0] - 2.0 >= o[2] || b[3] + 1.0 <= o[1] || b[1] - 1.0 >= o[3])
+        };
+        let pick = cands
+            .iter()
+            .find(|c| inside(&c.3) && free(&c.3))
+            .or_else(|| cands.iter().find(|c| inside(&c.3)))
+            .unwrap_or(&cands[0]);
+        // A name moved off its point's row gets a leader line to the point.
+        if (pick.1 - y).abs() > 1.0 && pick.2 != Align::Center {
+            let ex = if pick.2 == Align::Left {
+                pick.3[0] - 1.0
+            } else {
+                pick.3[2] + 1.0
+            };
+            cv.line(x, y, ex, pick.1, AXIS, 1.0);
+        }
+        let bx = cv.text(
+            pick.0,
+            pick.1,
+            &p.label,
+            scale,
+            pick.2,
+            if p.pareto { [120, 20, 20] } else { INK },
+            true,
+        );
+        boxes.push(bx);
+    }
+    if pts.is_empty() {
+        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+    }
+    cv.png()
+}
