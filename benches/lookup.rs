@@ -12,7 +12,9 @@ use photosolid::reconstruct::Reconstructions;
 use photosolid::synth::{GridSpec, Synth};
 
 fn bench(c: &mut Criterion) {
-    let lum = Synth::Roadway.build(&GridSpec::uniform(5.0, 2.5).unwrap(), 12_000.0).unwrap();
+    let lum = Synth::Roadway
+        .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 12_000.0)
+        .unwrap();
     let d = lum.distribution;
     let dirs = random_directions(4096, 11);
     let mut g = c.benchmark_group("lookup");

@@ -11,7 +11,7 @@ use crate::engines::EnginesReport;
 use crate::error::Error;
 use crate::formats::write_atomic;
 use crate::report::compare_report::{self, esc, Figure};
-use crate::report::plots;
+use crate::report::plot::{self, ColorScale, HeatmapSpec};
 
 /// The engines table as a [`Comparison`] (one result per row), so the
 /// comparison report draws it.
@@ -45,7 +45,15 @@ pub fn figures(r: &EnginesReport) -> Result<Vec<Figure>, Error> {
         out.push(Figure {
             file: "reference.png".into(),
             caption: format!("The reference over C x gamma (degrees), % of I_max: {}", m.name),
-            png: plots::heatmap(&title, &m.xs, &m.ys, &m.values, "% of I_max", false)?,
+            png: plot::heatmap(&HeatmapSpec {
+                title: &title,
+                xs: &m.xs,
+                ys: &m.ys,
+                values: &m.values,
+                unit: "% of I_max",
+                scale: ColorScale::Sequential,
+                ..HeatmapSpec::default()
+            })?,
         });
     }
     out.extend(compare_report::figures(&to_comparison(r))?);

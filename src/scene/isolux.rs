@@ -14,7 +14,7 @@ use tiny_skia::{Color, Paint, PathBuilder, Pixmap, PremultipliedColorU8, Stroke,
 use super::illuminance::SceneResult;
 use super::{ReceiverShape, Scene, SceneError};
 use crate::report::font;
-use crate::report::plots::colormap;
+use crate::solid::ColorMap;
 
 /// Longest side of the map area, pixels.
 pub const MAP_PIXELS: u32 = 800;
@@ -98,7 +98,7 @@ pub fn isolux_png(scene: &Scene, index: usize, e: &[f64]) -> Result<Option<Vec<u
                 1.0 - (f64::from(py) + 0.5) / f64::from(h),
             );
             let val = at(s, t);
-            let c = colormap(if emax > 0.0 { val / emax } else { 0.0 }, false);
+            let c = ColorMap::Viridis.rgb8(if emax > 0.0 { val / emax } else { 0.0 });
             let idx = ((py + MARGIN) * width + px + MARGIN) as usize;
             pixels[idx] = PremultipliedColorU8::from_rgba(c[0], c[1], c[2], 255).unwrap_or(pixels[idx]);
         }
