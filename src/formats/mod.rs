@@ -5,11 +5,13 @@
 //! nothing downstream looks at file details again. Writers take a
 //! `Luminaire` and return text; [`save`] writes it atomically.
 
+pub mod angles;
+pub mod files;
 pub mod ies;
 pub mod ldt;
 pub mod text;
 
-use std::io::Write;
+pub use files::{write_atomic, write_atomic_with};
 use std::path::Path;
 
 use crate::error::{Error, ErrorKind, Location, ParseError, Result};
@@ -61,18 +63,17 @@ pub fn load(path: impl AsRef<Path>) -> Result<Luminaire> {
 /// [`load`] with options.
 pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire> {
     let path = path.as_ref();
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(ParseError {
+    let bytes = files::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
+        files::ReadCappedError::Io(e) => Error::io(path, e),
+        other => ParseError {
             path: path.to_path_buf(),
             location: Location::line(0),
             kind: ErrorKind::Invalid,
-            expected: format!("a photometric file of at most {MAX_FILE_BYTES} bytes"),
-            found: format!("{} bytes", meta.len()),
+            expected: format!("a regular photometric file of at most {MAX_FILE_BYTES} bytes"),
+            found: other.to_string(),
         }
-        .into());
-    }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        .into(),
+    })?;
     let format = Format::from_extension(path).unwrap_or_else(|| sniff(&bytes));
     let lum = match format {
         Format::Ies => ies::read(&bytes, path, opts)?,
@@ -99,32 +100,6 @@ pub fn sniff(bytes: &[u8]) -> Format {
     } else {
         Format::Ldt
     }
-}
-
-/// Write `contents` to `path` atomically: a temporary file in the same
-/// directory is written, flushed and renamed over the target, so a reader
-/// never sees a half-written file.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::io(path, e));
-    }
-    Ok(())
 }
 
 /// Options of the writers.

@@ -3,7 +3,9 @@
 pub mod distribution;
 pub mod luminaire;
 
-pub use distribution::{periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS};
+pub use distribution::{
+    check_intensities, periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS, MAX_CD, MIN_PEAK_CD,
+};
 pub use luminaire::{
     Declared, Dimensions, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Tilt, TiltTable,
 };

@@ -150,19 +150,12 @@ pub fn preview_png(tex: &Rendered, k: f64) -> Result<Vec<u8>, Error> {
         .map_err(|e| Error::Unsupported(format!("cannot encode PNG: {e}")))
 }
 
-/// Write the preview PNG to `path` atomically (temporary file, then rename).
+/// Write the preview PNG to `path` atomically ([`crate::formats::write_atomic`]).
 ///
 /// # Errors
 /// As [`preview_png`], and [`Error::Io`] when writing fails.
 pub fn write_preview(path: impl AsRef<Path>, tex: &Rendered, k: f64) -> Result<(), Error> {
     let path = path.as_ref();
     let bytes = preview_png(tex, k)?;
-    let tmp = super::exr_io::temp_path(path);
-    let r = std::fs::write(&tmp, bytes)
-        .and_then(|()| std::fs::rename(&tmp, path))
-        .map_err(|e| Error::io(path, e));
-    if r.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    r
+    crate::formats::write_atomic(path, &bytes)
 }

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Location, ParseError, Warning};
 use crate::formats::text::Source;
-use crate::formats::ReadOptions;
+use crate::formats::{angles, ReadOptions};
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Symmetry,
     Tilt, TiltTable, ANGLE_EPS,
@@ -314,6 +314,13 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         blpf = 1.0;
     }
     let scale = header.multiplier * bf * blpf;
+    if !(scale.is_normal() && scale > 0.0) {
+        return Err(src.invalid(
+            Location::line(ballast_line),
+            "candela multiplier x ballast factor x ballast-lamp factor a positive normal number",
+            format!("{} x {bf} x {blpf} = {scale}", header.multiplier),
+        ));
+    }
     let extra = tokens.count_remaining();
     if extra > 0 {
         warnings.push(Warning::at(
@@ -327,11 +334,12 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
             *v *= scale;
         }
     }
-    if cd.iter().any(|v| !v.is_finite()) {
+    if let Err((i, why)) = crate::model::check_intensities(&cd) {
+        let (loc, _) = tokens.locate(h_start + nh + i);
         return Err(src.invalid(
-            Location::line(ballast_line),
-            "candela values that stay finite after the multipliers",
-            format!("an overflow with multiplier x ballast factor = {scale}"),
+            loc,
+            format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
+            why,
         ));
     }
 
@@ -515,13 +523,12 @@ fn check_or_repair(
     opts: &ReadOptions,
     warnings: &mut Vec<Warning>,
 ) -> Result<(), ParseError> {
-    let bad = match angles.windows(2).position(|w| w[1] <= w[0]) {
-        None => return Ok(()),
-        Some(i) => i + 1,
+    let Some(bad) = angles::first_disorder(angles) else {
+        return Ok(());
     };
     if !opts.repair {
         let (loc, found) = token_location(start, bad);
-        let why = if angles[bad] == angles[bad - 1] {
+        let why = if angles::is_duplicate(angles[bad], angles[bad - 1]) {
             "duplicate"
         } else {
             "unsorted"
@@ -539,25 +546,15 @@ fn check_or_repair(
         ));
     }
     let n = angles.len();
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| angles[a].total_cmp(&angles[b]));
-    order.dedup_by(|b, a| angles[*b] == angles[*a]);
+    let order = angles::repair_order(angles);
     let dropped = n - order.len();
     let new_angles: Vec<f64> = order.iter().map(|&i| angles[i]).collect();
-    let mut new_cd = Vec::with_capacity(order.len() * stride);
-    if planes {
-        // Planes of `stride` (vertical count) values each.
-        for &i in &order {
-            new_cd.extend_from_slice(&cd[i * stride..(i + 1) * stride]);
-        }
+    // Planes of `stride` (vertical count) values each, or rows inside each of `stride` planes of `n` values.
+    let new_cd = if planes {
+        angles::reorder_planes(cd, stride, &order)
     } else {
-        // Rows inside each of `stride` planes of `n` values.
-        for p in 0..stride {
-            for &i in &order {
-                new_cd.push(cd[p * n + i]);
-            }
-        }
-    }
+        angles::reorder_rows(cd, n, &order)
+    };
     warnings.push(Warning::at(
         start.0.line_of(start.1),
         "angles-repaired",
@@ -733,6 +730,10 @@ fn read_tilt_table(
     })
 }
 
+/// Largest tilt file read (bytes). A tilt table is a few hundred numbers;
+/// the cap keeps `TILT=` pointing at a huge or endless file from being read.
+pub const MAX_TILT_FILE_BYTES: u64 = 1024 * 1024;
+
 /// Resolve `TILT=<file>` next to the photometric file and parse it. The
 /// non-standard `TILT=FILE name` form is accepted (warned) when no file is
 /// literally called `FILE name`.
@@ -760,16 +761,16 @@ fn read_tilt_file(
             full = dir.join(&name);
         }
     }
-    let bytes = std::fs::read(&full).map_err(|e| {
+    let bytes = crate::formats::files::read_capped(&full, MAX_TILT_FILE_BYTES).map_err(|e| {
         src.invalid(
             Location::line(line),
-            format!("the tilt file `{}` named by TILT=", full.display()),
+            format!(
+                "the tilt file `{}` named by TILT= (a regular file of at most {MAX_TILT_FILE_BYTES} bytes)",
+                full.display()
+            ),
             format!("it cannot be read: {e}"),
         )
     })?;
-    if bytes.len() as u64 > crate::formats::MAX_FILE_BYTES {
-        return Err(src.invalid(Location::line(line), "a tilt file of reasonable size", "a huge file"));
-    }
     let tsrc = Source::new(&full, &bytes).map_err(|mut e| {
         e.location.line = e.location.line.max(1);
         e

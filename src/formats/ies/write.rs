@@ -39,7 +39,10 @@ const WRAP: usize = 200;
 /// when that product is 1 they are written exactly the same way (shortest
 /// round trip, so reading back gives identical values); otherwise the quotient
 /// is first rounded to 15 significant digits, and reading back reproduces the
-/// value within a relative 1e-14. Magnitudes outside [1e-5, 1e15) use exponent
+/// value within a relative 1e-14. When the header's factors cannot
+/// represent the values (their product is zero, subnormal or makes a
+/// quotient overflow), multiplier and ballast factor are written as 1 and
+/// the values as absolute candela. Magnitudes outside [1e-5, 1e15) use exponent
 /// notation (`1.5e-7`).
 pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
     let mut w = Writer {
@@ -192,7 +195,19 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
         }
     }
     // The reader multiplies by multiplier × ballast factor (a non-positive ballast factor reads as 1).
-    let scale = mult * if bf > 0.0 { bf } else { 1.0 };
+    let mut scale = mult * if bf > 0.0 { bf } else { 1.0 };
+    let (mut mult, mut bf) = (mult, bf);
+    let representable = scale.is_normal()
+        && scale > 0.0
+        && planes.iter().all(|&v| {
+            let q = v / scale;
+            q.is_finite() && (q * scale).is_finite()
+        });
+    if !representable {
+        // Values divided by these factors would not print as numbers (an
+        // underflowing product gives NaN): write absolute candela instead.
+        (mult, bf, scale) = (1.0, 1.0, 1.0);
+    }
     for v in [lamps, lpl, mult, vertical.len() as f64, horizontal.len() as f64] {
         w.num(v);
     }

@@ -5,7 +5,7 @@ use std::path::Path;
 use super::{formula_plane_count, parse_number, stored_plane_indices, LampSetLayout, LdtHeader};
 use crate::error::{Location, ParseError, Warning};
 use crate::formats::text::{line_col, Line, Lines, Source};
-use crate::formats::{LampSetFlux, ReadOptions};
+use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
     ANGLE_EPS,
@@ -475,20 +475,21 @@ impl<'s, 'a> Reader<'s, 'a> {
         let scale = cfli * phi / 1000.0;
         let mut min = f64::INFINITY;
         let mut negatives = 0usize;
-        let mut finite = scale.is_finite();
         for v in &mut cd {
             if *v < 0.0 {
                 negatives += 1;
                 min = min.min(*v);
             }
             *v *= scale;
-            finite &= v.is_finite();
         }
-        if !finite {
+        if let Err((i, why)) = crate::model::check_intensities(&cd) {
             return Err(src.invalid(
-                Location::line(n_line + 1),
-                "intensities and lamp flux whose product is a finite candela value",
-                format!("flux {phi} lm × CFLI {cfli} overflows"),
+                Location::line(cd_first),
+                format!(
+                    "intensities whose candela values (cd/klm × flux {phi} lm × CFLI {cfli} / 1000) \
+                     lie in the model's range"
+                ),
+                format!("plane {} of {nstored}, gamma {} of {ng}: {why}", i / ng + 1, i % ng + 1),
             ));
         }
         if negatives > 0 {
@@ -769,16 +770,16 @@ fn check_range(src: &Source<'_>, v: &[f64], toks: &Stream<'_>, what: &str, hi: f
     }
 }
 
-/// Ok, or the first offending index with (previous, value).
+/// Ok, or the first offending index with (previous, value) ([`angles::first_disorder`]).
 fn strictly_ascending(v: &[f64]) -> Result<(), (usize, f64, f64)> {
-    match v.windows(2).position(|w| w[1] <= w[0]) {
+    match angles::first_disorder(v) {
         None => Ok(()),
-        Some(i) => Err((i + 1, v[i], v[i + 1])),
+        Some(i) => Err((i, v[i - 1], v[i])),
     }
 }
 
 fn is_strictly_descending(v: &[f64]) -> bool {
-    v.len() > 1 && v.windows(2).all(|w| w[1] < w[0])
+    v.len() > 1 && v.windows(2).all(|w| w[1] < w[0] - ANGLE_EPS)
 }
 
 /// Reverse the order of the planes of a C-major block in place.
@@ -790,56 +791,46 @@ fn reverse_planes(cd: &mut [f64], ng: usize) {
     }
 }
 
-/// Repair: planes sorted by angle, later duplicates dropped.
+/// Repair: planes sorted by angle, duplicates dropped ([`angles::repair_order`]).
 fn sort_planes(c: &[f64], cd: &[f64], ng: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut order: Vec<usize> = (0..c.len()).collect();
-    order.sort_by(|&a, &b| c[a].total_cmp(&c[b]));
-    order.dedup_by(|a, b| (c[*a] - c[*b]).abs() <= ANGLE_EPS);
-    let mut out = Vec::with_capacity(order.len() * ng);
-    for &i in &order {
-        out.extend_from_slice(&cd[i * ng..(i + 1) * ng]);
-    }
-    (order.iter().map(|&i| c[i]).collect(), out)
+    let order = angles::repair_order(c);
+    (
+        order.iter().map(|&i| c[i]).collect(),
+        angles::reorder_planes(cd, ng, &order),
+    )
 }
 
-/// Repair: γ sorted within every plane, later duplicates dropped.
+/// Repair: γ sorted within every plane, duplicates dropped ([`angles::repair_order`]).
 fn sort_gamma(g: &[f64], cd: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let ng = g.len();
-    let mut order: Vec<usize> = (0..ng).collect();
-    order.sort_by(|&a, &b| g[a].total_cmp(&g[b]));
-    order.dedup_by(|a, b| (g[*a] - g[*b]).abs() <= ANGLE_EPS);
-    let planes = cd.len() / ng;
-    let mut out = Vec::with_capacity(planes * order.len());
-    for p in 0..planes {
-        out.extend(order.iter().map(|&i| cd[p * ng + i]));
-    }
-    (order.iter().map(|&i| g[i]).collect(), out)
+    let order = angles::repair_order(g);
+    (
+        order.iter().map(|&i| g[i]).collect(),
+        angles::reorder_rows(cd, g.len(), &order),
+    )
 }
 
 /// Field-group or block layout of `n` lamp sets (DOMAIN §2.1): a layout
 /// passes when every count, flux and wattage field (26a, 26c, 26f) holds a
-/// number; among passing layouts the one whose type and colour fields (26b,
-/// 26d) look like text wins, field groups on a tie. Blocks are used only when
-/// field groups fail and blocks pass.
+/// number. Field groups win whenever they pass; blocks are used only when
+/// field groups fail and blocks pass. The writer always writes field groups,
+/// whose numeric fields always pass, so a written file is read back in the
+/// layout it was written in whatever its text fields hold (a text-based
+/// tie-break misread written files whose type or colour fields are numbers).
 fn choose_layout(lines: &[Line<'_>], n: usize) -> LampSetLayout {
     if n == 1 {
         return LampSetLayout::FieldGroups;
     }
     let is_num = |l: &Line<'_>| matches!(line_number(l.bytes), LineNumber::Value { junk: false, .. });
-    let judge = |layout: LampSetLayout| -> (bool, usize) {
+    let passes = |layout: LampSetLayout| -> bool {
         let f = |s: usize, k: usize| match layout {
             LampSetLayout::FieldGroups => &lines[k * n + s],
             LampSetLayout::Blocks => &lines[s * 6 + k],
         };
-        let pass = (0..n).all(|s| [0, 2, 5].iter().all(|&k| is_num(f(s, k))));
-        let text = (0..n)
-            .map(|s| [1, 3].iter().filter(|&&k| !is_num(f(s, k))).count())
-            .sum();
-        (pass, text)
+        (0..n).all(|s| [0, 2, 5].iter().all(|&k| is_num(f(s, k))))
     };
-    let (fg_pass, fg_text) = judge(LampSetLayout::FieldGroups);
-    let (bl_pass, bl_text) = judge(LampSetLayout::Blocks);
-    if bl_pass && (!fg_pass || bl_text > fg_text) {
+    let fg_pass = passes(LampSetLayout::FieldGroups);
+    let bl_pass = passes(LampSetLayout::Blocks);
+    if bl_pass && !fg_pass {
         LampSetLayout::Blocks
     } else {
         LampSetLayout::FieldGroups
