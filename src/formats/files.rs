@@ -10,7 +10,9 @@
 //! directory, which is flushed to disk (`fsync`) and renamed over the
 //! target. A reader, or a later run after a crash, a full disk or Ctrl-C,
 //! sees either the old file or the whole new one, never a part. On error the
-//! temporary file is removed and the error names the target path.
+//! temporary file is removed and the error names the target path. A target
+//! that exists and is a device or FIFO (`/dev/null`, `/dev/full`) is written
+//! in place instead, since renaming over it would replace the device node.
 
 use std::fs::File;
 use std::io::{Read, Write};
@@ -122,11 +124,24 @@ pub fn write_atomic_with(path: &Path, fill: impl FnOnce(&mut File) -> std::io::R
             std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"),
         ));
     }
-    if path.is_dir() {
-        return Err(Error::io(
-            path,
-            std::io::Error::new(std::io::ErrorKind::IsADirectory, "is a directory"),
-        ));
+    if let Ok(meta) = std::fs::metadata(path) {
+        if meta.is_dir() {
+            return Err(Error::io(
+                path,
+                std::io::Error::new(std::io::ErrorKind::IsADirectory, "is a directory"),
+            ));
+        }
+        if !meta.is_file() {
+            // A device or FIFO (`/dev/null`, `/dev/full`, a pipe) is written
+            // in place: renaming a temporary file over it would replace the
+            // device node itself.
+            let result = (|| -> std::io::Result<()> {
+                let mut f = std::fs::OpenOptions::new().write(true).open(path)?;
+                fill(&mut f)?;
+                f.flush()
+            })();
+            return result.map_err(|e| Error::io(path, e));
+        }
     }
     let tmp = temp_path(path);
     let result = (|| -> std::io::Result<()> {

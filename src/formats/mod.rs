@@ -9,6 +9,7 @@ pub mod angles;
 pub mod files;
 pub mod ies;
 pub mod ldt;
+pub mod roundtrip;
 pub mod text;
 
 pub use files::{write_atomic, write_atomic_with};

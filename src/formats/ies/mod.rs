@@ -27,7 +27,7 @@ mod write;
 
 use serde::Serialize;
 
-pub use read::read;
+pub use read::{read, MAX_TILT_FILE_BYTES};
 pub use write::write;
 
 /// One text line before `TILT=`, kept for lossless write-back.

@@ -164,15 +164,18 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
         }
         None => {
             let count: f64 = lum.lamp_sets.iter().map(|s| s.count.abs()).sum();
-            lamps = if count > 0.0 { count } else { 1.0 };
+            let n = if count > 0.0 && count.is_finite() { count } else { 1.0 };
             let flux = lum
                 .declared
                 .lamp_flux_lm
                 .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.flux_lm).sum());
-            lpl = if lum.declared.absolute || flux <= 0.0 {
-                -1.0
+            // A lamp count so small that flux / count overflows is written as one lamp.
+            (lamps, lpl) = if lum.declared.absolute || flux <= 0.0 || !flux.is_finite() {
+                (n, -1.0)
+            } else if (flux / n).is_finite() {
+                (n, flux / n)
             } else {
-                flux / lamps
+                (1.0, flux)
             };
             mult = 1.0;
             units = 2.0;
@@ -188,10 +191,12 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
                 IesWriteVersion::Lm63_2002 => 1.0,
                 IesWriteVersion::Lm63_2019 => 1.00001,
             };
-            watts = lum
+            let w = lum
                 .declared
                 .input_watts
                 .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.watts).sum());
+            // Summed lamp-set wattages can overflow; an unknown wattage is written as 0.
+            watts = if w.is_finite() { w } else { 0.0 };
         }
     }
     // The reader multiplies by multiplier × ballast factor (a non-positive ballast factor reads as 1).

@@ -463,7 +463,8 @@ impl<'s, 'a> Reader<'s, 'a> {
             LampSetFlux::First => (flux_first, watts_first),
             LampSetFlux::Sum => (flux_sum, watts_sum),
         };
-        let flux_ok = phi > 0.0 && phi.is_finite();
+        // A subnormal flux would scale every intensity to 0 (or overflow cd/klm × flux).
+        let flux_ok = phi.is_normal() && phi > 0.0;
         if !flux_ok {
             self.warn(
                 n_line + 1,
