@@ -124,3 +124,41 @@ pub fn save(lum: &Luminaire, path: &Path, opts: &WriteOptions) -> Result<()> {
     };
     write_atomic(path, text.as_bytes())
 }
+
+/// Relative distance outside the model's intensity range ([`MAX_CD`],
+/// [`MIN_PEAK_CD`]) within which a reader moves values onto the range's end
+/// (with a warning) instead of refusing them: the writers print values with
+/// 8 to 15 significant digits, so a value written at the end of the range can
+/// read back that far outside it.
+///
+/// [`MAX_CD`]: crate::model::MAX_CD
+/// [`MIN_PEAK_CD`]: crate::model::MIN_PEAK_CD
+pub const RANGE_SNAP: f64 = 1e-6;
+
+/// Bring intensities read from a file into the model's range: values within
+/// [`RANGE_SNAP`] (relative) outside it are moved onto its end, a peak just
+/// below [`crate::model::MIN_PEAK_CD`] by scaling the whole table (the
+/// shape is kept). Returns the warning text when something moved, or the
+/// offending index and why when the table is out of range
+/// ([`crate::model::check_intensities`]).
+pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<String>, (usize, String)> {
+    use crate::model::{check_intensities, MAX_CD, MIN_PEAK_CD};
+    let mut moved = 0usize;
+    for v in cd.iter_mut() {
+        if v.is_finite() && v.abs() > MAX_CD && v.abs() <= MAX_CD * (1.0 + RANGE_SNAP) {
+            *v = MAX_CD.copysign(*v);
+            moved += 1;
+        }
+    }
+    let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut note = (moved > 0).then(|| format!("{moved} value(s) just above {MAX_CD:e} cd set to it"));
+    if peak > 0.0 && peak < MIN_PEAK_CD && peak >= MIN_PEAK_CD * (1.0 - RANGE_SNAP) {
+        let k = MIN_PEAK_CD / peak;
+        cd.iter_mut().for_each(|v| *v *= k);
+        note = Some(format!(
+            "the peak {peak:e} cd, just below {MIN_PEAK_CD:e} cd, scaled up to it"
+        ));
+    }
+    check_intensities(cd)?;
+    Ok(note)
+}

@@ -334,13 +334,17 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
             *v *= scale;
         }
     }
-    if let Err((i, why)) = crate::model::check_intensities(&cd) {
-        let (loc, _) = tokens.locate(h_start + nh + i);
-        return Err(src.invalid(
-            loc,
-            format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
-            why,
-        ));
+    match crate::formats::into_model_range(&mut cd) {
+        Ok(None) => {}
+        Ok(Some(note)) => warnings.push(Warning::at(ballast_line, "range-snapped", note)),
+        Err((i, why)) => {
+            let (loc, _) = tokens.locate(h_start + nh + i);
+            return Err(src.invalid(
+                loc,
+                format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
+                why,
+            ));
+        }
     }
 
     // Strictly ascending angle lists (or a warned repair).

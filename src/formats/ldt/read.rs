@@ -483,7 +483,11 @@ impl<'s, 'a> Reader<'s, 'a> {
             }
             *v *= scale;
         }
-        if let Err((i, why)) = crate::model::check_intensities(&cd) {
+        let snapped = crate::formats::into_model_range(&mut cd);
+        if let Ok(Some(note)) = &snapped {
+            self.warn(cd_first, "range-snapped", note.clone());
+        }
+        if let Err((i, why)) = snapped {
             return Err(src.invalid(
                 Location::line(cd_first),
                 format!(
