@@ -214,8 +214,12 @@ struct Grid {
 fn header_grid(h: &LdtHeader, dist: &Distribution) -> Option<Grid> {
     let sym = dist.symmetry();
     let g = dist.gamma_angles();
+    // A header whose lists were repaired on reading (unsorted, duplicates)
+    // no longer describes a readable file: the grid is derived instead.
     if h.isym != sym.isym()
         || h.c_angles.is_empty()
+        || crate::formats::angles::first_disorder(&h.c_angles).is_some()
+        || crate::formats::angles::first_disorder(&h.gamma_angles).is_some()
         || h.gamma_angles.len() != g.len()
         || h.gamma_angles.iter().zip(g).any(|(a, b)| (a - b).abs() > ANGLE_EPS)
     {
