@@ -148,15 +148,18 @@ fn huge_candela_values_are_refused_not_overflowed() {
     let ies = b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1e-200 2 1 1 2 0 0 0\n1e-200 1 0\n0 90\n0\n100 10\n";
     let e = photosolid::formats::parse(ies, Path::new("u.ies"), Format::Ies, &ReadOptions::default()).unwrap_err();
     assert_eq!(e.location.line, 4, "{e}");
-    // A subnormal peak: refused (the fit used to divide by it).
+    // A subnormal peak (the fit used to divide by it): round-off, read as zero with a warning.
     let ies = b"IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n4.9e-324 0\n";
-    let e = photosolid::formats::parse(ies, Path::new("s.ies"), Format::Ies, &ReadOptions::default()).unwrap_err();
-    assert!(e.found.contains("peak"), "{e}");
-    // Scaling (the TILT path) that would leave the range is refused.
+    let l = photosolid::formats::parse(ies, Path::new("s.ies"), Format::Ies, &ReadOptions::default()).unwrap();
+    assert_eq!(l.distribution.max_cd(), 0.0);
+    assert!(l.warnings.iter().any(|w| w.code == "range-snapped"), "{:?}", l.warnings);
+    let fit = photosolid::fit::fit(&l.distribution, &Default::default());
+    assert!(fit.is_err(), "an all-zero distribution has nothing to fit");
+    // Scaling (the TILT path) that would leave the range is refused; scaling to round-off gives zero.
     let d = Distribution::new(vec![0.0], vec![0.0, 90.0], vec![1e9, 1.0], Symmetry::Rotational).unwrap();
     assert!(d.scaled(1e4).is_err());
-    assert!(d.scaled(1e-30).is_err());
-    assert_eq!(d.scaled(0.0).unwrap().max_cd(), 0.0);
+    assert_eq!(d.scaled(1e-30).unwrap().max_cd(), 0.0);
+    assert_eq!(d.scaled(1e-9).unwrap().max_cd(), 1.0);
 }
 
 #[test]

@@ -138,11 +138,12 @@ pub const RANGE_SNAP: f64 = 1e-6;
 /// Bring intensities read from a file into the model's range: values within
 /// [`RANGE_SNAP`] (relative) outside it are moved onto its end, a peak just
 /// below [`crate::model::MIN_PEAK_CD`] by scaling the whole table (the
-/// shape is kept). Returns the warning text when something moved, or the
+/// shape is kept); a table of round-off only becomes zero. Returns the warning text when something moved, or the
 /// offending index and why when the table is out of range
 /// ([`crate::model::check_intensities`]).
 pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<String>, (usize, String)> {
     use crate::model::{check_intensities, MAX_CD, MIN_PEAK_CD};
+    // Order: snap onto the ends first, so a written minimum peak is not flushed.
     let mut moved = 0usize;
     for v in cd.iter_mut() {
         if v.is_finite() && v.abs() > MAX_CD && v.abs() <= MAX_CD * (1.0 + RANGE_SNAP) {
@@ -158,6 +159,11 @@ pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<Str
         cd.iter_mut().for_each(|v| *v *= k);
         note = Some(format!(
             "the peak {peak:e} cd, just below {MIN_PEAK_CD:e} cd, scaled up to it"
+        ));
+    }
+    if crate::model::flush_round_off(cd) {
+        note = Some(format!(
+            "every value is below {MIN_PEAK_CD:e} cd (round-off): read as an all-zero distribution"
         ));
     }
     check_intensities(cd)?;

@@ -14,7 +14,8 @@
 //!   [`Symmetry::stored_range`]); C90-C270 data has a plane between 90 and 270;
 //! - one intensity in cd per (C, γ) pair, C-major (γ fastest), inside the
 //!   model's valid range ([`check_intensities`]): finite, |v| ≤ [`MAX_CD`],
-//!   a peak of 0 or at least [`MIN_PEAK_CD`]. Every derived quantity (flux,
+//!   a peak of 0 or at least [`MIN_PEAK_CD`] (a table whose every value is
+//!   below it is round-off, and is stored as zero). Every derived quantity (flux,
 //!   averages, normalised values) is then finite; [`Distribution::scaled`]
 //!   keeps the range or fails.
 //!
@@ -38,12 +39,15 @@ pub const MAX_CD: f64 = 1e12;
 /// Smallest non-zero peak (cd) of the model: the largest |value| is either 0
 /// (an all-zero distribution) or at least this. Normalising by the peak
 /// (textures, fits, solids) then stays below 1e21 and never divides by a
-/// subnormal number.
+/// subnormal number. A table whose every |value| is below it holds only
+/// round-off (e.g. cos 90° × 1e-6 cd = 6e-23 cd) and is stored as all zero
+/// ([`flush_round_off`]).
 pub const MIN_PEAK_CD: f64 = 1e-9;
 
 /// Check a table of intensities against the model's valid range: every value
 /// finite with |v| ≤ [`MAX_CD`], and the largest |v| either 0 or at least
-/// [`MIN_PEAK_CD`]. On failure returns the index of the offending value and why.
+/// [`MIN_PEAK_CD`] (run [`flush_round_off`] first to accept round-off tables).
+/// On failure returns the index of the offending value and why.
 pub fn check_intensities(cd: &[f64]) -> Result<(), (usize, String)> {
     let mut peak = (0.0f64, 0usize);
     for (i, &v) in cd.iter().enumerate() {
@@ -67,6 +71,17 @@ pub fn check_intensities(cd: &[f64]) -> Result<(), (usize, String)> {
         ));
     }
     Ok(())
+}
+
+/// Set every value to 0 when all |values| are below [`MIN_PEAK_CD`] (the
+/// table is round-off); returns whether it did. NaN is left for
+/// [`check_intensities`] to refuse.
+pub fn flush_round_off(cd: &mut [f64]) -> bool {
+    let round_off = cd.iter().all(|v| v.abs() < MIN_PEAK_CD) && cd.iter().any(|&v| v != 0.0);
+    if round_off {
+        cd.iter_mut().for_each(|v| *v = 0.0);
+    }
+    round_off
 }
 
 /// Which symmetry the stored C-planes rely on.
@@ -291,6 +306,8 @@ impl Distribution {
                 gamma.len()
             )));
         }
+        let mut cd = cd;
+        flush_round_off(&mut cd);
         if let Err((i, why)) = check_intensities(&cd) {
             return Err(ModelError::Intensities(format!(
                 "value at C = {}, gamma = {}: {why}",
@@ -376,7 +393,8 @@ impl Distribution {
     }
 
     /// The same distribution with every value multiplied by `factor` (finite),
-    /// refused when a scaled value leaves the model's range ([`check_intensities`]).
+    /// refused when a scaled value exceeds the model's range ([`check_intensities`]);
+    /// a result that is all round-off becomes zero ([`flush_round_off`]).
     pub fn scaled(&self, factor: f64) -> Result<Self, ModelError> {
         if !factor.is_finite() {
             return Err(ModelError::Parameter {
@@ -387,6 +405,7 @@ impl Distribution {
         }
         let mut d = self.clone();
         d.cd.iter_mut().for_each(|v| *v *= factor);
+        flush_round_off(&mut d.cd);
         check_intensities(&d.cd).map_err(|(_, why)| ModelError::Parameter {
             name: "scale",
             value: factor.to_string(),

@@ -4,7 +4,8 @@ pub mod distribution;
 pub mod luminaire;
 
 pub use distribution::{
-    check_intensities, periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS, MAX_CD, MIN_PEAK_CD,
+    check_intensities, flush_round_off, periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS,
+    MAX_CD, MIN_PEAK_CD,
 };
 pub use luminaire::{
     Declared, Dimensions, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Tilt, TiltTable,
