@@ -43,3 +43,15 @@ const LDT_REPAIRED_C_ANGLES: &[u8] = b"\n\n1\n4\n90\n5\n\n n\n\n\n\n\n50\n\n\n4\
 fn ldt_repaired_angle_list_is_not_written_back() {
     assert_eq!(reader_check(LDT_REPAIRED_C_ANGLES, Format::Ldt), 1);
 }
+
+/// ldt_reader, run 2 (found after 298,634 executions; the 8 kB crash input
+/// minimised by hand to the same defect): a first C-plane at 2.8e-8 degrees,
+/// within the 1e-6 duplicate tolerance of 0. The IES writer inserted an
+/// interpolated C0 plane in front of it, a duplicate the IES reader refused.
+/// Fixed: the writer treats a first plane within `ANGLE_EPS` of 0 as C0.
+const LDT_FIRST_PLANE_NEAR_ZERO: &[u8] = b"m\n1\n0\n2\n0\n2\n0\n\n\n\n\n\n0\n0\n0\n0\n0\n0\n0\n0\n0\n100\n100\n1\n0\n1\n-1\nL\n1000\n\n\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0.000000028\n180\n0\n90\n100\n10\n50\n5\n";
+
+#[test]
+fn ies_writer_does_not_duplicate_a_near_zero_first_plane() {
+    assert_eq!(reader_check(LDT_FIRST_PLANE_NEAR_ZERO, Format::Ldt), 2);
+}

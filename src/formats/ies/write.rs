@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use crate::model::{Luminaire, PhotometricType, Symmetry};
+use crate::model::{Luminaire, PhotometricType, Symmetry, ANGLE_EPS};
 
 use super::{IesLabel, IesWriteVersion};
 
@@ -122,7 +122,9 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
             let mut h = d.c_angles().to_vec();
             let mut cd = d.intensities().to_vec();
             if d.symmetry() == Symmetry::None {
-                if h[0] > 1e-9 {
+                // A first plane within ANGLE_EPS of 0 is the C0 plane (the reader's
+                // duplicate rule): inserting another would write a duplicate.
+                if h[0] > ANGLE_EPS {
                     // No C0 plane: interpolate it across the seam so the file
                     // starts at 0 as LM-63 wants.
                     let (c_last, c_first) = (h[h.len() - 1], h[0]);
