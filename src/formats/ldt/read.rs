@@ -2,9 +2,10 @@
 
 use std::path::Path;
 
+use super::stream::{bad, check_range, nth_location, number, Stream};
 use super::{formula_plane_count, parse_number, stored_plane_indices, LampSetLayout, LdtHeader};
 use crate::error::{Location, ParseError, Warning};
-use crate::formats::text::{line_col, Line, Lines, Source};
+use crate::formats::text::{Line, Lines, Source};
 use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
@@ -635,143 +636,6 @@ impl<'s, 'a> Reader<'s, 'a> {
             ies: None,
             ldt: Some(header),
         })
-    }
-}
-
-/// The number stream from line 27 on: tokens separated by blanks and line
-/// ends, `;` and `!` starting a comment to the end of the line (as
-/// [`crate::formats::text::Tokens`] splits them, with the decimal comma kept
-/// in the token). It tracks only a byte offset; lines and columns are worked
-/// out when an error or warning needs them, which keeps the hot loop lean.
-#[derive(Clone)]
-struct Stream<'a> {
-    b: &'a [u8],
-    pos: usize,
-}
-
-/// A token of a [`Stream`]: its bytes and byte offset.
-struct Tok<'a> {
-    bytes: &'a [u8],
-    at: usize,
-}
-
-#[inline(always)]
-fn is_separator(c: u8) -> bool {
-    matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C | 0x1A | 0)
-}
-
-impl<'a> Stream<'a> {
-    /// The next token parsed in the same pass as the scan, when it is a
-    /// plain decimal followed by a separator (the common case); otherwise
-    /// `None` with nothing consumed, and the caller takes the token path.
-    #[inline(always)]
-    fn fast_number(&mut self) -> Option<f64> {
-        let b = self.b;
-        let mut i = self.pos;
-        while i < b.len() && is_separator(b[i]) {
-            i += 1;
-        }
-        let (v, end) = crate::formats::text::parse_plain_prefix(b, i)?;
-        if end < b.len() && !is_separator(b[end]) {
-            return None;
-        }
-        self.pos = end;
-        Some(v)
-    }
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<Tok<'a>> {
-        let b = self.b;
-        let mut i = self.pos;
-        loop {
-            match b.get(i) {
-                None => {
-                    self.pos = i;
-                    return None;
-                }
-                Some(&c) if is_separator(c) => i += 1,
-                Some(b';' | b'!') => {
-                    while i < b.len() && b[i] != b'\n' && b[i] != b'\r' {
-                        i += 1;
-                    }
-                }
-                Some(_) => break,
-            }
-        }
-        let start = i;
-        while i < b.len() && !is_separator(b[i]) && b[i] != b';' && b[i] != b'!' {
-            i += 1;
-        }
-        self.pos = i;
-        Some(Tok {
-            bytes: &b[start..i],
-            at: start,
-        })
-    }
-
-    fn location(&self, at: usize) -> Location {
-        let (line, col) = line_col(self.b, at);
-        Location::at(line, col)
-    }
-
-    /// Line of the next token (or of the end of the file).
-    fn next_line(&self) -> usize {
-        let at = self.clone().next().map_or(self.b.len(), |t| t.at);
-        line_col(self.b, at).0
-    }
-
-    fn end_location(&self) -> Location {
-        Location::line(line_col(self.b, self.b.len()).0)
-    }
-
-    fn count_remaining(&self) -> usize {
-        let mut c = self.clone();
-        let mut n = 0;
-        while c.next().is_some() {
-            n += 1;
-        }
-        n
-    }
-}
-
-/// The next number of the stream (decimal comma allowed).
-fn number(src: &Source<'_>, toks: &mut Stream<'_>, what: &dyn Fn() -> String) -> Result<f64, ParseError> {
-    match toks.next() {
-        None => Err(src.invalid(toks.end_location(), what(), "end of file")),
-        Some(t) => parse_number(t.bytes).ok_or_else(|| bad(src, toks, &t, what())),
-    }
-}
-
-fn bad(src: &Source<'_>, toks: &Stream<'_>, t: &Tok<'_>, what: String) -> ParseError {
-    let s = String::from_utf8_lossy(t.bytes);
-    let found = if s.chars().count() > 40 {
-        format!("`{}...`", s.chars().take(40).collect::<String>())
-    } else {
-        format!("`{s}`")
-    };
-    src.invalid(toks.location(t.at), what, found)
-}
-
-/// Where the `i`-th token from `toks` starts.
-fn nth_location(toks: &Stream<'_>, i: usize) -> Location {
-    let mut t = toks.clone();
-    for _ in 0..i {
-        t.next();
-    }
-    match t.next() {
-        Some(tok) => toks.location(tok.at),
-        None => t.end_location(),
-    }
-}
-
-fn check_range(src: &Source<'_>, v: &[f64], toks: &Stream<'_>, what: &str, hi: f64) -> Result<(), ParseError> {
-    match v.iter().position(|&a| !(-ANGLE_EPS..=hi + ANGLE_EPS).contains(&a)) {
-        None => Ok(()),
-        Some(i) => Err(src.invalid(
-            nth_location(toks, i),
-            format!("{what} angles in [0, {hi}] degrees"),
-            format!("{what} angle #{} = {}", i + 1, v[i]),
-        )),
     }
 }
 
