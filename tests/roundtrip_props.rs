@@ -73,8 +73,8 @@ prop_compose! {
         sets in prop::collection::vec(lamp_set(), 1..4),
         relative in prop::bool::ANY,
     ) -> Luminaire {
-        let gap = |i: usize| if tiny && i % 3 == 0 { 2e-6 + seed[i] * 1e-6 } else { 0.5 + seed[i] * 10.0 };
-        let g_gaps: Vec<f64> = (0..n_g - 1).map(|i| gap(i)).collect();
+        let gap = |i: usize| if tiny && i.is_multiple_of(3) { 2e-6 + seed[i] * 1e-6 } else { 0.5 + seed[i] * 10.0 };
+        let g_gaps: Vec<f64> = (0..n_g - 1).map(gap).collect();
         let gamma = angles_from(&g_gaps, seed[50] * 10.0, None);
         let gamma: Vec<f64> = if gamma[gamma.len() - 1] > 180.0 { angles_from(&g_gaps, 0.0, Some(180.0)) } else { gamma };
         let (lo, hi) = sym.stored_range();

@@ -153,7 +153,7 @@ pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<Str
     }
     let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut note = (moved > 0).then(|| format!("{moved} value(s) just above {MAX_CD:e} cd set to it"));
-    if peak > 0.0 && peak < MIN_PEAK_CD && peak >= MIN_PEAK_CD * (1.0 - RANGE_SNAP) {
+    if (MIN_PEAK_CD * (1.0 - RANGE_SNAP)..MIN_PEAK_CD).contains(&peak) {
         // A few ulps more, so that rounding cannot leave the new peak a hair below the bound.
         let k = MIN_PEAK_CD / peak * (1.0 + 4.0 * f64::EPSILON);
         cd.iter_mut().for_each(|v| *v *= k);

@@ -688,6 +688,17 @@ fn type_c(
     })
 }
 
+/// What follows the first header record: the ballast record (or its
+/// defaults), the angle lists and the raw candela values.
+struct Body {
+    ballast: (f64, f64, f64),
+    v_start: usize,
+    h_start: usize,
+    vertical: Vec<f64>,
+    horizontal: Vec<f64>,
+    cd: Vec<f64>,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -714,15 +725,4 @@ mod tests {
         assert_eq!(tilt_value(b"TILTED"), None);
         assert_eq!(tilt_value(b"[TILT] x"), None);
     }
-}
-
-/// What follows the first header record: the ballast record (or its
-/// defaults), the angle lists and the raw candela values.
-struct Body {
-    ballast: (f64, f64, f64),
-    v_start: usize,
-    h_start: usize,
-    vertical: Vec<f64>,
-    horizontal: Vec<f64>,
-    cd: Vec<f64>,
 }
