@@ -265,9 +265,11 @@ pub fn summary(lum: &Luminaire) -> Summary {
     } else {
         lum.declared.lamp_flux_lm.filter(|&v| v > 0.0)
     };
-    let ratio = |x: f64| lamp.map(|l| x / l);
+    // A ratio to a declared flux is reported only when it is a number: a
+    // file may declare a flux so small (1e-320 lm) that the ratio overflows.
+    let ratio = |x: f64| lamp.map(|l| x / l).filter(|r| r.is_finite());
     let declared = lum.declared.luminaire_flux_lm.filter(|&v| v > 0.0);
-    let flux_ratio = declared.map(|dcl| flux.total_lm / dcl);
+    let flux_ratio = declared.map(|dcl| flux.total_lm / dcl).filter(|r| r.is_finite());
     let mut warnings = Vec::new();
     if let (Some(r), Some(dcl)) = (flux_ratio, declared) {
         if (r - 1.0).abs() > FLUX_MISMATCH {

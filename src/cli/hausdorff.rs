@@ -94,6 +94,13 @@ pub fn run(a: HausdorffArgs) -> anyhow::Result<i32> {
             tb.len(),
             seconds
         )?;
+        if !(h.a_to_b.converged && h.b_to_a.converged) {
+            writeln!(
+                out,
+                "partial: bound not reached (refinement stopped after {} queries per direction; tolerance {tol})",
+                photosolid::metrics::hausdorff::MAX_REFINEMENT_QUERIES
+            )?;
+        }
     }
     Ok(0)
 }

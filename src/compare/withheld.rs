@@ -123,6 +123,8 @@ pub(super) fn compare_withheld(
                     mean,
                     rms,
                     queries: dist_all.len(),
+                    // Exact point-to-triangle distances: nothing left to refine.
+                    converged: true,
                 },
                 mean,
                 rms,

@@ -5,11 +5,14 @@
 //! nothing downstream looks at file details again. Writers take a
 //! `Luminaire` and return text; [`save`] writes it atomically.
 
+pub mod angles;
+pub mod files;
 pub mod ies;
 pub mod ldt;
+pub mod roundtrip;
 pub mod text;
 
-use std::io::Write;
+pub use files::{write_atomic, write_atomic_with};
 use std::path::Path;
 
 use crate::error::{Error, ErrorKind, Location, ParseError, Result};
@@ -61,18 +64,17 @@ pub fn load(path: impl AsRef<Path>) -> Result<Luminaire> {
 /// [`load`] with options.
 pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire> {
     let path = path.as_ref();
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(ParseError {
+    let bytes = files::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
+        files::ReadCappedError::Io(e) => Error::io(path, e),
+        other => ParseError {
             path: path.to_path_buf(),
             location: Location::line(0),
             kind: ErrorKind::Invalid,
-            expected: format!("a photometric file of at most {MAX_FILE_BYTES} bytes"),
-            found: format!("{} bytes", meta.len()),
+            expected: format!("a regular photometric file of at most {MAX_FILE_BYTES} bytes"),
+            found: other.to_string(),
         }
-        .into());
-    }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+        .into(),
+    })?;
     let by_extension = Format::from_extension(path);
     let format = by_extension.unwrap_or_else(|| sniff(&bytes));
     parse(&bytes, path, format, opts).map_err(|mut e| {
@@ -133,32 +135,6 @@ pub fn sniff(bytes: &[u8]) -> Format {
     }
 }
 
-/// Write `contents` to `path` atomically: a temporary file in the same
-/// directory is written, flushed and renamed over the target, so a reader
-/// never sees a half-written file.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::io(path, e));
-    }
-    Ok(())
-}
-
 /// Options of the writers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct WriteOptions {
@@ -205,4 +181,49 @@ pub fn collect_files(path: &std::path::Path, out: &mut Vec<std::path::PathBuf>) 
         out.push(path.to_path_buf());
     }
     Ok(())
+}
+
+/// Relative distance outside the model's intensity range ([`MAX_CD`],
+/// [`MIN_PEAK_CD`]) within which a reader moves values onto the range's end
+/// (with a warning) instead of refusing them: the writers print values with
+/// 8 to 15 significant digits, so a value written at the end of the range can
+/// read back that far outside it.
+///
+/// [`MAX_CD`]: crate::model::MAX_CD
+/// [`MIN_PEAK_CD`]: crate::model::MIN_PEAK_CD
+pub const RANGE_SNAP: f64 = 1e-6;
+
+/// Bring intensities read from a file into the model's range: values within
+/// [`RANGE_SNAP`] (relative) outside it are moved onto its end, a peak just
+/// below [`crate::model::MIN_PEAK_CD`] by scaling the whole table (the
+/// shape is kept); a table of round-off only becomes zero. Returns the warning text when something moved, or the
+/// offending index and why when the table is out of range
+/// ([`crate::model::check_intensities`]).
+pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<String>, (usize, String)> {
+    use crate::model::{check_intensities, MAX_CD, MIN_PEAK_CD};
+    // Order: snap onto the ends first, so a written minimum peak is not flushed.
+    let mut moved = 0usize;
+    for v in cd.iter_mut() {
+        if v.is_finite() && v.abs() > MAX_CD && v.abs() <= MAX_CD * (1.0 + RANGE_SNAP) {
+            *v = MAX_CD.copysign(*v);
+            moved += 1;
+        }
+    }
+    let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut note = (moved > 0).then(|| format!("{moved} value(s) just above {MAX_CD:e} cd set to it"));
+    if (MIN_PEAK_CD * (1.0 - RANGE_SNAP)..MIN_PEAK_CD).contains(&peak) {
+        // A few ulps more, so that rounding cannot leave the new peak a hair below the bound.
+        let k = MIN_PEAK_CD / peak * (1.0 + 4.0 * f64::EPSILON);
+        cd.iter_mut().for_each(|v| *v *= k);
+        note = Some(format!(
+            "the peak {peak:e} cd, just below {MIN_PEAK_CD:e} cd, scaled up to it"
+        ));
+    }
+    if crate::model::flush_round_off(cd) {
+        note = Some(format!(
+            "every value is below {MIN_PEAK_CD:e} cd (round-off): read as an all-zero distribution"
+        ));
+    }
+    check_intensities(cd)?;
+    Ok(note)
 }

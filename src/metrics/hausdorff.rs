@@ -54,6 +54,10 @@ pub struct OneSided {
     pub rms: f64,
     /// Distance queries made (vertices plus refinement points).
     pub queries: usize,
+    /// Whether refinement reached the requested tolerance; false when it
+    /// stopped at [`MAX_REFINEMENT_QUERIES`] ("partial: bound not reached":
+    /// `bound` is then larger than the tolerance asked for).
+    pub converged: bool,
 }
 
 /// Symmetric Hausdorff distance with both one-sided parts.
@@ -69,8 +73,11 @@ pub struct Hausdorff {
     pub b_to_a: OneSided,
 }
 
-/// Refinement stops after this many extra queries per direction, reporting the bound reached.
-pub const MAX_REFINEMENT_QUERIES: usize = 20_000_000;
+/// Refinement stops after this many extra queries per direction (about a
+/// second of work on one core), reporting the bound reached and
+/// [`OneSided::converged`] = false: a tolerance of 0 cannot be reached and
+/// must not run on for minutes.
+pub const MAX_REFINEMENT_QUERIES: usize = 2_000_000;
 
 #[derive(Debug, Clone, Copy)]
 struct Cell {
@@ -225,9 +232,14 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
     let mut queries = queries + centroid_terms.len();
     let tol = tolerance.max(0.0);
     let mut extra = 0usize;
+    let mut converged = true;
     let ub_final = loop {
         let Some(top) = heap.peek() else { break lb };
-        if top.ub <= lb + tol || extra >= MAX_REFINEMENT_QUERIES {
+        if top.ub <= lb + tol {
+            break top.ub.max(lb);
+        }
+        if extra >= MAX_REFINEMENT_QUERIES {
+            converged = false;
             break top.ub.max(lb);
         }
         let c = heap.pop().expect("peeked");
@@ -277,6 +289,7 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
         mean,
         rms,
         queries,
+        converged,
     }
 }
 

@@ -8,10 +8,16 @@
 //!
 //! # What is guaranteed
 //! A [`Distribution`] always holds:
-//! - γ angles: at least one, finite, strictly ascending, inside [0, 180];
-//! - C angles: at least one, finite, strictly ascending, inside the range
-//!   its [`Symmetry`] stores (see [`Symmetry::stored_range`]);
-//! - one finite intensity in cd per (C, γ) pair, C-major (γ fastest).
+//! - γ angles: at least one, finite, ascending by more than [`ANGLE_EPS`]
+//!   (so no writer's rounding can merge two), inside [0, 180];
+//! - C angles: the same, inside the range its [`Symmetry`] stores (see
+//!   [`Symmetry::stored_range`]); C90-C270 data has a plane between 90 and 270;
+//! - one intensity in cd per (C, γ) pair, C-major (γ fastest), inside the
+//!   model's valid range ([`check_intensities`]): finite, |v| ≤ [`MAX_CD`],
+//!   a peak of 0 or at least [`MIN_PEAK_CD`] (a table whose every value is
+//!   below it is round-off, and is stored as zero). Every derived quantity (flux,
+//!   averages, normalised values) is then finite; [`Distribution::scaled`]
+//!   keeps the range or fails.
 //!
 //! Intensity is zero outside the measured γ range (hemisphere or partial
 //! data); nothing is extrapolated. Negative values may be present when a file
@@ -23,6 +29,60 @@ use crate::error::ModelError;
 
 /// Tolerance (degrees) under which two angles are the same angle.
 pub const ANGLE_EPS: f64 = 1e-6;
+
+/// Largest intensity magnitude (cd) of the model. The brightest searchlights
+/// reach about 1e9 cd; the bound leaves room for that while keeping every
+/// derived sum (flux ≤ 4π × this, trapezoid and pole averages, squared
+/// errors of fits) far from `f64` overflow.
+pub const MAX_CD: f64 = 1e12;
+
+/// Smallest non-zero peak (cd) of the model: the largest |value| is either 0
+/// (an all-zero distribution) or at least this. Normalising by the peak
+/// (textures, fits, solids) then stays below 1e21 and never divides by a
+/// subnormal number. A table whose every |value| is below it holds only
+/// round-off (e.g. cos 90° × 1e-6 cd = 6e-23 cd) and is stored as all zero
+/// ([`flush_round_off`]).
+pub const MIN_PEAK_CD: f64 = 1e-9;
+
+/// Check a table of intensities against the model's valid range: every value
+/// finite with |v| ≤ [`MAX_CD`], and the largest |v| either 0 or at least
+/// [`MIN_PEAK_CD`] (run [`flush_round_off`] first to accept round-off tables).
+/// On failure returns the index of the offending value and why.
+pub fn check_intensities(cd: &[f64]) -> Result<(), (usize, String)> {
+    let mut peak = (0.0f64, 0usize);
+    for (i, &v) in cd.iter().enumerate() {
+        if !v.is_finite() {
+            return Err((i, format!("{v} is not finite")));
+        }
+        if v.abs() > MAX_CD {
+            return Err((i, format!("|{v}| cd exceeds the model's bound of {MAX_CD:e} cd")));
+        }
+        if v.abs() > peak.0 {
+            peak = (v.abs(), i);
+        }
+    }
+    if peak.0 > 0.0 && peak.0 < MIN_PEAK_CD {
+        return Err((
+            peak.1,
+            format!(
+                "the peak |{}| cd is below the model's smallest non-zero peak {MIN_PEAK_CD:e} cd",
+                peak.0
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Set every value to 0 when all |values| are below [`MIN_PEAK_CD`] (the
+/// table is round-off); returns whether it did. NaN is left for
+/// [`check_intensities`] to refuse.
+pub fn flush_round_off(cd: &mut [f64]) -> bool {
+    let round_off = cd.iter().all(|v| v.abs() < MIN_PEAK_CD) && cd.iter().any(|&v| v != 0.0);
+    if round_off {
+        cd.iter_mut().for_each(|v| *v = 0.0);
+    }
+    round_off
+}
 
 /// Which symmetry the stored C-planes rely on.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -186,10 +246,15 @@ fn check_ascending(axis: &'static str, v: &[f64], lo: f64, hi: f64) -> Result<()
                 reason: format!("angle #{} = {a} is outside [{lo}, {hi}]", i + 1),
             });
         }
-        if i > 0 && a <= v[i - 1] {
+        if i > 0 && a <= v[i - 1] + ANGLE_EPS {
             return Err(ModelError::Angles {
                 axis,
-                reason: format!("not strictly ascending: angle #{} = {} follows {}", i + 1, a, v[i - 1]),
+                reason: format!(
+                    "not strictly ascending by more than {ANGLE_EPS} degrees: angle #{} = {} follows {}",
+                    i + 1,
+                    a,
+                    v[i - 1]
+                ),
             });
         }
     }
@@ -241,12 +306,22 @@ impl Distribution {
                 gamma.len()
             )));
         }
-        if let Some(i) = cd.iter().position(|v| !v.is_finite()) {
+        let mut cd = cd;
+        flush_round_off(&mut cd);
+        if let Err((i, why)) = check_intensities(&cd) {
             return Err(ModelError::Intensities(format!(
-                "value at C = {}, gamma = {} is not finite",
+                "value at C = {}, gamma = {}: {why}",
                 c[i / gamma.len()],
                 gamma[i % gamma.len()]
             )));
+        }
+        if symmetry == Symmetry::C90C270 && c.len() < 3 {
+            return Err(ModelError::Angles {
+                axis: "C",
+                reason: "C90-C270 symmetry needs a plane between 90 and 270: the planes 90 and 270 alone \
+                         both lie on its mirror plane, so the half circle it stores is not measured"
+                    .into(),
+            });
         }
         Ok(Self { c, gamma, cd, symmetry })
     }
@@ -317,7 +392,9 @@ impl Distribution {
         self.max().0
     }
 
-    /// The same distribution with every value multiplied by `factor` (finite).
+    /// The same distribution with every value multiplied by `factor` (finite),
+    /// refused when a scaled value exceeds the model's range ([`check_intensities`]);
+    /// a result that is all round-off becomes zero ([`flush_round_off`]).
     pub fn scaled(&self, factor: f64) -> Result<Self, ModelError> {
         if !factor.is_finite() {
             return Err(ModelError::Parameter {
@@ -328,6 +405,12 @@ impl Distribution {
         }
         let mut d = self.clone();
         d.cd.iter_mut().for_each(|v| *v *= factor);
+        flush_round_off(&mut d.cd);
+        check_intensities(&d.cd).map_err(|(_, why)| ModelError::Parameter {
+            name: "scale",
+            value: factor.to_string(),
+            reason: format!("the scaled distribution leaves the model's range: {why}"),
+        })?;
         Ok(d)
     }
 
@@ -431,7 +514,9 @@ impl Distribution {
         // A half or quadrant can only be stored when its boundary planes exist.
         let has = |c: f64| get(c).is_some();
         let s02 = has(0.0) && has(180.0) && holds(&|c| 360.0 - c);
-        let s39 = has(90.0) && has(270.0) && holds(&|c| 180.0 - c);
+        // C90-C270 also needs a plane strictly between its mirror halves (see `new`).
+        let between = full.iter().any(|p| p.0 > 90.0 + ANGLE_EPS && p.0 < 270.0 - ANGLE_EPS);
+        let s39 = has(90.0) && has(270.0) && between && holds(&|c| 180.0 - c);
         match (s02, s39) {
             (true, true) => Symmetry::Quadrant,
             (true, false) => Symmetry::C0C180,

@@ -5,7 +5,10 @@ pub mod field;
 pub mod frame;
 pub mod luminaire;
 
-pub use distribution::{periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS};
+pub use distribution::{
+    check_intensities, flush_round_off, periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS,
+    MAX_CD, MIN_PEAK_CD,
+};
 pub use field::{Borrowed, IntensityField};
 pub use luminaire::{
     Declared, Dimensions, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Tilt, TiltTable,

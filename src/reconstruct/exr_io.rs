@@ -20,7 +20,7 @@
 //! Writes are atomic: the file is written next to the target under a
 //! temporary name, then renamed over it.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use exr::prelude::{
     AnyChannel, AnyChannels, AttributeValue, Encoding, FlatSamples, Image, Layer, LayerAttributes, SmallVec, Text,
@@ -123,25 +123,12 @@ pub fn write_layer(
     );
     let image = Image::from_layer(layer);
 
-    let tmp = temp_path(path);
-    let result = image.write().to_file(&tmp).map_err(|e| match e {
-        exr::error::Error::Io(io) => Error::io(path, io),
-        other => Error::Unsupported(format!("{}: cannot encode OpenEXR: {other}", path.display())),
-    });
-    let result = result.and_then(|()| std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e)));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
-/// A temporary name in the same directory as `path`.
-pub(crate) fn temp_path(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+    crate::formats::write_atomic_with(path, |f| {
+        image.write().to_buffered(f).map_err(|e| match e {
+            exr::error::Error::Io(io) => io,
+            other => std::io::Error::other(format!("cannot encode OpenEXR: {other}")),
+        })
+    })
 }
 
 /// Read a texture written by [`write_exr`]: the texture and its metadata.

@@ -138,6 +138,18 @@ pub fn to_text(c: &Comparison) -> String {
         "lengths in {}; H certified: the true value lies in [H, H + bound]; radial max is the radial bound (>= H); * = Pareto (time, bytes, H)",
         c.units
     );
+    for r in &c.results {
+        let partial = r.recon_to_ref.is_some_and(|h| !h.converged) || !r.ref_to_recon.converged;
+        if partial {
+            let _ = writeln!(
+                s,
+                "{}: partial: bound not reached (refinement cap); H lies in [{}, {}]",
+                r.name,
+                r.hausdorff_cd,
+                r.hausdorff_cd + r.hausdorff_bound_cd
+            );
+        }
+    }
     s
 }
 

@@ -17,6 +17,11 @@ use super::{stored_radius, Units};
 use crate::error::ModelError;
 use crate::model::{periodic_widths, Distribution, IntensityField, ANGLE_EPS};
 
+/// Largest number of grid points (C-planes × γ angles) a solid grid may
+/// hold: about 2^24, i.e. 33 M triangles, several GB of mesh. A larger
+/// `--factor` is refused before anything is allocated.
+pub const MAX_GRID_POINTS: usize = 1 << 24;
+
 /// The C x γ angles (degrees) a reconstruction is sampled at.
 ///
 /// Invariants: C ascending in [0, 360), at least 3 angles, every gap on the
@@ -96,6 +101,10 @@ impl SolidGrid {
     /// angles is cut into `factor` equal steps, and the poles are added when
     /// the γ range is partial. A distribution with fewer than 4 full-circle
     /// planes (rotational, single plane) gets 72 planes (5°) before refining.
+    ///
+    /// # Errors
+    /// [`ModelError::Parameter`] when `factor` is 0 or the grid would exceed
+    /// [`MAX_GRID_POINTS`] (checked before anything is allocated).
     pub fn refined(d: &Distribution, factor: usize) -> Result<Self, ModelError> {
         if factor == 0 {
             return Err(ModelError::Parameter {
@@ -107,6 +116,22 @@ impl SolidGrid {
         let mut knots: Vec<f64> = d.full_planes().iter().map(|p| p.0).collect();
         if knots.len() < 4 {
             knots = (0..72).map(|k| k as f64 * 5.0).collect();
+        }
+        let mut g_count = d.gamma_angles().len() + 1;
+        g_count += usize::from(d.gamma_angles()[0] > ANGLE_EPS)
+            + usize::from(*d.gamma_angles().last().unwrap() < 180.0 - ANGLE_EPS);
+        let points = (knots.len() as u128) * (factor as u128) * (g_count as u128) * (factor as u128);
+        if points > MAX_GRID_POINTS as u128 {
+            return Err(ModelError::Parameter {
+                name: "factor",
+                value: factor.to_string(),
+                reason: format!(
+                    "the refined grid would hold about {points} points ({} C-planes x {} gamma angles, each x {factor}); \
+                     at most {MAX_GRID_POINTS} are allowed",
+                    knots.len(),
+                    g_count
+                ),
+            });
         }
         let mut c = Vec::with_capacity(knots.len() * factor);
         for (i, &a) in knots.iter().enumerate() {

@@ -22,12 +22,14 @@
 
 mod read;
 mod stream;
+mod tilt;
 pub mod type_ab;
 mod write;
 
 use serde::Serialize;
 
 pub use read::read;
+pub use tilt::MAX_TILT_FILE_BYTES;
 pub use write::{type_c_planes, write};
 
 /// One text line before `TILT=`, kept for lossless write-back.

@@ -1,16 +1,17 @@
 //! The IES reader: text header, TILT, one number stream, Type C symmetry.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::error::{Location, ParseError, Warning};
 use crate::formats::text::Source;
-use crate::formats::ReadOptions;
+use crate::formats::{angles, ReadOptions};
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Symmetry,
-    Tilt, TiltTable, ANGLE_EPS,
+    Tilt, ANGLE_EPS,
 };
 
 use super::stream::Stream;
+use super::tilt::{read_tilt_file, read_tilt_table};
 use super::{type_ab, IesHeader, IesLabel};
 
 const FEET_TO_M: f64 = 0.3048;
@@ -314,6 +315,13 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         blpf = 1.0;
     }
     let scale = header.multiplier * bf * blpf;
+    if !(scale.is_normal() && scale > 0.0) {
+        return Err(src.invalid(
+            Location::line(ballast_line),
+            "candela multiplier x ballast factor x ballast-lamp factor a positive normal number",
+            format!("{} x {bf} x {blpf} = {scale}", header.multiplier),
+        ));
+    }
     let extra = tokens.count_remaining();
     if extra > 0 {
         warnings.push(Warning::at(
@@ -327,12 +335,17 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
             *v *= scale;
         }
     }
-    if cd.iter().any(|v| !v.is_finite()) {
-        return Err(src.invalid(
-            Location::line(ballast_line),
-            "candela values that stay finite after the multipliers",
-            format!("an overflow with multiplier x ballast factor = {scale}"),
-        ));
+    match crate::formats::into_model_range(&mut cd) {
+        Ok(None) => {}
+        Ok(Some(note)) => warnings.push(Warning::at(ballast_line, "range-snapped", note)),
+        Err((i, why)) => {
+            let (loc, _) = tokens.locate(h_start + nh + i);
+            return Err(src.invalid(
+                loc,
+                format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
+                why,
+            ));
+        }
     }
 
     // Strictly ascending angle lists (or a warned repair).
@@ -510,7 +523,7 @@ fn token_location(at: At<'_, '_>, i: usize) -> (Location, String) {
 /// `planes`: the angles index planes of `stride` values (horizontal), or rows
 /// inside each of `stride` planes (vertical).
 #[allow(clippy::too_many_arguments)]
-fn check_or_repair(
+pub(super) fn check_or_repair(
     src: &Source<'_>,
     start: At<'_, '_>,
     what: &str,
@@ -521,13 +534,12 @@ fn check_or_repair(
     opts: &ReadOptions,
     warnings: &mut Vec<Warning>,
 ) -> Result<(), ParseError> {
-    let bad = match angles.windows(2).position(|w| w[1] <= w[0]) {
-        None => return Ok(()),
-        Some(i) => i + 1,
+    let Some(bad) = angles::first_disorder(angles) else {
+        return Ok(());
     };
     if !opts.repair {
         let (loc, found) = token_location(start, bad);
-        let why = if angles[bad] == angles[bad - 1] {
+        let why = if angles::is_duplicate(angles[bad], angles[bad - 1]) {
             "duplicate"
         } else {
             "unsorted"
@@ -545,25 +557,15 @@ fn check_or_repair(
         ));
     }
     let n = angles.len();
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| angles[a].total_cmp(&angles[b]));
-    order.dedup_by(|b, a| angles[*b] == angles[*a]);
+    let order = angles::repair_order(angles);
     let dropped = n - order.len();
     let new_angles: Vec<f64> = order.iter().map(|&i| angles[i]).collect();
-    let mut new_cd = Vec::with_capacity(order.len() * stride);
-    if planes {
-        // Planes of `stride` (vertical count) values each.
-        for &i in &order {
-            new_cd.extend_from_slice(&cd[i * stride..(i + 1) * stride]);
-        }
+    // Planes of `stride` (vertical count) values each, or rows inside each of `stride` planes of `n` values.
+    let new_cd = if planes {
+        angles::reorder_planes(cd, stride, &order)
     } else {
-        // Rows inside each of `stride` planes of `n` values.
-        for p in 0..stride {
-            for &i in &order {
-                new_cd.push(cd[p * n + i]);
-            }
-        }
-    }
+        angles::reorder_rows(cd, n, &order)
+    };
     warnings.push(Warning::at(
         start.0.line_of(start.1),
         "angles-repaired",
@@ -693,109 +695,15 @@ fn type_c(
     })
 }
 
-/// Parse a tilt table (`geometry N angles... multipliers...`) from `tokens`.
-fn read_tilt_table(
-    src: &Source<'_>,
-    tokens: &mut Stream<'_>,
-    remaining: usize,
-    opts: &ReadOptions,
-    warnings: &mut Vec<Warning>,
-) -> Result<TiltTable, ParseError> {
-    let geometry = tokens.integer(src, "tilt lamp-to-luminaire geometry (1, 2 or 3)", 1, 3)? as u8;
-    let n_idx = tokens.index();
-    let max_pairs = remaining.saturating_sub(2) / 2;
-    let n = tokens.integer(src, "number of tilt angle / multiplier pairs", 1, i64::MAX)? as u64;
-    if n > max_pairs as u64 {
-        let (loc, found) = tokens.locate(n_idx);
-        return Err(src.invalid(
-            loc,
-            format!("a number of tilt pairs that fits the file (at most {max_pairs})"),
-            found,
-        ));
-    }
-    let n = n as usize;
-    let a_start = tokens.index();
-    let mut angles = Vec::with_capacity(n);
-    tokens.numbers_into(src, n, &mut angles, &|i| format!("tilt angle #{} of {n}", i + 1))?;
-    let mut multipliers = Vec::with_capacity(n);
-    tokens.numbers_into(src, n, &mut multipliers, &|i| {
-        format!("tilt multiplier #{} of {n}", i + 1)
-    })?;
-    let mut m = multipliers;
-    check_or_repair(
-        src,
-        (&*tokens, a_start),
-        "tilt",
-        &mut angles,
-        1,
-        &mut m,
-        true,
-        opts,
-        warnings,
-    )?;
-    Ok(TiltTable {
-        geometry,
-        angles,
-        multipliers: m,
-    })
-}
-
-/// Resolve `TILT=<file>` next to the photometric file and parse it. The
-/// non-standard `TILT=FILE name` form is accepted (warned) when no file is
-/// literally called `FILE name`.
-fn read_tilt_file(
-    src: &Source<'_>,
-    line: usize,
-    value: &str,
-    opts: &ReadOptions,
-    warnings: &mut Vec<Warning>,
-) -> Result<(String, TiltTable), ParseError> {
-    let dir = src.path.parent().unwrap_or(Path::new(""));
-    let mut name = value.to_string();
-    let mut full: PathBuf = dir.join(&name);
-    // Byte-wise test: `value` may hold multi-byte characters at any position.
-    if !full.is_file() && value.len() > 5 && value.as_bytes()[..4].eq_ignore_ascii_case(b"FILE") {
-        // The first four bytes are ASCII, so byte 4 is a character boundary.
-        let rest = value[4..].trim_start();
-        if !rest.is_empty() && rest.len() < value.len() - 4 {
-            warnings.push(Warning::at(
-                line,
-                "tilt-file-keyword",
-                format!("non-standard `TILT=FILE {rest}`: read as `TILT={rest}`"),
-            ));
-            name = rest.to_string();
-            full = dir.join(&name);
-        }
-    }
-    let bytes = std::fs::read(&full).map_err(|e| {
-        src.invalid(
-            Location::line(line),
-            format!("the tilt file `{}` named by TILT=", full.display()),
-            format!("it cannot be read: {e}"),
-        )
-    })?;
-    if bytes.len() as u64 > crate::formats::MAX_FILE_BYTES {
-        return Err(src.invalid(Location::line(line), "a tilt file of reasonable size", "a huge file"));
-    }
-    let tsrc = Source::new(&full, &bytes).map_err(|mut e| {
-        e.location.line = e.location.line.max(1);
-        e
-    })?;
-    let mut tokens = Stream::new(tsrc.bytes, 0, 1);
-    let remaining = tokens.count_remaining();
-    let table = read_tilt_table(&tsrc, &mut tokens, remaining, opts, warnings)?;
-    let extra = tokens.count_remaining();
-    if extra > 0 {
-        warnings.push(Warning::new(
-            "tilt-extra-values",
-            format!(
-                "{extra} extra token(s) in tilt file `{}` from line {} ignored",
-                full.display(),
-                tokens.line_of(tokens.index())
-            ),
-        ));
-    }
-    Ok((name, table))
+/// What follows the first header record: the ballast record (or its
+/// defaults), the angle lists and the raw candela values.
+struct Body {
+    ballast: (f64, f64, f64),
+    v_start: usize,
+    h_start: usize,
+    vertical: Vec<f64>,
+    horizontal: Vec<f64>,
+    cd: Vec<f64>,
 }
 
 #[cfg(test)]
@@ -824,15 +732,4 @@ mod tests {
         assert_eq!(tilt_value(b"TILTED"), None);
         assert_eq!(tilt_value(b"[TILT] x"), None);
     }
-}
-
-/// What follows the first header record: the ballast record (or its
-/// defaults), the angle lists and the raw candela values.
-struct Body {
-    ballast: (f64, f64, f64),
-    v_start: usize,
-    h_start: usize,
-    vertical: Vec<f64>,
-    horizontal: Vec<f64>,
-    cd: Vec<f64>,
 }

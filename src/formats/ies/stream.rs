@@ -52,7 +52,7 @@ impl<'a> Stream<'a> {
     /// separator), computed without scanning: the size check before
     /// allocating needs no exact count.
     pub fn max_remaining(&self) -> usize {
-        (self.b.len().saturating_sub(self.pos) + 1) / 2
+        self.b.len().saturating_sub(self.pos).div_ceil(2)
     }
 
     /// Index of the next token.

@@ -2,7 +2,7 @@
 
 use std::fmt::Write as _;
 
-use crate::model::{Luminaire, PhotometricType, Symmetry};
+use crate::model::{Luminaire, PhotometricType, Symmetry, ANGLE_EPS};
 
 use super::{IesLabel, IesWriteVersion};
 
@@ -39,7 +39,10 @@ const WRAP: usize = 200;
 /// when that product is 1 they are written exactly the same way (shortest
 /// round trip, so reading back gives identical values); otherwise the quotient
 /// is first rounded to 15 significant digits, and reading back reproduces the
-/// value within a relative 1e-14. Magnitudes outside [1e-5, 1e15) use exponent
+/// value within a relative 1e-14. When the header's factors cannot
+/// represent the values (their product is zero, subnormal or makes a
+/// quotient overflow), multiplier and ballast factor are written as 1 and
+/// the values as absolute candela. Magnitudes outside [1e-5, 1e15) use exponent
 /// notation (`1.5e-7`).
 pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
     let mut w = Writer {
@@ -140,15 +143,18 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
         }
         None => {
             let count: f64 = lum.lamp_sets.iter().map(|s| s.count.abs()).sum();
-            lamps = if count > 0.0 { count } else { 1.0 };
+            let n = if count > 0.0 && count.is_finite() { count } else { 1.0 };
             let flux = lum
                 .declared
                 .lamp_flux_lm
                 .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.flux_lm).sum());
-            lpl = if lum.declared.absolute || flux <= 0.0 {
-                -1.0
+            // A lamp count so small that flux / count overflows is written as one lamp.
+            (lamps, lpl) = if lum.declared.absolute || flux <= 0.0 || !flux.is_finite() {
+                (n, -1.0)
+            } else if (flux / n).is_finite() {
+                (n, flux / n)
             } else {
-                flux / lamps
+                (1.0, flux)
             };
             mult = 1.0;
             units = 2.0;
@@ -164,14 +170,28 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
                 IesWriteVersion::Lm63_2002 => 1.0,
                 IesWriteVersion::Lm63_2019 => 1.00001,
             };
-            watts = lum
+            let w = lum
                 .declared
                 .input_watts
                 .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.watts).sum());
+            // Summed lamp-set wattages can overflow; an unknown wattage is written as 0.
+            watts = if w.is_finite() { w } else { 0.0 };
         }
     }
     // The reader multiplies by multiplier × ballast factor (a non-positive ballast factor reads as 1).
-    let scale = mult * if bf > 0.0 { bf } else { 1.0 };
+    let mut scale = mult * if bf > 0.0 { bf } else { 1.0 };
+    let (mut mult, mut bf) = (mult, bf);
+    let representable = scale.is_normal()
+        && scale > 0.0
+        && planes.iter().all(|&v| {
+            let q = v / scale;
+            q.is_finite() && (q * scale).is_finite()
+        });
+    if !representable {
+        // Values divided by these factors would not print as numbers (an
+        // underflowing product gives NaN): write absolute candela instead.
+        (mult, bf, scale) = (1.0, 1.0, 1.0);
+    }
     for v in [lamps, lpl, mult, vertical.len() as f64, horizontal.len() as f64] {
         w.num(v);
     }
@@ -311,7 +331,9 @@ pub fn type_c_planes(d: &crate::model::Distribution) -> (Vec<f64>, Vec<f64>) {
     let mut h = d.c_angles().to_vec();
     let mut cd = d.intensities().to_vec();
     if d.symmetry() == Symmetry::None {
-        if h[0] > 1e-9 {
+        // A first plane within ANGLE_EPS of 0 is the C0 plane (the reader's
+        // duplicate rule): inserting another would write a duplicate.
+        if h[0] > ANGLE_EPS {
             // No C0 plane: interpolate it across the seam so the file
             // starts at 0 as LM-63 wants.
             let (c_last, c_first) = (h[h.len() - 1], h[0]);

@@ -31,6 +31,7 @@
 //! with at most [`SIGNIFICANT_DIGITS`] significant digits.
 
 mod read;
+mod stream;
 mod write;
 
 pub use read::read;

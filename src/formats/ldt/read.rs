@@ -2,10 +2,11 @@
 
 use std::path::Path;
 
+use super::stream::{bad, check_range, nth_location, number, Stream};
 use super::{formula_plane_count, parse_number, stored_plane_indices, LampSetLayout, LdtHeader};
 use crate::error::{Location, ParseError, Warning};
-use crate::formats::text::{line_col, Line, Lines, Source};
-use crate::formats::{LampSetFlux, ReadOptions};
+use crate::formats::text::{Line, Lines, Source};
+use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{
     Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
     ANGLE_EPS,
@@ -463,7 +464,8 @@ impl<'s, 'a> Reader<'s, 'a> {
             LampSetFlux::First => (flux_first, watts_first),
             LampSetFlux::Sum => (flux_sum, watts_sum),
         };
-        let flux_ok = phi > 0.0 && phi.is_finite();
+        // A subnormal flux would scale every intensity to 0 (or overflow cd/klm × flux).
+        let flux_ok = phi.is_normal() && phi > 0.0;
         if !flux_ok {
             self.warn(
                 n_line + 1,
@@ -475,20 +477,25 @@ impl<'s, 'a> Reader<'s, 'a> {
         let scale = cfli * phi / 1000.0;
         let mut min = f64::INFINITY;
         let mut negatives = 0usize;
-        let mut finite = scale.is_finite();
         for v in &mut cd {
             if *v < 0.0 {
                 negatives += 1;
                 min = min.min(*v);
             }
             *v *= scale;
-            finite &= v.is_finite();
         }
-        if !finite {
+        let snapped = crate::formats::into_model_range(&mut cd);
+        if let Ok(Some(note)) = &snapped {
+            self.warn(cd_first, "range-snapped", note.clone());
+        }
+        if let Err((i, why)) = snapped {
             return Err(src.invalid(
-                Location::line(n_line + 1),
-                "intensities and lamp flux whose product is a finite candela value",
-                format!("flux {phi} lm × CFLI {cfli} overflows"),
+                Location::line(cd_first),
+                format!(
+                    "intensities whose candela values (cd/klm × flux {phi} lm × CFLI {cfli} / 1000) \
+                     lie in the model's range"
+                ),
+                format!("plane {} of {nstored}, gamma {} of {ng}: {why}", i / ng + 1, i % ng + 1),
             ));
         }
         if negatives > 0 {
@@ -635,153 +642,16 @@ impl<'s, 'a> Reader<'s, 'a> {
     }
 }
 
-/// The number stream from line 27 on: tokens separated by blanks and line
-/// ends, `;` and `!` starting a comment to the end of the line (as
-/// [`crate::formats::text::Tokens`] splits them, with the decimal comma kept
-/// in the token). It tracks only a byte offset; lines and columns are worked
-/// out when an error or warning needs them, which keeps the hot loop lean.
-#[derive(Clone)]
-struct Stream<'a> {
-    b: &'a [u8],
-    pos: usize,
-}
-
-/// A token of a [`Stream`]: its bytes and byte offset.
-struct Tok<'a> {
-    bytes: &'a [u8],
-    at: usize,
-}
-
-#[inline(always)]
-fn is_separator(c: u8) -> bool {
-    matches!(c, b' ' | b'\t' | b'\n' | b'\r' | 0x0B | 0x0C | 0x1A | 0)
-}
-
-impl<'a> Stream<'a> {
-    /// The next token parsed in the same pass as the scan, when it is a
-    /// plain decimal followed by a separator (the common case); otherwise
-    /// `None` with nothing consumed, and the caller takes the token path.
-    #[inline(always)]
-    fn fast_number(&mut self) -> Option<f64> {
-        let b = self.b;
-        let mut i = self.pos;
-        while i < b.len() && is_separator(b[i]) {
-            i += 1;
-        }
-        let (v, end) = crate::formats::text::parse_plain_prefix(b, i)?;
-        if end < b.len() && !is_separator(b[end]) {
-            return None;
-        }
-        self.pos = end;
-        Some(v)
-    }
-
-    #[inline(always)]
-    fn next(&mut self) -> Option<Tok<'a>> {
-        let b = self.b;
-        let mut i = self.pos;
-        loop {
-            match b.get(i) {
-                None => {
-                    self.pos = i;
-                    return None;
-                }
-                Some(&c) if is_separator(c) => i += 1,
-                Some(b';' | b'!') => {
-                    while i < b.len() && b[i] != b'\n' && b[i] != b'\r' {
-                        i += 1;
-                    }
-                }
-                Some(_) => break,
-            }
-        }
-        let start = i;
-        while i < b.len() && !is_separator(b[i]) && b[i] != b';' && b[i] != b'!' {
-            i += 1;
-        }
-        self.pos = i;
-        Some(Tok {
-            bytes: &b[start..i],
-            at: start,
-        })
-    }
-
-    fn location(&self, at: usize) -> Location {
-        let (line, col) = line_col(self.b, at);
-        Location::at(line, col)
-    }
-
-    /// Line of the next token (or of the end of the file).
-    fn next_line(&self) -> usize {
-        let at = self.clone().next().map_or(self.b.len(), |t| t.at);
-        line_col(self.b, at).0
-    }
-
-    fn end_location(&self) -> Location {
-        Location::line(line_col(self.b, self.b.len()).0)
-    }
-
-    fn count_remaining(&self) -> usize {
-        let mut c = self.clone();
-        let mut n = 0;
-        while c.next().is_some() {
-            n += 1;
-        }
-        n
-    }
-}
-
-/// The next number of the stream (decimal comma allowed).
-fn number(src: &Source<'_>, toks: &mut Stream<'_>, what: &dyn Fn() -> String) -> Result<f64, ParseError> {
-    match toks.next() {
-        None => Err(src.invalid(toks.end_location(), what(), "end of file")),
-        Some(t) => parse_number(t.bytes).ok_or_else(|| bad(src, toks, &t, what())),
-    }
-}
-
-fn bad(src: &Source<'_>, toks: &Stream<'_>, t: &Tok<'_>, what: String) -> ParseError {
-    let s = String::from_utf8_lossy(t.bytes);
-    let found = if s.chars().count() > 40 {
-        format!("`{}...`", s.chars().take(40).collect::<String>())
-    } else {
-        format!("`{s}`")
-    };
-    src.invalid(toks.location(t.at), what, found)
-}
-
-/// Where the `i`-th token from `toks` starts.
-fn nth_location(toks: &Stream<'_>, i: usize) -> Location {
-    let mut t = toks.clone();
-    for _ in 0..i {
-        t.next();
-    }
-    match t.next() {
-        Some(tok) => toks.location(tok.at),
-        None => t.end_location(),
-    }
-}
-
-fn check_range(src: &Source<'_>, v: &[f64], toks: &Stream<'_>, what: &str, hi: f64) -> Result<(), ParseError> {
-    match v.iter().position(|&a| !(-ANGLE_EPS..=hi + ANGLE_EPS).contains(&a)) {
-        None => Ok(()),
-        Some(i) => Err(src.invalid(
-            nth_location(toks, i),
-            format!("{what} angles in [0, {hi}] degrees"),
-            format!("{what} angle #{} = {}", i + 1, v[i]),
-        )),
-    }
-}
-
-/// Ok, or the first offending index with (previous, value).
+/// Ok, or the first offending index with (previous, value) ([`angles::first_disorder`]).
 fn strictly_ascending(v: &[f64]) -> Result<(), (usize, f64, f64)> {
-    match v.windows(2).position(|w| w[1] <= w[0]) {
+    match angles::first_disorder(v) {
         None => Ok(()),
-        Some(i) => Err((i + 1, v[i], v[i + 1])),
+        Some(i) => Err((i, v[i - 1], v[i])),
     }
 }
 
 fn is_strictly_descending(v: &[f64]) -> bool {
-    v.len() > 1 && v.windows(2).all(|w| w[1] < w[0])
+    v.len() > 1 && v.windows(2).all(|w| w[1] < w[0] - ANGLE_EPS)
 }
 
 /// Reverse the order of the planes of a C-major block in place.
@@ -793,56 +663,46 @@ fn reverse_planes(cd: &mut [f64], ng: usize) {
     }
 }
 
-/// Repair: planes sorted by angle, later duplicates dropped.
+/// Repair: planes sorted by angle, duplicates dropped ([`angles::repair_order`]).
 fn sort_planes(c: &[f64], cd: &[f64], ng: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut order: Vec<usize> = (0..c.len()).collect();
-    order.sort_by(|&a, &b| c[a].total_cmp(&c[b]));
-    order.dedup_by(|a, b| (c[*a] - c[*b]).abs() <= ANGLE_EPS);
-    let mut out = Vec::with_capacity(order.len() * ng);
-    for &i in &order {
-        out.extend_from_slice(&cd[i * ng..(i + 1) * ng]);
-    }
-    (order.iter().map(|&i| c[i]).collect(), out)
+    let order = angles::repair_order(c);
+    (
+        order.iter().map(|&i| c[i]).collect(),
+        angles::reorder_planes(cd, ng, &order),
+    )
 }
 
-/// Repair: γ sorted within every plane, later duplicates dropped.
+/// Repair: γ sorted within every plane, duplicates dropped ([`angles::repair_order`]).
 fn sort_gamma(g: &[f64], cd: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let ng = g.len();
-    let mut order: Vec<usize> = (0..ng).collect();
-    order.sort_by(|&a, &b| g[a].total_cmp(&g[b]));
-    order.dedup_by(|a, b| (g[*a] - g[*b]).abs() <= ANGLE_EPS);
-    let planes = cd.len() / ng;
-    let mut out = Vec::with_capacity(planes * order.len());
-    for p in 0..planes {
-        out.extend(order.iter().map(|&i| cd[p * ng + i]));
-    }
-    (order.iter().map(|&i| g[i]).collect(), out)
+    let order = angles::repair_order(g);
+    (
+        order.iter().map(|&i| g[i]).collect(),
+        angles::reorder_rows(cd, g.len(), &order),
+    )
 }
 
 /// Field-group or block layout of `n` lamp sets (DOMAIN §2.1): a layout
 /// passes when every count, flux and wattage field (26a, 26c, 26f) holds a
-/// number; among passing layouts the one whose type and colour fields (26b,
-/// 26d) look like text wins, field groups on a tie. Blocks are used only when
-/// field groups fail and blocks pass.
+/// number. Field groups win whenever they pass; blocks are used only when
+/// field groups fail and blocks pass. The writer always writes field groups,
+/// whose numeric fields always pass, so a written file is read back in the
+/// layout it was written in whatever its text fields hold (a text-based
+/// tie-break misread written files whose type or colour fields are numbers).
 fn choose_layout(lines: &[Line<'_>], n: usize) -> LampSetLayout {
     if n == 1 {
         return LampSetLayout::FieldGroups;
     }
     let is_num = |l: &Line<'_>| matches!(line_number(l.bytes), LineNumber::Value { junk: false, .. });
-    let judge = |layout: LampSetLayout| -> (bool, usize) {
+    let passes = |layout: LampSetLayout| -> bool {
         let f = |s: usize, k: usize| match layout {
             LampSetLayout::FieldGroups => &lines[k * n + s],
             LampSetLayout::Blocks => &lines[s * 6 + k],
         };
-        let pass = (0..n).all(|s| [0, 2, 5].iter().all(|&k| is_num(f(s, k))));
-        let text = (0..n)
-            .map(|s| [1, 3].iter().filter(|&&k| !is_num(f(s, k))).count())
-            .sum();
-        (pass, text)
+        (0..n).all(|s| [0, 2, 5].iter().all(|&k| is_num(f(s, k))))
     };
-    let (fg_pass, fg_text) = judge(LampSetLayout::FieldGroups);
-    let (bl_pass, bl_text) = judge(LampSetLayout::Blocks);
-    if bl_pass && (!fg_pass || bl_text > fg_text) {
+    let fg_pass = passes(LampSetLayout::FieldGroups);
+    let bl_pass = passes(LampSetLayout::Blocks);
+    if bl_pass && !fg_pass {
         LampSetLayout::Blocks
     } else {
         LampSetLayout::FieldGroups

@@ -34,8 +34,11 @@ use crate::model::{periodic_widths, Distribution, LampSet, Luminaire, Symmetry, 
 ///
 /// # Precision
 /// Intensities, fluxes, dimensions and percentages keep
-/// [`SIGNIFICANT_DIGITS`] significant digits (relative error ≤ 5e-8; values
-/// below 1e-7 are written with at most 15 decimals); angles are written with
+/// [`SIGNIFICANT_DIGITS`] significant digits (relative error ≤ 5e-8; header
+/// values below 1e-7 are written with at most 15 decimals, intensities with
+/// at least the decimals the peak needs, so each is within 5e-8 × the peak);
+/// the intensity scale (file flux) is one every value divided by it prints
+/// as a finite number, else the absolute layout below is used; angles are written with
 /// at most 9 decimals, so file angles come back exactly. The flux written is
 /// the one the intensities are scaled by, so reading the file back gives the
 /// model's candela values within that relative error.
@@ -57,11 +60,14 @@ pub fn write(lum: &Luminaire) -> String {
     }
     let (full_flux, down_flux) = zonal_flux(dist);
     let mut lorl = lum.declared.lor.map(|l| l * 100.0);
+    // A scale is usable when every intensity divided by it prints as a finite number.
+    let usable =
+        |scale: f64| scale.is_normal() && scale > 0.0 && dist.intensities().iter().all(|v| (v / scale).is_finite());
     let scale = match header {
-        Some(h) if h.cd_per_cdklm > 0.0 && h.cd_per_cdklm.is_finite() => h.cd_per_cdklm,
+        Some(h) if usable(h.cd_per_cdklm) => h.cd_per_cdklm,
         _ => {
             let lamp_flux = round_sig(sets[0].flux_lm);
-            if !lum.declared.absolute && sets[0].count >= 0.0 && lamp_flux > 0.0 && lamp_flux.is_finite() {
+            if !lum.declared.absolute && sets[0].count >= 0.0 && usable(lamp_flux / 1000.0) {
                 sets[0].flux_lm = lamp_flux;
                 lamp_flux / 1000.0
             } else {
@@ -72,7 +78,7 @@ pub fn write(lum: &Luminaire) -> String {
                     1000.0
                 });
                 // A flux that rounds to 0 in print would make every intensity infinite.
-                let flux = Some(round_sig(flux)).filter(|f| *f > 0.0).unwrap_or(1000.0);
+                let flux = Some(round_sig(flux)).filter(|f| usable(f / 1000.0)).unwrap_or(1000.0);
                 sets[0].count = -sets[0].count.abs().max(1.0);
                 sets[0].flux_lm = flux;
                 lorl = Some(100.0);
@@ -179,9 +185,18 @@ pub fn write(lum: &Luminaire) -> String {
     for &g in dist.gamma_angles() {
         angle(&mut out, g);
     }
+    // Small values get at least the decimals the peak needs, so every value
+    // is written within 5e-8 of the peak even when the peak itself is tiny.
+    let peak = dist.intensities().iter().fold(0.0f64, |m, v| m.max((v / scale).abs()));
+    let floor_decimals = if peak > 0.0 {
+        (SIGNIFICANT_DIGITS as i32 - 1 - peak.log10().floor() as i32).clamp(15, 330) as usize
+    } else {
+        15
+    };
     for &ic in &grid.planes {
         for &v in dist.plane(ic) {
-            num(&mut out, v / scale);
+            push_sig_with(&mut out, v / scale, floor_decimals);
+            out.push_str("\r\n");
         }
     }
     out
@@ -199,8 +214,12 @@ struct Grid {
 fn header_grid(h: &LdtHeader, dist: &Distribution) -> Option<Grid> {
     let sym = dist.symmetry();
     let g = dist.gamma_angles();
+    // A header whose lists were repaired on reading (unsorted, duplicates)
+    // no longer describes a readable file: the grid is derived instead.
     if h.isym != sym.isym()
         || h.c_angles.is_empty()
+        || crate::formats::angles::first_disorder(&h.c_angles).is_some()
+        || crate::formats::angles::first_disorder(&h.gamma_angles).is_some()
         || h.gamma_angles.len() != g.len()
         || h.gamma_angles.iter().zip(g).any(|(a, b)| (a - b).abs() > ANGLE_EPS)
     {
@@ -304,14 +323,20 @@ fn round_sig(v: f64) -> f64 {
     s.parse().unwrap_or(v)
 }
 
-/// Append `v` with [`SIGNIFICANT_DIGITS`] significant digits, trailing zeros trimmed.
+/// Append `v` with [`SIGNIFICANT_DIGITS`] significant digits (at most 15 decimals), trailing zeros trimmed.
 fn push_sig(out: &mut String, v: f64) {
+    push_sig_with(out, v, 15);
+}
+
+/// Append `v` with [`SIGNIFICANT_DIGITS`] significant digits and at most
+/// `max_decimals` decimals, trailing zeros trimmed.
+fn push_sig_with(out: &mut String, v: f64, max_decimals: usize) {
     if v == 0.0 || !v.is_finite() {
         out.push('0');
         return;
     }
     let mag = v.abs().log10().floor() as i32;
-    let decimals = (SIGNIFICANT_DIGITS as i32 - 1 - mag).clamp(0, 15) as usize;
+    let decimals = (SIGNIFICANT_DIGITS as i32 - 1 - mag).clamp(0, max_decimals as i32) as usize;
     push_fixed(out, v, decimals);
 }
 

@@ -1,0 +1,38 @@
+//! What every reader target checks on one input (shared by the targets).
+
+use std::path::Path;
+
+use photosolid::formats::roundtrip::{check, non_finite_in_debug};
+use photosolid::model::Format;
+use photosolid::ReadOptions;
+
+/// Parse `data` as `format`, both leniently and with the repair option. On
+/// success: the photometric summary holds only finite numbers, and writing
+/// both formats and reading them back gives the same distribution
+/// ([`photosolid::formats::roundtrip::check`]). Any failure panics, which
+/// libFuzzer records as a crash with the input.
+pub fn reader(data: &[u8], format: Format) {
+    let name = match format {
+        Format::Ies => "fuzz.ies",
+        Format::Ldt => "fuzz.ldt",
+    };
+    for repair in [false, true] {
+        let opts = ReadOptions {
+            repair,
+            ..ReadOptions::default()
+        };
+        // A path in a directory that does not exist: TILT=<file> cannot reach real files.
+        let path = Path::new("/nonexistent-fuzz-dir").join(name);
+        let Ok(lum) = photosolid::formats::parse(data, &path, format, &opts) else {
+            continue;
+        };
+        let summary = photosolid::photometry::summary(&lum);
+        let bad = non_finite_in_debug(&format!("{summary:?}"));
+        assert!(bad.is_empty(), "non-finite numbers in the summary: {bad:?}");
+        let bad = non_finite_in_debug(&format!("{:?}", lum.distribution));
+        assert!(bad.is_empty(), "non-finite numbers in the distribution: {bad:?}");
+        if let Err(e) = check(&lum) {
+            panic!("round trip failed: {e}");
+        }
+    }
+}

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# Bounded fuzz smoke run: each cargo-fuzz target for FUZZ_SECONDS (default 60)
+# seconds, seeded from data/ and, when present, ../shared/corpus (copied at run
+# time into fuzz/corpus-smoke/, which git ignores, and recreated each run so the
+# time stays bounded; the long runs of RELIABILITY.md use fuzz/corpus/). Fails when a target crashes;
+# prints one visible SKIP line and exits 0 when the toolchain or cargo-fuzz is
+# unavailable. See RELIABILITY.md for the long runs.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-60}"
+TARGETS="${FUZZ_TARGETS:-ies_reader ldt_reader pipeline}"
+
+skip() {
+    echo "SKIP fuzz smoke: $*"
+    exit 0
+}
+
+if ! cargo fuzz --version >/dev/null 2>&1; then
+    echo "fuzz smoke: cargo-fuzz not found; trying cargo install cargo-fuzz --locked"
+    cargo install cargo-fuzz --locked >/tmp/fuzz-smoke-install.log 2>&1 \
+        || skip "cargo-fuzz is not installed and cannot be installed (see /tmp/fuzz-smoke-install.log)"
+fi
+# libFuzzer instrumentation needs nightly flags; RUSTC_BOOTSTRAP=1 enables them on stable.
+export RUSTC_BOOTSTRAP=1
+if ! cargo fuzz build -s none --fuzz-dir fuzz >/tmp/fuzz-smoke-build.log 2>&1; then
+    tail -5 /tmp/fuzz-smoke-build.log
+    skip "the fuzz targets do not build with this toolchain ($(rustc --version)); see /tmp/fuzz-smoke-build.log"
+fi
+
+seed() { # seed TARGET MAX_SIZE EXTENSIONS...
+    local dir="fuzz/corpus-smoke/$1" size="$2"
+    shift 2
+    rm -rf "$dir"
+    mkdir -p "$dir"
+    for ext in "$@"; do
+        find data -maxdepth 1 -iname "*.$ext" -size "-$size" -exec cp {} "$dir/" \;
+        if [ -d ../shared/corpus ]; then
+            # Name each copy after its path so files of the same name do not collide.
+            find ../shared/corpus -type f -iname "*.$ext" -size "-$size" -print0 |
+                while IFS= read -r -d '' f; do
+                    cp "$f" "$dir/$(echo "${f#../shared/corpus/}" | tr '/ ' '__')"
+                done
+        fi
+    done
+}
+
+status=0
+for t in $TARGETS; do
+    case "$t" in
+        ies_reader) seed "$t" 256k ies ;;
+        ldt_reader) seed "$t" 256k ldt ;;
+        # One pipeline execution runs the whole pipeline: small seeds only.
+        *) seed "$t" 16k ies ldt ;;
+    esac
+    echo "fuzz smoke: $t for ${SECONDS_PER_TARGET} s ($(ls "fuzz/corpus-smoke/$t" | wc -l) seeds)"
+    log="/tmp/fuzz-smoke-$t.log"
+    # libFuzzer finishes its pass over the seeds before it looks at the clock;
+    # `timeout` bounds that pass too (exit 124 = stopped at the limit, not a crash).
+    timeout $((SECONDS_PER_TARGET + 30)) cargo fuzz run -s none --fuzz-dir fuzz "$t" "fuzz/corpus-smoke/$t" -- \
+        -dict=fuzz/dict/photometric.dict -max_total_time="$SECONDS_PER_TARGET" \
+        -max_len=65536 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 >"$log" 2>&1
+    rc=$?
+    runs=$(grep -E '^stat::number_of_executed_units' "$log" | awk '{print $2}')
+    if [ "$rc" -eq 0 ]; then
+        echo "fuzz smoke: $t ok: ${runs} executions"
+    elif [ "$rc" -eq 124 ]; then
+        echo "fuzz smoke: $t ok: stopped at the time limit during the seed pass, no crash"
+    else
+        status=1
+        echo "fuzz smoke: $t FAILED (exit $rc); the crashing input is in fuzz/artifacts/$t/:"
+        grep -E "panicked|Test unit written|ERROR" "$log" | head -5
+    fi
+done
+exit $status

@@ -1,0 +1,65 @@
+//! The one angle-order rule of both readers: angles must ascend by more
+//! than [`ANGLE_EPS`] (the model's own rule, see
+//! [`Distribution`](crate::model::Distribution)); angles closer than that are
+//! duplicates. With the repair option both readers sort and drop the
+//! duplicates the same way, through [`repair_order`].
+
+use crate::model::ANGLE_EPS;
+
+/// Index of the first angle that does not ascend by more than
+/// [`ANGLE_EPS`] over its predecessor (≥ 1), or `None` when the list is in order.
+pub fn first_disorder(angles: &[f64]) -> Option<usize> {
+    angles.windows(2).position(|w| w[1] <= w[0] + ANGLE_EPS).map(|i| i + 1)
+}
+
+/// Whether `b` following `a` is a duplicate (closer than [`ANGLE_EPS`]) rather than out of order.
+pub fn is_duplicate(a: f64, b: f64) -> bool {
+    (a - b).abs() <= ANGLE_EPS
+}
+
+/// The repaired order: indices of `angles` sorted ascending (stable), and
+/// of each run of angles within [`ANGLE_EPS`] of the first kept one only that
+/// first one. The values of a dropped angle are dropped with it.
+pub fn repair_order(angles: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..angles.len()).collect();
+    order.sort_by(|&a, &b| angles[a].total_cmp(&angles[b]));
+    order.dedup_by(|later, kept| is_duplicate(angles[*later], angles[*kept]));
+    order
+}
+
+/// Planes of `stride` values each, taken in `order`.
+pub fn reorder_planes(cd: &[f64], stride: usize, order: &[usize]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(order.len() * stride);
+    for &i in order {
+        out.extend_from_slice(&cd[i * stride..(i + 1) * stride]);
+    }
+    out
+}
+
+/// Inside every plane of `n` values, the values taken in `order`.
+pub fn reorder_rows(cd: &[f64], n: usize, order: &[usize]) -> Vec<f64> {
+    let planes = cd.len().checked_div(n).unwrap_or(0);
+    let mut out = Vec::with_capacity(planes * order.len());
+    for p in 0..planes {
+        out.extend(order.iter().map(|&i| cd[p * n + i]));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_rule_and_repair() {
+        assert_eq!(first_disorder(&[0.0, 10.0, 20.0]), None);
+        assert_eq!(first_disorder(&[0.0, 10.0, 10.0 + 1e-9]), Some(2));
+        assert_eq!(first_disorder(&[0.0, 10.0, 5.0]), Some(2));
+        let a = [10.0, 0.0, 10.0 + 1e-9, 5.0];
+        let order = repair_order(&a);
+        assert_eq!(order, vec![1, 3, 0]);
+        let cd = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
+        assert_eq!(reorder_planes(&cd, 2, &order), vec![3.0, 4.0, 7.0, 8.0, 1.0, 2.0]);
+        assert_eq!(reorder_rows(&cd, 4, &order), vec![2.0, 4.0, 1.0, 6.0, 8.0, 5.0]);
+    }
+}
