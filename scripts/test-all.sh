@@ -156,6 +156,9 @@ echo "== CLI smoke: demo and validate on the project's own data/"
 "$PHOTOSOLID_BIN" demo --output target/demo-smoke
 "$PHOTOSOLID_BIN" validate data
 
+echo "== fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 60) s (scripts/fuzz-smoke.sh; RELIABILITY.md)"
+bash scripts/fuzz-smoke.sh
+
 echo "== notebooks: cross-checks with trimesh / colour-science (executed copies and speed.json in target/notebooks/)"
 nb_rc=0
 bash scripts/notebooks.sh || nb_rc=$?
