@@ -35,7 +35,7 @@ use crate::error::ModelError;
 use crate::fit::{fit, FitOptions};
 use crate::metrics::{random_directions, time_per_sample_ns};
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{render, Filter, LightTexture, Lookup, Precision, StoredTexture};
+use crate::reconstruct::{render, Filter, LightTexture, Lookup, Precision, StoredTexture, TextureSpec};
 
 /// Render factors of the texture candidates.
 pub const TEXTURE_FACTORS: [u32; 3] = [1, 2, 5];
@@ -45,15 +45,9 @@ pub const TEXTURE_FACTORS: [u32; 3] = [1, 2, 5];
 pub enum Representation {
     /// A filter sampling the native grid (f64).
     Filter(Filter),
-    /// A rendered f32 texture read back with a lookup.
-    Texture {
-        /// Filter of the render.
-        filter: Filter,
-        /// Render factor.
-        factor: u32,
-        /// Lookup of the read-back.
-        lookup: Lookup,
-    },
+    /// A rendered texture as a renderer stores and reads it (f32 or f16,
+    /// whole or symmetry-reduced), as in the trade table.
+    Texture(TextureSpec),
     /// The fitted OpenGL lights (at most 2).
     Fitted,
     /// The native grid cropped to the γ rows between `gamma_from` and
@@ -82,7 +76,16 @@ impl fmt::Display for Representation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Representation::Filter(x) => write!(f, "{x}"),
-            Representation::Texture { filter, factor, lookup } => write!(f, "texture {filter} x{factor} / {lookup}"),
+            Representation::Texture(t) => {
+                write!(f, "texture {} x{} / {}", t.filter, t.factor, t.lookup)?;
+                if t.precision == Precision::F16 {
+                    f.write_str(" +f16")?;
+                }
+                if t.reduced {
+                    f.write_str(" +reduced")?;
+                }
+                Ok(())
+            }
             Representation::Fitted => f.write_str(crate::fit::RECONSTRUCTION_NAME),
             Representation::Cropped {
                 filter,
@@ -122,11 +125,26 @@ impl FromStr for Representation {
                 .strip_prefix('x')
                 .and_then(|x| x.parse().ok())
                 .ok_or_else(bad)?;
-            return Ok(Representation::Texture {
+            let mut words = lookup.split_whitespace();
+            let mut spec = TextureSpec {
                 filter: filter.parse()?,
                 factor,
-                lookup: lookup.parse()?,
-            });
+                lookup: words.next().ok_or_else(bad)?.parse()?,
+                precision: Precision::F32,
+                reduced: false,
+            };
+            for w in words {
+                match w {
+                    "+f16" => spec.precision = Precision::F16,
+                    "+reduced" => spec.reduced = true,
+                    _ => return Err(bad()),
+                }
+            }
+            return Ok(Representation::Texture(spec));
+        }
+        if t.contains('@') {
+            // The trade table's spelling, `FILTER@xK/LOOKUP[+f16][+reduced]`.
+            return t.parse().map(Representation::Texture);
         }
         t.parse::<Filter>()
             .map(Representation::Filter)
@@ -198,11 +216,11 @@ impl<'a> Models<'a> {
         };
         Ok(match r {
             Representation::Filter(f) => Box::new(tex.sampler(*f)),
-            Representation::Texture { filter, factor, lookup } => Box::new(StoredTexture::new(
-                &render(tex, *filter, *factor)?,
-                None,
-                Precision::F32,
-                *lookup,
+            Representation::Texture(t) => Box::new(StoredTexture::new(
+                &render(tex, t.filter, t.factor)?,
+                t.reduced.then(|| self.dist.symmetry()),
+                t.precision,
+                t.lookup,
             )),
             Representation::Fitted => Box::new(fit(self.dist, &FitOptions::default())?.model().prepare()),
             Representation::Cropped {
@@ -421,10 +439,30 @@ fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> 
         for filter in Filter::ALL {
             for lookup in Lookup::ALL {
                 if lookup == Lookup::Bilinear || filter == Filter::CatmullRom {
-                    reps.push(Representation::Texture { filter, factor, lookup });
+                    reps.push(Representation::Texture(TextureSpec {
+                        filter,
+                        factor,
+                        lookup,
+                        precision: Precision::F32,
+                        reduced: false,
+                    }));
                 }
             }
         }
+    }
+    // Half-float and symmetry-reduced storage of the x5 Catmull-Rom render (trade-table rows).
+    let sym = lum.luminaire.distribution.symmetry();
+    for (precision, reduced) in [(Precision::F16, false), (Precision::F32, true), (Precision::F16, true)] {
+        if reduced && sym == crate::model::Symmetry::None {
+            continue;
+        }
+        reps.push(Representation::Texture(TextureSpec {
+            filter: Filter::CatmullRom,
+            factor: 5,
+            lookup: Lookup::Bilinear,
+            precision,
+            reduced,
+        }));
     }
     reps.push(Representation::Fitted);
     if let Some((gamma_from, gamma_to, c)) = visible {
@@ -632,4 +670,24 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
         combined_max_error_pct: 100.0 * cmax,
         combined_mean_error_pct: 100.0 * cmean,
     })
+}
+
+#[cfg(test)]
+mod spelling_tests {
+    use super::*;
+
+    #[test]
+    fn texture_representations_parse_both_spellings() {
+        for text in [
+            "texture catmull-rom x5 / bilinear +f16 +reduced",
+            "catmull-rom@x5/bilinear+f16+reduced",
+        ] {
+            let r: Representation = text.parse().unwrap();
+            assert_eq!(r.to_string(), "texture catmull-rom x5 / bilinear +f16 +reduced");
+            assert_eq!(r.to_string().parse::<Representation>().unwrap(), r);
+        }
+        assert!("texture catmull-rom x5 / bilinear +f32"
+            .parse::<Representation>()
+            .is_err());
+    }
 }
