@@ -14,7 +14,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
+use photosolid::compare::{compare_with_progress, Against, CompareOptions, Directions, Normalize};
 use photosolid::reconstruct::Recon;
 use photosolid::report::compare_report;
 use photosolid::synth::Truth;
@@ -91,7 +91,15 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         plots: a.report.is_some(),
         ..Default::default()
     };
-    let mut c = compare(&lum.distribution, other.as_ref().map(|o| &o.distribution), &opts)?;
+    let bar = super::progress_bar("reconstructions");
+    let progress = super::progress_fn(&bar);
+    let mut c = compare_with_progress(
+        &lum.distribution,
+        other.as_ref().map(|o| &o.distribution),
+        &opts,
+        &progress,
+    )?;
+    bar.finish_and_clear();
     c.file = a.file.display().to_string();
     c.vs = a.vs.as_ref().map(|p| p.display().to_string());
     let mut out = std::io::stdout().lock();

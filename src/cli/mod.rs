@@ -206,6 +206,15 @@ fn progress_bar(what: &str) -> indicatif::ProgressBar {
     b
 }
 
+/// A library progress callback `(done, total, what)` that moves `bar`.
+fn progress_fn(bar: &indicatif::ProgressBar) -> impl Fn(usize, usize, &str) + Sync + '_ {
+    move |done, total, what| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+        bar.set_message(what.to_string());
+    }
+}
+
 /// The hold-out reports as a text table.
 fn holdout_table(reports: &[photosolid::reconstruct::HoldoutReport]) -> String {
     use std::fmt::Write;

@@ -65,11 +65,7 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
         },
     };
     let bar = super::progress_bar("representations");
-    let progress = |done: usize, total: usize, what: &str| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-        bar.set_message(what.to_string());
-    };
+    let progress = super::progress_fn(&bar);
     let mut t = trade_table(
         &lum.distribution,
         other.as_ref().map(|o| &o.distribution),
