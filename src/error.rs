@@ -151,6 +151,46 @@ impl Error {
     }
 }
 
+/// An error as a machine-readable record, the shape of a [`Warning`]:
+/// serialised as `{"line": 12, "column": 5, "code": "invalid", "message": "..."}`
+/// (`line` and `column` are `null` when the error has none; `message` is the
+/// error's full text).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct ErrorRecord {
+    /// 1-based line in the file, when the error has one.
+    pub line: Option<usize>,
+    /// 1-based column, when the error has one.
+    pub column: Option<usize>,
+    /// Stable code: `invalid` or `unsupported` (file content), `io`, `model`, `unsupported-operation`.
+    pub code: &'static str,
+    /// The full message (as [`std::fmt::Display`] prints it).
+    pub message: String,
+}
+
+impl From<&Error> for ErrorRecord {
+    fn from(e: &Error) -> Self {
+        let (line, column, code) = match e {
+            Error::Parse(p) => (
+                (p.location.line > 0).then_some(p.location.line),
+                p.location.column,
+                match p.kind {
+                    ErrorKind::Invalid => "invalid",
+                    ErrorKind::Unsupported => "unsupported",
+                },
+            ),
+            Error::Io { .. } => (None, None, "io"),
+            Error::Model(_) => (None, None, "model"),
+            Error::Unsupported(_) => (None, None, "unsupported-operation"),
+        };
+        Self {
+            line,
+            column,
+            code,
+            message: e.to_string(),
+        }
+    }
+}
+
 /// A recoverable oddity found while reading or checking a file.
 ///
 /// Serialised as `{"line": 12, "code": "nadir-mismatch", "message": "..."}`

@@ -126,7 +126,11 @@ fn validate_exit_codes_and_json_lines_in_input_order() {
         .filter(|v| v["ok"] == false)
         .collect();
     assert_eq!(broken.len(), 1);
-    let msg = broken[0]["errors"][0].as_str().unwrap();
+    // Errors are records like warnings: {line, column, code, message}.
+    let err = &broken[0]["errors"][0];
+    assert!(err["line"].as_u64().is_some_and(|l| l > 0), "{err}");
+    assert!(matches!(err["code"].as_str(), Some("invalid" | "unsupported")), "{err}");
+    let msg = err["message"].as_str().unwrap();
     let after = msg.split("broken.IES:").nth(1).unwrap_or("");
     assert!(
         after.starts_with(|c: char| c.is_ascii_digit()),

@@ -31,7 +31,7 @@ pub struct ValidateArgs {
 struct Line {
     path: String,
     ok: bool,
-    errors: Vec<String>,
+    errors: Vec<photosolid::error::ErrorRecord>,
     warnings: Vec<photosolid::Warning>,
     #[serde(skip_serializing_if = "Option::is_none")]
     info: Option<InfoReport>,
@@ -72,7 +72,7 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
                 Err(e) => Line {
                     path: f.display().to_string(),
                     ok: false,
-                    errors: vec![e.to_string()],
+                    errors: vec![photosolid::error::ErrorRecord::from(&e)],
                     warnings: vec![],
                     info: None,
                 },
@@ -99,7 +99,7 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
         } else {
             writeln!(out, "FAIL {}", r.path)?;
             for e in &r.errors {
-                writeln!(out, "       {e}")?;
+                writeln!(out, "       {}", e.message)?;
             }
         }
     }
