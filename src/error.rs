@@ -191,6 +191,124 @@ impl From<&Error> for ErrorRecord {
     }
 }
 
+/// The stable code of a [`Warning`], serialised as its kebab-case string
+/// (`extra-values`, `lor-mismatch`, ...), the codes files and tools rely on.
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WarningCode {
+    /// `angles-repaired`.
+    AnglesRepaired,
+    /// `blank-number`.
+    BlankNumber,
+    /// `c360-plane`.
+    C360Plane,
+    /// `cfli`.
+    Cfli,
+    /// `dc-mismatch`.
+    DcMismatch,
+    /// `dff-mismatch`.
+    DffMismatch,
+    /// `dg-mismatch`.
+    DgMismatch,
+    /// `extra-values`.
+    ExtraValues,
+    /// `flux-mismatch`.
+    FluxMismatch,
+    /// `header-junk`.
+    HeaderJunk,
+    /// `invalid-ballast-factor`.
+    InvalidBallastFactor,
+    /// `invalid-blpf`.
+    InvalidBlpf,
+    /// `invalid-lumens`.
+    InvalidLumens,
+    /// `ityp`.
+    Ityp,
+    /// `lamp-set-layout`.
+    LampSetLayout,
+    /// `lor-mismatch`.
+    LorMismatch,
+    /// `mc-divisibility`.
+    McDivisibility,
+    /// `missing-ballast-line`.
+    MissingBallastLine,
+    /// `negative-intensity`.
+    NegativeIntensity,
+    /// `not-a-number`.
+    NotANumber,
+    /// `plane-count`.
+    PlaneCount,
+    /// `pole-mismatch`.
+    PoleMismatch,
+    /// `range-snapped`.
+    RangeSnapped,
+    /// `seam-mismatch`.
+    SeamMismatch,
+    /// `single-plane`.
+    SinglePlane,
+    /// `tilt-extra-values`.
+    TiltExtraValues,
+    /// `tilt-file-keyword`.
+    TiltFileKeyword,
+    /// `unknown-version`.
+    UnknownVersion,
+    /// `unsorted-angles`.
+    UnsortedAngles,
+    /// `zero-lamp-flux`.
+    ZeroLampFlux,
+}
+
+impl WarningCode {
+    /// The code as written in JSON and text (kebab-case).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            WarningCode::AnglesRepaired => "angles-repaired",
+            WarningCode::BlankNumber => "blank-number",
+            WarningCode::C360Plane => "c360-plane",
+            WarningCode::Cfli => "cfli",
+            WarningCode::DcMismatch => "dc-mismatch",
+            WarningCode::DffMismatch => "dff-mismatch",
+            WarningCode::DgMismatch => "dg-mismatch",
+            WarningCode::ExtraValues => "extra-values",
+            WarningCode::FluxMismatch => "flux-mismatch",
+            WarningCode::HeaderJunk => "header-junk",
+            WarningCode::InvalidBallastFactor => "invalid-ballast-factor",
+            WarningCode::InvalidBlpf => "invalid-blpf",
+            WarningCode::InvalidLumens => "invalid-lumens",
+            WarningCode::Ityp => "ityp",
+            WarningCode::LampSetLayout => "lamp-set-layout",
+            WarningCode::LorMismatch => "lor-mismatch",
+            WarningCode::McDivisibility => "mc-divisibility",
+            WarningCode::MissingBallastLine => "missing-ballast-line",
+            WarningCode::NegativeIntensity => "negative-intensity",
+            WarningCode::NotANumber => "not-a-number",
+            WarningCode::PlaneCount => "plane-count",
+            WarningCode::PoleMismatch => "pole-mismatch",
+            WarningCode::RangeSnapped => "range-snapped",
+            WarningCode::SeamMismatch => "seam-mismatch",
+            WarningCode::SinglePlane => "single-plane",
+            WarningCode::TiltExtraValues => "tilt-extra-values",
+            WarningCode::TiltFileKeyword => "tilt-file-keyword",
+            WarningCode::UnknownVersion => "unknown-version",
+            WarningCode::UnsortedAngles => "unsorted-angles",
+            WarningCode::ZeroLampFlux => "zero-lamp-flux",
+        }
+    }
+}
+
+impl fmt::Display for WarningCode {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl PartialEq<&str> for WarningCode {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
 /// A recoverable oddity found while reading or checking a file.
 ///
 /// Serialised as `{"line": 12, "code": "nadir-mismatch", "message": "..."}`
@@ -200,14 +318,14 @@ pub struct Warning {
     /// 1-based line number, when the warning has one.
     pub line: Option<usize>,
     /// Stable machine-readable code, kebab-case (e.g. `extra-values`).
-    pub code: &'static str,
+    pub code: WarningCode,
     /// Human explanation with the numbers involved.
     pub message: String,
 }
 
 impl Warning {
     /// A warning about the file as a whole.
-    pub fn new(code: &'static str, message: impl Into<String>) -> Self {
+    pub fn new(code: WarningCode, message: impl Into<String>) -> Self {
         Self {
             line: None,
             code,
@@ -215,7 +333,7 @@ impl Warning {
         }
     }
     /// A warning about one line.
-    pub fn at(line: usize, code: &'static str, message: impl Into<String>) -> Self {
+    pub fn at(line: usize, code: WarningCode, message: impl Into<String>) -> Self {
         Self {
             line: Some(line),
             code,

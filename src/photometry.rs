@@ -16,7 +16,7 @@
 
 use serde::Serialize;
 
-use crate::error::Warning;
+use crate::error::{Warning, WarningCode};
 use crate::model::{periodic_widths, Distribution, Luminaire, ANGLE_EPS};
 
 /// Luminous flux of a distribution, lm.
@@ -274,7 +274,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
     if let (Some(r), Some(dcl)) = (flux_ratio, declared) {
         if (r - 1.0).abs() > FLUX_MISMATCH {
             warnings.push(Warning::new(
-                "flux-mismatch",
+                WarningCode::FluxMismatch,
                 format!(
                     "integrated flux {:.1} lm is {:.1} % of the declared {:.1} lm (more than {:.0} % off)",
                     flux.total_lm,
@@ -289,7 +289,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
         let lor = flux.total_lm / l;
         if (lor - decl).abs() > LOR_MISMATCH {
             warnings.push(Warning::new(
-                "lor-mismatch",
+                WarningCode::LorMismatch,
                 format!(
                     "integrated LOR {:.2} % differs from the declared {:.2} % by {:+.2} percentage points",
                     100.0 * lor,
@@ -303,7 +303,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
         let dff = flux.downward_lm / flux.total_lm;
         if (dff - decl_dff).abs() > 0.05 {
             warnings.push(Warning::new(
-                "dff-mismatch",
+                WarningCode::DffMismatch,
                 format!(
                     "computed downward flux fraction {:.1} % differs from the declared {:.1} %",
                     100.0 * dff,

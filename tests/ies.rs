@@ -451,7 +451,7 @@ fn errors_name_line_column_expected_found() {
 fn warnings_extra_negative_pole_missing_ballast() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 2 1 2 0 0 0\n1 1 0\n0 90\n0 180\n10 -1\n12 3\nEND\n";
     let l = read_str(s).unwrap();
-    let codes: Vec<&str> = l.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<&str> = l.warnings.iter().map(|w| w.code.as_str()).collect();
     assert!(codes.contains(&"extra-values"), "{codes:?}");
     assert!(codes.contains(&"negative-intensity"), "{codes:?}");
     assert!(codes.contains(&"pole-mismatch"), "{codes:?}");

@@ -417,7 +417,7 @@ fn poles_and_negative_values_are_kept_with_warnings() {
     let c: Vec<f64> = (0..4).map(|i| i as f64 * 90.0).collect();
     let values = [10.0, 5.0, 11.0, 5.0, 10.0, -1.0, 10.0, 5.0];
     let l = read_str(&ldt_text(0, &c, &[0.0, 90.0], &ONE_SET, &values)).unwrap();
-    let codes: Vec<_> = l.warnings.iter().map(|w| w.code).collect();
+    let codes: Vec<_> = l.warnings.iter().map(|w| w.code.as_str()).collect();
     assert!(
         codes.contains(&"pole-mismatch") && codes.contains(&"negative-intensity"),
         "{codes:?}"

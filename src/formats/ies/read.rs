@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::error::{Location, ParseError, Warning};
+use crate::error::{Location, ParseError, Warning, WarningCode};
 use crate::formats::text::Source;
 use crate::formats::{angles, ReadOptions};
 use crate::model::{
@@ -126,7 +126,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
                 if !known {
                     warnings.push(Warning::at(
                         line.number,
-                        "unknown-version",
+                        WarningCode::UnknownVersion,
                         format!("unknown version line `{}`; read as LM-63-2002", src.text(t)),
                     ));
                 }
@@ -275,7 +275,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
                 header.ballast_record = false;
                 warnings.push(Warning::at(
                     ballast_line,
-                    "missing-ballast-line",
+                    WarningCode::MissingBallastLine,
                     "the ballast factor / future use / input watts record is missing (non-conformant LM-63); \
                      assumed 1, 1, 0",
                 ));
@@ -300,7 +300,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     if bf <= 0.0 {
         warnings.push(Warning::at(
             ballast_line,
-            "invalid-ballast-factor",
+            WarningCode::InvalidBallastFactor,
             format!("ballast factor {bf} is not positive; 1.0 used"),
         ));
         bf = 1.0;
@@ -309,7 +309,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     if blpf <= 0.0 {
         warnings.push(Warning::at(
             ballast_line,
-            "invalid-blpf",
+            WarningCode::InvalidBlpf,
             format!("ballast-lamp photometric factor {blpf} is not positive; 1.0 used"),
         ));
         blpf = 1.0;
@@ -326,7 +326,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     if extra > 0 {
         warnings.push(Warning::at(
             tokens.line_of(tokens.index()),
-            "extra-values",
+            WarningCode::ExtraValues,
             format!("{extra} extra token(s) after the candela values ignored"),
         ));
     }
@@ -337,7 +337,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     }
     match crate::formats::into_model_range(&mut cd) {
         Ok(None) => {}
-        Ok(Some(note)) => warnings.push(Warning::at(ballast_line, "range-snapped", note)),
+        Ok(Some(note)) => warnings.push(Warning::at(ballast_line, WarningCode::RangeSnapped, note)),
         Err((i, why)) => {
             let (loc, _) = tokens.locate(h_start + nh + i);
             return Err(src.invalid(
@@ -378,7 +378,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     if negatives > 0 {
         let min = cd.iter().cloned().fold(f64::INFINITY, f64::min);
         warnings.push(Warning::new(
-            "negative-intensity",
+            WarningCode::NegativeIntensity,
             format!(
                 "{negatives} negative candela value(s) kept (lowest {} cd)",
                 crate::report::significant(min, 6)
@@ -420,7 +420,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     for (name, spread) in [("nadir (gamma 0)", nadir), ("zenith (gamma 180)", zenith)] {
         if spread > 1e-9 * peak {
             warnings.push(Warning::new(
-                "pole-mismatch",
+                WarningCode::PoleMismatch,
                 format!(
                     "the {name} value differs between planes by {} cd; kept as measured",
                     crate::report::significant(spread, 6)
@@ -458,7 +458,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     let absolute = lpl < 0.0;
     if absolute && (lpl + 1.0).abs() > 1e-9 {
         warnings.push(Warning::new(
-            "invalid-lumens",
+            WarningCode::InvalidLumens,
             format!("lumens per lamp {lpl} is negative but not -1; read as absolute photometry"),
         ));
     }
@@ -568,7 +568,7 @@ pub(super) fn check_or_repair(
     };
     warnings.push(Warning::at(
         start.0.line_of(start.1),
-        "angles-repaired",
+        WarningCode::AnglesRepaired,
         format!("{what} angles were not strictly ascending: sorted, {dropped} duplicate(s) dropped (first kept)"),
     ));
     *angles = new_angles;
@@ -629,7 +629,7 @@ fn type_c(
     let symmetry = if nh == 1 {
         if !near(first, 0.0) {
             warnings.push(Warning::new(
-                "single-plane",
+                WarningCode::SinglePlane,
                 format!("a single horizontal angle at {first} degrees: read as rotationally symmetric"),
             ));
         }
@@ -663,7 +663,7 @@ fn type_c(
                 let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 if diff > 1e-9 * peak.max(f64::MIN_POSITIVE) {
                     warnings.push(Warning::new(
-                        "seam-mismatch",
+                        WarningCode::SeamMismatch,
                         format!(
                             "the 360-degree plane differs from the 0-degree plane by up to {} cd; \
                              the 0-degree plane is kept",

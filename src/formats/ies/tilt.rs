@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::read::check_or_repair;
 use super::stream::Stream;
-use crate::error::{Location, ParseError, Warning};
+use crate::error::{Location, ParseError, Warning, WarningCode};
 use crate::formats::text::Source;
 use crate::formats::ReadOptions;
 use crate::model::TiltTable;
@@ -81,7 +81,7 @@ pub(super) fn read_tilt_file(
         if !rest.is_empty() && rest.len() < value.len() - 4 {
             warnings.push(Warning::at(
                 line,
-                "tilt-file-keyword",
+                WarningCode::TiltFileKeyword,
                 format!("non-standard `TILT=FILE {rest}`: read as `TILT={rest}`"),
             ));
             name = rest.to_string();
@@ -108,7 +108,7 @@ pub(super) fn read_tilt_file(
     let extra = tokens.count_remaining();
     if extra > 0 {
         warnings.push(Warning::new(
-            "tilt-extra-values",
+            WarningCode::TiltExtraValues,
             format!(
                 "{extra} extra token(s) in tilt file `{}` from line {} ignored",
                 full.display(),

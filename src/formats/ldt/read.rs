@@ -4,7 +4,7 @@ use std::path::Path;
 
 use super::stream::{bad, check_range, nth_location, number, Stream};
 use super::{formula_plane_count, parse_number, stored_plane_indices, LampSetLayout, LdtHeader};
-use crate::error::{Location, ParseError, Warning};
+use crate::error::{Location, ParseError, Warning, WarningCode};
 use crate::formats::text::{Line, Lines, Source};
 use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{
@@ -93,7 +93,7 @@ fn integral(v: f64) -> Option<i64> {
 }
 
 impl<'s, 'a> Reader<'s, 'a> {
-    fn warn(&mut self, line: usize, code: &'static str, message: impl Into<String>) {
+    fn warn(&mut self, line: usize, code: WarningCode, message: impl Into<String>) {
         self.warnings.push(Warning::at(line, code, message));
     }
 
@@ -121,7 +121,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 if junk {
                     self.warn(
                         l.number,
-                        "header-junk",
+                        WarningCode::HeaderJunk,
                         format!("{what}: took the first number of {}", show(l.bytes)),
                     );
                 }
@@ -158,20 +158,24 @@ impl<'s, 'a> Reader<'s, 'a> {
                 if junk {
                     self.warn(
                         l.number,
-                        "header-junk",
+                        WarningCode::HeaderJunk,
                         format!("{what}: took the first number of {}", show(l.bytes)),
                     );
                 }
                 v
             }
             LineNumber::Blank => {
-                self.warn(l.number, "blank-number", format!("{what} is blank; taken as {default}"));
+                self.warn(
+                    l.number,
+                    WarningCode::BlankNumber,
+                    format!("{what} is blank; taken as {default}"),
+                );
                 default
             }
             LineNumber::NotNumber => {
                 self.warn(
                     l.number,
-                    "not-a-number",
+                    WarningCode::NotANumber,
                     format!("{what} is {}, not a number; taken as {default}", show(l.bytes)),
                 );
                 default
@@ -188,7 +192,11 @@ impl<'s, 'a> Reader<'s, 'a> {
         let ityp = match integral(ityp) {
             Some(i @ 0..=3) => i,
             _ => {
-                self.warn(ityp_line, "ityp", format!("Ityp = {ityp} is not 0-3; kept as 0"));
+                self.warn(
+                    ityp_line,
+                    WarningCode::Ityp,
+                    format!("Ityp = {ityp} is not 0-3; kept as 0"),
+                );
                 0
             }
         };
@@ -230,7 +238,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             if cfli_raw != 1.0 {
                 self.warn(
                     cfli_line,
-                    "cfli",
+                    WarningCode::Cfli,
                     format!("CFLI = {cfli_raw}: intensities are multiplied by it"),
                 );
             }
@@ -238,7 +246,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         } else {
             self.warn(
                 cfli_line,
-                "cfli",
+                WarningCode::Cfli,
                 format!("CFLI = {cfli_raw} is not positive; taken as 1"),
             );
             1.0
@@ -263,7 +271,11 @@ impl<'s, 'a> Reader<'s, 'a> {
                 LampSetLayout::FieldGroups => "field groups (n × 26a, then n × 26b, ...)",
                 LampSetLayout::Blocks => "blocks of six lines per set",
             };
-            self.warn(n_line, "lamp-set-layout", format!("{n_sets} lamp sets read as {how}"));
+            self.warn(
+                n_line,
+                WarningCode::LampSetLayout,
+                format!("{n_sets} lamp sets read as {how}"),
+            );
         }
         let field = |set: usize, k: usize| match layout {
             LampSetLayout::FieldGroups => set_lines[k * n_sets + set],
@@ -337,7 +349,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 if opts.repair {
                     self.warn(
                         loc.line,
-                        "unsorted-angles",
+                        WarningCode::UnsortedAngles,
                         format!(
                             "{what} angles not strictly ascending (#{} = {b} after {a}); sorted, duplicates dropped",
                             i + 1
@@ -364,7 +376,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         {
             self.warn(
                 mc_line + 1,
-                "dc-mismatch",
+                WarningCode::DcMismatch,
                 format!("Dc = {dc} but the C-angles of line 28 are not spaced by it; the list is used"),
             );
         }
@@ -377,7 +389,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         {
             self.warn(
                 ng_line + 1,
-                "dg-mismatch",
+                WarningCode::DgMismatch,
                 format!("Dg = {dg} but the gamma angles of line 29 are not spaced by it; the list is used"),
             );
         }
@@ -395,7 +407,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         match formula_plane_count(sym, mc) {
             None => self.warn(
                 mc_line,
-                "mc-divisibility",
+                WarningCode::McDivisibility,
                 format!(
                     "Mc = {mc} is not divisible as Isym {isym} requires; the stored planes are taken by angle ({} planes)",
                     stored.len()
@@ -403,7 +415,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             ),
             Some(n) if n != stored.len() => self.warn(
                 mc_line,
-                "plane-count",
+                WarningCode::PlaneCount,
                 format!(
                     "Isym {isym} with Mc = {mc} stores {n} planes by the format's formula, but line 28 has {} angles in the stored range; those are used",
                     stored.len()
@@ -449,7 +461,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             let extra = toks.count_remaining();
             self.warn(
                 toks.next_line(),
-                "extra-values",
+                WarningCode::ExtraValues,
                 format!("{extra} values after the {need} intensities were ignored"),
             );
         }
@@ -469,7 +481,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         if !flux_ok {
             self.warn(
                 n_line + 1,
-                "zero-lamp-flux",
+                WarningCode::ZeroLampFlux,
                 format!("reference flux is {phi} lm; intensities taken as cd (1000 lm assumed)"),
             );
             phi = 1000.0;
@@ -486,7 +498,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         }
         let snapped = crate::formats::into_model_range(&mut cd);
         if let Ok(Some(note)) = &snapped {
-            self.warn(cd_first, "range-snapped", note.clone());
+            self.warn(cd_first, WarningCode::RangeSnapped, note.clone());
         }
         if let Err((i, why)) = snapped {
             return Err(src.invalid(
@@ -501,7 +513,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         if negatives > 0 {
             self.warn(
                 cd_first,
-                "negative-intensity",
+                WarningCode::NegativeIntensity,
                 format!("{negatives} negative intensities (lowest {min} cd/klm) kept as they are"),
             );
         }
@@ -521,7 +533,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             let diff = (0..ng).map(|g| (cd[last * ng + g] - cd[g]).abs()).fold(0.0, f64::max);
             self.warn(
                 c_first,
-                "c360-plane",
+                WarningCode::C360Plane,
                 format!(
                     "C = 360 duplicates C = 0 and was dropped (largest difference {} cd)",
                     crate::report::significant(diff, 6)
@@ -563,7 +575,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 let mean = (0..dist.n_c()).map(|ic| dist.value(ic, ig)).sum::<f64>() / dist.n_c() as f64;
                 self.warn(
                     g_first,
-                    "pole-mismatch",
+                    WarningCode::PoleMismatch,
                     format!(
                         "{name} values differ between planes by {spread:.6} cd ({:.3} % of their mean {mean:.6} cd); kept",
                         if mean.abs() > 0.0 { 100.0 * spread / mean.abs() } else { 0.0 }
