@@ -38,6 +38,7 @@ mod withheld;
 
 use std::str::FromStr;
 
+use glam::{DVec3, Vec3};
 use serde::Serialize;
 
 pub use align::{best_alignment, Alignment};
@@ -408,8 +409,8 @@ pub struct Comparison {
 
 /// Symmetric Hausdorff distance between two solids (f32 positions widened to f64).
 pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {
-    let pa: Vec<[f64; 3]> = a.positions().iter().map(|p| p.map(f64::from)).collect();
-    let pb: Vec<[f64; 3]> = b.positions().iter().map(|p| p.map(f64::from)).collect();
+    let widen = |m: &Mesh| -> Vec<DVec3> { m.positions().iter().map(|&p| Vec3::from_array(p).as_dvec3()).collect() };
+    let (pa, pb) = (widen(a), widen(b));
     hausdorff(
         MeshRef {
             positions: &pa,
