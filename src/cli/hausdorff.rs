@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use photosolid::metrics::{hausdorff, MeshRef};
 use photosolid::solid::export;
 use serde::Serialize;
@@ -42,11 +42,7 @@ type Triangles = (Vec<DVec3>, Vec<[u32; 3]>);
 
 fn read(p: &Path) -> anyhow::Result<Triangles> {
     let mesh = export::read(p)?;
-    let pos = mesh
-        .positions()
-        .iter()
-        .map(|&v| Vec3::from_array(v).as_dvec3())
-        .collect();
+    let pos = mesh.positions_f64();
     Ok((pos, mesh.triangles().to_vec()))
 }
 

@@ -38,7 +38,6 @@ mod withheld;
 
 use std::str::FromStr;
 
-use glam::{DVec3, Vec3};
 use serde::Serialize;
 
 pub use align::{best_alignment, Alignment};
@@ -409,8 +408,7 @@ pub struct Comparison {
 
 /// Symmetric Hausdorff distance between two solids (f32 positions widened to f64).
 pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {
-    let widen = |m: &Mesh| -> Vec<DVec3> { m.positions().iter().map(|&p| Vec3::from_array(p).as_dvec3()).collect() };
-    let (pa, pb) = (widen(a), widen(b));
+    let (pa, pb) = (a.positions_f64(), b.positions_f64());
     hausdorff(
         MeshRef {
             positions: &pa,

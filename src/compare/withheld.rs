@@ -8,7 +8,7 @@
 //! Hausdorff figure is one-sided and exact: the largest distance from a
 //! withheld measured point `I·d` to the solid rebuilt without it.
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 
 use super::{grid_or_own_solid, mark_pareto, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
@@ -96,11 +96,7 @@ pub(super) fn compare_withheld(
                     match grid_or_own_solid(recs, r, &*field, &fold.kept, opts.factor) {
                         Ok(solid) => {
                             triangles = triangles.max(solid.n_triangles());
-                            let pos: Vec<DVec3> = solid
-                                .positions()
-                                .iter()
-                                .map(|&p| Vec3::from_array(p).as_dvec3())
-                                .collect();
+                            let pos = solid.positions_f64();
                             dist_all.extend(distances(&points, &Bvh::build(&pos, solid.triangles())));
                         }
                         // A reconstruction that is zero everywhere (a fit to dark data) has no solid either.

@@ -113,6 +113,11 @@ impl Mesh {
     pub fn positions(&self) -> &[[f32; 3]] {
         &self.positions
     }
+    /// Vertex positions widened to `f64` (same units as [`Mesh::positions`]),
+    /// for distance queries ([`crate::metrics::MeshRef`]).
+    pub fn positions_f64(&self) -> Vec<DVec3> {
+        self.positions.iter().map(p64).collect()
+    }
     /// Triangles (vertex indices), counter-clockwise seen from outside.
     pub fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
