@@ -8,22 +8,23 @@
 //! the method of gpytoolbox's approximate_hausdorff_distance.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use glam::DVec3;
 use photosolid::metrics::{hausdorff, hausdorff::distances, Bvh, MeshRef};
 
-fn sphere(r: [f64; 3], c: [f64; 3], n_lat: usize, n_lon: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let mut pos = vec![[c[0], c[1], c[2] - r[2]]];
+fn sphere(r: [f64; 3], c: [f64; 3], n_lat: usize, n_lon: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut pos = vec![DVec3::new(c[0], c[1], c[2] - r[2])];
     for i in 1..n_lat {
         let th = std::f64::consts::PI * i as f64 / n_lat as f64;
         for j in 0..n_lon {
             let ph = 2.0 * std::f64::consts::PI * j as f64 / n_lon as f64;
-            pos.push([
+            pos.push(DVec3::new(
                 c[0] + r[0] * th.sin() * ph.cos(),
                 c[1] + r[1] * th.sin() * ph.sin(),
                 c[2] - r[2] * th.cos(),
-            ]);
+            ));
         }
     }
-    pos.push([c[0], c[1], c[2] + r[2]]);
+    pos.push(DVec3::new(c[0], c[1], c[2] + r[2]));
     let top = (pos.len() - 1) as u32;
     let idx = |i: usize, j: usize| (1 + (i - 1) * n_lon + (j % n_lon)) as u32;
     let mut t = Vec::new();

@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use clap::Args;
+use glam::DVec3;
 use photosolid::metrics::{hausdorff, MeshRef};
 use photosolid::solid::export;
 use serde::Serialize;
@@ -37,22 +38,18 @@ struct Out {
 }
 
 /// Vertex positions (f64) and triangles of a mesh file.
-type Triangles = (Vec<[f64; 3]>, Vec<[u32; 3]>);
+type Triangles = (Vec<DVec3>, Vec<[u32; 3]>);
 
 fn read(p: &Path) -> anyhow::Result<Triangles> {
     let mesh = export::read(p)?;
-    let pos = mesh.positions().iter().map(|v| v.map(f64::from)).collect();
+    let pos = mesh.positions_f64();
     Ok((pos, mesh.triangles().to_vec()))
 }
 
 pub fn run(a: HausdorffArgs) -> anyhow::Result<i32> {
     let (pa, ta) = read(&a.a)?;
     let (pb, tb) = read(&a.b)?;
-    let radius = pa
-        .iter()
-        .chain(&pb)
-        .map(|p| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt())
-        .fold(0.0, f64::max);
+    let radius = pa.iter().chain(&pb).map(|p| p.length()).fold(0.0, f64::max);
     let tol = a.tolerance.unwrap_or(1e-3 * radius);
     let t0 = Instant::now();
     let h = hausdorff(

@@ -408,8 +408,7 @@ pub struct Comparison {
 
 /// Symmetric Hausdorff distance between two solids (f32 positions widened to f64).
 pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {
-    let pa: Vec<[f64; 3]> = a.positions().iter().map(|p| p.map(f64::from)).collect();
-    let pb: Vec<[f64; 3]> = b.positions().iter().map(|p| p.map(f64::from)).collect();
+    let (pa, pb) = (a.positions_f64(), b.positions_f64());
     hausdorff(
         MeshRef {
             positions: &pa,

@@ -8,6 +8,8 @@
 //! Hausdorff figure is one-sided and exact: the largest distance from a
 //! withheld measured point `I·d` to the solid rebuilt without it.
 
+use glam::DVec3;
+
 use super::{grid_or_own_solid, mark_pareto, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
 use crate::metrics::hausdorff::distances;
@@ -69,11 +71,11 @@ pub(super) fn compare_withheld(
         let mut dist_all = Vec::with_capacity(m_all.len());
         let mut triangles = 0;
         for (fold, (set, m)) in folds.iter().zip(&sets) {
-            let points: Vec<[f64; 3]> = set
+            let points: Vec<DVec3> = set
                 .directions
                 .iter()
                 .zip(m)
-                .map(|(&(c, g), &v)| (v * direction(c, g)).to_array())
+                .map(|(&(c, g), &v)| v * direction(c, g))
                 .collect();
             // Kept data that is zero everywhere reconstructs to nothing: the
             // solid is the origin, every withheld point is |p| away from it.
@@ -94,7 +96,7 @@ pub(super) fn compare_withheld(
                     match grid_or_own_solid(recs, r, &*field, &fold.kept, opts.factor) {
                         Ok(solid) => {
                             triangles = triangles.max(solid.n_triangles());
-                            let pos: Vec<[f64; 3]> = solid.positions().iter().map(|p| p.map(f64::from)).collect();
+                            let pos = solid.positions_f64();
                             dist_all.extend(distances(&points, &Bvh::build(&pos, solid.triangles())));
                         }
                         // A reconstruction that is zero everywhere (a fit to dark data) has no solid either.

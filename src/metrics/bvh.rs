@@ -6,44 +6,35 @@
 //! first and prunes every box farther than the best distance found, so the
 //! result is the exact (f64) distance to the closest triangle.
 
+use glam::DVec3;
+
 /// Triangles per leaf.
 pub const LEAF_SIZE: usize = 4;
 
 /// Axis-aligned box.
 #[derive(Debug, Clone, Copy)]
 struct Aabb {
-    lo: [f64; 3],
-    hi: [f64; 3],
+    lo: DVec3,
+    hi: DVec3,
 }
 
 impl Aabb {
     fn empty() -> Self {
         Self {
-            lo: [f64::INFINITY; 3],
-            hi: [f64::NEG_INFINITY; 3],
+            lo: DVec3::INFINITY,
+            hi: DVec3::NEG_INFINITY,
         }
     }
-    fn grow(&mut self, p: &[f64; 3]) {
-        for k in 0..3 {
-            self.lo[k] = self.lo[k].min(p[k]);
-            self.hi[k] = self.hi[k].max(p[k]);
-        }
+    fn grow(&mut self, p: DVec3) {
+        self.lo = self.lo.min(p);
+        self.hi = self.hi.max(p);
     }
     /// Squared distance from p to the box (0 inside).
     #[inline]
-    fn dist2(&self, p: &[f64; 3]) -> f64 {
-        let mut d = 0.0;
-        for k in 0..3 {
-            let v = if p[k] < self.lo[k] {
-                self.lo[k] - p[k]
-            } else if p[k] > self.hi[k] {
-                p[k] - self.hi[k]
-            } else {
-                0.0
-            };
-            d += v * v;
-        }
-        d
+    fn dist2(&self, p: DVec3) -> f64 {
+        // Per axis: lo − p below the box, p − hi above it, 0 inside.
+        let v = (self.lo - p).max(p - self.hi).max(DVec3::ZERO);
+        v.dot(v)
     }
 }
 
@@ -61,13 +52,13 @@ struct Node {
 pub struct Bvh {
     nodes: Vec<Node>,
     order: Vec<u32>,
-    tris: Vec<[[f64; 3]; 3]>,
+    tris: Vec<[DVec3; 3]>,
 }
 
 impl Bvh {
     /// Build over `triangles` (indices into `positions`).
-    pub fn build(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> Self {
-        let tris: Vec<[[f64; 3]; 3]> = triangles
+    pub fn build(positions: &[DVec3], triangles: &[[u32; 3]]) -> Self {
+        let tris: Vec<[DVec3; 3]> = triangles
             .iter()
             .map(|t| {
                 [
@@ -77,16 +68,7 @@ impl Bvh {
                 ]
             })
             .collect();
-        let centroids: Vec<[f64; 3]> = tris
-            .iter()
-            .map(|t| {
-                [
-                    (t[0][0] + t[1][0] + t[2][0]) / 3.0,
-                    (t[0][1] + t[1][1] + t[2][1]) / 3.0,
-                    (t[0][2] + t[1][2] + t[2][2]) / 3.0,
-                ]
-            })
-            .collect();
+        let centroids: Vec<DVec3> = tris.iter().map(|t| (t[0] + t[1] + t[2]) / 3.0).collect();
         let mut order: Vec<u32> = (0..tris.len() as u32).collect();
         let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 2);
         nodes.push(Node {
@@ -100,7 +82,7 @@ impl Bvh {
             let mut b = Aabb::empty();
             for &t in &order[s..e] {
                 for p in &tris[t as usize] {
-                    b.grow(p);
+                    b.grow(*p);
                 }
             }
             nodes[ni].bounds = b;
@@ -111,11 +93,10 @@ impl Bvh {
             }
             let mut cb = Aabb::empty();
             for &t in &order[s..e] {
-                cb.grow(&centroids[t as usize]);
+                cb.grow(centroids[t as usize]);
             }
-            let axis = (0..3)
-                .max_by(|&a, &b| (cb.hi[a] - cb.lo[a]).total_cmp(&(cb.hi[b] - cb.lo[b])))
-                .unwrap_or(0);
+            let extent = cb.hi - cb.lo;
+            let axis = (0..3).max_by(|&a, &b| extent[a].total_cmp(&extent[b])).unwrap_or(0);
             let mid = (s + e) / 2;
             order[s..e].select_nth_unstable_by(mid - s, |&a, &b| {
                 centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis])
@@ -150,25 +131,25 @@ impl Bvh {
     }
 
     /// Exact distance from `p` to the closest triangle (infinity when empty).
-    pub fn distance(&self, p: &[f64; 3]) -> f64 {
+    pub fn distance(&self, p: DVec3) -> f64 {
         self.distance2_below(p, f64::INFINITY).sqrt()
     }
 
     /// Squared distance to the closest triangle, searching only below `best2`
     /// (a known upper bound, e.g. from a neighbouring query).
-    pub fn distance2_below(&self, p: &[f64; 3], best2: f64) -> f64 {
+    pub fn distance2_below(&self, p: DVec3, best2: f64) -> f64 {
         self.nearest_below(p, best2).0
     }
 
     /// The triangle `i` as three points.
-    pub fn triangle(&self, i: u32) -> &[[f64; 3]; 3] {
+    pub fn triangle(&self, i: u32) -> &[DVec3; 3] {
         &self.tris[i as usize]
     }
 
     /// Squared distance to the closest triangle and its index (in build
     /// order, for [`Bvh::triangle`]), searching only below `best2`. The index
     /// is `u32::MAX` when nothing lies below `best2`.
-    pub fn nearest_below(&self, p: &[f64; 3], mut best2: f64) -> (f64, u32) {
+    pub fn nearest_below(&self, p: DVec3, mut best2: f64) -> (f64, u32) {
         let mut best_t = u32::MAX;
         if self.tris.is_empty() {
             return (f64::INFINITY, best_t);
@@ -210,84 +191,64 @@ impl Bvh {
     }
 }
 
-#[inline]
-fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// Squared distance from `p` to triangle `t`, by the Voronoi-region cases of
 /// Ericson, *Real-Time Collision Detection* §5.1.5 (exact for degenerate triangles too).
-pub fn point_triangle_dist2(p: &[f64; 3], t: &[[f64; 3]; 3]) -> f64 {
-    let (a, b, c) = (&t[0], &t[1], &t[2]);
-    let ab = sub(b, a);
-    let ac = sub(c, a);
-    let ap = sub(p, a);
-    let d1 = dot(&ab, &ap);
-    let d2 = dot(&ac, &ap);
-    let closest = |q: [f64; 3]| {
-        let d = sub(p, &q);
-        dot(&d, &d)
-    };
+pub fn point_triangle_dist2(p: DVec3, t: &[DVec3; 3]) -> f64 {
+    let [a, b, c] = *t;
+    let ab = b - a;
+    let ac = c - a;
+    let ap = p - a;
+    let d1 = ab.dot(ap);
+    let d2 = ac.dot(ap);
+    let closest = |q: DVec3| p.distance_squared(q);
     if d1 <= 0.0 && d2 <= 0.0 {
-        return dot(&ap, &ap);
+        return ap.dot(ap);
     }
-    let bp = sub(p, b);
-    let d3 = dot(&ab, &bp);
-    let d4 = dot(&ac, &bp);
+    let bp = p - b;
+    let d3 = ab.dot(bp);
+    let d4 = ac.dot(bp);
     if d3 >= 0.0 && d4 <= d3 {
-        return dot(&bp, &bp);
+        return bp.dot(bp);
     }
     let vc = d1 * d4 - d3 * d2;
     if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
         let v = d1 / (d1 - d3);
-        return closest([a[0] + v * ab[0], a[1] + v * ab[1], a[2] + v * ab[2]]);
+        return closest(a + v * ab);
     }
-    let cp = sub(p, c);
-    let d5 = dot(&ab, &cp);
-    let d6 = dot(&ac, &cp);
+    let cp = p - c;
+    let d5 = ab.dot(cp);
+    let d6 = ac.dot(cp);
     if d6 >= 0.0 && d5 <= d6 {
-        return dot(&cp, &cp);
+        return cp.dot(cp);
     }
     let vb = d5 * d2 - d1 * d6;
     if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
         let w = d2 / (d2 - d6);
-        return closest([a[0] + w * ac[0], a[1] + w * ac[1], a[2] + w * ac[2]]);
+        return closest(a + w * ac);
     }
     let va = d3 * d6 - d5 * d4;
     if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
         let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return closest([
-            b[0] + w * (c[0] - b[0]),
-            b[1] + w * (c[1] - b[1]),
-            b[2] + w * (c[2] - b[2]),
-        ]);
+        return closest(b + w * (c - b));
     }
     let denom = va + vb + vc;
     if denom.abs() < f64::MIN_POSITIVE {
         // Degenerate (zero-area) triangle: the nearest of its edges.
-        let seg = |u: &[f64; 3], w: &[f64; 3]| {
-            let e = sub(w, u);
-            let l2 = dot(&e, &e);
+        let seg = |u: DVec3, w: DVec3| {
+            let e = w - u;
+            let l2 = e.dot(e);
             let s = if l2 > 0.0 {
-                (dot(&sub(p, u), &e) / l2).clamp(0.0, 1.0)
+                ((p - u).dot(e) / l2).clamp(0.0, 1.0)
             } else {
                 0.0
             };
-            closest([u[0] + s * e[0], u[1] + s * e[1], u[2] + s * e[2]])
+            closest(u + s * e)
         };
         return seg(a, b).min(seg(b, c)).min(seg(a, c));
     }
     let v = vb / denom;
     let w = vc / denom;
-    closest([
-        a[0] + ab[0] * v + ac[0] * w,
-        a[1] + ab[1] * v + ac[1] * w,
-        a[2] + ab[2] * v + ac[2] * w,
-    ])
+    closest(a + ab * v + ac * w)
 }
 
 #[cfg(test)]
@@ -296,15 +257,15 @@ mod tests {
 
     #[test]
     fn point_triangle_regions() {
-        let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        let d = |p: [f64; 3]| point_triangle_dist2(&p, &t).sqrt();
+        let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        let d = |p: [f64; 3]| point_triangle_dist2(DVec3::from_array(p), &t).sqrt();
         assert!((d([0.2, 0.2, 2.0]) - 2.0).abs() < 1e-12); // face
         assert!((d([-1.0, -1.0, 0.0]) - 2f64.sqrt()).abs() < 1e-12); // vertex a
         assert!((d([0.5, -1.0, 0.0]) - 1.0).abs() < 1e-12); // edge ab
         assert!((d([1.0, 1.0, 0.0]) - 0.5f64.sqrt()).abs() < 1e-12); // edge bc
         assert!((d([3.0, 0.0, 0.0]) - 2.0).abs() < 1e-12); // vertex b
-        let degenerate = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
-        assert!((point_triangle_dist2(&[1.0, 1.0, 0.0], &degenerate).sqrt() - 1.0).abs() < 1e-12);
+        let degenerate = [DVec3::ZERO, DVec3::X, 2.0 * DVec3::X];
+        assert!((point_triangle_dist2(DVec3::new(1.0, 1.0, 0.0), &degenerate).sqrt() - 1.0).abs() < 1e-12);
     }
 
     #[test]
@@ -315,7 +276,7 @@ mod tests {
         for i in 0..=n {
             for j in 0..=n {
                 let (x, y) = (i as f64, j as f64);
-                pos.push([x, y, (x * 0.7).sin() * (y * 0.3).cos() * 3.0]);
+                pos.push(DVec3::new(x, y, (x * 0.7).sin() * (y * 0.3).cos() * 3.0));
             }
         }
         let mut tris = Vec::new();
@@ -337,13 +298,13 @@ mod tests {
             (s % 10_000) as f64 / 10_000.0
         };
         for _ in 0..300 {
-            let p = [rnd() * 40.0 - 5.0, rnd() * 40.0 - 5.0, rnd() * 20.0 - 10.0];
+            let p = DVec3::new(rnd() * 40.0 - 5.0, rnd() * 40.0 - 5.0, rnd() * 20.0 - 10.0);
             let brute = tris
                 .iter()
-                .map(|t| point_triangle_dist2(&p, &[pos[t[0] as usize], pos[t[1] as usize], pos[t[2] as usize]]))
+                .map(|t| point_triangle_dist2(p, &[pos[t[0] as usize], pos[t[1] as usize], pos[t[2] as usize]]))
                 .fold(f64::INFINITY, f64::min)
                 .sqrt();
-            assert!((bvh.distance(&p) - brute).abs() < 1e-12);
+            assert!((bvh.distance(p) - brute).abs() < 1e-12);
         }
     }
 }

@@ -27,6 +27,7 @@
 
 use std::collections::BinaryHeap;
 
+use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -36,7 +37,7 @@ use super::bvh::Bvh;
 #[derive(Debug, Clone, Copy)]
 pub struct MeshRef<'a> {
     /// Vertex positions (any consistent unit; photometric solids use cd).
-    pub positions: &'a [[f64; 3]],
+    pub positions: &'a [DVec3],
     /// Triangles as vertex indices.
     pub triangles: &'a [[u32; 3]],
 }
@@ -82,7 +83,7 @@ pub const MAX_REFINEMENT_QUERIES: usize = 2_000_000;
 #[derive(Debug, Clone, Copy)]
 struct Cell {
     ub: f64,
-    v: [[f64; 3]; 3],
+    v: [DVec3; 3],
     f: [f64; 3],
     k: [u32; 3],
 }
@@ -104,11 +105,7 @@ impl Ord for Cell {
     }
 }
 
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-fn upper_bound(v: &[[f64; 3]; 3], f: &[f64; 3], k: &[u32; 3], b: &Bvh) -> f64 {
+fn upper_bound(v: &[DVec3; 3], f: &[f64; 3], k: &[u32; 3], b: &Bvh) -> f64 {
     let mut best = lipschitz_bound(v, f);
     for (i, &ki) in k.iter().enumerate() {
         if ki == u32::MAX || (i > 0 && k[..i].contains(&ki)) {
@@ -117,7 +114,7 @@ fn upper_bound(v: &[[f64; 3]; 3], f: &[f64; 3], k: &[u32; 3], b: &Bvh) -> f64 {
         let tri = b.triangle(ki);
         let m = v
             .iter()
-            .map(|p| super::bvh::point_triangle_dist2(p, tri))
+            .map(|&p| super::bvh::point_triangle_dist2(p, tri))
             .fold(0.0, f64::max)
             .sqrt();
         best = best.min(m);
@@ -125,8 +122,8 @@ fn upper_bound(v: &[[f64; 3]; 3], f: &[f64; 3], k: &[u32; 3], b: &Bvh) -> f64 {
     best
 }
 
-fn lipschitz_bound(v: &[[f64; 3]; 3], f: &[f64; 3]) -> f64 {
-    let e = [dist(&v[0], &v[1]), dist(&v[1], &v[2]), dist(&v[2], &v[0])];
+fn lipschitz_bound(v: &[DVec3; 3], f: &[f64; 3]) -> f64 {
+    let e = [v[0].distance(v[1]), v[1].distance(v[2]), v[2].distance(v[0])];
     let far = [e[0].max(e[2]), e[0].max(e[1]), e[1].max(e[2])];
     let cone = (0..3).map(|i| f[i] + far[i]).fold(f64::INFINITY, f64::min);
     let longest = e[0].max(e[1]).max(e[2]);
@@ -134,38 +131,31 @@ fn lipschitz_bound(v: &[[f64; 3]; 3], f: &[f64; 3]) -> f64 {
     cone.min(fmax + longest / 3f64.sqrt())
 }
 
-fn area(v: &[[f64; 3]; 3]) -> f64 {
-    let u = [v[1][0] - v[0][0], v[1][1] - v[0][1], v[1][2] - v[0][2]];
-    let w = [v[2][0] - v[0][0], v[2][1] - v[0][1], v[2][2] - v[0][2]];
-    let c = [
-        u[1] * w[2] - u[2] * w[1],
-        u[2] * w[0] - u[0] * w[2],
-        u[0] * w[1] - u[1] * w[0],
-    ];
-    0.5 * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+fn area(v: &[DVec3; 3]) -> f64 {
+    0.5 * (v[1] - v[0]).cross(v[2] - v[0]).length()
 }
 
 /// Distances from every point of `points` to `b`, in parallel; consecutive
 /// points warm-start each other's search (d(p_k) ≤ d(p_{k−1}) + |p_k − p_{k−1}|).
-pub fn distances(points: &[[f64; 3]], b: &Bvh) -> Vec<f64> {
+pub fn distances(points: &[DVec3], b: &Bvh) -> Vec<f64> {
     nearest(points, b).into_iter().map(|x| x.0).collect()
 }
 
 /// Distance and nearest triangle of `b` for every point (see [`distances`]).
-pub fn nearest(points: &[[f64; 3]], b: &Bvh) -> Vec<(f64, u32)> {
+pub fn nearest(points: &[DVec3], b: &Bvh) -> Vec<(f64, u32)> {
     let mut out = vec![(0.0, u32::MAX); points.len()];
     out.par_chunks_mut(512).zip(points.par_chunks(512)).for_each(|(o, p)| {
         let mut prev: Option<(usize, f64)> = None;
         for k in 0..p.len() {
             let hint = match prev {
                 Some((j, d)) => {
-                    let h = d + dist(&p[k], &p[j]);
+                    let h = d + p[k].distance(p[j]);
                     // Slightly above the hint so the triangle at exactly that distance is kept.
                     (h * (1.0 + 1e-12) + 1e-300).powi(2)
                 }
                 None => f64::INFINITY,
             };
-            let (d2, t) = b.nearest_below(&p[k], hint);
+            let (d2, t) = b.nearest_below(p[k], hint);
             let d = d2.sqrt();
             o[k] = (d, t);
             prev = Some((k, d));
@@ -212,15 +202,11 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
                 a.positions[t[1] as usize],
                 a.positions[t[2] as usize],
             ];
-            let c = [
-                (v[0][0] + v[1][0] + v[2][0]) / 3.0,
-                (v[0][1] + v[1][1] + v[2][1]) / 3.0,
-                (v[0][2] + v[1][2] + v[2][2]) / 3.0,
-            ];
+            let c = (v[0] + v[1] + v[2]) / 3.0;
             let hint = (0..3)
-                .map(|i| near[t[i] as usize].0 + dist(&c, &v[i]))
+                .map(|i| near[t[i] as usize].0 + c.distance(v[i]))
                 .fold(f64::INFINITY, f64::min);
-            let d = b.distance2_below(&c, (hint * (1.0 + 1e-12) + 1e-300).powi(2)).sqrt();
+            let d = b.distance2_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2)).sqrt();
             (area(&v), d, d)
         })
         .collect();
@@ -243,22 +229,16 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
             break top.ub.max(lb);
         }
         let c = heap.pop().expect("peeked");
-        let mid = |i: usize, j: usize| {
-            [
-                0.5 * (c.v[i][0] + c.v[j][0]),
-                0.5 * (c.v[i][1] + c.v[j][1]),
-                0.5 * (c.v[i][2] + c.v[j][2]),
-            ]
-        };
+        let mid = |i: usize, j: usize| 0.5 * (c.v[i] + c.v[j]);
         let m = [mid(0, 1), mid(1, 2), mid(2, 0)];
         let mut fm = [0.0; 3];
         let mut km = [u32::MAX; 3];
         for j in 0..3 {
             // Lipschitz warm start from the parent's vertices.
             let hint = (0..3)
-                .map(|i| c.f[i] + dist(&m[j], &c.v[i]))
+                .map(|i| c.f[i] + m[j].distance(c.v[i]))
                 .fold(f64::INFINITY, f64::min);
-            let (d2, t) = b.nearest_below(&m[j], (hint * (1.0 + 1e-12) + 1e-300).powi(2));
+            let (d2, t) = b.nearest_below(m[j], (hint * (1.0 + 1e-12) + 1e-300).powi(2));
             fm[j] = d2.sqrt();
             km[j] = t;
             lb = lb.max(fm[j]);
@@ -316,20 +296,20 @@ mod tests {
     use super::*;
 
     /// A UV sphere of radius r centred at c.
-    pub(crate) fn sphere(r: f64, c: [f64; 3], n_lat: usize, n_lon: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-        let mut pos = vec![[c[0], c[1], c[2] - r]];
+    pub(crate) fn sphere(r: f64, c: [f64; 3], n_lat: usize, n_lon: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let mut pos = vec![DVec3::new(c[0], c[1], c[2] - r)];
         for i in 1..n_lat {
             let th = std::f64::consts::PI * i as f64 / n_lat as f64;
             for j in 0..n_lon {
                 let ph = 2.0 * std::f64::consts::PI * j as f64 / n_lon as f64;
-                pos.push([
+                pos.push(DVec3::new(
                     c[0] + r * th.sin() * ph.cos(),
                     c[1] + r * th.sin() * ph.sin(),
                     c[2] - r * th.cos(),
-                ]);
+                ));
             }
         }
-        pos.push([c[0], c[1], c[2] + r]);
+        pos.push(DVec3::new(c[0], c[1], c[2] + r));
         let top = (pos.len() - 1) as u32;
         let idx = |i: usize, j: usize| (1 + (i - 1) * n_lon + (j % n_lon)) as u32;
         let mut t = Vec::new();
@@ -389,12 +369,8 @@ mod tests {
             for i in 0..=20 {
                 for j in 0..=(20 - i) {
                     let (u, w) = (i as f64 / 20.0, j as f64 / 20.0);
-                    let x = [
-                        v[0][0] + u * (v[1][0] - v[0][0]) + w * (v[2][0] - v[0][0]),
-                        v[0][1] + u * (v[1][1] - v[0][1]) + w * (v[2][1] - v[0][1]),
-                        v[0][2] + u * (v[1][2] - v[0][2]) + w * (v[2][2] - v[0][2]),
-                    ];
-                    dense = dense.max(bvh.distance(&x));
+                    let x = v[0] + u * (v[1] - v[0]) + w * (v[2] - v[0]);
+                    dense = dense.max(bvh.distance(x));
                 }
             }
         }

@@ -12,7 +12,7 @@
 //! The volume of a smooth solid converges as h² in the grid step (the
 //! polyhedron inscribed in the surface).
 
-use super::mesh::{cross, p64, sub, Mesh, SolidInfo};
+use super::mesh::{p64, Mesh, SolidInfo};
 use super::{stored_radius, Units};
 use crate::error::ModelError;
 use crate::model::{periodic_widths, Distribution, IntensityField, ANGLE_EPS};
@@ -261,7 +261,7 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
             p64(&pos[t[1] as usize]),
             p64(&pos[t[2] as usize]),
         );
-        cross(sub(b, a), sub(c, a)) == [0.0; 3]
+        (b - a).cross(c - a) == glam::DVec3::ZERO
     };
     let distinct = |t: &[u32; 3]| t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
     for ic in 0..nc {

@@ -11,6 +11,8 @@
 use std::borrow::Cow;
 use std::fmt;
 
+use glam::{DVec3, Vec3};
+
 use super::topology::{count_pinched, remove_fins, split_vertices, SHEET_SEPARATION};
 use super::{Units, UNIT_FRAME};
 use crate::error::ModelError;
@@ -111,6 +113,11 @@ impl Mesh {
     pub fn positions(&self) -> &[[f32; 3]] {
         &self.positions
     }
+    /// Vertex positions widened to `f64` (same units as [`Mesh::positions`]),
+    /// for distance queries ([`crate::metrics::MeshRef`]).
+    pub fn positions_f64(&self) -> Vec<DVec3> {
+        self.positions.iter().map(p64).collect()
+    }
     /// Triangles (vertex indices), counter-clockwise seen from outside.
     pub fn triangles(&self) -> &[[u32; 3]] {
         &self.triangles
@@ -147,7 +154,7 @@ impl Mesh {
     /// Largest distance of a vertex from the origin: the peak intensity in
     /// the mesh's units (the solid's vertices sit at I(d) d with |d| = 1).
     pub fn max_radius(&self) -> f64 {
-        self.positions.iter().map(|p| norm(p64(p))).fold(0.0, f64::max)
+        self.positions.iter().map(|p| p64(p).length()).fold(0.0, f64::max)
     }
 
     /// Enclosed volume (units³) by the divergence theorem: Σ det(p0, p1, p2) / 6
@@ -157,7 +164,7 @@ impl Mesh {
             .iter()
             .map(|t| {
                 let [a, b, c] = self.tri(t);
-                dot(a, cross(b, c))
+                a.dot(b.cross(c))
             })
             .sum::<f64>()
             / 6.0
@@ -169,14 +176,14 @@ impl Mesh {
             .iter()
             .map(|t| {
                 let [a, b, c] = self.tri(t);
-                norm(cross(sub(b, a), sub(c, a)))
+                (b - a).cross(c - a).length()
             })
             .sum::<f64>()
             / 2.0
     }
 
     #[inline]
-    fn tri(&self, t: &[u32; 3]) -> [[f64; 3]; 3] {
+    fn tri(&self, t: &[u32; 3]) -> [DVec3; 3] {
         [
             p64(&self.positions[t[0] as usize]),
             p64(&self.positions[t[1] as usize]),
@@ -191,22 +198,19 @@ impl Mesh {
     /// direction from the origin, and failing that +z: never NaN, always unit.
     pub fn compute_normals(&mut self) {
         let n = self.positions.len();
-        let mut acc = vec![[0.0f64; 3]; n];
+        let mut acc = vec![DVec3::ZERO; n];
         for t in &self.triangles {
             let [a, b, c] = self.tri(t);
-            let fnorm = cross(sub(b, a), sub(c, a));
+            let fnorm = (b - a).cross(c - a);
             for &i in t {
-                let s = &mut acc[i as usize];
-                s[0] += fnorm[0];
-                s[1] += fnorm[1];
-                s[2] += fnorm[2];
+                acc[i as usize] += fnorm;
             }
         }
         let mut out = Vec::with_capacity(n);
         let mut fallback = Vec::new();
         for (i, s) in acc.iter().enumerate() {
-            match unit(*s) {
-                Some(u) => out.push([u[0] as f32, u[1] as f32, u[2] as f32]),
+            match s.try_normalize() {
+                Some(u) => out.push(u.as_vec3().to_array()),
                 None => {
                     fallback.push(i);
                     out.push([0.0, 0.0, 1.0]);
@@ -215,22 +219,23 @@ impl Mesh {
         }
         if !fallback.is_empty() {
             // Rare: recompute only for the few vertices that need it.
-            let mut unit_acc = vec![[0.0f64; 3]; fallback.len()];
+            let mut unit_acc = vec![DVec3::ZERO; fallback.len()];
             for t in &self.triangles {
                 for &i in t {
                     if let Ok(k) = fallback.binary_search(&(i as usize)) {
                         let [a, b, c] = self.tri(t);
-                        if let Some(u) = unit(cross(sub(b, a), sub(c, a))) {
-                            unit_acc[k] = [unit_acc[k][0] + u[0], unit_acc[k][1] + u[1], unit_acc[k][2] + u[2]];
+                        if let Some(u) = (b - a).cross(c - a).try_normalize() {
+                            unit_acc[k] += u;
                         }
                     }
                 }
             }
             for (k, &i) in fallback.iter().enumerate() {
-                let u = unit(unit_acc[k])
-                    .or_else(|| unit(p64(&self.positions[i])))
-                    .unwrap_or([0.0, 0.0, 1.0]);
-                out[i] = [u[0] as f32, u[1] as f32, u[2] as f32];
+                let u = unit_acc[k]
+                    .try_normalize()
+                    .or_else(|| p64(&self.positions[i]).try_normalize())
+                    .unwrap_or(DVec3::Z);
+                out[i] = u.as_vec3().to_array();
             }
         }
         self.normals = Some(out);
@@ -241,7 +246,7 @@ impl Mesh {
     pub fn colorize(&mut self, map: super::ColorMap) {
         let peak = self.max_radius();
         let inv = if peak > 0.0 { 1.0 / peak } else { 0.0 };
-        self.colors = Some(self.positions.iter().map(|p| map.rgb8(norm(p64(p)) * inv)).collect());
+        self.colors = Some(self.positions.iter().map(|p| map.rgb8(p64(p).length() * inv)).collect());
     }
 
     /// Drop the normals.
@@ -307,7 +312,7 @@ impl Mesh {
             }
             if let Some(v) = normals
                 .iter()
-                .position(|n| n.iter().any(|x| !x.is_finite()) || (norm(p64(n)) - 1.0).abs() > 1e-3)
+                .position(|n| n.iter().any(|x| !x.is_finite()) || (p64(n).length() - 1.0).abs() > 1e-3)
             {
                 return Err(SanityError::Attribute(format!(
                     "normal of vertex {v} is not a unit vector"
@@ -325,7 +330,7 @@ impl Mesh {
                 return Err(SanityError::IndexOutOfRange { triangle: i });
             }
             let [a, b, c] = self.tri(t);
-            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || cross(sub(b, a), sub(c, a)) == [0.0; 3] {
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || (b - a).cross(c - a) == DVec3::ZERO {
                 return Err(SanityError::Degenerate {
                     triangle: i,
                     vertices: *t,
@@ -483,12 +488,12 @@ impl Mesh {
         }
         let mut positions: Vec<[f32; 3]> = source.iter().map(|&s| self.positions[s as usize]).collect();
         // Per moved vertex: mean unit direction to its sheet's neighbours, and the fan's normal.
-        let mut mean_dir = vec![[0.0f64; 3]; nv_split];
+        let mut mean_dir = vec![DVec3::ZERO; nv_split];
         let mut count = vec![0u32; nv_split];
-        let mut fan_normal = vec![[0.0f64; 3]; nv_split];
+        let mut fan_normal = vec![DVec3::ZERO; nv_split];
         for t in &tris {
             let [a, b, c] = t.map(|i| p64(&positions[i as usize]));
-            let n = cross(sub(b, a), sub(c, a));
+            let n = (b - a).cross(c - a);
             for k in 0..3 {
                 let v = t[k] as usize;
                 if !moved[v] {
@@ -496,47 +501,42 @@ impl Mesh {
                 }
                 let p = p64(&positions[v]);
                 for q in [t[(k + 1) % 3], t[(k + 2) % 3]].map(|i| p64(&positions[i as usize])) {
-                    if let Some(u) = unit(sub(q, p)) {
-                        mean_dir[v] = [mean_dir[v][0] + u[0], mean_dir[v][1] + u[1], mean_dir[v][2] + u[2]];
+                    if let Some(u) = (q - p).try_normalize() {
+                        mean_dir[v] += u;
                         count[v] += 1;
                     }
                 }
-                fan_normal[v] = [
-                    fan_normal[v][0] + n[0],
-                    fan_normal[v][1] + n[1],
-                    fan_normal[v][2] + n[2],
-                ];
+                fan_normal[v] += n;
             }
         }
         for v in 0..nv_split {
             let n = f64::from(count[v].max(1));
-            mean_dir[v] = mean_dir[v].map(|x| x / n);
+            mean_dir[v] /= n;
         }
         // The mean direction lies inside the cone the sheet's link spans, and
         // its length (the cosine of a circular cone's half-angle) orders
         // nested coaxial cones: apexes moved by it keep the sheets apart. A
         // flat sheet (link on a great circle, mean ~ 0) moves a little along
         // its normal, away from the other sheets at the point.
-        let mut others = vec![[0.0f64; 3]; nv];
+        let mut others = vec![DVec3::ZERO; nv];
         for v in (0..nv_split).filter(|&v| moved[v]) {
-            let s = &mut others[source[v] as usize];
-            *s = [s[0] + mean_dir[v][0], s[1] + mean_dir[v][1], s[2] + mean_dir[v][2]];
+            others[source[v] as usize] += mean_dir[v];
         }
         let step = SHEET_SEPARATION * self.max_radius();
         for v in (0..nv_split).filter(|&v| moved[v] && count[v] > 0) {
             let m = mean_dir[v];
-            let offset = if norm(m) > 1e-3 {
+            let offset = if m.length() > 1e-3 {
                 Some(m)
             } else {
-                unit(fan_normal[v]).map(|n| {
-                    let o = sub(others[source[v] as usize], m);
-                    let sign = if dot(n, o) > 0.0 { -1e-3 } else { 1e-3 };
-                    n.map(|x| sign * x)
+                fan_normal[v].try_normalize().map(|n| {
+                    let o = others[source[v] as usize] - m;
+                    let sign = if n.dot(o) > 0.0 { -1e-3 } else { 1e-3 };
+                    sign * n
                 })
             };
             if let Some(d) = offset {
                 let p = p64(&positions[v]);
-                positions[v] = [0, 1, 2].map(|k| (p[k] + step * d[k]) as f32);
+                positions[v] = (p + step * d).as_vec3().to_array();
             }
         }
         let mut out = Mesh {
@@ -705,35 +705,10 @@ impl fmt::Display for SanityReport {
     }
 }
 
+/// A stored `f32` position or normal as `f64` for accumulating quantities.
 #[inline]
-pub(crate) fn p64(p: &[f32; 3]) -> [f64; 3] {
-    [p[0] as f64, p[1] as f64, p[2] as f64]
-}
-#[inline]
-pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-#[inline]
-pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-#[inline]
-pub(crate) fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-/// `a / |a|`, or `None` when |a| is zero or not finite (glam's `try_normalize`).
-#[inline]
-pub(crate) fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let n = norm(a);
-    (n > 0.0 && n.is_finite()).then(|| [a[0] / n, a[1] / n, a[2] / n])
+pub(crate) fn p64(p: &[f32; 3]) -> DVec3 {
+    Vec3::from_array(*p).as_dvec3()
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@
 //! attribute word. STL has no per-vertex colour or normal: those are dropped.
 
 use super::ascii_lines;
-use crate::solid::mesh::{cross, p64, sub, unit};
+use crate::solid::mesh::p64;
 use std::collections::HashMap;
 
 use crate::error::ModelError;
@@ -28,8 +28,11 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
     let p = mesh.positions();
     for t in mesh.triangles() {
         let [a, b, c] = t.map(|i| p[i as usize]);
-        let n = unit(cross(sub(p64(&b), p64(&a)), sub(p64(&c), p64(&a)))).unwrap_or([0.0; 3]);
-        for x in n {
+        let n = (p64(&b) - p64(&a))
+            .cross(p64(&c) - p64(&a))
+            .try_normalize()
+            .unwrap_or_default();
+        for x in n.to_array() {
             out.extend_from_slice(&(x as f32).to_le_bytes());
         }
         for v in [a, b, c] {
