@@ -10,7 +10,6 @@
 //! catmull-rom), FILE first aligned onto OTHER with `--align`.
 //! Metrics: see `photosolid::compare`; JSON keys: `photosolid::compare::Comparison`.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -102,21 +101,10 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
     bar.finish_and_clear();
     c.file = a.file.display().to_string();
     c.vs = a.vs.as_ref().map(|p| p.display().to_string());
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &c)?;
-        writeln!(out)?;
-    } else {
-        write!(out, "{}", compare_report::to_text(&c))?;
-    }
+    super::emit(a.json, &c, &compare_report::to_text(&c))?;
     if let Some(dir) = &a.report {
         compare_report::write_report(&c, dir)?;
-        let msg = format!("report written to {}", dir.join("index.html").display());
-        if a.json {
-            eprintln!("{msg}");
-        } else {
-            writeln!(out, "{msg}")?;
-        }
+        super::say_report_written(a.json, dir)?;
     }
     Ok(0)
 }

@@ -3,7 +3,6 @@
 //! documented loader defect. JSON keys: `photosolid::engines::EnginesReport`.
 
 use std::fmt::Write as _;
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -70,21 +69,10 @@ pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
     };
     let mut r = measure(&lum, &opts)?;
     r.file = a.file.display().to_string();
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &r)?;
-        writeln!(out)?;
-    } else {
-        write!(out, "{}", text(&r))?;
-    }
+    super::emit(a.json, &r, &text(&r))?;
     if let Some(dir) = &a.report {
         photosolid::report::engines_report::write_report(&r, dir)?;
-        let msg = format!("report written to {}", dir.join("index.html").display());
-        if a.json {
-            eprintln!("{msg}");
-        } else {
-            writeln!(out, "{msg}")?;
-        }
+        super::say_report_written(a.json, dir)?;
     }
     Ok(0)
 }

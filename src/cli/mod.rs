@@ -181,18 +181,34 @@ fn render_on(
     Ok((photosolid::reconstruct::render_with(tex, &options)?, "cpu".to_string()))
 }
 
-/// Print `report` as pretty JSON, or as `FILE` followed by its text form.
-fn print_report(json: bool, file: &std::path::Path, report: &impl serde::Serialize, text: &str) -> anyhow::Result<()> {
+/// Print `value` as pretty JSON, or `text` as it is.
+fn emit(json: bool, value: &impl serde::Serialize, text: &str) -> anyhow::Result<()> {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
     if json {
-        serde_json::to_writer_pretty(&mut out, report)?;
+        serde_json::to_writer_pretty(&mut out, value)?;
         writeln!(out)?;
     } else {
-        writeln!(out, "{}", file.display())?;
         write!(out, "{text}")?;
     }
     Ok(())
+}
+
+/// Say where a report was written: on stdout after a text table, on stderr
+/// after JSON (so stdout stays one JSON document).
+fn say_report_written(json: bool, dir: &std::path::Path) -> anyhow::Result<()> {
+    let msg = format!("report written to {}", dir.join("index.html").display());
+    if json {
+        eprintln!("{msg}");
+        Ok(())
+    } else {
+        emit(false, &(), &format!("{msg}\n"))
+    }
+}
+
+/// Print `report` as pretty JSON, or as `FILE` followed by its text form.
+fn print_report(json: bool, file: &std::path::Path, report: &impl serde::Serialize, text: &str) -> anyhow::Result<()> {
+    emit(json, report, &format!("{}\n{text}", file.display()))
 }
 
 /// A progress bar on stderr for work that may take over a second (hidden

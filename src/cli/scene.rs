@@ -3,7 +3,7 @@
 //! layers over `photosolid::scene` (JSON keys: `scene::illuminance::SceneResult`,
 //! `scene::plan::PlanResult`).
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use clap::Args;
@@ -169,13 +169,7 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
             eprintln!("wrote {}", path.display());
         }
     }
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &result)?;
-        writeln!(out)?;
-    } else {
-        write!(out, "{}", scene_text(&result))?;
-    }
+    super::emit(a.json, &result, &scene_text(&result))?;
     Ok(0)
 }
 
@@ -201,12 +195,6 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
     if let Some(dir) = &a.report {
         write_json(dir, "plan.json", &result)?;
     }
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &result)?;
-        writeln!(out)?;
-    } else {
-        write!(out, "{}", plan_text(&result))?;
-    }
+    super::emit(a.json, &result, &plan_text(&result))?;
     Ok(0)
 }

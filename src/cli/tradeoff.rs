@@ -5,7 +5,6 @@
 //! bytes and time per lookup, and its error against the reference
 //! (`photosolid::compare::trade`). JSON keys: `photosolid::compare::trade::TradeTable`.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -76,16 +75,10 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
     t.file = a.file.display().to_string();
     t.comparison.file = t.file.clone();
     t.comparison.vs = a.reference.clone().filter(|r| r != "truth" && r != "withheld");
-    let mut out = std::io::stdout().lock();
-    if a.json {
-        serde_json::to_writer_pretty(&mut out, &t)?;
-        writeln!(out)?;
-    } else {
-        write!(out, "{}", to_text(&t))?;
-    }
+    super::emit(a.json, &t, &to_text(&t))?;
     if let Some(dir) = &a.report {
         compare_report::write_report(&t.comparison, dir)?;
-        eprintln!("report written to {}", dir.join("index.html").display());
+        super::say_report_written(a.json, dir)?;
     }
     Ok(0)
 }
