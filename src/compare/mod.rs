@@ -333,7 +333,7 @@ impl ReconResult {
         d: Distances,
         rad: &crate::metrics::RadialErrors,
         i_max: f64,
-        time_ns: f64,
+        time_ns: Option<f64>,
         triangles: usize,
     ) -> Self {
         Self {
@@ -356,7 +356,7 @@ impl ReconResult {
             zotti_err_solid_angle: rad.zotti_err_solid_angle,
             flux_error_pct: rad.flux_error_pct,
             misplaced_flux: rad.misplaced_flux,
-            time_per_sample_ns: Some(time_ns),
+            time_per_sample_ns: time_ns,
             triangles,
             pareto: false,
         }
@@ -594,26 +594,21 @@ fn compare_fields(
         progress(i, opts.recons.len(), &r.to_string());
         let field = recs.field(r)?;
         let solid = grid_or_own_solid(&recs, r, &*field, a, opts.factor)?;
-        let h = solid_hausdorff(&solid, &reference.solid, tol);
-        let av = eval_all(&*field, &set.directions);
-        let rad = radial_errors(&set, &m, &av, i_max, opts.zotti_c);
-        let (ab, ba) = (h.a_to_b, h.b_to_a);
-        results.push(ReconResult::new(
-            r.to_string(),
-            field.bytes(),
-            Distances {
-                value: h.value,
-                bound: h.bound,
-                recon_to_ref: Some(ab),
-                ref_to_recon: ba,
-                mean: 0.5 * (ab.mean + ba.mean),
-                rms: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
-                radial_bound: radial_bound(&RadialMesh::new(&solid), &ref_rm, &set.directions),
+        results.push(measure_field(
+            &r.to_string(),
+            &*field,
+            &solid,
+            &FieldTarget {
+                solid: &reference.solid,
+                radial: &ref_rm,
+                set: &set,
+                values: &m,
+                i_max,
+                tol_cd: tol,
+                zotti_c: opts.zotti_c,
+                timing: &timing,
+                repeats: opts.timing_repeats,
             },
-            &rad,
-            i_max,
-            time_per_sample_ns(&*field, &timing, opts.timing_repeats),
-            solid.n_triangles(),
         ));
         fields.push((r.to_string(), field));
     }
@@ -648,6 +643,54 @@ fn compare_fields(
         results,
         plots,
     })
+}
+
+/// What a field is measured against: the reference's solid, its radial
+/// function, its values on the direction set, and the measurement settings.
+pub(crate) struct FieldTarget<'a> {
+    pub solid: &'a Mesh,
+    pub radial: &'a RadialMesh,
+    pub set: &'a DirectionSet,
+    /// The reference's intensity (cd) at every direction of `set`.
+    pub values: &'a [f64],
+    /// The reference's peak (cd), for percentages.
+    pub i_max: f64,
+    /// Hausdorff tolerance, cd.
+    pub tol_cd: f64,
+    pub zotti_c: f64,
+    /// Unit directions to time lookups on (none: no timing).
+    pub timing: &'a [glam::DVec3],
+    pub repeats: usize,
+}
+
+/// One row: `field` (whose solid is `solid`) against `target`, every metric.
+pub(crate) fn measure_field(
+    name: &str,
+    field: &dyn IntensityField,
+    solid: &Mesh,
+    target: &FieldTarget<'_>,
+) -> ReconResult {
+    let h = solid_hausdorff(solid, target.solid, target.tol_cd);
+    let av = eval_all(field, &target.set.directions);
+    let rad = radial_errors(target.set, target.values, &av, target.i_max, target.zotti_c);
+    let (ab, ba) = (h.a_to_b, h.b_to_a);
+    ReconResult::new(
+        name.to_string(),
+        field.bytes(),
+        Distances {
+            value: h.value,
+            bound: h.bound,
+            recon_to_ref: Some(ab),
+            ref_to_recon: ba,
+            mean: 0.5 * (ab.mean + ba.mean),
+            rms: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
+            radial_bound: radial_bound(&RadialMesh::new(solid), target.radial, &target.set.directions),
+        },
+        &rad,
+        target.i_max,
+        (!target.timing.is_empty()).then(|| time_per_sample_ns(field, target.timing, target.repeats)),
+        solid.n_triangles(),
+    )
 }
 
 /// The solid of reconstruction `r` of `a`: the measured solid itself, else

@@ -134,7 +134,7 @@ pub(super) fn compare_withheld(
             },
             &rad,
             i_max,
-            time_per_sample_ns(&*field, &timing, opts.timing_repeats),
+            Some(time_per_sample_ns(&*field, &timing, opts.timing_repeats)),
             triangles,
         ));
     }

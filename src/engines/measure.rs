@@ -16,9 +16,11 @@
 use serde::Serialize;
 
 use super::{defects, emulate, Engine, EngineOptions};
-use crate::compare::{mark_pareto, radial_bound, solid_hausdorff, Against, ErrorMap, PlotData, ReconResult};
+use crate::compare::{
+    mark_pareto, measure_field, solid_hausdorff, Against, ErrorMap, FieldTarget, PlotData, ReconResult,
+};
 use crate::error::ModelError;
-use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, DirectionSet, ZOTTI_C};
+use crate::metrics::{random_directions, DirectionSet, ZOTTI_C};
 use crate::model::{IntensityField, Luminaire};
 use crate::reconstruct::{eval_all, Filter, Recon, Reconstructions};
 use crate::solid::{grid_solid, Mesh, RadialMesh, SolidGrid, Units};
@@ -185,34 +187,22 @@ impl Reference {
 /// The metrics of `field` against `r` (lengths in cd, percentages of `r.i_max`).
 fn metrics(name: &str, field: &dyn IntensityField, r: &Reference, s: &Setup<'_>) -> Result<ReconResult, ModelError> {
     let solid = grid_solid(field, s.grid, Units::Candela)?;
-    let h = solid_hausdorff(&solid, &r.solid, s.tol_cd);
-    let av = eval_all(field, &s.set.directions);
-    let rad = radial_errors(s.set, &r.values, &av, r.i_max, ZOTTI_C);
-    let (ab, ba) = (h.a_to_b, h.b_to_a);
-    Ok(ReconResult {
-        name: name.to_string(),
-        bytes: field.bytes(),
-        hausdorff_cd: h.value,
-        hausdorff_bound_cd: h.bound,
-        hausdorff_pct: 100.0 * h.value / r.i_max,
-        recon_to_ref: Some(ab),
-        ref_to_recon: ba,
-        mean_surface_distance_cd: 0.5 * (ab.mean + ba.mean),
-        rms_surface_distance_cd: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
-        radial_bound_cd: radial_bound(&RadialMesh::new(&solid), &r.radial, &s.set.directions),
-        radial_max_cd: rad.max_abs_cd,
-        radial_max_pct: rad.max_pct,
-        radial_max_at_deg: rad.max_at_deg,
-        radial_rms_cd: rad.rms_cd,
-        radial_rms_pct: rad.rms_pct,
-        zotti_err: rad.zotti_err,
-        zotti_err_solid_angle: rad.zotti_err_solid_angle,
-        flux_error_pct: rad.flux_error_pct,
-        misplaced_flux: rad.misplaced_flux,
-        time_per_sample_ns: (!s.timing.is_empty()).then(|| time_per_sample_ns(field, s.timing, 3)),
-        triangles: solid.n_triangles(),
-        pareto: false,
-    })
+    Ok(measure_field(
+        name,
+        field,
+        &solid,
+        &FieldTarget {
+            solid: &r.solid,
+            radial: &r.radial,
+            set: s.set,
+            values: &r.values,
+            i_max: r.i_max,
+            tol_cd: s.tol_cd,
+            zotti_c: ZOTTI_C,
+            timing: s.timing,
+            repeats: 3,
+        },
+    ))
 }
 
 /// Emulate every engine of `opts` on `lum` and measure it against the reference.
