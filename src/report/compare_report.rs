@@ -396,8 +396,21 @@ img{max-width:100%;border:1px solid #ddd}\n\
 
 /// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir` (created); returns the paths written.
 pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let figs = figures(c)?;
+    write_files(dir, &figs, c, &to_markdown(c, &figs), &to_html(c, &figs))
+}
+
+/// Write a report's files into `dir` (created), each atomically: the
+/// figures' PNGs, `report.json` (`value` as pretty JSON), `report.md` and
+/// `index.html`. Returns the paths written.
+pub(crate) fn write_files(
+    dir: &Path,
+    figs: &[Figure],
+    value: &impl serde::Serialize,
+    markdown: &str,
+    html: &str,
+) -> Result<Vec<PathBuf>, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let mut written = Vec::new();
     let mut put = |name: &str, bytes: &[u8]| -> Result<(), Error> {
         let p = dir.join(name);
@@ -405,12 +418,12 @@ pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
         written.push(p);
         Ok(())
     };
-    for f in &figs {
+    for f in figs {
         put(&f.file, &f.png)?;
     }
-    let json = serde_json::to_string_pretty(c).map_err(|e| Error::Unsupported(e.to_string()))?;
+    let json = serde_json::to_string_pretty(value).map_err(|e| Error::Unsupported(e.to_string()))?;
     put("report.json", format!("{json}\n").as_bytes())?;
-    put("report.md", to_markdown(c, &figs).as_bytes())?;
-    put("index.html", to_html(c, &figs).as_bytes())?;
+    put("report.md", markdown.as_bytes())?;
+    put("index.html", html.as_bytes())?;
     Ok(written)
 }

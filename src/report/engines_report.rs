@@ -9,7 +9,6 @@ use std::path::{Path, PathBuf};
 use crate::compare::{Comparison, Normalize};
 use crate::engines::EnginesReport;
 use crate::error::Error;
-use crate::formats::write_atomic;
 use crate::report::compare_report::{self, esc, Figure};
 use crate::report::plot::{self, ColorScale, HeatmapSpec};
 
@@ -98,22 +97,9 @@ fn notes(r: &EnginesReport) -> Vec<String> {
 
 /// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir`; returns the paths written.
 pub fn write_report(r: &EnginesReport, dir: &Path) -> Result<Vec<PathBuf>, Error> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     let figs = figures(r)?;
     let c = to_comparison(r);
     let notes = notes(r);
-    let mut written = Vec::new();
-    let mut put = |name: &str, bytes: &[u8]| -> Result<(), Error> {
-        let p = dir.join(name);
-        write_atomic(&p, bytes)?;
-        written.push(p);
-        Ok(())
-    };
-    for f in &figs {
-        put(&f.file, &f.png)?;
-    }
-    let json = serde_json::to_string_pretty(r).map_err(|e| Error::Unsupported(e.to_string()))?;
-    put("report.json", format!("{json}\n").as_bytes())?;
     let mut md = compare_report::to_markdown(&c, &figs).replacen(
         "# Photometric solid comparison",
         "# Engines: lookup errors",
@@ -123,7 +109,6 @@ pub fn write_report(r: &EnginesReport, dir: &Path) -> Result<Vec<PathBuf>, Error
     for l in &notes {
         let _ = writeln!(md, "- {l}");
     }
-    put("report.md", md.as_bytes())?;
     let mut section = String::from("<h2>Layouts, defects and resolutions</h2>\n<ul>\n");
     for l in &notes {
         let _ = writeln!(section, "<li>{}</li>", esc(l));
@@ -135,6 +120,5 @@ pub fn write_report(r: &EnginesReport, dir: &Path) -> Result<Vec<PathBuf>, Error
             "<h1>Engines: lookup errors</h1>",
         )
         .replacen("</body>", &section, 1);
-    put("index.html", html.as_bytes())?;
-    Ok(written)
+    compare_report::write_files(dir, &figs, r, &md, &html)
 }
