@@ -46,7 +46,7 @@ pub use plot_data::{ErrorMap, PlotData, PolarPlane};
 
 use crate::error::ModelError;
 use crate::metrics::{
-    hausdorff, pareto_front, radial_errors, random_directions, time_per_sample_ns, DirectionSet, Hausdorff, MeshRef,
+    hausdorff_bvh, pareto_front, radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, Hausdorff,
     OneSided, ZOTTI_C,
 };
 use crate::model::{Distribution, IntensityField};
@@ -406,20 +406,14 @@ pub struct Comparison {
     pub plots: Option<PlotData>,
 }
 
-/// Symmetric Hausdorff distance between two solids (f32 positions widened to f64).
+/// Symmetric Hausdorff distance between two solids (f32 positions widened to f64,
+/// held once, by the BVHs).
 pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {
-    let (pa, pb) = (a.positions_f64(), b.positions_f64());
-    hausdorff(
-        MeshRef {
-            positions: &pa,
-            triangles: a.triangles(),
-        },
-        MeshRef {
-            positions: &pb,
-            triangles: b.triangles(),
-        },
-        tolerance,
-    )
+    let (ba, bb) = rayon::join(
+        || Bvh::build_owned(a.positions_f64(), a.triangles()),
+        || Bvh::build_owned(b.positions_f64(), b.triangles()),
+    );
+    hausdorff_bvh((&ba, a.triangles()), (&bb, b.triangles()), tolerance)
 }
 
 /// The polygon sag of a mesh whose vertices lie on the sphere of `radius` about the origin:

@@ -9,7 +9,7 @@
 use glam::DVec3;
 
 /// Triangles per leaf.
-pub const LEAF_SIZE: usize = 4;
+pub const LEAF_SIZE: usize = 8;
 
 /// Axis-aligned box.
 #[derive(Debug, Clone, Copy)]
@@ -41,48 +41,55 @@ impl Aabb {
 #[derive(Debug, Clone, Copy)]
 struct Node {
     bounds: Aabb,
-    /// Leaf: first triangle in `order`; inner: index of the left child (right = left + 1).
+    /// Leaf: first triangle in `tris` (leaf order); inner: index of the left child (right = left + 1).
     start: u32,
     /// Leaf: triangle count (> 0); inner: 0.
     count: u32,
 }
 
 /// A BVH over a triangle mesh (positions in any consistent unit, e.g. cd).
+///
+/// Memory: a copy of the vertex positions (24 bytes a vertex) and the
+/// triangles as vertex indices in leaf order (12 bytes each), so a leaf's
+/// triangles are contiguous; about 50 bytes per triangle with the nodes, where
+/// three f64 corners per triangle took 72 bytes alone (issue 15, peak memory).
 #[derive(Debug, Clone)]
 pub struct Bvh {
     nodes: Vec<Node>,
-    order: Vec<u32>,
-    tris: Vec<[DVec3; 3]>,
+    positions: Vec<DVec3>,
+    tris: Vec<[u32; 3]>,
 }
 
 impl Bvh {
-    /// Build over `triangles` (indices into `positions`).
+    /// Build over `triangles` (indices into `positions`), copying the positions.
     pub fn build(positions: &[DVec3], triangles: &[[u32; 3]]) -> Self {
-        let tris: Vec<[DVec3; 3]> = triangles
-            .iter()
+        Self::build_owned(positions.to_vec(), triangles)
+    }
+
+    /// Build over `triangles` (indices into `positions`), keeping `positions`
+    /// without a copy (see [`Bvh::positions`]).
+    pub fn build_owned(positions: Vec<DVec3>, triangles: &[[u32; 3]]) -> Self {
+        let corners = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
+        let centroids: Vec<DVec3> = (0..triangles.len() as u32)
             .map(|t| {
-                [
-                    positions[t[0] as usize],
-                    positions[t[1] as usize],
-                    positions[t[2] as usize],
-                ]
+                let v = corners(t);
+                (v[0] + v[1] + v[2]) / 3.0
             })
             .collect();
-        let centroids: Vec<DVec3> = tris.iter().map(|t| (t[0] + t[1] + t[2]) / 3.0).collect();
-        let mut order: Vec<u32> = (0..tris.len() as u32).collect();
-        let mut nodes = Vec::with_capacity(2 * tris.len() / LEAF_SIZE + 2);
+        let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
+        let mut nodes = Vec::with_capacity(2 * triangles.len() / LEAF_SIZE + 2);
         nodes.push(Node {
             bounds: Aabb::empty(),
             start: 0,
             count: 0,
         });
         // Explicit stack: (node index, start, end).
-        let mut stack = vec![(0usize, 0usize, tris.len())];
+        let mut stack = vec![(0usize, 0usize, triangles.len())];
         while let Some((ni, s, e)) = stack.pop() {
             let mut b = Aabb::empty();
             for &t in &order[s..e] {
-                for p in &tris[t as usize] {
-                    b.grow(*p);
+                for p in corners(t) {
+                    b.grow(p);
                 }
             }
             nodes[ni].bounds = b;
@@ -117,7 +124,15 @@ impl Bvh {
             stack.push((left, s, mid));
             stack.push((left + 1, mid, e));
         }
-        Self { nodes, order, tris }
+        drop(centroids);
+        // Leaves hold `start..start + count` of the triangles in this order.
+        let tris = order.iter().map(|&t| triangles[t as usize]).collect();
+        Self { nodes, positions, tris }
+    }
+
+    /// The vertex positions the BVH was built over.
+    pub fn positions(&self) -> &[DVec3] {
+        &self.positions
     }
 
     /// Number of triangles.
@@ -141,12 +156,12 @@ impl Bvh {
         self.nearest_below(p, best2).0
     }
 
-    /// The triangle `i` as three points.
-    pub fn triangle(&self, i: u32) -> &[DVec3; 3] {
-        &self.tris[i as usize]
+    /// The triangle `i` (as numbered by [`Bvh::nearest_below`]) as three points.
+    pub fn triangle(&self, i: u32) -> [DVec3; 3] {
+        self.tris[i as usize].map(|v| self.positions[v as usize])
     }
 
-    /// Squared distance to the closest triangle and its index (in build
+    /// Squared distance to the closest triangle and its index (in leaf
     /// order, for [`Bvh::triangle`]), searching only below `best2`. The index
     /// is `u32::MAX` when nothing lies below `best2`.
     pub fn nearest_below(&self, p: DVec3, mut best2: f64) -> (f64, u32) {
@@ -164,8 +179,8 @@ impl Bvh {
                 continue;
             }
             if n.count > 0 {
-                for &t in &self.order[n.start as usize..(n.start + n.count) as usize] {
-                    let d2 = point_triangle_dist2(p, &self.tris[t as usize]);
+                for t in n.start..n.start + n.count {
+                    let d2 = point_triangle_dist2(p, &self.triangle(t));
                     if d2 < best2 {
                         best2 = d2;
                         best_t = t;

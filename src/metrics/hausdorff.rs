@@ -114,7 +114,7 @@ fn upper_bound(v: &[DVec3; 3], f: &[f64; 3], k: &[u32; 3], b: &Bvh) -> f64 {
         let tri = b.triangle(ki);
         let m = v
             .iter()
-            .map(|&p| super::bvh::point_triangle_dist2(p, tri))
+            .map(|&p| super::bvh::point_triangle_dist2(p, &tri))
             .fold(0.0, f64::max)
             .sqrt();
         best = best.min(m);
@@ -164,71 +164,147 @@ pub fn nearest(points: &[DVec3], b: &Bvh) -> Vec<(f64, u32)> {
     out
 }
 
+/// A triangle of A waiting in the refinement queue, by index: 16 bytes where
+/// a [`Cell`] holds 120, so the queue of a mesh's own triangles stays small
+/// (issue 15: peak memory of `compare`).
+#[derive(Debug, Clone, Copy)]
+struct TriCell {
+    ub: f64,
+    t: u32,
+}
+
+impl PartialEq for TriCell {
+    fn eq(&self, o: &Self) -> bool {
+        self.ub == o.ub
+    }
+}
+impl Eq for TriCell {}
+impl PartialOrd for TriCell {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for TriCell {
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        self.ub.total_cmp(&o.ub)
+    }
+}
+
+/// Triangles per parallel chunk of the first passes; fixed so that the sums
+/// are added in the same order on every run and machine.
+const CHUNK: usize = 4096;
+
+/// Sums over a chunk of A's triangles: area, the area-weighted distance and
+/// squared distance (vertices 1/4, centroid 3/4), and the largest centroid distance.
+#[derive(Debug, Clone, Copy, Default)]
+struct Moments {
+    area: f64,
+    sum: f64,
+    sum2: f64,
+    max: f64,
+}
+
 /// One-sided Hausdorff distance h(A, B) to within `tolerance` (same unit as positions).
 pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
     let near = nearest(a.positions, b);
-    let queries = near.len();
-    let mut lb = near.iter().map(|x| x.0).fold(0.0, f64::max);
-    let (mut sum, mut sum2, mut total_area) = (0.0, 0.0, 0.0);
-    let mut heap = BinaryHeap::with_capacity(a.triangles.len());
-    for t in a.triangles {
-        let v = [
-            a.positions[t[0] as usize],
-            a.positions[t[1] as usize],
-            a.positions[t[2] as usize],
-        ];
-        let n = [near[t[0] as usize], near[t[1] as usize], near[t[2] as usize]];
-        let f = [n[0].0, n[1].0, n[2].0];
-        let k = [n[0].1, n[1].1, n[2].1];
-        let ar = area(&v);
-        total_area += ar;
-        sum += 0.25 * ar * (f[0] + f[1] + f[2]) / 3.0;
-        sum2 += 0.25 * ar * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 3.0;
-        let ub = upper_bound(&v, &f, &k, b);
-        if ub > lb + tolerance {
-            heap.push(Cell { ub, v, f, k });
-        }
-    }
+    let tol = tolerance.max(0.0);
+    let vertices = |t: &[u32; 3]| t.map(|i| a.positions[i as usize]);
     // Mean and RMS: vertex values alone can all be 0 when A's vertices lie on
     // B (an interpolating reconstruction against the measured points), so
     // each triangle's centroid is queried too (warm-started from its
-    // vertices) and weighted 3/4 against the vertices' 1/4.
-    let centroid_terms: Vec<(f64, f64, f64)> = a
+    // vertices) and weighted 3/4 against the vertices' 1/4. This pass comes
+    // before any triangle is queued: the centroids raise the lower bound, so
+    // fewer triangles need to wait for refinement.
+    let moments: Vec<Moments> = a
         .triangles
-        .par_iter()
-        .map(|t| {
-            let v = [
-                a.positions[t[0] as usize],
-                a.positions[t[1] as usize],
-                a.positions[t[2] as usize],
-            ];
-            let c = (v[0] + v[1] + v[2]) / 3.0;
-            let hint = (0..3)
-                .map(|i| near[t[i] as usize].0 + c.distance(v[i]))
-                .fold(f64::INFINITY, f64::min);
-            let d = b.distance2_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2)).sqrt();
-            (area(&v), d, d)
+        .par_chunks(CHUNK)
+        .map(|chunk| {
+            let mut m = Moments::default();
+            for t in chunk {
+                let v = vertices(t);
+                let f = t.map(|i| near[i as usize].0);
+                let c = (v[0] + v[1] + v[2]) / 3.0;
+                let hint = (0..3).map(|i| f[i] + c.distance(v[i])).fold(f64::INFINITY, f64::min);
+                let d = b.distance2_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2)).sqrt();
+                let ar = area(&v);
+                m.area += ar;
+                m.sum += 0.25 * ar * (f[0] + f[1] + f[2]) / 3.0 + 0.75 * ar * d;
+                m.sum2 += 0.25 * ar * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 3.0 + 0.75 * ar * d * d;
+                m.max = m.max.max(d);
+            }
+            m
         })
         .collect();
-    for &(ar, d, _) in &centroid_terms {
-        sum += 0.75 * ar * d;
-        sum2 += 0.75 * ar * d * d;
-        lb = lb.max(d);
+    let mut lb = near.iter().map(|x| x.0).fold(0.0, f64::max);
+    let (mut sum, mut sum2, mut total_area) = (0.0, 0.0, 0.0);
+    for m in &moments {
+        total_area += m.area;
+        sum += m.sum;
+        sum2 += m.sum2;
+        lb = lb.max(m.max);
     }
-    let mut queries = queries + centroid_terms.len();
-    let tol = tolerance.max(0.0);
+    let mut queries = near.len() + a.triangles.len();
+    // The largest upper bound of every cell dropped without refinement: the
+    // certificate must cover them too (each is within the tolerance of the
+    // lower bound at the time it was dropped).
+    let mut pruned_ub = 0.0f64;
+    let queued: Vec<(Vec<TriCell>, f64)> = a
+        .triangles
+        .par_chunks(CHUNK)
+        .enumerate()
+        .map(|(ci, chunk)| {
+            let mut keep = Vec::new();
+            let mut pruned = 0.0f64;
+            for (j, t) in chunk.iter().enumerate() {
+                let f = t.map(|i| near[i as usize].0);
+                let k = t.map(|i| near[i as usize].1);
+                let ub = upper_bound(&vertices(t), &f, &k, b);
+                if ub > lb + tol {
+                    keep.push(TriCell {
+                        ub,
+                        t: (ci * CHUNK + j) as u32,
+                    });
+                } else {
+                    pruned = pruned.max(ub);
+                }
+            }
+            (keep, pruned)
+        })
+        .collect();
+    let mut tri_heap = BinaryHeap::with_capacity(queued.iter().map(|q| q.0.len()).sum());
+    for (keep, pruned) in queued {
+        tri_heap.extend(keep);
+        pruned_ub = pruned_ub.max(pruned);
+    }
+    let mut heap: BinaryHeap<Cell> = BinaryHeap::new();
     let mut extra = 0usize;
     let mut converged = true;
     let ub_final = loop {
-        let Some(top) = heap.peek() else { break lb };
-        if top.ub <= lb + tol {
-            break top.ub.max(lb);
+        let top = match (tri_heap.peek(), heap.peek()) {
+            (None, None) => break lb,
+            (Some(t), None) => t.ub,
+            (None, Some(c)) => c.ub,
+            (Some(t), Some(c)) => t.ub.max(c.ub),
+        };
+        if top <= lb + tol {
+            break top.max(lb);
         }
         if extra >= MAX_REFINEMENT_QUERIES {
             converged = false;
-            break top.ub.max(lb);
+            break top.max(lb);
         }
-        let c = heap.pop().expect("peeked");
+        let c = if heap.peek().is_some_and(|c| c.ub >= top) {
+            heap.pop().expect("peeked")
+        } else {
+            let TriCell { ub, t } = tri_heap.pop().expect("peeked");
+            let t = &a.triangles[t as usize];
+            Cell {
+                ub,
+                v: vertices(t),
+                f: t.map(|i| near[i as usize].0),
+                k: t.map(|i| near[i as usize].1),
+            }
+        };
         let mid = |i: usize, j: usize| 0.5 * (c.v[i] + c.v[j]);
         let m = [mid(0, 1), mid(1, 2), mid(2, 0)];
         let mut fm = [0.0; 3];
@@ -254,6 +330,8 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
             let ub = upper_bound(&v, &f, &k, b);
             if ub > lb + tol {
                 heap.push(Cell { ub, v, f, k });
+            } else {
+                pruned_ub = pruned_ub.max(ub);
             }
         }
     };
@@ -265,7 +343,7 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
     };
     OneSided {
         value: lb,
-        bound: (ub_final - lb).max(0.0),
+        bound: (ub_final.max(pruned_ub) - lb).max(0.0),
         mean,
         rms,
         queries,
@@ -280,7 +358,23 @@ pub fn hausdorff(a: MeshRef<'_>, b: MeshRef<'_>, tolerance: f64) -> Hausdorff {
         || Bvh::build(a.positions, a.triangles),
         || Bvh::build(b.positions, b.triangles),
     );
-    let (ab, bab) = (one_sided(a, &bb, tolerance), one_sided(b, &ba, tolerance));
+    hausdorff_bvh((&ba, a.triangles), (&bb, b.triangles), tolerance)
+}
+
+/// [`hausdorff`] over meshes already held by their BVHs (positions from
+/// [`Bvh::positions`], triangles as given to the build).
+pub fn hausdorff_bvh(a: (&Bvh, &[[u32; 3]]), b: (&Bvh, &[[u32; 3]]), tolerance: f64) -> Hausdorff {
+    let (ma, mb) = (
+        MeshRef {
+            positions: a.0.positions(),
+            triangles: a.1,
+        },
+        MeshRef {
+            positions: b.0.positions(),
+            triangles: b.1,
+        },
+    );
+    let (ab, bab) = (one_sided(ma, b.0, tolerance), one_sided(mb, a.0, tolerance));
     let value = ab.value.max(bab.value);
     let ub = (ab.value + ab.bound).max(bab.value + bab.bound);
     Hausdorff {

@@ -7,5 +7,5 @@ pub mod radial;
 
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
-pub use hausdorff::{hausdorff, one_sided, Hausdorff, MeshRef, OneSided};
+pub use hausdorff::{hausdorff, hausdorff_bvh, one_sided, Hausdorff, MeshRef, OneSided};
 pub use radial::{radial_errors, DirectionSet, RadialErrors, ZOTTI_C};

@@ -16,12 +16,24 @@ use crate::solid::Mesh;
 
 const NC: usize = 180;
 const NG: usize = 90;
+/// Points closer to a pole than this (degrees) have no meaningful C.
+const POLE_DEG: f64 = 1e-6;
 
 /// A ray-castable star-shaped mesh.
+///
+/// Memory: the mesh's f32 vertex positions (12 bytes a vertex, widened
+/// exactly to f64 at each query, so the numbers are those of the mesh), the
+/// non-degenerate triangles as vertex indices (12 bytes each) and the
+/// buckets in compressed rows (4 bytes per triangle per bucket it touches):
+/// about 30 bytes per triangle, where a list per bucket of f64 triangle
+/// copies took about 290 (issue 15, peak memory of `compare`).
 #[derive(Debug, Clone)]
 pub struct RadialMesh {
-    tris: Vec<[DVec3; 3]>,
-    buckets: Vec<Vec<u32>>,
+    positions: Vec<[f32; 3]>,
+    tris: Vec<[u32; 3]>,
+    /// Bucket b holds `bucket_tris[bucket_start[b]..bucket_start[b + 1]]`.
+    bucket_start: Vec<u32>,
+    bucket_tris: Vec<u32>,
 }
 
 /// Distance along the ray `w` (unit) to triangle `t`, if the ray passes through it.
@@ -50,31 +62,54 @@ fn hit(t: &[DVec3; 3], w: DVec3) -> Option<f64> {
 impl RadialMesh {
     /// Index the triangles of `mesh` (any unit).
     pub fn new(mesh: &Mesh) -> Self {
-        let p = mesh.positions();
+        let positions = mesh.positions().to_vec();
         let scale = mesh.max_radius().max(f64::MIN_POSITIVE);
-        let tris: Vec<[DVec3; 3]> = mesh
+        let widen = |i: u32| glam::Vec3::from_array(positions[i as usize]).as_dvec3();
+        let tris: Vec<[u32; 3]> = mesh
             .triangles()
             .iter()
-            .map(|t| t.map(|i| glam::Vec3::from_array(p[i as usize]).as_dvec3()))
-            .filter(|v| v.iter().all(|x| x.length() > 1e-9 * scale))
+            .copied()
+            .filter(|t| t.iter().all(|&i| widen(i).length() > 1e-9 * scale))
             .collect();
-        let cells: Vec<Vec<usize>> = tris.par_iter().map(cells_of).collect();
-        let mut buckets = vec![Vec::new(); NC * NG];
-        for (k, cs) in cells.iter().enumerate() {
-            for &c in cs {
-                buckets[c].push(k as u32);
-            }
+        // Each triangle's bucket rectangle, then the rows counted and filled
+        // (no list per bucket, no list per triangle).
+        let rects: Vec<CellRect> = tris.par_iter().map(|t| cell_rect(&t.map(widen))).collect();
+        let mut bucket_start = vec![0u32; NC * NG + 1];
+        for r in &rects {
+            r.for_each(|b| bucket_start[b + 1] += 1);
         }
-        Self { tris, buckets }
+        for b in 0..NC * NG {
+            bucket_start[b + 1] += bucket_start[b];
+        }
+        let mut fill = bucket_start.clone();
+        let mut bucket_tris = vec![0u32; bucket_start[NC * NG] as usize];
+        for (k, r) in rects.iter().enumerate() {
+            r.for_each(|b| {
+                bucket_tris[fill[b] as usize] = k as u32;
+                fill[b] += 1;
+            });
+        }
+        Self {
+            positions,
+            tris,
+            bucket_start,
+            bucket_tris,
+        }
+    }
+
+    /// Triangle `k` with its vertices widened to f64.
+    fn triangle(&self, k: u32) -> [DVec3; 3] {
+        self.tris[k as usize].map(|i| glam::Vec3::from_array(self.positions[i as usize]).as_dvec3())
     }
 
     /// r(ω) for the unit direction `w`.
     pub fn radius(&self, w: DVec3) -> f64 {
         let (c, g) = unit_angles(w);
         let b = bucket(c, g);
-        let best = self.buckets[b]
+        let (s, e) = (self.bucket_start[b] as usize, self.bucket_start[b + 1] as usize);
+        let best = self.bucket_tris[s..e]
             .iter()
-            .filter_map(|&k| hit(&self.tris[k as usize], w))
+            .filter_map(|&k| hit(&self.triangle(k), w))
             .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r))));
         best.unwrap_or(0.0)
     }
@@ -91,7 +126,27 @@ fn bucket(c: f64, g: f64) -> usize {
     ig * NC + ic
 }
 
-fn cells_of(t: &[DVec3; 3]) -> Vec<usize> {
+/// The buckets a triangle may be hit in: gamma rows `ig0..=ig1` times C
+/// columns `k0..=k1` (taken modulo NC: the interval may cross the 0/360 seam).
+#[derive(Debug, Clone, Copy)]
+struct CellRect {
+    ig0: u16,
+    ig1: u16,
+    k0: i16,
+    k1: i16,
+}
+
+impl CellRect {
+    fn for_each(&self, mut f: impl FnMut(usize)) {
+        for ig in self.ig0 as usize..=self.ig1 as usize {
+            for k in self.k0 as i64..=self.k1 as i64 {
+                f(ig * NC + k.rem_euclid(NC as i64) as usize);
+            }
+        }
+    }
+}
+
+fn cell_rect(t: &[DVec3; 3]) -> CellRect {
     let pole = |z: f64| hit(t, DVec3::new(0.0, 0.0, z)).is_some();
     // Angles of points along the three edges (great arcs through the cone).
     let mut pts = Vec::with_capacity(27);
@@ -118,11 +173,16 @@ fn cells_of(t: &[DVec3; 3]) -> Vec<usize> {
     }
     let ig0 = ((g_lo.max(0.0) / dg) as usize).min(NG - 1);
     let ig1 = ((g_hi.min(180.0) / dg) as usize).min(NG - 1);
-    // C range: the shortest interval holding every point (unless a pole is inside, or near a pole).
-    let near_pole = g_lo <= 2.0 * dg || g_hi >= 180.0 - 2.0 * dg;
+    // C range: the shortest interval holding every point (unless a pole is
+    // inside, or a point is on a pole, where C is undefined). Along a great
+    // arc that misses the poles C is monotonic, so the points' interval plus
+    // one column of margin holds the whole triangle. (Whole rows for every
+    // triangle within 6 degrees of a pole filled 80 % of the buckets of a
+    // 1/3-degree grid solid: issue 15, peak memory.)
+    let on_pole = pts.iter().any(|p| p.1 <= POLE_DEG || p.1 >= 180.0 - POLE_DEG);
     let mut cs: Vec<f64> = pts.iter().map(|p| p.0).collect();
     cs.sort_by(f64::total_cmp);
-    let all_c = nadir || zenith || near_pole || cs.is_empty();
+    let all_c = nadir || zenith || on_pole || cs.is_empty();
     let (c_lo, c_hi) = if all_c {
         (0.0, 360.0)
     } else {
@@ -140,15 +200,15 @@ fn cells_of(t: &[DVec3; 3]) -> Vec<usize> {
         }
         (lo - dc, hi + dc)
     };
-    let mut out = Vec::new();
     let (k0, k1) = ((c_lo / dc).floor() as i64, (c_hi / dc).floor() as i64);
     let k1 = k1.min(k0 + NC as i64 - 1);
-    for ig in ig0..=ig1 {
-        for k in k0..=k1 {
-            out.push(ig * NC + k.rem_euclid(NC as i64) as usize);
-        }
+    // c_lo >= -dc and c_hi < 720 + dc: both fit i16 (NC = 180 columns of 2 degrees).
+    CellRect {
+        ig0: ig0 as u16,
+        ig1: ig1 as u16,
+        k0: k0 as i16,
+        k1: k1 as i16,
     }
-    out
 }
 
 /// The measured solid's radial function is an intensity field: exact at the
@@ -167,11 +227,6 @@ impl IntensityField for RadialMesh {
         "measured".into()
     }
     fn bytes(&self) -> usize {
-        self.tris.len() * std::mem::size_of::<[DVec3; 3]>()
-            + self
-                .buckets
-                .iter()
-                .map(|b| b.len() * 4 + std::mem::size_of::<Vec<u32>>())
-                .sum::<usize>()
+        (self.positions.len() + self.tris.len()) * 12 + (self.bucket_start.len() + self.bucket_tris.len()) * 4
     }
 }
