@@ -20,7 +20,6 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use super::beam::plane_profile;
 use crate::model::frame::direction;
 use crate::model::{Distribution, Luminaire};
 use crate::scene::opening::Opening;
@@ -115,19 +114,76 @@ pub struct LuminanceTable {
     pub max_cd_m2: Option<f64>,
 }
 
-/// Intensity (cd) at (C, γ) on the bilinear interpolant of `d` (0 outside the measured γ range).
+/// The bilinear interpolant of a distribution's measured grid (linear in γ
+/// between rows, linear in C between neighbouring full-circle planes, as
+/// [`plane_profile`](super::beam::plane_profile)), prepared for many lookups.
+/// Zero outside the measured γ range.
+pub struct GridLookup<'a> {
+    d: &'a Distribution,
+    planes: Vec<(f64, usize)>,
+}
+
+impl<'a> GridLookup<'a> {
+    /// Prepare lookups into `d`.
+    pub fn new(d: &'a Distribution) -> Self {
+        GridLookup {
+            d,
+            planes: d.full_planes(),
+        }
+    }
+
+    /// Intensity (cd) at (C, γ) in degrees.
+    pub fn at(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        let g = self.d.gamma_angles();
+        let (i, t) = if g.len() == 1 {
+            if (g[0] - gamma_deg).abs() > 1e-9 {
+                return 0.0;
+            }
+            (0, 0.0)
+        } else {
+            if !(g[0]..=g[g.len() - 1]).contains(&gamma_deg) {
+                return 0.0;
+            }
+            let i = g.partition_point(|&x| x <= gamma_deg).clamp(1, g.len() - 1) - 1;
+            (i, (gamma_deg - g[i]) / (g[i + 1] - g[i]))
+        };
+        let row = |ic: usize| {
+            let p = self.d.plane(ic);
+            if t == 0.0 {
+                p[i]
+            } else {
+                p[i] + t * (p[i + 1] - p[i])
+            }
+        };
+        let n = self.planes.len();
+        if n == 1 {
+            return row(self.planes[0].1);
+        }
+        let c = crate::model::wrap360(c_deg);
+        let k = self.planes.partition_point(|p| p.0 <= c);
+        let (lo, hi) = if k == 0 || k == n {
+            (self.planes[n - 1], self.planes[0])
+        } else {
+            (self.planes[k - 1], self.planes[k])
+        };
+        let span = (hi.0 - lo.0).rem_euclid(360.0);
+        let u = if span > 0.0 {
+            (c - lo.0).rem_euclid(360.0) / span
+        } else {
+            0.0
+        };
+        let a = row(lo.1);
+        if u == 0.0 {
+            a
+        } else {
+            a + u * (row(hi.1) - a)
+        }
+    }
+}
+
+/// Intensity (cd) at (C, γ) on the bilinear interpolant of `d` (one lookup; see [`GridLookup`]).
 pub fn intensity_at(d: &Distribution, c_deg: f64, gamma_deg: f64) -> f64 {
-    let g = d.gamma_angles();
-    let v = plane_profile(d, c_deg);
-    if g.len() == 1 {
-        return if (g[0] - gamma_deg).abs() < 1e-9 { v[0] } else { 0.0 };
-    }
-    if gamma_deg < g[0] || gamma_deg > g[g.len() - 1] {
-        return 0.0;
-    }
-    let i = g.partition_point(|&x| x <= gamma_deg).clamp(1, g.len() - 1);
-    let t = (gamma_deg - g[i - 1]) / (g[i] - g[i - 1]);
-    v[i - 1] + t * (v[i] - v[i - 1])
+    GridLookup::new(d).at(c_deg, gamma_deg)
 }
 
 /// The luminance table of `lum`, or the reason there is none.
@@ -223,5 +279,27 @@ mod tests {
             let want = std::f64::consts::PI * 0.0225 * 70f64.to_radians().cos() + 0.3 * 0.05 * 70f64.to_radians().sin();
             assert!((projected_area_m2(&disk, d) - want).abs() < 1e-12, "C {c}");
         }
+    }
+
+    /// The lookup is the interpolant `plane_profile` defines: equal at grid
+    /// rows for any C, linear in γ between rows; zero outside the range.
+    #[test]
+    fn lookup_matches_plane_profile() {
+        let c: Vec<f64> = (0..8).map(|k| 45.0 * f64::from(k)).collect();
+        let g = vec![0.0, 10.0, 35.0, 90.0];
+        let cd: Vec<f64> = c
+            .iter()
+            .flat_map(|&cc| g.iter().map(move |&gg| 1.0 + cc + 0.1 * gg))
+            .collect();
+        let d = Distribution::new(c, g.clone(), cd, Symmetry::None).unwrap();
+        let look = GridLookup::new(&d);
+        for cq in [0.0, 12.5, 44.9, 200.0, 337.5, 359.9, -30.0] {
+            let p = super::super::beam::plane_profile(&d, cq);
+            for (k, &gg) in g.iter().enumerate() {
+                assert!((look.at(cq, gg) - p[k]).abs() < 1e-9, "C {cq} g {gg}");
+            }
+            assert!((look.at(cq, 22.5) - 0.5 * (p[1] + p[2])).abs() < 1e-9);
+        }
+        assert_eq!(look.at(0.0, 95.0), 0.0);
     }
 }

@@ -40,7 +40,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use super::luminance::{intensity_at, projected_area_m2};
+use super::luminance::{projected_area_m2, GridLookup};
 use crate::model::frame::unit_angles;
 use crate::model::{Distribution, Luminaire};
 use crate::scene::opening::Opening;
@@ -203,7 +203,7 @@ pub fn position_index(s: DVec3) -> Option<f64> {
 
 /// What the table needs from the luminaire, precomputed per view.
 struct Array<'a> {
-    d: &'a Distribution,
+    look: GridLookup<'a>,
     opening: &'a Opening,
     view: View,
     /// Flux (in units of H² lx … i.e. lm for H = 1) into each floor cell at
@@ -219,6 +219,7 @@ impl<'a> Array<'a> {
     fn new(d: &'a Distribution, opening: &'a Opening, view: View) -> Self {
         let side = 2 * Self::HALF;
         let cell = 1.0 / CELLS_PER_H as f64;
+        let look = GridLookup::new(d);
         let mut sat = vec![0.0; (side + 1) * (side + 1)];
         for iy in 0..side {
             let mut row = 0.0;
@@ -229,13 +230,13 @@ impl<'a> Array<'a> {
                 let r2 = v.length_squared();
                 let (c, g) = unit_angles(view.to_luminaire(v / r2.sqrt()));
                 // E = I cos γ / r² with cos γ = 1/r (H = 1), times the cell area.
-                let flux = intensity_at(d, c, g) / (r2 * r2.sqrt()) * cell * cell;
+                let flux = look.at(c, g) / (r2 * r2.sqrt()) * cell * cell;
                 row += flux;
                 sat[(iy + 1) * (side + 1) + ix + 1] = sat[iy * (side + 1) + ix + 1] + row;
             }
         }
         Array {
-            d,
+            look,
             opening,
             view,
             floor_sat: sat,
@@ -275,7 +276,7 @@ impl<'a> Array<'a> {
                 let emit = self.view.to_luminaire(-s);
                 let (c, g) = unit_angles(emit);
                 let a_p = projected_area_m2(self.opening, emit);
-                let i_cd = intensity_at(self.d, c, g);
+                let i_cd = self.look.at(c, g);
                 if a_p > 0.0 && i_cd > 0.0 {
                     glare += i_cd * i_cd / (a_p * r2 * p * p);
                 }
