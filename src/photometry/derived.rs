@@ -334,4 +334,43 @@ mod tests {
         assert!(text.contains("flux (lm)") && !text.contains("NaN"));
         assert!(side_by_side_markdown(&rows, "a", "b").starts_with("| quantity |"));
     }
+
+    /// Extremes: all-zero data, a single γ sample, a single plane with two
+    /// samples, upward-only light, 1e-6 and 1e6 cd, with and without a
+    /// luminous area: every number printed is finite, undefined parts say why.
+    #[test]
+    fn extremes_give_finite_numbers_or_reasons() {
+        let cases: Vec<(Vec<f64>, Vec<f64>)> = vec![
+            (vec![0.0, 45.0, 90.0, 180.0], vec![0.0; 4]),
+            (vec![0.0], vec![500.0]),
+            (vec![0.0, 90.0], vec![1e6, 0.0]),
+            (vec![90.0, 135.0, 180.0], vec![1e6, 1e6, 1e6]),
+            (vec![0.0, 30.0, 60.0, 90.0], vec![1e-6; 4]),
+            (vec![0.0, 30.0, 60.0, 90.0], vec![1e6; 4]),
+        ];
+        for (g, cd) in cases {
+            for area in [0.0, 0.5] {
+                let d = Distribution::new(vec![0.0], g.clone(), cd.clone(), Symmetry::Rotational).unwrap();
+                let mut lum = Luminaire::from_distribution(d);
+                lum.luminous_opening.length_m = area;
+                lum.luminous_opening.width_m = area;
+                let der = Derived::of(&lum);
+                let text = der.to_text();
+                assert!(!text.contains("NaN") && !text.contains("inf"), "{g:?} {cd:?}:\n{text}");
+                for (name, _, v) in der.scalars() {
+                    assert!(v.is_none_or(f64::is_finite), "{name} = {v:?} for {g:?} {cd:?}");
+                }
+                for z in der.zonal_lumens.ten_degree.iter().chain(&der.zonal_lumens.summary) {
+                    assert!(z.lm.is_finite());
+                }
+                if let Derivation::Value(t) = &der.ugr_table {
+                    assert!(t.crosswise.iter().chain(&t.endwise).flatten().all(|u| u.is_finite()));
+                }
+                let down = crate::photometry::flux(&lum.distribution).downward_lm;
+                if down <= 0.0 || area == 0.0 {
+                    assert!(matches!(der.ugr_table, Derivation::Undefined { .. }), "{g:?} {cd:?}");
+                }
+            }
+        }
+    }
 }
