@@ -8,6 +8,9 @@
 //! reconstruction of FILE (named as such). With `--vs OTHER` (a denser
 //! measurement): against OTHER reconstructed by `--against` (default
 //! catmull-rom), FILE first aligned onto OTHER with `--align`.
+//! With `--vs`, the derived photometry of both files (flux, LOR, flux code, zonal
+//! lumens, UGR, BUG, luminance) is printed side by side above the metrics
+//! (JSON key `photometry_side_by_side`).
 //! Metrics: see `photosolid::compare`; JSON keys: `photosolid::compare::Comparison`.
 
 use std::path::PathBuf;
@@ -101,6 +104,9 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
     bar.finish_and_clear();
     c.file = a.file.display().to_string();
     c.vs = a.vs.as_ref().map(|p| p.display().to_string());
+    c.photometry_side_by_side = other
+        .as_ref()
+        .map(|o| photosolid::photometry::derived::side_by_side(&lum, o));
     super::emit(a.json, &c, &compare_report::to_text(&c))?;
     if let Some(dir) = &a.report {
         compare_report::write_report(&c, dir)?;

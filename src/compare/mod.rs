@@ -404,6 +404,11 @@ pub struct Comparison {
     /// Plot data (with `plots`), not in the JSON.
     #[serde(skip)]
     pub plots: Option<PlotData>,
+    /// With `vs`: flux, flux code, zonal lumens, UGR, BUG and luminance of
+    /// FILE and OTHER side by side (set by the caller; see
+    /// `photometry::derived::side_by_side`). Absent from the JSON when unset.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photometry_side_by_side: Option<Vec<crate::photometry::derived::SideRow>>,
 }
 
 /// Symmetric Hausdorff distance between two solids (f32 positions widened to f64,
@@ -636,6 +641,7 @@ fn compare_fields(
         alignment: None,
         results,
         plots,
+        photometry_side_by_side: None,
     })
 }
 

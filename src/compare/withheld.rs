@@ -170,5 +170,6 @@ pub(super) fn compare_withheld(
         alignment: None,
         results,
         plots,
+        photometry_side_by_side: None,
     })
 }

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use crate::compare::{Comparison, ReconResult};
 use crate::error::Error;
 use crate::formats::write_atomic;
+use crate::photometry::derived::{side_by_side_markdown, side_by_side_text};
 use crate::report::plot::{self, ColorScale, HeatmapSpec, PolarSpec, ScatterPoint, ScatterSpec, Series, SeriesStyle};
 
 /// Significant digits of every number in the tables and texts of a comparison.
@@ -107,6 +108,10 @@ fn row(r: &ReconResult) -> Vec<String> {
 pub fn to_text(c: &Comparison) -> String {
     let mut s = header(c).join("\n");
     s.push('\n');
+    if let Some(rows) = &c.photometry_side_by_side {
+        s.push_str(&side_by_side_text(rows, "FILE", "OTHER"));
+        s.push('\n');
+    }
     let rows: Vec<Vec<String>> = c.results.iter().map(row).collect();
     let w: Vec<usize> = (0..COLS.len())
         .map(|k| {
@@ -325,6 +330,15 @@ pub fn to_markdown(c: &Comparison, figs: &[Figure]) -> String {
     for l in header(c) {
         let _ = writeln!(s, "- {l}");
     }
+    if let Some(rows) = &c.photometry_side_by_side {
+        let _ = writeln!(
+            s,
+            "\n## Photometry side by side\n\nFILE = {}, OTHER = {}; difference = OTHER - FILE.\n\n{}",
+            c.file,
+            c.vs.as_deref().unwrap_or("-"),
+            side_by_side_markdown(rows, "FILE", "OTHER")
+        );
+    }
     let _ = writeln!(s, "\n## Metrics\n\n{}", md_table(c));
     let _ = writeln!(
         s,
@@ -360,7 +374,24 @@ img{max-width:100%;border:1px solid #ddd}\n\
     for l in header(c) {
         let _ = writeln!(s, "<li>{}</li>", esc(&l));
     }
-    s.push_str("</ul>\n<h2>Metrics</h2>\n<table>\n<tr>");
+    s.push_str("</ul>\n");
+    if let Some(rows) = &c.photometry_side_by_side {
+        s.push_str("<h2>Photometry side by side</h2>\n<p>Difference = OTHER &minus; FILE.</p>\n<table>\n<tr><th>quantity</th><th>unit</th><th>FILE</th><th>OTHER</th><th>difference</th></tr>\n");
+        let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
+        for r in rows {
+            let _ = writeln!(
+                s,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                esc(&r.quantity),
+                esc(r.unit),
+                f(r.file),
+                f(r.other),
+                f(r.difference)
+            );
+        }
+        s.push_str("</table>\n");
+    }
+    s.push_str("<h2>Metrics</h2>\n<table>\n<tr>");
     for h in COLS {
         let _ = write!(s, "<th>{}</th>", esc(h));
     }

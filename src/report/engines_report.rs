@@ -33,6 +33,7 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         alignment: None,
         results: r.rows.iter().map(|row| row.metrics.clone()).collect(),
         plots: r.plots.clone(),
+        photometry_side_by_side: None,
     }
 }
 

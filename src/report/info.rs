@@ -13,6 +13,8 @@
 //! array of `{line, code, message}` (reader warnings first, then photometric
 //! consistency warnings). `lamp_color` (when the file states a colour
 //! temperature): `{cct_k, xy, srgb, srgb8}` (see `report::color`).
+//! Derived photometry (see `photometry::derived`): `cie_flux_code`,
+//! `zonal_lumens`, `ugr_table`, `bug_rating`, `luminance_table`.
 
 use serde::Serialize;
 
@@ -85,6 +87,9 @@ pub struct InfoReport {
     pub lamp_color: Option<crate::report::color::LampColor>,
     /// Reader and consistency warnings.
     pub warnings: Vec<Warning>,
+    /// Derived photometry: flux code, zonal lumens, UGR, BUG, luminance (flattened keys).
+    #[serde(flatten)]
+    pub derived: photometry::Derived,
 }
 
 impl InfoReport {
@@ -133,6 +138,7 @@ impl InfoReport {
                 .and_then(|l| crate::report::color::parse_cct(&l.color))
                 .map(crate::report::color::lamp_color),
             warnings,
+            derived: photometry::Derived::of(lum),
         }
     }
 
@@ -239,6 +245,7 @@ impl InfoReport {
                 let _ = writeln!(o, "  {w}");
             }
         }
+        o.push_str(&self.derived.to_text());
         o
     }
 }

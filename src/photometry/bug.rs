@@ -1,0 +1,209 @@
+//! BUG rating (Backlight, Uplight, Glare) of outdoor luminaires, IES TM-15-11
+//! Addendum A.
+//!
+//! # Zones (TM-15-11 Luminaire Classification System)
+//! Lumens in ten secondary solid angles, by [`zone_flux`] (exact on the
+//! bilinear reconstruction, split exactly at every zone boundary):
+//! forward FL 0-30°, FM 30-60°, FH 60-80°, FVH 80-90° and the same four
+//! back zones BL, BM, BH, BVH; uplight UL 90-100° and UH 100-180° (whole
+//! circle). TM-15 puts "forward" in front of the luminaire (horizontal
+//! 270°-90° of its own frame); in a Type C file that is the street side, the
+//! half-space around C90 (IES roadway convention, and what EULUMDAT road
+//! luminaires with C90-C270 symmetry use): forward = C 0-180, back = C 180-360.
+//!
+//! # Ratings (TM-15-11 Addendum A, Tables; absolute lumens)
+//! Each rating is the lowest class whose every zone limit holds:
+//!
+//! | class | BH, BL | BM | UL, UH | FH | FVH, BVH | BH (glare) |
+//! |---|---|---|---|---|---|---|
+//! | 0 | 110 | 220 | 0 | 660 | 10 | 110 |
+//! | 1 | 500 | 1000 | 10 | 1800 | 250 | 500 |
+//! | 2 | 1000 | 2500 | 50 | 5000 | 375 | 1000 |
+//! | 3 | 2500 | 5000 | 500 | 7500 | 500 | 2500 |
+//! | 4 | 5000 | 8500 | 1000 | 12000 | 750 | 5000 |
+//!
+//! and class 5 above class 4. These are the asymmetric-distribution (Type
+//! I-IV) glare limits; the quadrilateral-symmetric (Type V) glare table of
+//! the addendum is not applied. A limit of 0 lm (U0) is met only by exactly
+//! no uplight: lumens below 1e-9 of the total count as none (rounding).
+
+use serde::Serialize;
+
+use super::flux::zone_flux;
+use crate::model::Distribution;
+
+/// Lumens in the ten TM-15 secondary solid angles, lm.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
+#[allow(missing_docs)]
+pub struct BugZones {
+    pub fl: f64,
+    pub fm: f64,
+    pub fh: f64,
+    pub fvh: f64,
+    pub bl: f64,
+    pub bm: f64,
+    pub bh: f64,
+    pub bvh: f64,
+    pub ul: f64,
+    pub uh: f64,
+}
+
+/// The B, U and G classes (0-5) and the zone lumens they come from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BugRating {
+    /// Backlight class 0-5.
+    pub b: u8,
+    /// Uplight class 0-5.
+    pub u: u8,
+    /// Glare class 0-5.
+    pub g: u8,
+    /// "B1 U0 G2".
+    pub rating: String,
+    /// Zone lumens, lm.
+    pub zones: BugZones,
+}
+
+/// Backlight limits (lm) per class 0-4: (BH, BM, BL).
+const BACKLIGHT: [(f64, f64, f64); 5] = [
+    (110.0, 220.0, 110.0),
+    (500.0, 1000.0, 500.0),
+    (1000.0, 2500.0, 1000.0),
+    (2500.0, 5000.0, 2500.0),
+    (5000.0, 8500.0, 5000.0),
+];
+/// Uplight limits (lm) per class 0-4: (UL, UH).
+const UPLIGHT: [(f64, f64); 5] = [(0.0, 0.0), (10.0, 10.0), (50.0, 50.0), (500.0, 500.0), (1000.0, 1000.0)];
+/// Glare limits (lm) per class 0-4: (FVH, BVH, FH, BH).
+const GLARE: [(f64, f64, f64, f64); 5] = [
+    (10.0, 10.0, 660.0, 110.0),
+    (250.0, 250.0, 1800.0, 500.0),
+    (375.0, 375.0, 5000.0, 1000.0),
+    (500.0, 500.0, 7500.0, 2500.0),
+    (750.0, 750.0, 12000.0, 5000.0),
+];
+
+/// The ten zone lumens of `d`.
+pub fn bug_zones(d: &Distribution) -> BugZones {
+    let f = |a: f64, b: f64| zone_flux(d, (a, b), (0.0, 180.0));
+    let bk = |a: f64, b: f64| zone_flux(d, (a, b), (180.0, 360.0));
+    let all = |a: f64, b: f64| zone_flux(d, (a, b), (0.0, 360.0));
+    BugZones {
+        fl: f(0.0, 30.0),
+        fm: f(30.0, 60.0),
+        fh: f(60.0, 80.0),
+        fvh: f(80.0, 90.0),
+        bl: bk(0.0, 30.0),
+        bm: bk(30.0, 60.0),
+        bh: bk(60.0, 80.0),
+        bvh: bk(80.0, 90.0),
+        ul: all(90.0, 100.0),
+        uh: all(100.0, 180.0),
+    }
+}
+
+/// The lowest class whose limits `ok` accepts, 5 when none does.
+fn class(ok: impl Fn(usize) -> bool) -> u8 {
+    (0..5).find(|&k| ok(k)).unwrap_or(5) as u8
+}
+
+/// Rate zone lumens `z` (module docs); `noise_lm` is the level below which
+/// lumens count as none for the 0-lm limits.
+pub fn rate(z: &BugZones, noise_lm: f64) -> BugRating {
+    let le = |x: f64, limit: f64| x <= limit.max(noise_lm);
+    let b = class(|k| {
+        let (bh, bm, bl) = BACKLIGHT[k];
+        le(z.bh, bh) && le(z.bm, bm) && le(z.bl, bl)
+    });
+    let u = class(|k| le(z.ul, UPLIGHT[k].0) && le(z.uh, UPLIGHT[k].1));
+    let g = class(|k| {
+        let (fvh, bvh, fh, bh) = GLARE[k];
+        le(z.fvh, fvh) && le(z.bvh, bvh) && le(z.fh, fh) && le(z.bh, bh)
+    });
+    BugRating {
+        b,
+        u,
+        g,
+        rating: format!("B{b} U{u} G{g}"),
+        zones: *z,
+    }
+}
+
+/// BUG rating of `d` (absolute candela: the limits are absolute lumens).
+pub fn bug_rating(d: &Distribution) -> BugRating {
+    let z = bug_zones(d);
+    let total = z.fl + z.fm + z.fh + z.fvh + z.bl + z.bm + z.bh + z.bvh + z.ul + z.uh;
+    rate(&z, 1e-9 * total.abs())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Symmetry;
+    use std::f64::consts::PI;
+
+    fn iso(cd: f64, to: f64) -> Distribution {
+        let g: Vec<f64> = (0..=18).map(|i| to * i as f64 / 18.0).collect();
+        let v = vec![cd; g.len()];
+        Distribution::new(vec![0.0], g, v, Symmetry::Rotational).unwrap()
+    }
+
+    /// Closed form: an isotropic source of I cd puts π I (cos a − cos b) lm in
+    /// each half-circle zone and 2π I (cos a − cos b) in each uplight ring.
+    #[test]
+    fn isotropic_zones_are_closed_form() {
+        let z = bug_zones(&iso(1000.0, 180.0));
+        let half = |a: f64, b: f64| PI * 1000.0 * (a.to_radians().cos() - b.to_radians().cos());
+        for (got, want) in [
+            (z.fl, half(0.0, 30.0)),
+            (z.bm, half(30.0, 60.0)),
+            (z.fh, half(60.0, 80.0)),
+            (z.bvh, half(80.0, 90.0)),
+            (z.ul, 2.0 * half(90.0, 100.0)),
+            (z.uh, 2.0 * half(100.0, 180.0)),
+        ] {
+            assert!((got - want).abs() < 1e-9 * want, "{got} vs {want}");
+        }
+    }
+
+    /// Class boundaries of Addendum A: a value at a limit is in the class, just
+    /// above it the next; 0 lm uplight is U0, any measurable uplight is not.
+    #[test]
+    fn limits_are_inclusive_and_ordered() {
+        let mut z = BugZones {
+            bh: 110.0,
+            bm: 220.0,
+            bl: 110.0,
+            ..Default::default()
+        };
+        let r = rate(&z, 0.0);
+        assert_eq!((r.b, r.u, r.g), (0, 0, 0));
+        z.bm = 220.1;
+        assert_eq!(rate(&z, 0.0).b, 1);
+        z.fh = 12000.0;
+        assert_eq!(rate(&z, 0.0).g, 4);
+        z.fvh = 751.0;
+        assert_eq!(rate(&z, 0.0).g, 5);
+        z.ul = 0.5;
+        assert_eq!(rate(&z, 0.0).u, 1);
+        z.uh = 1000.5;
+        let r = rate(&z, 0.0);
+        assert_eq!(r.u, 5);
+        assert_eq!(r.rating, format!("B1 U5 G5"));
+    }
+
+    /// A 1 cd isotropic lower-hemisphere source: every zone far below the
+    /// class-0 limits except FVH/BVH (π·0.1736 = 0.545 lm ≤ 10): B0 U0 G0.
+    /// At 1000 cd: BVH = 545 lm puts G at 4 (≤ 750), BM = 1150 lm puts B at 2
+    /// (≤ 2500 and BH = 1160 lm > 1000 makes it B3), no uplight U0.
+    #[test]
+    fn isotropic_ratings() {
+        assert_eq!(bug_rating(&iso(1.0, 90.0)).rating, "B0 U0 G0");
+        let r = bug_rating(&iso(1000.0, 90.0));
+        let bh = PI * 1000.0 * (60f64.to_radians().cos() - 80f64.to_radians().cos());
+        assert!((r.zones.bh - bh).abs() < 1e-9 * bh);
+        assert!(bh > 1000.0 && bh <= 2500.0);
+        assert_eq!(r.rating, "B3 U0 G4");
+        // All-zero data: nothing anywhere.
+        assert_eq!(bug_rating(&iso(0.0, 180.0)).rating, "B0 U0 G0");
+    }
+}

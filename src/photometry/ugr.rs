@@ -1,0 +1,370 @@
+//! UGR table by the CIE tabular method (CIE 117:1995 §4, CIE 190:2010
+//! standard conditions).
+//!
+//! UGR = 8 log₁₀[(0.25 / L_b) Σ L² ω / p²] (CIE 117 eq. 4.1), evaluated for
+//! the standard rooms and reflectances of the CIE 190 table:
+//! - rooms X × Y (X across the line of sight, Y along it) from 2H × 2H to
+//!   12H × 8H, H the height of the luminaire plane above the seated eye;
+//! - a regular array at spacing S = 1.0 H (CIE 190: spacing-to-height ratio
+//!   1:1), luminaires at the cell centres; the observer at the middle of one
+//!   X wall at eye level, looking horizontally along Y;
+//! - crosswise: the luminaires' C0 axis (length) across the line of sight;
+//!   endwise: along it;
+//! - reflectances ceiling / walls / floor 0.7/0.5/0.2, 0.7/0.3/0.2,
+//!   0.5/0.5/0.2, 0.5/0.3/0.2, 0.3/0.3/0.2 (effective cavity reflectances).
+//!
+//! Per luminaire: L = I / A_p and ω = A_p / r², so L²ω = I² / (A_p r²), with I
+//! (cd) toward the eye on the bilinear interpolant and A_p the projected
+//! luminous area ([`projected_area_m2`]); p the Guth position index
+//! ln p = (35.2 − 0.31889τ − 1.22 e^(−2τ/9))·10⁻³ σ + (21 + 0.26667τ − 0.002963τ²)·10⁻⁵ σ²
+//! (CIE 117; the same expression as Radiance `src/util/glarendx.c`, `posindex`),
+//! σ the angle between the line of sight and the luminaire, τ the angle of
+//! the plane through both from the vertical.
+//!
+//! Background luminance L_b = E_WID / π with E_WID the indirect illuminance on
+//! the walls, from a three-surface interreflection (ceiling at the luminaire
+//! plane, floor at the eye plane, walls between) with exact form factors: the
+//! luminaires' upward flux lands on the ceiling; of the downward flux, the
+//! floor receives what the array sends into the floor rectangle (integrated
+//! from the distribution on a H/8 grid) and the walls the rest.
+//!
+//! The table holds for the file's flux: relative photometry at the declared
+//! lamp flux Φ (CIE 117 "uncorrected" table for that flux). For another flux
+//! Φ' add 8 log₁₀(Φ'/Φ) (L and I scale with the flux, L_b with it too).
+//! UGR does not depend on H (every length scales with it), checked in the tests.
+//!
+//! Not modelled: CIE 117's exclusion of luminaires outside the Guth table's
+//! field (all luminaires in front of the observer count), the 0.25 H array of
+//! the older CIE 117 tables, and the correction tables for other spacings.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::luminance::{projected_area_m2, GridLookup};
+use crate::model::frame::unit_angles;
+use crate::model::{Distribution, Luminaire};
+use crate::scene::opening::Opening;
+
+/// Standard rooms (X, Y) in units of H (CIE 190 / CIE 117 table rows).
+pub const ROOMS_H: [(f64, f64); 19] = [
+    (2.0, 2.0),
+    (2.0, 3.0),
+    (2.0, 4.0),
+    (2.0, 6.0),
+    (2.0, 8.0),
+    (2.0, 12.0),
+    (4.0, 2.0),
+    (4.0, 3.0),
+    (4.0, 4.0),
+    (4.0, 6.0),
+    (4.0, 8.0),
+    (4.0, 12.0),
+    (8.0, 4.0),
+    (8.0, 6.0),
+    (8.0, 8.0),
+    (8.0, 12.0),
+    (12.0, 4.0),
+    (12.0, 6.0),
+    (12.0, 8.0),
+];
+
+/// Standard reflectance combinations (ceiling, walls, floor).
+pub const REFLECTANCES: [(f64, f64, f64); 5] = [
+    (0.7, 0.5, 0.2),
+    (0.7, 0.3, 0.2),
+    (0.5, 0.5, 0.2),
+    (0.5, 0.3, 0.2),
+    (0.3, 0.3, 0.2),
+];
+
+/// Luminaire spacing of the standard array, in H (CIE 190: 1:1).
+pub const SPACING_H: f64 = 1.0;
+
+/// Floor integration cells per H.
+const CELLS_PER_H: usize = 8;
+
+/// The UGR table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct UgrTable {
+    /// Rooms (X, Y) in H, one per row.
+    pub rooms_h: Vec<[f64; 2]>,
+    /// Reflectances (ceiling, walls, floor), one per column.
+    pub reflectances: Vec<[f64; 3]>,
+    /// Crosswise UGR, `[room][reflectance]`.
+    pub crosswise: Vec<Vec<f64>>,
+    /// Endwise UGR, `[room][reflectance]`.
+    pub endwise: Vec<Vec<f64>>,
+    /// Luminaire spacing, H.
+    pub spacing_h: f64,
+    /// The flux the table holds for, lm (the distribution's integrated flux).
+    pub flux_lm: f64,
+    /// Largest value in the table.
+    pub max: f64,
+}
+
+/// View of the array: how the luminaire frame sits in the room frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum View {
+    /// Luminaire C0 along room x (across the line of sight).
+    Crosswise,
+    /// Luminaire C0 along room y (the line of sight).
+    Endwise,
+}
+
+impl View {
+    /// A room-frame vector in the luminaire frame.
+    fn to_luminaire(self, v: DVec3) -> DVec3 {
+        match self {
+            View::Crosswise => v,
+            View::Endwise => DVec3::new(v.y, -v.x, v.z),
+        }
+    }
+}
+
+/// View factor between two aligned, parallel a × b rectangles a distance c
+/// apart (Hottel's closed form; Howell's catalogue C-11).
+pub fn parallel_rectangles_view_factor(a: f64, b: f64, c: f64) -> f64 {
+    let (x, y) = (a / c, b / c);
+    let (x2, y2) = (x * x, y * y);
+    let s = ((1.0 + x2) * (1.0 + y2) / (1.0 + x2 + y2)).sqrt().ln()
+        + x * (1.0 + y2).sqrt() * (x / (1.0 + y2).sqrt()).atan()
+        + y * (1.0 + x2).sqrt() * (y / (1.0 + x2).sqrt()).atan()
+        - x * x.atan()
+        - y * y.atan();
+    2.0 * s / (std::f64::consts::PI * x * y)
+}
+
+/// Exitances (lm/m²) of ceiling, floor and walls of an X × Y × H box (m)
+/// receiving `direct` lm (ceiling, floor, walls) with reflectances `rho`,
+/// and the indirect illuminance on the walls E_WID (lx).
+pub fn box_interreflection(x: f64, y: f64, h: f64, direct: [f64; 3], rho: [f64; 3]) -> ([f64; 3], f64) {
+    let (a_cf, a_w) = (x * y, 2.0 * (x + y) * h);
+    let f_cf = parallel_rectangles_view_factor(x, y, h);
+    let f_cw = 1.0 - f_cf;
+    let f_wc = f_cw * a_cf / a_w;
+    // Rows: from ceiling, floor, walls to ceiling, floor, walls.
+    let f = [[0.0, f_cf, f_cw], [f_cf, 0.0, f_cw], [f_wc, f_wc, 1.0 - 2.0 * f_wc]];
+    let area = [a_cf, a_cf, a_w];
+    // M_i − ρ_i Σ_j F_ij M_j = ρ_i Φ_i / A_i
+    let mut m = [[0.0; 4]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            m[i][j] = f64::from(u8::from(i == j)) - rho[i] * f[i][j];
+        }
+        m[i][3] = rho[i] * direct[i] / area[i];
+    }
+    let exitance = solve3(m);
+    let e_wid = (0..3).map(|j| f[2][j] * exitance[j]).sum();
+    (exitance, e_wid)
+}
+
+/// Gaussian elimination with partial pivoting on an augmented 3 × 4 matrix.
+fn solve3(mut m: [[f64; 4]; 3]) -> [f64; 3] {
+    for col in 0..3 {
+        let p = (col..3)
+            .max_by(|&a, &b| m[a][col].abs().total_cmp(&m[b][col].abs()))
+            .unwrap_or(col);
+        m.swap(col, p);
+        let piv = m[col][col];
+        if piv == 0.0 {
+            return [0.0; 3];
+        }
+        for r in 0..3 {
+            if r != col {
+                let k = m[r][col] / piv;
+                let pivot_row = m[col];
+                for (x, p) in m[r].iter_mut().zip(pivot_row).skip(col) {
+                    *x -= k * p;
+                }
+            }
+        }
+    }
+    [m[0][3] / m[0][0], m[1][3] / m[1][1], m[2][3] / m[2][2]]
+}
+
+/// Guth position index of a source in direction `s` (unit, room frame) for a
+/// line of sight along +y with +z up; None behind the observer.
+pub fn position_index(s: DVec3) -> Option<f64> {
+    let cos_sigma = s.y;
+    if cos_sigma <= 0.0 {
+        return None;
+    }
+    if cos_sigma >= 1.0 {
+        return Some(1.0);
+    }
+    let sigma = cos_sigma.acos().to_degrees();
+    let across = (1.0 - cos_sigma * cos_sigma).sqrt();
+    let tau = (s.z.abs() / across).min(1.0).acos().to_degrees();
+    let ln_p = sigma
+        * ((35.2 - 0.31889 * tau - 1.22 * (-2.0 * tau / 9.0).exp()) * 1e-3
+            + sigma * (21.0 + 0.26667 * tau - 0.002963 * tau * tau) * 1e-5);
+    Some(ln_p.exp())
+}
+
+/// What the table needs from the luminaire, precomputed per view.
+struct Array<'a> {
+    look: GridLookup<'a>,
+    opening: &'a Opening,
+    view: View,
+    /// Flux (in units of H² lx … i.e. lm for H = 1) into each floor cell at
+    /// offset (m_x, m_y) from a luminaire, as a summed-area table.
+    floor_sat: Vec<f64>,
+    side: usize,
+}
+
+impl<'a> Array<'a> {
+    /// Floor cells span offsets −12H..12H in both directions.
+    const HALF: usize = 12 * CELLS_PER_H;
+
+    fn new(d: &'a Distribution, opening: &'a Opening, view: View) -> Self {
+        let side = 2 * Self::HALF;
+        let cell = 1.0 / CELLS_PER_H as f64;
+        let look = GridLookup::new(d);
+        let mut sat = vec![0.0; (side + 1) * (side + 1)];
+        for iy in 0..side {
+            let mut row = 0.0;
+            for ix in 0..side {
+                let dx = (ix as f64 - Self::HALF as f64 + 0.5) * cell;
+                let dy = (iy as f64 - Self::HALF as f64 + 0.5) * cell;
+                let v = DVec3::new(dx, dy, -1.0);
+                let r2 = v.length_squared();
+                let (c, g) = unit_angles(view.to_luminaire(v / r2.sqrt()));
+                // E = I cos γ / r² with cos γ = 1/r (H = 1), times the cell area.
+                let flux = look.at(c, g) / (r2 * r2.sqrt()) * cell * cell;
+                row += flux;
+                sat[(iy + 1) * (side + 1) + ix + 1] = sat[iy * (side + 1) + ix + 1] + row;
+            }
+        }
+        Array {
+            look,
+            opening,
+            view,
+            floor_sat: sat,
+            side,
+        }
+    }
+
+    /// Sum of floor cells with offsets in [x0, x1) × [y0, y1) (cell indices from −HALF).
+    fn floor_sum(&self, x0: i64, x1: i64, y0: i64, y1: i64) -> f64 {
+        let h = Self::HALF as i64;
+        let w = self.side + 1;
+        let idx = |x: i64, y: i64| {
+            ((y + h).clamp(0, self.side as i64) as usize) * w + (x + h).clamp(0, self.side as i64) as usize
+        };
+        self.floor_sat[idx(x1, y1)] - self.floor_sat[idx(x0, y1)] - self.floor_sat[idx(x1, y0)]
+            + self.floor_sat[idx(x0, y0)]
+    }
+
+    /// (Σ L²ω/p² for H = 1 m, direct flux to the floor for H = 1) in room X × Y (in H).
+    fn room(&self, x_h: f64, y_h: f64) -> (f64, f64) {
+        let (nx, ny) = ((x_h / SPACING_H).round() as i64, (y_h / SPACING_H).round() as i64);
+        let s_cells = (SPACING_H * CELLS_PER_H as f64).round() as i64;
+        let (room_x, room_y) = (nx * s_cells, ny * s_cells);
+        let (mut glare, mut floor) = (0.0, 0.0);
+        for i in 0..nx {
+            for j in 0..ny {
+                let x = -x_h / 2.0 + (i as f64 + 0.5) * SPACING_H;
+                let y = (j as f64 + 0.5) * SPACING_H;
+                // Floor cells 0..room_x, 0..room_y; the luminaire sits at cell
+                // coordinate (i + 0.5)·S·k, so offsets run from −that.
+                let (ox, oy) = (i * s_cells + s_cells / 2, j * s_cells + s_cells / 2);
+                floor += self.floor_sum(-ox, room_x - ox, -oy, room_y - oy);
+                let to_lum = DVec3::new(x, y, 1.0);
+                let r2 = to_lum.length_squared();
+                let s = to_lum / r2.sqrt();
+                let Some(p) = position_index(s) else { continue };
+                let emit = self.view.to_luminaire(-s);
+                let (c, g) = unit_angles(emit);
+                let a_p = projected_area_m2(self.opening, emit);
+                let i_cd = self.look.at(c, g);
+                if a_p > 0.0 && i_cd > 0.0 {
+                    glare += i_cd * i_cd / (a_p * r2 * p * p);
+                }
+            }
+        }
+        (glare, floor)
+    }
+}
+
+/// UGR for one room, view and reflectance set at luminaire height `h_m` above the eye.
+/// None when no luminaire sends light toward the observer or the background is dark.
+pub fn ugr_room(
+    lum: &Luminaire,
+    view: View,
+    room_h: (f64, f64),
+    rho: (f64, f64, f64),
+    h_m: f64,
+) -> Result<Option<f64>, String> {
+    let opening = Opening::of_luminaire(lum)?;
+    let array = Array::new(&lum.distribution, &opening, view);
+    let f = super::flux::flux(&lum.distribution);
+    Ok(one(&array, &f, room_h, rho, h_m))
+}
+
+fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), (rc, rw, rf): (f64, f64, f64), h_m: f64) -> Option<f64> {
+    let (glare_1m, floor) = array.room(x_h, y_h);
+    let n = (x_h / SPACING_H).round() * (y_h / SPACING_H).round();
+    let direct = [n * f.upward_lm, floor, (n * f.downward_lm - floor).max(0.0)];
+    let (_, e_wid) = box_interreflection(x_h * h_m, y_h * h_m, h_m, direct, [rc, rf, rw]);
+    let lb = e_wid / std::f64::consts::PI;
+    // Σ I²/(A_p r² p²) scales as 1/H² (r ∝ H).
+    let glare = glare_1m / (h_m * h_m);
+    (glare > 0.0 && lb > 0.0)
+        .then(|| 8.0 * (0.25 * glare / lb).log10())
+        .filter(|u| u.is_finite())
+}
+
+/// The full table of `lum`, or the reason it is undefined (no luminous area,
+/// no downward light).
+pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, String> {
+    let opening = Opening::of_luminaire(lum)?;
+    if opening.is_point() {
+        return Err("the file declares no luminous area (point source): UGR undefined".into());
+    }
+    let f = super::flux::flux(&lum.distribution);
+    if f.downward_lm.is_nan() || f.downward_lm <= 0.0 {
+        return Err("no downward light: UGR undefined (no glare from the luminaires)".into());
+    }
+    let mut tables = Vec::new();
+    for view in [View::Crosswise, View::Endwise] {
+        let array = Array::new(&lum.distribution, &opening, view);
+        let mut rows = Vec::new();
+        for &room in &ROOMS_H {
+            let mut row = Vec::new();
+            for &rho in &REFLECTANCES {
+                match one(&array, &f, room, rho, 1.0) {
+                    Some(u) => row.push(u),
+                    None => {
+                        return Err(format!(
+                            "no light toward the observer in the {}H x {}H room: UGR undefined",
+                            room.0, room.1
+                        ))
+                    }
+                }
+            }
+            rows.push(row);
+        }
+        tables.push(rows);
+    }
+    let endwise = tables.pop().unwrap_or_default();
+    let crosswise = tables.pop().unwrap_or_default();
+    let max = crosswise
+        .iter()
+        .chain(&endwise)
+        .flatten()
+        .copied()
+        .fold(f64::NEG_INFINITY, f64::max);
+    Ok(UgrTable {
+        rooms_h: ROOMS_H.iter().map(|&(x, y)| [x, y]).collect(),
+        reflectances: REFLECTANCES.iter().map(|&(a, b, c)| [a, b, c]).collect(),
+        crosswise,
+        endwise,
+        spacing_h: SPACING_H,
+        flux_lm: f.total_lm,
+        max,
+    })
+}
+
+#[cfg(test)]
+#[path = "ugr_tests.rs"]
+mod tests;

@@ -1,0 +1,232 @@
+//! Derived photometry (CIE flux code, zonal lumens, UGR, BUG, luminance) on
+//! real files, against the peer eulumdat-rs where it is right, and through
+//! the CLI (`info --json` keys, `compare --vs` side by side).
+
+mod common;
+
+use std::path::Path;
+
+use common::cli::{ok, run};
+use common::{corpus, manifest, snapshot};
+use photosolid::photometry::bug::bug_zones;
+use photosolid::photometry::derived::{Derivation, Derived};
+
+/// N1..N4 (%) that eulumdat 0.7.1 (PyPI build of holg/eulumdat-rs; Python
+/// `Eulumdat.cie_flux_codes()`, run on 2026-11-30) prints for the corpus
+/// files of holg/eulumdat-rs at c7e8b5d. Its N5 is the file's declared LOR,
+/// ours the computed one, so N5 is not compared.
+const PEER_CIE: [(&str, [f64; 4]); 10] = [
+    (
+        "4058075580657_FL_MAX_LUM_900W_757_ASYM_50X110_WAL.ldt",
+        [37.76, 80.55, 98.73, 100.0],
+    ),
+    (
+        "4058075580664_FL_MAX_LUM_1200W_757_SYM_10_WAL.ldt",
+        [91.39, 97.15, 99.66, 100.0],
+    ),
+    ("ABSOLUTE_LED.ies", [70.64, 94.58, 99.38, 100.0]),
+    ("ITALO 1 5P5 S05 3.140-3M.IES", [30.90, 66.88, 95.90, 100.0]),
+    (
+        "OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies",
+        [44.89, 77.73, 98.15, 99.43],
+    ),
+    ("TILT_TEST_SYNTHETIC.ies", [41.19, 71.18, 89.94, 100.0]),
+    ("demo_two_lamp_sets.ldt", [25.32, 57.86, 96.09, 99.10]),
+    ("projector.ldt", [42.83, 86.73, 98.96, 100.0]),
+    ("wiki-batwing.ldt", [36.89, 75.18, 95.89, 100.0]),
+    // Wrong in the peer (docs/photometry.md): Isym 3 planes mis-weighted.
+    ("road_luminaire.ldt", [29.74, 62.81, 94.10, 100.0]),
+];
+
+/// Agreement with the peer: N1..N4 within 0.7 percentage points on every
+/// file but the Isym 3 road luminaire, where the peer is 7.8 points off in
+/// N1; there our flux (27934 lm) is 0.3 % from the file's declared luminaire
+/// flux, which is the independent check that ours is the right one.
+#[test]
+fn cie_flux_codes_agree_with_the_peer_where_it_is_right() {
+    let Some(root) = corpus() else { return };
+    for (name, peer) in PEER_CIE {
+        let lum = photosolid::load(root.join("eulumdat-rs").join(name)).unwrap();
+        let d = Derived::of(&lum);
+        let Derivation::Value(code) = &d.cie_flux_code else {
+            panic!("{name}: no code")
+        };
+        let worst = (0..4).map(|k| (code.n[k] - peer[k]).abs()).fold(0.0, f64::max);
+        eprintln!("{name}: ours {:?} peer {peer:?} worst {worst:.2}", code.n);
+        if name == "road_luminaire.ldt" {
+            assert!(worst > 5.0, "{name}: the peer's known error vanished? {worst}");
+            let s = photosolid::photometry::summary(&lum);
+            assert!((s.flux_ratio.unwrap() - 1.0).abs() < 0.005, "{:?}", s.flux_ratio);
+        } else {
+            assert!(worst < 0.7, "{name}: ours {:?} vs peer {peer:?}", code.n);
+        }
+    }
+}
+
+/// A rotationally symmetric file (wiki-batwing, Isym 1) must put as many
+/// lumens behind as in front. The peer rates it with BL = BM = BH = BVH = 0
+/// (it assigns every stored plane C ≤ 180 to the front).
+#[test]
+fn symmetric_files_have_equal_front_and_back_zones() {
+    let Some(root) = corpus() else { return };
+    for name in ["wiki-batwing.ldt", "ABSOLUTE_LED.ies", "ITALO 1 5P5 S05 3.140-3M.IES"] {
+        let lum = photosolid::load(root.join("eulumdat-rs").join(name)).unwrap();
+        let z = bug_zones(&lum.distribution);
+        let total = z.fl + z.fm + z.fh + z.fvh + z.bl + z.bm + z.bh + z.bvh + z.ul + z.uh;
+        let flux = photosolid::photometry::flux(&lum.distribution).total_lm;
+        assert!(
+            (total - flux).abs() < 1e-9 * flux,
+            "{name}: zones {total} vs flux {flux}"
+        );
+        for (f, b) in [(z.fl, z.bl), (z.fm, z.bm), (z.fh, z.bh), (z.fvh, z.bvh)] {
+            assert!((f - b).abs() <= 1e-9 * flux, "{name}: front {f} back {b}");
+        }
+    }
+}
+
+/// Golden table of the derived scalars of every eulumdat-rs corpus file
+/// (regressions show as a diff; values explained in docs/photometry.md).
+#[test]
+fn corpus_derived_photometry_snapshot() {
+    let Some(root) = corpus() else { return };
+    let mut table = String::from("file\tcie_flux_code\tbug\tugr_4x8_705020_cross\tugr_4x8_705020_end\tlum_max_cd_m2\n");
+    let mut entries: Vec<_> = manifest(&root)
+        .into_iter()
+        .filter(|e| e.rel.starts_with("eulumdat-rs/") && e.photometric() && !e.malformed())
+        .collect();
+    entries.sort_by(|a, b| a.rel.cmp(&b.rel));
+    for e in entries {
+        let lum = photosolid::load(&e.path).unwrap();
+        let d = Derived::of(&lum);
+        let code = d.cie_flux_code.value().map_or("-".into(), |c| c.code.clone());
+        let r = d.scalars();
+        let get = |q: &str| {
+            r.iter()
+                .find(|x| x.0 == q)
+                .and_then(|x| x.2)
+                .map_or("-".into(), |v| format!("{v:.1}"))
+        };
+        let json = serde_json::to_string(&d).unwrap();
+        assert!(!json.contains("NaN") && !json.contains("null,null,null"), "{}", e.rel);
+        table.push_str(&format!(
+            "{}\t{}\t{}\t{}\t{}\t{}\n",
+            e.rel,
+            code,
+            d.bug_rating.rating,
+            get("UGR 4Hx8H 70/50/20 crosswise"),
+            get("UGR 4Hx8H 70/50/20 endwise"),
+            get("luminance table max")
+        ));
+    }
+    snapshot("photometry_corpus.tsv", &table);
+}
+
+/// A 600 x 600 mm Lambertian panel of 1 lamp x 3600 lm, 1000/π cd·cos γ per klm.
+fn write_panel(dir: &Path, name: &str, scale: f64) {
+    let g: Vec<f64> = (0..=18).map(|k| 5.0 * f64::from(k)).collect();
+    let cd: Vec<String> = g
+        .iter()
+        .map(|x| {
+            format!(
+                "{:.6}",
+                scale * 3600.0 / std::f64::consts::PI * x.to_radians().cos().max(0.0)
+            )
+        })
+        .collect();
+    let gs: Vec<String> = g.iter().map(|x| x.to_string()).collect();
+    let text = format!(
+        "IESNA:LM-63-2002\n[TEST] panel\nTILT=NONE\n1 3600 1 {} 1 1 2 0.6 0.6 0\n1 1 0\n{}\n0\n{}\n",
+        g.len(),
+        gs.join(" "),
+        cd.join(" ")
+    );
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+#[test]
+fn info_json_carries_the_derived_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    write_panel(dir.path(), "panel.ies", 1.0);
+    let out = ok(&run(&["info", "panel.ies", "--json"], dir.path()));
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    for k in [
+        "cie_flux_code",
+        "zonal_lumens",
+        "ugr_table",
+        "bug_rating",
+        "luminance_table",
+        "flux_lm",
+    ] {
+        assert!(v.get(k).is_some(), "missing {k}: {out}");
+    }
+    // Lambertian: L = I/A_p = (3600/π)/0.36 cd/m² at every angle.
+    let l = v["luminance_table"]["c0_cd_m2"][4].as_f64().unwrap();
+    let want = 3600.0 / std::f64::consts::PI / 0.36;
+    assert!((l - want).abs() < 1e-3 * want, "{l} vs {want}");
+    // Isotropic-in-cosine: N1 = 43.75 % within the 5° grid's interpolation error.
+    let n1 = v["cie_flux_code"]["n"][0].as_f64().unwrap();
+    assert!((n1 - 43.75).abs() < 0.3, "{n1}");
+    let text = ok(&run(&["info", "panel.ies"], dir.path()));
+    assert!(
+        text.contains("UGR table") && text.contains("CIE flux code") && text.contains("BUG rating"),
+        "{text}"
+    );
+    assert!(!text.contains("NaN"));
+}
+
+/// `compare --vs`: the scalars side by side above the metrics, in text, JSON
+/// and the Markdown/HTML report. Twice the intensities: flux doubles, the
+/// flux code stays, UGR rises by 8 log10 2 = 2.41.
+#[test]
+fn compare_vs_prints_photometry_side_by_side() {
+    let dir = tempfile::tempdir().unwrap();
+    write_panel(dir.path(), "a.ies", 1.0);
+    write_panel(dir.path(), "b.ies", 2.0);
+    let args = [
+        "compare",
+        "a.ies",
+        "--vs",
+        "b.ies",
+        "--recon",
+        "bilinear",
+        "--directions",
+        "dense:500",
+    ];
+    let text = ok(&run(&args, dir.path()));
+    let side = text.find("photometry (unit)").expect(&text);
+    let metrics = text.find("bilinear").expect(&text);
+    assert!(side < metrics, "{text}");
+    let mut j = args.to_vec();
+    j.push("--json");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&j, dir.path()))).unwrap();
+    let rows = v["photometry_side_by_side"].as_array().unwrap();
+    let row = |q: &str| rows.iter().find(|r| r["quantity"] == q).unwrap().clone();
+    let flux = row("flux");
+    let (a, d) = (flux["file"].as_f64().unwrap(), flux["difference"].as_f64().unwrap());
+    assert!((d - a).abs() < 1e-6 * a, "{flux}");
+    assert!(row("CIE flux code N1")["difference"].as_f64().unwrap().abs() < 1e-9);
+    let du = row("UGR 4Hx8H 70/50/20 crosswise")["difference"].as_f64().unwrap();
+    assert!((du - 8.0 * 2f64.log10()).abs() < 1e-6, "{du}");
+    let mut r = args.to_vec();
+    r.extend(["--report", "rep"]);
+    ok(&run(&r, dir.path()));
+    let md = std::fs::read_to_string(dir.path().join("rep/report.md")).unwrap();
+    assert!(md.find("## Photometry side by side").unwrap() < md.find("## Metrics").unwrap());
+    let html = std::fs::read_to_string(dir.path().join("rep/index.html")).unwrap();
+    assert!(html.contains("Photometry side by side"));
+    // Without --vs there is no side-by-side key.
+    let solo: serde_json::Value = serde_json::from_str(&ok(&run(
+        &[
+            "compare",
+            "a.ies",
+            "--recon",
+            "bilinear",
+            "--directions",
+            "dense:200",
+            "--json",
+        ],
+        dir.path(),
+    )))
+    .unwrap();
+    assert!(solo.get("photometry_side_by_side").is_none());
+}
