@@ -8,7 +8,9 @@
 //! the container's `ldc/` folder (a name that already carries a folder is
 //! looked up as written). The file is read with the ordinary readers (format
 //! from its extension, else from `contentType`, else from its content), so
-//! a photometry behaves exactly like the same file on disk. The element
+//! a photometry behaves exactly like the same file on disk. A `File` of
+//! another type (`url`) is listed but refused when loaded: photosolid does
+//! not download. The element
 //! names follow the GLDF documentation (globallightingdata/website,
 //! `docs/structure/photometries.md` and `files.md`).
 //!
@@ -89,6 +91,9 @@ pub struct GldfPhotometry {
     pub id: String,
     /// The zip member holding its file.
     pub member: String,
+    /// The file's `type` and location when it is not stored in the container
+    /// (`type="url"`): such a photometry is listed but cannot be loaded.
+    pub remote: Option<String>,
     /// The `File/@contentType` (`ldc/eulumdat`, `ldc/iesna`, ...).
     pub content_type: String,
     /// Its `DescriptivePhotometry`.
@@ -231,6 +236,18 @@ impl GldfContainer {
                 format!("`{id}`"),
             ));
         };
+        if let Some(remote) = &p.remote {
+            return Err(ParseError {
+                path: reference(&self.path, id),
+                location: Location::line(0),
+                kind: ErrorKind::Unsupported,
+                expected: "a photometric file stored in the container (File type=\"localFileName\"); photosolid \
+                           does not download"
+                    .into(),
+                found: format!("the File of product.xml is {remote}"),
+            }
+            .into());
+        }
         if self.archive.index_for_name(&p.member).is_none() {
             return Err(bad(
                 &self.path,
@@ -291,17 +308,11 @@ fn photometries(container: &Path, product: &[u8]) -> Result<Vec<GldfPhotometry>>
                     format!("no File with id `{file_id}`"),
                 )
             })?;
-        if file.attribute("type").is_some_and(|t| t != "localFileName") {
-            return Err(error_at(
-                &name,
-                file,
-                ErrorKind::Unsupported,
-                "a file stored in the container (type=\"localFileName\")",
-                format!("type=\"{}\"", file.attribute("type").unwrap_or("")),
-            )
-            .into());
-        }
         let file_name = file.text().unwrap_or("").trim();
+        let remote = file
+            .attribute("type")
+            .filter(|t| *t != "localFileName")
+            .map(|t| format!("type=\"{t}\" `{file_name}` (line {})", xml::location(file).line));
         if file_name.is_empty() {
             return Err(error_at(&name, file, ErrorKind::Invalid, "a file name", "an empty File element").into());
         }
@@ -321,6 +332,7 @@ fn photometries(container: &Path, product: &[u8]) -> Result<Vec<GldfPhotometry>>
         };
         out.push(GldfPhotometry {
             id: id.to_string(),
+            remote,
             member,
             content_type: file.attribute("contentType").unwrap_or("").to_string(),
             declared,

@@ -168,6 +168,18 @@ fn broken_containers_get_clear_errors() {
         ],
     );
     assert!(e.contains("broken_ldt.gldf#a"), "{e}");
+    // A photometry whose file is a URL: listed, refused when loaded, naming it.
+    let url = String::from_utf8(product(&[("web", "f", "x.ldt", "")]))
+        .unwrap()
+        .replace("type=\"localFileName\">x.ldt", "type=\"url\">https://example.com/x.ldt");
+    let p = dir.path().join("url.gldf");
+    write_zip(&p, &[("product.xml", url.into_bytes())]);
+    assert_eq!(GldfContainer::open(&p).unwrap().ids(), vec!["web"]);
+    let e = load(&p).unwrap_err().to_string();
+    assert!(
+        e.contains("url.gldf#web") && e.contains("type=\"url\"") && e.contains("https://example.com/x.ldt"),
+        "{e}"
+    );
     // Not a zip at all.
     let p = dir.path().join("text.gldf");
     std::fs::write(&p, "not a zip").unwrap();

@@ -411,7 +411,13 @@ fn grid(
             path: path.to_path_buf(),
             location: at,
             kind: ErrorKind::Invalid,
-            expected: format!("horz angles that fit the {} symmetry", symmetry.describe()),
+            expected: match declared {
+                Some(_) => format!(
+                    "horz angles that fit the <SymmType> code ({} symmetry)",
+                    symmetry.describe()
+                ),
+                None => "horz angles of a Type C layout (0..90, 0..180, 90..270 or up to 360)".to_string(),
+            },
             found: e.to_string(),
         }
     })
