@@ -216,6 +216,20 @@ fn zip_bombs_are_refused_by_size_and_by_entry_count() {
     assert!(e.contains(&format!("at most {MAX_ENTRIES} entries")), "{e}");
 }
 
+/// Every truncation of a container is an error naming it, never a panic.
+#[test]
+fn truncated_containers_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = two_photometries(dir.path());
+    let bytes = std::fs::read(&p).unwrap();
+    let cut = dir.path().join("cut.gldf");
+    for end in (0..bytes.len()).step_by(97) {
+        std::fs::write(&cut, &bytes[..end]).unwrap();
+        let e = load(reference(&cut, "road")).unwrap_err().to_string();
+        assert!(e.contains("cut.gldf"), "cut at {end}: {e}");
+    }
+}
+
 #[test]
 fn references_split_only_gldf_names() {
     assert_eq!(

@@ -248,3 +248,16 @@ fn written_document_structure() {
     assert_eq!(back.metadata.manufacturer, lum.metadata.manufacturer);
     assert_eq!(back.declared.absolute, lum.declared.absolute);
 }
+
+/// Every truncation of a written document is refused (never a panic) with
+/// an error that names the file and a line.
+#[test]
+fn every_truncation_is_refused_with_a_line() {
+    let pts = grid(&[0.0, 90.0], &[0.0, 45.0, 90.0], |h, v| 1.0 + h + v);
+    let text = write(&parse(&doc23("<SymmType>Symm _ Quad</SymmType>\n", &pts)).unwrap());
+    for end in 0..text.len() - 1 {
+        let e = parse(&text[..end]).unwrap_err();
+        assert!(e.location.line >= 1 || end == 0, "cut at {end}: {e}");
+        assert_eq!(e.path, Path::new("t.xml"));
+    }
+}
