@@ -1,7 +1,7 @@
 //! The `info` report of one luminaire: the JSON wire format of `photosolid info --json`
 //! and of each ok line of `photosolid validate --json`.
 //!
-//! Keys (stable; other tools rely on them): `format` (`ies`|`ldt`), `version`,
+//! Keys (stable; other tools rely on them): `format` (`ies`|`ldt`|`tm33`), `version`,
 //! `photometric_type` (`A`|`B`|`C`), `symmetry` (`none`, `rotational`, `c0-c180`,
 //! `c90-c270`, `quadrant`), `n_c` (stored C-planes), `n_c_full` (planes on
 //! the full circle), `n_gamma`, `gamma_range`, `max_cd`, `max_direction_deg`
@@ -32,7 +32,7 @@ use crate::photometry::{self, BeamAngles};
 /// Everything `info` reports about a luminaire.
 #[derive(Debug, Clone, Serialize)]
 pub struct InfoReport {
-    /// `ies` or `ldt`.
+    /// `ies`, `ldt` or `tm33`.
     pub format: crate::model::Format,
     /// Format version, e.g. `LM-63-2002`.
     pub version: String,
