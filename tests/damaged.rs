@@ -213,6 +213,7 @@ fn huge_counts_and_non_finite_numbers() {
                 p.extend([(n - 1, 0), (n, 0), (45, 0)]);
                 p
             }
+            Format::Tm33 => panic!("{}: data/ holds .ies and .ldt files only", f.display()),
         };
         for &(line, k) in &places {
             for v in values {

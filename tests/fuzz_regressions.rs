@@ -21,6 +21,7 @@ fn reader_check(data: &[u8], format: Format) -> usize {
         let path = Path::new("/nonexistent-fuzz-dir/regression").with_extension(match format {
             Format::Ies => "ies",
             Format::Ldt => "ldt",
+            Format::Tm33 => "xml",
         });
         let Ok(lum) = photosolid::formats::parse(data, &path, format, &opts) else {
             continue;

@@ -126,6 +126,7 @@ fn loads_and_round_trips(bytes: &[u8], format: Format) {
     let path = Path::new("/nonexistent/regression").with_extension(match format {
         Format::Ies => "ies",
         Format::Ldt => "ldt",
+        Format::Tm33 => "xml",
     });
     if let Ok(lum) = photosolid::formats::parse(bytes, &path, format, &ReadOptions::default()) {
         check(&lum).unwrap();

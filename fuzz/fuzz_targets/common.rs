@@ -15,6 +15,7 @@ pub fn reader(data: &[u8], format: Format) {
     let name = match format {
         Format::Ies => "fuzz.ies",
         Format::Ldt => "fuzz.ldt",
+        Format::Tm33 => "fuzz.xml",
     };
     for repair in [false, true] {
         let opts = ReadOptions {

@@ -25,7 +25,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// Compare FILE's reconstructions with this file's reference instead of FILE's own.
     #[arg(long)]

@@ -1,5 +1,8 @@
 //! `photosolid convert IN OUT [--ies-version 2002|2019] [--rotate-c DEG] [--mirror]`.
 //!
+//! IN may be any readable photometry (IES, EULUMDAT, TM-33, `FILE.gldf#ID`);
+//! OUT's extension picks the writer: `.ies`, `.ldt` or `.xml` (TM-33-23).
+//!
 //! Both formats put C0 along the luminaire's length and count C
 //! counter-clockwise seen from above, so the default keeps the C angles as
 //! they are. `--rotate-c` and `--mirror` change the convention when a pair
@@ -15,9 +18,9 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct ConvertArgs {
-    /// Input .ies or .ldt file.
+    /// Input: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     input: PathBuf,
-    /// Output file; .ies or .ldt decides the format.
+    /// Output file; .ies, .ldt or .xml (TM-33-23) decides the format.
     output: PathBuf,
     /// IES version to write.
     #[arg(long, default_value = "2002", value_parser = ["2002", "2019"])]

@@ -15,7 +15,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct EnginesArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// Engines (comma separated). Default: all.
     #[arg(long, value_delimiter = ',')]

@@ -11,7 +11,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct ExportArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// The engine: pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf.
     #[arg(long)]

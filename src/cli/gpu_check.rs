@@ -18,7 +18,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct GpuCheckArgs {
-    /// Files and directories (searched recursively for .ies/.ldt, any case).
+    /// Files and directories (searched recursively for .ies/.ldt, TM-33 .xml and .gldf, any case; a .gldf gives every photometry).
     #[arg(default_value = "../shared/corpus")]
     paths: Vec<PathBuf>,
     /// Supersampling factor in both axes (1-32).

@@ -17,7 +17,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct GridArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// CSV instead of JSON.
     #[arg(long)]

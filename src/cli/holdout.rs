@@ -16,7 +16,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct HoldoutArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// Keep every K-th C-plane, reconstruct the others.
     #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]

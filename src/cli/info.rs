@@ -1,4 +1,9 @@
 //! `photosolid info FILE [--json]`.
+//!
+//! A GLDF container given without an id (`FILE.gldf`) reports every
+//! photometry in it, in document order, each named `FILE.gldf#ID`: text
+//! blocks one after the other, or with `--json` one object when it holds a
+//! single photometry and an array of objects when it holds several.
 
 use std::path::PathBuf;
 
@@ -9,7 +14,8 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct InfoArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file (.ies, .ldt, TM-33 .xml), a GLDF container (FILE.gldf: every photometry) or one
+    /// photometry of it (FILE.gldf#ID).
     file: PathBuf,
     /// Print JSON (keys documented in `photosolid::report::info`).
     #[arg(long)]
@@ -22,11 +28,26 @@ pub struct InfoArgs {
 }
 
 pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
-    let mut lum = super::load(&a.file, &a.read)?;
-    if let Some(t) = a.tilt {
-        lum.distribution = lum.tilted_distribution(t)?;
+    let files = match photosolid::formats::gldf::split_reference(&a.file) {
+        Some((container, None)) => photosolid::formats::gldf::expand(&container),
+        _ => vec![a.file.clone()],
+    };
+    let mut reports = Vec::with_capacity(files.len());
+    for f in &files {
+        let mut lum = super::load(f, &a.read)?;
+        if let Some(t) = a.tilt {
+            lum.distribution = lum.tilted_distribution(t)?;
+        }
+        reports.push(InfoReport::of(&lum));
     }
-    let report = InfoReport::of(&lum);
-    super::print_report(a.json, &a.file, &report, &report.to_text())?;
+    match reports.as_slice() {
+        [one] => super::print_report(a.json, &files[0], one, &one.to_text())?,
+        _ if a.json => super::emit(true, &reports, "")?,
+        _ => {
+            for (f, r) in files.iter().zip(&reports) {
+                super::print_report(false, f, r, &r.to_text())?;
+            }
+        }
+    }
     Ok(0)
 }

@@ -11,7 +11,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct MeshArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// Reconstruct with this filter (nearest, bilinear, catmull-rom, mitchell[:B,C], bspline, pchip)
     /// or the fitted OpenGL lights (`fitted-gl`), on a grid `--factor` times denser than the file's.

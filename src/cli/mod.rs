@@ -46,7 +46,7 @@ enum Command {
     Info(info::InfoArgs),
     /// Check files and directories (recursive); exit 1 if any file fails to load.
     Validate(validate::ValidateArgs),
-    /// Convert between IES and EULUMDAT (format from OUT's extension).
+    /// Convert between IES, EULUMDAT and TM-33-23 XML (format from OUT's extension).
     Convert(convert::ConvertArgs),
     /// Write an analytic distribution (isotropic, lambertian, cosine-power, spot, batwing, roadway).
     Synth(synth::SynthArgs),

@@ -12,7 +12,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct TextureArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// Reconstruction filter: nearest, bilinear, catmull-rom, mitchell, mitchell:B,C, bspline, pchip.
     #[arg(long, default_value = "catmull-rom")]

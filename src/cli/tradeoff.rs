@@ -17,7 +17,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct TradeoffArgs {
-    /// An .ies or .ldt file.
+    /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// What errors are measured against: truth (the closed form a synth file
     /// records), withheld (k-fold hold-out of FILE's measurements), or a

@@ -1,4 +1,4 @@
-//! `photosolid validate PATH... [--json]`: load every .ies/.ldt file (any case) under the paths.
+//! `photosolid validate PATH... [--json]`: load every .ies/.ldt/TM-33 .xml file and every photometry of each .gldf container (any case) under the paths.
 //!
 //! Files are loaded in parallel (rayon) and reported in input order (paths
 //! as given, directories walked in sorted order). Exit status 0 when every
@@ -17,7 +17,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct ValidateArgs {
-    /// Files and directories (searched recursively for .ies/.ldt, any case).
+    /// Files and directories (searched recursively for .ies/.ldt, TM-33 .xml and .gldf, any case; a .gldf gives every photometry).
     #[arg(required = true)]
     paths: Vec<PathBuf>,
     /// One JSON object per line: path, ok, errors, warnings, and the info numbers when ok.

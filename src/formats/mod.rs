@@ -1,4 +1,5 @@
-//! Formats in: IES LM-63 and EULUMDAT readers and writers.
+//! Formats in: IES LM-63, EULUMDAT and TM-33 readers and writers, and GLDF
+//! containers (`FILE.gldf`, `FILE.gldf#ID`) read through them.
 //!
 //! Readers resolve everything once (units, multipliers, angle order,
 //! symmetry, Type A/B conversion, tilt files) and return a [`Luminaire`];
@@ -7,10 +8,13 @@
 
 pub mod angles;
 pub mod files;
+pub mod gldf;
 pub mod ies;
 pub mod ldt;
 pub mod roundtrip;
 pub mod text;
+pub mod tm33;
+pub(crate) mod xml;
 
 pub use files::{write_atomic, write_atomic_with};
 use std::path::Path;
@@ -56,7 +60,9 @@ pub struct ReadOptions {
     pub lamp_set_flux: LampSetFlux,
 }
 
-/// Read a photometric file, format from its extension (or, failing that, its content).
+/// Read a photometric file, format from its extension (or, failing that,
+/// its content). `FILE.gldf#ID` reads one photometry of a GLDF container,
+/// `FILE.gldf` its only one (see [`gldf`]).
 pub fn load(path: impl AsRef<Path>) -> Result<Luminaire> {
     load_with(path, &ReadOptions::default())
 }
@@ -64,6 +70,9 @@ pub fn load(path: impl AsRef<Path>) -> Result<Luminaire> {
 /// [`load`] with options.
 pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire> {
     let path = path.as_ref();
+    if let Some((container, id)) = gldf::split_reference(path) {
+        return gldf::load(&container, id.as_deref(), opts);
+    }
     let bytes = files::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
         files::ReadCappedError::Io(e) => Error::io(path, e),
         other => ParseError {
@@ -84,10 +93,12 @@ pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire
             let name = |f: Format| match f {
                 Format::Ies => "IES LM-63 (it has a TILT= line)",
                 Format::Ldt => "EULUMDAT (it has no TILT= line)",
+                Format::Tm33 => "TM-33 XML (its root element is LuminaireOpticalData or IESTM33-22)",
             };
             let ext = |f: Format| match f {
                 Format::Ies => ".ies",
                 Format::Ldt => ".ldt",
+                Format::Tm33 => ".xml",
             };
             e.found = format!(
                 "{}; the extension says {} but the content looks like {}: rename it to {}",
@@ -103,10 +114,12 @@ pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire
 
 /// Positive evidence that `bytes` are `format` (used only to explain a failed
 /// read): a `TILT=` line for IES; for EULUMDAT, lines 2, 3, 4 and 6 (type,
-/// symmetry, number of C-planes, number of gamma angles) are integers.
+/// symmetry, number of C-planes, number of gamma angles) are integers; for
+/// TM-33, its root element.
 fn looks_like(bytes: &[u8], format: Format) -> bool {
     let head = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
     match format {
+        Format::Tm33 => tm33::looks_like(bytes),
         Format::Ies => head.to_ascii_uppercase().contains("TILT="),
         Format::Ldt => {
             let lines: Vec<&str> = head.lines().take(6).collect();
@@ -121,14 +134,17 @@ pub fn parse(bytes: &[u8], path: &Path, format: Format, opts: &ReadOptions) -> R
     match format {
         Format::Ies => ies::read(bytes, path, opts),
         Format::Ldt => ldt::read(bytes, path, opts),
+        Format::Tm33 => tm33::read(bytes, path, opts),
     }
 }
 
-/// Guess the format of content with no telling extension: IES files carry
-/// `TILT=`, EULUMDAT files do not.
+/// Guess the format of content with no telling extension: TM-33 documents
+/// have their root element, IES files carry `TILT=`, EULUMDAT files do not.
 pub fn sniff(bytes: &[u8]) -> Format {
     let head = &bytes[..bytes.len().min(64 * 1024)];
-    if head.windows(5).any(|w| w.eq_ignore_ascii_case(b"TILT=")) {
+    if tm33::looks_like(head) {
+        Format::Tm33
+    } else if head.windows(5).any(|w| w.eq_ignore_ascii_case(b"TILT=")) {
         Format::Ies
     } else {
         Format::Ldt
@@ -146,20 +162,23 @@ pub struct WriteOptions {
 pub fn save(lum: &Luminaire, path: &Path, opts: &WriteOptions) -> Result<()> {
     let format = Format::from_extension(path).ok_or_else(|| {
         Error::Unsupported(format!(
-            "{}: cannot tell the output format; use the extension .ies or .ldt",
+            "{}: cannot tell the output format; use the extension .ies, .ldt or .xml (TM-33-23)",
             path.display()
         ))
     })?;
     let text = match format {
         Format::Ies => ies::write(lum, opts.ies_version),
         Format::Ldt => ldt::write(lum),
+        Format::Tm33 => tm33::write(lum),
     };
     write_atomic(path, text.as_bytes())
 }
 
 /// The photometric files at `path`: a file named explicitly, whatever its
-/// extension, or every `.ies`/`.ldt` file below a directory (recursive,
-/// sorted by path), appended to `out`.
+/// extension, or every `.ies`/`.ldt` file, TM-33 `.xml` file (by its root
+/// element) and `.gldf` container below a directory (recursive, sorted by
+/// path), appended to `out`. A container becomes one `FILE.gldf#ID` path per
+/// photometry ([`gldf::expand`]).
 ///
 /// # Errors
 /// [`Error::Io`] naming the directory that cannot be read.
@@ -173,14 +192,33 @@ pub fn collect_files(path: &std::path::Path, out: &mut Vec<std::path::PathBuf>) 
         for e in entries {
             if e.is_dir() {
                 collect_files(&e, out)?;
-            } else if Format::from_extension(&e).is_some() {
-                out.push(e);
+            } else if gldf::split_reference(&e).is_some() {
+                out.extend(gldf::expand(&e));
+            } else {
+                match Format::from_extension(&e) {
+                    // Other XML files (a GLDF's product.xml unpacked, say) are not photometry.
+                    Some(Format::Tm33) if e.is_file() && tm33::looks_like(&head(&e)) => out.push(e),
+                    Some(Format::Ies | Format::Ldt) => out.push(e),
+                    _ => {}
+                }
             }
         }
+    } else if let Some((container, None)) = gldf::split_reference(path) {
+        out.extend(gldf::expand(&container));
     } else {
         out.push(path.to_path_buf());
     }
     Ok(())
+}
+
+/// The first 64 KiB of a regular file (empty when it cannot be read): enough to see a root element.
+fn head(path: &Path) -> Vec<u8> {
+    use std::io::Read;
+    let mut b = Vec::new();
+    if let Ok(f) = std::fs::File::open(path) {
+        let _ = f.take(64 * 1024).read_to_end(&mut b);
+    }
+    b
 }
 
 /// Relative distance outside the model's intensity range ([`MAX_CD`],

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use crate::formats::{ies, ldt, ReadOptions};
+use crate::formats::{ies, ldt, tm33, ReadOptions};
 use crate::model::{Distribution, Format, Luminaire, ANGLE_EPS};
 
 /// Relative tolerance (of the peak |cd|) of the IES writer: 15 significant
@@ -19,7 +19,12 @@ pub const IES_TOLERANCE: f64 = 1e-12;
 /// model's range at its ends (as large again, see [`crate::formats::RANGE_SNAP`]).
 pub const LDT_TOLERANCE: f64 = 5e-7;
 
-/// Write `lum` as IES (LM-63-2002 and 2019) and as EULUMDAT, read each text
+/// Relative tolerance (of the peak |cd|) of the TM-33-23 writer: none; it
+/// writes the absolute candela with shortest round-trip decimals and
+/// `Multiplier` 1, so the values read back bit for bit.
+pub const TM33_TOLERANCE: f64 = 0.0;
+
+/// Write `lum` as IES (LM-63-2002 and 2019), EULUMDAT and TM-33-23, read each text
 /// back and compare the distributions: same γ angles (within
 /// [`ANGLE_EPS`]), every full-circle plane of `lum` present in the copy,
 /// every value within the writer's tolerance × the peak.
@@ -42,11 +47,13 @@ pub fn check(lum: &Luminaire) -> Result<(), String> {
             IES_TOLERANCE,
         ),
         ("EULUMDAT", Format::Ldt, ldt::write(lum), LDT_TOLERANCE),
+        ("TM-33-23", Format::Tm33, tm33::write(lum), TM33_TOLERANCE),
     ];
     for (name, format, text, tol) in cases {
         let path = Path::new(match format {
             Format::Ies => "<round-trip>.ies",
             Format::Ldt => "<round-trip>.ldt",
+            Format::Tm33 => "<round-trip>.xml",
         });
         let back = crate::formats::parse(text.as_bytes(), path, format, &opts)
             .map_err(|e| format!("{name}: the written text does not read back: {e}"))?;

@@ -25,15 +25,18 @@ pub enum Format {
     Ies,
     /// EULUMDAT (.ldt).
     Ldt,
+    /// ANSI/IES TM-33-18 or TM-33-23 XML (.xml).
+    Tm33,
 }
 
 impl Format {
-    /// From a file extension (any case): `ies` or `ldt`.
+    /// From a file extension (any case): `ies`, `ldt` or `xml` (TM-33).
     pub fn from_extension(path: &std::path::Path) -> Option<Self> {
         let e = path.extension()?.to_str()?.to_ascii_lowercase();
         match e.as_str() {
             "ies" => Some(Format::Ies),
             "ldt" => Some(Format::Ldt),
+            "xml" => Some(Format::Tm33),
             _ => None,
         }
     }
@@ -222,6 +225,9 @@ pub struct Luminaire {
     pub ies: Option<crate::formats::ies::IesHeader>,
     /// Raw EULUMDAT header, when read from an LDT file.
     pub ldt: Option<crate::formats::ldt::LdtHeader>,
+    /// What the GLDF container declares about this photometry, when it was
+    /// read from one (`FILE.gldf#ID`).
+    pub gldf: Option<crate::formats::gldf::GldfDeclared>,
 }
 
 impl Luminaire {
@@ -250,6 +256,7 @@ impl Luminaire {
             warnings: Vec::new(),
             ies: None,
             ldt: None,
+            gldf: None,
         }
     }
 

@@ -1,7 +1,7 @@
 //! The `info` report of one luminaire: the JSON wire format of `photosolid info --json`
 //! and of each ok line of `photosolid validate --json`.
 //!
-//! Keys (stable; other tools rely on them): `format` (`ies`|`ldt`), `version`,
+//! Keys (stable; other tools rely on them): `format` (`ies`|`ldt`|`tm33`), `version`,
 //! `photometric_type` (`A`|`B`|`C`), `symmetry` (`none`, `rotational`, `c0-c180`,
 //! `c90-c270`, `quadrant`), `n_c` (stored C-planes), `n_c_full` (planes on
 //! the full circle), `n_gamma`, `gamma_range`, `max_cd`, `max_direction_deg`
@@ -15,6 +15,15 @@
 //! temperature): `{cct_k, xy, srgb, srgb8}` (see `report::color`).
 //! Derived photometry (see `photometry::derived`): `cie_flux_code`,
 //! `zonal_lumens`, `ugr_table`, `bug_rating`, `luminance_table`.
+//! `gldf_declared` (a photometry read from a GLDF container, `FILE.gldf#ID`;
+//! `null` otherwise): the container's `DescriptivePhotometry`
+//! ([`GldfDeclared`](crate::formats::gldf::GldfDeclared): `container`, `id`,
+//! `file`, `lor`, `dff`, `dlor`, `ulor` as fractions,
+//! `luminous_efficacy_lm_per_w`, `luminaire_luminance_cd_m2`,
+//! `cie_flux_code`, `ugr_4h8h_70_50_20` `{crosswise, endwise}`,
+//! `bug_rating`, `cut_off_angle_deg`), and `gldf_comparison`, its rows
+//! `{quantity, declared, computed, difference}` as text
+//! ([`crate::report::declared`]).
 
 use serde::Serialize;
 
@@ -25,7 +34,7 @@ use crate::photometry::{self, BeamAngles};
 /// Everything `info` reports about a luminaire.
 #[derive(Debug, Clone, Serialize)]
 pub struct InfoReport {
-    /// `ies` or `ldt`.
+    /// `ies`, `ldt` or `tm33`.
     pub format: crate::model::Format,
     /// Format version, e.g. `LM-63-2002`.
     pub version: String,
@@ -85,6 +94,10 @@ pub struct InfoReport {
     pub catalogue: String,
     /// Lamp colour temperature stated by the file (lamp set 1), K, and its display colour.
     pub lamp_color: Option<crate::report::color::LampColor>,
+    /// What the GLDF container declares about this photometry (`None` unless read as `FILE.gldf#ID`).
+    pub gldf_declared: Option<crate::formats::gldf::GldfDeclared>,
+    /// The declared values next to the computed ones, one row per declared quantity.
+    pub gldf_comparison: Option<Vec<crate::report::declared::DeclaredRow>>,
     /// Reader and consistency warnings.
     pub warnings: Vec<Warning>,
     /// Derived photometry: flux code, zonal lumens, UGR, BUG, luminance (flattened keys).
@@ -99,7 +112,7 @@ impl InfoReport {
         let s = photometry::summary(lum);
         let mut warnings = lum.warnings.clone();
         warnings.extend(s.warnings.iter().cloned());
-        InfoReport {
+        let mut report = InfoReport {
             format: lum.format,
             version: lum.version.clone(),
             photometric_type: lum.photometric_type,
@@ -137,9 +150,16 @@ impl InfoReport {
                 .first()
                 .and_then(|l| crate::report::color::parse_cct(&l.color))
                 .map(crate::report::color::lamp_color),
+            gldf_declared: lum.gldf.clone(),
+            gldf_comparison: None,
             warnings,
             derived: photometry::Derived::of(lum),
-        }
+        };
+        report.gldf_comparison = lum
+            .gldf
+            .as_ref()
+            .map(|g| crate::report::declared::declared_vs_computed(g, &report, lum.declared.input_watts));
+        report
     }
 
     /// A human-readable table.
@@ -238,6 +258,9 @@ impl InfoReport {
         ];
         for (k, v) in rows {
             let _ = writeln!(o, "{k:<34} {v}");
+        }
+        if let (Some(g), Some(rows)) = (&self.gldf_declared, &self.gldf_comparison) {
+            o.push_str(&crate::report::declared::to_text(g, rows));
         }
         if !self.warnings.is_empty() {
             let _ = writeln!(o, "warnings:");

@@ -2,6 +2,7 @@
 
 pub mod color;
 pub mod compare_report;
+pub mod declared;
 pub mod engines_report;
 pub mod font;
 pub mod info;

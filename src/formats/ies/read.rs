@@ -507,6 +507,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         warnings,
         ies: Some(header),
         ldt: None,
+        gldf: None,
     })
 }
 

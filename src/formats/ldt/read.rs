@@ -650,6 +650,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             warnings: self.warnings,
             ies: None,
             ldt: Some(header),
+            gldf: None,
         })
     }
 }

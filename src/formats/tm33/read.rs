@@ -1,0 +1,472 @@
+//! TM-33 reader: XML → [`Luminaire`] (see the module docs of `tm33` for the elements read).
+
+use std::path::Path;
+
+use roxmltree::Node;
+
+use super::Tm33Edition;
+use crate::error::{ErrorKind, Location, ParseError, Warning, WarningCode};
+use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
+use crate::formats::ReadOptions;
+use crate::model::{
+    Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
+    ANGLE_EPS,
+};
+
+/// Names of the element holding the intensity data, by edition and spelling.
+const INTENSITY_BLOCKS: [&str; 3] = ["LuminousData", "LuminousIntensity", "IntensityDistribution"];
+
+/// Read a TM-33-18 or TM-33-23 document. `path` names the file in messages.
+///
+/// # Errors
+/// Malformed XML, a root element that is neither `LuminaireOpticalData` nor
+/// `IESTM33-22`, no or several emitters with intensity data, a missing or
+/// unreadable `horz`/`vert`/value, an incomplete or duplicated grid point, a
+/// symmetry code that does not match the `horz` angles; each at the line of
+/// the offending element, naming it. Type A/B data and non-luminous metrics
+/// are [`ErrorKind::Unsupported`].
+pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+    let text = xml::decode(bytes, path)?;
+    let doc = xml::parse(text, path, "a TM-33 document")?;
+    let root = doc.root_element();
+    let edition = match root.tag_name().name() {
+        "LuminaireOpticalData" => Tm33Edition::Tm33_18,
+        "IESTM33-22" => Tm33Edition::Tm33_23,
+        other => {
+            return Err(error_at(
+                path,
+                root,
+                ErrorKind::Invalid,
+                "the root element LuminaireOpticalData (TM-33-18) or IESTM33-22 (TM-33-23)",
+                format!("<{other}>"),
+            ))
+        }
+    };
+    let mut warnings = Vec::new();
+    let emitters: Vec<Node> = children(root, "Emitter").filter(|e| block_of(*e).is_some()).collect();
+    let emitter = match emitters.as_slice() {
+        [one] => *one,
+        [] => {
+            return Err(error_at(
+                path,
+                root,
+                ErrorKind::Invalid,
+                "an <Emitter> with a <LuminousData> (or <LuminousIntensity>, <IntensityDistribution>) block of \
+                 <IntensityData>",
+                "none",
+            ))
+        }
+        [_, second, ..] => {
+            return Err(error_at(
+                path,
+                *second,
+                ErrorKind::Unsupported,
+                "one <Emitter> with intensity data (several emitters are not combined)",
+                format!("{} emitters with intensity data", emitters.len()),
+            ))
+        }
+    };
+    let block = block_of(emitter).expect("filtered above");
+    check_type_and_metric(path, block)?;
+    let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
+    if multiplier <= 0.0 {
+        let node = child(block, &["Multiplier"]).unwrap_or(block);
+        return Err(error_at(path, node, ErrorKind::Invalid, "a multiplier > 0", multiplier));
+    }
+    let declared_symmetry = symmetry_code(path, block)?;
+    let distribution = grid(path, block, multiplier, declared_symmetry, &mut warnings)?;
+
+    let header = child(root, &["Header"]);
+    let text_of = |names: &[&str]| -> String { header.and_then(|h| child_text(h, names)).unwrap_or("").to_string() };
+    let quantity = child_number(path, emitter, &["Quantity"])?.unwrap_or(1.0);
+    let rated = child_number(path, emitter, &["RatedLumens"])?;
+    let watts = child_number(path, emitter, &["InputWattage", "InputWatts"])?;
+    let absolute = match child(block, &["AbsolutePhotometry"]) {
+        Some(n) => match n.text().map(str::trim).unwrap_or("") {
+            "true" | "1" => true,
+            "false" | "0" => false,
+            other => {
+                return Err(error_at(
+                    path,
+                    n,
+                    ErrorKind::Invalid,
+                    "true or false",
+                    format!("`{other}`"),
+                ))
+            }
+        },
+        None => rated.is_none(),
+    };
+    let lamp_flux = if absolute {
+        None
+    } else {
+        rated.map(|r| r * quantity.max(1.0)).filter(|f| *f > 0.0)
+    };
+    let cct = child_text(emitter, &["CCT", "FixedCCT"]).unwrap_or("");
+    let cri = child(emitter, &["ColorRendering"])
+        .and_then(|c| child_text(c, &["Ra"]))
+        .unwrap_or("");
+    let lamp = child_text(emitter, &["Description", "CatalogNumber"]).unwrap_or("");
+    let dims = match child(root, &["Luminaire"]).and_then(|l| child(l, &["Dimensions"])) {
+        Some(d) => Dimensions {
+            length_m: child_number(path, d, &["Length"])?.unwrap_or(0.0) / 1000.0,
+            width_m: child_number(path, d, &["Width"])?.unwrap_or(0.0) / 1000.0,
+            height_m: child_number(path, d, &["Height"])?.unwrap_or(0.0) / 1000.0,
+        },
+        None => Dimensions::default(),
+    };
+    Ok(Luminaire {
+        path: Some(path.to_path_buf()),
+        format: Format::Tm33,
+        version: edition.version().into(),
+        photometric_type: PhotometricType::C,
+        metadata: Metadata {
+            manufacturer: text_of(&["Manufacturer"]),
+            catalogue: text_of(&["CatalogNumber"]),
+            luminaire: text_of(&["Description"]),
+            lamp: lamp.to_string(),
+            test_report: text_of(&["ReportNumber"]),
+            date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
+        },
+        lamp_sets: vec![LampSet {
+            count: if absolute {
+                -quantity.max(1.0)
+            } else {
+                quantity.max(1.0)
+            },
+            lamp_type: lamp.to_string(),
+            flux_lm: lamp_flux.unwrap_or(0.0),
+            color: if cct.is_empty() {
+                String::new()
+            } else {
+                format!("{cct}K")
+            },
+            cri: cri.to_string(),
+            watts: watts.unwrap_or(0.0),
+        }],
+        dimensions: dims,
+        luminous_opening: Dimensions::default(),
+        declared: Declared {
+            lamp_flux_lm: lamp_flux,
+            luminaire_flux_lm: None,
+            lor: None,
+            dff: None,
+            absolute,
+            input_watts: watts,
+        },
+        tilt: Tilt::None,
+        distribution,
+        source_grid: None,
+        warnings,
+        ies: None,
+        ldt: None,
+        gldf: None,
+    })
+}
+
+/// The emitter's intensity block, when it holds `IntensityData`.
+fn block_of<'a, 'i>(emitter: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
+    emitter
+        .children()
+        .filter(|c| c.is_element() && INTENSITY_BLOCKS.contains(&c.tag_name().name()))
+        .find(|b| children(*b, "IntensityData").next().is_some())
+}
+
+/// Refuse Type A/B grids and radiant, photon or spectral data: the model holds Type C luminous intensity.
+fn check_type_and_metric(path: &Path, block: Node<'_, '_>) -> Result<(), ParseError> {
+    if let Some(n) = child(block, &["PhotometryType"]) {
+        let t: String = n.text().unwrap_or("").chars().filter(|c| c.is_alphanumeric()).collect();
+        let t = t.to_ascii_uppercase();
+        if !matches!(t.as_str(), "C" | "CIEC" | "TYPEC") {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Unsupported,
+                "Type C photometry (`CIE _ C`)",
+                format!("`{}`", n.text().unwrap_or("").trim()),
+            ));
+        }
+    }
+    if let Some(n) = child(block, &["Metric"]) {
+        let t = n.text().unwrap_or("").trim();
+        if !t.eq_ignore_ascii_case("Luminous") {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Unsupported,
+                "luminous intensity (`Luminous`)",
+                format!("`{t}`"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The declared symmetry code, `None` when absent.
+fn symmetry_code(path: &Path, block: Node<'_, '_>) -> Result<Option<(Symmetry, Location)>, ParseError> {
+    let Some(n) = child(block, &["SymmType", "Symm"]) else {
+        return Ok(None);
+    };
+    let raw = n.text().unwrap_or("").trim();
+    let key: String = raw
+        .chars()
+        .filter(|c| c.is_alphanumeric())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    let key = key.strip_prefix("SYMM").unwrap_or(&key);
+    let s = match key {
+        "NONE" | "ARBITRARY" => Symmetry::None,
+        "FULL" => Symmetry::Rotational,
+        "BI0" => Symmetry::C0C180,
+        "BI90" => Symmetry::C90C270,
+        "QUAD" => Symmetry::Quadrant,
+        _ => {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "a symmetry code: Symm _ None, Symm _ Full, Symm _ Bi _ 0, Symm _ Bi _ 90, Symm _ Quad or Symm _ \
+                 Arbitrary",
+                format!("`{raw}`"),
+            ))
+        }
+    };
+    Ok(Some((s, xml::location(n))))
+}
+
+/// One `IntensityData` point: C, γ (degrees), value × multiplier (cd) and its element.
+struct Point<'a, 'i> {
+    c: f64,
+    gamma: f64,
+    cd: f64,
+    node: Node<'a, 'i>,
+}
+
+fn attribute(path: &Path, n: Node<'_, '_>, name: &str) -> Result<f64, ParseError> {
+    let raw = n.attribute(name).ok_or_else(|| {
+        error_at(
+            path,
+            n,
+            ErrorKind::Invalid,
+            format!("the attribute {name} (degrees)"),
+            "none",
+        )
+    })?;
+    raw.trim().parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
+        error_at(
+            path,
+            n,
+            ErrorKind::Invalid,
+            format!("{name} as a finite number of degrees"),
+            format!("`{raw}`"),
+        )
+    })
+}
+
+/// Sorted distinct angles (closer than [`ANGLE_EPS`] counts as the same).
+fn distinct(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|b, a| (*b - *a).abs() <= ANGLE_EPS);
+    v
+}
+
+/// Index of `x` in the sorted distinct list `v` (it is there by construction).
+fn index_of(v: &[f64], x: f64) -> usize {
+    let i = v.partition_point(|&a| a < x - ANGLE_EPS);
+    i.min(v.len() - 1)
+}
+
+/// The `IntensityData` points as a Type C [`Distribution`].
+fn grid(
+    path: &Path,
+    block: Node<'_, '_>,
+    multiplier: f64,
+    declared: Option<(Symmetry, Location)>,
+    warnings: &mut Vec<Warning>,
+) -> Result<Distribution, ParseError> {
+    let mut points = Vec::new();
+    for n in children(block, "IntensityData") {
+        let c = attribute(path, n, "horz")?;
+        let gamma = attribute(path, n, "vert")?;
+        let raw = n.text().map(str::trim).unwrap_or("");
+        let v = raw.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
+            error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "an intensity (a finite number)",
+                format!("`{raw}`"),
+            )
+        })?;
+        if !(-ANGLE_EPS..=180.0 + ANGLE_EPS).contains(&gamma) {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "vert within 0..180 degrees (Type C)",
+                gamma,
+            ));
+        }
+        if !(-ANGLE_EPS..=360.0 + ANGLE_EPS).contains(&c) {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "horz within 0..360 degrees (Type C)",
+                c,
+            ));
+        }
+        points.push(Point {
+            c: c.clamp(0.0, 360.0),
+            gamma: gamma.clamp(0.0, 180.0),
+            cd: v * multiplier,
+            node: n,
+        });
+    }
+    let hs = distinct(points.iter().map(|p| p.c).collect());
+    let vs = distinct(points.iter().map(|p| p.gamma).collect());
+    let (nh, nv) = (hs.len(), vs.len());
+    if nh.checked_mul(nv) != Some(points.len()) {
+        // Find the first missing point to name it (only when the grid is small enough to enumerate).
+        let mut have = std::collections::HashSet::new();
+        for p in &points {
+            if !have.insert((index_of(&hs, p.c), index_of(&vs, p.gamma))) {
+                return Err(error_at(
+                    path,
+                    p.node,
+                    ErrorKind::Invalid,
+                    "one IntensityData per (horz, vert)",
+                    format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
+                ));
+            }
+        }
+        let missing = (0..nh)
+            .flat_map(|ih| (0..nv).map(move |iv| (ih, iv)))
+            .find(|k| !have.contains(k))
+            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", hs[ih], vs[iv]))
+            .unwrap_or_default();
+        return Err(error_at(
+            path,
+            block,
+            ErrorKind::Invalid,
+            format!("a complete grid of {nh} horz x {nv} vert angles"),
+            format!("{} IntensityData: {missing}", points.len()),
+        ));
+    }
+    let mut cd = vec![f64::NAN; nh * nv];
+    for p in &points {
+        let k = index_of(&hs, p.c) * nv + index_of(&vs, p.gamma);
+        if !cd[k].is_nan() {
+            return Err(error_at(
+                path,
+                p.node,
+                ErrorKind::Invalid,
+                "one IntensityData per (horz, vert)",
+                format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
+            ));
+        }
+        cd[k] = p.cd;
+    }
+    match crate::formats::into_model_range(&mut cd) {
+        Ok(Some(note)) => warnings.push(Warning::new(WarningCode::RangeSnapped, note)),
+        Ok(None) => {}
+        Err((i, why)) => {
+            let at = points
+                .iter()
+                .find(|p| index_of(&hs, p.c) * nv + index_of(&vs, p.gamma) == i)
+                .map_or(block, |p| p.node);
+            return Err(error_at(
+                path,
+                at,
+                ErrorKind::Invalid,
+                "an intensity within the model's range",
+                why,
+            ));
+        }
+    }
+    let symmetry = match declared {
+        Some((s, _)) => s,
+        None => inferred(&hs),
+    };
+    let (mut hs, mut cd) = (hs, cd);
+    if symmetry == Symmetry::Rotational && nh > 1 {
+        let at = declared.map_or_else(|| xml::location(block), |(_, l)| l);
+        return Err(ParseError {
+            path: path.to_path_buf(),
+            location: at,
+            kind: ErrorKind::Invalid,
+            expected: "one horz angle for Symm _ Full (rotational symmetry)".into(),
+            found: format!("{nh} horz angles"),
+        });
+    }
+    if symmetry == Symmetry::Rotational {
+        hs[0] = 0.0;
+    }
+    if symmetry == Symmetry::None && nh > 1 && (hs[nh - 1] - 360.0).abs() <= ANGLE_EPS {
+        drop_360_plane(&mut hs, &mut cd, nv, warnings);
+    }
+    Distribution::new(hs, vs, cd, symmetry).map_err(|e| {
+        let at = declared.map_or_else(|| xml::location(block), |(_, l)| l);
+        ParseError {
+            path: path.to_path_buf(),
+            location: at,
+            kind: ErrorKind::Invalid,
+            expected: match declared {
+                Some(_) => format!(
+                    "horz angles that fit the <SymmType> code ({} symmetry)",
+                    symmetry.describe()
+                ),
+                None => "horz angles of a Type C layout (0..90, 0..180, 90..270 or up to 360)".to_string(),
+            },
+            found: e.to_string(),
+        }
+    })
+}
+
+/// Symmetry from the `horz` set when no code is given, by the LM-63 rule
+/// (one plane: rotational; 0..90 quadrant; 0..180 C0-C180; 90..270
+/// C90-C270; otherwise none).
+fn inferred(hs: &[f64]) -> Symmetry {
+    let near = |a: f64, b: f64| (a - b).abs() <= ANGLE_EPS;
+    let (first, last) = (hs[0], hs[hs.len() - 1]);
+    if hs.len() == 1 {
+        Symmetry::Rotational
+    } else if near(first, 0.0) && near(last, 90.0) {
+        Symmetry::Quadrant
+    } else if near(first, 0.0) && near(last, 180.0) {
+        Symmetry::C0C180
+    } else if near(first, 90.0) && near(last, 270.0) {
+        Symmetry::C90C270
+    } else {
+        Symmetry::None
+    }
+}
+
+/// Drop a C = 360 plane (it is C = 0): kept as C = 0 when there is none,
+/// else compared with it (a warning when they differ).
+fn drop_360_plane(hs: &mut Vec<f64>, cd: &mut Vec<f64>, nv: usize, warnings: &mut Vec<Warning>) {
+    let last = cd.split_off(cd.len() - nv);
+    hs.pop();
+    if hs[0].abs() <= ANGLE_EPS {
+        let diff = last
+            .iter()
+            .zip(&cd[..nv])
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if diff > 1e-9 * peak.max(f64::MIN_POSITIVE) {
+            warnings.push(Warning::new(
+                WarningCode::SeamMismatch,
+                format!(
+                    "the 360-degree plane differs from the 0-degree plane by up to {} cd; the 0-degree plane is kept",
+                    crate::report::significant(diff, 6)
+                ),
+            ));
+        }
+    } else {
+        hs.insert(0, 0.0);
+        let mut v = last;
+        v.extend_from_slice(cd);
+        *cd = v;
+    }
+}

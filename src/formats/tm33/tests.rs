@@ -1,0 +1,263 @@
+//! Tests of the TM-33 reader and writer: documents written here by hand in
+//! the element layout of the published TM-33-23 examples (eulumdat-rs,
+//! `crates/atla/tests/samples/tm33-23/minimal.xml`) and of TM-33-18.
+
+use std::path::Path;
+
+use super::*;
+use crate::error::ErrorKind;
+use crate::formats::ReadOptions;
+use crate::model::{Format, Symmetry};
+
+fn parse(text: &str) -> Result<crate::model::Luminaire, crate::error::ParseError> {
+    read(text.as_bytes(), Path::new("t.xml"), &ReadOptions::default())
+}
+
+/// A TM-33-23 document around `points` (`(horz, vert, value)`) and extra `LuminousData` children.
+fn doc23(block_extra: &str, points: &[(f64, f64, f64)]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<IESTM33-22>\n<Version>1.1</Version>\n<Header>\n\
+         <Manufacturer>ACME &amp; Sons</Manufacturer>\n<CatalogNumber>X-1</CatalogNumber>\n\
+         <ReportNumber>R7</ReportNumber>\n<ReportDate>2024-01-15</ReportDate>\n</Header>\n\
+         <Luminaire><Dimensions><Length>600</Length><Width>300</Width><Height>50</Height></Dimensions></Luminaire>\n\
+         <Emitter>\n<Quantity>2</Quantity>\n<RatedLumens>1500</RatedLumens>\n<InputWattage>40</InputWattage>\n\
+         <CCT>4000</CCT>\n<LuminousData>\n<PhotometryType>CIE _ C</PhotometryType>\n<Metric>Luminous</Metric>\n",
+    );
+    s.push_str(block_extra);
+    for (h, v, cd) in points {
+        s.push_str(&format!(
+            "<IntensityData horz=\"{h}\" vert=\"{v}\">{cd}</IntensityData>\n"
+        ));
+    }
+    s.push_str("</LuminousData>\n</Emitter>\n</IESTM33-22>\n");
+    s
+}
+
+fn grid(hs: &[f64], vs: &[f64], f: impl Fn(f64, f64) -> f64) -> Vec<(f64, f64, f64)> {
+    hs.iter()
+        .flat_map(|&h| vs.iter().map(move |&v| (h, v, 0.0)))
+        .map(|(h, v, _)| (h, v, f(h, v)))
+        .collect()
+}
+
+#[test]
+fn tm33_23_values_multiplier_symmetry_and_flags() {
+    let pts = grid(&[0.0, 45.0, 90.0], &[0.0, 45.0, 90.0], |h, v| 100.0 + h - v);
+    let lum = parse(&doc23(
+        "<SymmType>Symm _ Quad</SymmType>\n<Multiplier>2.5</Multiplier>\n<AbsolutePhotometry>false</AbsolutePhotometry>\n",
+        &pts,
+    ))
+    .unwrap();
+    assert_eq!(lum.format, Format::Tm33);
+    assert_eq!(lum.version, "TM-33-23");
+    let d = &lum.distribution;
+    assert_eq!(d.symmetry(), Symmetry::Quadrant);
+    assert_eq!(d.c_angles(), &[0.0, 45.0, 90.0]);
+    assert_eq!(d.gamma_angles(), &[0.0, 45.0, 90.0]);
+    for (ic, &h) in d.c_angles().iter().enumerate() {
+        for (ig, &v) in d.gamma_angles().iter().enumerate() {
+            assert_eq!(d.value(ic, ig), (100.0 + h - v) * 2.5);
+        }
+    }
+    assert!(!lum.declared.absolute);
+    // Relative photometry: lamp flux = Quantity x RatedLumens.
+    assert_eq!(lum.declared.lamp_flux_lm, Some(3000.0));
+    assert_eq!(lum.declared.input_watts, Some(40.0));
+    assert_eq!(lum.metadata.manufacturer, "ACME & Sons");
+    assert_eq!(lum.metadata.date, "2024-01-15");
+    assert_eq!(lum.dimensions.length_m, 0.6);
+    assert_eq!(lum.lamp_sets[0].color, "4000K");
+}
+
+#[test]
+fn absolute_flag_and_every_symmetry_code() {
+    let vs = [0.0, 90.0, 180.0];
+    let cases: [(&str, &[f64], Symmetry); 6] = [
+        ("Symm _ Full", &[0.0], Symmetry::Rotational),
+        ("Symm _ Bi _ 0", &[0.0, 90.0, 180.0], Symmetry::C0C180),
+        ("Symm _ Bi _ 90", &[90.0, 180.0, 270.0], Symmetry::C90C270),
+        ("Symm _ Quad", &[0.0, 90.0], Symmetry::Quadrant),
+        ("Symm _ None", &[0.0, 120.0, 240.0], Symmetry::None),
+        ("Symm _ Arbitrary", &[0.0, 120.0, 240.0], Symmetry::None),
+    ];
+    for (code, hs, want) in cases {
+        let text = doc23(
+            &format!("<SymmType>{code}</SymmType>\n<AbsolutePhotometry>true</AbsolutePhotometry>\n"),
+            &grid(hs, &vs, |h, v| 10.0 + h + v),
+        );
+        let lum = parse(&text).unwrap_or_else(|e| panic!("{code}: {e}"));
+        assert_eq!(lum.distribution.symmetry(), want, "{code}");
+        assert!(lum.declared.absolute);
+        assert_eq!(lum.declared.lamp_flux_lm, None, "absolute: no lamp flux");
+        // Written back, the code and the values survive.
+        let back = parse(&write(&lum)).unwrap();
+        assert_eq!(back.distribution, lum.distribution, "{code}");
+        assert!(back.declared.absolute);
+    }
+}
+
+#[test]
+fn tm33_18_with_namespace_and_no_symmetry_code() {
+    let text = "<?xml version=\"1.0\"?>\n<LuminaireOpticalData version=\"1.0\" xmlns=\"http://www.ies.org/tm-33\">\n\
+        <Header><Manufacturer>M</Manufacturer><TestDate>2024-01-20</TestDate></Header>\n<Emitter>\n\
+        <RatedLumens>1600</RatedLumens>\n<IntensityDistribution>\n<PhotometryType>C</PhotometryType>\n\
+        <IntensityData horz=\"0\" vert=\"0\">80</IntensityData>\n<IntensityData horz=\"0\" vert=\"90\">65</IntensityData>\n\
+        <IntensityData horz=\"0\" vert=\"180\">80</IntensityData>\n</IntensityDistribution>\n</Emitter>\n\
+        </LuminaireOpticalData>";
+    let lum = parse(text).unwrap();
+    assert_eq!(lum.version, "TM-33-18");
+    assert_eq!(lum.distribution.symmetry(), Symmetry::Rotational);
+    assert_eq!(lum.distribution.intensities(), &[80.0, 65.0, 80.0]);
+    // No AbsolutePhotometry but a rated flux: relative.
+    assert_eq!(lum.declared.lamp_flux_lm, Some(1600.0));
+    assert_eq!(lum.metadata.date, "2024-01-20");
+    assert!(looks_like(text.as_bytes()));
+    assert_eq!(crate::formats::sniff(text.as_bytes()), Format::Tm33);
+}
+
+#[test]
+fn a_360_plane_is_dropped_and_compared_with_c0() {
+    let pts = grid(&[0.0, 180.0, 360.0], &[0.0, 90.0], |h, v| {
+        if h == 360.0 {
+            7.0
+        } else {
+            5.0 + v
+        }
+    });
+    let lum = parse(&doc23("<SymmType>Symm _ None</SymmType>\n", &pts)).unwrap();
+    assert_eq!(lum.distribution.c_angles(), &[0.0, 180.0]);
+    assert!(
+        lum.warnings.iter().any(|w| w.code == "seam-mismatch"),
+        "{:?}",
+        lum.warnings
+    );
+}
+
+/// Each malformed document: the error's line, and a word of its message.
+#[test]
+fn malformed_documents_name_line_and_element() {
+    let ok = grid(&[0.0, 90.0], &[0.0, 90.0], |_, _| 1.0);
+    let good = doc23("<SymmType>Symm _ Quad</SymmType>\n", &ok);
+    // The line of the last occurrence of `needle`.
+    let line_of = |text: &str, needle: &str| 1 + text[..text.rfind(needle).unwrap()].matches('\n').count();
+    let check = |text: String, needle: &str, word: &str, kind: ErrorKind| {
+        let e = parse(&text).unwrap_err();
+        assert_eq!(e.location.line, line_of(&text, needle), "{e}");
+        assert!(e.to_string().contains(word), "{e}");
+        assert_eq!(e.kind, kind, "{e}");
+    };
+    // Not well formed: an unclosed element.
+    check(
+        good.replace("</Emitter>", ""),
+        "</IESTM33-22>",
+        "well-formed XML",
+        ErrorKind::Invalid,
+    );
+    // A missing attribute, a bad value, a bad angle.
+    check(
+        good.replacen(" vert=\"90\"", "", 1),
+        "<IntensityData horz=\"0\">",
+        "<IESTM33-22/Emitter/LuminousData/IntensityData>",
+        ErrorKind::Invalid,
+    );
+    check(good.replacen(">1</", ">abc</", 1), "abc", "`abc`", ErrorKind::Invalid);
+    check(
+        good.replacen("vert=\"90\"", "vert=\"190\"", 1),
+        "vert=\"190\"",
+        "0..180",
+        ErrorKind::Invalid,
+    );
+    // A point missing from the grid, a duplicated point.
+    check(
+        doc23("", &ok[..3]),
+        "<LuminousData>",
+        "no value at horz = 90, vert = 90",
+        ErrorKind::Invalid,
+    );
+    let mut dup = ok.clone();
+    dup[3] = dup[2];
+    check(
+        doc23("", &dup),
+        "horz=\"90\" vert=\"0\"",
+        "second value",
+        ErrorKind::Invalid,
+    );
+    // A code that does not fit the angles, an unknown code.
+    check(
+        good.replace("Symm _ Quad", "Symm _ Bi _ 90"),
+        "<SymmType>",
+        "C90-C270",
+        ErrorKind::Invalid,
+    );
+    check(
+        good.replace("Symm _ Quad", "Symm _ Diagonal"),
+        "<SymmType>",
+        "Symm _ Quad",
+        ErrorKind::Invalid,
+    );
+    // Unsupported: Type B, radiant data.
+    check(
+        good.replace("CIE _ C", "CIE _ B"),
+        "<PhotometryType>",
+        "Type C",
+        ErrorKind::Unsupported,
+    );
+    check(
+        good.replace(">Luminous<", ">Radiant<"),
+        "<Metric>",
+        "Luminous",
+        ErrorKind::Unsupported,
+    );
+    // A wrong root element, a DTD.
+    check(
+        good.replace("IESTM33-22>", "Photometry>"),
+        "<Photometry>",
+        "IESTM33-22",
+        ErrorKind::Invalid,
+    );
+    let e = parse(&good.replace("<IESTM33-22>", "<!DOCTYPE x [<!ENTITY a \"b\">]><IESTM33-22>")).unwrap_err();
+    assert!(e.to_string().contains("without a DTD"), "{e}");
+    // A non-positive multiplier.
+    check(
+        good.replace("<SymmType>", "<Multiplier>0</Multiplier>\n<SymmType>"),
+        "<Multiplier>",
+        "multiplier > 0",
+        ErrorKind::Invalid,
+    );
+}
+
+/// The writer's text read by the XML parser itself (not our reader): the
+/// root, the version and one IntensityData per stored grid point.
+#[test]
+fn written_document_structure() {
+    let lum = crate::formats::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
+    let text = write(&lum);
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let root = doc.root_element();
+    assert_eq!(root.tag_name().name(), "IESTM33-22");
+    let n = root.descendants().filter(|n| n.has_tag_name("IntensityData")).count();
+    assert_eq!(n, lum.distribution.intensities().len());
+    assert_eq!(
+        root.descendants()
+            .find(|n| n.has_tag_name("Version"))
+            .and_then(|n| n.text()),
+        Some("1.1")
+    );
+    let back = parse(&text).unwrap();
+    assert_eq!(back.distribution, lum.distribution);
+    assert_eq!(back.metadata.manufacturer, lum.metadata.manufacturer);
+    assert_eq!(back.declared.absolute, lum.declared.absolute);
+}
+
+/// Every truncation of a written document is refused (never a panic) with
+/// an error that names the file and a line.
+#[test]
+fn every_truncation_is_refused_with_a_line() {
+    let pts = grid(&[0.0, 90.0], &[0.0, 45.0, 90.0], |h, v| 1.0 + h + v);
+    let text = write(&parse(&doc23("<SymmType>Symm _ Quad</SymmType>\n", &pts)).unwrap());
+    for end in 0..text.len() - 1 {
+        let e = parse(&text[..end]).unwrap_err();
+        assert!(e.location.line >= 1 || end == 0, "cut at {end}: {e}");
+        assert_eq!(e.path, Path::new("t.xml"));
+    }
+}

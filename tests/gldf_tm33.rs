@@ -1,0 +1,140 @@
+//! GLDF containers and TM-33 XML through the real binary: `info` on every
+//! photometry of a container with the declared values next to the computed
+//! ones, `validate` expanding a container, one-file commands naming the ids,
+//! `convert` to TM-33-23 and back. Containers are written here around
+//! files of data/.
+
+mod common;
+
+use std::io::Write;
+use std::path::Path;
+
+use common::cli::{fails, ok, run};
+
+fn data(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
+}
+
+/// `dir/lum.gldf` holding roadway.ldt as `road` (declared LOR 0.5, DFF 0.25,
+/// CIE flux code, UGR, BUG) and batwing.ies as `bat` (nothing declared).
+fn container(dir: &Path) -> std::path::PathBuf {
+    let product = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Root>\n<Header/>\n<GeneralDefinitions>\n<Files>\n\
+        <File id=\"f1\" contentType=\"ldc/eulumdat\" type=\"localFileName\">roadway.ldt</File>\n\
+        <File id=\"f2\" contentType=\"ldc/iesna\" type=\"localFileName\">batwing.ies</File>\n</Files>\n<Photometries>\n\
+        <Photometry id=\"road\"><PhotometryFileReference fileId=\"f1\"/><DescriptivePhotometry>\
+        <LightOutputRatio>0.5</LightOutputRatio><DownwardFluxFraction>0.25</DownwardFluxFraction>\
+        <CIE-FluxCode>44 75 94 100 100</CIE-FluxCode>\
+        <UGR-4H8H-70-50-20-LQ><X>19.5</X><Y>20.1</Y></UGR-4H8H-70-50-20-LQ>\
+        <LightDistributionBUG-Rating>B1 U0 G1</LightDistributionBUG-Rating></DescriptivePhotometry></Photometry>\n\
+        <Photometry id=\"bat\"><PhotometryFileReference fileId=\"f2\"/></Photometry>\n\
+        </Photometries>\n</GeneralDefinitions>\n</Root>\n";
+    let p = dir.join("lum.gldf");
+    let mut z = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let opts = zip::write::SimpleFileOptions::default();
+    for (name, bytes) in [
+        ("product.xml", product.as_bytes().to_vec()),
+        ("ldc/roadway.ldt", std::fs::read(data("roadway.ldt")).unwrap()),
+        ("ldc/batwing.ies", std::fs::read(data("batwing.ies")).unwrap()),
+    ] {
+        z.start_file(name, opts).unwrap();
+        z.write_all(&bytes).unwrap();
+    }
+    std::fs::write(&p, z.finish().unwrap().into_inner()).unwrap();
+    p
+}
+
+#[test]
+fn info_reports_every_photometry_with_declared_next_to_computed() {
+    let t = tempfile::tempdir().unwrap();
+    container(t.path());
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "lum.gldf", "--json"], t.path()))).unwrap();
+    let all = v.as_array().expect("two photometries: an array");
+    assert_eq!(all.len(), 2);
+    let road = &all[0];
+    let file: serde_json::Value = serde_json::from_str(&ok(&run(
+        &["info", data("roadway.ldt").to_str().unwrap(), "--json"],
+        t.path(),
+    )))
+    .unwrap();
+    // The photometry reads exactly like its file.
+    for key in ["flux_lm", "lor", "dff", "max_cd", "n_c"] {
+        assert_eq!(road[key], file[key], "{key}");
+    }
+    let g = &road["gldf_declared"];
+    assert_eq!(g["id"], "road");
+    assert_eq!(g["lor"], 0.5);
+    assert_eq!(g["dff"], 0.25);
+    assert_eq!(g["cie_flux_code"], "44 75 94 100 100");
+    assert_eq!(g["ugr_4h8h_70_50_20"]["endwise"], 20.1);
+    assert_eq!(g["bug_rating"], "B1 U0 G1");
+    // The DFF row: declared 25 %, computed the report's own `dff`, their difference in pp.
+    let rows = road["gldf_comparison"].as_array().unwrap();
+    let row = |q: &str| rows.iter().find(|r| r["quantity"] == q).unwrap();
+    let dff = road["dff"].as_f64().unwrap();
+    assert_eq!(row("DFF")["declared"], "25.00 %");
+    assert_eq!(row("DFF")["computed"], format!("{:.2} %", dff * 100.0));
+    assert_eq!(row("DFF")["difference"], format!("{:+.2} pp", (dff - 0.25) * 100.0));
+    // data/roadway.ldt is absolute photometry: no computed LOR to set against the declared one.
+    assert_eq!(road["absolute"], true);
+    assert_eq!(row("LOR")["declared"], "50.00 %");
+    assert!(row("LOR")["computed"].is_null() && row("LOR")["difference"].is_null());
+    assert!(rows
+        .iter()
+        .any(|r| r["quantity"] == "CIE flux code" && r["computed"].is_null()));
+    assert!(all[1]["gldf_declared"]["lor"].is_null());
+    // Text: one block per photometry, each named FILE.gldf#ID, and the comparison table.
+    let text = ok(&run(&["info", "lum.gldf"], t.path()));
+    assert!(
+        text.contains("lum.gldf#road\n") && text.contains("lum.gldf#bat\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("declared vs computed") && text.contains("BUG rating"),
+        "{text}"
+    );
+    // One photometry by id: a single JSON object.
+    let one: serde_json::Value =
+        serde_json::from_str(&ok(&run(&["info", "lum.gldf#bat", "--json"], t.path()))).unwrap();
+    assert!(one.is_object());
+}
+
+#[test]
+fn validate_expands_and_one_file_commands_name_the_ids() {
+    let t = tempfile::tempdir().unwrap();
+    container(t.path());
+    let out = ok(&run(&["validate", "."], t.path()));
+    assert!(out.contains("lum.gldf#road") && out.contains("lum.gldf#bat"), "{out}");
+    let e = fails(&run(&["grid", "lum.gldf"], t.path()), 1);
+    assert!(e.contains("road, bat") && e.contains("lum.gldf#ID"), "{e}");
+    ok(&run(&["grid", "lum.gldf#road"], t.path()));
+    // A broken container: an error naming it, no panic.
+    std::fs::write(t.path().join("bad.gldf"), "not a zip").unwrap();
+    let e = fails(&run(&["info", "bad.gldf"], t.path()), 1);
+    assert!(e.contains("bad.gldf") && e.contains("zip archive"), "{e}");
+}
+
+#[test]
+fn convert_to_tm33_and_back() {
+    let t = tempfile::tempdir().unwrap();
+    container(t.path());
+    ok(&run(&["convert", "lum.gldf#bat", "bat.xml"], t.path()));
+    let text = std::fs::read_to_string(t.path().join("bat.xml")).unwrap();
+    assert!(text.contains("<IESTM33-22>"), "{text}");
+    let info =
+        |f: &str| -> serde_json::Value { serde_json::from_str(&ok(&run(&["info", f, "--json"], t.path()))).unwrap() };
+    let (xml, ies) = (info("bat.xml"), info(data("batwing.ies").to_str().unwrap()));
+    assert_eq!(xml["format"], "tm33");
+    assert_eq!(xml["version"], "TM-33-23");
+    for key in ["flux_lm", "max_cd", "symmetry", "n_c", "n_gamma", "absolute"] {
+        assert_eq!(xml[key], ies[key], "{key}");
+    }
+    ok(&run(&["convert", "bat.xml", "back.ldt"], t.path()));
+    // A directory: TM-33 documents are found by their root element, other XML is left alone.
+    std::fs::write(t.path().join("product.xml"), "<Root/>").unwrap();
+    let out = ok(&run(&["validate", "."], t.path()));
+    assert!(out.contains("bat.xml") && !out.contains("product.xml"), "{out}");
+    // A malformed document: line and element in the message.
+    std::fs::write(t.path().join("bad.xml"), text.replacen(" vert=", " vertical=", 1)).unwrap();
+    let e = fails(&run(&["info", "bad.xml"], t.path()), 1);
+    assert!(e.contains("bad.xml:") && e.contains("IntensityData"), "{e}");
+}
