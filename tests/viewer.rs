@@ -126,3 +126,43 @@ fn demo_report_has_the_viewer() {
     check_solids(&v, 6);
     assert!(html.len() < 1_000_000, "{} bytes", html.len());
 }
+
+#[test]
+fn scene_and_plan_reports_have_a_viewer_per_luminaire() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/data/road_scene.toml");
+    for cmd in ["scene", "plan"] {
+        let rep = dir.path().join(cmd);
+        run(bin().args([cmd, scene, "--report"]).arg(&rep));
+        let html = std::fs::read_to_string(rep.join("index.html")).unwrap();
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(rep.join(format!("{cmd}.json"))).unwrap()).unwrap();
+        let n = json["luminaires"].as_array().unwrap().len();
+        assert!(n >= 2);
+        assert_eq!(html.matches("<section class=\"psv\">").count(), n, "{cmd}");
+        assert!(html.contains("(the scene's reference)"), "{cmd}");
+        for bad in ["http://", "https://", "<script src", "<link"] {
+            assert!(!html.contains(bad), "{bad}");
+        }
+        if cmd == "scene" {
+            assert!(html.contains("data:image/png;base64,"), "the isolux maps stay");
+        }
+        if cmd == "plan" {
+            // A chosen representation other than the reference is drawn with its errors.
+            let chosen: Vec<&str> = json["luminaires"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|l| l["representation"].as_str().unwrap())
+                .filter(|r| *r != "catmull-rom")
+                .collect();
+            for r in chosen {
+                assert!(
+                    html.contains(&format!("\"name\":\"{r}\",\"role\":\"reconstruction\"")),
+                    "{r}"
+                );
+            }
+        }
+        assert!(html.len() < 1_000_000, "{cmd}: {} bytes", html.len());
+    }
+}

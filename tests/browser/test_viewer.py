@@ -44,7 +44,12 @@ def reports(tmp_path_factory):
     run("compare", str(d / "road.ldt"), "--directions", "dense:2000", "--report", str(d / "truth"))
     run("compare", str(d / "road.ldt"), "--against", "withheld", "--directions", "dense:2000",
         "--report", str(d / "withheld"))
-    return {"truth": d / "truth" / "index.html", "withheld": d / "withheld" / "index.html"}
+    run("scene", str(ROOT / "data" / "road_scene.toml"), "--report", str(d / "scene"))
+    return {
+        "truth": d / "truth" / "index.html",
+        "withheld": d / "withheld" / "index.html",
+        "scene": d / "scene" / "index.html",
+    }
 
 
 @pytest.fixture(scope="session")
@@ -110,6 +115,9 @@ def test_viewer_renders_offline_and_reacts(browser, reports, kind):
     assert ("Reference: truth" if kind == "truth" else "Reference: the measured solid") in caption, caption
     stage, polar = root.locator(".psv-stage"), root.locator(".psv-polar")
     first = shot(stage, f"{kind}-3d")
+    # The same view drawn again is the same picture (the comparisons below rely on it).
+    root.locator(".psv-c").evaluate("e => e.dispatchEvent(new Event('input'))")
+    assert changed_fraction(first, shot(stage, f"{kind}-3d-redrawn")) == 0
     # The shaded, colour-mapped solid has hundreds of colours; the line drawings (antialiased) dozens.
     not_blank(first, "3D view", 300)
     not_blank(shot(polar, f"{kind}-polar"), "polar panel", 40)
@@ -165,6 +173,20 @@ def test_viewer_renders_offline_and_reacts(browser, reports, kind):
     assert errors == [], errors
     assert outside == [], outside
     shot(page.locator("body"), f"{kind}-page")
+    ctx.close()
+
+
+def test_scene_report_draws_every_luminaire(browser, reports):
+    ctx, page, errors, outside = open_page(browser, reports["scene"])
+    roots = page.locator("section.psv")
+    assert roots.count() >= 2
+    for k in range(roots.count()):
+        page.wait_for_selector(f"section.psv:nth-of-type({k + 1})", timeout=30_000)
+    page.wait_for_function("[...document.querySelectorAll('section.psv')].every(s => s.dataset.psvState === 'ready')")
+    for k in range(roots.count()):
+        # Only the reference: a shaded grey surface under its wire mesh.
+        not_blank(shot(roots.nth(k).locator(".psv-stage"), f"scene-3d-{k}"), f"luminaire {k}", 100)
+    assert errors == [] and outside == [], (errors, outside)
     ctx.close()
 
 

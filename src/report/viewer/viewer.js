@@ -50,8 +50,8 @@
     return [x / w, y / w, w];
   }
 
-  const VS = 'attribute vec3 aPos; attribute vec3 aNor; attribute vec3 aCol; uniform mat4 uMvp;' +
-    'varying vec3 vN; varying vec3 vC; void main() { gl_Position = uMvp * vec4(aPos, 1.0); vN = aNor; vC = aCol; }';
+  const VS = 'attribute vec3 aPos; attribute vec3 aNor; attribute vec3 aCol; uniform mat4 uMvp; uniform float uScale;' +
+    'varying vec3 vN; varying vec3 vC; void main() { gl_Position = uMvp * vec4(aPos * uScale, 1.0); vN = aNor; vC = aCol; }';
   // Two-sided headlight shading: |n . l| so inner faces seen through a cut-off are lit too.
   const FS = 'precision mediump float; varying vec3 vN; varying vec3 vC; uniform vec3 uLight; uniform float uLit;' +
     'void main() { float d = abs(dot(normalize(vN + vec3(1e-6)), uLight));' +
@@ -125,7 +125,7 @@
     const prog = program(gl);
     const loc = {
       pos: gl.getAttribLocation(prog, 'aPos'), nor: gl.getAttribLocation(prog, 'aNor'), col: gl.getAttribLocation(prog, 'aCol'),
-      mvp: gl.getUniformLocation(prog, 'uMvp'), light: gl.getUniformLocation(prog, 'uLight'), lit: gl.getUniformLocation(prog, 'uLit'),
+      mvp: gl.getUniformLocation(prog, 'uMvp'), scale: gl.getUniformLocation(prog, 'uScale'), light: gl.getUniformLocation(prog, 'uLight'), lit: gl.getUniformLocation(prog, 'uLit'),
     };
     const triBuf = buffer(gl, gl.ELEMENT_ARRAY_BUFFER, new Uint16Array(tri));
     const wireBuf = buffer(gl, gl.ELEMENT_ARRAY_BUFFER, new Uint16Array(wire));
@@ -210,17 +210,26 @@
       gl.uniform3fv(loc.light, new Float32Array(eyeDir));
       const attr = (l, buf) => { gl.bindBuffer(gl.ARRAY_BUFFER, buf); gl.enableVertexAttribArray(l); gl.vertexAttribPointer(l, 3, gl.FLOAT, false, 0, 0); };
       const constant = (l, v) => { gl.disableVertexAttribArray(l); gl.vertexAttrib3f(l, v[0], v[1], v[2]); };
+      // With no reconstruction shown the reference is a grey shaded surface under its wire mesh, the wire
+      // drawn 0.3 % outside so that it stays in front (glPolygonOffset renders differently from frame to
+      // frame on SwiftShader, the browser tests' software WebGL).
+      const anyRecon = solids.some((s, i) => state.visible[i] && s.err);
+      gl.uniform1f(loc.scale, 1);
       solids.forEach((s, i) => {
         if (!state.visible[i]) return;
         attr(loc.pos, s.posBuf);
-        if (s.err) {
-          attr(loc.nor, s.norBuf); attr(loc.col, s.colBuf); gl.uniform1f(loc.lit, 1);
+        if (s.err || !anyRecon) {
+          attr(loc.nor, s.norBuf); gl.uniform1f(loc.lit, 1);
+          if (s.err) attr(loc.col, s.colBuf); else constant(loc.col, [0.8, 0.8, 0.8]);
           gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triBuf);
           gl.drawElements(gl.TRIANGLES, tri.length, gl.UNSIGNED_SHORT, 0);
-        } else {
+        }
+        if (!s.err) {
           constant(loc.nor, [0, 0, 1]); constant(loc.col, [0.1, 0.1, 0.1]); gl.uniform1f(loc.lit, 0);
+          gl.uniform1f(loc.scale, anyRecon ? 1 : 1.003);
           gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, wireBuf);
           gl.drawElements(gl.LINES, wire.length, gl.UNSIGNED_SHORT, 0);
+          gl.uniform1f(loc.scale, 1);
         }
       });
       // The chosen C-plane: the reference's curve in it, a little outside the solid.
