@@ -6,7 +6,8 @@
 # Every test group that cannot run here is reported on one line, "SKIP <group>: <reason>", when it is
 # found out and again in the summary at the end (the tests' own notices are captured by cargo and do not
 # reach the log). With CI=true a missing GPU adapter, Chromium or notebook environment is a failure
-# (exit 1), not a skip; a missing corpus (third-party files next to the checkout) is a skip everywhere.
+# (exit 1), not a skip (the browser tests of the reports' 3D view, scripts/browser-tests.sh, likewise);
+# a missing corpus (third-party files next to the checkout) is a skip everywhere.
 #
 # One build: the dev and test profiles share their settings (Cargo.toml), so `cargo build --all-targets`
 # compiles the dependencies once, and the smoke run, data/ regeneration and notebooks use that binary
@@ -155,6 +156,16 @@ fi
 echo "== CLI smoke: demo and validate on the project's own data/"
 "$PHOTOSOLID_BIN" demo --output target/demo-smoke
 "$PHOTOSOLID_BIN" validate data
+
+echo "== browser: the HTML reports' interactive 3D view in headless Chromium (scripts/browser-tests.sh, tests/browser/)"
+br_rc=0
+bash scripts/browser-tests.sh || br_rc=$?
+if [ "$br_rc" = 3 ]; then
+  need "browser tests of the 3D view (tests/browser)" "Chromium or the Playwright environment is missing (see above)"
+elif [ "$br_rc" != 0 ]; then
+  echo "browser tests failed"
+  exit 1
+fi
 
 echo "== fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 60) s (scripts/fuzz-smoke.sh; RELIABILITY.md)"
 bash scripts/fuzz-smoke.sh

@@ -297,7 +297,9 @@ fn cli_json_has_the_contract_keys_and_report_is_self_contained() {
     }
     let html = std::fs::read_to_string(rep.join("index.html")).unwrap();
     assert!(html.contains("data:image/png;base64,"));
-    for bad in ["http://", "https://", "<script", "<link", "src=\"/", "url("] {
+    // The only scripts are inline: the interactive view's code and data.
+    assert!(html.contains("<section class=\"psv\">"));
+    for bad in ["http://", "https://", "<script src", "<link", "src=\"/", "url("] {
         assert!(!html.contains(bad), "index.html refers outside: {bad}");
     }
     chromium_renders(&rep.join("index.html"));

@@ -18,7 +18,7 @@ pub struct SceneArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
-    /// Write scene.json and an isolux map per plane receiver (PNG) into DIR.
+    /// Write scene.json, an isolux map per plane receiver (PNG) and index.html (with a 3D view per luminaire) into DIR.
     #[arg(long)]
     report: Option<PathBuf>,
 }
@@ -33,7 +33,7 @@ pub struct PlanArgs {
     /// Print JSON.
     #[arg(long)]
     json: bool,
-    /// Write plan.json into DIR.
+    /// Write plan.json and index.html (a 3D view of each luminaire's chosen representation) into DIR.
     #[arg(long)]
     report: Option<PathBuf>,
 }
@@ -165,9 +165,18 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
     }
     if let Some(dir) = &a.report {
         write_json(dir, "scene.json", &result)?;
+        let mut maps = Vec::new();
         for path in photosolid::scene::isolux::write_maps(&scene, &result, dir)? {
             eprintln!("wrote {}", path.display());
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            maps.push((name, std::fs::read(&path)?));
         }
+        let html =
+            photosolid::report::scene_report::to_html("Scene: illuminance", &scene, &scene_text(&result), &maps, &[])?;
+        write_index(dir, &html)?;
     }
     super::emit(a.json, &result, &scene_text(&result))?;
     Ok(0)
@@ -194,7 +203,29 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
     }
     if let Some(dir) = &a.report {
         write_json(dir, "plan.json", &result)?;
+        // The chosen representation of each luminaire (plan rows are named as the scene's luminaires).
+        let chosen: Vec<Option<photosolid::scene::plan::Representation>> = scene
+            .luminaires
+            .iter()
+            .map(|l| {
+                result
+                    .luminaires
+                    .iter()
+                    .find(|p| p.name == l.name)
+                    .map(|p| p.chosen_spec.clone())
+            })
+            .collect();
+        let html = photosolid::report::scene_report::to_html("Scene: plan", &scene, &plan_text(&result), &[], &chosen)?;
+        write_index(dir, &html)?;
     }
     super::emit(a.json, &result, &plan_text(&result))?;
     Ok(0)
+}
+
+/// Write `index.html` into `dir` atomically and say so.
+fn write_index(dir: &Path, html: &str) -> anyhow::Result<()> {
+    let path = dir.join("index.html");
+    photosolid::formats::write_atomic(&path, html.as_bytes())?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
 }

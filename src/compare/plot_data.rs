@@ -4,6 +4,7 @@ use serde::Serialize;
 
 use crate::model::{Distribution, IntensityField};
 use crate::reconstruct::eval_all;
+use crate::report::viewer::{SolidSet, ViewerData};
 
 /// Curves of one pair of half-planes for a polar diagram: points are (signed γ, value).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -38,6 +39,9 @@ pub struct PlotData {
     pub planes: Vec<PolarPlane>,
     /// One per reconstruction.
     pub error_maps: Vec<ErrorMap>,
+    /// The interactive 3D view's packed solids (with a field reference), not in the JSON.
+    #[serde(skip)]
+    pub viewer: Option<ViewerData>,
 }
 
 /// The plot data of a comparison: polar curves of every field in three
@@ -117,10 +121,11 @@ pub(crate) fn plot_data(
     let xs: Vec<f64> = (0..180).map(|k| 1.0 + k as f64 * 2.0).collect();
     let ys: Vec<f64> = (0..180).map(|k| 0.5 + k as f64).collect();
     let dirs: Vec<(f64, f64)> = ys.iter().flat_map(|&g| xs.iter().map(move |&c| (c, g))).collect();
-    let Some((_, reference)) = reference else {
+    let Some((reference_name, reference)) = reference else {
         return PlotData {
             planes,
             error_maps: Vec::new(),
+            viewer: None,
         };
     };
     let m = eval_all(reference, &dirs);
@@ -136,5 +141,16 @@ pub(crate) fn plot_data(
             }
         })
         .collect();
-    PlotData { planes, error_maps }
+    let viewer = Some(ViewerData::new(&SolidSet {
+        reference_label: reference_name,
+        reference,
+        recons,
+        i_max,
+        note: None,
+    }));
+    PlotData {
+        planes,
+        error_maps,
+        viewer,
+    }
 }

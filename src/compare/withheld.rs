@@ -16,7 +16,7 @@ use crate::metrics::hausdorff::distances;
 use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, OneSided};
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField};
-use crate::reconstruct::{eval_all, kfold, Reconstructions};
+use crate::reconstruct::{eval_all, kfold, Recon, Reconstructions};
 
 /// Every reconstruction of `a` against its own withheld measurements.
 pub(super) fn compare_withheld(
@@ -147,7 +147,9 @@ pub(super) fn compare_withheld(
             .filter_map(|&r| full.field(r).ok().map(|f| (r.to_string(), f)))
             .collect();
         let named: Vec<(String, &dyn IntensityField)> = fields.iter().map(|(n, f)| (n.clone(), &**f)).collect();
-        super::plot_data::plot_data(&named, None, a, None, i_max)
+        let mut p = super::plot_data::plot_data(&named, None, a, None, i_max);
+        p.viewer = measured_viewer(a, &named, i_max);
+        p
     });
     Ok(Comparison {
         file: String::new(),
@@ -172,4 +174,35 @@ pub(super) fn compare_withheld(
         plots,
         photometry_side_by_side: None,
     })
+}
+
+/// The 3D view of a withheld comparison: withheld points are no surface, so
+/// the colours show each reconstruction's difference from the measured solid
+/// (through every measured point), and the caption says so. `None` when the
+/// measured solid cannot be built (the table is still written).
+fn measured_viewer(
+    a: &Distribution,
+    named: &[(String, &dyn IntensityField)],
+    i_max: f64,
+) -> Option<crate::report::viewer::ViewerData> {
+    let measured = Reconstructions::new(a.clone(), &[Recon::Measured]).ok()?;
+    let field = measured.field(Recon::Measured).ok()?;
+    let others: Vec<(String, &dyn IntensityField)> = named
+        .iter()
+        .filter(|(n, _)| *n != Recon::Measured.to_string())
+        .map(|(n, f)| (n.clone(), *f))
+        .collect();
+    Some(crate::report::viewer::ViewerData::new(
+        &crate::report::viewer::SolidSet {
+            reference_label: "the measured solid (through every measured point)",
+            reference: &*field,
+            recons: &others,
+            i_max,
+            note: Some(
+                "The table measures against the withheld measurements; a surface cannot be withheld, \
+             so the colours show the difference from the measured solid."
+                    .into(),
+            ),
+        },
+    ))
 }

@@ -1,6 +1,6 @@
 //! The comparison report: a text table, `report.md`, `report.json`,
-//! a self-contained `index.html` (inline PNG data URIs, no network, no
-//! external CSS or JS) and the PNGs (polar diagrams, error maps, the
+//! a self-contained `index.html` (inline PNG data URIs and the interactive
+//! 3D view [`crate::report::viewer`]; no network, no external CSS or JS) and the PNGs (polar diagrams, error maps, the
 //! speed/accuracy scatter), all written atomically.
 
 use std::fmt::Write as _;
@@ -409,6 +409,9 @@ img{max-width:100%;border:1px solid #ddd}\n\
          The radial max is the cheap radial bound (&ge; H). * marks the Pareto front (time vs H).</p>",
         esc(&c.units)
     );
+    if let Some(v) = c.plots.as_ref().and_then(|p| p.viewer.as_ref()) {
+        s.push_str(&crate::report::viewer::html(v, "the static figures below"));
+    }
     if !figs.is_empty() {
         s.push_str("<h2>Figures</h2>\n");
         for f in figs {

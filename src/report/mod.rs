@@ -7,6 +7,8 @@ pub mod engines_report;
 pub mod font;
 pub mod info;
 pub mod plot;
+pub mod scene_report;
+pub mod viewer;
 
 pub use info::InfoReport;
 

@@ -331,6 +331,9 @@ fn visible_planes(d: &Distribution, cs: &mut [f64]) -> Option<(f64, f64)> {
 pub struct Candidate {
     /// The representation.
     pub representation: String,
+    /// The same as a value (to rebuild its field, e.g. for the report's 3D view), not in the JSON.
+    #[serde(skip)]
+    pub spec: Representation,
     /// Point or area source.
     pub source: SourceKind,
     /// Bytes held (field + 32 per area patch).
@@ -361,6 +364,9 @@ pub struct LuminairePlan {
     pub chosen: String,
     /// Its representation.
     pub representation: String,
+    /// The same as a value (to rebuild its field, e.g. for the report's 3D view), not in the JSON.
+    #[serde(skip)]
+    pub chosen_spec: Representation,
     /// Its source model.
     pub source: SourceKind,
     /// Its bytes.
@@ -599,6 +605,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
                 measured.push((
                     Candidate {
                         representation: field.name(),
+                        spec: rep.clone(),
                         source: kind,
                         bytes: field.bytes() + if kind == SourceKind::Area { n * 32 } else { 0 },
                         ns_per_eval: ns * n as f64,
@@ -640,6 +647,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
             name: lum.name.clone(),
             chosen: format!("{}, {} source", chosen.representation, chosen.source),
             representation: chosen.representation.clone(),
+            chosen_spec: chosen.spec.clone(),
             source: chosen.source,
             bytes: chosen.bytes,
             ns_per_eval: chosen.ns_per_eval,

@@ -106,10 +106,15 @@ pub fn palette(k: usize) -> [u8; 3] {
 
 /// `png` as a `data:image/png;base64,...` URI, for self-contained HTML.
 pub fn png_data_uri(png: &[u8]) -> String {
+    format!("data:image/png;base64,{}", base64(png))
+}
+
+/// `bytes` in standard base64 (RFC 4648, `+/`, `=` padding): what HTML
+/// data URIs and the viewer's embedded meshes ([`crate::report::viewer`]) use.
+pub fn base64(bytes: &[u8]) -> String {
     const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::with_capacity(22 + png.len().div_ceil(3) * 4);
-    s.push_str("data:image/png;base64,");
-    for chunk in png.chunks(3) {
+    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
         let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
         let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
         for k in 0..4 {
