@@ -61,6 +61,8 @@ pub struct GpuContext {
     pub(crate) pipeline: wgpu::ComputePipeline,
     /// The two passes of `separable.wgsl` ([`super::RenderKernel::TwoPass`]): γ, then C.
     pub(crate) two_pass: [wgpu::ComputePipeline; 2],
+    /// The real-time lookup pipeline (`realtime.wgsl`), built on first use.
+    pub(crate) realtime: OnceLock<Result<super::realtime::Pipelines, GpuError>>,
     pub(crate) layout: wgpu::BindGroupLayout,
     pub(crate) limits: wgpu::Limits,
     summary: AdapterSummary,
@@ -227,6 +229,7 @@ impl GpuContext {
             queue,
             pipeline,
             two_pass,
+            realtime: OnceLock::new(),
             layout,
             limits,
             summary,

@@ -53,6 +53,14 @@ pub trait IntensityField: Sync {
         });
     }
 
+    /// The intensity (cd) at every (C, γ) of `dirs` (degrees), in order.
+    /// The default evaluates [`IntensityField::intensity_cd`] per direction
+    /// in parallel; a field that answers batches at once (a GPU lookup,
+    /// `gpu::realtime`) overrides it. `reconstruct::eval_all` calls it.
+    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+        dirs.par_iter().map(|&(c, g)| self.intensity_cd(c, g)).collect()
+    }
+
     /// A short name for reports and metadata (e.g. `catmull-rom`,
     /// `texture catmull-rom x5 / bilinear`, `fitted-gl`, `truth cosine p=5`).
     fn name(&self) -> String;
@@ -90,6 +98,9 @@ impl IntensityField for Borrowed<'_> {
     }
     fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
         self.0.sample_grid(c_deg, gamma_deg, out)
+    }
+    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+        self.0.intensity_batch_cd(dirs)
     }
     fn name(&self) -> String {
         self.0.name()

@@ -222,8 +222,8 @@ impl Reconstructions {
     }
 }
 
-/// Evaluate `field` at every (C, γ) of `dirs` (degrees), in parallel.
+/// Evaluate `field` at every (C, γ) of `dirs` (degrees): in parallel, or as
+/// one batch for a field that answers batches ([`IntensityField::intensity_batch_cd`]).
 pub fn eval_all(field: &dyn IntensityField, dirs: &[(f64, f64)]) -> Vec<f64> {
-    use rayon::prelude::*;
-    dirs.par_iter().map(|&(c, g)| field.intensity_cd(c, g)).collect()
+    field.intensity_batch_cd(dirs)
 }
