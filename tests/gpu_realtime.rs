@@ -10,7 +10,8 @@ mod common;
 use std::path::Path;
 
 use glam::DVec3;
-use photosolid::gpu::realtime::{subtexel_precision, HardwareLookup, RealtimeTexture};
+use photosolid::gpu::precision::subtexel_precision;
+use photosolid::gpu::realtime::{HardwareLookup, RealtimeTexture};
 use photosolid::gpu::shading::{self, PlaneView};
 use photosolid::metrics::random_directions;
 use photosolid::model::IntensityField;
@@ -213,4 +214,60 @@ fn shaded_plane_gpu_matches_cpu() {
         &PlaneView { pixels: 0, ..view }
     )
     .is_err());
+}
+
+/// The trade table's `+gpu` rows: measured like the CPU rows (truth and
+/// withheld), naming the adapter; their errors match the exact lookup of the
+/// same texture to within the hardware's difference.
+#[test]
+fn trade_table_gpu_rows() {
+    use photosolid::compare::trade::{trade_table, TradeOptions};
+    use photosolid::compare::{Against, CompareOptions, Directions};
+    let Some(c) = ctx("trade_table_gpu_rows") else {
+        return;
+    };
+    let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/batwing.ldt")).unwrap();
+    for against in [Against::Truth, Against::Withheld] {
+        let opts = TradeOptions {
+            factors: vec![5],
+            compare: CompareOptions {
+                against: Some(against),
+                truth: photosolid::synth::Truth::of_luminaire(&lum),
+                directions: Directions::Dense(2000),
+                factor: 2,
+                tolerance: 0.01,
+                timing_samples: 500,
+                timing_repeats: 1,
+                ..CompareOptions::default()
+            },
+            gpu: true,
+        };
+        let t = trade_table(&lum.distribution, None, &opts, &|_, _, _| {}).unwrap();
+        let row = |name: &str| t.rows.iter().find(|r| r.representation == name).unwrap();
+        for (gpu, cpu) in [
+            ("catmull-rom@x5/bilinear+gpu", "catmull-rom@x5/bilinear"),
+            ("catmull-rom@x5/catmull-rom+gpu", "catmull-rom@x5/catmull-rom"),
+        ] {
+            let (g, e) = (row(gpu), row(cpu));
+            println!("{against}: {gpu}: {g:?}");
+            assert_eq!(g.adapter.as_deref(), Some(c.adapter().to_string().as_str()));
+            assert!(g.ns_per_sample_gpu.is_some_and(|v| v > 0.0) && g.ns_per_sample > 0.0);
+            assert!(g.subtexel_bits.is_some_and(|b| b >= 4.0));
+            let d = g.hardware_vs_exact_max_pct.unwrap();
+            assert!(d < 0.01, "{gpu}: {d} % of I_max from the exact lookup");
+            assert!(e.ns_per_sample_gpu.is_none() && e.adapter.is_none());
+            // Same texels, same metrics: the radial maximum moves by at most
+            // the hardware difference, plus f16 rounding (half an ulp, 2^-11
+            // of I_max) where the adapter cannot filter R32Float.
+            let f16 = if g.texture_format.as_deref() == Some("R16Float") {
+                100.0 * 2f64.powi(-11)
+            } else {
+                0.0
+            };
+            assert!(
+                (g.radial_max_pct - e.radial_max_pct).abs() <= d + f16 + 1e-6,
+                "{gpu}: {g:?} vs {e:?}"
+            );
+        }
+    }
 }

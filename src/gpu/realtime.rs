@@ -15,7 +15,7 @@
 //! ([`Lookup::Bilinear`] / [`Lookup::CatmullRom`] in f64), so the difference
 //! of the two is the cost of hardware filtering alone (fixed-point
 //! sub-texel weights, f32 coordinates), measured per adapter with
-//! [`subtexel_precision`].
+//! [`super::precision::subtexel_precision`].
 
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
@@ -84,7 +84,7 @@ impl HardwareLookup {
 }
 
 /// The probe mode of the shader: raw (u, v) coordinates, one linear fetch.
-const MODE_PROBE: u32 = 3;
+pub(crate) const MODE_PROBE: u32 = 3;
 const WORKGROUP: usize = 64;
 
 /// The seed's texture coordinates (s, t) of direction `d` in the luminaire
@@ -354,7 +354,7 @@ impl<'a> RealtimeTexture<'a> {
         self.prepare_raw(&data, self.lookup.mode())
     }
 
-    fn prepare_raw(&self, data: &[[f32; 4]], mode: u32) -> Result<LookupBatch, GpuError> {
+    pub(crate) fn prepare_raw(&self, data: &[[f32; 4]], mode: u32) -> Result<LookupBatch, GpuError> {
         let n = data.len();
         let max_dim = self.ctx.max_workgroups_per_dim().max(1) as usize;
         let groups = n.div_ceil(WORKGROUP).max(1);
@@ -489,6 +489,21 @@ impl<'a> RealtimeTexture<'a> {
         Ok(self.read(&batch)?.into_iter().map(|v| f64::from(v) * i_max).collect())
     }
 
+    /// Median wall time (ns) per direction of the dispatch alone (the
+    /// directions uploaded once, results not read back) over `repeats` runs.
+    ///
+    /// # Errors
+    /// As [`RealtimeTexture::prepare`], and device errors.
+    pub fn dispatch_ns_per_sample(&self, dirs: &[DVec3], repeats: usize) -> Result<f64, GpuError> {
+        let batch = self.prepare(dirs)?;
+        self.run(&batch)?; // warm-up
+        let mut t = (0..repeats.max(1))
+            .map(|_| self.run(&batch).map(|d| d.as_secs_f64()))
+            .collect::<Result<Vec<_>, _>>()?;
+        t.sort_by(f64::total_cmp);
+        Ok(1e9 * t[t.len() / 2] / dirs.len().max(1) as f64)
+    }
+
     /// [`RealtimeTexture::sample_dirs_cd`] at (C, γ) degrees.
     pub fn sample_angles_cd(&self, angles: &[(f64, f64)]) -> Result<Vec<f64>, GpuError> {
         let dirs: Vec<DVec3> = angles.iter().map(|&(c, g)| frame::direction(c, g)).collect();
@@ -553,77 +568,6 @@ fn upload(
     (tex.create_view(&Default::default()), sampler)
 }
 
-/// The observed precision of an adapter's bilinear sub-texel weights.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct SubtexelPrecision {
-    /// The adapter, as [`crate::gpu::AdapterSummary`] prints it.
-    pub adapter: String,
-    /// The texture format probed (`R32Float` or `R16Float`).
-    pub format: String,
-    /// Sub-texel offsets sampled between two texel centres (evenly spaced, ends included).
-    pub probes: usize,
-    /// Distinct interpolated values seen (weights of the second texel, 0 to 1).
-    pub distinct_weights: usize,
-    /// log2(distinct_weights − 1): bits of sub-texel weight precision
-    /// (fractional for non-power-of-two counts). The probe resolves at most
-    /// log2(probes − 1) bits: a value at that limit means "at least".
-    pub bits: f64,
-    /// Largest |weight − offset| over the probes: the weight quantisation error, texels.
-    pub max_weight_error: f64,
-}
-
-/// Measure the adapter's sub-texel weight precision: a 2-texel ramp (0, 1)
-/// sampled with the linear sampler at `probes` evenly spaced offsets between
-/// the two texel centres; every returned value is the weight of the second
-/// texel, so the number of distinct values is the number of weight levels.
-///
-/// # Errors
-/// Device errors; [`GpuError::InvalidJob`] for fewer than 2 probes.
-pub fn subtexel_precision(ctx: &GpuContext, probes: usize) -> Result<SubtexelPrecision, GpuError> {
-    if probes < 2 {
-        return Err(GpuError::InvalidJob {
-            index: 0,
-            reason: "at least 2 probes".into(),
-        });
-    }
-    let ramp = Rendered {
-        data: vec![0.0, 1.0],
-        mapping: crate::reconstruct::TexelMapping { height: 1, width: 2 },
-        i_max_cd: 1.0,
-        filter: crate::reconstruct::Filter::Bilinear,
-        factor: 1,
-        measured_gamma: (0.0, 180.0),
-        clamped: 0,
-    };
-    let tex = RealtimeTexture::new(ctx, &ramp, None, Precision::F32, HardwareLookup::Linear)?;
-    // Texel centres at u = 1/4 and 3/4; offset f in [0, 1] between them.
-    let offsets: Vec<f64> = (0..probes).map(|k| k as f64 / (probes - 1) as f64).collect();
-    let data: Vec<[f32; 4]> = offsets
-        .iter()
-        .map(|f| [((0.5 + f) / 2.0) as f32, 0.5, 0.0, 0.0])
-        .collect();
-    let batch = tex.prepare_raw(&data, MODE_PROBE)?;
-    tex.run(&batch)?;
-    let w = tex.read(&batch)?;
-    let max_weight_error = w
-        .iter()
-        .zip(&offsets)
-        .map(|(&v, f)| (f64::from(v) - f).abs())
-        .fold(0.0, f64::max);
-    let mut levels: Vec<u32> = w.iter().map(|v| v.to_bits()).collect();
-    levels.sort_unstable();
-    levels.dedup();
-    let distinct = levels.len();
-    Ok(SubtexelPrecision {
-        adapter: ctx.adapter().to_string(),
-        format: format!("{:?}", tex.format()),
-        probes,
-        distinct_weights: distinct,
-        bits: ((distinct.max(2) - 1) as f64).log2(),
-        max_weight_error,
-    })
-}
-
 /// The hardware lookup as an intensity field (cd). Batches
 /// ([`IntensityField::sample_grid`], [`IntensityField::intensity_batch_cd`])
 /// are one dispatch each; a single direction is a dispatch of its own
@@ -666,6 +610,17 @@ impl IntensityField for RealtimeTexture<'_> {
             .flat_map(|&c| gamma_deg.iter().map(move |&g| (c, g)))
             .collect();
         out.copy_from_slice(&self.intensity_batch_cd(&dirs));
+    }
+    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
+        let mut t: Vec<f64> = (0..repeats.max(1))
+            .map(|_| {
+                let t0 = Instant::now();
+                let v = self.sample_dirs_cd(std::hint::black_box(dirs));
+                std::hint::black_box(v).ok().map(|_| t0.elapsed().as_secs_f64())
+            })
+            .collect::<Option<_>>()?;
+        t.sort_by(f64::total_cmp);
+        Some(1e9 * t[t.len() / 2] / dirs.len().max(1) as f64)
     }
     fn name(&self) -> String {
         format!("{}+gpu", self.exact.name())
