@@ -191,3 +191,94 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
     pm.encode_png()
         .map_err(|e| Error::Unsupported(format!("cannot encode PNG: {e}")))
 }
+
+/// The shaded-plane images of `rendered` for a report: the plane under the
+/// bilinear and the Catmull–Rom lookup and their difference (bilinear −
+/// Catmull–Rom), on the GPU's texture hardware when `ctx` is given and always
+/// with the exact CPU lookups on the same texels (the reference). EXRs (lux,
+/// f32) are written into `dir`; the PNGs come back as report figures, with
+/// one line per image pair saying how far GPU and CPU differ.
+///
+/// # Errors
+/// Writing the EXRs, encoding the PNGs, device errors (as [`Error::Unsupported`]).
+pub fn report_figures(
+    ctx: Option<&super::GpuContext>,
+    rendered: &crate::reconstruct::Rendered,
+    view: &PlaneView,
+    dir: &Path,
+) -> Result<(Vec<crate::report::compare_report::Figure>, Vec<String>), Error> {
+    use super::realtime::HardwareLookup;
+    use crate::report::compare_report::Figure;
+    let gpu_err = |e: GpuError| Error::Unsupported(format!("GPU shading: {e}"));
+    let formula = format!(
+        "E = I cos(i) / d^2 on a plane {} m under the luminaire, ±{} m shown",
+        view.height_m, view.half_width_m
+    );
+    let (mut figs, mut notes) = (Vec::new(), vec![formula.clone()]);
+    let mut image = |name: &str, caption: String, values: &[f64], tone: Tone| -> Result<(), Error> {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        write_exr(&dir.join(format!("{name}.exr")), view, values, &caption)?;
+        figs.push(Figure {
+            file: format!("{name}.png"),
+            caption,
+            png: png(view, values, tone)?,
+        });
+        Ok(())
+    };
+    for (device, tag) in [(ctx, "gpu"), (None, "cpu")] {
+        if tag == "gpu" && ctx.is_none() {
+            continue;
+        }
+        let mut lit = Vec::new();
+        for lookup in [HardwareLookup::Linear, HardwareLookup::CatmullRomLinearFetch] {
+            let name = lookup.exact().name().replace('-', "_");
+            let values = match device {
+                Some(c) => {
+                    let t = RealtimeTexture::new(c, rendered, None, crate::reconstruct::Precision::F32, lookup)
+                        .map_err(gpu_err)?;
+                    let v = shade_gpu(&t, view).map_err(gpu_err)?;
+                    let cpu = shade_cpu(t.exact(), view).map_err(gpu_err)?;
+                    let d = v.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                    notes.push(format!(
+                        "{} on {} ({:?}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
+                        lookup.exact(),
+                        c.adapter(),
+                        t.format(),
+                        cpu.iter().copied().fold(0.0, f64::max)
+                    ));
+                    v
+                }
+                None => {
+                    let exact = crate::reconstruct::StoredTexture::new(
+                        rendered,
+                        None,
+                        crate::reconstruct::Precision::F32,
+                        lookup.exact(),
+                    );
+                    shade_cpu(&exact, view).map_err(gpu_err)?
+                }
+            };
+            let who = if tag == "gpu" {
+                "GPU texture hardware"
+            } else {
+                "CPU exact lookup"
+            };
+            image(
+                &format!("plane_{name}_{tag}"),
+                format!("Plane lit through the {} lookup ({who}); {formula}", lookup.exact()),
+                &values,
+                Tone::Exposure,
+            )?;
+            lit.push(values);
+        }
+        let diff: Vec<f64> = lit[0].iter().zip(&lit[1]).map(|(a, b)| a - b).collect();
+        let m = diff.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        image(
+            &format!("plane_difference_{tag}"),
+            format!("Bilinear minus Catmull-Rom ({tag}), blue < 0 < red, ±{m:.2} lx; {formula}"),
+            &diff,
+            Tone::Diverging,
+        )?;
+    }
+    Ok((figs, notes))
+}
