@@ -30,8 +30,6 @@ const HEADER: u32 = 4u;
 const DESC: u32 = 16u;
 const ENTRY: u32 = 8u;
 
-var<workgroup> wg_clamped: atomic<u32>;
-
 fn fv(i: u32) -> f32 {
     return bitcast<f32>(inp[i]);
 }
@@ -141,6 +139,9 @@ fn gamma_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_in
 fn c_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) lidx: u32) {
     let n_tiles = inp[1];
     let tile = wg.y * inp[2] + wg.x;
+    if (tile >= n_tiles) {
+        return;
+    }
     let d = find_item(tile, 9u);
     let local_tile = tile - inp[d + 9u];
     let tiles_x = inp[d + 8u];
@@ -150,7 +151,7 @@ fn c_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index)
     let width = inp[d + 7u];
     let flags = inp[d + 10u];
     let clamp = (flags & 1u) != 0u;
-    if (tile < n_tiles && row < height && col < width) {
+    if (row < height && col < width) {
         let pchip = (flags & 2u) != 0u;
         let ge = inp[d + 3u] + row * ENTRY;
         let ce = inp[d + 4u] + col * ENTRY;
@@ -161,16 +162,11 @@ fn c_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index)
             r = combine(pchip, v, weights(ce));
             if (clamp && r < 0.0) {
                 r = 0.0;
-                atomicAdd(&wg_clamped, 1u);
+                // Rare (cubic overshoot only): counted straight into the
+                // item's counter, so the pass needs no workgroup barrier.
+                atomicAdd(&counts[inp[d + 11u]], 1u);
             }
         }
         outp[inp[d + 5u] + row * width + col] = r;
-    }
-    workgroupBarrier();
-    if (lidx == 0u && tile < n_tiles) {
-        let n = atomicLoad(&wg_clamped);
-        if (n > 0u) {
-            atomicAdd(&counts[inp[d + 11u]], n);
-        }
     }
 }
