@@ -127,7 +127,11 @@ fn bench(c: &mut Criterion) {
     eprintln!("gpu adapter: {} (set-up {:.0?})", ctx.adapter(), ctx.setup_time());
     for kernel in RenderKernel::ALL {
         let (_, t) = ctx.render_jobs_timed_with(&jobs, kernel).unwrap();
-        eprintln!("batch100 phases, {} kernel (one run): {t:?}, total {:?}", kernel.name(), t.total());
+        eprintln!(
+            "batch100 phases, {} kernel (one run): {t:?}, total {:?}",
+            kernel.name(),
+            t.total()
+        );
     }
 
     g.bench_function("gpu/setup (instance+adapter+device+pipeline)", |b| {
@@ -161,9 +165,10 @@ fn bench(c: &mut Criterion) {
         let t = RealtimeTexture::new(ctx, &rendered, None, Precision::F32, lookup).unwrap();
         let batch = t.prepare(&dirs).unwrap();
         let name = format!("{lookup:?}").to_lowercase();
-        g.bench_function(format!("gpu/realtime/{name}/dispatch ({:?}, 1M directions)", t.format()), |b| {
-            b.iter(|| t.run(&batch).unwrap())
-        });
+        g.bench_function(
+            format!("gpu/realtime/{name}/dispatch ({:?}, 1M directions)", t.format()),
+            |b| b.iter(|| t.run(&batch).unwrap()),
+        );
         g.bench_function(format!("gpu/realtime/{name}/end-to-end (1M directions)"), |b| {
             b.iter(|| t.sample_dirs_cd(black_box(&dirs)).unwrap())
         });

@@ -266,3 +266,22 @@ impl Reconstructions {
 pub fn eval_all(field: &dyn IntensityField, dirs: &[(f64, f64)]) -> Vec<f64> {
     field.intensity_batch_cd(dirs)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `+gpu` names a GPU-sampled texture and round-trips; a plain spec stays a CPU texture.
+    #[test]
+    fn gpu_texture_names() {
+        let r: Recon = "catmull-rom@x5/bilinear+f16+gpu".parse().unwrap();
+        let Recon::Gpu(t) = r else { panic!("{r:?}") };
+        assert_eq!((t.factor, t.lookup, t.precision), (5, Lookup::Bilinear, Precision::F16));
+        assert_eq!(r.to_string(), "catmull-rom@x5/bilinear+f16+gpu");
+        assert!(matches!(
+            "catmull-rom@x5/bilinear".parse::<Recon>().unwrap(),
+            Recon::Texture(_)
+        ));
+        assert!("catmull-rom@x5/bilinear+gpu+f16".parse::<Recon>().is_err());
+    }
+}
