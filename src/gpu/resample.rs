@@ -7,9 +7,10 @@
 //! [`LightTexture::render_plan`]: the same tap tables ([`reconstruct::AxisTaps`],
 //! one entry per output row and per output column) and the same padded,
 //! column-major texture ([`LightTexture::normalized`]) the CPU render reads.
-//! There is no GPU-specific table type and no second formula: the kernel
-//! (`kernel.wgsl`) is a line-by-line port of [`reconstruct::combine`] and of
-//! the row loop of the CPU render, in f32, in the same order:
+//! There is no GPU-specific table type and no second formula: both kernels
+//! ([`RenderKernel`]: `separable.wgsl`, the default, and `kernel.wgsl`) are
+//! line-by-line ports of [`reconstruct::combine`] and of the row loop of the
+//! CPU render, in f32, in the same order:
 //!
 //! ```text
 //! gw, gi = plan.gamma.weight[i], plan.gamma.index[i]
