@@ -6,15 +6,23 @@
 //! single texture is the 361 x 73 roadway file when present), else synthetic
 //! ones from `photosolid::synth`.
 //!
+//! Both render kernels (`RenderKernel::TwoPass`, the default, and the fused
+//! one) in the same run; and the real-time lookups (`gpu::realtime`,
+//! hardware bilinear and Catmull-Rom from linear fetches) over 1,048,576
+//! random directions on the single texture. Throughput (criterion's
+//! `thrpt`) is texels or samples per second; `scripts/bench-gpu.sh` prints it.
+//!
 //! `cargo bench --bench gpu` (honours `WGPU_BACKEND=vulkan|gl`). Without an
 //! adapter only the CPU benchmarks run.
 
 use std::path::Path;
 use std::time::Duration;
 
-use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use photosolid::gpu::{self, GpuContext, RenderJob};
-use photosolid::reconstruct::{render_planned, Filter, LightTexture, RenderOptions};
+use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use photosolid::gpu::realtime::{HardwareLookup, RealtimeTexture};
+use photosolid::gpu::{self, GpuContext, RenderJob, RenderKernel};
+use photosolid::metrics::random_directions;
+use photosolid::reconstruct::{render_planned, Filter, LightTexture, Precision, RenderOptions};
 use photosolid::synth::{GridSpec, Synth};
 
 const ROADWAY: &str = "eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies";
@@ -95,6 +103,7 @@ fn bench(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3));
 
     for (name, set) in [("single", one), ("batch100", &jobs[..])] {
+        g.throughput(Throughput::Elements(texels(set) as u64));
         g.bench_function(format!("cpu/{name}/render (rayon rows)"), |b| {
             b.iter(|| {
                 set.iter()
@@ -103,6 +112,7 @@ fn bench(c: &mut Criterion) {
             })
         });
     }
+    g.throughput(Throughput::Elements(1));
     g.bench_function("cpu/batch100/plans (tap tables)", |b| {
         b.iter(|| gpu::plans(black_box(&items)).unwrap())
     });
@@ -115,25 +125,52 @@ fn bench(c: &mut Criterion) {
         }
     };
     eprintln!("gpu adapter: {} (set-up {:.0?})", ctx.adapter(), ctx.setup_time());
-    let (_, t) = ctx.render_jobs_timed(&jobs).unwrap();
-    eprintln!("batch100 phases (one run): {t:?}, total {:?}", t.total());
+    for kernel in RenderKernel::ALL {
+        let (_, t) = ctx.render_jobs_timed_with(&jobs, kernel).unwrap();
+        eprintln!(
+            "batch100 phases, {} kernel (one run): {t:?}, total {:?}",
+            kernel.name(),
+            t.total()
+        );
+    }
 
     g.bench_function("gpu/setup (instance+adapter+device+pipeline)", |b| {
         b.iter(|| GpuContext::new().unwrap())
     });
     for (name, set) in [("single", one), ("batch100", &jobs[..])] {
-        g.bench_function(format!("gpu/{name}/upload"), |b| {
-            b.iter(|| ctx.upload(black_box(set)).unwrap())
-        });
-        let batch = ctx.upload(set).unwrap();
-        g.bench_function(format!("gpu/{name}/dispatch"), |b| {
-            b.iter(|| ctx.dispatch(&batch).unwrap())
-        });
-        g.bench_function(format!("gpu/{name}/read-back"), |b| {
-            b.iter(|| ctx.read_back(&batch).unwrap())
-        });
-        g.bench_function(format!("gpu/{name}/end-to-end"), |b| {
-            b.iter(|| ctx.render_jobs(black_box(set)).unwrap())
+        g.throughput(Throughput::Elements(texels(set) as u64));
+        for kernel in RenderKernel::ALL {
+            let k = kernel.name();
+            g.bench_function(format!("gpu/{k}/{name}/upload"), |b| {
+                b.iter(|| ctx.upload_with(black_box(set), kernel).unwrap())
+            });
+            let batch = ctx.upload_with(set, kernel).unwrap();
+            g.bench_function(format!("gpu/{k}/{name}/dispatch"), |b| {
+                b.iter(|| ctx.dispatch(&batch).unwrap())
+            });
+            g.bench_function(format!("gpu/{k}/{name}/read-back"), |b| {
+                b.iter(|| ctx.read_back(&batch).unwrap())
+            });
+            g.bench_function(format!("gpu/{k}/{name}/end-to-end"), |b| {
+                b.iter(|| ctx.render_jobs_with(black_box(set), kernel).unwrap())
+            });
+        }
+    }
+
+    // Real-time lookups: the single texture's render, read by the texture hardware.
+    let rendered = gpu::render_cpu(&one[0]);
+    let dirs = random_directions(1 << 20, 11);
+    g.throughput(Throughput::Elements(dirs.len() as u64));
+    for lookup in [HardwareLookup::Linear, HardwareLookup::CatmullRomLinearFetch] {
+        let t = RealtimeTexture::new(ctx, &rendered, None, Precision::F32, lookup).unwrap();
+        let batch = t.prepare(&dirs).unwrap();
+        let name = format!("{lookup:?}").to_lowercase();
+        g.bench_function(
+            format!("gpu/realtime/{name}/dispatch ({:?}, 1M directions)", t.format()),
+            |b| b.iter(|| t.run(&batch).unwrap()),
+        );
+        g.bench_function(format!("gpu/realtime/{name}/end-to-end (1M directions)"), |b| {
+            b.iter(|| t.sample_dirs_cd(black_box(&dirs)).unwrap())
         });
     }
     g.finish();

@@ -139,11 +139,11 @@ echo "== the library alone (--no-default-features: no GPU, no CLI) builds and pa
 cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1
 
-echo "== GPU: the wgpu render against the CPU render (tests/gpu.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
+echo "== GPU: the wgpu render against the CPU render (tests/gpu.rs) and the real-time lookups (tests/gpu_realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
 gpu_start=$SECONDS
 for backend in "${GPU_BACKENDS[@]+"${GPU_BACKENDS[@]}"}"; do
   echo "-- WGPU_BACKEND=$backend PHOTOSOLID_REQUIRE_GPU=1"
-  PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND="$backend" cargo test --locked --test gpu
+  PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND="$backend" cargo test --locked --test gpu --test gpu_realtime
 done
 echo "GPU tests: $((SECONDS - gpu_start)) s"
 

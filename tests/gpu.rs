@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
-use photosolid::gpu::{self, Backend, GpuContext, GpuError, RenderJob, Resolved};
+use photosolid::gpu::{self, Backend, GpuContext, GpuError, RenderJob, RenderKernel, Resolved};
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions, Rendered};
 use photosolid::synth::{GridSpec, Synth};
 
@@ -83,17 +83,71 @@ fn max_diff(gpu: &Rendered, cpu: &Rendered, what: &str) -> f32 {
     err
 }
 
-/// Compare GPU and CPU renders of the same jobs; returns the max difference.
+/// Compare GPU renders (both kernels) and CPU renders of the same jobs;
+/// returns the max difference.
 fn check_jobs(c: &GpuContext, jobs: &[RenderJob<'_>], names: &[String]) -> f32 {
-    let out = c.render_jobs(jobs).unwrap();
-    assert_eq!(out.len(), jobs.len());
     let mut worst = 0.0f32;
-    for ((job, g), name) in jobs.iter().zip(&out).zip(names) {
-        let cpu = gpu::render_cpu(job);
-        worst = worst.max(max_diff(g, &cpu, name));
-        assert_eq!(g.clamped, cpu.clamped, "{name}: clamped texels");
+    for kernel in RenderKernel::ALL {
+        let out = c.render_jobs_with(jobs, kernel).unwrap();
+        assert_eq!(out.len(), jobs.len());
+        for ((job, g), name) in jobs.iter().zip(&out).zip(names) {
+            let cpu = gpu::render_cpu(job);
+            let name = format!("{name} ({} kernel)", kernel.name());
+            worst = worst.max(max_diff(g, &cpu, &name));
+            assert_eq!(g.clamped, cpu.clamped, "{name}: clamped texels");
+        }
     }
     worst
+}
+
+/// The two-pass kernel (the default) against the fused one and the CPU on
+/// the generated data/ files, every filter, factors 1, 5 and 12.
+#[test]
+fn two_pass_matches_fused_and_cpu_on_data_files() {
+    let Some(c) = ctx("two_pass_matches_fused_and_cpu_on_data_files") else {
+        return;
+    };
+    assert_eq!(RenderKernel::default(), RenderKernel::TwoPass);
+    let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/data"));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ldt"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 5, "data/ holds the generated .ldt files");
+    let mut worst = 0.0f32;
+    for path in &files {
+        let tex = texture(path);
+        let mut items = Vec::new();
+        for factor in [1, 5, 12] {
+            for filter in filters() {
+                items.push((
+                    &tex,
+                    RenderOptions {
+                        filter,
+                        factor,
+                        ..RenderOptions::default()
+                    },
+                ));
+            }
+        }
+        let plans = gpu::plans(&items).unwrap();
+        let jobs = gpu::jobs(&items, &plans);
+        let fused = c.render_jobs_with(&jobs, RenderKernel::Fused).unwrap();
+        let two = c.render_jobs_with(&jobs, RenderKernel::TwoPass).unwrap();
+        for (k, ((job, f), t)) in jobs.iter().zip(&fused).zip(&two).enumerate() {
+            let name = format!("{} [{}] x{}", path.display(), items[k].1.filter, items[k].1.factor);
+            worst = worst.max(max_diff(t, f, &format!("{name}: two-pass vs fused")));
+            worst = worst.max(max_diff(t, &gpu::render_cpu(job), &format!("{name}: two-pass vs cpu")));
+            assert_eq!(t.clamped, f.clamped, "{name}: clamped texels");
+        }
+    }
+    println!(
+        "two-pass kernel: {} data files x {} filters x 3 factors, max |diff| = {worst:.3e} (of I_max)",
+        files.len(),
+        filters().len()
+    );
 }
 
 fn corpus() -> Option<PathBuf> {
@@ -341,14 +395,19 @@ fn batch_of_100_in_one_submission() {
         assert_eq!(g.clamped, cpu.clamped, "batch item {k}");
     }
     assert_eq!(c.render_jobs(&jobs).unwrap(), out);
-    // Split into many chunks (small binding limit): same numbers again.
-    assert_eq!(c.render_jobs_chunked(&jobs, 1 << 20).unwrap(), out);
-    // Upload once, dispatch twice (counters are reset), read back.
-    let batch = c.upload(&jobs).unwrap();
-    assert!(batch.chunks() >= 1);
-    c.dispatch(&batch).unwrap();
-    c.dispatch(&batch).unwrap();
-    assert_eq!(c.read_back(&batch).unwrap(), out);
+    for kernel in RenderKernel::ALL {
+        let whole = c.render_jobs_with(&jobs, kernel).unwrap();
+        // Split into many chunks (small binding limit): same numbers again.
+        let chunked = c.render_jobs_chunked(&jobs, 1 << 20, kernel).unwrap();
+        assert_eq!(chunked, whole, "{} kernel", kernel.name());
+        // Upload once, dispatch twice (counters are reset), read back.
+        let batch = c.upload_with(&jobs, kernel).unwrap();
+        assert!(batch.chunks() >= 1);
+        assert_eq!(batch.kernel(), kernel);
+        c.dispatch(&batch).unwrap();
+        c.dispatch(&batch).unwrap();
+        assert_eq!(c.read_back(&batch).unwrap(), whole, "{} kernel", kernel.name());
+    }
 }
 
 #[test]

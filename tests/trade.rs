@@ -21,6 +21,7 @@ fn quick_trade() -> TradeOptions {
             timing_repeats: 1,
             ..CompareOptions::default()
         },
+        gpu: false,
     }
 }
 

@@ -7,7 +7,9 @@
 //! reconstruction against the luminaire's closed form (the truth) and writes
 //! the comparison report (`index.html`, `report.md`, `report.json`, PNGs)
 //! into the output directory; finally evaluates and plans the built-in scene
-//! (`photosolid::scene::demo_scene`).
+//! (`photosolid::scene::demo_scene`). The report also shows a plane lit by
+//! the luminaire through the bilinear and Catmull-Rom lookups (GPU texture
+//! hardware when an adapter exists, and the CPU reference), with EXRs.
 
 use std::path::PathBuf;
 
@@ -79,7 +81,13 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let mut c = compare(d, None, &opts)?;
     c.file = "built-in synthetic road luminaire".into();
     print!("{}", compare_report::to_text(&c));
-    compare_report::write_report(&c, &a.output)?;
+    let mut figs = compare_report::figures(&c)?;
+    figs.extend(shading_figures(&tex, &a.output)?);
+    let (md, html) = (
+        compare_report::to_markdown(&c, &figs),
+        compare_report::to_html(&c, &figs),
+    );
+    compare_report::write_files(&a.output, &figs, &c, &md, &html)?;
     outln!("report written to {}", a.output.join("index.html").display());
 
     outln!("\n== built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it ==");
@@ -91,4 +99,33 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
     outln!("{}", super::scene::plan_text(&plan));
     Ok(0)
+}
+
+/// The seed's Figure 5 setting: a plane lit through the bilinear and the
+/// Catmull-Rom lookups of the factor-5 texture, on the GPU when an adapter
+/// exists and always on the CPU (`photosolid::gpu::shading`); EXRs written
+/// into `dir`, PNGs returned as report figures.
+#[cfg(feature = "gpu")]
+fn shading_figures(tex: &LightTexture, dir: &std::path::Path) -> anyhow::Result<Vec<compare_report::Figure>> {
+    use photosolid::gpu::{resolve, shading, Backend};
+    let resolved = resolve(Backend::Auto)?;
+    if let photosolid::gpu::Resolved::Cpu { notice: Some(n) } = resolved {
+        outln!("{n}: the shaded plane is rendered with the CPU lookups only");
+    }
+    let view = shading::PlaneView {
+        height_m: 8.0,
+        half_width_m: 24.0,
+        pixels: 256,
+    };
+    let (figs, notes) = shading::report_figures(resolved.gpu(), &render(tex, Filter::CatmullRom, 5)?, &view, dir)?;
+    outln!("\n== shaded plane (EXR and PNG in {}) ==", dir.display());
+    for n in notes {
+        outln!("{n}");
+    }
+    Ok(figs)
+}
+
+#[cfg(not(feature = "gpu"))]
+fn shading_figures(_: &LightTexture, _: &std::path::Path) -> anyhow::Result<Vec<compare_report::Figure>> {
+    Ok(Vec::new())
 }

@@ -1,4 +1,4 @@
-//! `photosolid tradeoff FILE [--reference truth|withheld|FILE] [--json] [--report DIR]`:
+//! `photosolid tradeoff FILE [--reference truth|withheld|FILE] [--gpu] [--json] [--report DIR]`:
 //! every representation a renderer could hold (filters on the native grid,
 //! rendered textures at several factors with each lookup, f16 and
 //! symmetry-reduced storage, the fitted lights, the measured solid), its
@@ -33,6 +33,12 @@ pub struct TradeoffArgs {
     /// Timing repeats per representation (the median is reported).
     #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
     repeats: usize,
+    /// Add rows for the k = 5 texture read by the GPU's texture hardware
+    /// (bilinear, and Catmull-Rom from linear fetches; `+gpu`): their errors,
+    /// GPU dispatch time, adapter, texture format and sub-texel precision.
+    /// An error when no GPU adapter is available.
+    #[arg(long)]
+    gpu: bool,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -62,6 +68,7 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
             plots: a.report.is_some(),
             ..CompareOptions::default()
         },
+        gpu: a.gpu,
     };
     let bar = super::progress_bar("representations");
     let progress = super::progress_fn(&bar);
@@ -113,6 +120,19 @@ fn to_text(t: &TradeTable) -> String {
             r.radial_rms_pct,
             r.flux_error_pct,
             if r.pareto { "*" } else { "" }
+        );
+    }
+    for r in t.rows.iter().filter(|r| r.adapter.is_some()) {
+        let _ = writeln!(
+            s,
+            "{}: GPU dispatch {:.2} ns/sample (ns/sample above: batch upload + dispatch + read-back); {} on {}; \
+             sub-texel weights {:.1} bits; max |hardware - exact lookup, same texels| {:.2e} % of I_max",
+            r.representation,
+            r.ns_per_sample_gpu.unwrap_or(f64::NAN),
+            r.texture_format.as_deref().unwrap_or("?"),
+            r.adapter.as_deref().unwrap_or("?"),
+            r.subtexel_bits.unwrap_or(f64::NAN),
+            r.hardware_vs_exact_max_pct.unwrap_or(f64::NAN),
         );
     }
     s

@@ -11,6 +11,16 @@
 //! (same metrics, same reference rules); a row is on the Pareto front when
 //! no other row is at most as costly in time, bytes and Hausdorff error and
 //! cheaper in one.
+//!
+//! With [`TradeOptions::gpu`] (feature `gpu`), the k = 5 Catmull–Rom texture
+//! is also read by the GPU's texture hardware, bilinear and Catmull–Rom from
+//! linear fetches ([`Recon::Gpu`], rows named `…+gpu`): their errors are
+//! measured exactly as the other rows' (the hardware lookup evaluated in
+//! batches), their `ns_per_sample` is the batch's end-to-end time per
+//! direction as the caller sees it (upload, dispatch, read-back),
+//! `ns_per_sample_gpu` the dispatch alone, and they name the adapter, the
+//! texture format, the observed sub-texel weight precision and the largest
+//! difference from the exact lookup on the same texels.
 
 use serde::Serialize;
 
@@ -56,8 +66,20 @@ pub struct TradeRow {
     pub bytes: usize,
     /// Median ns per lookup from a unit direction vector, one thread, f64.
     pub ns_per_sample: f64,
-    /// The same on the GPU: null (no GPU lookup kernel is timed yet).
+    /// `+gpu` rows: median ns per direction of the GPU dispatch alone
+    /// (the timing directions resident on the device); null for CPU rows.
     pub ns_per_sample_gpu: Option<f64>,
+    /// `+gpu` rows: the adapter, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) [Vulkan, Cpu, …]`.
+    pub adapter: Option<String>,
+    /// `+gpu` rows: the texture format used (`R32Float`, or `R16Float` where
+    /// the adapter cannot filter 32-bit floats).
+    pub texture_format: Option<String>,
+    /// `+gpu` rows: the adapter's observed sub-texel weight precision, bits
+    /// (`gpu::precision::subtexel_precision`, 65,537 probes: 16 means at least 16).
+    pub subtexel_bits: Option<f64>,
+    /// `+gpu` rows: largest |hardware − exact lookup on the same texels| over
+    /// the timing directions, % of I_max: the cost of hardware filtering alone.
+    pub hardware_vs_exact_max_pct: Option<f64>,
     /// Hausdorff distance, % of the reference I_max (certified for a field
     /// reference: the true value is at most this plus `hausdorff_bound_pct`).
     pub hausdorff_pct: f64,
@@ -98,6 +120,8 @@ pub struct TradeOptions {
     pub factors: Vec<u32>,
     /// The comparison's options; its `recons` are replaced by [`representations`].
     pub compare: CompareOptions,
+    /// Add the GPU texture-hardware rows (module docs). Default: false.
+    pub gpu: bool,
 }
 
 impl Default for TradeOptions {
@@ -108,8 +132,26 @@ impl Default for TradeOptions {
                 factor: 2,
                 ..CompareOptions::default()
             },
+            gpu: false,
         }
     }
+}
+
+/// The `+gpu` rows of [`TradeOptions::gpu`]: the k = 5 Catmull–Rom texture
+/// read with the hardware's bilinear filter and with Catmull–Rom from linear fetches.
+pub fn gpu_representations() -> Vec<Recon> {
+    [Lookup::Bilinear, Lookup::CatmullRom]
+        .into_iter()
+        .map(|lookup| {
+            Recon::Gpu(TextureSpec {
+                filter: Filter::CatmullRom,
+                factor: 5,
+                lookup,
+                precision: Precision::F32,
+                reduced: false,
+            })
+        })
+        .collect()
 }
 
 /// Measure every representation of `file` against the reference (the
@@ -122,6 +164,9 @@ pub fn trade_table(
     progress: &Progress<'_>,
 ) -> Result<TradeTable, ModelError> {
     let mut recons = representations(file.symmetry(), &opts.factors);
+    if opts.gpu {
+        recons.extend(gpu_representations());
+    }
     if matches!(opts.compare.against, Some(Against::Recon(_))) && vs.is_none() {
         // A reconstruction of FILE as its own reference is not a row.
         recons.retain(|r| Some(Against::Recon(*r)) != opts.compare.against);
@@ -130,13 +175,13 @@ pub fn trade_table(
         file,
         vs,
         &CompareOptions {
-            recons,
+            recons: recons.clone(),
             ..opts.compare.clone()
         },
         progress,
     )?;
     let pct = |v: f64| if c.i_max_cd > 0.0 { 100.0 * v / c.i_max_cd } else { 0.0 };
-    let rows = c
+    let mut rows: Vec<TradeRow> = c
         .results
         .iter()
         .map(|r| TradeRow {
@@ -144,6 +189,10 @@ pub fn trade_table(
             bytes: r.bytes,
             ns_per_sample: r.time_per_sample_ns.unwrap_or_default(),
             ns_per_sample_gpu: None,
+            adapter: None,
+            texture_format: None,
+            subtexel_bits: None,
+            hardware_vs_exact_max_pct: None,
             hausdorff_pct: r.hausdorff_pct,
             hausdorff_bound_pct: pct(r.hausdorff_bound_cd),
             radial_max_pct: r.radial_max_pct,
@@ -152,6 +201,11 @@ pub fn trade_table(
             pareto: r.pareto,
         })
         .collect();
+    for row in &mut rows {
+        if let Some(Recon::Gpu(spec)) = recons.iter().find(|r| r.to_string() == row.representation) {
+            gpu_columns(row, file, *spec, &opts.compare)?;
+        }
+    }
     Ok(TradeTable {
         file: String::new(),
         reference: c.reference.clone(),
@@ -159,5 +213,40 @@ pub fn trade_table(
         directions: c.directions.clone(),
         rows,
         comparison: c,
+    })
+}
+
+/// Fill the GPU columns of a `+gpu` row.
+#[cfg(feature = "gpu")]
+fn gpu_columns(
+    row: &mut TradeRow,
+    file: &Distribution,
+    spec: TextureSpec,
+    opts: &CompareOptions,
+) -> Result<(), ModelError> {
+    use crate::gpu::{precision::hardware_row, GpuContext};
+    let fail = |e: crate::gpu::GpuError| ModelError::Parameter {
+        name: "recon",
+        value: row.representation.clone(),
+        reason: format!("the GPU lookup is not available: {e}"),
+    };
+    let ctx = GpuContext::global().map_err(fail)?;
+    let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
+    let h = hardware_row(ctx, file, spec, &dirs, opts.timing_repeats).map_err(fail)?;
+    row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
+    row.adapter = Some(h.precision.adapter);
+    row.texture_format = Some(h.texture_format);
+    row.subtexel_bits = Some(h.precision.bits);
+    row.hardware_vs_exact_max_pct = Some(100.0 * h.vs_exact_max);
+    Ok(())
+}
+
+/// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).
+#[cfg(not(feature = "gpu"))]
+fn gpu_columns(row: &mut TradeRow, _: &Distribution, _: TextureSpec, _: &CompareOptions) -> Result<(), ModelError> {
+    Err(ModelError::Parameter {
+        name: "recon",
+        value: row.representation.clone(),
+        reason: "this build has no GPU support (feature `gpu`)".into(),
     })
 }

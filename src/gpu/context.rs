@@ -57,7 +57,12 @@ impl AdapterSummary {
 pub struct GpuContext {
     pub(crate) device: wgpu::Device,
     pub(crate) queue: wgpu::Queue,
+    /// The fused kernel (`kernel.wgsl`, [`super::RenderKernel::Fused`]).
     pub(crate) pipeline: wgpu::ComputePipeline,
+    /// The two passes of `separable.wgsl` ([`super::RenderKernel::TwoPass`]): γ, then C.
+    pub(crate) two_pass: [wgpu::ComputePipeline; 2],
+    /// The real-time lookup pipeline (`realtime.wgsl`), built on first use.
+    pub(crate) realtime: OnceLock<Result<super::realtime::Pipelines, GpuError>>,
     pub(crate) layout: wgpu::BindGroupLayout,
     pub(crate) limits: wgpu::Limits,
     summary: AdapterSummary,
@@ -168,9 +173,12 @@ impl GpuContext {
         let summary = AdapterSummary::from_info(&info);
 
         let limits = adapter.limits();
+        // R32Float textures are filterable only with this feature (else the
+        // real-time path stores R16Float, see `realtime`).
+        let features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("photosolid"),
-            required_features: wgpu::Features::empty(),
+            required_features: features,
             required_limits: limits.clone(),
             memory_hints: wgpu::MemoryHints::Performance,
             ..Default::default()
@@ -200,18 +208,28 @@ impl GpuContext {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("photosolid render"),
-            layout: Some(&pipeline_layout),
-            module: &module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
+        let compute = |module: &wgpu::ShaderModule, entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let pipeline = compute(&module, "main");
+        let separable = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("photosolid render, two passes"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("separable.wgsl").into()),
         });
+        let two_pass = [compute(&separable, "gamma_main"), compute(&separable, "c_main")];
         Ok(GpuContext {
             device,
             queue,
             pipeline,
+            two_pass,
+            realtime: OnceLock::new(),
             layout,
             limits,
             summary,
@@ -237,6 +255,11 @@ impl GpuContext {
         self.limits
             .max_storage_buffer_binding_size
             .min(self.limits.max_buffer_size)
+    }
+
+    /// Whether R32Float textures can be sampled with linear filtering here.
+    pub fn float32_filterable(&self) -> bool {
+        self.device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)
     }
 
     /// Maximum workgroups per dispatch dimension.

@@ -15,7 +15,14 @@
 //!   [`GpuContext::read_back`] and [`GpuContext::render_jobs_timed`]: the
 //!   phases, separately, for a plan built once and shared with the CPU
 //!   ([`render_cpu`]);
-//! - [`Backend`] / [`resolve`]: `--backend auto|gpu|cpu`.
+//! - [`Backend`] / [`resolve`]: `--backend auto|gpu|cpu`;
+//! - [`RenderKernel`]: the two-pass kernel (`separable.wgsl`, γ pass then C
+//!   pass, the default) or the fused first kernel (`kernel.wgsl`);
+//! - [`realtime`]: the seed's real-time path, a stored texture sampled by the
+//!   texture hardware (bilinear, Catmull–Rom from linear fetches) for
+//!   batches of directions; [`precision`]: what that costs per adapter
+//!   (sub-texel weight bits, difference from the exact lookup);
+//!   [`shading`]: a plane lit through those lookups (the seed's Figure 5 setting).
 //!
 //! Output goes to a storage buffer rather than an `r32float` storage texture:
 //! it needs no 256-byte row padding on read-back, a whole batch fits in one
@@ -28,7 +35,10 @@ pub mod resample;
 
 pub use backend::{resolve, Backend, Resolved};
 pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
-pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, Timings};
+pub mod precision;
+pub mod realtime;
+pub mod shading;
+pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings};
 
 /// Errors of the GPU path.
 #[derive(Clone, Debug, thiserror::Error)]

@@ -7,9 +7,10 @@
 //! [`LightTexture::render_plan`]: the same tap tables ([`reconstruct::AxisTaps`],
 //! one entry per output row and per output column) and the same padded,
 //! column-major texture ([`LightTexture::normalized`]) the CPU render reads.
-//! There is no GPU-specific table type and no second formula: the kernel
-//! (`kernel.wgsl`) is a line-by-line port of [`reconstruct::combine`] and of
-//! the row loop of the CPU render, in f32, in the same order:
+//! There is no GPU-specific table type and no second formula: both kernels
+//! ([`RenderKernel`]: `separable.wgsl`, the default, and `kernel.wgsl`) are
+//! line-by-line ports of [`reconstruct::combine`] and of the row loop of the
+//! CPU render, in f32, in the same order:
 //!
 //! ```text
 //! gw, gi = plan.gamma.weight[i], plan.gamma.index[i]
@@ -167,8 +168,36 @@ pub fn render_cpu(job: &RenderJob<'_>) -> Rendered {
     reconstruct::render_planned(job.texture, job.plan, job.clamp, true)
 }
 
+/// Which compute kernel renders a batch on the GPU. Both give the CPU's
+/// numbers (to FMA contraction); they differ in speed only.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum RenderKernel {
+    /// `separable.wgsl`: a γ pass writing one value per output row and
+    /// texture column, then a C pass combining four of them per texel (the
+    /// CPU's order). The default: fewer reads per texel (see BENCHMARKS.md).
+    #[default]
+    TwoPass,
+    /// `kernel.wgsl`: one pass, each texel repeating the γ combine for each
+    /// of its four C taps (the first GPU kernel, kept for comparison).
+    Fused,
+}
+
+impl RenderKernel {
+    /// Both kernels, the default first.
+    pub const ALL: [RenderKernel; 2] = [RenderKernel::TwoPass, RenderKernel::Fused];
+    /// The name used in benchmarks and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            RenderKernel::TwoPass => "two-pass",
+            RenderKernel::Fused => "fused",
+        }
+    }
+}
+
 const TILE_X: usize = 16;
 const TILE_Y: usize = 4;
+/// Entries of the γ pass per workgroup (`separable.wgsl`).
+const GAMMA_TILE: usize = 64;
 const HEADER: usize = 4;
 const DESC: usize = 16;
 /// Words per tap-table entry: 4 indices, 4 weights.
@@ -201,6 +230,8 @@ struct Chunk {
     out_offsets: Vec<usize>,
     out_len: usize,
     dispatch: (u32, u32),
+    /// Workgroups of the γ pass (two-pass kernel).
+    dispatch_gamma: (u32, u32),
     _input: wgpu::Buffer,
     output: wgpu::Buffer,
     /// One clamped-texel counter (u32) per job of the chunk.
@@ -212,6 +243,7 @@ struct Chunk {
 
 /// A batch uploaded to the device: buffers and bind groups, ready to dispatch.
 pub struct GpuBatch {
+    kernel: RenderKernel,
     chunks: Vec<Chunk>,
     /// One result per job without its data (filled in by the read-back).
     meta: Vec<Rendered>,
@@ -237,6 +269,11 @@ impl GpuBatch {
         self.meta.is_empty()
     }
 
+    /// The kernel this batch was packed for.
+    pub fn kernel(&self) -> RenderKernel {
+        self.kernel
+    }
+
     /// Number of chunks (dispatches) the batch was split into to respect the
     /// device's buffer-binding limit.
     pub fn chunks(&self) -> usize {
@@ -253,6 +290,11 @@ fn tiles(job: &RenderJob<'_>) -> usize {
     job.width().div_ceil(TILE_X) * job.height().div_ceil(TILE_Y)
 }
 
+/// Entries of the γ pass's scratch (one per output row and texture column).
+fn gamma_entries(job: &RenderJob<'_>) -> usize {
+    job.height() * job.plan.columns
+}
+
 fn pack_taps(taps: &reconstruct::AxisTaps, out: &mut Vec<u32>) {
     for (i, w) in taps.index.iter().zip(&taps.weight) {
         out.extend_from_slice(i);
@@ -260,14 +302,19 @@ fn pack_taps(taps: &reconstruct::AxisTaps, out: &mut Vec<u32>) {
     }
 }
 
-/// Pack jobs into the kernel's word layout (see `kernel.wgsl`). Returns the
-/// words, the per-job output offsets and the output length.
-fn pack_chunk(jobs: &[RenderJob<'_>], dispatch_x: u32) -> (Vec<u32>, Vec<usize>, usize) {
+/// Pack jobs into the kernels' word layout (see `kernel.wgsl` and
+/// `separable.wgsl`). Returns the words, the per-job output offsets, the
+/// output length and the γ-pass scratch length (after the outputs in the
+/// same buffer; 0 for the fused kernel).
+fn pack_chunk(jobs: &[RenderJob<'_>], dispatch_x: u32, kernel: RenderKernel) -> (Vec<u32>, Vec<usize>, usize, usize) {
     let n = jobs.len();
     let total: usize = HEADER + n * DESC + jobs.iter().map(job_words).sum::<usize>();
     let mut w = Vec::with_capacity(total);
     w.resize(HEADER + n * DESC, 0u32);
     let (mut out_off, mut tile_begin) = (0usize, 0usize);
+    let out_total: usize = jobs.iter().map(|j| j.height() * j.width()).sum();
+    let (mut tmp_off, mut gamma_tile) = (out_total, 0usize);
+    let two_pass = kernel == RenderKernel::TwoPass;
     let mut out_offsets = Vec::with_capacity(n);
     for (k, job) in jobs.iter().enumerate() {
         let tex_off = w.len();
@@ -291,6 +338,8 @@ fn pack_chunk(jobs: &[RenderJob<'_>], dispatch_x: u32) -> (Vec<u32>, Vec<usize>,
             tile_begin,
             flags as usize,
             k,
+            if two_pass { tmp_off } else { 0 },
+            gamma_tile,
         ];
         for (i, v) in desc.iter().enumerate() {
             w[d + i] = *v as u32;
@@ -298,12 +347,17 @@ fn pack_chunk(jobs: &[RenderJob<'_>], dispatch_x: u32) -> (Vec<u32>, Vec<usize>,
         out_offsets.push(out_off);
         out_off += job.height() * job.width();
         tile_begin += tiles(job);
+        if two_pass {
+            tmp_off += gamma_entries(job);
+            gamma_tile += gamma_entries(job).div_ceil(GAMMA_TILE);
+        }
     }
     w[0] = n as u32;
     w[1] = tile_begin as u32;
     w[2] = dispatch_x;
+    w[3] = gamma_tile as u32;
     debug_assert_eq!(w.len(), total);
-    (w, out_offsets, out_off)
+    (w, out_offsets, out_off, tmp_off - out_total)
 }
 
 impl GpuContext {
@@ -319,7 +373,12 @@ impl GpuContext {
     /// dispatch per chunk; a chunk is as many jobs as fit the device's
     /// storage-binding limit) and one read-back wait.
     pub fn render_jobs(&self, jobs: &[RenderJob<'_>]) -> Result<Vec<Rendered>, GpuError> {
-        self.render_jobs_chunked(jobs, self.max_binding_bytes())
+        self.render_jobs_with(jobs, RenderKernel::default())
+    }
+
+    /// [`render_jobs`](Self::render_jobs) with a chosen kernel.
+    pub fn render_jobs_with(&self, jobs: &[RenderJob<'_>], kernel: RenderKernel) -> Result<Vec<Rendered>, GpuError> {
+        self.render_jobs_chunked(jobs, self.max_binding_bytes(), kernel)
     }
 
     /// [`render_jobs`](Self::render_jobs) with a smaller per-chunk binding
@@ -329,11 +388,13 @@ impl GpuContext {
         &self,
         jobs: &[RenderJob<'_>],
         max_binding_bytes: u64,
+        kernel: RenderKernel,
     ) -> Result<Vec<Rendered>, GpuError> {
         let batch = self.upload_inner(
             jobs,
             &mut Timings::default(),
             max_binding_bytes.min(self.max_binding_bytes()),
+            kernel,
         )?;
         let mut enc = self
             .device
@@ -348,8 +409,17 @@ impl GpuContext {
     /// (pack, upload, dispatch, read-back), each timed; slightly slower than
     /// `render_jobs` because of the extra waits.
     pub fn render_jobs_timed(&self, jobs: &[RenderJob<'_>]) -> Result<(Vec<Rendered>, Timings), GpuError> {
+        self.render_jobs_timed_with(jobs, RenderKernel::default())
+    }
+
+    /// [`render_jobs_timed`](Self::render_jobs_timed) with a chosen kernel.
+    pub fn render_jobs_timed_with(
+        &self,
+        jobs: &[RenderJob<'_>],
+        kernel: RenderKernel,
+    ) -> Result<(Vec<Rendered>, Timings), GpuError> {
         let mut t = Timings::default();
-        let batch = self.upload_inner(jobs, &mut t, self.max_binding_bytes())?;
+        let batch = self.upload_inner(jobs, &mut t, self.max_binding_bytes(), kernel)?;
         let t0 = Instant::now();
         self.dispatch(&batch)?;
         t.dispatch = t0.elapsed();
@@ -361,10 +431,22 @@ impl GpuContext {
 
     /// Validate, pack and upload a batch; waits until the upload is complete.
     pub fn upload(&self, jobs: &[RenderJob<'_>]) -> Result<GpuBatch, GpuError> {
-        self.upload_inner(jobs, &mut Timings::default(), self.max_binding_bytes())
+        self.upload_with(jobs, RenderKernel::default())
     }
 
-    fn upload_inner(&self, jobs: &[RenderJob<'_>], t: &mut Timings, max_bytes: u64) -> Result<GpuBatch, GpuError> {
+    /// [`upload`](Self::upload) packed for a chosen kernel.
+    pub fn upload_with(&self, jobs: &[RenderJob<'_>], kernel: RenderKernel) -> Result<GpuBatch, GpuError> {
+        self.upload_inner(jobs, &mut Timings::default(), self.max_binding_bytes(), kernel)
+    }
+
+    fn upload_inner(
+        &self,
+        jobs: &[RenderJob<'_>],
+        t: &mut Timings,
+        max_bytes: u64,
+        kernel: RenderKernel,
+    ) -> Result<GpuBatch, GpuError> {
+        let two_pass = kernel == RenderKernel::TwoPass;
         let t0 = Instant::now();
         for (k, job) in jobs.iter().enumerate() {
             job.validate()
@@ -380,7 +462,9 @@ impl GpuContext {
             let mut end = start;
             while end < jobs.len() {
                 let j = &jobs[end];
-                let (iw, ow, tl) = (DESC + job_words(j), j.height() * j.width(), tiles(j));
+                // The two-pass kernel's γ scratch shares the output binding.
+                let scratch = if two_pass { gamma_entries(j) } else { 0 };
+                let (iw, ow, tl) = (DESC + job_words(j), j.height() * j.width() + scratch, tiles(j));
                 let fits = in_w + iw <= max_words
                     && out_w + ow <= max_words
                     && n_tiles + tl <= max_dim.saturating_mul(max_dim)
@@ -413,16 +497,19 @@ impl GpuContext {
             let n_tiles: usize = jobs[r.clone()].iter().map(tiles).sum();
             let dx = n_tiles.clamp(1, max_dim);
             let dy = n_tiles.div_ceil(dx).max(1);
-            let (words, out_offsets, out_len) = pack_chunk(&jobs[r.clone()], dx as u32);
-            packed.push((r, words, out_offsets, out_len, (dx as u32, dy as u32)));
+            let (words, out_offsets, out_len, tmp_len) = pack_chunk(&jobs[r.clone()], dx as u32, kernel);
+            let dy_gamma = (words[3] as usize).div_ceil(dx).max(1);
+            let dispatch = ((dx as u32, dy as u32), (dx as u32, dy_gamma as u32));
+            packed.push((r, words, out_offsets, out_len, tmp_len, dispatch));
         }
         t.pack = t0.elapsed();
 
         let t0 = Instant::now();
         let mut chunks = Vec::with_capacity(packed.len());
-        for (r, words, out_offsets, out_len, dispatch) in packed {
+        for (r, words, out_offsets, out_len, tmp_len, (dispatch, dispatch_gamma)) in packed {
             let in_bytes = (words.len() * 4) as u64;
-            let out_bytes = (out_len.max(1) * 4) as u64;
+            let out_bytes = ((out_len + tmp_len).max(1) * 4) as u64;
+            let staged_out_bytes = (out_len.max(1) * 4) as u64;
             let count_bytes = (r.len() * 4) as u64;
             let input = self.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("render input"),
@@ -445,7 +532,7 @@ impl GpuContext {
             });
             let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("render staging"),
-                size: out_bytes + count_bytes,
+                size: staged_out_bytes + count_bytes,
                 usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
@@ -472,6 +559,7 @@ impl GpuContext {
                 out_offsets,
                 out_len,
                 dispatch,
+                dispatch_gamma,
                 _input: input,
                 output,
                 counts,
@@ -483,7 +571,7 @@ impl GpuContext {
         self.wait()?;
         t.upload = t0.elapsed();
         let meta = jobs.iter().map(|j| j.rendered(Vec::new(), 0)).collect();
-        Ok(GpuBatch { chunks, meta })
+        Ok(GpuBatch { kernel, chunks, meta })
     }
 
     fn encode_dispatch(&self, batch: &GpuBatch, enc: &mut wgpu::CommandEncoder) {
@@ -494,20 +582,32 @@ impl GpuContext {
             label: Some("render"),
             timestamp_writes: None,
         });
-        pass.set_pipeline(&self.pipeline);
         for c in &batch.chunks {
             if c.out_len == 0 {
                 continue;
             }
             pass.set_bind_group(0, &c.bind_group, &[]);
-            pass.dispatch_workgroups(c.dispatch.0, c.dispatch.1, 1);
+            match batch.kernel {
+                RenderKernel::Fused => {
+                    pass.set_pipeline(&self.pipeline);
+                    pass.dispatch_workgroups(c.dispatch.0, c.dispatch.1, 1);
+                }
+                RenderKernel::TwoPass => {
+                    // wgpu orders the two dispatches (a storage-buffer barrier between them).
+                    pass.set_pipeline(&self.two_pass[0]);
+                    pass.dispatch_workgroups(c.dispatch_gamma.0, c.dispatch_gamma.1, 1);
+                    pass.set_pipeline(&self.two_pass[1]);
+                    pass.dispatch_workgroups(c.dispatch.0, c.dispatch.1, 1);
+                }
+            }
         }
     }
 
     fn encode_copies(&self, batch: &GpuBatch, enc: &mut wgpu::CommandEncoder) {
         for c in &batch.chunks {
-            enc.copy_buffer_to_buffer(&c.output, 0, &c.staging, 0, c.output.size());
-            enc.copy_buffer_to_buffer(&c.counts, 0, &c.staging, c.output.size(), c.counts.size());
+            let out_bytes = c.staging.size() - c.counts.size();
+            enc.copy_buffer_to_buffer(&c.output, 0, &c.staging, 0, out_bytes);
+            enc.copy_buffer_to_buffer(&c.counts, 0, &c.staging, out_bytes, c.counts.size());
         }
     }
 
@@ -559,7 +659,7 @@ impl GpuContext {
                     .staging
                     .get_mapped_range(..)
                     .map_err(|e| GpuError::Device(e.to_string()))?;
-                let out_bytes = c.output.size() as usize;
+                let out_bytes = (c.staging.size() - c.counts.size()) as usize;
                 let all: &[f32] = bytemuck::try_cast_slice(&view[..c.out_len * 4])
                     .map_err(|e| GpuError::Device(format!("read-back buffer: {e}")))?;
                 let counts: &[u32] = bytemuck::try_cast_slice(&view[out_bytes..out_bytes + c.jobs.len() * 4])

@@ -34,10 +34,14 @@ pub fn random_directions(n: usize, seed: u64) -> Vec<DVec3> {
 
 /// Median wall time (ns) per sample of evaluating `field` at every direction
 /// of `dirs` on the calling thread, over `repeats` runs (at least 1). 0 for
-/// an empty set.
+/// an empty set. A field that answers batches is timed as one batch
+/// ([`IntensityField::batch_time_per_sample_ns`]).
 pub fn time_per_sample_ns(field: &dyn IntensityField, dirs: &[DVec3], repeats: usize) -> f64 {
     if dirs.is_empty() {
         return 0.0;
+    }
+    if let Some(t) = field.batch_time_per_sample_ns(dirs, repeats.max(1)) {
+        return t;
     }
     let mut times: Vec<f64> = (0..repeats.max(1))
         .map(|_| {

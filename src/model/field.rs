@@ -53,6 +53,25 @@ pub trait IntensityField: Sync {
         });
     }
 
+    /// The intensity (cd) at every (C, γ) of `dirs` (degrees), in order.
+    /// The default evaluates [`IntensityField::intensity_cd`] per direction
+    /// in parallel; a field that answers batches at once (a GPU lookup,
+    /// `gpu::realtime`) overrides it. `reconstruct::eval_all` calls it.
+    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+        dirs.par_iter().map(|&(c, g)| self.intensity_cd(c, g)).collect()
+    }
+
+    /// For a field that answers batches ([`IntensityField::intensity_batch_cd`]
+    /// overridden): the median over `repeats` runs of the wall time (ns) per
+    /// direction of evaluating all of `dirs` as one batch, from the caller's
+    /// side (a GPU lookup: upload, dispatch, read-back). `None` (the
+    /// default): the field is timed one lookup at a time
+    /// (`metrics::time_per_sample_ns`).
+    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
+        let _ = (dirs, repeats);
+        None
+    }
+
     /// A short name for reports and metadata (e.g. `catmull-rom`,
     /// `texture catmull-rom x5 / bilinear`, `fitted-gl`, `truth cosine p=5`).
     fn name(&self) -> String;
@@ -90,6 +109,12 @@ impl IntensityField for Borrowed<'_> {
     }
     fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
         self.0.sample_grid(c_deg, gamma_deg, out)
+    }
+    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+        self.0.intensity_batch_cd(dirs)
+    }
+    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
+        self.0.batch_time_per_sample_ns(dirs, repeats)
     }
     fn name(&self) -> String {
         self.0.name()

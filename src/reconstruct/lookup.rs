@@ -158,6 +158,40 @@ impl StoredTexture {
             }
     }
 
+    /// The stored texels (I / I_max, already rounded to the precision),
+    /// row-major, [`StoredTexture::columns`] wide: what a renderer uploads.
+    pub fn texels(&self) -> &[f32] {
+        &self.data
+    }
+    /// Rows (γ direction; row i centred at γ = (i + ½)·180/height degrees).
+    pub fn height(&self) -> usize {
+        self.height
+    }
+    /// Columns of the full render (column j centred at C = (j + ½)·360/full_width degrees).
+    pub fn full_width(&self) -> usize {
+        self.full_width
+    }
+    /// The first stored column of the full render and how many are stored.
+    pub fn stored_columns(&self) -> (usize, usize) {
+        (self.first_column, self.columns)
+    }
+    /// The symmetry whose C sector is stored (`None`: the whole circle).
+    pub fn reduced(&self) -> Option<Symmetry> {
+        self.reduced
+    }
+    /// The storage precision.
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+    /// The lookup it is read with.
+    pub fn lookup(&self) -> Lookup {
+        self.lookup
+    }
+    /// I_max (cd) the texels are normalised by.
+    pub fn i_max_cd(&self) -> f64 {
+        self.i_max_cd
+    }
+
     fn view(&self) -> TexelView<'_> {
         TexelView {
             data: &self.data,

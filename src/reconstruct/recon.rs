@@ -28,7 +28,15 @@ pub enum Recon {
     FittedGl,
     /// A texture rendered once and read back as a renderer does ([`StoredTexture`]).
     Texture(TextureSpec),
+    /// The same texture sampled by the GPU's texture hardware
+    /// (`gpu::realtime::RealtimeTexture`, feature `gpu`, on the process's
+    /// adapter; `R16Float` where `R32Float` is not filterable). Written
+    /// `FILTER@xK/LOOKUP[+f16][+reduced]+gpu`.
+    Gpu(TextureSpec),
 }
+
+/// The suffix naming a [`Recon::Gpu`] texture.
+pub const GPU_SUFFIX: &str = "+gpu";
 
 /// A rendered texture as a renderer stores and reads it. Written
 /// `FILTER@xK/LOOKUP[+f16][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
@@ -116,6 +124,7 @@ impl fmt::Display for Recon {
             Recon::Filter(x) => write!(f, "{x}"),
             Recon::FittedGl => f.write_str(crate::fit::RECONSTRUCTION_NAME),
             Recon::Texture(t) => write!(f, "{t}"),
+            Recon::Gpu(t) => write!(f, "{t}{GPU_SUFFIX}"),
         }
     }
 }
@@ -126,7 +135,10 @@ impl FromStr for Recon {
         match s.trim() {
             "measured" => Ok(Recon::Measured),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
-            x if x.contains('@') => x.parse().map(Recon::Texture),
+            x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
+                Some(t) => t.parse().map(Recon::Gpu),
+                None => x.parse().map(Recon::Texture),
+            },
             x => x
                 .parse::<Filter>()
                 .map(Recon::Filter)
@@ -203,6 +215,33 @@ impl Reconstructions {
                 let reduced = t.reduced.then(|| self.dist.symmetry());
                 Box::new(StoredTexture::new(&rendered, reduced, t.precision, t.lookup))
             }
+            Recon::Gpu(t) => self.gpu_field(r, t)?,
+        })
+    }
+
+    #[cfg(feature = "gpu")]
+    fn gpu_field(&self, r: Recon, t: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+        use crate::gpu::realtime::{HardwareLookup, RealtimeTexture};
+        let unavailable = |e: crate::gpu::GpuError| ModelError::Parameter {
+            name: "recon",
+            value: r.to_string(),
+            reason: format!("the GPU lookup is not available: {e}"),
+        };
+        let ctx = crate::gpu::GpuContext::global().map_err(unavailable)?;
+        let rendered = render(&self.texture, t.filter, t.factor)?;
+        let reduced = t.reduced.then(|| self.dist.symmetry());
+        let lookup = HardwareLookup::for_lookup(t.lookup);
+        Ok(Box::new(
+            RealtimeTexture::new(ctx, &rendered, reduced, t.precision, lookup).map_err(unavailable)?,
+        ))
+    }
+
+    #[cfg(not(feature = "gpu"))]
+    fn gpu_field(&self, r: Recon, _: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+        Err(ModelError::Parameter {
+            name: "recon",
+            value: r.to_string(),
+            reason: "this build has no GPU support (feature `gpu`)".into(),
         })
     }
 
@@ -222,8 +261,27 @@ impl Reconstructions {
     }
 }
 
-/// Evaluate `field` at every (C, γ) of `dirs` (degrees), in parallel.
+/// Evaluate `field` at every (C, γ) of `dirs` (degrees): in parallel, or as
+/// one batch for a field that answers batches ([`IntensityField::intensity_batch_cd`]).
 pub fn eval_all(field: &dyn IntensityField, dirs: &[(f64, f64)]) -> Vec<f64> {
-    use rayon::prelude::*;
-    dirs.par_iter().map(|&(c, g)| field.intensity_cd(c, g)).collect()
+    field.intensity_batch_cd(dirs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `+gpu` names a GPU-sampled texture and round-trips; a plain spec stays a CPU texture.
+    #[test]
+    fn gpu_texture_names() {
+        let r: Recon = "catmull-rom@x5/bilinear+f16+gpu".parse().unwrap();
+        let Recon::Gpu(t) = r else { panic!("{r:?}") };
+        assert_eq!((t.factor, t.lookup, t.precision), (5, Lookup::Bilinear, Precision::F16));
+        assert_eq!(r.to_string(), "catmull-rom@x5/bilinear+f16+gpu");
+        assert!(matches!(
+            "catmull-rom@x5/bilinear".parse::<Recon>().unwrap(),
+            Recon::Texture(_)
+        ));
+        assert!("catmull-rom@x5/bilinear+gpu+f16".parse::<Recon>().is_err());
+    }
 }

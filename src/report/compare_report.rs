@@ -437,7 +437,7 @@ pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
 /// Write a report's files into `dir` (created), each atomically: the
 /// figures' PNGs, `report.json` (`value` as pretty JSON), `report.md` and
 /// `index.html`. Returns the paths written.
-pub(crate) fn write_files(
+pub fn write_files(
     dir: &Path,
     figs: &[Figure],
     value: &impl serde::Serialize,

@@ -4,6 +4,8 @@
 use std::path::{Path, PathBuf};
 
 pub mod cli;
+#[cfg(feature = "gpu")]
+pub mod gpu;
 
 /// The third-party corpus next to the checkout, when present.
 pub fn corpus() -> Option<PathBuf> {

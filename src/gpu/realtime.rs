@@ -1,0 +1,668 @@
+//! The real-time path of the seed (Wallner 2008, §4–5): a light distribution
+//! texture in a float texture, sampled by the hardware for a batch of
+//! directions, and the accuracy that costs.
+//!
+//! A [`RealtimeTexture`] uploads the texels of a
+//! [`StoredTexture`](crate::reconstruct::StoredTexture) (a render of the LDT,
+//! I / I_max, whole or only its symmetry's C sector) as an `R32Float`
+//! texture when the adapter can filter it (`FLOAT32_FILTERABLE`), else as
+//! `R16Float` (values rounded to f16), with a sampler, and evaluates a
+//! [`HardwareLookup`] in a compute shader (`realtime.wgsl`: the seed's
+//! texture-coordinate mapping, equations 1–3, `textureSampleLevel`).
+//!
+//! [`RealtimeTexture::exact`] is the CPU twin: the same texel data (after
+//! the same f16 rounding) read with the exact filter
+//! ([`Lookup::Bilinear`] / [`Lookup::CatmullRom`] in f64), so the difference
+//! of the two is the cost of hardware filtering alone (fixed-point
+//! sub-texel weights, f32 coordinates), measured per adapter with
+//! [`super::precision::subtexel_precision`].
+
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+
+use super::{GpuContext, GpuError};
+use crate::model::{frame, IntensityField, Symmetry};
+use crate::reconstruct::{Lookup, Precision, Rendered, StoredTexture};
+
+/// How the hardware reads the texture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum HardwareLookup {
+    /// One fetch with a nearest sampler (`GL_NEAREST`).
+    Nearest,
+    /// One fetch with the hardware's bilinear filter (`GL_LINEAR`).
+    Linear,
+    /// Catmull–Rom from 9 bilinear fetches (3 per axis: the outer texels at
+    /// their centres, the middle pair merged; Sigg & Hadwiger's linear-fetch
+    /// trick adapted to an interpolating kernel, see `realtime.wgsl`).
+    CatmullRomLinearFetch,
+}
+
+impl HardwareLookup {
+    /// Every hardware lookup.
+    pub const ALL: [HardwareLookup; 3] = [
+        HardwareLookup::Nearest,
+        HardwareLookup::Linear,
+        HardwareLookup::CatmullRomLinearFetch,
+    ];
+
+    /// The exact CPU lookup this one approximates.
+    pub fn exact(self) -> Lookup {
+        match self {
+            HardwareLookup::Nearest => Lookup::Nearest,
+            HardwareLookup::Linear => Lookup::Bilinear,
+            HardwareLookup::CatmullRomLinearFetch => Lookup::CatmullRom,
+        }
+    }
+
+    /// The hardware lookup for an exact one.
+    pub fn for_lookup(lookup: Lookup) -> Self {
+        match lookup {
+            Lookup::Nearest => HardwareLookup::Nearest,
+            Lookup::Bilinear => HardwareLookup::Linear,
+            Lookup::CatmullRom => HardwareLookup::CatmullRomLinearFetch,
+        }
+    }
+
+    /// Texture fetches per sample.
+    pub fn fetches(self) -> usize {
+        match self {
+            HardwareLookup::CatmullRomLinearFetch => 9,
+            _ => 1,
+        }
+    }
+
+    fn mode(self) -> u32 {
+        match self {
+            HardwareLookup::Nearest => 0,
+            HardwareLookup::Linear => 1,
+            HardwareLookup::CatmullRomLinearFetch => 2,
+        }
+    }
+}
+
+/// The probe mode of the shader: raw (u, v) coordinates, one linear fetch.
+pub(crate) const MODE_PROBE: u32 = 3;
+const WORKGROUP: usize = 64;
+
+/// The seed's texture coordinates (s, t) of direction `d` in the luminaire
+/// frame, literally as its equations 1–3 (f64): `s = arccos(n₀·d)/π`,
+/// `φ = arccos(r₀·p)` with p the unit projection of d onto the (r₀, u₀)
+/// plane, `t = φ/2π` when `u₀·d > 0`, else `1 − φ/2π`; n₀ = −z, r₀ = +x,
+/// u₀ = +y. Dimensionless, s ∈ [0, 1], t ∈ [0, 1]; `None` for a zero or
+/// non-finite vector. At the poles (p = 0) φ is taken as 0. The shader
+/// evaluates the same angles in atan2 form (see `realtime.wgsl`).
+pub fn seed_texture_coords(d: DVec3) -> Option<(f64, f64)> {
+    let len = d.length();
+    if !(len.is_finite() && len > 0.0) {
+        return None;
+    }
+    let d = d / len;
+    let (n0, r0, u0) = (DVec3::NEG_Z, DVec3::X, DVec3::Y);
+    let s = n0.dot(d).clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+    let p = d.dot(r0) * r0 + d.dot(u0) * u0;
+    let phi = if p.length() > 0.0 {
+        r0.dot(p / p.length()).clamp(-1.0, 1.0).acos()
+    } else {
+        0.0
+    };
+    let w = 0.5 * phi / std::f64::consts::PI;
+    let t = if u0.dot(d) <= 0.0 { 1.0 - w } else { w };
+    Some((s, t))
+}
+
+/// The real-time pipeline and its bind group layout (one per device).
+pub(crate) struct Pipelines {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl Pipelines {
+    /// The pipeline of `ctx`, built on first use; a validation error (a
+    /// driver that cannot compile the shader) is returned, not raised.
+    fn of(ctx: &GpuContext) -> Result<&Pipelines, GpuError> {
+        ctx.realtime
+            .get_or_init(|| {
+                let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+                let p = Pipelines::new(ctx);
+                match pollster::block_on(scope.pop()) {
+                    None => Ok(p),
+                    Some(e) => Err(GpuError::Device(format!("real-time lookup pipeline: {e}"))),
+                }
+            })
+            .as_ref()
+            .map_err(Clone::clone)
+    }
+
+    fn new(ctx: &GpuContext) -> Self {
+        let d = &ctx.device;
+        let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty,
+            count: None,
+        };
+        let buffer = |ty| wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("realtime"),
+            entries: &[
+                entry(
+                    0,
+                    wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                ),
+                // One sampler per texture: GL pairs each texture with one sampler.
+                entry(1, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)),
+                entry(2, buffer(wgpu::BufferBindingType::Storage { read_only: true })),
+                entry(3, buffer(wgpu::BufferBindingType::Storage { read_only: false })),
+                entry(4, buffer(wgpu::BufferBindingType::Uniform)),
+            ],
+        });
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("realtime"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("realtime.wgsl").into()),
+        });
+        let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("realtime"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("realtime"),
+            layout: Some(&pl),
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Pipelines { layout, pipeline }
+    }
+}
+
+/// A stored texture on the device, with its samplers, read with a [`HardwareLookup`].
+pub struct RealtimeTexture<'a> {
+    ctx: &'a GpuContext,
+    view: wgpu::TextureView,
+    /// Linear, or nearest for [`HardwareLookup::Nearest`].
+    sampler: wgpu::Sampler,
+    format: wgpu::TextureFormat,
+    lookup: HardwareLookup,
+    /// Shader parameters after `n`, `mode`, `dispatch_x`: fold code, then sizes.
+    fold: u32,
+    exact: StoredTexture,
+}
+
+impl std::fmt::Debug for RealtimeTexture<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RealtimeTexture")
+            .field("adapter", self.ctx.adapter())
+            .field("format", &self.format)
+            .field("lookup", &self.lookup)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Directions uploaded once, dispatched as often as needed (for timing).
+pub struct LookupBatch {
+    n: usize,
+    bind_group: wgpu::BindGroup,
+    output: wgpu::Buffer,
+    staging: wgpu::Buffer,
+    dispatch: (u32, u32),
+}
+
+impl std::fmt::Debug for LookupBatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LookupBatch")
+            .field("n", &self.n)
+            .finish_non_exhaustive()
+    }
+}
+
+impl LookupBatch {
+    /// Directions in the batch.
+    pub fn len(&self) -> usize {
+        self.n
+    }
+    /// True for an empty batch.
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
+}
+
+fn texture_error(what: &str, e: impl std::fmt::Display) -> GpuError {
+    GpuError::Device(format!("{what}: {e}"))
+}
+
+impl<'a> RealtimeTexture<'a> {
+    /// Upload `rendered` (only `reduced`'s C sector when given) in
+    /// `precision` (`F32` becomes `F16` when the adapter cannot filter
+    /// `R32Float`; [`RealtimeTexture::precision`] says which was used), to
+    /// be read with `lookup`.
+    ///
+    /// # Errors
+    /// [`GpuError::TooLarge`] when the texture exceeds the device's 2D
+    /// texture size; [`GpuError::InvalidJob`] for an empty texture.
+    pub fn new(
+        ctx: &'a GpuContext,
+        rendered: &Rendered,
+        reduced: Option<Symmetry>,
+        precision: Precision,
+        lookup: HardwareLookup,
+    ) -> Result<Self, GpuError> {
+        let precision = if ctx.float32_filterable() {
+            precision
+        } else {
+            Precision::F16
+        };
+        let exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
+        let (h, (_, cols)) = (exact.height(), exact.stored_columns());
+        if h == 0 || cols == 0 {
+            return Err(GpuError::InvalidJob {
+                index: 0,
+                reason: "empty texture".into(),
+            });
+        }
+        let max = ctx.limits.max_texture_dimension_2d as usize;
+        if h > max || cols > max {
+            return Err(GpuError::TooLarge {
+                index: 0,
+                reason: format!("a {cols} x {h} texture exceeds the device's {max} texels per side"),
+            });
+        }
+        let (format, bytes): (_, Vec<u8>) = match precision {
+            Precision::F32 => (
+                wgpu::TextureFormat::R32Float,
+                bytemuck::cast_slice(exact.texels()).to_vec(),
+            ),
+            Precision::F16 => {
+                let v: Vec<u16> = exact
+                    .texels()
+                    .iter()
+                    .map(|&x| half::f16::from_f32(x).to_bits())
+                    .collect();
+                (wgpu::TextureFormat::R16Float, bytemuck::cast_slice(&v).to_vec())
+            }
+        };
+        let mirror = exact.reduced().is_some();
+        let fold = exact.reduced().map_or(0, |s| s.isym() as u32);
+        Pipelines::of(ctx)?;
+        let filter = if lookup == HardwareLookup::Nearest {
+            wgpu::FilterMode::Nearest
+        } else {
+            wgpu::FilterMode::Linear
+        };
+        let (view, sampler) = upload(ctx, format, &bytes, (cols, h), mirror, filter);
+        Ok(RealtimeTexture {
+            ctx,
+            view,
+            sampler,
+            format,
+            lookup,
+            fold,
+            exact,
+        })
+    }
+
+    /// The adapter it lives on.
+    pub fn context(&self) -> &'a GpuContext {
+        self.ctx
+    }
+    /// The texture format used (`R32Float` or `R16Float`).
+    pub fn format(&self) -> wgpu::TextureFormat {
+        self.format
+    }
+    /// The storage precision used.
+    pub fn precision(&self) -> Precision {
+        self.exact.precision()
+    }
+    /// The hardware lookup.
+    pub fn lookup(&self) -> HardwareLookup {
+        self.lookup
+    }
+    /// The CPU twin: the same texels read with the exact lookup (f64).
+    pub fn exact(&self) -> &StoredTexture {
+        &self.exact
+    }
+
+    /// Upload `dirs` (luminaire frame, any length; zero vectors give 0) for
+    /// [`RealtimeTexture::run`].
+    ///
+    /// # Errors
+    /// [`GpuError::TooLarge`] when the batch exceeds the device's binding or dispatch limits.
+    pub fn prepare(&self, dirs: &[DVec3]) -> Result<LookupBatch, GpuError> {
+        let data: Vec<[f32; 4]> = dirs
+            .iter()
+            .map(|d| {
+                let d = if d.is_finite() {
+                    d.normalize_or_zero()
+                } else {
+                    DVec3::ZERO
+                };
+                [d.x as f32, d.y as f32, d.z as f32, 0.0]
+            })
+            .collect();
+        self.prepare_raw(&data, self.lookup.mode())
+    }
+
+    pub(crate) fn prepare_raw(&self, data: &[[f32; 4]], mode: u32) -> Result<LookupBatch, GpuError> {
+        let n = data.len();
+        let max_dim = self.ctx.max_workgroups_per_dim().max(1) as usize;
+        let groups = n.div_ceil(WORKGROUP).max(1);
+        let dx = groups.min(max_dim);
+        let dy = groups.div_ceil(dx);
+        if (n * 16) as u64 > self.ctx.max_binding_bytes() || dy > max_dim {
+            return Err(GpuError::TooLarge {
+                index: 0,
+                reason: format!("{n} directions exceed the device's binding or dispatch limits"),
+            });
+        }
+        let (h, (first, cols)) = (self.exact.height(), self.exact.stored_columns());
+        let mut params = [0u32; 8];
+        params[..4].copy_from_slice(&[n as u32, mode, self.fold, dx as u32]);
+        for (p, v) in params[4..]
+            .iter_mut()
+            .zip([h as f32, self.exact.full_width() as f32, first as f32, cols as f32])
+        {
+            *p = v.to_bits();
+        }
+        let d = &self.ctx.device;
+        let buf = |label, size: u64, usage| {
+            d.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(16),
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        use wgpu::BufferUsages as U;
+        let input = buf("realtime directions", (n * 16) as u64, U::STORAGE | U::COPY_DST);
+        self.ctx.queue.write_buffer(&input, 0, bytemuck::cast_slice(data));
+        let output = buf("realtime output", (n * 4) as u64, U::STORAGE | U::COPY_SRC);
+        let staging = buf("realtime staging", (n * 4) as u64, U::MAP_READ | U::COPY_DST);
+        let uniform = buf("realtime params", 32, U::UNIFORM | U::COPY_DST);
+        self.ctx.queue.write_buffer(&uniform, 0, bytemuck::cast_slice(&params));
+        let pipes = Pipelines::of(self.ctx)?;
+        let bind_group = d.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("realtime"),
+            layout: &pipes.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&self.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: input.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: output.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: uniform.as_entire_binding(),
+                },
+            ],
+        });
+        Ok(LookupBatch {
+            n,
+            bind_group,
+            output,
+            staging,
+            dispatch: (dx as u32, dy as u32),
+        })
+    }
+
+    /// Run the lookups of an uploaded batch and wait for them; returns the
+    /// wall time from submission to completion.
+    pub fn run(&self, batch: &LookupBatch) -> Result<Duration, GpuError> {
+        let t0 = Instant::now();
+        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
+        if batch.n > 0 {
+            let pipes = Pipelines::of(self.ctx)?;
+            let mut pass = enc.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipes.pipeline);
+            pass.set_bind_group(0, &batch.bind_group, &[]);
+            pass.dispatch_workgroups(batch.dispatch.0, batch.dispatch.1, 1);
+        }
+        self.ctx.queue.submit([enc.finish()]);
+        self.ctx
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| texture_error("realtime dispatch", e))?;
+        Ok(t0.elapsed())
+    }
+
+    /// The results of the last [`RealtimeTexture::run`] of `batch`: I / I_max per direction.
+    pub fn read(&self, batch: &LookupBatch) -> Result<Vec<f32>, GpuError> {
+        if batch.n == 0 {
+            return Ok(Vec::new());
+        }
+        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
+        enc.copy_buffer_to_buffer(&batch.output, 0, &batch.staging, 0, (batch.n * 4) as u64);
+        self.ctx.queue.submit([enc.finish()]);
+        let (tx, rx) = mpsc::channel();
+        batch.staging.map_async(wgpu::MapMode::Read, .., move |r| {
+            let _ = tx.send(r);
+        });
+        self.ctx
+            .device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| texture_error("realtime read-back", e))?;
+        rx.recv()
+            .map_err(|e| texture_error("realtime read-back", e))?
+            .map_err(|e| texture_error("realtime read-back", e))?;
+        let out = {
+            let view = batch
+                .staging
+                .get_mapped_range(..)
+                .map_err(|e| texture_error("realtime read-back", e))?;
+            bytemuck::cast_slice::<u8, f32>(&view[..batch.n * 4]).to_vec()
+        };
+        batch.staging.unmap();
+        Ok(out)
+    }
+
+    /// Intensity (cd, ≥ 0) in each direction of `dirs` (luminaire frame):
+    /// one upload, one dispatch, one read-back.
+    ///
+    /// # Errors
+    /// As [`RealtimeTexture::prepare`], and device errors.
+    pub fn sample_dirs_cd(&self, dirs: &[DVec3]) -> Result<Vec<f64>, GpuError> {
+        let batch = self.prepare(dirs)?;
+        self.run(&batch)?;
+        let i_max = self.exact.i_max_cd();
+        Ok(self.read(&batch)?.into_iter().map(|v| f64::from(v) * i_max).collect())
+    }
+
+    /// Median wall time (ns) per direction of the dispatch alone (the
+    /// directions uploaded once, results not read back) over `repeats` runs.
+    ///
+    /// # Errors
+    /// As [`RealtimeTexture::prepare`], and device errors.
+    pub fn dispatch_ns_per_sample(&self, dirs: &[DVec3], repeats: usize) -> Result<f64, GpuError> {
+        let batch = self.prepare(dirs)?;
+        self.run(&batch)?; // warm-up
+        let mut t = (0..repeats.max(1))
+            .map(|_| self.run(&batch).map(|d| d.as_secs_f64()))
+            .collect::<Result<Vec<_>, _>>()?;
+        t.sort_by(f64::total_cmp);
+        Ok(1e9 * t[t.len() / 2] / dirs.len().max(1) as f64)
+    }
+
+    /// [`RealtimeTexture::sample_dirs_cd`] at (C, γ) degrees.
+    pub fn sample_angles_cd(&self, angles: &[(f64, f64)]) -> Result<Vec<f64>, GpuError> {
+        let dirs: Vec<DVec3> = angles.iter().map(|&(c, g)| frame::direction(c, g)).collect();
+        self.sample_dirs_cd(&dirs)
+    }
+}
+
+/// Create the texture (`cols` x `rows`, row-major `bytes`) and its sampler:
+/// C repeats (or mirrors at a reduced sector's edges), γ clamps.
+fn upload(
+    ctx: &GpuContext,
+    format: wgpu::TextureFormat,
+    bytes: &[u8],
+    (cols, rows): (usize, usize),
+    mirror: bool,
+    filter: wgpu::FilterMode,
+) -> (wgpu::TextureView, wgpu::Sampler) {
+    let size = wgpu::Extent3d {
+        width: cols as u32,
+        height: rows as u32,
+        depth_or_array_layers: 1,
+    };
+    let tex = ctx.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("light distribution texture"),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let texel = bytes.len() / (cols * rows);
+    ctx.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: &tex,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some((cols * texel) as u32),
+            rows_per_image: Some(rows as u32),
+        },
+        size,
+    );
+    let u_mode = if mirror {
+        wgpu::AddressMode::MirrorRepeat
+    } else {
+        wgpu::AddressMode::Repeat
+    };
+    let sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("light distribution texture"),
+        address_mode_u: u_mode,
+        address_mode_v: wgpu::AddressMode::ClampToEdge,
+        mag_filter: filter,
+        min_filter: filter,
+        ..Default::default()
+    });
+    (tex.create_view(&Default::default()), sampler)
+}
+
+/// The hardware lookup as an intensity field (cd). Batches
+/// ([`IntensityField::sample_grid`], [`IntensityField::intensity_batch_cd`])
+/// are one dispatch each; a single direction is a dispatch of its own
+/// (correct, but slow: use batches). A device error gives 0 (the field has
+/// no error channel); [`RealtimeTexture::sample_dirs_cd`] reports it.
+impl IntensityField for RealtimeTexture<'_> {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.intensity_dir_cd(frame::direction(c_deg, gamma_deg.clamp(0.0, 180.0)))
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        if !(d.is_finite() && d.length_squared() > 0.0) {
+            return 0.0;
+        }
+        self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
+    }
+    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+        let d: Vec<DVec3> = dirs
+            .iter()
+            .map(|&(c, g)| {
+                if c.is_finite() && g.is_finite() {
+                    frame::direction(c, g.clamp(0.0, 180.0))
+                } else {
+                    DVec3::ZERO
+                }
+            })
+            .collect();
+        self.sample_dirs_cd(&d).unwrap_or_else(|_| vec![0.0; dirs.len()])
+    }
+    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            c_deg.len() * gamma_deg.len(),
+            "one output per grid direction"
+        );
+        let dirs: Vec<(f64, f64)> = c_deg
+            .iter()
+            .flat_map(|&c| gamma_deg.iter().map(move |&g| (c, g)))
+            .collect();
+        out.copy_from_slice(&self.intensity_batch_cd(&dirs));
+    }
+    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
+        let mut t: Vec<f64> = (0..repeats.max(1))
+            .map(|_| {
+                let t0 = Instant::now();
+                let v = self.sample_dirs_cd(std::hint::black_box(dirs));
+                std::hint::black_box(v).ok().map(|_| t0.elapsed().as_secs_f64())
+            })
+            .collect::<Option<_>>()?;
+        t.sort_by(f64::total_cmp);
+        Some(1e9 * t[t.len() / 2] / dirs.len().max(1) as f64)
+    }
+    fn name(&self) -> String {
+        format!("{}+gpu", self.exact.name())
+    }
+    fn bytes(&self) -> usize {
+        self.exact.texel_bytes()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Equations 1–3 give s = γ/180 and t = C/360 in the crate's frame.
+    #[test]
+    fn seed_coords_are_the_frame_angles() {
+        for (c, g) in [
+            (0.0, 0.0),
+            (10.0, 30.0),
+            (90.0, 90.0),
+            (135.0, 120.0),
+            (200.0, 45.0),
+            (359.0, 179.0),
+        ] {
+            let (s, t) = seed_texture_coords(frame::direction(c, g)).unwrap();
+            assert!((s - g / 180.0).abs() < 1e-9, "({c}, {g}): s {s}");
+            if g > 0.0 && g < 180.0 {
+                assert!((t - c / 360.0).abs() < 1e-9, "({c}, {g}): t {t}");
+            }
+        }
+        // C = 0 (u0 . d = 0): t = 1, the same texel column as 0 under REPEAT.
+        let (_, t) = seed_texture_coords(DVec3::new(1.0, 0.0, -1.0)).unwrap();
+        assert_eq!(t, 1.0);
+        assert!(seed_texture_coords(DVec3::ZERO).is_none());
+        assert!(seed_texture_coords(DVec3::new(f64::NAN, 0.0, 1.0)).is_none());
+    }
+
+    #[test]
+    fn hardware_lookup_names() {
+        for l in HardwareLookup::ALL {
+            assert_eq!(HardwareLookup::for_lookup(l.exact()), l);
+        }
+        assert_eq!(HardwareLookup::CatmullRomLinearFetch.fetches(), 9);
+    }
+}

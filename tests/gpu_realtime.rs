@@ -1,0 +1,273 @@
+//! The real-time lookup path (`photosolid::gpu::realtime`): hardware
+//! filtering against the exact filter on the same texels, the adapter's
+//! sub-texel precision, and the field interface, on whatever adapter exists
+//! (CI: Mesa lavapipe / llvmpipe). Without an adapter the tests print why
+//! and pass, unless `PHOTOSOLID_REQUIRE_GPU=1`.
+#![cfg(feature = "gpu")]
+
+mod common;
+
+use std::path::Path;
+
+use glam::DVec3;
+use photosolid::gpu::precision::subtexel_precision;
+use photosolid::gpu::realtime::{HardwareLookup, RealtimeTexture};
+use photosolid::gpu::shading::{self, PlaneView};
+use photosolid::metrics::random_directions;
+use photosolid::model::IntensityField;
+use photosolid::reconstruct::{render, Filter, LightTexture, Precision, Rendered};
+
+use common::gpu::ctx;
+
+fn rendered(file: &str, factor: u32) -> (Rendered, photosolid::model::Symmetry) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join(file);
+    let lum = photosolid::load(&path).unwrap();
+    let tex = LightTexture::new(&lum.distribution).unwrap();
+    (render(&tex, Filter::CatmullRom, factor).unwrap(), tex.symmetry())
+}
+
+/// Largest difference between neighbouring texels (I / I_max), both axes,
+/// C periodic: what a weight error of one unit moves a bilinear result by.
+fn max_step(r: &Rendered) -> f64 {
+    let (h, w) = (r.mapping.height, r.mapping.width);
+    let v = |i: usize, j: usize| f64::from(r.data[i * w + j % w]);
+    let mut d = 0.0f64;
+    for i in 0..h {
+        for j in 0..w {
+            d = d.max((v(i, j + 1) - v(i, j)).abs());
+            if i + 1 < h {
+                d = d.max((v(i + 1, j) - v(i, j)).abs());
+            }
+        }
+    }
+    d
+}
+
+/// The largest |hardware − exact| lookup (fraction of I_max) that a
+/// weight error `eps` (texels, measured by the probe) allows on `r`.
+/// Bilinear: one weight error per axis moves the result by at most
+/// eps * step each; Catmull-Rom's merged middle fetch (weight <= 1.25) per
+/// axis, summed with |weights| <= 1.3 over the other axis: under 3 eps step.
+/// Plus f32 coordinates: s and t carry about 8 ulps (2^-20) after atan2 and
+/// scaling, times the texels per unit coordinate; and f32 arithmetic.
+fn lookup_tolerance(r: &Rendered, lookup: HardwareLookup, eps: f64) -> f64 {
+    let k = if lookup == HardwareLookup::Linear { 2.0 } else { 3.0 };
+    let texels = r.mapping.height.max(r.mapping.width) as f64;
+    (k * eps + k * texels * 2f64.powi(-20)) * max_step(r) + 1e-6
+}
+
+/// Hardware lookups against the exact lookups on the same texels (whole and
+/// symmetry-reduced storage), within what the measured sub-texel precision allows.
+#[test]
+fn hardware_lookups_match_exact_within_weight_precision() {
+    let Some(c) = ctx("hardware_lookups_match_exact_within_weight_precision") else {
+        return;
+    };
+    let p = subtexel_precision(c, 4097).unwrap();
+    let eps = p.max_weight_error;
+    println!(
+        "{}: {} sub-texel weight levels ({:.1} bits), max weight error {eps:.2e}",
+        p.adapter, p.distinct_weights, p.bits
+    );
+    let mut dirs = random_directions(20_000, 7);
+    // Poles, the 0/360 seam and C-sector edges.
+    dirs.extend([
+        DVec3::NEG_Z,
+        DVec3::Z,
+        DVec3::X,
+        DVec3::new(1.0, -1e-9, 0.3),
+        DVec3::Y,
+        DVec3::new(0.0, -1.0, -0.2),
+    ]);
+    for file in [
+        "roadway.ldt",
+        "batwing.ldt",
+        "spot_p8_c40.ldt",
+        "cosine_p20_nonuniform.ldt",
+    ] {
+        let (r, sym) = rendered(file, 5);
+        for lookup in HardwareLookup::ALL {
+            if lookup == HardwareLookup::Nearest {
+                continue; // ties at texel edges make nearest ill-posed at the probe points
+            }
+            for reduced in [None, Some(sym)] {
+                let t = RealtimeTexture::new(c, &r, reduced, Precision::F32, lookup).unwrap();
+                let hw = t.sample_dirs_cd(&dirs).unwrap();
+                let ex = t.exact();
+                let worst = dirs
+                    .iter()
+                    .zip(&hw)
+                    .map(|(d, g)| (g - ex.intensity_dir_cd(*d)).abs() / r.i_max_cd)
+                    .fold(0.0, f64::max);
+                let tol = lookup_tolerance(&r, lookup, eps);
+                println!(
+                    "{file} {lookup:?} reduced={} ({:?}): max |hw - exact| = {worst:.3e} of I_max (tol {tol:.2e})",
+                    reduced.is_some(),
+                    t.format()
+                );
+                assert!(
+                    worst <= tol,
+                    "{file} {lookup:?} reduced={reduced:?}: {worst:e} > {tol:e}"
+                );
+                assert!(hw.iter().all(|v| v.is_finite() && *v >= 0.0));
+            }
+        }
+    }
+}
+
+/// The probe sees monotone weights from 0 to 1 and at least 4 bits.
+#[test]
+fn subtexel_precision_probe() {
+    let Some(c) = ctx("subtexel_precision_probe") else {
+        return;
+    };
+    let p = subtexel_precision(c, 65_537).unwrap();
+    println!("{p:?}");
+    assert!(p.distinct_weights >= 17, "{p:?}");
+    assert!(p.bits <= 16.0 + 1e-9, "the probe resolves at most 16 bits: {p:?}");
+    // The weight error of b-bit weights is at most one level.
+    assert!(p.max_weight_error <= 2f64.powf(-p.bits.floor()) + 1e-6, "{p:?}");
+    assert!(subtexel_precision(c, 1).is_err());
+}
+
+/// The field interface: batch, grid and single lookups agree; zero and
+/// non-finite input give 0.
+#[test]
+fn realtime_texture_as_field() {
+    let Some(c) = ctx("realtime_texture_as_field") else {
+        return;
+    };
+    let (r, _) = rendered("roadway.ldt", 2);
+    let t = RealtimeTexture::new(c, &r, None, Precision::F16, HardwareLookup::CatmullRomLinearFetch).unwrap();
+    assert_eq!(t.precision(), Precision::F16);
+    assert_eq!(t.bytes(), 2 * r.data.len());
+    assert!(t.name().ends_with("+f16+gpu"), "{}", t.name());
+    let cs = [0.0, 33.3, 90.0, 359.9];
+    let gs = [0.0, 12.5, 60.0, 89.0, 180.0];
+    let mut grid = vec![0.0; cs.len() * gs.len()];
+    t.sample_grid(&cs, &gs, &mut grid);
+    for (ic, &cc) in cs.iter().enumerate() {
+        for (ig, &g) in gs.iter().enumerate() {
+            let one = t.intensity_cd(cc, g);
+            assert!(
+                (one - grid[ic * gs.len() + ig]).abs() <= 1e-9 * r.i_max_cd,
+                "({cc}, {g})"
+            );
+        }
+    }
+    assert_eq!(t.intensity_dir_cd(DVec3::ZERO), 0.0);
+    assert_eq!(t.intensity_cd(f64::NAN, 3.0), 0.0);
+    let b = t.intensity_batch_cd(&[(f64::INFINITY, 1.0), (10.0, 45.0)]);
+    assert_eq!(b[0], 0.0);
+    assert!((b[1] - t.intensity_cd(10.0, 45.0)).abs() <= 1e-9 * r.i_max_cd);
+    assert!(t.sample_dirs_cd(&[]).unwrap().is_empty());
+}
+
+/// The shaded plane (the seed's Figure 5 setting): GPU and CPU images agree
+/// within the lookup tolerance times the largest cos/d² (1/h²); bilinear and
+/// Catmull-Rom differ; the EXR reads back with the same values.
+#[test]
+fn shaded_plane_gpu_matches_cpu() {
+    let Some(c) = ctx("shaded_plane_gpu_matches_cpu") else {
+        return;
+    };
+    let eps = subtexel_precision(c, 4097).unwrap().max_weight_error;
+    let (r, _) = rendered("roadway.ldt", 5);
+    let view = PlaneView {
+        pixels: 96,
+        ..PlaneView::default()
+    };
+    let mut images = Vec::new();
+    for lookup in [HardwareLookup::Linear, HardwareLookup::CatmullRomLinearFetch] {
+        let t = RealtimeTexture::new(c, &r, None, Precision::F32, lookup).unwrap();
+        let gpu = shading::shade_gpu(&t, &view).unwrap();
+        let cpu = shading::shade_cpu(t.exact(), &view).unwrap();
+        let worst = gpu.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let tol = lookup_tolerance(&r, lookup, eps) * r.i_max_cd / (view.height_m * view.height_m);
+        let e_max = cpu.iter().copied().fold(0.0, f64::max);
+        println!("{lookup:?}: E max {e_max:.1} lx, max |gpu - cpu| = {worst:.3e} lx (tol {tol:.2e})");
+        assert!(e_max > 0.0);
+        assert!(worst <= tol, "{lookup:?}: {worst} > {tol}");
+        images.push(gpu);
+    }
+    let diff: Vec<f64> = images[0].iter().zip(&images[1]).map(|(a, b)| a - b).collect();
+    assert!(
+        diff.iter().any(|d| d.abs() > 1e-3),
+        "bilinear and Catmull-Rom shade differently"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("diff.exr");
+    shading::write_exr(&path, &view, &diff, "bilinear - catmull-rom").unwrap();
+    let img = exr::prelude::read_first_flat_layer_from_file(&path).unwrap();
+    let back = img.layer_data.channel_data.list[0]
+        .sample_data
+        .values_as_f32()
+        .collect::<Vec<f32>>();
+    assert_eq!(back.len(), diff.len());
+    for (a, b) in back.iter().zip(&diff) {
+        assert_eq!(*a, *b as f32);
+    }
+    let png = shading::png(&view, &diff, shading::Tone::Diverging).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    assert!(shading::shade_gpu(
+        &RealtimeTexture::new(c, &r, None, Precision::F32, HardwareLookup::Linear).unwrap(),
+        &PlaneView { pixels: 0, ..view }
+    )
+    .is_err());
+}
+
+/// The trade table's `+gpu` rows: measured like the CPU rows (truth and
+/// withheld), naming the adapter; their errors match the exact lookup of the
+/// same texture to within the hardware's difference.
+#[test]
+fn trade_table_gpu_rows() {
+    use photosolid::compare::trade::{trade_table, TradeOptions};
+    use photosolid::compare::{Against, CompareOptions, Directions};
+    let Some(c) = ctx("trade_table_gpu_rows") else {
+        return;
+    };
+    let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/batwing.ldt")).unwrap();
+    for against in [Against::Truth, Against::Withheld] {
+        let opts = TradeOptions {
+            factors: vec![5],
+            compare: CompareOptions {
+                against: Some(against),
+                truth: photosolid::synth::Truth::of_luminaire(&lum),
+                directions: Directions::Dense(2000),
+                factor: 2,
+                tolerance: 0.01,
+                timing_samples: 500,
+                timing_repeats: 1,
+                ..CompareOptions::default()
+            },
+            gpu: true,
+        };
+        let t = trade_table(&lum.distribution, None, &opts, &|_, _, _| {}).unwrap();
+        let row = |name: &str| t.rows.iter().find(|r| r.representation == name).unwrap();
+        for (gpu, cpu) in [
+            ("catmull-rom@x5/bilinear+gpu", "catmull-rom@x5/bilinear"),
+            ("catmull-rom@x5/catmull-rom+gpu", "catmull-rom@x5/catmull-rom"),
+        ] {
+            let (g, e) = (row(gpu), row(cpu));
+            println!("{against}: {gpu}: {g:?}");
+            assert_eq!(g.adapter.as_deref(), Some(c.adapter().to_string().as_str()));
+            assert!(g.ns_per_sample_gpu.is_some_and(|v| v > 0.0) && g.ns_per_sample > 0.0);
+            assert!(g.subtexel_bits.is_some_and(|b| b >= 4.0));
+            let d = g.hardware_vs_exact_max_pct.unwrap();
+            assert!(d < 0.01, "{gpu}: {d} % of I_max from the exact lookup");
+            assert!(e.ns_per_sample_gpu.is_none() && e.adapter.is_none());
+            // Same texels, same metrics: the radial maximum moves by at most
+            // the hardware difference, plus f16 rounding (half an ulp, 2^-11
+            // of I_max) where the adapter cannot filter R32Float.
+            let f16 = if g.texture_format.as_deref() == Some("R16Float") {
+                100.0 * 2f64.powi(-11)
+            } else {
+                0.0
+            };
+            assert!(
+                (g.radial_max_pct - e.radial_max_pct).abs() <= d + f16 + 1e-6,
+                "{gpu}: {g:?} vs {e:?}"
+            );
+        }
+    }
+}
