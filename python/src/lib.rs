@@ -135,7 +135,11 @@ impl Luminaire {
     fn full_grid<'py>(
         &self,
         py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray2<f64>>,
+    )> {
         let d = self.lum.distribution.expand(1);
         let c = d.c_angles().to_vec();
         let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
@@ -207,7 +211,10 @@ impl Luminaire {
         let recon: Recon = arg("filter", filter)?;
         let d = dirs.as_array();
         if d.ncols() != 3 {
-            return Err(PyValueError::new_err(format!("dirs has shape {:?}: expected (N, 3)", d.shape())));
+            return Err(PyValueError::new_err(format!(
+                "dirs has shape {:?}: expected (N, 3)",
+                d.shape()
+            )));
         }
         let v: Vec<DVec3> = d.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2])).collect();
         if let Some(i) = v.iter().position(|x| !(x.length() > 0.0 && x.is_finite())) {
