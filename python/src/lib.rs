@@ -76,6 +76,9 @@ fn to_py<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py,
     py.import("json")?.call_method1("loads", (text,))
 }
 
+/// `(vertices (V, 3) f64 cd, faces (F, 3) i64)` of a solid.
+type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
+
 /// A loaded photometric file (IES LM-63 or EULUMDAT).
 #[pyclass(frozen, module = "photosolid")]
 struct Luminaire {
@@ -269,7 +272,7 @@ impl Luminaire {
         py: Python<'py>,
         filter: &str,
         factor: usize,
-    ) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+    ) -> PyResult<MeshArrays<'py>> {
         let recon: Recon = arg("filter", filter)?;
         if factor == 0 {
             return Err(PyValueError::new_err("factor must be at least 1"));
