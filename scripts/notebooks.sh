@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the cross-check notebooks (notebooks/*.ipynb) headless; exits non-zero when any cell fails.
 # Usage: bash scripts/notebooks.sh [NOTEBOOK.ipynb ...]   (from anywhere; default: every notebook)
+#        bash scripts/notebooks.sh --setup                 (only create/update the virtual environment)
 #
 # - creates/updates the virtual environment .venv-notebooks/ from notebooks/requirements.txt (pinned);
 #   the install is skipped when the requirements did not change since the last one (stamp file);
@@ -28,6 +29,11 @@ if [ "$(cat "$STAMP" 2>/dev/null || true)" != "$WANT" ]; then
   "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r "$REQ" \
     || { echo "notebooks: pip install -r notebooks/requirements.txt failed"; exit 3; }
   echo "$WANT" > "$STAMP"
+fi
+[ "${1:-}" = "--setup" ] && exit 0
+# The notebooks use the Python bindings: build and install the wheel when the venv lacks it.
+if ! "$VENV/bin/python" -c "import photosolid" >/dev/null 2>&1; then
+  bash scripts/python.sh --no-tests || { echo "notebooks: the photosolid wheel could not be built"; exit 1; }
 fi
 
 if [ -z "${PHOTOSOLID_BIN:-}" ]; then

@@ -170,6 +170,16 @@ fi
 echo "== fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 60) s (scripts/fuzz-smoke.sh; RELIABILITY.md)"
 bash scripts/fuzz-smoke.sh
 
+echo "== Python bindings: wheel (maturin), pytest over python/tests: bindings vs the CLI, Dask recipe (scripts/python.sh)"
+py_rc=0
+bash scripts/python.sh || py_rc=$?
+if [ "$py_rc" = 3 ]; then
+  need "Python bindings (python/tests)" "the virtual environment could not be set up (see above)"
+elif [ "$py_rc" != 0 ]; then
+  echo "Python bindings failed"
+  exit 1
+fi
+
 echo "== notebooks: cross-checks with trimesh / colour-science (executed copies and speed.json in target/notebooks/)"
 nb_rc=0
 bash scripts/notebooks.sh || nb_rc=$?

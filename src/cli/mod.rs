@@ -9,6 +9,7 @@ macro_rules! outln {
     }};
 }
 
+mod batch;
 mod compare;
 mod convert;
 mod demo;
@@ -44,6 +45,8 @@ pub struct Cli {
 enum Command {
     /// Print the photometric summary of one file (flux, LOR, beam angles, ...).
     Info(info::InfoArgs),
+    /// Analyse every .ies/.ldt file under the paths into one table (Parquet, JSON Lines) and a catalogue page.
+    Batch(batch::BatchArgs),
     /// Check files and directories (recursive); exit 1 if any file fails to load.
     Validate(validate::ValidateArgs),
     /// Convert between IES, EULUMDAT and TM-33-23 XML (format from OUT's extension).
@@ -121,6 +124,7 @@ fn load(path: &PathBuf, read: &ReadArgs) -> anyhow::Result<photosolid::Luminaire
 pub fn run(cli: Cli) -> anyhow::Result<i32> {
     match cli.command {
         Command::Info(a) => info::run(a),
+        Command::Batch(a) => batch::run(a),
         Command::Validate(a) => validate::run(a),
         Command::Convert(a) => convert::run(a),
         Command::Synth(a) => synth::run(a),

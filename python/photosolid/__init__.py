@@ -1,0 +1,36 @@
+"""photosolid: read, analyse, reconstruct and compare the photometric solids of luminaires.
+
+Python bindings over the photosolid Rust library (the same numbers as the ``photosolid`` CLI).
+
+- ``load(path)`` -> ``Luminaire`` with numpy arrays ``c_deg``, ``gamma_deg`` (degrees) and ``candela``
+  (cd, shape (n_c, n_gamma)), ``photometry()`` (the dict of ``photosolid info --json``), ``sample``,
+  ``sample_dirs``, ``texture``, ``mesh``, ``compare``, ``fit``;
+- ``batch(paths)`` -> ``pyarrow.Table`` with the columns of ``photosolid batch`` (docs/batch.md);
+- errors raise ``PhotosolidError`` with ``path``, ``line``, ``column``, ``code`` and ``message``.
+
+The GIL is released while Rust works, so threads (e.g. Dask's) run files in parallel.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Iterable, Union
+
+from ._native import Luminaire, PhotosolidError, __version__, batch_parquet, load
+
+__all__ = ["Luminaire", "PhotosolidError", "__version__", "batch", "load"]
+
+
+def batch(paths: Union[str, os.PathLike, Iterable[Union[str, os.PathLike]]]) -> "pyarrow.Table":  # noqa: F821
+    """The batch table of every .ies/.ldt file under ``paths`` (directories recursively), one row per file.
+
+    Equal to ``photosolid batch PATHS -o OUT.parquet`` read with ``pyarrow.parquet.read_table``. A file that
+    does not load is a row with ``ok`` False and its error, not an exception. Needs pyarrow.
+    """
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    data = batch_parquet([os.fspath(p) for p in paths])
+    return pq.read_table(pa.BufferReader(data))

@@ -1,0 +1,15 @@
+"""Type stubs of the photosolid package."""
+
+import os
+from typing import Iterable, Union
+
+import pyarrow
+
+from ._native import Luminaire as Luminaire
+from ._native import PhotosolidError as PhotosolidError
+from ._native import __version__ as __version__
+from ._native import batch_parquet as batch_parquet
+from ._native import load as load
+
+def batch(paths: Union[str, os.PathLike[str], Iterable[Union[str, os.PathLike[str]]]]) -> pyarrow.Table:
+    """The batch table (columns of ``photosolid batch``, docs/batch.md) of every .ies/.ldt file under ``paths``."""

@@ -1,0 +1,82 @@
+"""Type stubs of the native module photosolid._native (python/src/lib.rs)."""
+
+import os
+from typing import Any, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class PhotosolidError(Exception):
+    """A photosolid error with its location."""
+
+    path: Optional[str]
+    """The file, when the error concerns one."""
+    line: Optional[int]
+    """1-based line in the file, when known."""
+    column: Optional[int]
+    """1-based column, when known."""
+    code: str
+    """``invalid``, ``unsupported``, ``io``, ``model`` or ``unsupported-operation``."""
+    message: str
+    """The full message (also ``str(error)``)."""
+
+class Luminaire:
+    """A loaded photometric file (IES LM-63 or EULUMDAT)."""
+
+    @property
+    def path(self) -> str:
+        """The file, as given to ``load``."""
+    @property
+    def c_deg(self) -> npt.NDArray[np.float64]:
+        """Stored C-planes, degrees, shape (n_c,)."""
+    @property
+    def gamma_deg(self) -> npt.NDArray[np.float64]:
+        """Gamma angles, degrees (0 = nadir), shape (n_gamma,)."""
+    @property
+    def candela(self) -> npt.NDArray[np.float64]:
+        """Measured intensities, cd, shape (n_c, n_gamma)."""
+    def full_grid(
+        self,
+    ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """The grid on the full circle of planes (``grid --full``): c_deg (n,), gamma_deg (n_gamma,), cd (n, n_gamma)."""
+    @property
+    def symmetry(self) -> str:
+        """``none``, ``rotational``, ``c0-c180``, ``c90-c270`` or ``quadrant``."""
+    def photometry(self) -> dict[str, Any]:
+        """The photometric summary: exactly ``photosolid info FILE --json``."""
+    def sample(
+        self, filter: str, c_deg: npt.ArrayLike, gamma_deg: npt.ArrayLike
+    ) -> npt.NDArray[np.float64]:
+        """Intensity (cd) of reconstruction ``filter`` at each (C, gamma) pair (degrees); same shape as the inputs."""
+    def sample_dirs(self, filter: str, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Intensity (cd) along each row of ``dirs`` (N, 3), luminaire frame (+x = C0, +y = C90, -z = nadir); shape (N,)."""
+    def texture(self, filter: str = "catmull-rom", factor: int = 5) -> npt.NDArray[np.float32]:
+        """The light texture (EXR channel Y of ``photosolid texture``): I / I_max, shape (36 factor, 72 factor)."""
+    def mesh(
+        self, filter: str = "catmull-rom", factor: int = 5
+    ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+        """The photometric solid: vertices (V, 3) in cd and faces (F, 3), for ``trimesh.Trimesh(vertices, faces)``."""
+    def compare(
+        self,
+        recons: Optional[Sequence[str]] = None,
+        against: Optional[str] = None,
+        vs: Optional["Luminaire"] = None,
+        folds: int = 2,
+        normalize: str = "cd",
+        directions: str = "dense:20000",
+        tolerance: float = 1e-3,
+        factor: int = 3,
+    ) -> dict[str, Any]:
+        """The comparison of ``photosolid compare FILE --json`` as a dict."""
+    def fit(
+        self, max_lights: int = 2, error: str = "relative", tolerance: float = 0.01, guard: float = 0.02
+    ) -> dict[str, Any]:
+        """The fit report of ``photosolid fit FILE --json`` as a dict."""
+
+def load(path: Union[str, os.PathLike[str]]) -> Luminaire:
+    """Load an .ies or .ldt file; raises PhotosolidError naming the file and line when it is bad."""
+
+def batch_parquet(paths: Sequence[Union[str, os.PathLike[str]]]) -> bytes:
+    """The batch table of every .ies/.ldt file under ``paths`` as Parquet bytes."""

@@ -1,0 +1,406 @@
+//! `photosolid._native`: the Rust side of the Python package `photosolid`.
+//!
+//! A thin layer over the photosolid library: every number comes from the
+//! same functions as the CLI (`info --json`, `fit --json`, `compare --json`,
+//! `photosolid batch`), so the values are equal. The GIL is released
+//! (`Python::detach`) around all Rust work. Errors raise
+//! `photosolid.PhotosolidError` with `path`, `line`, `column`, `code` and
+//! `message` attributes. Angles are degrees in the library's frame (C0 = +x,
+//! C90 = +y, γ = 0 at nadir, -z); intensities are candela.
+
+use std::path::PathBuf;
+
+use glam::DVec3;
+use numpy::ndarray::{Array2, ArrayD};
+use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLike2, PyArrayLikeDyn};
+use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
+use photosolid::error::{Error, ErrorRecord};
+use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
+use photosolid::reconstruct::{render_with, Filter, LightTexture, Recon, Reconstructions, RenderOptions};
+use photosolid::report::InfoReport;
+use photosolid::solid::Units;
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+
+pyo3::create_exception!(
+    photosolid,
+    PhotosolidError,
+    PyException,
+    "A photosolid error: `path`, `line` and `column` (None when unknown), `code` (`invalid`, `unsupported`, \
+     `io`, `model`, `unsupported-operation`) and `message` (the full text)."
+);
+
+/// The Python exception of a library error, with its location as attributes.
+fn py_err(e: Error) -> PyErr {
+    let rec = ErrorRecord::from(&e);
+    let path: Option<String> = match &e {
+        Error::Parse(p) => Some(p.path.display().to_string()),
+        Error::Io { path, .. } => Some(path.display().to_string()),
+        _ => None,
+    };
+    Python::attach(|py| {
+        let err = PhotosolidError::new_err(rec.message.clone());
+        let v = err.value(py);
+        let set = || -> PyResult<()> {
+            v.setattr("path", path)?;
+            v.setattr("line", rec.line)?;
+            v.setattr("column", rec.column)?;
+            v.setattr("code", rec.code)?;
+            v.setattr("message", rec.message.clone())?;
+            Ok(())
+        };
+        match set() {
+            Ok(()) => err,
+            Err(e) => e,
+        }
+    })
+}
+
+fn model_err(e: photosolid::ModelError) -> PyErr {
+    py_err(Error::Model(e))
+}
+
+/// A `ValueError` for an argument that does not parse.
+fn arg<T: std::str::FromStr>(name: &str, s: &str) -> PyResult<T>
+where
+    T::Err: std::fmt::Display,
+{
+    s.parse()
+        .map_err(|e| PyValueError::new_err(format!("{name} = {s:?}: {e}")))
+}
+
+/// A serde value as a Python object (through `json.loads`, so it equals the CLI's JSON).
+fn to_py<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(v).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// `(vertices (V, 3) f64 cd, faces (F, 3) i64)` of a solid.
+type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
+
+/// A loaded photometric file (IES LM-63 or EULUMDAT).
+#[pyclass(frozen, module = "photosolid")]
+struct Luminaire {
+    path: String,
+    lum: photosolid::Luminaire,
+}
+
+/// Load an .ies or .ldt file. Raises `PhotosolidError` naming the file and line when it is bad.
+#[pyfunction]
+fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
+    let lum = py.detach(|| photosolid::load(&path)).map_err(py_err)?;
+    Ok(Luminaire {
+        path: path.display().to_string(),
+        lum,
+    })
+}
+
+impl Luminaire {
+    /// The reconstructions of the measured grid that `recon` names.
+    fn field_of(&self, recon: Recon) -> Result<Reconstructions, photosolid::ModelError> {
+        Reconstructions::new(self.lum.distribution.clone(), &[recon])
+    }
+}
+
+#[pymethods]
+impl Luminaire {
+    /// The file, as given to `load`.
+    #[getter]
+    fn path(&self) -> &str {
+        &self.path
+    }
+
+    /// Stored C-planes, degrees, shape (n_c,).
+    #[getter]
+    fn c_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.lum.distribution.c_angles())
+    }
+
+    /// γ angles, degrees (0 = nadir), shape (n_gamma,).
+    #[getter]
+    fn gamma_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.lum.distribution.gamma_angles())
+    }
+
+    /// Measured intensities, cd, shape (n_c, n_gamma): `candela[i, j]` at `c_deg[i]`, `gamma_deg[j]`.
+    #[getter]
+    fn candela<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let d = &self.lum.distribution;
+        let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(a.into_pyarray(py))
+    }
+
+    /// The grid on the full circle of planes (symmetry expanded), as `photosolid grid FILE --full`:
+    /// `(c_deg (n,), gamma_deg (n_gamma,), candela (n, n_gamma))`, degrees and cd.
+    #[allow(clippy::type_complexity)]
+    fn full_grid<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray1<f64>>,
+        Bound<'py, PyArray2<f64>>,
+    )> {
+        let d = self.lum.distribution.expand(1);
+        let c = d.c_angles().to_vec();
+        let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok((
+            PyArray1::from_vec(py, c),
+            PyArray1::from_slice(py, d.gamma_angles()),
+            a.into_pyarray(py),
+        ))
+    }
+
+    /// Symmetry of the stored planes: `none`, `rotational`, `c0-c180`, `c90-c270`, `quadrant`.
+    #[getter]
+    fn symmetry(&self) -> String {
+        serde_json::to_value(self.lum.distribution.symmetry())
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default()
+    }
+
+    /// The photometric summary as a dict: exactly `photosolid info FILE --json`.
+    fn photometry<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let report = py.detach(|| InfoReport::of(&self.lum));
+        to_py(py, &report)
+    }
+
+    /// Intensity (cd) of reconstruction `filter` (a filter such as `bilinear`,
+    /// `catmull-rom`, `pchip`; or `measured`, `fitted-gl`, a texture spec) at
+    /// each (C, γ) pair in degrees; `c_deg` and `gamma_deg` have one shape,
+    /// the result has it too (float64).
+    fn sample<'py>(
+        &self,
+        py: Python<'py>,
+        filter: &str,
+        c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let recon: Recon = arg("filter", filter)?;
+        let (c, g) = (c_deg.as_array(), gamma_deg.as_array());
+        if c.shape() != g.shape() {
+            return Err(PyValueError::new_err(format!(
+                "c_deg has shape {:?} and gamma_deg {:?}: they must be equal",
+                c.shape(),
+                g.shape()
+            )));
+        }
+        let shape = c.shape().to_vec();
+        let (c, g): (Vec<f64>, Vec<f64>) = (c.iter().copied().collect(), g.iter().copied().collect());
+        let out = py
+            .detach(|| -> Result<Vec<f64>, photosolid::ModelError> {
+                let recs = self.field_of(recon)?;
+                let field = recs.field(recon)?;
+                Ok(c.iter().zip(&g).map(|(&c, &g)| field.intensity_cd(c, g)).collect())
+            })
+            .map_err(model_err)?;
+        let a = ArrayD::from_shape_vec(shape, out).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(a.into_pyarray(py))
+    }
+
+    /// Intensity (cd) of reconstruction `filter` along each row of `dirs`, shape
+    /// (N, 3) (any length, not zero; luminaire frame: +x = C0, +y = C90, -z =
+    /// nadir); returns shape (N,).
+    fn sample_dirs<'py>(
+        &self,
+        py: Python<'py>,
+        filter: &str,
+        dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let recon: Recon = arg("filter", filter)?;
+        let d = dirs.as_array();
+        if d.ncols() != 3 {
+            return Err(PyValueError::new_err(format!(
+                "dirs has shape {:?}: expected (N, 3)",
+                d.shape()
+            )));
+        }
+        let v: Vec<DVec3> = d.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2])).collect();
+        if let Some(i) = v.iter().position(|x| !(x.length() > 0.0 && x.is_finite())) {
+            return Err(PyValueError::new_err(format!("dirs[{i}] is zero or not finite")));
+        }
+        let out = py
+            .detach(|| -> Result<Vec<f64>, photosolid::ModelError> {
+                let recs = self.field_of(recon)?;
+                let field = recs.field(recon)?;
+                Ok(v.iter().map(|&x| field.intensity_dir_cd(x.normalize())).collect())
+            })
+            .map_err(model_err)?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+
+    /// The light texture `photosolid texture FILE --filter F --factor K` writes
+    /// (its EXR channel `Y`): float32, shape (height, width) = (36·K, 72·K)
+    /// (γ rows from nadir, C columns from C0; texel centres at (i + 0.5)·180/height
+    /// and (j + 0.5)·360/width degrees), values I / I_max (multiply by
+    /// `photometry()["max_cd"]` for cd).
+    #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
+    fn texture<'py>(&self, py: Python<'py>, filter: &str, factor: u32) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        let filter: Filter = arg("filter", filter)?;
+        if !(1..=32).contains(&factor) {
+            return Err(PyValueError::new_err(format!("factor = {factor}: outside 1..=32")));
+        }
+        let r = py
+            .detach(|| -> Result<_, photosolid::ModelError> {
+                let tex = LightTexture::new(&self.lum.distribution)?;
+                render_with(
+                    &tex,
+                    &RenderOptions {
+                        filter,
+                        factor,
+                        ..Default::default()
+                    },
+                )
+            })
+            .map_err(model_err)?;
+        let a = Array2::from_shape_vec((r.mapping.height, r.mapping.width), r.data)
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(a.into_pyarray(py))
+    }
+
+    /// The photometric solid of reconstruction `filter` (as `photosolid mesh
+    /// FILE --filter F --factor K`): `(vertices, faces)`, float64 (V, 3) in cd
+    /// and int64 (F, 3) vertex indices, counter-clockwise seen from outside:
+    /// `trimesh.Trimesh(vertices, faces)` takes them as they are.
+    #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
+    fn mesh<'py>(
+        &self,
+        py: Python<'py>,
+        filter: &str,
+        factor: usize,
+    ) -> PyResult<MeshArrays<'py>> {
+        let recon: Recon = arg("filter", filter)?;
+        if factor == 0 {
+            return Err(PyValueError::new_err("factor must be at least 1"));
+        }
+        let (v, f) = py
+            .detach(|| -> Result<_, photosolid::ModelError> {
+                let mesh = self.field_of(recon)?.solid_in(recon, factor, Units::Candela)?;
+                let v: Vec<f64> = mesh.positions().iter().flatten().map(|&x| f64::from(x)).collect();
+                let f: Vec<i64> = mesh.triangles().iter().flatten().map(|&i| i64::from(i)).collect();
+                Ok((v, f))
+            })
+            .map_err(model_err)?;
+        let (nv, nf) = (v.len() / 3, f.len() / 3);
+        let bad = |e: numpy::ndarray::ShapeError| PyValueError::new_err(e.to_string());
+        Ok((
+            Array2::from_shape_vec((nv, 3), v).map_err(bad)?.into_pyarray(py),
+            Array2::from_shape_vec((nf, 3), f).map_err(bad)?.into_pyarray(py),
+        ))
+    }
+
+    /// Compare reconstructions (as `photosolid compare FILE --json`): the
+    /// comparison as a dict. `recons`: names (default: the CLI's); `against`:
+    /// `truth`, `withheld` or a reconstruction (default as the CLI: truth when
+    /// the file records one, else withheld; with `vs`, catmull-rom of `vs`).
+    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = 1e-3, factor = 3))]
+    #[allow(clippy::too_many_arguments)]
+    fn compare<'py>(
+        &self,
+        py: Python<'py>,
+        recons: Option<Vec<String>>,
+        against: Option<&str>,
+        vs: Option<PyRef<'py, Luminaire>>,
+        folds: usize,
+        normalize: &str,
+        directions: &str,
+        tolerance: f64,
+        factor: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let defaults = CompareOptions::default();
+        let recons = match recons {
+            Some(rs) => rs.iter().map(|r| arg::<Recon>("recons", r)).collect::<PyResult<_>>()?,
+            None => defaults.recons.clone(),
+        };
+        let opts = CompareOptions {
+            recons,
+            against: against.map(|a| arg::<Against>("against", a)).transpose()?,
+            truth: photosolid::synth::Truth::of_luminaire(&self.lum),
+            folds,
+            normalize: arg::<Normalize>("normalize", normalize)?,
+            lamp_flux_lm: [
+                self.lum.declared.lamp_flux_lm,
+                vs.as_ref().and_then(|o| o.lum.declared.lamp_flux_lm),
+            ],
+            directions: arg::<Directions>("directions", directions)?,
+            tolerance,
+            factor,
+            ..defaults
+        };
+        let other = vs.as_ref().map(|o| &o.lum.distribution);
+        let mut c = py
+            .detach(|| compare(&self.lum.distribution, other, &opts))
+            .map_err(model_err)?;
+        c.file = self.path.clone();
+        c.vs = vs.as_ref().map(|o| o.path.clone());
+        to_py(py, &c)
+    }
+
+    /// Fit at most `max_lights` OpenGL lights (as `photosolid fit FILE --json`): the fit report as a dict.
+    #[pyo3(signature = (max_lights = 2, error = "relative", tolerance = DEFAULT_TOLERANCE, guard = DEFAULT_GUARD))]
+    fn fit<'py>(
+        &self,
+        py: Python<'py>,
+        max_lights: usize,
+        error: &str,
+        tolerance: f64,
+        guard: f64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let metric = match error {
+            "relative" => ErrorMetric::Relative,
+            "solid-angle" => ErrorMetric::SolidAngle,
+            e => return Err(PyValueError::new_err(format!("error = {e:?}: relative or solid-angle"))),
+        };
+        let options = FitOptions {
+            max_lights,
+            metric,
+            guard,
+            tolerance,
+            ..Default::default()
+        };
+        let report = py
+            .detach(|| fit(&self.lum.distribution, &options).map(|f| FitReport::of(&f)))
+            .map_err(model_err)?;
+        to_py(py, &report)
+    }
+
+    fn __repr__(&self) -> String {
+        let d = &self.lum.distribution;
+        format!(
+            "<photosolid.Luminaire {:?}: {} C-planes x {} gamma angles>",
+            self.path,
+            d.n_c(),
+            d.n_gamma()
+        )
+    }
+}
+
+/// The batch table of every .ies/.ldt file under `paths` (as `photosolid
+/// batch PATHS -o OUT.parquet`) as Parquet bytes; `photosolid.batch` reads
+/// them into a `pyarrow.Table`.
+#[pyfunction]
+fn batch_parquet<'py>(py: Python<'py>, paths: Vec<PathBuf>) -> PyResult<Bound<'py, PyBytes>> {
+    let bytes = py
+        .detach(|| -> photosolid::Result<Vec<u8>> {
+            let files = photosolid::batch::collect(&paths)?;
+            let rows = photosolid::batch::run(&files, &Default::default(), &|_, _, _| {});
+            photosolid::batch::table::parquet_bytes(&rows)
+        })
+        .map_err(py_err)?;
+    Ok(PyBytes::new(py, &bytes))
+}
+
+/// The native module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("PhotosolidError", m.py().get_type::<PhotosolidError>())?;
+    m.add_class::<Luminaire>()?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

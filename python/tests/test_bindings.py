@@ -1,0 +1,159 @@
+"""The Python bindings against the CLI: every value equals the CLI's JSON (or its files, read with independent
+readers: OpenImageIO for the EXR, trimesh for the solid, pyarrow for the Parquet table), arrays have the
+documented shapes, dtypes and units, errors carry path/line/message.
+
+Needs PHOTOSOLID_BIN (the CLI binary) and PHOTOSOLID_ROOT (the repository), as scripts/python.sh sets them.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+
+import photosolid
+
+ROOT = Path(os.environ.get("PHOTOSOLID_ROOT", Path(__file__).resolve().parents[2]))
+BIN = os.environ.get("PHOTOSOLID_BIN", str(ROOT / "target" / "debug" / "photosolid"))
+DATA = ROOT / "data"
+FILES = sorted(p for p in DATA.iterdir() if p.suffix in (".ies", ".ldt"))
+
+
+def cli_json(*args: str):
+    out = subprocess.run([BIN, *args], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.name)
+def test_grid_and_photometry_equal_the_cli(path: Path):
+    lum = photosolid.load(path)
+    grid = cli_json("grid", str(path))
+    assert lum.c_deg.dtype == np.float64 and lum.c_deg.shape == (len(grid["c_deg"]),)
+    assert lum.gamma_deg.shape == (len(grid["gamma_deg"]),)
+    assert lum.candela.shape == (lum.c_deg.size, lum.gamma_deg.size)
+    np.testing.assert_array_equal(lum.c_deg, grid["c_deg"])
+    np.testing.assert_array_equal(lum.gamma_deg, grid["gamma_deg"])
+    np.testing.assert_array_equal(lum.candela, np.array(grid["cd"]))
+    assert lum.symmetry == grid["symmetry"]
+    # The same serialiser on both sides: the dicts are equal, key for key.
+    assert lum.photometry() == cli_json("info", str(path), "--json")
+
+
+def test_sample_reproduces_the_measurements_and_directions_agree():
+    lum = photosolid.load(DATA / "roadway.ldt")
+    c, g = np.meshgrid(lum.c_deg, lum.gamma_deg, indexing="ij")
+    # Interpolating filters return the measured values at the measured angles (cd), with the input's shape.
+    for f in ("bilinear", "catmull-rom", "pchip"):
+        v = lum.sample(f, c, g)
+        assert v.shape == c.shape and v.dtype == np.float64
+        np.testing.assert_allclose(v, lum.candela, rtol=0, atol=1e-9 * lum.candela.max())
+    # sample_dirs in the luminaire frame: +x = C0, +y = C90, -z = nadir; any length.
+    rng = np.random.default_rng(7)
+    cs, gs = rng.uniform(0, 360, 500), rng.uniform(0, 180, 500)
+    cr, gr = np.radians(cs), np.radians(gs)
+    dirs = np.stack([np.sin(gr) * np.cos(cr), np.sin(gr) * np.sin(cr), -np.cos(gr)], axis=1) * 3.0
+    a = lum.sample_dirs("catmull-rom", dirs)
+    b = lum.sample("catmull-rom", cs, gs)
+    assert a.shape == (500,)
+    np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-9 * lum.candela.max())
+    with pytest.raises(ValueError, match="shape"):
+        lum.sample("bilinear", [0.0, 1.0], [0.0])
+    with pytest.raises(ValueError, match="filter"):
+        lum.sample("no-such-filter", [0.0], [0.0])
+
+
+def test_texture_equals_the_cli_exr(tmp_path: Path):
+    import OpenImageIO as oiio
+
+    path = DATA / "batwing.ldt"
+    exr = tmp_path / "t.exr"
+    subprocess.run([BIN, "texture", str(path), "--filter", "pchip", "--factor", "2", "-o", str(exr)],
+                   check=True, capture_output=True)
+    ours = photosolid.load(path).texture("pchip", 2)
+    assert ours.dtype == np.float32
+    inp = oiio.ImageInput.open(str(exr))
+    theirs = inp.read_image(format="float")[:, :, 0]
+    inp.close()
+    assert ours.shape == theirs.shape
+    np.testing.assert_array_equal(ours, theirs)
+
+
+def test_mesh_goes_into_trimesh_and_equals_the_cli(tmp_path: Path):
+    import trimesh
+
+    path = DATA / "spot_p8_c40.ies"
+    v, f = photosolid.load(path).mesh("bilinear", 3)
+    assert v.shape[1] == 3 and f.shape[1] == 3 and f.dtype == np.int64
+    m = trimesh.Trimesh(v, f, process=False)
+    cli = cli_json("mesh", str(path), "--filter", "bilinear", "--factor", "3", "-o", str(tmp_path / "s.ply"),
+                   "--json")
+    assert len(f) == cli["triangles"]
+    # Volume (cd^3) by trimesh's own formula on our arrays against the CLI's: f32 vertices, relative 1e-5.
+    assert m.volume == pytest.approx(cli["volume"], rel=1e-5)
+    assert m.area == pytest.approx(cli["area"], rel=1e-5)
+
+
+def test_fit_and_compare_equal_the_cli():
+    path = DATA / "cosine_p5.ldt"
+    lum = photosolid.load(path)
+    assert lum.fit() == cli_json("fit", str(path), "--json")
+    ours = lum.compare(recons=["bilinear", "catmull-rom"], against="withheld", directions="dense:2000")
+    theirs = cli_json("compare", str(path), "--recon", "bilinear,catmull-rom", "--against", "withheld",
+                      "--directions", "dense:2000", "--json")
+    assert ours["reference"] == theirs["reference"]
+    assert [r["name"] for r in ours["results"]] == [r["name"] for r in theirs["results"]]
+    # Everything but the timings (measured anew on each run) is equal.
+    for a, b in zip(ours["results"], theirs["results"]):
+        for k in a:
+            if "time" not in k and "pareto" not in k:
+                assert a[k] == b[k], k
+
+
+def test_errors_carry_path_line_and_message(tmp_path: Path):
+    bad = tmp_path / "bad.ies"
+    bad.write_text("IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 x\n")
+    with pytest.raises(photosolid.PhotosolidError) as e:
+        photosolid.load(bad)
+    assert e.value.path == str(bad)
+    assert e.value.line == 3
+    assert e.value.code == "invalid"
+    assert str(bad) in e.value.message and str(e.value) == e.value.message
+    with pytest.raises(photosolid.PhotosolidError) as e:
+        photosolid.load(tmp_path / "missing.ldt")
+    assert e.value.code == "io" and e.value.line is None and e.value.path.endswith("missing.ldt")
+
+
+def test_batch_equals_the_cli_table(tmp_path: Path):
+    work = tmp_path / "files"
+    shutil.copytree(DATA, work, ignore=shutil.ignore_patterns("*.toml"))
+    (work / "broken.ldt").write_text("not eulumdat\n")
+    table = photosolid.batch([work])
+    subprocess.run([BIN, "batch", str(work), "-o", str(tmp_path / "t.parquet")], check=True, capture_output=True)
+    cli = pq.read_table(tmp_path / "t.parquet")
+    assert table.schema == cli.schema
+    assert table.num_rows == len(FILES) + 1
+    timing = {"parse_ms", "holdout_ms", "fit_ms"}
+    for name in table.column_names:
+        if name not in timing:
+            assert table[name].to_pylist() == cli[name].to_pylist(), name
+    rows = {r["path"]: r for r in table.to_pylist()}
+    broken = rows[str(work / "broken.ldt")]
+    assert broken["ok"] is False and broken["errors"] and broken["flux_lm"] is None
+    # Units as documented: flux in lm equal to info --json, angles in degrees, errors in % of I_max.
+    info = cli_json("info", str(work / "roadway.ldt"), "--json")
+    assert rows[str(work / "roadway.ldt")]["flux_lm"] == info["flux_lm"]
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.name)
+def test_full_grid_equals_grid_full(path: Path):
+    c, g, cd = photosolid.load(path).full_grid()
+    ref = cli_json("grid", str(path), "--full")
+    np.testing.assert_array_equal(c, ref["c_deg"])
+    np.testing.assert_array_equal(g, ref["gamma_deg"])
+    np.testing.assert_array_equal(cd, np.array(ref["cd"]))

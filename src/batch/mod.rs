@@ -1,0 +1,377 @@
+//! Catalogue batches: one [`BatchRecord`] row per photometric file, the
+//! table of `photosolid batch` and of the Python binding's `batch()`.
+//!
+//! Each file is loaded ([`crate::load_with`]), summarised with the numbers of
+//! `photosolid info` ([`InfoReport`]), checked by a hold-out of its own
+//! measurements ([`crate::reconstruct::holdout`], every filter, the best one
+//! kept) and fitted with OpenGL lights ([`crate::fit::fit`]). Files are
+//! processed in parallel (rayon); rows come back in input order. A file
+//! that cannot be read is a row with `ok = false` and its error, never a
+//! failed batch. The column schema is in `docs/batch.md`; the Parquet
+//! writer and reader are in [`table`] (cargo feature `parquet`), the
+//! catalogue page in [`catalogue`].
+
+pub mod catalogue;
+#[cfg(feature = "parquet")]
+pub mod table;
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, ErrorRecord};
+use crate::fit::{fit, FitOptions};
+use crate::formats::ReadOptions;
+use crate::reconstruct::{holdout, Filter, HoldoutSpec};
+use crate::report::InfoReport;
+
+/// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
+/// row, reconstruct the others (`photosolid holdout`'s default).
+pub const HOLDOUT: HoldoutSpec = HoldoutSpec {
+    c_step: 2,
+    gamma_step: 2,
+};
+
+/// One row of a batch: one file. `None` (null) where the file did not load
+/// or the quantity is undefined for it. Units are in the names: `_lm`
+/// lumens, `_cd` candela, `_deg` degrees, `_pct` percent, `_ms`
+/// milliseconds; ratios are fractions (not percent).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct BatchRecord {
+    /// The file, as found (the path given, or under a directory given).
+    pub path: String,
+    /// The file loaded (`errors` may still name a hold-out or fit that could not run).
+    pub ok: bool,
+    /// Error messages: the load error (`ok = false`, path:line: what was
+    /// expected, what was found), or `holdout: ...` / `fit: ...` when that
+    /// step could not run on a loaded file.
+    pub errors: Vec<String>,
+    /// Warning codes (kebab-case, [`crate::error::WarningCode`]): the
+    /// reader's, then the photometric consistency checks' (`flux-mismatch`, ...).
+    pub warnings: Vec<String>,
+    /// `ies` or `ldt`.
+    pub format: Option<String>,
+    /// Format version, e.g. `LM-63-2002`.
+    pub version: Option<String>,
+    /// Photometric type, `A`, `B` or `C`.
+    pub photometric_type: Option<String>,
+    /// Symmetry the stored planes rely on (`none`, `rotational`, `c0-c180`, `c90-c270`, `quadrant`).
+    pub symmetry: Option<String>,
+    /// Stored C-planes.
+    pub n_c: Option<u32>,
+    /// C-planes on the full circle after symmetry expansion.
+    pub n_c_full: Option<u32>,
+    /// γ angles.
+    pub n_gamma: Option<u32>,
+    /// First measured γ, degrees.
+    pub gamma_min_deg: Option<f64>,
+    /// Last measured γ, degrees.
+    pub gamma_max_deg: Option<f64>,
+    /// Largest intensity, cd.
+    pub max_cd: Option<f64>,
+    /// Integrated luminous flux, lm.
+    pub flux_lm: Option<f64>,
+    /// Luminaire flux the file declares, lm.
+    pub declared_flux_lm: Option<f64>,
+    /// `flux_lm / declared_flux_lm`.
+    pub flux_ratio: Option<f64>,
+    /// Light output ratio (fraction).
+    pub lor: Option<f64>,
+    /// Downward light output ratio (fraction).
+    pub dlor: Option<f64>,
+    /// Upward light output ratio (fraction).
+    pub ulor: Option<f64>,
+    /// IES beam angle (50 % of I_max) in the C0-C180 plane, degrees.
+    pub beam_angle_deg: Option<f64>,
+    /// IES field angle (10 % of I_max) in the C0-C180 plane, degrees.
+    pub field_angle_deg: Option<f64>,
+    /// IES beam angle in the C90-C270 plane, degrees.
+    pub beam_angle_c90_deg: Option<f64>,
+    /// IES field angle in the C90-C270 plane, degrees.
+    pub field_angle_c90_deg: Option<f64>,
+    /// The filter with the smallest hold-out RMS error ([`HOLDOUT`]), e.g. `catmull-rom`.
+    pub best_filter: Option<String>,
+    /// Its RMS error over the withheld measured samples, % of I_max.
+    pub best_filter_rms_pct: Option<f64>,
+    /// Its largest error over the withheld measured samples, % of I_max.
+    pub best_filter_max_pct: Option<f64>,
+    /// The fitted OpenGL light combination (`fit`'s chosen one, e.g. `point+spot-down`).
+    pub fitted_gl: Option<String>,
+    /// Its error against every measured direction: `fit`'s relative RMS
+    /// error with guard 0.02 I_max (fraction, 0.05 = 5 %; `photosolid fit --json` `error`).
+    pub fitted_gl_error: Option<f64>,
+    /// Time to read and summarise the file, ms.
+    pub parse_ms: f64,
+    /// Time of the hold-out (6 filters), ms.
+    pub holdout_ms: f64,
+    /// Time of the OpenGL fit, ms.
+    pub fit_ms: f64,
+}
+
+impl BatchRecord {
+    /// A row for `path` with nothing measured yet.
+    fn empty(path: &Path) -> Self {
+        BatchRecord {
+            path: path.display().to_string(),
+            ok: false,
+            errors: Vec::new(),
+            warnings: Vec::new(),
+            format: None,
+            version: None,
+            photometric_type: None,
+            symmetry: None,
+            n_c: None,
+            n_c_full: None,
+            n_gamma: None,
+            gamma_min_deg: None,
+            gamma_max_deg: None,
+            max_cd: None,
+            flux_lm: None,
+            declared_flux_lm: None,
+            flux_ratio: None,
+            lor: None,
+            dlor: None,
+            ulor: None,
+            beam_angle_deg: None,
+            field_angle_deg: None,
+            beam_angle_c90_deg: None,
+            field_angle_c90_deg: None,
+            best_filter: None,
+            best_filter_rms_pct: None,
+            best_filter_max_pct: None,
+            fitted_gl: None,
+            fitted_gl_error: None,
+            parse_ms: 0.0,
+            holdout_ms: 0.0,
+            fit_ms: 0.0,
+        }
+    }
+
+    /// Whether the row is an outlier the catalogue lists first: not loaded,
+    /// a hold-out or fit that failed, a warning, or a computed flux more than
+    /// [`crate::photometry::FLUX_MISMATCH`] off the declared one.
+    pub fn is_outlier(&self) -> bool {
+        !self.ok || !self.errors.is_empty() || !self.warnings.is_empty() || self.flux_mismatch()
+    }
+
+    /// The computed flux is more than [`crate::photometry::FLUX_MISMATCH`] off the declared one.
+    pub fn flux_mismatch(&self) -> bool {
+        self.flux_ratio
+            .is_some_and(|r| (r - 1.0).abs() > crate::photometry::FLUX_MISMATCH)
+    }
+}
+
+/// What [`analyse`] does besides loading.
+#[derive(Debug, Clone, Default)]
+pub struct BatchOptions {
+    /// Reader options (the CLI uses the defaults).
+    pub read: ReadOptions,
+}
+
+/// A number only when finite (a table never holds NaN or infinity).
+fn finite(x: Option<f64>) -> Option<f64> {
+    x.filter(|v| v.is_finite())
+}
+
+/// A value's JSON string form (the spelling `info --json` uses).
+fn json_str(v: &impl Serialize) -> Option<String> {
+    match serde_json::to_value(v) {
+        Ok(serde_json::Value::String(s)) => Some(s),
+        _ => None,
+    }
+}
+
+fn ms(t: Instant) -> f64 {
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+/// The row of one file (see the module docs). Never fails: a file that does
+/// not load is a row with `ok = false` and the error.
+pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
+    let mut row = BatchRecord::empty(path);
+    let t = Instant::now();
+    let lum = match crate::load_with(path, &options.read) {
+        Ok(l) => l,
+        Err(e) => {
+            row.errors.push(ErrorRecord::from(&e).message);
+            row.parse_ms = ms(t);
+            return row;
+        }
+    };
+    let info = InfoReport::of(&lum);
+    row.parse_ms = ms(t);
+    row.ok = true;
+    row.warnings = info.warnings.iter().map(|w| w.code.as_str().to_string()).collect();
+    row.format = json_str(&info.format);
+    row.version = Some(info.version.clone());
+    row.photometric_type = json_str(&info.photometric_type);
+    row.symmetry = json_str(&info.symmetry);
+    row.n_c = u32::try_from(info.n_c).ok();
+    row.n_c_full = u32::try_from(info.n_c_full).ok();
+    row.n_gamma = u32::try_from(info.n_gamma).ok();
+    let g = lum.distribution.gamma_angles();
+    row.gamma_min_deg = g.first().copied();
+    row.gamma_max_deg = g.last().copied();
+    row.max_cd = finite(Some(info.max_cd));
+    row.flux_lm = finite(Some(info.flux_lm));
+    row.declared_flux_lm = finite(info.declared_flux_lm);
+    row.flux_ratio = finite(info.flux_ratio);
+    row.lor = finite(info.lor);
+    row.dlor = finite(info.dlor);
+    row.ulor = finite(info.ulor);
+    row.beam_angle_deg = finite(info.beam_angles.ies_beam_deg[0]);
+    row.field_angle_deg = finite(info.beam_angles.ies_field_deg[0]);
+    row.beam_angle_c90_deg = finite(info.beam_angles.ies_beam_deg[1]);
+    row.field_angle_c90_deg = finite(info.beam_angles.ies_field_deg[1]);
+
+    let t = Instant::now();
+    match holdout(&lum.distribution, HOLDOUT, &Filter::ALL) {
+        Ok(reports) => {
+            // The first of the smallest RMS errors (Filter::ALL order breaks ties).
+            let best = reports
+                .iter()
+                .filter(|r| r.rms_percent.is_finite())
+                .min_by(|a, b| a.rms_percent.total_cmp(&b.rms_percent));
+            if let Some(b) = best {
+                row.best_filter = Some(b.filter.to_string());
+                row.best_filter_rms_pct = finite(Some(b.rms_percent));
+                row.best_filter_max_pct = finite(Some(b.max_percent));
+            }
+        }
+        Err(e) => row.errors.push(format!("holdout: {}", Error::from(e))),
+    }
+    row.holdout_ms = ms(t);
+
+    let t = Instant::now();
+    // Files run in parallel already: the fit's own parallelism would only add overhead.
+    let opts = FitOptions {
+        parallel: false,
+        ..FitOptions::default()
+    };
+    match fit(&lum.distribution, &opts) {
+        Ok(f) => {
+            row.fitted_gl = Some(f.chosen().combination.name().to_string());
+            row.fitted_gl_error = finite(Some(f.error()));
+        }
+        Err(e) => row.errors.push(format!("fit: {}", Error::from(e))),
+    }
+    row.fit_ms = ms(t);
+    row
+}
+
+/// The rows of `files` in input order, analysed in parallel (rayon).
+/// `progress(done, total, path)` is called after each file, from the worker
+/// threads.
+pub fn run(
+    files: &[PathBuf],
+    options: &BatchOptions,
+    progress: &(dyn Fn(usize, usize, &str) + Sync),
+) -> Vec<BatchRecord> {
+    let done = AtomicUsize::new(0);
+    files
+        .par_iter()
+        .map(|f| {
+            let row = analyse(f, options);
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1, files.len(), &row.path);
+            row
+        })
+        .collect()
+}
+
+/// Every .ies/.ldt file under `paths` (directories recursively, sorted; files as given).
+///
+/// # Errors
+/// [`Error::Io`] when a directory cannot be listed.
+pub fn collect(paths: &[PathBuf]) -> crate::Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for p in paths {
+        crate::formats::collect_files(p, &mut files)?;
+    }
+    Ok(files)
+}
+
+/// The rows as JSON Lines, one [`BatchRecord`] object per line (keys = the field names).
+pub fn to_jsonl(rows: &[BatchRecord]) -> String {
+    let mut s = String::new();
+    for r in rows {
+        // A BatchRecord has only strings, finite numbers, booleans and lists: serialising cannot fail.
+        if let Ok(line) = serde_json::to_string(r) {
+            s.push_str(&line);
+            s.push('\n');
+        }
+    }
+    s
+}
+
+/// Rows read back from JSON Lines written by [`to_jsonl`] (blank lines skipped).
+///
+/// # Errors
+/// [`Error::Parse`] naming the line that is not a batch row.
+pub fn from_jsonl(text: &str, path: &Path) -> crate::Result<Vec<BatchRecord>> {
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let row = serde_json::from_str(line).map_err(|e| crate::error::ParseError {
+            path: path.to_path_buf(),
+            location: crate::error::Location::line(i + 1),
+            kind: crate::ErrorKind::Invalid,
+            expected: "a JSON object with the batch row keys (docs/batch.md)".into(),
+            found: e.to_string(),
+        })?;
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn synth_file(dir: &Path) -> PathBuf {
+        let grid = crate::synth::GridSpec::uniform(15.0, 5.0).unwrap();
+        let lum = crate::synth::Synth::Isotropic.build(&grid, 100.0).unwrap();
+        let p = dir.join("iso.ldt");
+        crate::save(&lum, &p, &Default::default()).unwrap();
+        p
+    }
+
+    /// A loaded file has the info numbers; a missing one is an ok=false row with the error.
+    #[test]
+    fn rows_of_good_and_missing_files() {
+        let dir = tempfile::tempdir().unwrap();
+        let good = synth_file(dir.path());
+        let missing = dir.path().join("missing.ies");
+        let rows = run(&[good.clone(), missing], &BatchOptions::default(), &|_, _, _| {});
+        assert_eq!(rows.len(), 2);
+        let r = &rows[0];
+        assert!(r.ok && r.errors.is_empty(), "{r:?}");
+        // 100 cd everywhere: 400π lm, within the flux rule's discretisation.
+        let flux = r.flux_lm.unwrap();
+        assert!((flux - 400.0 * std::f64::consts::PI).abs() < 1e-6 * flux, "{flux}");
+        // EULUMDAT stores cd/klm with a few digits: 100 cd within 1e-6.
+        assert!((r.max_cd.unwrap() - 100.0).abs() < 1e-4, "{r:?}");
+        // A constant is reconstructed exactly by every filter.
+        assert!(r.best_filter_rms_pct.unwrap() < 1e-9, "{r:?}");
+        assert!(r.fitted_gl.is_some());
+        assert!(!rows[1].ok);
+        assert_eq!(rows[1].errors.len(), 1);
+        assert!(rows[1].errors[0].contains("missing.ies"), "{:?}", rows[1].errors);
+        assert!(rows[1].flux_lm.is_none());
+    }
+
+    /// JSON Lines read back equal what was written; a bad line is named.
+    #[test]
+    fn jsonl_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let rows = run(&[synth_file(dir.path())], &BatchOptions::default(), &|_, _, _| {});
+        let text = to_jsonl(&rows);
+        assert_eq!(from_jsonl(&text, Path::new("x.jsonl")).unwrap(), rows);
+        let err = from_jsonl(&format!("{text}{{\"path\": 1}}\n"), Path::new("x.jsonl")).unwrap_err();
+        assert!(err.to_string().contains("x.jsonl:2"), "{err}");
+    }
+}

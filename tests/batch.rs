@@ -1,0 +1,255 @@
+//! `photosolid batch`: the Parquet table read back with the parquet crate
+//! equals the CLI's own per-file commands (`info`, `holdout`, `fit --json`),
+//! broken files are rows (not a failed batch), `--resume` keeps earlier rows,
+//! the JSON Lines and the catalogue page agree with the table; the corpus
+//! (when present) gives one row per file, failing exactly where the manifest says.
+
+mod common;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use arrow_array::{Array, BooleanArray, Float64Array, ListArray, RecordBatch, StringArray};
+use common::cli::{ok, run};
+use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+
+fn data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("data")
+}
+
+/// Every record batch of a Parquet file, read with the parquet crate alone.
+fn read(path: &Path) -> Vec<RecordBatch> {
+    let f = std::fs::File::open(path).unwrap();
+    ParquetRecordBatchReaderBuilder::try_new(f)
+        .unwrap()
+        .build()
+        .unwrap()
+        .map(|b| b.unwrap())
+        .collect()
+}
+
+/// One row of the table as a JSON object (column name -> value), from the Arrow arrays.
+fn rows(batches: &[RecordBatch]) -> Vec<serde_json::Map<String, serde_json::Value>> {
+    use serde_json::Value;
+    let mut out = Vec::new();
+    for b in batches {
+        for i in 0..b.num_rows() {
+            let mut m = serde_json::Map::new();
+            for (f, c) in b.schema().fields().iter().zip(b.columns()) {
+                let v = if c.is_null(i) {
+                    Value::Null
+                } else if let Some(a) = c.as_any().downcast_ref::<StringArray>() {
+                    Value::from(a.value(i))
+                } else if let Some(a) = c.as_any().downcast_ref::<Float64Array>() {
+                    Value::from(a.value(i))
+                } else if let Some(a) = c.as_any().downcast_ref::<BooleanArray>() {
+                    Value::from(a.value(i))
+                } else if let Some(a) = c.as_any().downcast_ref::<arrow_array::UInt32Array>() {
+                    Value::from(a.value(i))
+                } else if let Some(a) = c.as_any().downcast_ref::<ListArray>() {
+                    let v = a.value(i);
+                    let s = v.as_any().downcast_ref::<StringArray>().unwrap();
+                    Value::from((0..s.len()).map(|j| s.value(j).to_string()).collect::<Vec<_>>())
+                } else {
+                    panic!("column {} has an unexpected type {}", f.name(), c.data_type());
+                };
+                m.insert(f.name().clone(), v);
+            }
+            out.push(m);
+        }
+    }
+    out
+}
+
+fn json(args: &[&str], dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&ok(&run(args, dir))).unwrap()
+}
+
+fn close(a: &serde_json::Value, b: &serde_json::Value, what: &str) {
+    match (a.as_f64(), b.as_f64()) {
+        (Some(x), Some(y)) => assert!((x - y).abs() <= 1e-12 * x.abs().max(1.0), "{what}: {x} vs {y}"),
+        _ => assert_eq!(a, b, "{what}"),
+    }
+}
+
+/// data/ plus a broken file: one row each; every number equals the CLI's per-file JSON.
+#[test]
+fn table_equals_the_per_file_commands() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("broken.ies"), "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 x\n").unwrap();
+    let data = data();
+    let out = ok(&run(
+        &[
+            "batch",
+            data.to_str().unwrap(),
+            "broken.ies",
+            "-o",
+            "t.parquet",
+            "--jsonl",
+            "t.jsonl",
+            "--report",
+            "cat",
+        ],
+        d,
+    ));
+    assert!(out.contains("failed to load"), "{out}");
+    let table = rows(&read(&d.join("t.parquet")));
+    let n_data = std::fs::read_dir(&data)
+        .unwrap()
+        .filter(|e| {
+            let p = e.as_ref().unwrap().path();
+            matches!(p.extension().and_then(|x| x.to_str()), Some("ies" | "ldt"))
+        })
+        .count();
+    assert_eq!(table.len(), n_data + 1);
+    for row in &table {
+        let path = row["path"].as_str().unwrap();
+        if path == "broken.ies" {
+            assert_eq!(row["ok"], false);
+            let errs = row["errors"].as_array().unwrap();
+            assert_eq!(errs.len(), 1);
+            assert!(errs[0].as_str().unwrap().starts_with("broken.ies:3"), "{errs:?}");
+            assert!(row["flux_lm"].is_null() && row["best_filter"].is_null());
+            continue;
+        }
+        assert_eq!(row["ok"], true, "{row:?}");
+        assert_eq!(row["errors"].as_array().unwrap().len(), 0, "{row:?}");
+        let info = json(&["info", path, "--json"], d);
+        for k in [
+            "format",
+            "version",
+            "symmetry",
+            "max_cd",
+            "flux_lm",
+            "declared_flux_lm",
+            "flux_ratio",
+            "lor",
+            "dlor",
+            "ulor",
+            "n_c",
+            "n_c_full",
+            "n_gamma",
+        ] {
+            close(&row[k], &info[k], &format!("{path} {k}"));
+        }
+        close(&row["beam_angle_deg"], &info["beam_angles"]["ies_beam_deg"][0], "beam");
+        close(
+            &row["field_angle_c90_deg"],
+            &info["beam_angles"]["ies_field_deg"][1],
+            "field c90",
+        );
+        let codes: Vec<&str> = info["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w["code"].as_str().unwrap())
+            .collect();
+        let got: Vec<&str> = row["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w.as_str().unwrap())
+            .collect();
+        assert_eq!(got, codes, "{path}");
+        // The best filter: the smallest rms_percent of `holdout --json` (its defaults are the batch's hold-out).
+        let ho = json(&["holdout", path, "--json"], d);
+        let best = ho
+            .as_array()
+            .unwrap()
+            .iter()
+            .min_by(|a, b| {
+                a["rms_percent"]
+                    .as_f64()
+                    .unwrap()
+                    .total_cmp(&b["rms_percent"].as_f64().unwrap())
+            })
+            .unwrap();
+        close(&row["best_filter_rms_pct"], &best["rms_percent"], "best rms");
+        close(&row["best_filter_max_pct"], &best["max_percent"], "best max");
+        let best_name = serde_json::to_value(&best["filter"]).unwrap();
+        assert_eq!(row["best_filter"], best_name, "{path}");
+        let fit = json(&["fit", path, "--json"], d);
+        close(&row["fitted_gl_error"], &fit["error"], "fit error");
+        assert_eq!(row["fitted_gl"], fit["chosen"], "{path}");
+    }
+    // The JSON Lines hold the same rows.
+    let text = std::fs::read_to_string(d.join("t.jsonl")).unwrap();
+    let lines: Vec<serde_json::Value> = text.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(lines.len(), table.len());
+    for (l, r) in lines.iter().zip(&table) {
+        for (k, v) in r {
+            close(&l[k], v, k);
+        }
+    }
+    // The catalogue lists the broken file first, and has a thumbnail per loaded file.
+    let html = std::fs::read_to_string(d.join("cat/index.html")).unwrap();
+    let first_row = html.find("<tbody>").unwrap();
+    assert!(html[first_row..].find("broken.ies").unwrap() < html[first_row..].find("data/").unwrap());
+    let thumbs = std::fs::read_dir(d.join("cat"))
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().starts_with("thumb-"))
+        .count();
+    assert_eq!(thumbs, n_data);
+}
+
+/// `--resume` keeps the rows already in the table (their timings prove they were not redone) and adds the rest.
+#[test]
+fn resume_adds_only_new_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let (a, b) = (d.join("a"), d.join("b"));
+    std::fs::create_dir_all(&a).unwrap();
+    std::fs::create_dir_all(&b).unwrap();
+    for (src, dst) in [("isotropic.ies", &a), ("roadway.ldt", &a), ("batwing.ies", &b)] {
+        std::fs::copy(data().join(src), dst.join(src)).unwrap();
+    }
+    ok(&run(&["batch", "a", "-o", "t.parquet"], d));
+    let first = rows(&read(&d.join("t.parquet")));
+    assert_eq!(first.len(), 2);
+    let out = ok(&run(&["batch", "a", "b", "-o", "t.parquet", "--resume"], d));
+    assert!(out.contains("2 resumed, 1 analysed"), "{out}");
+    let second = rows(&read(&d.join("t.parquet")));
+    assert_eq!(second.len(), 3);
+    assert_eq!(&second[..2], &first[..], "resumed rows are kept as they were");
+    assert_eq!(second[2]["path"], "b/batwing.ies");
+    // Without --resume the table is rebuilt: the timings are new.
+    ok(&run(&["batch", "a", "-o", "t.parquet"], d));
+    let third = rows(&read(&d.join("t.parquet")));
+    assert_eq!(third.len(), 2);
+    // From the JSON Lines when the table is missing.
+    ok(&run(&["batch", "a", "-o", "u.parquet", "--jsonl", "u.jsonl"], d));
+    std::fs::remove_file(d.join("u.parquet")).unwrap();
+    let out = ok(&run(
+        &["batch", "a", "b", "-o", "u.parquet", "--jsonl", "u.jsonl", "--resume"],
+        d,
+    ));
+    assert!(out.contains("2 resumed, 1 analysed"), "{out}");
+}
+
+/// The corpus: a row per photometric file; ok exactly where the manifest says the file loads.
+#[test]
+fn corpus_rows_follow_the_manifest() {
+    let Some(root) = common::corpus() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    ok(&run(&["batch", root.to_str().unwrap(), "-o", "c.parquet"], dir.path()));
+    let table = rows(&read(&dir.path().join("c.parquet")));
+    let by_path: HashMap<String, &serde_json::Map<String, serde_json::Value>> = table
+        .iter()
+        .map(|r| (r["path"].as_str().unwrap().to_string(), r))
+        .collect();
+    let mut checked = 0;
+    for e in common::manifest(&root).iter().filter(|e| e.photometric()) {
+        let row = by_path
+            .get(&e.path.display().to_string())
+            .unwrap_or_else(|| panic!("no row for {}", e.rel));
+        assert_eq!(row["ok"], !e.malformed(), "{}: {:?}", e.rel, row["errors"]);
+        if e.malformed() {
+            assert!(!row["errors"].as_array().unwrap().is_empty());
+        } else {
+            assert!(row["flux_lm"].as_f64().unwrap().is_finite());
+        }
+        checked += 1;
+    }
+    assert!(checked >= 100, "{checked}");
+}
