@@ -340,7 +340,31 @@ fn cli_tradeoff_json_keys() {
         }
         assert!(r["ns_per_sample_gpu"].is_null());
         assert!(r["pareto"].is_boolean());
+        // Stored textures (`FILTER@xK/LOOKUP...`) also carry their f32 cost and
+        // what f32 arithmetic changes; the other rows have neither.
+        let texture = r["representation"].as_str().unwrap().contains('@');
+        for k in ["ns_per_sample_f32", "f32_vs_f64_max_pct"] {
+            if texture {
+                assert!(
+                    r[k].as_f64().is_some_and(|x| x.is_finite() && x >= 0.0),
+                    "{k}: {}",
+                    r[k]
+                );
+            } else {
+                assert!(r[k].is_null(), "{}: {k}", r["representation"]);
+            }
+        }
+        let rep = r["representation"].as_str().unwrap();
+        if texture && !rep.contains("/nearest") {
+            // Rounding only (src/reconstruct/lookup.rs: measured 7.6e-5 % on the roadway).
+            assert!(
+                r["f32_vs_f64_max_pct"].as_f64().unwrap() < 1e-3,
+                "{rep}: {}",
+                r["f32_vs_f64_max_pct"]
+            );
+        }
     }
+    assert!(rows.iter().any(|r| r["ns_per_sample_f32"].is_number()));
     let bad = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
         .arg("tradeoff")
         .arg(&file)

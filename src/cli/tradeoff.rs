@@ -122,6 +122,19 @@ fn to_text(t: &TradeTable) -> String {
             if r.pareto { "*" } else { "" }
         );
     }
+    let f32_rows: Vec<_> = t.rows.iter().filter(|r| r.ns_per_sample_f32.is_some()).collect();
+    if !f32_rows.is_empty() {
+        let _ = writeln!(s, "stored textures computed in f32 (as a shader does):");
+        for r in f32_rows {
+            let _ = writeln!(
+                s,
+                "  {:<36} {:>9.1} ns/sample; max |f32 - f64 lookup| {:.2e} % of I_max",
+                r.representation,
+                r.ns_per_sample_f32.unwrap_or(f64::NAN),
+                r.f32_vs_f64_max_pct.unwrap_or(f64::NAN),
+            );
+        }
+    }
     for r in t.rows.iter().filter(|r| r.adapter.is_some()) {
         let _ = writeln!(
             s,

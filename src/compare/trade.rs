@@ -26,7 +26,7 @@ use serde::Serialize;
 
 use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress};
 use crate::error::ModelError;
-use crate::model::{Distribution, Symmetry};
+use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{Filter, Lookup, Precision, Recon, TextureSpec};
 
 /// The representations of the trade table for data with `symmetry`:
@@ -66,6 +66,15 @@ pub struct TradeRow {
     pub bytes: usize,
     /// Median ns per lookup from a unit direction vector, one thread, f64.
     pub ns_per_sample: f64,
+    /// Stored-texture rows: median ns per lookup with every step in f32 from
+    /// an f32 unit vector (angles, texel coordinates, weights, sums), as a
+    /// shader computes it; null for other rows.
+    pub ns_per_sample_f32: Option<f64>,
+    /// Stored-texture rows: largest |f32 lookup − f64 lookup| over the timing
+    /// directions, % of I_max: what computing in f32 alone costs (about 1e-4 %
+    /// for bilinear and Catmull-Rom; for nearest a whole texel step, where an
+    /// f32 angle falls on the other side of a texel edge).
+    pub f32_vs_f64_max_pct: Option<f64>,
     /// `+gpu` rows: median ns per direction of the GPU dispatch alone
     /// (the timing directions resident on the device); null for CPU rows.
     pub ns_per_sample_gpu: Option<f64>,
@@ -188,6 +197,8 @@ pub fn trade_table(
             representation: r.name.clone(),
             bytes: r.bytes,
             ns_per_sample: r.time_per_sample_ns.unwrap_or_default(),
+            ns_per_sample_f32: None,
+            f32_vs_f64_max_pct: None,
             ns_per_sample_gpu: None,
             adapter: None,
             texture_format: None,
@@ -202,8 +213,10 @@ pub fn trade_table(
         })
         .collect();
     for row in &mut rows {
-        if let Some(Recon::Gpu(spec)) = recons.iter().find(|r| r.to_string() == row.representation) {
-            gpu_columns(row, file, *spec, &opts.compare)?;
+        match recons.iter().find(|r| r.to_string() == row.representation) {
+            Some(Recon::Gpu(spec)) => gpu_columns(row, file, *spec, &opts.compare)?,
+            Some(Recon::Texture(spec)) => f32_columns(row, file, *spec, &opts.compare)?,
+            _ => {}
         }
     }
     Ok(TradeTable {
@@ -214,6 +227,36 @@ pub fn trade_table(
         rows,
         comparison: c,
     })
+}
+
+/// Fill the f32 columns of a stored-texture row: the same texels read with
+/// every step in f32, timed on the same directions, and their largest
+/// difference from the f64 lookup.
+fn f32_columns(
+    row: &mut TradeRow,
+    file: &Distribution,
+    spec: TextureSpec,
+    opts: &CompareOptions,
+) -> Result<(), ModelError> {
+    use crate::reconstruct::{render, LightTexture, StoredTexture};
+    let rendered = render(&LightTexture::new(file)?, spec.filter, spec.factor)?;
+    let reduced = spec.reduced.then(|| file.symmetry());
+    let tex = StoredTexture::new(&rendered, reduced, spec.precision, spec.lookup);
+    let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
+    let dirs32: Vec<glam::Vec3> = dirs.iter().map(|d| d.as_vec3()).collect();
+    row.ns_per_sample_f32 = Some(crate::metrics::cost::time_per_sample_ns_f32(
+        |d| tex.cd_dir_f32(d),
+        &dirs32,
+        opts.timing_repeats,
+    ));
+    let i_max = tex.i_max_cd();
+    let worst = dirs
+        .iter()
+        .zip(&dirs32)
+        .map(|(d, d32)| (tex.cd_dir_f32(*d32) as f64 - tex.intensity_dir_cd(*d)).abs())
+        .fold(0.0, f64::max);
+    row.f32_vs_f64_max_pct = Some(if i_max > 0.0 { 100.0 * worst / i_max } else { 0.0 });
+    Ok(())
 }
 
 /// Fill the GPU columns of a `+gpu` row.

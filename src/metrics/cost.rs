@@ -7,7 +7,7 @@
 //! shuffled set of unit vectors ([`random_directions`]), divided by their
 //! number. Dynamic dispatch adds the same ~1 ns to every representation.
 
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 
 use crate::model::IntensityField;
 
@@ -43,19 +43,41 @@ pub fn time_per_sample_ns(field: &dyn IntensityField, dirs: &[DVec3], repeats: u
     if let Some(t) = field.batch_time_per_sample_ns(dirs, repeats.max(1)) {
         return t;
     }
+    median_ns_per_item(repeats, dirs.len(), || {
+        let mut acc = 0.0;
+        for &d in dirs {
+            acc += field.intensity_dir_cd(std::hint::black_box(d));
+        }
+        std::hint::black_box(acc);
+    })
+}
+
+/// [`time_per_sample_ns`] for a lookup that computes in f32 from f32 unit
+/// vectors (as a shader does), e.g. [`StoredTexture::cd_dir_f32`](crate::reconstruct::StoredTexture::cd_dir_f32).
+pub fn time_per_sample_ns_f32(lookup: impl Fn(Vec3) -> f32, dirs: &[Vec3], repeats: usize) -> f64 {
+    if dirs.is_empty() {
+        return 0.0;
+    }
+    median_ns_per_item(repeats, dirs.len(), || {
+        let mut acc = 0.0f32;
+        for &d in dirs {
+            acc += lookup(std::hint::black_box(d));
+        }
+        std::hint::black_box(acc);
+    })
+}
+
+/// Median over `repeats` runs (at least 1) of the wall time of `run`, in ns per item of `n`.
+fn median_ns_per_item(repeats: usize, n: usize, mut run: impl FnMut()) -> f64 {
     let mut times: Vec<f64> = (0..repeats.max(1))
         .map(|_| {
             let t0 = std::time::Instant::now();
-            let mut acc = 0.0;
-            for &d in dirs {
-                acc += field.intensity_dir_cd(std::hint::black_box(d));
-            }
-            std::hint::black_box(acc);
+            run();
             t0.elapsed().as_secs_f64()
         })
         .collect();
     times.sort_by(f64::total_cmp);
-    1e9 * times[times.len() / 2] / dirs.len() as f64
+    1e9 * times[times.len() / 2] / n as f64
 }
 
 /// Which points are on the Pareto front when every coordinate is a cost to

@@ -88,6 +88,25 @@ pub fn unit_angles(u: DVec3) -> (f64, f64) {
     (c, gamma)
 }
 
+/// [`unit_angles`] with every step in f32, as a shader computes it:
+/// (C in [0, 360), γ in [0, 180]) degrees of the unit vector `u`.
+pub fn unit_angles_f32(u: glam::Vec3) -> (f32, f32) {
+    let gamma = (-u.z).clamp(-1.0, 1.0).acos().to_degrees();
+    let c = if u.x == 0.0 && u.y == 0.0 {
+        0.0
+    } else {
+        let c = u.y.atan2(u.x).to_degrees();
+        // c + 360 may round up to 360 itself for a tiny negative c.
+        let c = if c < 0.0 { c + 360.0 } else { c };
+        if c >= 360.0 {
+            0.0
+        } else {
+            c
+        }
+    };
+    (c, gamma)
+}
+
 /// A luminaire-frame vector (z up) in the y-up OpenGL frame of the seed: `(x, z, −y)`.
 #[inline]
 pub fn to_gl(v: DVec3) -> DVec3 {

@@ -13,10 +13,10 @@ use std::str::FromStr;
 
 use serde::Serialize;
 
-use super::filter::Filter;
+use super::filter::{Filter, Real};
 use super::texture::Rendered;
 use crate::error::ModelError;
-use crate::model::{wrap360, IntensityField, Symmetry};
+use crate::model::{frame, wrap360, IntensityField, Symmetry};
 
 /// How a stored texture is read back.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -207,6 +207,99 @@ impl StoredTexture {
     pub fn cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
         (self.view().sample(self.lookup, c_deg, gamma_deg) * self.i_max_cd).max(0.0)
     }
+
+    /// Intensity (cd, ≥ 0) from a unit direction with every step in f32, as a
+    /// shader computes it: the angles ([`frame::unit_angles_f32`]), the texel
+    /// coordinates, the weights and the sums. 0 for an empty texture or a
+    /// non-finite direction. Differs from [`StoredTexture::cd`] by the f32
+    /// rounding of those steps (measured in the trade table,
+    /// `f32_vs_f64_max_pct`).
+    pub fn cd_dir_f32(&self, d: glam::Vec3) -> f32 {
+        if !d.is_finite() {
+            return 0.0;
+        }
+        let (c, g) = frame::unit_angles_f32(d);
+        let c = match self.reduced {
+            // The fold only reflects C about the sector's edges.
+            Some(sym) => sym.fold(c as f64) as f32,
+            None => c,
+        };
+        (self.view().sample_real(self.lookup, c, g) * self.i_max_cd as f32).max(0.0)
+    }
+}
+
+/// The float type a lookup computes in: f64 (the reference) or f32 (as a
+/// shader does). One lookup code for both, so they differ only by rounding.
+trait LookupReal: Real {
+    fn floor(self) -> Self;
+    fn to_isize(self) -> isize;
+    fn from_texel(v: f32) -> Self;
+    fn from_usize(v: usize) -> Self;
+    fn clamp_to(self, lo: Self, hi: Self) -> Self;
+    /// Catmull–Rom weights of the four texels around fraction `s`.
+    fn catmull_rom(s: Self) -> [Self; 4];
+}
+
+impl LookupReal for f64 {
+    #[inline]
+    fn floor(self) -> Self {
+        f64::floor(self)
+    }
+    #[inline]
+    fn to_isize(self) -> isize {
+        self as isize
+    }
+    #[inline]
+    fn from_texel(v: f32) -> Self {
+        v as f64
+    }
+    #[inline]
+    fn from_usize(v: usize) -> Self {
+        v as f64
+    }
+    #[inline]
+    fn clamp_to(self, lo: Self, hi: Self) -> Self {
+        self.clamp(lo, hi)
+    }
+    #[inline]
+    fn catmull_rom(s: Self) -> [Self; 4] {
+        uniform_catmull_rom(s)
+    }
+}
+
+impl LookupReal for f32 {
+    #[inline]
+    fn floor(self) -> Self {
+        f32::floor(self)
+    }
+    #[inline]
+    fn to_isize(self) -> isize {
+        self as isize
+    }
+    #[inline]
+    fn from_texel(v: f32) -> Self {
+        v
+    }
+    #[inline]
+    fn from_usize(v: usize) -> Self {
+        v as f32
+    }
+    #[inline]
+    fn clamp_to(self, lo: Self, hi: Self) -> Self {
+        self.clamp(lo, hi)
+    }
+    /// The uniform Catmull–Rom cubic in f32 (a shader's closed form; the
+    /// f64 weights come from [`Filter::linear_weights`], the same polynomial).
+    #[inline]
+    fn catmull_rom(s: Self) -> [Self; 4] {
+        let (s2, s3) = (s * s, s * s * s);
+        [
+            0.5 * (-s3 + 2.0 * s2 - s),
+            0.5 * (3.0 * s3 - 5.0 * s2 + 2.0),
+            0.5 * (-3.0 * s3 + 4.0 * s2 + s),
+            0.5 * (s3 - s2),
+        ]
+    }
 }
 
 /// Texels of a render, whole or a sector, borrowed for a lookup.
@@ -224,7 +317,7 @@ impl TexelView<'_> {
     /// The stored value (I / I_max) at row `i` and full-render column `j`:
     /// rows clamped, columns periodic (whole) or clamped to the sector (reduced).
     #[inline]
-    fn texel(&self, i: isize, j: isize) -> f64 {
+    fn texel<T: LookupReal>(&self, i: isize, j: isize) -> T {
         let i = i.clamp(0, self.height as isize - 1) as usize;
         let j = match self.reduced {
             None => j.rem_euclid(self.full_width as isize) as usize,
@@ -240,42 +333,51 @@ impl TexelView<'_> {
                 k.clamp(0, n - 1) as usize
             }
         };
-        self.data[i * self.columns + j] as f64
+        T::from_texel(self.data[i * self.columns + j])
     }
 
     /// The value (I / I_max, unclamped) at (C, γ) degrees read with `lookup`.
     fn sample(&self, lookup: Lookup, c_deg: f64, gamma_deg: f64) -> f64 {
-        let (h, w) = (self.height, self.full_width);
-        if h == 0 || w == 0 || self.columns == 0 || !(c_deg.is_finite() && gamma_deg.is_finite()) {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
             return 0.0;
         }
         let c = match self.reduced {
             Some(sym) => sym.fold(c_deg),
             None => wrap360(c_deg),
         };
-        let y = gamma_deg.clamp(0.0, 180.0) / 180.0 * h as f64 - 0.5;
-        let x = c / 360.0 * w as f64 - 0.5;
+        self.sample_real(lookup, c, gamma_deg)
+    }
+
+    /// [`TexelView::sample`] in `T` for C already in the stored range, degrees.
+    fn sample_real<T: LookupReal>(&self, lookup: Lookup, c: T, gamma_deg: T) -> T {
+        let (h, w) = (self.height, self.full_width);
+        if h == 0 || w == 0 || self.columns == 0 {
+            return T::ZERO;
+        }
+        let half = T::from_f64(0.5);
+        let y = gamma_deg.clamp_to(T::ZERO, T::from_f64(180.0)) / T::from_f64(180.0) * T::from_usize(h) - half;
+        let x = c / T::from_f64(360.0) * T::from_usize(w) - half;
         match lookup {
-            Lookup::Nearest => self.texel((y + 0.5).floor() as isize, (x + 0.5).floor() as isize),
+            Lookup::Nearest => self.texel((y + half).floor().to_isize(), (x + half).floor().to_isize()),
             Lookup::Bilinear => {
                 let (i0, j0) = (y.floor(), x.floor());
                 let (ty, tx) = (y - i0, x - j0);
-                let (i0, j0) = (i0 as isize, j0 as isize);
-                let row = |i| self.texel(i, j0) * (1.0 - tx) + self.texel(i, j0 + 1) * tx;
-                row(i0) * (1.0 - ty) + row(i0 + 1) * ty
+                let (i0, j0) = (i0.to_isize(), j0.to_isize());
+                let row = |i| self.texel::<T>(i, j0) * (T::ONE - tx) + self.texel::<T>(i, j0 + 1) * tx;
+                row(i0) * (T::ONE - ty) + row(i0 + 1) * ty
             }
             Lookup::CatmullRom => {
                 let (i0, j0) = (y.floor(), x.floor());
-                let wy = uniform_catmull_rom(y - i0);
-                let wx = uniform_catmull_rom(x - j0);
-                let (i0, j0) = (i0 as isize, j0 as isize);
-                let mut acc = 0.0;
-                for (a, wa) in wy.iter().enumerate() {
-                    let mut row = 0.0;
-                    for (b, wb) in wx.iter().enumerate() {
-                        row += wb * self.texel(i0 - 1 + a as isize, j0 - 1 + b as isize);
+                let wy = T::catmull_rom(y - i0);
+                let wx = T::catmull_rom(x - j0);
+                let (i0, j0) = (i0.to_isize(), j0.to_isize());
+                let mut acc = T::ZERO;
+                for (a, &wa) in wy.iter().enumerate() {
+                    let mut row = T::ZERO;
+                    for (b, &wb) in wx.iter().enumerate() {
+                        row = row + wb * self.texel::<T>(i0 - 1 + a as isize, j0 - 1 + b as isize);
                     }
-                    acc += wa * row;
+                    acc = acc + wa * row;
                 }
                 acc
             }
@@ -411,5 +513,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The f32 lookup (angles, coordinates, weights and sums in f32, from an
+    /// f32 unit vector) differs from the f64 one only by rounding. Bound for
+    /// the continuous lookups: the f32 direction and angles carry errors of a
+    /// few 1e-5 degrees (an ulp of 360 is 3e-5), which move the lookup by that
+    /// times the texture's slope (the roadway render changes by at most ~1e-3
+    /// of I_max per 2.5-degree texel: ~1e-8), and the f32 weights and sums
+    /// add a few ulps of I_max (1.2e-7 each): measured 7.6e-7 of I_max here;
+    /// 1e-5 leaves a margin of 13. Nearest is discontinuous: the f32 angles
+    /// pick the neighbouring texel when a direction lies within their error
+    /// of a texel edge, a full texel step (3.4e-3 of I_max here) on about
+    /// 1e-5 of the directions; at most 1 in 1,000 may differ.
+    #[test]
+    fn f32_lookup_differs_from_f64_by_rounding_only() {
+        let g = GridSpec::uniform(15.0, 5.0).unwrap();
+        let lum = Synth::Roadway.build(&g, 1000.0).unwrap();
+        let d = lum.distribution.with_symmetry(Symmetry::C90C270).unwrap();
+        let r = render(&LightTexture::new(&d).unwrap(), Filter::CatmullRom, 2).unwrap();
+        let dirs = crate::metrics::random_directions(20_000, 7);
+        let mut worst_continuous: f64 = 0.0;
+        for l in Lookup::ALL {
+            for reduced in [None, Some(Symmetry::C90C270)] {
+                let s = StoredTexture::new(&r, reduced, Precision::F32, l);
+                let mut flips = 0;
+                // Random directions, then the poles and the seam, where the
+                // angles are least well conditioned.
+                let special = [
+                    glam::DVec3::Z,
+                    -glam::DVec3::Z,
+                    glam::DVec3::new(1.0, -1e-7, 0.0).normalize(),
+                ];
+                for dir in dirs.iter().chain(&special) {
+                    let (a, b) = (s.cd_dir_f32(dir.as_vec3()) as f64, s.intensity_dir_cd(*dir));
+                    assert!(a.is_finite() && a >= 0.0);
+                    let diff = (a - b).abs() / 1000.0;
+                    if l == Lookup::Nearest {
+                        flips += usize::from(diff > 1e-6);
+                    } else {
+                        worst_continuous = worst_continuous.max(diff);
+                    }
+                }
+                assert!(flips <= dirs.len() / 1000, "{l} {reduced:?}: {flips} texel flips");
+                assert_eq!(s.cd_dir_f32(glam::Vec3::NAN), 0.0);
+            }
+        }
+        let worst = worst_continuous;
+        assert!(worst <= 1e-5, "f32 vs f64: {worst:e} of I_max");
+        assert!(worst > 0.0, "the f32 path computes in f32");
     }
 }
