@@ -13,8 +13,9 @@ iteration. Two measures, each with its reason:
   magnitude either way.
 - the counter's progress during the call against its rate alone (measured just before): with the GIL held it
   advances only while the worker runs Python-side code (copying the inputs: 160 MB for 10 M points, tens of ms
-  at memory bandwidth, against a call of a second or more: under 5 %); released, at its solo rate, or a third to a half of it where the worker, the
-  main thread and other jobs share the cores (33 % measured on the 2-core machine while two other builds ran).
+  at memory bandwidth, against a call of a second or more: under 5 %); released, at its solo rate, or a third to
+  a half of it where the worker, the main thread and other jobs share the cores (33 % measured on the 2-core
+  machine while two other builds ran).
   Threshold: 10 % of the solo rate.
 """
 
