@@ -6,10 +6,16 @@
 //! bilinear reconstruction, split exactly at every zone boundary):
 //! forward FL 0-30°, FM 30-60°, FH 60-80°, FVH 80-90° and the same four
 //! back zones BL, BM, BH, BVH; uplight UL 90-100° and UH 100-180° (whole
-//! circle). TM-15 puts "forward" in front of the luminaire (horizontal
-//! 270°-90° of its own frame); in a Type C file that is the street side, the
-//! half-space around C90 (IES roadway convention, and what EULUMDAT road
-//! luminaires with C90-C270 symmetry use): forward = C 0-180, back = C 180-360.
+//! circle). TM-15 puts "forward" at horizontal angles 270°-90° in front of
+//! the luminaire, back at 90°-270°. We apply that literally to the file's C
+//! (= LM-63 horizontal) angles: forward = C 270-90, the half-space around C0;
+//! back = C 90-270. Checked against manufacturers' declared ratings: two
+//! LM-63 roadway files (Type II, symmetric about the C0-C180 plane, throw
+//! toward C0) rate B2 U0 G2 and B2 U3 G2 as printed in their [DISTRIBUTION]
+//! keyword only under this convention; with forward = C 0-180 both come out
+//! B3 (tests/photometry.rs, `declared_bug_ratings_of_manufacturer_files`).
+//! A EULUMDAT road luminaire whose street side is C90 (CIE convention) must
+//! be turned by 90° before rating; we do not guess the orientation.
 //!
 //! # Ratings (TM-15-11 Addendum A, Tables; absolute lumens)
 //! Each rating is the lowest class whose every zone limit holds:
@@ -22,10 +28,24 @@
 //! | 3 | 2500 | 5000 | 500 | 7500 | 500 | 2500 |
 //! | 4 | 5000 | 8500 | 1000 | 12000 | 750 | 5000 |
 //!
-//! and class 5 above class 4. These are the asymmetric-distribution (Type
-//! I-IV) glare limits; the quadrilateral-symmetric (Type V) glare table of
-//! the addendum is not applied. A limit of 0 lm (U0) is met only by exactly
+//! and class 5 above class 4. A limit of 0 lm (U0) is met only by exactly
 //! no uplight: lumens below 1e-9 of the total count as none (rounding).
+//!
+//! # Where the limits were checked (docs/photometry.md, "BUG limits")
+//! The printed addendum was not available. What was checked:
+//! - Backlight (BL/BM/BH) and uplight (UL/UH) rows: identical, number for
+//!   number, to the independent implementation in holg/eulumdat-rs
+//!   (`crates/eulumdat/src/bug_rating.rs`, `BugRating::from_zone_lumens`,
+//!   commit c7e8b5d). Its glare rows differ (FH 10/180/600/2000/4000, FVH
+//!   10/10/50/200/400, BH tested against the FH limits) and are not used.
+//! - The whole chain (zones + all three tables) against the BUG ratings
+//!   that manufacturers print in their LM-63 files, [DISTRIBUTION] keyword,
+//!   computed by their photometric labs (test
+//!   `declared_bug_ratings_of_manufacturer_files` in tests/photometry.rs).
+//! - The glare rows (FVH/BVH, FH, BH) have no second public source here.
+//!   These are the asymmetric-distribution (Type I-IV) glare limits; the
+//!   addendum's separate glare table for quadrilateral-symmetric (Type V)
+//!   distributions could not be found in a public source and is not applied.
 
 use serde::Serialize;
 
@@ -84,8 +104,8 @@ const GLARE: [(f64, f64, f64, f64); 5] = [
 
 /// The ten zone lumens of `d`.
 pub fn bug_zones(d: &Distribution) -> BugZones {
-    let f = |a: f64, b: f64| zone_flux(d, (a, b), (0.0, 180.0));
-    let bk = |a: f64, b: f64| zone_flux(d, (a, b), (180.0, 360.0));
+    let f = |a: f64, b: f64| zone_flux(d, (a, b), (-90.0, 90.0));
+    let bk = |a: f64, b: f64| zone_flux(d, (a, b), (90.0, 270.0));
     let all = |a: f64, b: f64| zone_flux(d, (a, b), (0.0, 360.0));
     BugZones {
         fl: f(0.0, 30.0),
@@ -189,6 +209,54 @@ mod tests {
         let r = rate(&z, 0.0);
         assert_eq!(r.u, 5);
         assert_eq!(r.rating, format!("B1 U5 G5"));
+    }
+
+    /// Every limit row, restated from the table in the module docs (TM-15-11
+    /// Addendum A; B and U rows as in eulumdat-rs c7e8b5d): a zone exactly at
+    /// the class-k limit rates k, 0.01 lm above it rates k + 1, with every
+    /// other zone at 0 lm. A typo in one constant fails its own row.
+    #[test]
+    fn every_limit_row_matches_the_cited_table() {
+        type Set = fn(&mut BugZones, f64);
+        type Pick = fn(&BugRating) -> u8;
+        let b: Pick = |r| r.b;
+        let u: Pick = |r| r.u;
+        let g: Pick = |r| r.g;
+        let rows: [(&str, Set, Pick, [f64; 5]); 10] = [
+            ("B/BL", |z, x| z.bl = x, b, [110.0, 500.0, 1000.0, 2500.0, 5000.0]),
+            ("B/BM", |z, x| z.bm = x, b, [220.0, 1000.0, 2500.0, 5000.0, 8500.0]),
+            ("B/BH", |z, x| z.bh = x, b, [110.0, 500.0, 1000.0, 2500.0, 5000.0]),
+            ("U/UL", |z, x| z.ul = x, u, [0.0, 10.0, 50.0, 500.0, 1000.0]),
+            ("U/UH", |z, x| z.uh = x, u, [0.0, 10.0, 50.0, 500.0, 1000.0]),
+            ("G/FVH", |z, x| z.fvh = x, g, [10.0, 250.0, 375.0, 500.0, 750.0]),
+            ("G/BVH", |z, x| z.bvh = x, g, [10.0, 250.0, 375.0, 500.0, 750.0]),
+            ("G/FH", |z, x| z.fh = x, g, [660.0, 1800.0, 5000.0, 7500.0, 12000.0]),
+            ("G/BH", |z, x| z.bh = x, g, [110.0, 500.0, 1000.0, 2500.0, 5000.0]),
+            // Zones that no rating reads: any amount leaves B, U, G at 0.
+            (
+                "none",
+                |z, x| {
+                    z.fl = x;
+                    z.fm = x;
+                },
+                |r| r.b.max(r.u).max(r.g),
+                [1e9; 5],
+            ),
+        ];
+        for (name, set, pick, limits) in rows {
+            for (k, &limit) in limits.iter().enumerate() {
+                let mut z = BugZones::default();
+                set(&mut z, limit);
+                let at = pick(&rate(&z, 0.0));
+                set(&mut z, limit + 0.01);
+                let above = pick(&rate(&z, 0.0));
+                if name == "none" {
+                    assert_eq!((at, above), (0, 0), "{name}");
+                } else {
+                    assert_eq!((at, above), (k as u8, k as u8 + 1), "{name} limit {limit}");
+                }
+            }
+        }
     }
 
     /// A 1 cd isotropic lower-hemisphere source: every zone far below the
