@@ -139,17 +139,8 @@ pub fn beam_angles(d: &Distribution) -> BeamAngles {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Symmetry;
+    use crate::photometry::test_support::{rot, uniform};
     use std::f64::consts::PI;
-
-    fn rot(gamma: Vec<f64>, f: impl Fn(f64) -> f64) -> Distribution {
-        let cd = gamma.iter().map(|&g| f(g.to_radians())).collect();
-        Distribution::new(vec![0.0], gamma, cd, Symmetry::Rotational).unwrap()
-    }
-
-    fn uniform(n: usize, to: f64) -> Vec<f64> {
-        (0..n).map(|i| to * i as f64 / (n - 1) as f64).collect()
-    }
 
     #[test]
     fn beam_angles_of_closed_forms() {

@@ -16,6 +16,23 @@ pub mod luminance;
 pub mod ugr;
 pub mod zonal;
 
+/// Closed-form distributions shared by the unit tests of these modules.
+#[cfg(test)]
+mod test_support {
+    use crate::model::{Distribution, Symmetry};
+
+    /// A rotationally symmetric distribution: `f(γ in radians)` cd at each `gamma` (degrees).
+    pub fn rot(gamma: Vec<f64>, f: impl Fn(f64) -> f64) -> Distribution {
+        let cd = gamma.iter().map(|&g| f(g.to_radians())).collect();
+        Distribution::new(vec![0.0], gamma, cd, Symmetry::Rotational).unwrap()
+    }
+
+    /// `n` evenly spaced angles from 0 to `to` degrees.
+    pub fn uniform(n: usize, to: f64) -> Vec<f64> {
+        (0..n).map(|i| to * i as f64 / (n - 1) as f64).collect()
+    }
+}
+
 pub use beam::{beam_angles, plane_profile, spread_angle, BeamAngles};
 pub use derived::Derived;
 pub use flux::{flux, zone_flux, Flux};
