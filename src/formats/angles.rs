@@ -4,6 +4,7 @@
 //! duplicates. With the repair option both readers sort and drop the
 //! duplicates the same way, through [`repair_order`].
 
+use crate::error::{Warning, WarningCode};
 use crate::model::ANGLE_EPS;
 
 /// Index of the first angle that does not ascend by more than
@@ -61,5 +62,35 @@ mod tests {
         let cd = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
         assert_eq!(reorder_planes(&cd, 2, &order), vec![3.0, 4.0, 7.0, 8.0, 1.0, 2.0]);
         assert_eq!(reorder_rows(&cd, 4, &order), vec![2.0, 4.0, 1.0, 6.0, 8.0, 5.0]);
+    }
+}
+
+/// Drop the last C plane, C = 360 (it is C = 0; `cd` plane-major, `nv` values a
+/// plane): kept as C = 0 when there is none, else compared with it (a warning
+/// when they differ). One rule for every reader (IES, TM-33).
+pub fn drop_360_plane(hs: &mut Vec<f64>, cd: &mut Vec<f64>, nv: usize, warnings: &mut Vec<Warning>) {
+    let last = cd.split_off(cd.len() - nv);
+    hs.pop();
+    if hs[0].abs() <= ANGLE_EPS {
+        let diff = last
+            .iter()
+            .zip(&cd[..nv])
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if diff > 1e-9 * peak.max(f64::MIN_POSITIVE) {
+            warnings.push(Warning::new(
+                WarningCode::SeamMismatch,
+                format!(
+                    "the 360-degree plane differs from the 0-degree plane by up to {} cd; the 0-degree plane is kept",
+                    crate::report::significant(diff, 6)
+                ),
+            ));
+        }
+    } else {
+        hs.insert(0, 0.0);
+        let mut v = last;
+        v.extend_from_slice(cd);
+        *cd = v;
     }
 }

@@ -653,33 +653,7 @@ fn type_c(
         Symmetry::C90C270
     } else if last > 180.0 + ANGLE_EPS {
         if near(last, 360.0) {
-            let last_plane = cd.split_off((nh - 1) * nv);
-            horizontal.pop();
-            if near(first, 0.0) {
-                let diff = last_plane
-                    .iter()
-                    .zip(&cd[..nv])
-                    .map(|(a, b)| (a - b).abs())
-                    .fold(0.0, f64::max);
-                let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                if diff > 1e-9 * peak.max(f64::MIN_POSITIVE) {
-                    warnings.push(Warning::new(
-                        WarningCode::SeamMismatch,
-                        format!(
-                            "the 360-degree plane differs from the 0-degree plane by up to {} cd; \
-                             the 0-degree plane is kept",
-                            crate::report::significant(diff, 6)
-                        ),
-                    ));
-                }
-            } else {
-                // 360 is C0: it becomes the first plane.
-                horizontal.insert(0, 0.0);
-                let mut v = Vec::with_capacity(cd.len() + nv);
-                v.extend_from_slice(&last_plane);
-                v.extend_from_slice(&cd);
-                cd = v;
-            }
+            crate::formats::angles::drop_360_plane(&mut horizontal, &mut cd, nv, warnings);
         }
         Symmetry::None
     } else {

@@ -403,7 +403,7 @@ fn grid(
         hs[0] = 0.0;
     }
     if symmetry == Symmetry::None && nh > 1 && (hs[nh - 1] - 360.0).abs() <= ANGLE_EPS {
-        drop_360_plane(&mut hs, &mut cd, nv, warnings);
+        crate::formats::angles::drop_360_plane(&mut hs, &mut cd, nv, warnings);
     }
     Distribution::new(hs, vs, cd, symmetry).map_err(|e| {
         let at = declared.map_or_else(|| xml::location(block), |(_, l)| l);
@@ -439,34 +439,5 @@ fn inferred(hs: &[f64]) -> Symmetry {
         Symmetry::C90C270
     } else {
         Symmetry::None
-    }
-}
-
-/// Drop a C = 360 plane (it is C = 0): kept as C = 0 when there is none,
-/// else compared with it (a warning when they differ).
-fn drop_360_plane(hs: &mut Vec<f64>, cd: &mut Vec<f64>, nv: usize, warnings: &mut Vec<Warning>) {
-    let last = cd.split_off(cd.len() - nv);
-    hs.pop();
-    if hs[0].abs() <= ANGLE_EPS {
-        let diff = last
-            .iter()
-            .zip(&cd[..nv])
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        let peak = cd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if diff > 1e-9 * peak.max(f64::MIN_POSITIVE) {
-            warnings.push(Warning::new(
-                WarningCode::SeamMismatch,
-                format!(
-                    "the 360-degree plane differs from the 0-degree plane by up to {} cd; the 0-degree plane is kept",
-                    crate::report::significant(diff, 6)
-                ),
-            ));
-        }
-    } else {
-        hs.insert(0, 0.0);
-        let mut v = last;
-        v.extend_from_slice(cd);
-        *cd = v;
     }
 }
