@@ -66,12 +66,12 @@ fn ies_and_ldt_readers_agree_on_angle_order_and_duplicates() {
     assert!(e1.location.line > 0 && e2.location.line > 0, "{e1} / {e2}");
     let a = parse(&ies, Format::Ies, &repair).unwrap();
     let b = parse(&ldt, Format::Ldt, &repair).unwrap();
-    assert_eq!(a.distribution.c_angles(), &[0.0, 45.0, 90.0, 180.0, 270.0]);
-    assert_eq!(a.distribution.gamma_angles(), &[0.0, 30.0, 60.0, 90.0]);
-    assert_eq!(a.distribution.c_angles(), b.distribution.c_angles());
-    assert_eq!(a.distribution.gamma_angles(), b.distribution.gamma_angles());
-    assert_eq!(a.distribution.intensities(), b.distribution.intensities());
+    assert_eq!(a.distribution().c_angles(), &[0.0, 45.0, 90.0, 180.0, 270.0]);
+    assert_eq!(a.distribution().gamma_angles(), &[0.0, 30.0, 60.0, 90.0]);
+    assert_eq!(a.distribution().c_angles(), b.distribution().c_angles());
+    assert_eq!(a.distribution().gamma_angles(), b.distribution().gamma_angles());
+    assert_eq!(a.distribution().intensities(), b.distribution().intensities());
     // The first of the duplicates is kept: C90 is file plane 1, γ 90 is file angle 3.
-    assert_eq!(a.distribution.value(2, 3), value(1, 3));
-    assert_eq!(a.distribution.value(1, 1), value(3, 2));
+    assert_eq!(a.distribution().value(2, 3), value(1, 3));
+    assert_eq!(a.distribution().value(1, 1), value(3, 2));
 }

@@ -6,8 +6,8 @@ use crate::error::{Location, ParseError, Warning, WarningCode};
 use crate::formats::text::Source;
 use crate::formats::{angles, ReadOptions};
 use crate::model::{
-    Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Symmetry,
-    Tilt, ANGLE_EPS,
+    Declared, Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, SourceGrid,
+    Symmetry, Tilt, ANGLE_EPS,
 };
 
 use super::stream::Stream;
@@ -96,7 +96,7 @@ fn tilt_value(line: &[u8]) -> Option<&[u8]> {
 }
 
 /// Read an IES file's bytes. `path` names the file in errors and locates `TILT=<file>`.
-pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
     let src = Source::new(path, bytes).map_err(|mut e| {
         // Every error names a line; an empty file is wrong from line 1.
         if e.location.line == 0 {
@@ -480,35 +480,37 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         cri: header.keyword("CRI").unwrap_or_default(),
         watts: header.input_watts,
     };
-    Ok(Luminaire {
-        path: Some(path.to_path_buf()),
-        format: Format::Ies,
-        version: version.name().to_string(),
-        photometric_type: kind,
-        metadata,
-        lamp_sets: vec![lamp_set],
-        dimensions: Dimensions {
-            length_m: opening.length_m.abs(),
-            width_m: opening.width_m.abs(),
-            height_m: opening.height_m.abs(),
+    crate::formats::document(
+        path,
+        LuminaireParts {
+            path: Some(path.to_path_buf()),
+            format: Format::Ies,
+            version: version.name().to_string(),
+            photometric_type: kind,
+            metadata,
+            lamp_sets: vec![lamp_set],
+            dimensions: Dimensions {
+                length_m: opening.length_m.abs(),
+                width_m: opening.width_m.abs(),
+                height_m: opening.height_m.abs(),
+            },
+            luminous_opening: opening,
+            luminous_heights_m: None,
+            declared: Declared {
+                lamp_flux_lm: lamp_flux,
+                luminaire_flux_lm: None,
+                lor: None,
+                dff: None,
+                absolute,
+                input_watts: (header.input_watts > 0.0).then_some(header.input_watts),
+            },
+            tilt,
+            distribution,
+            source_grid,
+            warnings,
         },
-        luminous_opening: opening,
-        declared: Declared {
-            lamp_flux_lm: lamp_flux,
-            luminaire_flux_lm: None,
-            lor: None,
-            dff: None,
-            absolute,
-            input_watts: (header.input_watts > 0.0).then_some(header.input_watts),
-        },
-        tilt,
-        distribution,
-        source_grid,
-        warnings,
-        ies: Some(header),
-        ldt: None,
-        gldf: None,
-    })
+        crate::formats::Header::Ies(header),
+    )
 }
 
 /// A list's place in the stream: the stream and the index of its first token.

@@ -8,7 +8,7 @@ use crate::error::{Location, ParseError, Warning, WarningCode};
 use crate::formats::text::{Line, Lines, Source};
 use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{
-    Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
+    Declared, Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, Symmetry, Tilt,
     ANGLE_EPS,
 };
 
@@ -25,7 +25,7 @@ const MAX_LAMP_SETS: i64 = 10_000;
 /// module docs for the conversion), with every recoverable oddity as a
 /// warning. Never panics; every error names the file, the line (and column
 /// where it helps), what was expected and what was found.
-pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
     let src = Source::new(path, bytes).map_err(|mut e| {
         // A file with no data at all still gets a line to point at.
         if e.location.line == 0 {
@@ -183,7 +183,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         }
     }
 
-    fn read(mut self, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+    fn read(mut self, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
         let src = self.src;
         // Lines 1-12.
         let company = self.text("line 1: company / databank")?;
@@ -618,40 +618,43 @@ impl<'s, 'a> Reader<'s, 'a> {
             cd_per_cdklm: scale,
         };
         let lamp = lamp_sets[0].lamp_type.clone();
-        Ok(Luminaire {
-            path: Some(src.path.to_path_buf()),
-            format: Format::Ldt,
-            version: "EULUMDAT".into(),
-            photometric_type: PhotometricType::C,
-            metadata: Metadata {
-                manufacturer: company,
-                catalogue,
-                luminaire: luminaire_name,
-                lamp,
-                test_report,
-                date,
+        let luminous_heights_m = Some(header.luminous_heights_mm.map(|h| h / 1000.0));
+        crate::formats::document(
+            src.path,
+            LuminaireParts {
+                path: Some(src.path.to_path_buf()),
+                format: Format::Ldt,
+                version: "EULUMDAT".into(),
+                photometric_type: PhotometricType::C,
+                metadata: Metadata {
+                    manufacturer: company,
+                    catalogue,
+                    luminaire: luminaire_name,
+                    lamp,
+                    test_report,
+                    date,
+                },
+                lamp_sets,
+                dimensions: Dimensions {
+                    length_m: mm[0] / 1000.0,
+                    width_m: mm[1] / 1000.0,
+                    height_m: mm[2] / 1000.0,
+                },
+                luminous_opening: Dimensions {
+                    length_m: mm[3] / 1000.0,
+                    width_m: mm[4] / 1000.0,
+                    // One height for the opening: the mean of the four plane heights (all kept in the header).
+                    height_m: (mm[5] + mm[6] + mm[7] + mm[8]) / 4000.0,
+                },
+                luminous_heights_m,
+                declared,
+                tilt: Tilt::None,
+                distribution: dist,
+                source_grid: None,
+                warnings: self.warnings,
             },
-            lamp_sets,
-            dimensions: Dimensions {
-                length_m: mm[0] / 1000.0,
-                width_m: mm[1] / 1000.0,
-                height_m: mm[2] / 1000.0,
-            },
-            luminous_opening: Dimensions {
-                length_m: mm[3] / 1000.0,
-                width_m: mm[4] / 1000.0,
-                // One height for the opening: the mean of the four plane heights (all kept in the header).
-                height_m: (mm[5] + mm[6] + mm[7] + mm[8]) / 4000.0,
-            },
-            declared,
-            tilt: Tilt::None,
-            distribution: dist,
-            source_grid: None,
-            warnings: self.warnings,
-            ies: None,
-            ldt: Some(header),
-            gldf: None,
-        })
+            crate::formats::Header::Ldt(header),
+        )
     }
 }
 

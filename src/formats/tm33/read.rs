@@ -9,7 +9,7 @@ use crate::error::{ErrorKind, Location, ParseError, Warning, WarningCode};
 use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
 use crate::formats::ReadOptions;
 use crate::model::{
-    Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
+    Declared, Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, Symmetry, Tilt,
     ANGLE_EPS,
 };
 
@@ -25,7 +25,7 @@ const INTENSITY_BLOCKS: [&str; 3] = ["LuminousData", "LuminousIntensity", "Inten
 /// symmetry code that does not match the `horz` angles; each at the line of
 /// the offending element, naming it. Type A/B data and non-luminous metrics
 /// are [`ErrorKind::Unsupported`].
-pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
     let text = xml::decode(bytes, path)?;
     let doc = xml::parse(text, path, "a TM-33 document")?;
     let root = doc.root_element();
@@ -115,53 +115,55 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<Luminaire,
         },
         None => Dimensions::default(),
     };
-    Ok(Luminaire {
-        path: Some(path.to_path_buf()),
-        format: Format::Tm33,
-        version: edition.version().into(),
-        photometric_type: PhotometricType::C,
-        metadata: Metadata {
-            manufacturer: text_of(&["Manufacturer"]),
-            catalogue: text_of(&["CatalogNumber"]),
-            luminaire: text_of(&["Description"]),
-            lamp: lamp.to_string(),
-            test_report: text_of(&["ReportNumber"]),
-            date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
-        },
-        lamp_sets: vec![LampSet {
-            count: if absolute {
-                -quantity.max(1.0)
-            } else {
-                quantity.max(1.0)
+    crate::formats::document(
+        path,
+        LuminaireParts {
+            path: Some(path.to_path_buf()),
+            format: Format::Tm33,
+            version: edition.version().into(),
+            photometric_type: PhotometricType::C,
+            metadata: Metadata {
+                manufacturer: text_of(&["Manufacturer"]),
+                catalogue: text_of(&["CatalogNumber"]),
+                luminaire: text_of(&["Description"]),
+                lamp: lamp.to_string(),
+                test_report: text_of(&["ReportNumber"]),
+                date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
             },
-            lamp_type: lamp.to_string(),
-            flux_lm: lamp_flux.unwrap_or(0.0),
-            color: if cct.is_empty() {
-                String::new()
-            } else {
-                format!("{cct}K")
+            lamp_sets: vec![LampSet {
+                count: if absolute {
+                    -quantity.max(1.0)
+                } else {
+                    quantity.max(1.0)
+                },
+                lamp_type: lamp.to_string(),
+                flux_lm: lamp_flux.unwrap_or(0.0),
+                color: if cct.is_empty() {
+                    String::new()
+                } else {
+                    format!("{cct}K")
+                },
+                cri: cri.to_string(),
+                watts: watts.unwrap_or(0.0),
+            }],
+            dimensions: dims,
+            luminous_opening: Dimensions::default(),
+            luminous_heights_m: None,
+            declared: Declared {
+                lamp_flux_lm: lamp_flux,
+                luminaire_flux_lm: None,
+                lor: None,
+                dff: None,
+                absolute,
+                input_watts: watts,
             },
-            cri: cri.to_string(),
-            watts: watts.unwrap_or(0.0),
-        }],
-        dimensions: dims,
-        luminous_opening: Dimensions::default(),
-        declared: Declared {
-            lamp_flux_lm: lamp_flux,
-            luminaire_flux_lm: None,
-            lor: None,
-            dff: None,
-            absolute,
-            input_watts: watts,
+            tilt: Tilt::None,
+            distribution,
+            source_grid: None,
+            warnings,
         },
-        tilt: Tilt::None,
-        distribution,
-        source_grid: None,
-        warnings,
-        ies: None,
-        ldt: None,
-        gldf: None,
-    })
+        crate::formats::Header::None,
+    )
 }
 
 /// The emitter's intensity block, when it holds `IntensityData`.
