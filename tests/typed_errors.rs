@@ -189,3 +189,52 @@ fn cli_names_unknown_extensions() {
     assert!(e.contains("m.step") && e.contains(".obj, .ply, .stl or .glb"), "{e}");
     assert!(!t.path().join("iso.txt").exists() && !t.path().join("m.step").exists());
 }
+
+/// The GPU check in the library: every filter of every file rendered on the
+/// GPU and the CPU from the same plans agrees within 1e-5 of I_max, the
+/// summary adds the renders up, and no filter is `NothingChecked`.
+/// Skipped (with a note) when there is no adapter, unless PHOTOSOLID_REQUIRE_GPU=1.
+#[cfg(feature = "gpu")]
+#[test]
+fn gpu_check_agrees_with_the_cpu_on_the_data_files() {
+    use photosolid::gpu::check::{check_file, CheckInputs, CheckOptions, CheckSummary};
+    use photosolid::reconstruct::Filter;
+    let ctx = match photosolid::gpu::GpuContext::global() {
+        Ok(c) => c,
+        Err(e) if std::env::var("PHOTOSOLID_REQUIRE_GPU").as_deref() == Ok("1") => {
+            panic!("PHOTOSOLID_REQUIRE_GPU=1 but: {e}")
+        }
+        Err(e) => {
+            eprintln!("skipped: no GPU adapter ({e})");
+            return;
+        }
+    };
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let paths = vec![data.join("roadway.ies"), data.join("batwing.ldt")];
+    let inputs = CheckInputs::collect(&paths, &Default::default()).unwrap();
+    assert_eq!((inputs.textures.len(), inputs.skipped.len()), (2, 0));
+    let opts = CheckOptions {
+        factor: 2,
+        filters: vec![Filter::Bilinear, Filter::CatmullRom, Filter::Pchip],
+        tolerance: 1e-5,
+    };
+    let mut summary = CheckSummary::start();
+    for (path, tex) in &inputs.textures {
+        let f = check_file(ctx, path, tex, &opts).unwrap();
+        assert_eq!((f.renders, f.failed), (3, 0), "{f:?}");
+        assert!(f.max_diff <= 1e-5 && f.clamp_mismatches.is_empty(), "{f:?}");
+        assert!(f.height > 0 && f.width > 0);
+        summary.add(&f);
+    }
+    assert_eq!(summary.checked, 6);
+    assert!(summary.passed().unwrap());
+    let none = CheckOptions {
+        filters: vec![],
+        ..opts
+    };
+    let (path, tex) = &inputs.textures[0];
+    assert!(matches!(
+        check_file(ctx, path, tex, &none),
+        Err(Error::NothingChecked(_))
+    ));
+}

@@ -37,7 +37,7 @@ pub struct EnginesArgs {
     /// Refinement factor of the solids' grid.
     #[arg(long, default_value_t = 3)]
     factor: usize,
-    /// With --report DIR, the plots are error maps next to the reference.
+    // --json, --report DIR (the plots: error maps next to the reference).
     #[command(flatten)]
     out: ReportArgs,
     #[command(flatten)]

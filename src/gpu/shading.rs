@@ -133,7 +133,7 @@ pub fn shade_cpu(field: &dyn IntensityField, view: &PlaneView) -> Result<Vec<f64
 /// one-channel f32 OpenEXR (`Y`), recording what it shows in `photosolid.*` attributes.
 ///
 /// # Errors
-/// [`Error::Io`] / [`Error::Unsupported`] from [`exr_io::write_layer`].
+/// [`Error::Io`] / [`Error::Encode`] / [`ModelError::Parameter`] from [`exr_io::write_layer`].
 pub fn write_exr(path: &Path, view: &PlaneView, values: &[f64], what: &str) -> Result<(), Error> {
     let mut attrs = LayerAttributes::named("photosolid-plane");
     let mut put = |k: &str, v: AttributeValue| {

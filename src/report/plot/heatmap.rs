@@ -119,10 +119,10 @@ impl Default for HeatmapSpec<'_> {
 /// grey. The axes widen to take in centres outside 0–360 / 0–180.
 ///
 /// # Errors
-/// [`Error::Unsupported`] for a size outside 120..=8192 px, if
+/// [`ModelError::Parameter`] for a size outside 120..=8192 px, if
 /// `values.len() != xs.len() * ys.len()`, for a `range` that is not finite
-/// with lo < hi, for an exposure k that is not positive and finite, or if
-/// encoding fails.
+/// with lo < hi, or for an exposure k that is not positive and finite;
+/// [`Error::Encode`] if encoding fails.
 pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
     let HeatmapSpec {
         title,
