@@ -136,9 +136,111 @@ pub enum Error {
     /// A model invariant or parameter domain was violated.
     #[error(transparent)]
     Model(#[from] ModelError),
-    /// Something that cannot be done with this input (e.g. a GPU with no adapter).
+    /// Something that cannot be done with this input (e.g. a mesh with no triangles).
     #[error("{0}")]
     Unsupported(String),
+    /// The GPU path failed: no adapter, the device, a pipeline, a read-back.
+    #[error(transparent)]
+    Gpu(#[from] GpuError),
+    /// An output could not be encoded (PNG, EXR, JSON, Arrow, Parquet).
+    #[error("cannot encode {format}: {message}")]
+    Encode {
+        /// The format being written, e.g. "PNG".
+        format: &'static str,
+        /// The encoder's message.
+        message: String,
+    },
+    /// An output (or mesh input) path whose extension names no format this
+    /// crate writes (or reads) there.
+    #[error(
+        "{path}: cannot tell the {what} from the extension; expected {accepted}",
+        path = .path.display(),
+        accepted = join_or(.accepted)
+    )]
+    UnknownExtension {
+        /// The path given.
+        path: PathBuf,
+        /// What the extension selects, e.g. "mesh format".
+        what: &'static str,
+        /// The extensions accepted there, with their dot: `[".obj", ".ply"]`.
+        accepted: &'static [&'static str],
+    },
+    /// A check found nothing to check (no file loaded, no render compared):
+    /// a check that checked nothing fails.
+    #[error("checked nothing: {0}")]
+    NothingChecked(String),
+}
+
+/// `a`, `a or b`, `a, b or c`.
+fn join_or(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [one] => (*one).to_string(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+/// Errors of the GPU path (feature `gpu`). The type exists without the
+/// feature so that [`Error`] has one shape; [`GpuError::NotBuilt`] is then
+/// what asking for the GPU gives.
+#[non_exhaustive]
+#[derive(Clone, Debug, thiserror::Error)]
+pub enum GpuError {
+    /// No adapter on any of the tried backends.
+    #[error(
+        "no GPU adapter found (backends tried: {tried}; {detail}); install a Vulkan or GL driver, e.g. Mesa's \
+         software drivers (`apt-get install mesa-vulkan-drivers libvulkan1 libegl-mesa0`, see \
+         scripts/install-gpu-drivers.sh), or use --backend cpu"
+    )]
+    NoAdapter {
+        /// Backends that were tried.
+        tried: String,
+        /// wgpu's last message.
+        detail: String,
+    },
+    /// Device creation, a submission or a wait failed.
+    #[error("GPU device error: {0}")]
+    Device(String),
+    /// A shader or pipeline could not be created (a driver that cannot compile it).
+    #[error("GPU pipeline error: {0}")]
+    Pipeline(String),
+    /// A read-back buffer could not be mapped or read.
+    #[error("GPU read-back error: {0}")]
+    BufferMap(String),
+    /// A job is malformed.
+    #[error("render job {index}: {reason}")]
+    InvalidJob {
+        /// Index of the job in the batch.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A single job does not fit the device's limits.
+    #[error("render job {index} is too large for this device: {reason}")]
+    TooLarge {
+        /// Index of the job in the batch.
+        index: usize,
+        /// Which limit.
+        reason: String,
+    },
+    /// This build has no GPU support (cargo feature `gpu` off).
+    #[error("this photosolid binary was built without GPU support (cargo feature `gpu`)")]
+    NotBuilt,
+}
+
+impl GpuError {
+    /// The stable code of this error in [`ErrorRecord::code`] (`gpu-no-adapter`, ...).
+    pub fn code(&self) -> &'static str {
+        match self {
+            GpuError::NoAdapter { .. } => "gpu-no-adapter",
+            GpuError::Device(_) => "gpu-device",
+            GpuError::Pipeline(_) => "gpu-pipeline",
+            GpuError::BufferMap(_) => "gpu-buffer-map",
+            GpuError::InvalidJob { .. } => "gpu-invalid-job",
+            GpuError::TooLarge { .. } => "gpu-too-large",
+            GpuError::NotBuilt => "gpu-not-built",
+        }
+    }
 }
 
 impl Error {
@@ -161,7 +263,9 @@ pub struct ErrorRecord {
     pub line: Option<usize>,
     /// 1-based column, when the error has one.
     pub column: Option<usize>,
-    /// Stable code: `invalid` or `unsupported` (file content), `io`, `model`, `unsupported-operation`.
+    /// Stable code: `invalid` or `unsupported` (file content), `io`, `model`,
+    /// `unsupported-operation`, `encode`, `unknown-extension`, `nothing-checked`,
+    /// or a GPU code ([`GpuError::code`]: `gpu-no-adapter`, `gpu-device`, ...).
     pub code: &'static str,
     /// The full message (as [`std::fmt::Display`] prints it).
     pub message: String,
@@ -181,6 +285,10 @@ impl From<&Error> for ErrorRecord {
             Error::Io { .. } => (None, None, "io"),
             Error::Model(_) => (None, None, "model"),
             Error::Unsupported(_) => (None, None, "unsupported-operation"),
+            Error::Gpu(g) => (None, None, g.code()),
+            Error::Encode { .. } => (None, None, "encode"),
+            Error::UnknownExtension { .. } => (None, None, "unknown-extension"),
+            Error::NothingChecked(_) => (None, None, "nothing-checked"),
         };
         Self {
             line,

@@ -102,7 +102,7 @@ fn columns(rows: &[BatchRecord]) -> Vec<(&'static str, ArrayRef, bool)> {
 /// The rows as one Arrow record batch (see the module docs for the types).
 ///
 /// # Errors
-/// [`Error::Unsupported`] if Arrow refuses the arrays (a bug: they are built to the schema).
+/// [`Error::Encode`] if Arrow refuses the arrays (a bug: they are built to the schema).
 pub fn record_batch(rows: &[BatchRecord]) -> Result<RecordBatch> {
     let cols = columns(rows);
     let schema = Schema::new(
@@ -110,14 +110,16 @@ pub fn record_batch(rows: &[BatchRecord]) -> Result<RecordBatch> {
             .map(|(name, a, nullable)| Field::new(*name, a.data_type().clone(), *nullable))
             .collect::<Vec<_>>(),
     );
-    RecordBatch::try_new(Arc::new(schema), cols.into_iter().map(|c| c.1).collect())
-        .map_err(|e| Error::Unsupported(format!("batch table: {e}")))
+    RecordBatch::try_new(Arc::new(schema), cols.into_iter().map(|c| c.1).collect()).map_err(|e| Error::Encode {
+        format: "Arrow",
+        message: format!("batch table: {e}"),
+    })
 }
 
 /// Write `rows` as Parquet into `out`.
 ///
 /// # Errors
-/// [`Error::Unsupported`] naming the Parquet error (an I/O error of `out` included).
+/// [`Error::Encode`] naming the Parquet error (an I/O error of `out` included).
 pub fn write_parquet_to<W: Write + Send>(rows: &[BatchRecord], out: W) -> Result<()> {
     let batch = record_batch(rows)?;
     let meta = vec![
@@ -135,7 +137,10 @@ pub fn write_parquet_to<W: Write + Send>(rows: &[BatchRecord], out: W) -> Result
         .set_max_row_group_row_count(Some(ROW_GROUP))
         .set_key_value_metadata(Some(meta))
         .build();
-    let fail = |e: parquet::errors::ParquetError| Error::Unsupported(format!("writing Parquet: {e}"));
+    let fail = |e: parquet::errors::ParquetError| Error::Encode {
+        format: "Parquet",
+        message: e.to_string(),
+    };
     let mut w = ArrowWriter::try_new(out, batch.schema(), Some(props)).map_err(fail)?;
     w.write(&batch).map_err(fail)?;
     w.close().map_err(fail)?;

@@ -89,9 +89,7 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
     }
     bar.finish_and_clear();
     if let Some(dir) = &a.report {
-        let bar = super::progress_bar("thumbnails");
-        catalogue::write(dir, &rows, &options.read, &super::progress_fn(&bar))?;
-        bar.finish_and_clear();
+        super::with_progress("thumbnails", |p| catalogue::write(dir, &rows, &options.read, p))?;
     }
     let ok = rows.iter().filter(|r| r.ok).count();
     let outliers = rows.iter().filter(|r| r.is_outlier()).count();

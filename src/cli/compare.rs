@@ -21,7 +21,7 @@ use photosolid::reconstruct::Recon;
 use photosolid::report::compare_report;
 use photosolid::synth::Truth;
 
-use super::ReadArgs;
+use super::{ReadArgs, ReportArgs};
 
 #[derive(Args, Debug)]
 pub struct CompareArgs {
@@ -59,12 +59,8 @@ pub struct CompareArgs {
     /// Refinement factor of the grid solids.
     #[arg(long, default_value_t = 3, value_parser = super::parse::at_least_one)]
     factor: usize,
-    /// Print JSON.
-    #[arg(long)]
-    json: bool,
-    /// Write index.html, report.md, report.json and PNGs into DIR.
-    #[arg(long)]
-    report: Option<PathBuf>,
+    #[command(flatten)]
+    out: ReportArgs,
     #[command(flatten)]
     read: ReadArgs,
 }
@@ -90,27 +86,23 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         tolerance: a.tolerance,
         factor: a.factor,
         align: a.align,
-        plots: a.report.is_some(),
+        plots: a.out.report.is_some(),
         ..Default::default()
     };
-    let bar = super::progress_bar("reconstructions");
-    let progress = super::progress_fn(&bar);
-    let mut c = compare_with_progress(
-        lum.distribution(),
-        other.as_ref().map(|o| o.distribution()),
-        &opts,
-        &progress,
-    )?;
-    bar.finish_and_clear();
+    let mut c = super::with_progress("reconstructions", |progress| {
+        compare_with_progress(
+            lum.distribution(),
+            other.as_ref().map(|o| o.distribution()),
+            &opts,
+            progress,
+        )
+    })?;
     c.file = a.file.display().to_string();
     c.vs = a.vs.as_ref().map(|p| p.display().to_string());
     c.photometry_side_by_side = other
         .as_ref()
         .map(|o| photosolid::photometry::derived::side_by_side(&lum, o));
-    super::emit(a.json, &c, &compare_report::to_text(&c))?;
-    if let Some(dir) = &a.report {
-        compare_report::write_report(&c, dir)?;
-        super::say_report_written(a.json, dir)?;
-    }
+    a.out
+        .emit(&c, &compare_report::to_text(&c), compare_report::write_report)?;
     Ok(0)
 }

@@ -12,7 +12,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::formats::{ies::IesWriteVersion, WriteOptions};
+use photosolid::formats::WriteOptions;
 
 use super::ReadArgs;
 
@@ -23,8 +23,8 @@ pub struct ConvertArgs {
     /// Output file; .ies, .ldt or .xml (TM-33-23) decides the format.
     output: PathBuf,
     /// IES version to write.
-    #[arg(long, default_value = "2002", value_parser = ["2002", "2019"])]
-    ies_version: String,
+    #[arg(long, value_enum, default_value = "2002")]
+    ies_version: super::choice::IesVersionArg,
     /// Rotate the C angles by this many degrees (counter-clockwise seen from above).
     #[arg(long, default_value_t = 0.0, value_parser = super::parse::finite)]
     rotate_c: f64,
@@ -45,11 +45,7 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<i32> {
         doc.header = photosolid::formats::Header::None;
     }
     let opts = WriteOptions {
-        ies_version: if a.ies_version == "2019" {
-            IesWriteVersion::Lm63_2019
-        } else {
-            IesWriteVersion::Lm63_2002
-        },
+        ies_version: a.ies_version.into(),
     };
     photosolid::save(&doc, &a.output, &opts)?;
     eprintln!("wrote {}", a.output.display());

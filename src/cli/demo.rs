@@ -61,7 +61,10 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
         gamma_step: 2,
     };
     outln!("\n== hold-out: keep every 2 C-plane(s) and every 2 gamma row(s); errors in % of I_max ==");
-    outln!("{}", super::holdout_table(&holdout(d, spec, &Filter::ALL)?));
+    outln!(
+        "{}",
+        photosolid::reconstruct::HoldoutReport::table(&holdout(d, spec, &Filter::ALL)?)
+    );
 
     outln!("== fitted OpenGL lights ==");
     print!("{}", FitReport::of(&fit(d, &FitOptions::default())?).to_text());
@@ -94,10 +97,10 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let scene = photosolid::scene::demo_scene()?;
     outln!(
         "{}",
-        super::scene::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?)
+        photosolid::report::scene_report::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?)
     );
     let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
-    outln!("{}", super::scene::plan_text(&plan));
+    outln!("{}", photosolid::report::scene_report::plan_text(&plan));
     Ok(0)
 }
 

@@ -11,7 +11,7 @@ use photosolid::engines::{measure, Engine, EngineOptions, EnginesOptions, Engine
 use photosolid::reconstruct::Filter;
 use photosolid::synth::Truth;
 
-use super::ReadArgs;
+use super::{ReadArgs, ReportArgs};
 
 #[derive(Args, Debug)]
 pub struct EnginesArgs {
@@ -37,12 +37,9 @@ pub struct EnginesArgs {
     /// Refinement factor of the solids' grid.
     #[arg(long, default_value_t = 3)]
     factor: usize,
-    /// Print JSON.
-    #[arg(long)]
-    json: bool,
-    /// Write index.html, report.md, report.json and PNGs (error maps next to the reference) into DIR.
-    #[arg(long)]
-    report: Option<PathBuf>,
+    // --json, --report DIR (the plots: error maps next to the reference).
+    #[command(flatten)]
+    out: ReportArgs,
     #[command(flatten)]
     read: ReadArgs,
 }
@@ -64,16 +61,13 @@ pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
         },
         factor: a.factor,
         tolerance: a.tolerance,
-        plots: a.report.is_some(),
+        plots: a.out.report.is_some(),
         ..Default::default()
     };
     let mut r = measure(&lum, &opts)?;
     r.file = a.file.display().to_string();
-    super::emit(a.json, &r, &text(&r))?;
-    if let Some(dir) = &a.report {
-        photosolid::report::engines_report::write_report(&r, dir)?;
-        super::say_report_written(a.json, dir)?;
-    }
+    a.out
+        .emit(&r, &text(&r), photosolid::report::engines_report::write_report)?;
     Ok(0)
 }
 

@@ -15,8 +15,8 @@ pub struct FitArgs {
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
     max_lights: u8,
     /// Error minimised: the seed's relative error over the measured directions, or each weighted by its solid angle.
-    #[arg(long, default_value = "relative", value_parser = ["relative", "solid-angle"])]
-    error: String,
+    #[arg(long, value_enum, default_value = "relative")]
+    error: ErrorMetric,
     /// Pick the fewest lights whose error is within T of the best (0.01 = one percentage point).
     #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_parser = super::parse::non_negative)]
     tolerance: f64,
@@ -34,11 +34,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<i32> {
     let lum = super::load(&a.file, &a.read)?;
     let options = FitOptions {
         max_lights: a.max_lights as usize,
-        metric: if a.error == "solid-angle" {
-            ErrorMetric::SolidAngle
-        } else {
-            ErrorMetric::Relative
-        },
+        metric: a.error,
         guard: a.guard,
         tolerance: a.tolerance,
         ..Default::default()

@@ -7,7 +7,8 @@
 //! not load (or have no positive intensity) are counted and skipped; a path
 //! that does not exist, or a run where no file loads, is an error (a check
 //! that checked nothing fails).
-//! `WGPU_BACKEND=vulkan|gl` selects the driver.
+//! `WGPU_BACKEND=vulkan|gl` selects the driver. The check itself is
+//! `photosolid::gpu::check`; this file parses the arguments and prints.
 
 use std::path::PathBuf;
 
@@ -37,160 +38,80 @@ pub struct GpuCheckArgs {
 
 #[cfg(not(feature = "gpu"))]
 pub fn run(_a: GpuCheckArgs) -> anyhow::Result<i32> {
-    anyhow::bail!("gpu-check: this photosolid binary was built without GPU support (cargo feature `gpu`)")
+    Err(anyhow::Error::from(photosolid::Error::Gpu(photosolid::error::GpuError::NotBuilt)).context("gpu-check"))
 }
 
 #[cfg(feature = "gpu")]
 pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
-    use photosolid::gpu::{self, GpuContext};
-    use photosolid::reconstruct::{LightTexture, RenderOptions};
+    use photosolid::gpu::check::{check_file, CheckInputs, CheckOptions, CheckSummary};
+    use photosolid::gpu::GpuContext;
 
-    let filters = if a.filter.is_empty() {
-        let mut f = Filter::ALL.to_vec();
-        f.push(Filter::Mitchell { b: 0.0, c: 0.75 });
-        f
-    } else {
-        a.filter.clone()
+    let opts = CheckOptions {
+        factor: a.factor,
+        filters: if a.filter.is_empty() {
+            CheckOptions::default_filters()
+        } else {
+            a.filter.clone()
+        },
+        tolerance: a.tolerance,
     };
-    let mut files = Vec::new();
-    for p in &a.paths {
-        if !p.exists() {
-            anyhow::bail!("{}: no such file or directory: nothing to check", p.display());
-        }
-        photosolid::formats::collect_files(p, &mut files)?;
-    }
     // Load every file before touching the GPU: a run that would check nothing fails early.
-    let opts = a.read.options();
-    let mut textures = Vec::new();
-    let mut skipped = 0usize;
-    for f in &files {
-        match photosolid::load_with(f, &opts)
-            .map_err(anyhow::Error::from)
-            .and_then(|l| Ok(LightTexture::new(l.distribution())?))
-        {
-            Ok(t) => textures.push((f, t)),
-            Err(e) => {
-                skipped += 1;
-                outln!(
-                    "{}: skipped ({})",
-                    f.display(),
-                    e.to_string().lines().next().unwrap_or("")
-                );
-            }
-        }
+    let inputs = CheckInputs::collect(&a.paths, &a.read.options())?;
+    for s in &inputs.skipped {
+        outln!("{}: skipped ({})", s.path.display(), s.reason);
     }
-    if textures.is_empty() {
-        anyhow::bail!(
-            "gpu-check checked nothing: none of the {} file(s) found under {} loaded",
-            files.len(),
-            a.paths
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-    }
+    inputs
+        .require_some(&a.paths)
+        .map_err(|e| anyhow::anyhow!("gpu-check {e}"))?;
     let ctx = GpuContext::global()?;
     outln!(
         "gpu-check: {} files, {} filters, factor {}, adapter {}",
-        files.len(),
-        filters.len(),
-        a.factor,
+        inputs.files.len(),
+        opts.filters.len(),
+        opts.factor,
         ctx.adapter()
     );
-    let t0 = std::time::Instant::now();
-    let (mut checked, mut failed, mut clamp_mismatch) = (0usize, 0usize, 0usize);
-    let mut worst = (0.0f64, String::new());
-    for (f, tex) in &textures {
-        let items: Vec<(&LightTexture, RenderOptions)> = filters
-            .iter()
-            .map(|&filter| {
-                (
-                    tex,
-                    RenderOptions {
-                        filter,
-                        factor: a.factor,
-                        ..RenderOptions::default()
-                    },
-                )
-            })
-            .collect();
-        // One plan per filter, shared by both renders; one GPU submission per
-        // group of at most 2^25 texels.
-        let plans = gpu::plans(&items)?;
-        let jobs = gpu::jobs(&items, &plans);
-        let mut file_max = (0.0f64, Filter::Nearest);
-        let mut start = 0;
-        while start < jobs.len() {
-            let mut end = start + 1;
-            let mut n = jobs[start].height() * jobs[start].width();
-            while end < jobs.len() && n + jobs[end].height() * jobs[end].width() <= 1 << 25 {
-                n += jobs[end].height() * jobs[end].width();
-                end += 1;
-            }
-            let out = ctx.render_jobs(&jobs[start..end])?;
-            for (job, g) in jobs[start..end].iter().zip(&out) {
-                let cpu = gpu::render_cpu(job);
-                let d = g
-                    .data
-                    .iter()
-                    .zip(&cpu.data)
-                    .map(|(x, y)| {
-                        let d = (x - y).abs() as f64;
-                        if d.is_nan() {
-                            f64::INFINITY
-                        } else {
-                            d
-                        }
-                    })
-                    .fold(0.0, f64::max);
-                if g.data.len() != cpu.data.len() || d > a.tolerance {
-                    failed += 1;
-                }
-                if g.clamped != cpu.clamped {
-                    clamp_mismatch += 1;
-                    outln!(
-                        "{}: [{}] clamped texels differ: gpu {} cpu {}",
-                        f.display(),
-                        job.plan.filter,
-                        g.clamped,
-                        cpu.clamped
-                    );
-                }
-                if d > file_max.0 || file_max.0 == 0.0 && job.plan.filter == filters[0] {
-                    file_max = (d, job.plan.filter);
-                }
-                checked += 1;
-            }
-            start = end;
+    let mut summary = CheckSummary::start();
+    for (path, tex) in &inputs.textures {
+        let f = check_file(ctx, path, tex, &opts)?;
+        for m in &f.clamp_mismatches {
+            outln!(
+                "{}: [{}] clamped texels differ: gpu {} cpu {}",
+                path.display(),
+                m.filter,
+                m.gpu,
+                m.cpu
+            );
         }
-        let (h, w) = (plans[0].mapping.height, plans[0].mapping.width);
         outln!(
-            "{}: {h} x {w} texels, max |gpu - cpu| = {:.3e} ({}){}",
-            f.display(),
-            file_max.0,
-            file_max.1,
-            if file_max.0 > a.tolerance { "  FAIL" } else { "" }
+            "{}: {} x {} texels, max |gpu - cpu| = {:.3e} ({}){}",
+            path.display(),
+            f.height,
+            f.width,
+            f.max_diff,
+            f.max_filter,
+            if f.max_diff > opts.tolerance { "  FAIL" } else { "" }
         );
-        if file_max.0 > worst.0 || worst.1.is_empty() {
-            worst = (file_max.0, format!("{} [{}]", f.display(), file_max.1));
-        }
+        summary.add(&f);
     }
-    let loaded = files.len() - skipped;
+    let (worst, at) = summary.worst.clone().unwrap_or((0.0, "-".into()));
     outln!(
-        "overall: {loaded} files x {} filters = {checked} renders at factor {} on {}: max |gpu - cpu| = {:.3e} \
-         (at {}), tolerance {:e}; {failed} over tolerance; {clamp_mismatch} clamped-count mismatches; {skipped} \
+        "overall: {} files x {} filters = {} renders at factor {} on {}: max |gpu - cpu| = {:.3e} \
+         (at {}), tolerance {:e}; {} over tolerance; {} clamped-count mismatches; {} \
          files skipped; {:.1?}",
-        filters.len(),
-        a.factor,
+        inputs.textures.len(),
+        opts.filters.len(),
+        summary.checked,
+        opts.factor,
         ctx.adapter(),
-        worst.0,
-        if worst.1.is_empty() { "-" } else { &worst.1 },
-        a.tolerance,
-        t0.elapsed()
+        worst,
+        at,
+        opts.tolerance,
+        summary.failed,
+        summary.clamp_mismatches,
+        inputs.skipped.len(),
+        summary.elapsed
     );
-    if checked == 0 {
-        anyhow::bail!("gpu-check checked nothing: no render was compared");
-    }
-    Ok(if failed > 0 { 1 } else { 0 })
+    let passed = summary.passed().map_err(|e| anyhow::anyhow!("gpu-check {e}"))?;
+    Ok(if passed { 0 } else { 1 })
 }

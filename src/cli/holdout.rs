@@ -10,7 +10,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::reconstruct::{holdout, Filter, HoldoutSpec};
+use photosolid::reconstruct::{holdout, Filter, HoldoutReport, HoldoutSpec};
 
 use super::ReadArgs;
 
@@ -58,6 +58,6 @@ pub fn run(a: HoldoutArgs) -> anyhow::Result<i32> {
         a.drop_c,
         a.drop_gamma
     )?;
-    writeln!(out, "{}", super::holdout_table(&reports))?;
+    writeln!(out, "{}", HoldoutReport::table(&reports))?;
     Ok(0)
 }

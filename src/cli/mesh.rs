@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::reconstruct::{render, LightTexture, Recon, Reconstructions};
-use photosolid::solid::{export, grid_solid, topology, ColorMap, SolidGrid, Units};
+use photosolid::reconstruct::{Recon, Reconstructions};
+use photosolid::solid::{export, texture_solid, topology, ColorMap, Units, UnitsName};
 
 use super::ReadArgs;
 
@@ -31,8 +31,8 @@ pub struct MeshArgs {
     /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd per 1000 lm
     /// of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux (cd per 1000 lm of
     /// the computed luminaire flux: solids of equal flux).
-    #[arg(long, default_value = "cd", value_parser = ["cd", "peak", "klm", "flux"])]
-    units: String,
+    #[arg(long, value_enum, default_value = "cd")]
+    units: UnitsName,
     /// Per-vertex colour from the viridis map of intensity (not in STL).
     #[arg(long)]
     color: bool,
@@ -56,33 +56,14 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         }
     };
     if export::MeshFormat::from_path(&a.output).is_none() {
-        anyhow::bail!(
-            "-o {}: cannot tell the mesh format; use the extension .obj, .ply, .stl or .glb",
-            a.output.display()
-        );
+        return Err(anyhow::Error::from(export::MeshFormat::unknown_extension(&a.output)).context("-o"));
     }
     let lum = super::load(&a.file, &a.read)?;
-    let d = lum.distribution();
-    let units = match a.units.as_str() {
-        "peak" => Units::Peak,
-        "klm" => match lum.declared().lamp_flux_lm {
-            Some(flux_lm) if flux_lm.is_finite() && flux_lm > 0.0 => Units::PerKilolumen { flux_lm },
-            _ => anyhow::bail!(
-                "{}: --units klm is per 1000 lm of lamp flux, and this file has absolute photometry (no lamp \
-                 flux); use --units flux (equal luminaire flux) or peak",
-                a.file.display()
-            ),
-        },
-        "flux" => Units::per_kilolumen(d)?,
-        _ => Units::Candela,
-    };
+    let d = &lum.distribution();
+    let units =
+        Units::resolve(a.units, d, lum.declared().lamp_flux_lm).with_context(|| a.file.display().to_string())?;
     let mut mesh = match recon {
-        Recon::Filter(f) if a.texture => {
-            let tex = LightTexture::new(d).context("building the light distribution texture")?;
-            let factor = u32::try_from(a.factor).unwrap_or(u32::MAX);
-            let rendered = render(&tex, f, factor)?;
-            grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
-        }
+        Recon::Filter(f) if a.texture => texture_solid(d, f, u32::try_from(a.factor).unwrap_or(u32::MAX), units)?,
         _ => Reconstructions::new((*d).clone(), &[recon])?.solid_in(recon, a.factor, units)?,
     };
     mesh.info_mut().source = a.file.display().to_string();

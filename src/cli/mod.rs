@@ -10,6 +10,7 @@ macro_rules! outln {
 }
 
 mod batch;
+mod choice;
 mod compare;
 mod convert;
 mod demo;
@@ -31,7 +32,7 @@ mod validate;
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
-use photosolid::formats::{Handedness, ReadOptions};
+use photosolid::formats::ReadOptions;
 
 /// Analyse and compare the photometric solids of real luminaires (IES LM-63, EULUMDAT).
 #[derive(Parser, Debug)]
@@ -90,28 +91,50 @@ pub struct ReadArgs {
     #[arg(long)]
     repair: bool,
     /// Rotation sense of Type A/B horizontal angles: ccw (C90 = +y, default) or cw.
-    #[arg(long, default_value = "ccw", value_parser = ["ccw", "cw"])]
-    handedness: String,
+    #[arg(long, value_enum, default_value = "ccw")]
+    handedness: choice::HandednessArg,
     /// EULUMDAT with several lamp sets: cd/klm refer to the first set's flux (default) or the sum.
-    #[arg(long, default_value = "first", value_parser = ["first", "sum"])]
-    lamp_sets: String,
+    #[arg(long, value_enum, default_value = "first")]
+    lamp_sets: choice::LampSetsArg,
 }
 
 impl ReadArgs {
     fn options(&self) -> ReadOptions {
         ReadOptions {
             repair: self.repair,
-            handedness: if self.handedness == "cw" {
-                Handedness::Clockwise
-            } else {
-                Handedness::CounterClockwise
-            },
-            lamp_set_flux: if self.lamp_sets == "sum" {
-                photosolid::formats::LampSetFlux::Sum
-            } else {
-                photosolid::formats::LampSetFlux::First
-            },
+            handedness: self.handedness.into(),
+            lamp_set_flux: self.lamp_sets.into(),
         }
+    }
+}
+
+/// Output options of the commands that print a table and can write a report
+/// folder (compare, tradeoff, engines).
+#[derive(Args, Debug, Clone)]
+pub struct ReportArgs {
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write index.html, report.md, report.json and the plots (PNG) into DIR.
+    #[arg(long)]
+    report: Option<PathBuf>,
+}
+
+impl ReportArgs {
+    /// Print `value` as JSON or `text`; then, with `--report DIR`, write the
+    /// report folder with `write` and say where it is.
+    fn emit<T: serde::Serialize, R>(
+        &self,
+        value: &T,
+        text: &str,
+        write: impl FnOnce(&T, &std::path::Path) -> photosolid::Result<R>,
+    ) -> anyhow::Result<()> {
+        emit(self.json, value, text)?;
+        if let Some(dir) = &self.report {
+            write(value, dir)?;
+            say_report_written(self.json, dir)?;
+        }
+        Ok(())
     }
 }
 
@@ -144,46 +167,6 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Export(a) => export::run(a),
         Command::Engines(a) => engines::run(a),
     }
-}
-
-/// Render `tex` on the backend the user asked for (`auto`, `gpu`, `cpu`);
-/// returns the texture and where it was rendered (for the user).
-///
-/// `auto` uses a GPU adapter when one exists (honouring `WGPU_BACKEND`) and
-/// otherwise falls back to the CPU with a one-line notice on stderr; `gpu`
-/// without an adapter is an error naming the drivers tried. Built without
-/// the `gpu` feature, `auto` is the CPU and `gpu` an error.
-fn render_on(
-    backend: &str,
-    tex: &photosolid::reconstruct::LightTexture,
-    filter: photosolid::reconstruct::Filter,
-    factor: u32,
-    clamp: bool,
-) -> anyhow::Result<(photosolid::reconstruct::Rendered, String)> {
-    let options = photosolid::reconstruct::RenderOptions {
-        filter,
-        factor,
-        clamp,
-        ..Default::default()
-    };
-    #[cfg(feature = "gpu")]
-    {
-        use photosolid::gpu::{self, Backend, Resolved};
-        let b: Backend = backend.parse().map_err(anyhow::Error::msg)?;
-        match gpu::resolve(b)? {
-            Resolved::Gpu(ctx) => return Ok((gpu::render_gpu(ctx, tex, &options)?, format!("gpu: {}", ctx.adapter()))),
-            Resolved::Cpu { notice: Some(n) } => eprintln!("{n}"),
-            Resolved::Cpu { notice: None } => {}
-        }
-    }
-    #[cfg(not(feature = "gpu"))]
-    if backend == "gpu" {
-        anyhow::bail!(
-            "--backend gpu: this photosolid binary was built without GPU support (cargo feature `gpu`); use \
-             --backend cpu or auto"
-        );
-    }
-    Ok((photosolid::reconstruct::render_with(tex, &options)?, "cpu".to_string()))
 }
 
 /// Print `value` as pretty JSON, or `text` as it is.
@@ -227,6 +210,15 @@ fn progress_bar(what: &str) -> indicatif::ProgressBar {
     b
 }
 
+/// Run `f` with a library progress callback that moves a bar on stderr
+/// (labelled `what`), cleared when `f` returns.
+fn with_progress<T>(what: &str, f: impl FnOnce(&photosolid::compare::Progress<'_>) -> T) -> T {
+    let bar = progress_bar(what);
+    let out = f(&progress_fn(&bar));
+    bar.finish_and_clear();
+    out
+}
+
 /// A library progress callback `(done, total, what)` that moves `bar`.
 fn progress_fn(bar: &indicatif::ProgressBar) -> impl Fn(usize, usize, &str) + Sync + '_ {
     move |done, total, what| {
@@ -234,29 +226,6 @@ fn progress_fn(bar: &indicatif::ProgressBar) -> impl Fn(usize, usize, &str) + Sy
         bar.set_position(done as u64);
         bar.set_message(what.to_string());
     }
-}
-
-/// The hold-out reports as a text table.
-fn holdout_table(reports: &[photosolid::reconstruct::HoldoutReport]) -> String {
-    use std::fmt::Write;
-    let mut s = format!(
-        "{:<16} {:>9} {:>9} {:>9} {:>22} {:>10} {:>8}\n",
-        "filter", "rms %", "rms-all %", "max %", "max at (C, gamma)", "flux %", "clamped"
-    );
-    for r in reports {
-        let _ = writeln!(
-            s,
-            "{:<16} {:>9.3} {:>9.3} {:>9.3} {:>22} {:>+10.3} {:>8}",
-            r.filter.to_string(),
-            r.rms_percent,
-            r.rms_all_percent,
-            r.max_percent,
-            format!("({:.1}, {:.1})", r.max_at.0, r.max_at.1),
-            r.flux_error_percent,
-            r.clamped
-        );
-    }
-    s
 }
 
 /// Value parsers of numeric arguments: clap applies them while parsing, so a

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::reconstruct::{exr_io, Filter, LightTexture};
+use photosolid::reconstruct::{exr_io, render_on, Backend, Filter, LightTexture, RenderOptions};
 use photosolid::report::plot::{write_texture_preview, TexturePreview, DEFAULT_EXPOSURE};
 
 use super::ReadArgs;
@@ -35,8 +35,8 @@ pub struct TextureArgs {
     unclamped: bool,
     /// Where to render: auto (GPU when an adapter exists, else CPU, with a notice), gpu, or cpu.
     /// WGPU_BACKEND=vulkan|gl restricts the GPU drivers tried. Same result on every backend.
-    #[arg(long, default_value = "auto", value_parser = ["auto", "gpu", "cpu"])]
-    backend: String,
+    #[arg(long, value_enum, default_value = "auto")]
+    backend: Backend,
     #[command(flatten)]
     read: ReadArgs,
 }
@@ -48,28 +48,19 @@ enum Encoding {
     Png,
 }
 
-/// The encoder of `path` from its extension (any case), or an error naming
-/// the flag, the path and the extensions it accepts.
-fn encoding(flag: &str, path: &std::path::Path, allowed: &[Encoding]) -> anyhow::Result<Encoding> {
+/// The encoder of `path` from its extension (any case), one of `accepted`
+/// (with their dot), or an error naming the flag, the path and the extensions it accepts.
+fn encoding(flag: &'static str, path: &std::path::Path, accepted: &'static [&'static str]) -> anyhow::Result<Encoding> {
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-    let e = match ext.as_deref() {
-        Some("exr") => Some(Encoding::Exr),
-        Some("png") => Some(Encoding::Png),
-        _ => None,
-    };
-    match e {
-        Some(e) if allowed.contains(&e) => Ok(e),
-        _ => {
-            let names: Vec<&str> = allowed
-                .iter()
-                .map(|e| if *e == Encoding::Exr { ".exr" } else { ".png" })
-                .collect();
-            anyhow::bail!(
-                "{flag} {}: cannot tell the format from the extension; expected {}",
-                path.display(),
-                names.join(" or ")
-            )
-        }
+    match ext.as_deref() {
+        Some("exr") if accepted.contains(&".exr") => Ok(Encoding::Exr),
+        Some("png") if accepted.contains(&".png") => Ok(Encoding::Png),
+        _ => Err(anyhow::Error::from(photosolid::Error::UnknownExtension {
+            path: path.to_path_buf(),
+            what: "texture format",
+            accepted,
+        })
+        .context(flag)),
     }
 }
 
@@ -77,17 +68,27 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
     // Check the outputs before loading and rendering anything.
     let mut outputs = Vec::new();
     if let Some(out) = &a.output {
-        outputs.push((out, encoding("-o", out, &[Encoding::Exr, Encoding::Png])?));
+        outputs.push((out, encoding("-o", out, &[".exr", ".png"])?));
     }
     if let Some(png) = &a.png {
-        outputs.push((png, encoding("--png", png, &[Encoding::Png])?));
+        outputs.push((png, encoding("--png", png, &[".png"])?));
     }
     if outputs.is_empty() {
         anyhow::bail!("nothing to write: give -o OUT.exr (float texture) and/or --png OUT.png (preview)");
     }
     let lum = super::load(&a.file, &a.read)?;
-    let tex = LightTexture::new(lum.distribution()).context("building the light distribution texture")?;
-    let (rendered, on) = super::render_on(&a.backend, &tex, a.filter, a.factor, !a.unclamped)?;
+    let tex = LightTexture::new(&lum.distribution()).context("building the light distribution texture")?;
+    let options = RenderOptions {
+        filter: a.filter,
+        factor: a.factor,
+        clamp: !a.unclamped,
+        ..RenderOptions::default()
+    };
+    let out = render_on(a.backend, &tex, &options)?;
+    if let Some(notice) = out.notice {
+        eprintln!("{notice}");
+    }
+    let (rendered, on) = (out.rendered, out.on);
     let (h, w) = (rendered.mapping.height, rendered.mapping.width);
     outln!(
         "{}: {} x {} texels (gamma x C), filter {}, factor {}, I_max {:.3} cd, {} texels clamped ({on})",

@@ -13,7 +13,7 @@ use photosolid::compare::{Against, CompareOptions, Directions};
 use photosolid::report::compare_report;
 use photosolid::synth::Truth;
 
-use super::ReadArgs;
+use super::{ReadArgs, ReportArgs};
 
 #[derive(Args, Debug)]
 pub struct TradeoffArgs {
@@ -23,7 +23,7 @@ pub struct TradeoffArgs {
     /// records), withheld (k-fold hold-out of FILE's measurements), or a
     /// denser measurement FILE. Default: truth when FILE records it, else withheld.
     #[arg(long)]
-    reference: Option<String>,
+    reference: Option<Reference>,
     /// Texture render factors (comma separated).
     #[arg(long, value_delimiter = ',', default_value = "1,2,5,10", value_parser = super::parse::texture_factor)]
     factors: Vec<u32>,
@@ -39,23 +39,41 @@ pub struct TradeoffArgs {
     /// An error when no GPU adapter is available.
     #[arg(long)]
     gpu: bool,
-    /// Print JSON.
-    #[arg(long)]
-    json: bool,
-    /// Write index.html, report.md, report.json and the plots into DIR.
-    #[arg(long)]
-    report: Option<PathBuf>,
+    #[command(flatten)]
+    out: ReportArgs,
     #[command(flatten)]
     read: ReadArgs,
 }
 
+/// `--reference truth|withheld|FILE`.
+#[derive(Clone, Debug, PartialEq)]
+enum Reference {
+    /// The closed form the file records.
+    Truth,
+    /// K-fold hold-out of the file's measurements.
+    Withheld,
+    /// A denser measurement of the same luminaire.
+    File(PathBuf),
+}
+
+impl std::str::FromStr for Reference {
+    type Err = std::convert::Infallible;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Ok(match s {
+            "truth" => Reference::Truth,
+            "withheld" => Reference::Withheld,
+            path => Reference::File(PathBuf::from(path)),
+        })
+    }
+}
+
 pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
     let lum = super::load(&a.file, &a.read)?;
-    let (against, other) = match a.reference.as_deref() {
+    let (against, other) = match &a.reference {
         None => (None, None),
-        Some("truth") => (Some(Against::Truth), None),
-        Some("withheld") => (Some(Against::Withheld), None),
-        Some(path) => (None, Some(super::load(&PathBuf::from(path), &a.read)?)),
+        Some(Reference::Truth) => (Some(Against::Truth), None),
+        Some(Reference::Withheld) => (Some(Against::Withheld), None),
+        Some(Reference::File(path)) => (None, Some(super::load(path, &a.read)?)),
     };
     let opts = TradeOptions {
         factors: a.factors.clone(),
@@ -65,28 +83,28 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
             factor: a.factor,
             timing_repeats: a.repeats,
             directions: Directions::default(),
-            plots: a.report.is_some(),
+            plots: a.out.report.is_some(),
             ..CompareOptions::default()
         },
         gpu: a.gpu,
     };
-    let bar = super::progress_bar("representations");
-    let progress = super::progress_fn(&bar);
-    let mut t = trade_table(
-        lum.distribution(),
-        other.as_ref().map(|o| o.distribution()),
-        &opts,
-        &progress,
-    )?;
-    bar.finish_and_clear();
+    let mut t = super::with_progress("representations", |progress| {
+        trade_table(
+            lum.distribution(),
+            other.as_ref().map(|o| o.distribution()),
+            &opts,
+            progress,
+        )
+    })?;
     t.file = a.file.display().to_string();
     t.comparison.file = t.file.clone();
-    t.comparison.vs = a.reference.clone().filter(|r| r != "truth" && r != "withheld");
-    super::emit(a.json, &t, &to_text(&t))?;
-    if let Some(dir) = &a.report {
-        compare_report::write_report(&t.comparison, dir)?;
-        super::say_report_written(a.json, dir)?;
-    }
+    t.comparison.vs = match &a.reference {
+        Some(Reference::File(path)) => Some(path.display().to_string()),
+        _ => None,
+    };
+    a.out.emit(&t, &to_text(&t), |t, dir| {
+        compare_report::write_report(&t.comparison, dir)
+    })?;
     Ok(0)
 }
 

@@ -56,6 +56,7 @@ use crate::synth::Truth;
 
 /// How the distributions are scaled before comparing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Normalize {
     /// Absolute candela.

@@ -57,6 +57,7 @@ const N_BINS: usize = 900;
 
 /// Which error the fit minimises.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum ErrorMetric {
     /// The seed's relative radial error, every measured (C, γ) pair weighted 1/N.

@@ -263,11 +263,10 @@ pub struct WriteOptions {
 /// Write `doc` to `path` in the format of its extension, atomically (a
 /// [`Luminaire`] converts into a header-less [`Document`]: `&lum.into()`).
 pub fn save(doc: &Document, path: &Path, opts: &WriteOptions) -> Result<()> {
-    let format = Format::from_extension(path).ok_or_else(|| {
-        Error::Unsupported(format!(
-            "{}: cannot tell the output format; use the extension .ies, .ldt or .xml (TM-33-23)",
-            path.display()
-        ))
+    let format = Format::from_extension(path).ok_or_else(|| Error::UnknownExtension {
+        path: path.to_path_buf(),
+        what: "output format",
+        accepted: &[".ies", ".ldt", ".xml (TM-33-23)"],
     })?;
     let text = match format {
         Format::Ies => ies::write(doc, opts.ies_version),

@@ -1,44 +1,9 @@
-//! `--backend auto|gpu|cpu`: which renderer to use.
-
-use std::fmt;
-use std::str::FromStr;
+//! `--backend auto|gpu|cpu`: which renderer to use ([`Backend`] is
+//! `crate::reconstruct::Backend`, known without the `gpu` feature too).
 
 use super::{GpuContext, GpuError};
 
-/// Renderer selection, as given on the command line.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Backend {
-    /// A GPU adapter (hardware or software) when one exists, else the CPU.
-    #[default]
-    Auto,
-    /// A GPU adapter; an error when none exists.
-    Gpu,
-    /// The CPU; never touches wgpu.
-    Cpu,
-}
-
-impl FromStr for Backend {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim().to_ascii_lowercase().as_str() {
-            "auto" => Ok(Backend::Auto),
-            "gpu" => Ok(Backend::Gpu),
-            "cpu" => Ok(Backend::Cpu),
-            other => Err(format!("unknown backend '{other}' (expected auto, gpu or cpu)")),
-        }
-    }
-}
-
-impl fmt::Display for Backend {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Backend::Auto => "auto",
-            Backend::Gpu => "gpu",
-            Backend::Cpu => "cpu",
-        })
-    }
-}
+pub use crate::reconstruct::Backend;
 
 /// The outcome of [`resolve`].
 #[derive(Debug, Clone, Copy)]

@@ -187,7 +187,7 @@ impl GpuContext {
 
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("photosolid render"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("kernel.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(concat!(include_str!("taps.wgsl"), include_str!("kernel.wgsl")).into()),
         });
         let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
             binding,
@@ -221,7 +221,7 @@ impl GpuContext {
         let pipeline = compute(&module, "main");
         let separable = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("photosolid render, two passes"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("separable.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(concat!(include_str!("taps.wgsl"), include_str!("separable.wgsl")).into()),
         });
         let two_pass = [compute(&separable, "gamma_main"), compute(&separable, "c_main")];
         Ok(GpuContext {

@@ -30,6 +30,7 @@
 //! available on every backend we target (GLES 3.1+, which llvmpipe provides).
 
 mod backend;
+pub mod check;
 mod context;
 pub mod resample;
 
@@ -40,38 +41,4 @@ pub mod realtime;
 pub mod shading;
 pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings};
 
-/// Errors of the GPU path.
-#[derive(Clone, Debug, thiserror::Error)]
-pub enum GpuError {
-    /// No adapter on any of the tried backends.
-    #[error(
-        "no GPU adapter found (backends tried: {tried}; {detail}); install a Vulkan or GL driver, e.g. Mesa's \
-         software drivers (`apt-get install mesa-vulkan-drivers libvulkan1 libegl-mesa0`, see \
-         scripts/install-gpu-drivers.sh), or use --backend cpu"
-    )]
-    NoAdapter {
-        /// Backends that were tried.
-        tried: String,
-        /// wgpu's last message.
-        detail: String,
-    },
-    /// Device creation or a device operation failed.
-    #[error("GPU device error: {0}")]
-    Device(String),
-    /// A job is malformed.
-    #[error("render job {index}: {reason}")]
-    InvalidJob {
-        /// Index of the job in the batch.
-        index: usize,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A single job does not fit the device's limits.
-    #[error("render job {index} is too large for this device: {reason}")]
-    TooLarge {
-        /// Index of the job in the batch.
-        index: usize,
-        /// Which limit.
-        reason: String,
-    },
-}
+pub use crate::error::GpuError;

@@ -129,7 +129,7 @@ impl Pipelines {
                 let p = Pipelines::new(ctx);
                 match pollster::block_on(scope.pop()) {
                     None => Ok(p),
-                    Some(e) => Err(GpuError::Device(format!("real-time lookup pipeline: {e}"))),
+                    Some(e) => Err(GpuError::Pipeline(format!("real-time lookup pipeline: {e}"))),
                 }
             })
             .as_ref()
@@ -462,15 +462,15 @@ impl<'a> RealtimeTexture<'a> {
         self.ctx
             .device
             .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| texture_error("realtime read-back", e))?;
+            .map_err(|e| texture_error("realtime read-back wait", e))?;
         rx.recv()
-            .map_err(|e| texture_error("realtime read-back", e))?
-            .map_err(|e| texture_error("realtime read-back", e))?;
+            .map_err(|e| GpuError::BufferMap(format!("realtime read-back: {e}")))?
+            .map_err(|e| GpuError::BufferMap(format!("realtime read-back: {e}")))?;
         let out = {
             let view = batch
                 .staging
                 .get_mapped_range(..)
-                .map_err(|e| texture_error("realtime read-back", e))?;
+                .map_err(|e| GpuError::BufferMap(format!("realtime read-back: {e}")))?;
             bytemuck::cast_slice::<u8, f32>(&view[..batch.n * 4]).to_vec()
         };
         batch.staging.unmap();

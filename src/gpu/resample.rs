@@ -650,7 +650,7 @@ impl GpuContext {
         drop(tx);
         self.wait()?;
         for (k, r) in rx.iter() {
-            r.map_err(|e| GpuError::Device(format!("mapping read-back buffer {k}: {e}")))?;
+            r.map_err(|e| GpuError::BufferMap(format!("mapping read-back buffer {k}: {e}")))?;
         }
         let mut out: Vec<Rendered> = Vec::with_capacity(batch.len());
         for c in &batch.chunks {
@@ -658,12 +658,12 @@ impl GpuContext {
                 let view = c
                     .staging
                     .get_mapped_range(..)
-                    .map_err(|e| GpuError::Device(e.to_string()))?;
+                    .map_err(|e| GpuError::BufferMap(e.to_string()))?;
                 let out_bytes = (c.staging.size() - c.counts.size()) as usize;
                 let all: &[f32] = bytemuck::try_cast_slice(&view[..c.out_len * 4])
-                    .map_err(|e| GpuError::Device(format!("read-back buffer: {e}")))?;
+                    .map_err(|e| GpuError::BufferMap(format!("read-back buffer: {e}")))?;
                 let counts: &[u32] = bytemuck::try_cast_slice(&view[out_bytes..out_bytes + c.jobs.len() * 4])
-                    .map_err(|e| GpuError::Device(format!("read-back buffer: {e}")))?;
+                    .map_err(|e| GpuError::BufferMap(format!("read-back buffer: {e}")))?;
                 for (k, j) in c.jobs.clone().enumerate() {
                     let m = &batch.meta[j];
                     let n = m.mapping.height * m.mapping.width;
@@ -684,14 +684,9 @@ impl GpuContext {
 #[cfg(test)]
 mod tests {
     #[test]
-    fn backend_parsing() {
+    fn cpu_backend_resolves_without_wgpu() {
+        // The spellings are tested with `reconstruct::Backend`; `cpu` never initialises wgpu.
         use crate::gpu::Backend;
-        assert_eq!("auto".parse::<Backend>().unwrap(), Backend::Auto);
-        assert_eq!("GPU".parse::<Backend>().unwrap(), Backend::Gpu);
-        assert_eq!(" cpu ".parse::<Backend>().unwrap(), Backend::Cpu);
-        assert!("cuda".parse::<Backend>().unwrap_err().contains("auto, gpu or cpu"));
-        assert_eq!(Backend::default().to_string(), "auto");
-        // `cpu` never initialises wgpu.
         assert!(matches!(
             crate::gpu::resolve(Backend::Cpu).unwrap(),
             crate::gpu::Resolved::Cpu { notice: None }

@@ -26,7 +26,7 @@ use glam::DVec3;
 
 use super::realtime::RealtimeTexture;
 use super::GpuError;
-use crate::error::Error;
+use crate::error::{Error, ModelError};
 use crate::model::IntensityField;
 use crate::reconstruct::exr_io;
 use crate::scene::aim::{Aim, Pose};
@@ -133,7 +133,7 @@ pub fn shade_cpu(field: &dyn IntensityField, view: &PlaneView) -> Result<Vec<f64
 /// one-channel f32 OpenEXR (`Y`), recording what it shows in `photosolid.*` attributes.
 ///
 /// # Errors
-/// [`Error::Io`] / [`Error::Unsupported`] from [`exr_io::write_layer`].
+/// [`Error::Io`] / [`Error::Encode`] / [`ModelError::Parameter`] from [`exr_io::write_layer`].
 pub fn write_exr(path: &Path, view: &PlaneView, values: &[f64], what: &str) -> Result<(), Error> {
     let mut attrs = LayerAttributes::named("photosolid-plane");
     let mut put = |k: &str, v: AttributeValue| {
@@ -165,18 +165,22 @@ pub enum Tone {
 /// An 8-bit RGB PNG of `values` (`view.pixels` square, row-major).
 ///
 /// # Errors
-/// [`Error::Unsupported`] when the sizes disagree or encoding fails.
+/// [`ModelError::Parameter`] when the sizes disagree, [`Error::Encode`] when encoding fails.
 pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Error> {
     let n = view.pixels;
     if values.len() != n * n {
-        return Err(Error::Unsupported(format!(
-            "{} values for a {n} x {n} image",
-            values.len()
-        )));
+        return Err(ModelError::Parameter {
+            name: "values",
+            value: format!("{} values", values.len()),
+            reason: format!("a {n} x {n} image needs {}", n * n),
+        }
+        .into());
     }
     let scale = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut pm =
-        tiny_skia::Pixmap::new(n as u32, n as u32).ok_or_else(|| Error::Unsupported(format!("a {n} x {n} image")))?;
+    let mut pm = tiny_skia::Pixmap::new(n as u32, n as u32).ok_or_else(|| Error::Encode {
+        format: "PNG",
+        message: format!("cannot allocate a {n} x {n} image"),
+    })?;
     for (px, &v) in pm.pixels_mut().iter_mut().zip(values) {
         let t = if scale > 0.0 && v.is_finite() { v / scale } else { 0.0 };
         let [r, g, b] = match tone {
@@ -188,8 +192,10 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
         };
         *px = tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
     }
-    pm.encode_png()
-        .map_err(|e| Error::Unsupported(format!("cannot encode PNG: {e}")))
+    pm.encode_png().map_err(|e| Error::Encode {
+        format: "PNG",
+        message: e.to_string(),
+    })
 }
 
 /// The shaded-plane images of `rendered` for a report: the plane under the
@@ -200,7 +206,7 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
 /// one line per image pair saying how far GPU and CPU differ.
 ///
 /// # Errors
-/// Writing the EXRs, encoding the PNGs, device errors (as [`Error::Unsupported`]).
+/// Writing the EXRs, encoding the PNGs ([`Error::Encode`]), device errors ([`Error::Gpu`]).
 pub fn report_figures(
     ctx: Option<&super::GpuContext>,
     rendered: &crate::reconstruct::Rendered,
@@ -209,7 +215,7 @@ pub fn report_figures(
 ) -> Result<(Vec<crate::report::compare_report::Figure>, Vec<String>), Error> {
     use super::realtime::HardwareLookup;
     use crate::report::compare_report::Figure;
-    let gpu_err = |e: GpuError| Error::Unsupported(format!("GPU shading: {e}"));
+    let gpu_err = Error::Gpu;
     let formula = format!(
         "E = I cos(i) / d^2 on a plane {} m under the luminaire, ±{} m shown",
         view.height_m, view.half_width_m

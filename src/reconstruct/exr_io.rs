@@ -96,8 +96,8 @@ pub fn write_exr(path: impl AsRef<Path>, tex: &Rendered, meta: &ExrMeta) -> Resu
 /// crate: light textures and the engines' layouts ([`crate::engines`]) go through it.
 ///
 /// # Errors
-/// [`Error::Io`] when the file cannot be written, [`Error::Unsupported`]
-/// when the image cannot be encoded (e.g. a sample count that is not width × height).
+/// [`Error::Io`] when the file cannot be written, [`Error::Encode`] when the
+/// encoder fails, [`crate::ModelError::Parameter`] for a sample count that is not width × height.
 pub fn write_layer(
     path: &Path,
     size: (usize, usize),
@@ -106,13 +106,12 @@ pub fn write_layer(
     samples: FlatSamples,
 ) -> Result<(), Error> {
     if samples.len() != size.0 * size.1 {
-        return Err(Error::Unsupported(format!(
-            "{}: {} samples for a {} x {} image",
-            path.display(),
-            samples.len(),
-            size.0,
-            size.1
-        )));
+        return Err(crate::error::ModelError::Parameter {
+            name: "samples",
+            value: format!("{}: {} samples", path.display(), samples.len()),
+            reason: format!("a {} x {} image needs {}", size.0, size.1, size.0 * size.1),
+        }
+        .into());
     }
     let channel = AnyChannel::new(channel, samples);
     let layer = Layer::new(
@@ -123,12 +122,26 @@ pub fn write_layer(
     );
     let image = Image::from_layer(layer);
 
-    crate::formats::write_atomic_with(path, |f| {
+    // An encoder error travels through the writer as an I/O error and comes
+    // back out as what it is.
+    let mut encode_error = None;
+    let written = crate::formats::write_atomic_with(path, |f| {
         image.write().to_buffered(f).map_err(|e| match e {
             exr::error::Error::Io(io) => io,
-            other => std::io::Error::other(format!("cannot encode OpenEXR: {other}")),
+            other => {
+                let message = other.to_string();
+                encode_error = Some(message.clone());
+                std::io::Error::other(message)
+            }
         })
-    })
+    });
+    match (written, encode_error) {
+        (Err(_), Some(message)) => Err(Error::Encode {
+            format: "OpenEXR",
+            message,
+        }),
+        (written, _) => written,
+    }
 }
 
 /// Read a texture written by [`write_exr`]: the texture and its metadata.

@@ -60,6 +60,31 @@ pub struct HoldoutReport {
     pub clamped: usize,
 }
 
+impl HoldoutReport {
+    /// Reports as a text table, one row per filter (errors in % of I_max).
+    pub fn table(reports: &[HoldoutReport]) -> String {
+        use std::fmt::Write;
+        let mut s = format!(
+            "{:<16} {:>9} {:>9} {:>9} {:>22} {:>10} {:>8}\n",
+            "filter", "rms %", "rms-all %", "max %", "max at (C, gamma)", "flux %", "clamped"
+        );
+        for r in reports {
+            let _ = writeln!(
+                s,
+                "{:<16} {:>9.3} {:>9.3} {:>9.3} {:>22} {:>+10.3} {:>8}",
+                r.filter.to_string(),
+                r.rms_percent,
+                r.rms_all_percent,
+                r.max_percent,
+                format!("({:.1}, {:.1})", r.max_at.0, r.max_at.1),
+                r.flux_error_percent,
+                r.clamped
+            );
+        }
+        s
+    }
+}
+
 /// Kept indices of an axis of `n` angles.
 fn kept(n: usize, step: usize, keep_last: bool) -> Vec<usize> {
     kept_with_offset(n, step, 0, keep_last)

@@ -21,6 +21,7 @@
 //! - Cubic overshoot below 0 is clamped to 0 by default, and counted.
 
 mod axis;
+pub mod backend;
 pub mod exr_io;
 mod filter;
 pub mod holdout;
@@ -30,6 +31,7 @@ mod sampler;
 pub mod texture;
 
 pub use axis::AxisTaps;
+pub use backend::{render_on, Backend, RenderedOn};
 pub use filter::{combine, Filter, Real, FILTER_NAMES};
 pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
 pub use lookup::{Lookup, Precision, StoredTexture};

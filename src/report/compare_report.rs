@@ -455,7 +455,10 @@ pub fn write_files(
     for f in figs {
         put(&f.file, &f.png)?;
     }
-    let json = serde_json::to_string_pretty(value).map_err(|e| Error::Unsupported(e.to_string()))?;
+    let json = serde_json::to_string_pretty(value).map_err(|e| Error::Encode {
+        format: "JSON",
+        message: e.to_string(),
+    })?;
     put("report.json", format!("{json}\n").as_bytes())?;
     put("report.md", markdown.as_bytes())?;
     put("index.html", html.as_bytes())?;

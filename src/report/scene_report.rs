@@ -5,11 +5,13 @@
 //! and the representation the scene uses (`scene`) or the plan chose (`plan`).
 
 use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 use crate::report::compare_report::esc;
 use crate::report::plot::png_data_uri;
 use crate::report::viewer::{self, SolidSet, ViewerData};
-use crate::scene::plan::{Models, Representation};
+use crate::scene::illuminance::SceneResult;
+use crate::scene::plan::{Models, PlanResult, Representation};
 use crate::scene::{Scene, SceneError};
 
 /// One luminaire's packed solids: the reference and `shown` (when it is not the reference).
@@ -88,4 +90,175 @@ img{{max-width:100%;border:1px solid #ddd}}\n\
     }
     s.push_str("</body>\n</html>\n");
     Ok(s)
+}
+
+/// Write `value` as pretty JSON to `dir/name`, atomically.
+fn write_json(dir: &Path, name: &str, value: &impl serde::Serialize) -> Result<PathBuf, SceneError> {
+    let path = dir.join(name);
+    let fail = |message: String| SceneError::Io {
+        path: path.clone(),
+        message,
+    };
+    let json = serde_json::to_string_pretty(value).map_err(|e| fail(format!("cannot encode JSON: {e}")))?;
+    crate::formats::write_atomic(&path, format!("{json}\n").as_bytes()).map_err(|e| fail(e.to_string()))?;
+    Ok(path)
+}
+
+/// Write `index.html` into `dir`, atomically.
+fn write_index(dir: &Path, html: &str) -> Result<PathBuf, SceneError> {
+    let path = dir.join("index.html");
+    crate::formats::write_atomic(&path, html.as_bytes()).map_err(|e| SceneError::Io {
+        path: path.clone(),
+        message: e.to_string(),
+    })?;
+    Ok(path)
+}
+
+/// The report of `scene --report DIR`: `scene.json`, one isolux map per
+/// plane receiver ([`crate::scene::isolux::write_maps`]) and `index.html`
+/// (the `summary` text, the maps, a 3D view per luminaire). Returns the files
+/// written, in that order.
+pub fn write_scene_report(
+    dir: &Path,
+    scene: &Scene,
+    result: &SceneResult,
+    summary: &str,
+) -> Result<Vec<PathBuf>, SceneError> {
+    let io = |p: &Path, e: std::io::Error| SceneError::Io {
+        path: p.to_path_buf(),
+        message: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    let mut written = vec![write_json(dir, "scene.json", result)?];
+    let mut maps = Vec::new();
+    for path in crate::scene::isolux::write_maps(scene, result, dir)? {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        maps.push((name, std::fs::read(&path).map_err(|e| io(&path, e))?));
+        written.push(path);
+    }
+    let html = to_html("Scene: illuminance", scene, summary, &maps, &[])?;
+    written.push(write_index(dir, &html)?);
+    Ok(written)
+}
+
+/// The report of `plan --report DIR`: `plan.json` and `index.html` (the
+/// `summary` text and a 3D view of each luminaire's chosen representation;
+/// plan rows are named as the scene's luminaires). Returns the files written.
+pub fn write_plan_report(
+    dir: &Path,
+    scene: &Scene,
+    result: &PlanResult,
+    summary: &str,
+) -> Result<Vec<PathBuf>, SceneError> {
+    std::fs::create_dir_all(dir).map_err(|e| SceneError::Io {
+        path: dir.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let mut written = vec![write_json(dir, "plan.json", result)?];
+    let chosen: Vec<Option<Representation>> = scene
+        .luminaires
+        .iter()
+        .map(|l| {
+            result
+                .luminaires
+                .iter()
+                .find(|p| p.name == l.name)
+                .map(|p| p.chosen_spec.clone())
+        })
+        .collect();
+    let html = to_html("Scene: plan", scene, summary, &[], &chosen)?;
+    written.push(write_index(dir, &html)?);
+    Ok(written)
+}
+
+/// The scene result as text (what `photosolid scene` prints).
+pub fn scene_text(r: &SceneResult) -> String {
+    use std::fmt::Write;
+    let mut s = format!("scene {}\n", r.scene);
+    for l in &r.luminaires {
+        let ff = &l.far_field;
+        let _ = writeln!(
+            s,
+            "luminaire {:?}: {}, {} source ({} patches{}), {} bytes; point-source error max {:.3} % (largest \
+             dimension {:.3} m, under 1 % from {} x it, five-times rule {})",
+            l.name,
+            l.representation,
+            l.source,
+            l.area.patches,
+            if l.area.converged { "" } else { ", NOT converged" },
+            l.bytes,
+            ff.max_error_pct,
+            ff.largest_dimension_m,
+            ff.ratio_under_1pct.map_or("-".into(), |x| format!("{x:.2}")),
+            if ff.five_times_rule_holds { "holds" } else { "fails" }
+        );
+    }
+    let _ = writeln!(
+        s,
+        "{:<16} {:>6} {:>7} {:>11} {:>11} {:>11} {:>7} {:>9}",
+        "receiver", "kind", "points", "Eavg lx", "Emin lx", "Emax lx", "U0", "Emin/Emax"
+    );
+    let opt = |x: Option<f64>| x.map_or("-".into(), |v| format!("{v:.3}"));
+    for rc in &r.receivers {
+        let _ = writeln!(
+            s,
+            "{:<16} {:>6} {:>7} {:>11.3} {:>11.3} {:>11.3} {:>7} {:>9}",
+            rc.name,
+            rc.kind,
+            rc.points.len(),
+            rc.e_avg_lux,
+            rc.e_min_lux,
+            rc.e_max_lux,
+            opt(rc.u0),
+            opt(rc.emin_emax)
+        );
+    }
+    s
+}
+
+/// The plan as text (what `photosolid plan` prints).
+pub fn plan_text(p: &PlanResult) -> String {
+    use std::fmt::Write;
+    let mut s = format!("plan for {} (tolerance {} %)\n", p.scene, p.tolerance_pct);
+    for l in &p.luminaires {
+        let _ = writeln!(
+            s,
+            "luminaire {:?}: chosen {} — {} bytes, {:.1} ns/eval, error max {:.4} % mean {:.4} % (measured on the \
+             scene against {}); far field ok: {}; {} candidates, {} rejected",
+            l.name,
+            l.chosen,
+            l.bytes,
+            l.ns_per_eval,
+            l.max_error_pct,
+            l.mean_error_pct,
+            l.reference,
+            l.far_field_ok,
+            l.candidates,
+            l.rejected.len()
+        );
+        for c in &l.rejected {
+            let _ = writeln!(
+                s,
+                "  rejected {:<42} {:<5} {:>9} B {:>10.1} ns  max {:>9.4} %  mean {:>9.4} %",
+                c.representation,
+                c.source.to_string(),
+                c.bytes,
+                c.ns_per_eval,
+                c.max_error_pct,
+                c.mean_error_pct
+            );
+        }
+        for u in &l.unavailable {
+            let _ = writeln!(s, "  unavailable {}: {}", u.representation, u.reason);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "every chosen representation at once: error max {:.4} % mean {:.4} %",
+        p.combined_max_error_pct, p.combined_mean_error_pct
+    );
+    s
 }

@@ -175,6 +175,23 @@ impl SolidGrid {
     }
 }
 
+/// The solid of `d`'s texture rendered with `filter` at `factor` (texel
+/// centres as vertices, as the GPU path produces it), in `units`.
+///
+/// # Errors
+/// The texture's and the render's errors (an empty distribution, a factor
+/// outside 1..=32), then [`grid_solid`]'s.
+pub fn texture_solid(
+    d: &Distribution,
+    filter: crate::reconstruct::Filter,
+    factor: u32,
+    units: Units,
+) -> Result<Mesh, ModelError> {
+    let tex = crate::reconstruct::LightTexture::new(d)?;
+    let rendered = crate::reconstruct::render(&tex, filter, factor)?;
+    grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)
+}
+
 /// Build the solid of `field` on `grid`, in `units` ([`Units::Peak`]
 /// normalises by the largest sample), with per-vertex normals.
 ///

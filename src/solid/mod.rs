@@ -69,7 +69,7 @@ pub mod radial;
 pub mod topology;
 
 pub use colormap::ColorMap;
-pub use grid::{grid_solid, SolidGrid};
+pub use grid::{grid_solid, texture_solid, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};
 pub use mesh::{Mesh, SanityError, SanityReport, SolidInfo};
 pub use radial::RadialMesh;
@@ -80,6 +80,22 @@ use crate::model::Distribution;
 
 /// The frame, as written into file metadata.
 pub const UNIT_FRAME: &str = "luminaire frame, z up, nadir -z, C0 +x, C90 +y";
+
+/// The spellings of [`Units`] a user chooses from (`--units cd|peak|klm|flux`);
+/// [`Units::resolve`] turns one into units for a given distribution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum UnitsName {
+    /// cd: 1 unit of length = 1 cd.
+    #[default]
+    Cd,
+    /// I_max = 1.
+    Peak,
+    /// cd per 1000 lm of the file's lamp flux (as in EULUMDAT; not for absolute photometry).
+    Klm,
+    /// cd per 1000 lm of the computed luminaire flux: solids of equal flux.
+    Flux,
+}
 
 /// Units of the solid's coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -113,6 +129,30 @@ impl Units {
             Units::Candela => "cd",
             Units::Peak => "peak",
             Units::PerKilolumen { .. } => "cd/klm",
+        }
+    }
+
+    /// The units `name` means for `d`, whose file declares the lamp flux
+    /// `lamp_flux_lm` (lm; `None` for absolute photometry).
+    ///
+    /// # Errors
+    /// [`ModelError::Parameter`] for `klm` without a positive lamp flux;
+    /// [`ModelError::AllZero`] for `flux` of a zero distribution.
+    pub fn resolve(name: UnitsName, d: &Distribution, lamp_flux_lm: Option<f64>) -> Result<Units, ModelError> {
+        match name {
+            UnitsName::Cd => Ok(Units::Candela),
+            UnitsName::Peak => Ok(Units::Peak),
+            UnitsName::Klm => match lamp_flux_lm {
+                Some(flux_lm) if flux_lm.is_finite() && flux_lm > 0.0 => Ok(Units::PerKilolumen { flux_lm }),
+                _ => Err(ModelError::Parameter {
+                    name: "units",
+                    value: "klm".into(),
+                    reason: "cd/klm is per 1000 lm of lamp flux, and this file has absolute photometry (no lamp \
+                             flux); use --units flux (equal luminaire flux) or peak"
+                        .into(),
+                }),
+            },
+            UnitsName::Flux => Units::per_kilolumen(d),
         }
     }
 

@@ -4,7 +4,7 @@
 
 use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, PremultipliedColorU8, Stroke, StrokeDash, Transform};
 
-use crate::error::Error;
+use crate::error::{Error, ModelError};
 use crate::report::font;
 
 use super::{Series, SeriesStyle, INK, WHITE};
@@ -38,11 +38,17 @@ impl Canvas {
     /// A white `w` × `h` px canvas; `what` names the plot in the error.
     pub fn new(w: u32, h: u32, what: &str) -> Result<Self, Error> {
         if !(120..=8192).contains(&w) || !(120..=8192).contains(&h) {
-            return Err(Error::Unsupported(format!(
-                "{what} plot size {w} x {h} px: each side must be 120..=8192"
-            )));
+            return Err(ModelError::Parameter {
+                name: "size",
+                value: format!("{what} plot {w} x {h} px"),
+                reason: "each side must be 120..=8192".into(),
+            }
+            .into());
         }
-        let mut pm = Pixmap::new(w, h).ok_or_else(|| Error::Unsupported(format!("{what} plot size {w} x {h}")))?;
+        let mut pm = Pixmap::new(w, h).ok_or_else(|| Error::Encode {
+            format: "PNG",
+            message: format!("cannot allocate a {what} plot of {w} x {h} px"),
+        })?;
         pm.fill(Color::WHITE);
         Ok(Self { pm })
     }
@@ -59,9 +65,10 @@ impl Canvas {
 
     /// The canvas as PNG bytes.
     pub fn png(&self) -> Result<Vec<u8>, Error> {
-        self.pm
-            .encode_png()
-            .map_err(|e| Error::Unsupported(format!("cannot encode PNG: {e}")))
+        self.pm.encode_png().map_err(|e| Error::Encode {
+            format: "PNG",
+            message: e.to_string(),
+        })
     }
 
     /// Stroke a polyline (at least two points).

@@ -1,6 +1,6 @@
 //! A value over C × γ as coloured cells, with a colour bar.
 
-use crate::error::Error;
+use crate::error::{Error, ModelError};
 use crate::report::font;
 use crate::solid::ColorMap;
 
@@ -119,10 +119,10 @@ impl Default for HeatmapSpec<'_> {
 /// grey. The axes widen to take in centres outside 0–360 / 0–180.
 ///
 /// # Errors
-/// [`Error::Unsupported`] for a size outside 120..=8192 px, if
+/// [`ModelError::Parameter`] for a size outside 120..=8192 px, if
 /// `values.len() != xs.len() * ys.len()`, for a `range` that is not finite
-/// with lo < hi, for an exposure k that is not positive and finite, or if
-/// encoding fails.
+/// with lo < hi, or for an exposure k that is not positive and finite;
+/// [`Error::Encode`] if encoding fails.
 pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
     let HeatmapSpec {
         title,
@@ -137,18 +137,21 @@ pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
     let diverging = scale == ColorScale::Diverging;
     if let ColorScale::Exposure(k) = scale {
         if !(k.is_finite() && k > 0.0) {
-            return Err(Error::Unsupported(format!(
-                "heat map exposure k = {k}: must be a positive finite number"
-            )));
+            return Err(ModelError::Parameter {
+                name: "exposure",
+                value: format!("heat map k = {k}"),
+                reason: "must be a positive finite number".into(),
+            }
+            .into());
         }
     }
     if values.len() != xs.len() * ys.len() {
-        return Err(Error::Unsupported(format!(
-            "heat map: {} values for a {} x {} grid",
-            values.len(),
-            xs.len(),
-            ys.len()
-        )));
+        return Err(ModelError::Parameter {
+            name: "values",
+            value: format!("heat map: {} values", values.len()),
+            reason: format!("a {} x {} grid needs {}", xs.len(), ys.len(), xs.len() * ys.len()),
+        }
+        .into());
     }
     let mut cv = Canvas::new(w, h, "heat map")?;
     let (wf, hf) = (cv.w(), cv.h());
@@ -172,9 +175,12 @@ pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
     let any = lo <= hi;
     if let Some((a, b)) = range {
         if !(a.is_finite() && b.is_finite() && a < b) {
-            return Err(Error::Unsupported(format!(
-                "heat map colour range {a} .. {b}: must be finite with lo < hi"
-            )));
+            return Err(ModelError::Parameter {
+                name: "range",
+                value: format!("heat map colour range {a} .. {b}"),
+                reason: "must be finite with lo < hi".into(),
+            }
+            .into());
         }
         (lo, hi) = (a, b);
     } else if diverging {

@@ -57,7 +57,7 @@ impl Default for PolarSpec<'_> {
 /// "(k of n shown)"), so that dense measurements do not hide the curves.
 ///
 /// # Errors
-/// [`Error::Unsupported`] for a size outside 120..=8192 px or if encoding fails.
+/// [`crate::ModelError::Parameter`] for a size outside 120..=8192 px, [`Error::Encode`] if encoding fails.
 pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
     let PolarSpec {
         title,

@@ -51,7 +51,7 @@ impl Default for ScatterSpec<'_> {
 /// Names are placed where they overlap no other name, point or front.
 ///
 /// # Errors
-/// [`Error::Unsupported`] for a size outside 120..=8192 px or if encoding fails.
+/// [`crate::ModelError::Parameter`] for a size outside 120..=8192 px, [`Error::Encode`] if encoding fails.
 pub fn scatter(spec: &ScatterSpec) -> Result<Vec<u8>, Error> {
     let ScatterSpec {
         title,

@@ -59,8 +59,8 @@ impl<'a> TexturePreview<'a> {
 ///
 /// # Errors
 /// [`ModelError::Parameter`] for an exposure that is not positive and
-/// finite; [`Error::Unsupported`] for a bad size, a texture whose data does
-/// not match its mapping, or if encoding fails.
+/// finite, a bad size, or a texture whose data does not match its mapping;
+/// [`Error::Encode`] if encoding fails.
 pub fn texture_preview(spec: &TexturePreview) -> Result<Vec<u8>, Error> {
     let k = spec.exposure;
     if !(k.is_finite() && k > 0.0) {

@@ -54,6 +54,15 @@ impl MeshFormat {
         }
     }
 
+    /// The error for a path whose extension names no mesh format.
+    pub fn unknown_extension(path: &Path) -> Error {
+        Error::UnknownExtension {
+            path: path.to_path_buf(),
+            what: "mesh format",
+            accepted: &[".obj", ".ply", ".stl", ".glb"],
+        }
+    }
+
     /// The usual extension, without the dot.
     pub fn extension(self) -> &'static str {
         match self {
@@ -81,12 +90,7 @@ pub fn encode(mesh: &Mesh, format: MeshFormat) -> Vec<u8> {
 
 /// Write `mesh` to `path` in the format of its extension, atomically.
 pub fn write(mesh: &Mesh, path: &Path) -> Result<()> {
-    let format = MeshFormat::from_path(path).ok_or_else(|| {
-        Error::Unsupported(format!(
-            "{}: cannot tell the mesh format; use the extension .obj, .ply, .stl or .glb",
-            path.display()
-        ))
-    })?;
+    let format = MeshFormat::from_path(path).ok_or_else(|| MeshFormat::unknown_extension(path))?;
     write_as(mesh, path, format)
 }
 
@@ -105,12 +109,7 @@ pub fn write_as(mesh: &Mesh, path: &Path, format: MeshFormat) -> Result<()> {
 /// Read a mesh file in any format this module writes (format from the
 /// extension), with [`ply::read`], [`obj::read`], [`stl::read`] or [`glb::read`].
 pub fn read(path: &Path) -> Result<Mesh> {
-    let format = MeshFormat::from_path(path).ok_or_else(|| {
-        Error::Unsupported(format!(
-            "{}: cannot tell the mesh format; expected the extension .obj, .ply, .stl or .glb",
-            path.display()
-        ))
-    })?;
+    let format = MeshFormat::from_path(path).ok_or_else(|| MeshFormat::unknown_extension(path))?;
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let mesh = match format {
         MeshFormat::Obj => obj::read(&bytes),

@@ -1,0 +1,240 @@
+//! Issue 10 item 7: GPU, encoding, unknown-extension and caller-parameter
+//! failures are their own error variants (not `Error::Unsupported`), each
+//! with a stable code in `ErrorRecord`; and the closed sets of CLI values
+//! are clap `ValueEnum`s listed by `--help`.
+
+mod common;
+
+use std::io::Write;
+
+use common::cli::{fails, ok, run};
+use photosolid::error::{ErrorRecord, GpuError};
+use photosolid::synth::{GridSpec, Synth};
+use photosolid::{Error, ModelError};
+
+fn lambertian() -> photosolid::Luminaire {
+    Synth::Lambertian
+        .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
+        .unwrap()
+}
+
+/// An unknown output extension is `Error::UnknownExtension` naming the path
+/// and the accepted extensions, for luminaires and meshes alike.
+#[test]
+fn unknown_extensions_are_typed() {
+    let t = tempfile::tempdir().unwrap();
+    let lum = lambertian();
+    let out = t.path().join("lum.txt");
+    let e = photosolid::save(&lum.clone().into(), &out, &Default::default()).unwrap_err();
+    match &e {
+        Error::UnknownExtension { path, what, accepted } => {
+            assert_eq!(path, &out);
+            assert_eq!(*what, "output format");
+            assert!(accepted.contains(&".ies") && accepted.contains(&".ldt"), "{accepted:?}");
+        }
+        other => panic!("expected UnknownExtension, got {other:?}"),
+    }
+    let msg = e.to_string();
+    assert!(msg.contains("lum.txt") && msg.contains(".ies, .ldt or .xml"), "{msg}");
+    assert_eq!(ErrorRecord::from(&e).code, "unknown-extension");
+
+    let mesh = photosolid::reconstruct::Reconstructions::new(lum.distribution().clone(), &[])
+        .unwrap()
+        .solid(photosolid::reconstruct::Recon::Measured, 1)
+        .unwrap();
+    let e = photosolid::solid::export::write(&mesh, &t.path().join("m.txt")).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            Error::UnknownExtension {
+                what: "mesh format",
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    let e = photosolid::solid::export::read(&t.path().join("m.step")).unwrap_err();
+    assert!(matches!(&e, Error::UnknownExtension { .. }), "{e:?}");
+    assert!(e.to_string().contains(".obj, .ply, .stl or .glb"), "{e}");
+}
+
+/// A sample count that does not match the image is the caller's parameter
+/// error, not an encoding failure; nothing is written.
+#[test]
+fn length_mismatches_are_parameter_errors() {
+    use photosolid::reconstruct::exr_io::write_layer;
+    let t = tempfile::tempdir().unwrap();
+    let path = t.path().join("x.exr");
+    let e = write_layer(
+        &path,
+        (4, 3),
+        exr::prelude::LayerAttributes::default(),
+        "Y",
+        exr::prelude::FlatSamples::F32(vec![0.0; 11]),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(&e, Error::Model(ModelError::Parameter { name: "samples", .. })),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string().contains("11 samples") && e.to_string().contains("12"),
+        "{e}"
+    );
+    assert_eq!(ErrorRecord::from(&e).code, "model");
+    assert!(!path.exists());
+}
+
+/// A Parquet writer whose sink fails is `Error::Encode { format: "Parquet" }`.
+#[test]
+fn encoder_failures_are_encode_errors() {
+    struct Full;
+    impl Write for Full {
+        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+            Err(std::io::Error::other("device full"))
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let rows = photosolid::batch::run(&[], &Default::default(), &|_, _, _| {});
+    let e = photosolid::batch::table::write_parquet_to(&rows, Full).unwrap_err();
+    match &e {
+        Error::Encode { format, message } => {
+            assert_eq!(*format, "Parquet");
+            assert!(message.contains("device full"), "{message}");
+        }
+        other => panic!("expected Encode, got {other:?}"),
+    }
+    assert!(e.to_string().starts_with("cannot encode Parquet: "), "{e}");
+    assert_eq!(ErrorRecord::from(&e).code, "encode");
+}
+
+/// GPU failures are `Error::Gpu` with a code per kind; a job the device
+/// cannot render (factor 0) fails in the plan, before any adapter is needed.
+#[test]
+fn gpu_errors_are_typed() {
+    let e: Error = GpuError::NotBuilt.into();
+    assert_eq!(ErrorRecord::from(&e).code, "gpu-not-built");
+    assert!(e.to_string().contains("cargo feature `gpu`"), "{e}");
+    let e: Error = GpuError::BufferMap("mapping read-back buffer 0: lost".into()).into();
+    assert_eq!(ErrorRecord::from(&e).code, "gpu-buffer-map");
+    #[cfg(feature = "gpu")]
+    {
+        use photosolid::reconstruct::{LightTexture, RenderOptions};
+        let lum = lambertian();
+        let tex = LightTexture::new(&lum.distribution()).unwrap();
+        let bad = RenderOptions {
+            factor: 0,
+            ..RenderOptions::default()
+        };
+        let e: Error = photosolid::gpu::plans(&[(&tex, bad)]).unwrap_err().into();
+        assert!(matches!(&e, Error::Gpu(GpuError::InvalidJob { index: 0, .. })), "{e:?}");
+        assert_eq!(ErrorRecord::from(&e).code, "gpu-invalid-job");
+    }
+}
+
+/// `--help` lists the values of every closed set, and a value outside the
+/// set is a usage error (exit 2) that lists them.
+#[test]
+fn help_lists_the_enum_values() {
+    let t = tempfile::tempdir().unwrap();
+    for (cmd, flag, values) in [
+        ("texture", "--backend", &["auto", "gpu", "cpu"][..]),
+        ("mesh", "--units", &["cd", "peak", "klm", "flux"][..]),
+        ("compare", "--normalize", &["cd", "peak", "klm", "flux"][..]),
+        ("fit", "--error", &["relative", "solid-angle"][..]),
+        ("convert", "--ies-version", &["2002", "2019"][..]),
+        ("info", "--handedness", &["ccw", "cw"][..]),
+        ("info", "--lamp-sets", &["first", "sum"][..]),
+    ] {
+        let help = ok(&run(&[cmd, "-h"], t.path()));
+        let line = help
+            .lines()
+            .skip_while(|l| !l.contains(flag))
+            .take(4)
+            .collect::<Vec<_>>()
+            .join(" ");
+        let listed = format!("[possible values: {}]", values.join(", "));
+        assert!(line.contains(&listed), "{cmd} {flag}: {listed} not in\n{help}");
+        let e = fails(&run(&[cmd, "x", flag, "nope"], t.path()), 2);
+        assert!(e.contains("nope") && e.contains(values[0]), "{cmd} {flag}: {e}");
+    }
+    // Every spelling that worked before still parses (the file does not exist: exit 1, not 2).
+    for args in [
+        &["texture", "missing.ies", "--backend", "cpu", "-o", "t.exr"][..],
+        &["mesh", "missing.ies", "--measured", "--units", "klm", "-o", "m.ply"][..],
+        &["fit", "missing.ies", "--error", "solid-angle"][..],
+        &["convert", "missing.ies", "o.ies", "--ies-version", "2019"][..],
+        &["info", "missing.ies", "--handedness", "cw", "--lamp-sets", "sum"][..],
+        &["compare", "missing.ies", "--normalize", "flux"][..],
+    ] {
+        let e = fails(&run(args, t.path()), 1);
+        assert!(e.contains("missing.ies"), "{args:?}: {e}");
+    }
+}
+
+/// The CLI reports the typed errors with their paths: an unknown output
+/// extension for `convert` and `mesh`, before anything is written.
+#[test]
+fn cli_names_unknown_extensions() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "isotropic", "-o", "iso.ldt"], t.path()));
+    let e = fails(&run(&["convert", "iso.ldt", "iso.txt"], t.path()), 1);
+    assert!(
+        e.contains("iso.txt") && e.contains("cannot tell the output format"),
+        "{e}"
+    );
+    let e = fails(&run(&["mesh", "iso.ldt", "--measured", "-o", "m.step"], t.path()), 1);
+    assert!(e.contains("m.step") && e.contains(".obj, .ply, .stl or .glb"), "{e}");
+    assert!(!t.path().join("iso.txt").exists() && !t.path().join("m.step").exists());
+}
+
+/// The GPU check in the library: every filter of every file rendered on the
+/// GPU and the CPU from the same plans agrees within 1e-5 of I_max, the
+/// summary adds the renders up, and no filter is `NothingChecked`.
+/// Skipped (with a note) when there is no adapter, unless PHOTOSOLID_REQUIRE_GPU=1.
+#[cfg(feature = "gpu")]
+#[test]
+fn gpu_check_agrees_with_the_cpu_on_the_data_files() {
+    use photosolid::gpu::check::{check_file, CheckInputs, CheckOptions, CheckSummary};
+    use photosolid::reconstruct::Filter;
+    let ctx = match photosolid::gpu::GpuContext::global() {
+        Ok(c) => c,
+        Err(e) if std::env::var("PHOTOSOLID_REQUIRE_GPU").as_deref() == Ok("1") => {
+            panic!("PHOTOSOLID_REQUIRE_GPU=1 but: {e}")
+        }
+        Err(e) => {
+            eprintln!("skipped: no GPU adapter ({e})");
+            return;
+        }
+    };
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let paths = vec![data.join("roadway.ies"), data.join("batwing.ldt")];
+    let inputs = CheckInputs::collect(&paths, &Default::default()).unwrap();
+    assert_eq!((inputs.textures.len(), inputs.skipped.len()), (2, 0));
+    let opts = CheckOptions {
+        factor: 2,
+        filters: vec![Filter::Bilinear, Filter::CatmullRom, Filter::Pchip],
+        tolerance: 1e-5,
+    };
+    let mut summary = CheckSummary::start();
+    for (path, tex) in &inputs.textures {
+        let f = check_file(ctx, path, tex, &opts).unwrap();
+        assert_eq!((f.renders, f.failed), (3, 0), "{f:?}");
+        assert!(f.max_diff <= 1e-5 && f.clamp_mismatches.is_empty(), "{f:?}");
+        assert!(f.height > 0 && f.width > 0);
+        summary.add(&f);
+    }
+    assert_eq!(summary.checked, 6);
+    assert!(summary.passed().unwrap());
+    let none = CheckOptions {
+        filters: vec![],
+        ..opts
+    };
+    let (path, tex) = &inputs.textures[0];
+    assert!(matches!(
+        check_file(ctx, path, tex, &none),
+        Err(Error::NothingChecked(_))
+    ));
+}
