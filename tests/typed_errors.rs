@@ -123,7 +123,7 @@ fn gpu_errors_are_typed() {
     {
         use photosolid::reconstruct::{LightTexture, RenderOptions};
         let lum = lambertian();
-        let tex = LightTexture::new(&lum.distribution()).unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
         let bad = RenderOptions {
             factor: 0,
             ..RenderOptions::default()

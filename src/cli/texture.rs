@@ -77,7 +77,7 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
         anyhow::bail!("nothing to write: give -o OUT.exr (float texture) and/or --png OUT.png (preview)");
     }
     let lum = super::load(&a.file, &a.read)?;
-    let tex = LightTexture::new(&lum.distribution()).context("building the light distribution texture")?;
+    let tex = LightTexture::new(lum.distribution()).context("building the light distribution texture")?;
     let options = RenderOptions {
         filter: a.filter,
         factor: a.factor,

@@ -110,7 +110,7 @@ mod tests {
         let lum = Synth::Lambertian
             .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
             .unwrap();
-        let tex = LightTexture::new(&lum.distribution()).unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
         let options = RenderOptions::default();
         let r = render_on(Backend::Cpu, &tex, &options).unwrap();
         assert_eq!((r.on.as_str(), r.notice), ("cpu", None));
