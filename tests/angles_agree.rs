@@ -85,7 +85,8 @@ fn one_disorder_at_a_time_is_named_alike_and_repaired_alike() {
     let c = [0.0, 90.0, 180.0, 270.0];
     let g = [0.0, 30.0, 60.0, 90.0];
     // (C list, γ list, number of the first offending angle, the repaired lists).
-    let cases: [(&[f64], &[f64], usize, &[f64], &[f64]); 4] = [
+    type Case<'a> = (&'a [f64], &'a [f64], usize, &'a [f64], &'a [f64]);
+    let cases: [Case; 4] = [
         // A C duplicate within 1e-6: the first is kept.
         (&[0.0, 90.0, 90.0000001, 180.0, 270.0], &g, 3, &c, &g),
         // An unsorted γ list.

@@ -76,24 +76,6 @@ pub fn reorder_rows(cd: &[f64], n: usize, order: &[usize]) -> Vec<f64> {
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn order_rule_and_repair() {
-        assert_eq!(first_disorder(&[0.0, 10.0, 20.0]), None);
-        assert_eq!(first_disorder(&[0.0, 10.0, 10.0 + 1e-9]), Some(2));
-        assert_eq!(first_disorder(&[0.0, 10.0, 5.0]), Some(2));
-        let a = [10.0, 0.0, 10.0 + 1e-9, 5.0];
-        let order = repair_order(&a);
-        assert_eq!(order, vec![1, 3, 0]);
-        let cd = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
-        assert_eq!(reorder_planes(&cd, 2, &order), vec![3.0, 4.0, 7.0, 8.0, 1.0, 2.0]);
-        assert_eq!(reorder_rows(&cd, 4, &order), vec![2.0, 4.0, 1.0, 6.0, 8.0, 5.0]);
-    }
-}
-
 /// Drop the last C plane, C = 360 (it is C = 0; `cd` plane-major, `nv` values a
 /// plane): kept as C = 0 when there is none, else compared with it (a warning
 /// when they differ). One rule for every reader (IES, TM-33).
@@ -121,5 +103,36 @@ pub fn drop_360_plane(hs: &mut Vec<f64>, cd: &mut Vec<f64>, nv: usize, warnings:
         let mut v = last;
         v.extend_from_slice(cd);
         *cd = v;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_rule_and_repair() {
+        assert_eq!(first_disorder(&[0.0, 10.0, 20.0]), None);
+        assert_eq!(first_disorder(&[0.0, 10.0, 10.0 + 1e-9]), Some(2));
+        assert_eq!(first_disorder(&[0.0, 10.0, 5.0]), Some(2));
+        let a = [10.0, 0.0, 10.0 + 1e-9, 5.0];
+        let order = repair_order(&a);
+        assert_eq!(order, vec![1, 3, 0]);
+        let cd = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0];
+        assert_eq!(reorder_planes(&cd, 2, &order), vec![3.0, 4.0, 7.0, 8.0, 1.0, 2.0]);
+        assert_eq!(reorder_rows(&cd, 4, &order), vec![2.0, 4.0, 1.0, 6.0, 8.0, 5.0]);
+    }
+
+    #[test]
+    fn range_and_symmetry_rules() {
+        assert_eq!(first_outside(&[-1e-7, 90.0, 180.0 + 1e-7], 180.0), None);
+        assert_eq!(first_outside(&[0.0, 180.01], 180.0), Some(1));
+        assert_eq!(first_outside(&[-0.01], 360.0), Some(0));
+        assert_eq!(lm63_symmetry(&[45.0]), Some(Symmetry::Rotational));
+        assert_eq!(lm63_symmetry(&[0.0, 45.0, 90.0 + 1e-7]), Some(Symmetry::Quadrant));
+        assert_eq!(lm63_symmetry(&[0.0, 180.0]), Some(Symmetry::C0C180));
+        assert_eq!(lm63_symmetry(&[90.0, 180.0, 270.0]), Some(Symmetry::C90C270));
+        assert_eq!(lm63_symmetry(&[0.0, 90.0, 180.0, 270.0]), None);
+        assert_eq!(lm63_symmetry(&[]), None);
     }
 }

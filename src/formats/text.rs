@@ -137,11 +137,9 @@ pub fn line_col(bytes: &[u8], pos: usize) -> (usize, usize) {
                 line += 1;
                 start = i + 1;
             }
-            b'\r' => {
-                if bytes.get(i + 1) != Some(&b'\n') {
-                    line += 1;
-                    start = i + 1;
-                }
+            b'\r' if bytes.get(i + 1) != Some(&b'\n') => {
+                line += 1;
+                start = i + 1;
             }
             _ => {}
         }

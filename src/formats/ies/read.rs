@@ -155,7 +155,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
         warnings,
     )?;
     warn_negatives(&cd, warnings);
-    let (kind, distribution, source_grid) = r.to_distribution(&v_start, &h_start, vertical, horizontal, cd)?;
+    let (kind, distribution, source_grid) = r.distribution(&v_start, &h_start, vertical, horizontal, cd)?;
     warn_pole_spread(&distribution, &mut r.warnings);
     Ok(r.finish(text.version, kind, tilt, distribution, source_grid))
 }
@@ -431,7 +431,7 @@ impl<'s, 'a> Reader<'s, 'a> {
     }
 
     /// The grid as a Type C distribution; a Type A/B grid converted, and kept as the source grid.
-    fn to_distribution(
+    fn distribution(
         &mut self,
         v_start: &Scanner<'_>,
         h_start: &Scanner<'_>,

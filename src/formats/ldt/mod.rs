@@ -125,9 +125,9 @@ pub(crate) fn formula_plane_count(sym: Symmetry, mc: usize) -> Option<usize> {
     match sym {
         Symmetry::None => Some(mc),
         Symmetry::Rotational => Some(1),
-        Symmetry::C0C180 => (mc % 2 == 0).then_some(mc / 2 + 1),
-        Symmetry::C90C270 => (mc % 4 == 0).then_some(mc / 2 + 1),
-        Symmetry::Quadrant => (mc % 4 == 0).then_some(mc / 4 + 1),
+        Symmetry::C0C180 => mc.is_multiple_of(2).then_some(mc / 2 + 1),
+        Symmetry::C90C270 => mc.is_multiple_of(4).then_some(mc / 2 + 1),
+        Symmetry::Quadrant => mc.is_multiple_of(4).then_some(mc / 4 + 1),
     }
 }
 

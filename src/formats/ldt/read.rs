@@ -199,7 +199,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         self.check_angle_lists(&head, &lists, opts)?;
         let stored = self.stored_planes(&head, &lists)?;
         let (mut cd, cd_first) = self.read_intensities(&mut toks, &head, &lists, stored.len())?;
-        let units = self.to_candela(&head, &lamp_sets, opts, &mut cd, cd_first, stored.len())?;
+        let units = self.candela_units(&head, &lamp_sets, opts, &mut cd, cd_first, stored.len())?;
         let (header_c, header_g) = (lists.c_file.clone(), lists.gamma.clone());
         let dist = self.model_grid(&head, &mut lists, &stored, cd, opts)?;
         self.warn_pole_spread(&dist, lists.g_first);

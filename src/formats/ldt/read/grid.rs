@@ -205,7 +205,7 @@ impl<'s, 'a> Reader<'s, 'a> {
     }
 
     /// Units: cd = cd/klm × CFLI × Φ_ref / 1000, applied to `cd`; the values must then lie in the model's range.
-    pub(super) fn to_candela(
+    pub(super) fn candela_units(
         &mut self,
         head: &Head,
         lamp_sets: &[LampSet],
