@@ -14,12 +14,12 @@ fn input() -> (String, photosolid::Distribution, usize) {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../shared/corpus/eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies");
     match photosolid::load(&p) {
-        Ok(l) => ("OutdoorRoadway IES (corpus)".into(), l.distribution, 2),
+        Ok(l) => ("OutdoorRoadway IES (corpus)".into(), l.into_distribution(), 2),
         Err(_) => {
             eprintln!("notice: corpus file absent; synthetic roadway instead");
             let g = photosolid::synth::GridSpec::uniform(5.0, 2.5).unwrap();
             let l = photosolid::synth::Synth::Roadway.build(&g, 12_000.0).unwrap();
-            ("synthetic roadway".into(), l.distribution, 5)
+            ("synthetic roadway".into(), l.into_distribution(), 5)
         }
     }
 }

@@ -85,7 +85,7 @@ fn synthetic() -> Vec<(&'static str, Distribution)> {
             photosolid::synth::Synth::Roadway
                 .build(&photosolid::synth::GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0)
                 .unwrap()
-                .distribution,
+                .into_distribution(),
         ),
     ]
 }
@@ -115,7 +115,10 @@ fn corpus() -> Vec<(String, Distribution)> {
         .into_iter()
         .filter_map(|p| {
             if let Ok(lum) = photosolid::load(&p) {
-                Some((p.file_name().unwrap().to_string_lossy().into_owned(), lum.distribution))
+                Some((
+                    p.file_name().unwrap().to_string_lossy().into_owned(),
+                    lum.into_distribution(),
+                ))
             } else {
                 None
             }

@@ -45,7 +45,7 @@ fn corpus_textures() -> Vec<LightTexture> {
     rels.sort_by_key(|r| *r != ROADWAY);
     rels.iter()
         .filter_map(|r| photosolid::load(root.join(r)).ok())
-        .filter_map(|l| LightTexture::new(&l.distribution).ok())
+        .filter_map(|l| LightTexture::new(l.distribution()).ok())
         .collect()
 }
 
@@ -66,7 +66,7 @@ fn synth_textures() -> Vec<LightTexture> {
             let lum = s
                 .build(&GridSpec::uniform(c, g).unwrap(), 1000.0 + (i * 3 + j) as f64)
                 .unwrap();
-            out.push(LightTexture::new(&lum.distribution).unwrap());
+            out.push(LightTexture::new(lum.distribution()).unwrap());
         }
     }
     out

@@ -15,7 +15,7 @@ fn bench(c: &mut Criterion) {
     let lum = Synth::Roadway
         .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 12_000.0)
         .unwrap();
-    let d = lum.distribution;
+    let d = lum.distribution();
     let dirs = random_directions(4096, 11);
     let mut g = c.benchmark_group("lookup");
     g.throughput(Throughput::Elements(dirs.len() as u64));

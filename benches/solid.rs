@@ -76,7 +76,7 @@ fn bench(cr: &mut Criterion) {
         let out = dir.path().join("road.ply");
         g.bench_function("catmull-rom x5 solid of the 361x73 roadway + binary PLY", |b| {
             b.iter(|| {
-                let d = &lum.distribution;
+                let d = lum.distribution();
                 let tex = photosolid::reconstruct::LightTexture::new(d).unwrap();
                 let grid = photosolid::solid::SolidGrid::refined(d, 5).unwrap();
                 let mesh = photosolid::solid::grid_solid(

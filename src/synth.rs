@@ -16,7 +16,7 @@ use std::f64::consts::PI;
 
 use crate::error::ModelError;
 use crate::model::frame::direction;
-use crate::model::{Distribution, IntensityField, Luminaire, Symmetry};
+use crate::model::{Distribution, IntensityField, LampSet, Luminaire, Symmetry};
 
 /// An analytic distribution kind.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -175,14 +175,20 @@ impl Synth {
         }
         let d = Distribution::new(c, grid.gamma.clone(), cd, sym)?;
         let mut lum = Luminaire::from_distribution(d);
-        lum.metadata.manufacturer = "photosolid".into();
-        lum.metadata.luminaire = format!("{}{}", Truth::PREFIX, self.truth(intensity_cd));
-        lum.metadata.catalogue = format!("SYNTH-{}", self.name().to_uppercase());
-        lum.metadata.lamp = "analytic".into();
-        lum.lamp_sets[0].lamp_type = "analytic".into();
-        lum.declared.luminaire_flux_lm = self.exact_flux(intensity_cd);
-        lum.lamp_sets[0].flux_lm = lum.declared.luminaire_flux_lm.unwrap_or(0.0);
-        lum.version = "synthetic".into();
+        let flux_lm = self.exact_flux(intensity_cd);
+        let md = lum.metadata_mut();
+        md.manufacturer = "photosolid".into();
+        md.luminaire = format!("{}{}", Truth::PREFIX, self.truth(intensity_cd));
+        md.catalogue = format!("SYNTH-{}", self.name().to_uppercase());
+        md.lamp = "analytic".into();
+        lum.declared_mut().luminaire_flux_lm = flux_lm;
+        lum.set_lamp_sets(vec![LampSet {
+            count: 1.0,
+            lamp_type: "analytic".into(),
+            flux_lm: flux_lm.unwrap_or(0.0),
+            ..LampSet::default()
+        }])?;
+        lum.set_version("synthetic");
         Ok(lum)
     }
 
@@ -256,7 +262,7 @@ impl Truth {
 
     /// The truth a luminaire written by `photosolid synth` records, if any.
     pub fn of_luminaire(lum: &Luminaire) -> Option<Truth> {
-        lum.metadata.luminaire.trim().strip_prefix(Self::PREFIX)?.parse().ok()
+        lum.metadata().luminaire.trim().strip_prefix(Self::PREFIX)?.parse().ok()
     }
 }
 
@@ -356,7 +362,7 @@ mod tests {
         ] {
             let lum = kind.build(&grid, 1000.0).unwrap();
             let exact = kind.exact_flux(1000.0).unwrap();
-            let got = flux(&lum.distribution).total_lm;
+            let got = flux(lum.distribution()).total_lm;
             // 0.25° steps: the h²-error of the smooth kinds is below 1e-4.
             assert!((got - exact).abs() / exact < 1e-4, "{kind:?}: {got} vs {exact}");
         }
@@ -372,7 +378,7 @@ mod tests {
             cutoff_deg: 40.0,
         };
         let lum = kind.build(&GridSpec::uniform(5.0, h).unwrap(), 1000.0).unwrap();
-        let err = flux(&lum.distribution).total_lm - kind.exact_flux(1000.0).unwrap();
+        let err = flux(lum.distribution()).total_lm - kind.exact_flux(1000.0).unwrap();
         let c = 40f64.to_radians();
         let ramp = 2.0 * PI * 1000.0 * c.cos().powi(4) * c.sin() * h.to_radians() / 2.0;
         assert!((err - ramp).abs() < 0.02 * ramp, "{err} vs {ramp}");
@@ -383,7 +389,7 @@ mod tests {
         let lum = Synth::Roadway
             .build(&GridSpec::uniform(5.0, 5.0).unwrap(), 1000.0)
             .unwrap();
-        let d = &lum.distribution;
+        let d = lum.distribution();
         assert_eq!(d.detect_symmetry(1e-9), Symmetry::C90C270);
         assert!((d.max_cd() - 1000.0).abs() < 1e-9);
     }
@@ -406,7 +412,7 @@ mod tests {
             let t = Truth::of_luminaire(&lum).unwrap();
             assert_eq!(t, kind.truth(1234.5));
             // The truth agrees with the samples at every measured direction.
-            let d = &lum.distribution;
+            let d = lum.distribution();
             for (ic, &c) in d.c_angles().iter().enumerate() {
                 for (ig, &gm) in d.gamma_angles().iter().enumerate() {
                     assert_eq!(t.intensity_cd(c, gm), d.value(ic, ig), "{kind:?} ({c}, {gm})");

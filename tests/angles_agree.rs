@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use photosolid::model::{Format, Luminaire};
+use photosolid::formats::Document;
+use photosolid::model::Format;
 use photosolid::{ParseError, ReadOptions};
 
 /// Value at file plane `ic`, file γ index `ig`: every value tells where it was read from.
@@ -46,7 +47,7 @@ fn ldt_text(c: &[f64], g: &[f64]) -> String {
 }
 
 /// The IES and the EULUMDAT reading of the same lists.
-fn both(c: &[f64], g: &[f64], repair: bool) -> [Result<Luminaire, ParseError>; 2] {
+fn both(c: &[f64], g: &[f64], repair: bool) -> [Result<Document, ParseError>; 2] {
     let o = ReadOptions {
         repair,
         ..ReadOptions::default()
@@ -56,10 +57,10 @@ fn both(c: &[f64], g: &[f64], repair: bool) -> [Result<Luminaire, ParseError>; 2
     [ies, ldt]
 }
 
-fn assert_same_grid(a: &Luminaire, b: &Luminaire) {
-    assert_eq!(a.distribution.c_angles(), b.distribution.c_angles());
-    assert_eq!(a.distribution.gamma_angles(), b.distribution.gamma_angles());
-    assert_eq!(a.distribution.intensities(), b.distribution.intensities());
+fn assert_same_grid(a: &Document, b: &Document) {
+    assert_eq!(a.distribution().c_angles(), b.distribution().c_angles());
+    assert_eq!(a.distribution().gamma_angles(), b.distribution().gamma_angles());
+    assert_eq!(a.distribution().intensities(), b.distribution().intensities());
 }
 
 #[test]
@@ -72,12 +73,12 @@ fn ies_and_ldt_readers_agree_on_angle_order_and_duplicates() {
     let (e1, e2) = (e1.unwrap_err(), e2.unwrap_err());
     assert!(e1.location.line > 0 && e2.location.line > 0, "{e1} / {e2}");
     let [a, b] = both(&c, &g, true).map(Result::unwrap);
-    assert_eq!(a.distribution.c_angles(), &[0.0, 45.0, 90.0, 180.0, 270.0]);
-    assert_eq!(a.distribution.gamma_angles(), &[0.0, 30.0, 60.0, 90.0]);
+    assert_eq!(a.distribution().c_angles(), &[0.0, 45.0, 90.0, 180.0, 270.0]);
+    assert_eq!(a.distribution().gamma_angles(), &[0.0, 30.0, 60.0, 90.0]);
     assert_same_grid(&a, &b);
     // The first of the duplicates is kept: C90 is file plane 1, γ 90 is file angle 3.
-    assert_eq!(a.distribution.value(2, 3), value(1, 3));
-    assert_eq!(a.distribution.value(1, 1), value(3, 2));
+    assert_eq!(a.distribution().value(2, 3), value(1, 3));
+    assert_eq!(a.distribution().value(1, 1), value(3, 2));
 }
 
 #[test]
@@ -101,8 +102,8 @@ fn one_disorder_at_a_time_is_named_alike_and_repaired_alike() {
         let named = format!("#{bad} = ");
         assert!(e1.contains(&named) && e2.contains(&named), "{named}: {e1} / {e2}");
         let [a, b] = both(ci, gi, true).map(Result::unwrap);
-        assert_eq!(a.distribution.c_angles(), c_fixed, "{ci:?}");
-        assert_eq!(a.distribution.gamma_angles(), g_fixed, "{gi:?}");
+        assert_eq!(a.distribution().c_angles(), c_fixed, "{ci:?}");
+        assert_eq!(a.distribution().gamma_angles(), g_fixed, "{gi:?}");
         assert_same_grid(&a, &b);
     }
 }
@@ -113,7 +114,7 @@ fn angles_just_beyond_the_tolerance_are_distinct_for_both() {
     let c = [0.0, 90.0, 90.000002, 180.0, 270.0];
     let g = [0.0, 30.0, 30.000002, 90.0];
     let [a, b] = both(&c, &g, false).map(Result::unwrap);
-    assert_eq!(a.distribution.c_angles(), &c);
-    assert_eq!(a.distribution.gamma_angles(), &g);
+    assert_eq!(a.distribution().c_angles(), &c);
+    assert_eq!(a.distribution().gamma_angles(), &g);
     assert_same_grid(&a, &b);
 }

@@ -74,23 +74,23 @@ fn convert_keeps_physical_intensities() {
     let a = photosolid::load(t.path().join("road.ldt")).unwrap();
     let b = photosolid::load(t.path().join("road.ies")).unwrap();
     let c = photosolid::load(t.path().join("road2019.ies")).unwrap();
-    let peak = a.distribution.max_cd();
+    let peak = a.distribution().max_cd();
     for other in [&b, &c] {
-        let (x, y) = (a.distribution.expand(1), other.distribution.expand(1));
+        let (x, y) = (a.distribution().expand(1), other.distribution().expand(1));
         assert_eq!(x.c_angles(), y.c_angles());
         assert_eq!(x.gamma_angles(), y.gamma_angles());
         for (p, q) in x.intensities().iter().zip(y.intensities()) {
             assert!((p - q).abs() <= 1e-6 * peak, "{p} vs {q}");
         }
     }
-    assert!(c.version.contains("2019"));
+    assert!(c.version().contains("2019"));
     // Rotation by 90 degrees moves the C90-C270 mirror onto C0-C180.
     ok(&run(
         &["convert", "road.ldt", "turned.ldt", "--rotate-c", "90"],
         t.path(),
     ));
     let turned = photosolid::load(t.path().join("turned.ldt")).unwrap();
-    assert_eq!(turned.distribution.symmetry(), photosolid::Symmetry::C0C180);
+    assert_eq!(turned.distribution().symmetry(), photosolid::Symmetry::C0C180);
 }
 
 #[test]

@@ -10,7 +10,9 @@ use photosolid::solid::Mesh;
 use photosolid::synth::{GridSpec, Synth};
 
 fn synth(s: Synth, i: f64) -> Distribution {
-    s.build(&GridSpec::uniform(15.0, 5.0).unwrap(), i).unwrap().distribution
+    s.build(&GridSpec::uniform(15.0, 5.0).unwrap(), i)
+        .unwrap()
+        .into_distribution()
 }
 
 /// Options against OTHER's measured solid: the closed forms below are
@@ -174,9 +176,9 @@ fn alignment_finds_the_testlamp_rotation() {
     let b = photosolid::load(root.join("luxpy/Testlamp_Isym3_symmetryOverC90C270axis_rot.IES")).unwrap();
     let mut o = quick(vec![Recon::Measured]);
     o.normalize = Normalize::Peak;
-    let plain = compare(&a.distribution, Some(&b.distribution), &o).unwrap();
+    let plain = compare(a.distribution(), Some(b.distribution()), &o).unwrap();
     o.align = true;
-    let aligned = compare(&a.distribution, Some(&b.distribution), &o).unwrap();
+    let aligned = compare(a.distribution(), Some(b.distribution()), &o).unwrap();
     let al = aligned.alignment.unwrap();
     eprintln!(
         "testlamp: {al:?}; H {:.4} -> {:.4}",
@@ -225,7 +227,8 @@ fn cli_json_has_the_contract_keys_and_report_is_self_contained() {
     photosolid::save(
         &Synth::Roadway
             .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
-            .unwrap(),
+            .unwrap()
+            .into(),
         &file,
         &Default::default(),
     )
@@ -377,12 +380,12 @@ fn corpus_runs_through_compare() {
             skipped += 1;
             continue;
         };
-        if lum.distribution.max_cd() <= 0.0 {
+        if lum.distribution().max_cd() <= 0.0 {
             skipped += 1;
             continue;
         }
         let t = std::time::Instant::now();
-        let d = &lum.distribution;
+        let d = lum.distribution();
         if d.n_c() < 3 && d.n_gamma() < 3 {
             // Nothing can be withheld: the default reference says so.
             let err = compare(d, None, &opts).unwrap_err().to_string();

@@ -22,7 +22,7 @@ fn every_file_loads_or_fails_as_the_manifest_says() {
                 if e.malformed() {
                     problems.push(format!("{}: marked MALFORMED but loaded", e.rel));
                 }
-                let d = &lum.distribution;
+                let d = lum.distribution();
                 if d.intensities().iter().any(|v| !v.is_finite()) {
                     problems.push(format!("{}: non-finite intensity", e.rel));
                 }
@@ -65,7 +65,7 @@ fn ldt_flux_agrees_with_declared_lor() {
     let (mut within, mut total) = (0, 0);
     for e in manifest(&root).iter().filter(|e| e.format == "ldt" && !e.malformed()) {
         let lum = photosolid::load(&e.path).unwrap();
-        let (Some(decl), false) = (lum.declared.lor, lum.declared.absolute) else {
+        let (Some(decl), false) = (lum.declared().lor, lum.declared().absolute) else {
             continue;
         };
         let info = InfoReport::of(&lum);
@@ -137,14 +137,14 @@ fn luxpy_ldt_ies_pairs_agree() {
     for (l, i, turn) in pairs {
         let a = photosolid::load(dir.join(l)).unwrap();
         let b = photosolid::load(dir.join(i)).unwrap();
-        let bd = b.distribution.reoriented(turn, false).unwrap();
-        let peak = a.distribution.max_cd();
+        let bd = b.distribution().reoriented(turn, false).unwrap();
+        let peak = a.distribution().max_cd();
         let (fa, fb) = (
-            photometry::flux(&a.distribution).total_lm,
+            photometry::flux(a.distribution()).total_lm,
             photometry::flux(&bd).total_lm,
         );
         assert!((fa - fb).abs() <= 0.01 * fa, "{l} vs {i}: flux {fa} vs {fb}");
-        let full = a.distribution.expand(24);
+        let full = a.distribution().expand(24);
         let mut worst: f64 = 0.0;
         for (k, &c) in full.c_angles().iter().enumerate() {
             let pb = photometry::plane_profile(&bd, c);
@@ -173,7 +173,7 @@ fn every_loadable_file_gives_sane_solids() {
     let mut failures = Vec::new();
     for e in manifest(&root).iter().filter(|e| e.photometric() && !e.malformed()) {
         let lum = photosolid::load(&e.path).unwrap();
-        let d = &lum.distribution;
+        let d = lum.distribution();
         match check_measured(d) {
             Ok(_) => {}
             Err(CheckError::Build(photosolid::ModelError::AllZero(_))) if d.max_cd() <= 0.0 => {}

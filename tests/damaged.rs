@@ -251,7 +251,7 @@ fn utf16_and_mixed_line_endings() {
         }
         let m = photosolid::formats::parse(mixed.as_bytes(), &f, format, &ReadOptions::default())
             .unwrap_or_else(|e| panic!("{}: mixed line endings: {e}", f.display()));
-        assert_eq!(m.distribution, plain.distribution, "{}", f.display());
+        assert_eq!(m.distribution(), plain.distribution(), "{}", f.display());
     }
 }
 
@@ -324,10 +324,10 @@ fn user_controlled_sizes_and_iterations_are_bounded() {
     use photosolid::solid::{measured_solid, SolidGrid, Units};
     let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/batwing.ldt")).unwrap();
     // `mesh --factor 3000` asked for a 373 GB allocation: refused before allocating.
-    let e = SolidGrid::refined(&lum.distribution, 3000).unwrap_err().to_string();
+    let e = SolidGrid::refined(lum.distribution(), 3000).unwrap_err().to_string();
     assert!(e.contains("factor") && e.contains("at most"), "{e}");
     assert!(LARGEST.load(Ordering::Relaxed) <= ALLOCATION_CAP);
-    assert!(SolidGrid::refined(&lum.distribution, 2).is_ok());
+    assert!(SolidGrid::refined(lum.distribution(), 2).is_ok());
     // A Hausdorff tolerance of 0 is reached only when the bound closes exactly;
     // otherwise refinement stops at its cap and says so, in bounded time.
     let cap = photosolid::metrics::hausdorff::MAX_REFINEMENT_QUERIES;
@@ -335,12 +335,12 @@ fn user_controlled_sizes_and_iterations_are_bounded() {
     let mut partial = 0;
     for (x, y) in [("batwing.ldt", "cosine_p5.ldt")] {
         // A filtered solid on a refined grid against a measured one, as `compare` does.
-        let d = load(x).distribution;
+        let d = load(x).distribution().clone();
         let tex = photosolid::reconstruct::LightTexture::new(&d).unwrap();
         let sampler = tex.sampler(photosolid::reconstruct::Filter::CatmullRom);
         let grid = SolidGrid::refined(&d, 3).unwrap();
         let a = photosolid::solid::grid_solid(&sampler, &grid, Units::Peak).unwrap();
-        let b = measured_solid(&load(y).distribution, Units::Peak).unwrap();
+        let b = measured_solid(load(y).distribution(), Units::Peak).unwrap();
         let t0 = std::time::Instant::now();
         let h = photosolid::compare::solid_hausdorff(&a, &b, 0.0);
         assert!(t0.elapsed().as_secs() < 120, "bounded time: {:?}", t0.elapsed());

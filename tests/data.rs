@@ -37,7 +37,7 @@ fn cases() -> Vec<(&'static str, Option<f64>, f64)> {
 fn nonuniform_knots_integrate_exactly() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
     let lum = photosolid::load(dir.join("cosine_p20_nonuniform.ldt")).unwrap();
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let (g, v) = (d.gamma_angles(), d.plane(0));
     let interp = |x: f64| {
         let i = g.partition_point(|&k| k <= x).clamp(1, g.len() - 1) - 1;
@@ -70,18 +70,18 @@ fn data_files_integrate_to_closed_forms_in_both_formats() {
     for (stem, exact, tol) in cases() {
         let ldt = photosolid::load(dir.join(format!("{stem}.ldt"))).unwrap();
         let ies = photosolid::load(dir.join(format!("{stem}.ies"))).unwrap();
-        let (fl, fi) = (flux(&ldt.distribution).total_lm, flux(&ies.distribution).total_lm);
+        let (fl, fi) = (flux(ldt.distribution()).total_lm, flux(ies.distribution()).total_lm);
         // The two formats hold the same numbers to their printed precision (8 significant digits in LDT).
         assert!((fl - fi).abs() <= 1e-7 * fl, "{stem}: ldt {fl} vs ies {fi}");
-        assert_eq!(ldt.distribution.symmetry(), ies.distribution.symmetry(), "{stem}");
+        assert_eq!(ldt.distribution().symmetry(), ies.distribution().symmetry(), "{stem}");
         if let Some(x) = exact {
             assert!((fl - x).abs() <= tol * x, "{stem}: {fl} vs exact {x} (tol {tol})");
         }
         assert!(
-            ldt.warnings.is_empty() && ies.warnings.is_empty(),
+            ldt.warnings().is_empty() && ies.warnings().is_empty(),
             "{stem}: {:?} {:?}",
-            ldt.warnings,
-            ies.warnings
+            ldt.warnings(),
+            ies.warnings()
         );
     }
 }
@@ -90,10 +90,10 @@ fn data_files_integrate_to_closed_forms_in_both_formats() {
 fn data_beam_angles_match_closed_forms() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
     let lam = photosolid::load(dir.join("lambertian.ldt")).unwrap();
-    let b = beam_angles(&lam.distribution);
+    let b = beam_angles(lam.distribution());
     // 2.5° grid, linear crossing: cos is nearly linear over one step near 60°.
     assert!((b.ies_beam_deg[0].unwrap() - 120.0).abs() < 0.05);
     let cos5 = photosolid::load(dir.join("cosine_p5.ies")).unwrap();
     let exact = 2.0 * 0.5f64.powf(1.0 / 5.0).acos().to_degrees();
-    assert!((beam_angles(&cos5.distribution).ies_beam_deg[1].unwrap() - exact).abs() < 0.05);
+    assert!((beam_angles(cos5.distribution()).ies_beam_deg[1].unwrap() - exact).abs() < 0.05);
 }

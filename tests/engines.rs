@@ -62,7 +62,7 @@ fn exr_exports_read_back_equal_to_the_emulated_images() {
         let (w, h, values, name) = read_exr(&path);
         assert_eq!((w, h), size, "{engine}");
         assert_eq!(name, engine.name());
-        let em = emulate(engine, &lum.distribution, &opts).unwrap();
+        let em = emulate(engine, lum.distribution(), &opts).unwrap();
         let image = em.image.unwrap();
         assert_eq!(values.len(), image.data.len());
         // f32 layouts bit for bit; half-float layouts were rounded to f16 before writing.
@@ -82,7 +82,7 @@ fn ies_export_reads_back_as_the_same_distribution() {
         let path = dir.path().join("blender.ies");
         export(Engine::Blender, &lum, &path, &EngineOptions::default()).unwrap();
         let back = photosolid::load(&path).unwrap();
-        let (a, b) = (&lum.distribution, &back.distribution);
+        let (a, b) = (lum.distribution(), back.distribution());
         assert_eq!(a.c_angles(), b.c_angles(), "{name}");
         assert_eq!(a.gamma_angles(), b.gamma_angles(), "{name}");
         for (x, y) in a.intensities().iter().zip(b.intensities()) {
@@ -135,9 +135,9 @@ fn glb_embeds_the_ies_profile_and_the_fitted_lights() {
         &Default::default(),
     )
     .unwrap();
-    assert_eq!(back.distribution.gamma_angles(), lum.distribution.gamma_angles());
-    let peak = lum.distribution.max_cd();
-    assert!((back.distribution.max_cd() - peak).abs() <= 1e-9 * peak);
+    assert_eq!(back.distribution().gamma_angles(), lum.distribution().gamma_angles());
+    let peak = lum.distribution().max_cd();
+    assert!((back.distribution().max_cd() - peak).abs() <= 1e-9 * peak);
     // A node instantiates the profile; every KHR light has a node; the spot's cone is valid.
     let nodes = doc["nodes"].as_array().unwrap();
     assert!(nodes.iter().any(|n| n["extensions"]["EXT_lights_ies"]["light"] == 0));
@@ -179,11 +179,11 @@ fn pbrt_four_pi_mean_converges_to_the_flux() {
     // Against the file's flux (its own quadrature of the measured grid): the
     // Catmull-Rom bake converges to within the two quadratures' difference.
     let lum = load("roadway.ldt");
-    let flux = photosolid::photometry::flux(&lum.distribution).total_lm;
+    let flux = photosolid::photometry::flux(lum.distribution()).total_lm;
     let rel = |n: usize| {
         let em = emulate(
             Engine::Pbrt,
-            &lum.distribution,
+            lum.distribution(),
             &EngineOptions {
                 resolution: Some(n),
                 ..Default::default()
@@ -203,7 +203,7 @@ fn the_peak_lands_on_the_predicted_texel() {
     // hold 1/16 of the peak), so a C90 <-> C270 flip of a layout would move
     // the peak to a dark texel.
     let lum = load("roadway.ldt");
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let ng = d.n_gamma();
     let peaks: Vec<(f64, f64)> = (0..d.n_c() * ng)
         .filter(|&i| d.intensities()[i] == d.max_cd())
@@ -454,7 +454,7 @@ fn tilt_and_type_b_rows_appear_for_such_files() {
              -90 -45 0 45 90\n-90 -45 0 45 90\n{cd}"
         ),
     );
-    assert!(flood.source_grid.is_some());
+    assert!(flood.source_grid().is_some());
     let r = measure(&flood, &quick(vec![Engine::Babylon, Engine::Ue5, Engine::Blender])).unwrap();
     for name in ["babylon: Type B read as Type C", "ue5: Type B read as Type C"] {
         let row = r
@@ -496,7 +496,7 @@ fn bad_input_is_an_error_not_a_panic() {
         resolution: Some(3),
         ..Default::default()
     };
-    assert!(emulate(Engine::Pbrt, &lum.distribution, &bad).is_err());
+    assert!(emulate(Engine::Pbrt, lum.distribution(), &bad).is_err());
     let mut o = quick(vec![Engine::Pbrt]);
     o.reference = Against::Withheld;
     assert!(measure(&lum, &o).is_err());

@@ -409,7 +409,7 @@ fn batwing_and_ring_are_reported_honestly() {
     let bat = photosolid::synth::Synth::Batwing
         .build(&photosolid::synth::GridSpec::uniform(15.0, 2.5).unwrap(), 1000.0)
         .unwrap()
-        .distribution;
+        .into_distribution();
     let (_, gs) = grid(360.0, 2.5);
     // A ring: peak at γ = 60°, nothing at the nadir.
     let ring: Vec<f64> = gs
@@ -437,7 +437,7 @@ fn roadway_fits_with_a_tilted_spot() {
     let d = photosolid::synth::Synth::Roadway
         .build(&photosolid::synth::GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0)
         .unwrap()
-        .distribution;
+        .into_distribution();
     let f = fit(&d, &FitOptions::default()).unwrap();
     all_finite(&f);
     eprintln!("{}", photosolid::fit::FitReport::of(&f).to_text());
@@ -589,13 +589,13 @@ fn corpus_files_fit() {
         String::from("file | chosen | error | spot-down | spot-up | point | point+down | point+up | down+up\n");
     for p in &files {
         let lum = photosolid::load(p).unwrap_or_else(|e| panic!("{e}"));
-        if lum.distribution.max_cd() <= 0.0 {
+        if lum.distribution().max_cd() <= 0.0 {
             skipped += 1;
             continue;
         }
         loaded += 1;
         let t = std::time::Instant::now();
-        let f = fit(&lum.distribution, &FitOptions::default()).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        let f = fit(lum.distribution(), &FitOptions::default()).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         let ms = t.elapsed().as_secs_f64() * 1e3;
         all_finite(&f);
         assert!(f.error().is_finite(), "{}", p.display());

@@ -175,7 +175,7 @@ const CORPUS_SUBSET: [&str; 8] = [
 
 fn texture(path: &Path) -> LightTexture {
     let lum = photosolid::load(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    LightTexture::new(&lum.distribution).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    LightTexture::new(lum.distribution()).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 fn synth_textures() -> Vec<(String, LightTexture)> {
@@ -203,7 +203,7 @@ fn synth_textures() -> Vec<(String, LightTexture)> {
             let lum = s.build(g, 1000.0).unwrap();
             out.push((
                 format!("{} on {gname}", s.name()),
-                LightTexture::new(&lum.distribution).unwrap(),
+                LightTexture::new(lum.distribution()).unwrap(),
             ));
         }
     }
@@ -320,7 +320,7 @@ fn factors_1_to_32_and_clamping() {
     }
     .build(&GridSpec::uniform(30.0, 10.0).unwrap(), 500.0)
     .unwrap();
-    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let tex = LightTexture::new(lum.distribution()).unwrap();
     let mut items = Vec::new();
     for factor in 1..=32 {
         for (k, filter) in filters().into_iter().enumerate() {

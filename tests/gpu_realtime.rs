@@ -22,7 +22,7 @@ use common::gpu::ctx;
 fn rendered(file: &str, factor: u32) -> (Rendered, photosolid::model::Symmetry) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join(file);
     let lum = photosolid::load(&path).unwrap();
-    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let tex = LightTexture::new(lum.distribution()).unwrap();
     (render(&tex, Filter::CatmullRom, factor).unwrap(), tex.symmetry())
 }
 
@@ -242,7 +242,7 @@ fn trade_table_gpu_rows() {
             },
             gpu: true,
         };
-        let t = trade_table(&lum.distribution, None, &opts, &|_, _, _| {}).unwrap();
+        let t = trade_table(lum.distribution(), None, &opts, &|_, _, _| {}).unwrap();
         let row = |name: &str| t.rows.iter().find(|r| r.representation == name).unwrap();
         for (gpu, cpu) in [
             ("catmull-rom@x5/bilinear+gpu", "catmull-rom@x5/bilinear"),

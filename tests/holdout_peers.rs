@@ -70,7 +70,7 @@ fn holdout_at_least_as_good_as_the_peers() {
             c_step: kc,
             gamma_step: kg,
         };
-        let reports = holdout(&lum.distribution, spec, &filters).unwrap();
+        let reports = holdout(lum.distribution(), spec, &filters).unwrap();
         for (r, (f, rms, max, hr, hm)) in reports.iter().zip(rows) {
             eprintln!(
                 "{file} {kc}/{kg} {f}: rms-all {:.3} (peer {rms}), max {:.3} (peer {max}), rms over dropped {:.3}",

@@ -28,12 +28,12 @@ fn corpus() -> Option<Vec<(PathBuf, bool)>> {
     Some(out)
 }
 
-fn read_path(p: &Path) -> Result<Luminaire, photosolid::ParseError> {
+fn read_path(p: &Path) -> Result<photosolid::formats::Document, photosolid::ParseError> {
     let bytes = std::fs::read(p).unwrap();
     ies::read(&bytes, p, &ReadOptions::default())
 }
 
-fn read_str(s: &str) -> Result<Luminaire, photosolid::ParseError> {
+fn read_str(s: &str) -> Result<photosolid::formats::Document, photosolid::ParseError> {
     ies::read(s.as_bytes(), Path::new("mem.ies"), &ReadOptions::default())
 }
 
@@ -61,10 +61,10 @@ fn corpus_loads_or_fails_as_the_manifest_says() {
             (Ok(l), false) => report.push_str(&format!(
                 "OK   {} ({}, {:?}, {:?}, {} warnings)\n",
                 p.display(),
-                l.version,
-                l.photometric_type,
-                l.distribution.symmetry(),
-                l.warnings.len()
+                l.version(),
+                l.photometric_type(),
+                l.distribution().symmetry(),
+                l.warnings().len()
             )),
             (Err(e), true) => {
                 let s = e.to_string();
@@ -98,11 +98,11 @@ fn corpus_round_trips_through_the_writer() {
             let b = ies::read(text.as_bytes(), p, &ReadOptions::default())
                 .unwrap_or_else(|e| panic!("{}: re-read failed: {e}\n{text}", p.display()));
             // The writer's precision contract: exact without multipliers, else 1e-14 relative.
-            assert_same(&a.distribution, &b.distribution, 1e-13, &p.display().to_string());
-            assert_eq!(a.photometric_type, b.photometric_type);
-            assert_eq!(a.tilt.table(), b.tilt.table());
-            assert_eq!(a.metadata.manufacturer, b.metadata.manufacturer);
-            assert_eq!(a.metadata.catalogue, b.metadata.catalogue);
+            assert_same(a.distribution(), b.distribution(), 1e-13, &p.display().to_string());
+            assert_eq!(a.photometric_type(), b.photometric_type());
+            assert_eq!(a.tilt().table(), b.tilt().table());
+            assert_eq!(a.metadata().manufacturer, b.metadata().manufacturer);
+            assert_eq!(a.metadata().catalogue, b.metadata().catalogue);
             for k in ["[TEST]", "[TESTLAB]", "[ISSUEDATE]", "[MANUFAC]"] {
                 assert!(text.contains(k), "{}: {k} missing", p.display());
             }
@@ -200,26 +200,26 @@ const SIMPLE: &str =
 #[test]
 fn reads_a_simple_file() {
     let l = read_str(SIMPLE).unwrap();
-    assert_eq!(l.version, "LM-63-2002");
-    assert_eq!(l.metadata.manufacturer, "Acme");
-    assert_eq!(l.metadata.test_report, "T1");
-    assert!(l.declared.absolute);
-    assert_eq!(l.distribution.symmetry(), Symmetry::Rotational);
-    assert_eq!(l.distribution.intensities(), &[100.0, 50.0, 0.0]);
-    assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+    assert_eq!(l.version(), "LM-63-2002");
+    assert_eq!(l.metadata().manufacturer, "Acme");
+    assert_eq!(l.metadata().test_report, "T1");
+    assert!(l.declared().absolute);
+    assert_eq!(l.distribution().symmetry(), Symmetry::Rotational);
+    assert_eq!(l.distribution().intensities(), &[100.0, 50.0, 0.0]);
+    assert!(l.warnings().is_empty(), "{:?}", l.warnings());
 }
 
 #[test]
 fn tilt_include_is_parsed_not_applied() {
     let s = "IESNA:LM-63-2002\nTILT=INCLUDE\n1\n3\n0 15 30\n1.0 0.95 0.9\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 5\n";
     let l = read_str(s).unwrap();
-    let Tilt::Include { table } = &l.tilt else {
-        panic!("{:?}", l.tilt)
+    let Tilt::Include { table } = l.tilt() else {
+        panic!("{:?}", l.tilt())
     };
     assert_eq!(table.geometry, 1);
     assert_eq!(table.angles, vec![0.0, 15.0, 30.0]);
     assert_eq!(table.multipliers, vec![1.0, 0.95, 0.9]);
-    assert_eq!(l.distribution.intensities(), &[10.0, 5.0]);
+    assert_eq!(l.distribution().intensities(), &[10.0, 5.0]);
     let t = l.tilted_distribution(30.0).unwrap();
     assert!((t.intensities()[0] - 9.0).abs() < 1e-12);
 }
@@ -229,13 +229,13 @@ fn tilt_file_is_resolved_next_to_the_file() {
     let Some(_) = corpus() else { return };
     let p = Path::new(CORPUS).join("luxera/tilt_file_variant.ies");
     let l = read_path(&p).unwrap();
-    let Tilt::File { name, table } = &l.tilt else {
-        panic!("{:?}", l.tilt)
+    let Tilt::File { name, table } = l.tilt() else {
+        panic!("{:?}", l.tilt())
     };
     assert_eq!(name, "tilt_factor.dat");
     assert_eq!(table.angles, vec![0.0, 15.0, 30.0]);
     assert_eq!(table.multipliers, vec![1.0, 0.9, 0.8]);
-    assert!(l.warnings.iter().any(|w| w.code == "tilt-file-keyword"));
+    assert!(l.warnings().iter().any(|w| w.code == "tilt-file-keyword"));
     // Written back inline.
     let text = ies::write(&l, IesWriteVersion::Lm63_2002);
     assert!(
@@ -256,7 +256,7 @@ fn tilt_file_in_a_temp_dir() {
     let p = dir.path().join("lum.ies");
     let s = "IESNA:LM-63-2002\nTILT=t.tlt\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 5\n";
     let l = ies::read(s.as_bytes(), &p, &ReadOptions::default()).unwrap();
-    let table = l.tilt.table().unwrap();
+    let table = l.tilt().table().unwrap();
     assert_eq!(table.geometry, 3);
     assert_eq!(table.multipliers, vec![1.0, 0.5]);
     let s = "IESNA:LM-63-2002\nTILT=nope.tlt\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 5\n";
@@ -307,17 +307,17 @@ fn type_b_bright_direction_lands_at_the_expected_c_gamma() {
             ..ReadOptions::default()
         };
         let l = ies::read(s.as_bytes(), Path::new("b.ies"), &opts).unwrap();
-        assert_eq!(l.photometric_type, PhotometricType::B);
-        assert_eq!(l.distribution.symmetry(), Symmetry::None);
+        assert_eq!(l.photometric_type(), PhotometricType::B);
+        assert_eq!(l.distribution().symmetry(), Symmetry::None);
         // d = (cosH sinV, sinH, -cosH cosV) for H = 30, V = 40.
         let (h, v) = (30f64.to_radians(), 40f64.to_radians());
         let d = [h.cos() * v.sin(), sign * h.sin(), -h.cos() * v.cos()];
         let gamma = (-d[2]).acos().to_degrees();
         let c = d[1].atan2(d[0]).to_degrees().rem_euclid(360.0);
-        let (peak, _, _) = l.distribution.max();
+        let (peak, _, _) = l.distribution().max();
         assert!((peak - 1000.0).abs() < 1e-9, "{peak}");
         // The grid point nearest the bright direction lies inside the lit patch.
-        let d2 = &l.distribution;
+        let d2 = l.distribution();
         let near = |a: &[f64], x: f64| {
             (0..a.len())
                 .min_by(|&i, &j| (a[i] - x).abs().total_cmp(&(a[j] - x).abs()))
@@ -335,11 +335,11 @@ fn type_b_bright_direction_lands_at_the_expected_c_gamma() {
         let ig = d2.gamma_angles().iter().position(|&x| (x - gamma).abs() < 2.6).unwrap();
         assert!(d2.value(ic, ig) < 1e-9, "mirror lit: {}", d2.value(ic, ig));
         // The source grid is kept and written back as Type B.
-        let sg = l.source_grid.as_ref().unwrap();
+        let sg = l.source_grid().unwrap();
         assert_eq!(sg.kind, PhotometricType::B);
         let text = ies::write(&l, IesWriteVersion::Lm63_2002);
         let back = ies::read(text.as_bytes(), Path::new("b.ies"), &opts).unwrap();
-        assert_eq!(back.source_grid, l.source_grid);
+        assert_eq!(back.source_grid(), l.source_grid());
     }
 }
 
@@ -347,46 +347,46 @@ fn type_b_bright_direction_lands_at_the_expected_c_gamma() {
 fn type_b_half_grid_is_c0c180() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 3 2 2 0 0 0\n1 1 0\n-90 0 90\n0 45 90\n1 2 3 4 5 6 7 8 9\n";
     let l = read_str(s).unwrap();
-    assert_eq!(l.distribution.symmetry(), Symmetry::C0C180);
+    assert_eq!(l.distribution().symmetry(), Symmetry::C0C180);
     // Nadir = H0 V0 = 2.
-    assert!((l.distribution.value(0, 0) - 2.0).abs() < 1e-9);
+    assert!((l.distribution().value(0, 0) - 2.0).abs() < 1e-9);
 }
 
 #[test]
 fn comma_separated_values() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1,-1,1,3,1,1,2,0,0,0\n1,1,0\n0,45,90\n0\n100,50.5,0\n";
     let l = read_str(s).unwrap();
-    assert_eq!(l.distribution.intensities(), &[100.0, 50.5, 0.0]);
+    assert_eq!(l.distribution().intensities(), &[100.0, 50.5, 0.0]);
 }
 
 #[test]
 fn file_1986_without_keyword_line_and_blpf() {
     let s = "ACME LIGHTING\nSome luminaire\nTILT=NONE\n2 1000 2 2 1 1 1 1 2 0\n0.5 0.8 100\n0 90\n0\n100 50\n";
     let l = read_str(s).unwrap();
-    assert_eq!(l.version, "LM-63-1986");
+    assert_eq!(l.version(), "LM-63-1986");
     // 100 x multiplier 2 x ballast 0.5 x BLPF 0.8 = 80.
-    assert_eq!(l.distribution.intensities(), &[80.0, 40.0]);
-    assert_eq!(l.declared.lamp_flux_lm, Some(2000.0));
-    assert!((l.luminous_opening.length_m - 2.0 * 0.3048).abs() < 1e-12);
-    assert!((l.luminous_opening.width_m - 0.3048).abs() < 1e-12);
-    assert_eq!(l.metadata.luminaire, "ACME LIGHTING Some luminaire");
+    assert_eq!(l.distribution().intensities(), &[80.0, 40.0]);
+    assert_eq!(l.declared().lamp_flux_lm, Some(2000.0));
+    assert!((l.luminous_opening().length_m - 2.0 * 0.3048).abs() < 1e-12);
+    assert!((l.luminous_opening().width_m - 0.3048).abs() < 1e-12);
+    assert_eq!(l.metadata().luminaire, "ACME LIGHTING Some luminaire");
     // From 1995 the BLPF field is unused.
     let s95 = s.replace("ACME LIGHTING\n", "IESNA:LM-63-1995\n");
-    assert_eq!(read_str(&s95).unwrap().distribution.intensities(), &[100.0, 50.0]);
+    assert_eq!(read_str(&s95).unwrap().distribution().intensities(), &[100.0, 50.0]);
     // Written as 2002 the BLPF is folded into the values.
     let l2 = read_str(&ies::write(&l, IesWriteVersion::Lm63_2002)).unwrap();
-    assert_same(&l.distribution, &l2.distribution, 1e-14, "1986 rewrite");
+    assert_same(l.distribution(), l2.distribution(), 1e-14, "1986 rewrite");
 }
 
 #[test]
 fn ctrl_z_cr_only_bom_and_blank_lines() {
     let cr = SIMPLE.replace('\n', "\r");
-    assert_eq!(read_str(&cr).unwrap().distribution.intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(read_str(&cr).unwrap().distribution().intensities(), &[100.0, 50.0, 0.0]);
     let z = format!("\u{feff}{}\x1a", SIMPLE.replace('\n', "\r\n"));
-    assert_eq!(read_str(&z).unwrap().distribution.intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(read_str(&z).unwrap().distribution().intensities(), &[100.0, 50.0, 0.0]);
     let blank = SIMPLE.replace("TILT=NONE\n", &format!("TILT=NONE\n{}", "\n".repeat(1000)));
     let l = read_str(&blank).unwrap();
-    assert_eq!(l.distribution.intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(l.distribution().intensities(), &[100.0, 50.0, 0.0]);
     let one_per_line = SIMPLE.replace(' ', "\n");
     assert!(read_str(&one_per_line).is_ok());
 }
@@ -395,10 +395,10 @@ fn ctrl_z_cr_only_bom_and_blank_lines() {
 fn keywords_more_user_and_version_spellings() {
     let s = "IESNA: LM-63-2002 \n[TEST]T9\n[MANUFAC] Big\n[MORE] Company\n[_Electric Parameters] 230 V\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n1 2\n";
     let l = read_str(s).unwrap();
-    assert_eq!(l.version, "LM-63-2002");
-    assert_eq!(l.metadata.test_report, "T9");
-    assert_eq!(l.metadata.manufacturer, "Big Company");
-    let h = l.ies.as_ref().unwrap();
+    assert_eq!(l.version(), "LM-63-2002");
+    assert_eq!(l.metadata().test_report, "T9");
+    assert_eq!(l.metadata().manufacturer, "Big Company");
+    let h = l.ies_header().unwrap();
     assert_eq!(h.keyword("_Electric Parameters").as_deref(), Some("230 V"));
     let text = ies::write(&l, IesWriteVersion::Lm63_2019);
     assert!(text.starts_with("IES:LM-63-2019\r\n"));
@@ -414,20 +414,22 @@ fn keywords_more_user_and_version_spellings() {
         ("IESNA:LM-63-1995", "LM-63-1995"),
     ] {
         let s2 = s.replacen("IESNA: LM-63-2002 ", line, 1);
-        assert_eq!(read_str(&s2).unwrap().version, v);
+        assert_eq!(read_str(&s2).unwrap().version(), v);
     }
     // A long value is split into [MORE] lines and read back whole.
     let mut l2 = l.clone();
     let long = "x".repeat(600);
-    if let Some(photosolid::formats::ies::IesLabel::Keyword { value, .. }) = l2.ies.as_mut().unwrap().labels.get_mut(1)
-    {
+    if let Some(photosolid::formats::ies::IesLabel::Keyword { value, .. }) = match &mut l2.header {
+        photosolid::formats::Header::Ies(h) => h.labels.get_mut(1),
+        _ => None,
+    } {
         *value = long.clone();
     }
     let text = ies::write(&l2, IesWriteVersion::Lm63_2002);
     assert!(text.split("\r\n").all(|x| x.len() <= 254));
     let back = read_str(&text).unwrap();
     assert_eq!(
-        back.ies.unwrap().keyword("MANUFAC").unwrap().replace(' ', ""),
+        back.ies_header().unwrap().keyword("MANUFAC").unwrap().replace(' ', ""),
         format!("{long}Company")
     );
 }
@@ -451,15 +453,15 @@ fn errors_name_line_column_expected_found() {
 fn warnings_extra_negative_pole_missing_ballast() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 2 1 2 0 0 0\n1 1 0\n0 90\n0 180\n10 -1\n12 3\nEND\n";
     let l = read_str(s).unwrap();
-    let codes: Vec<&str> = l.warnings.iter().map(|w| w.code.as_str()).collect();
+    let codes: Vec<&str> = l.warnings().iter().map(|w| w.code.as_str()).collect();
     assert!(codes.contains(&"extra-values"), "{codes:?}");
     assert!(codes.contains(&"negative-intensity"), "{codes:?}");
     assert!(codes.contains(&"pole-mismatch"), "{codes:?}");
-    assert_eq!(l.distribution.intensities(), &[10.0, -1.0, 12.0, 3.0]);
+    assert_eq!(l.distribution().intensities(), &[10.0, -1.0, 12.0, 3.0]);
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n0 90\n0\n10 5\n";
     let l = read_str(s).unwrap();
-    assert!(l.warnings.iter().any(|w| w.code == "missing-ballast-line"));
-    assert_eq!(l.distribution.intensities(), &[10.0, 5.0]);
+    assert!(l.warnings().iter().any(|w| w.code == "missing-ballast-line"));
+    assert_eq!(l.distribution().intensities(), &[10.0, 5.0]);
 }
 
 #[test]
@@ -468,7 +470,8 @@ fn symmetry_from_horizontal_angles() {
         let vals = vec!["1 2"; n].join("\n");
         format!("IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 {n} 1 2 0 0 0\n1 1 0\n0 90\n{h}\n{vals}\n")
     };
-    let sym = |h: &str, n| read_str(&mk(h, n)).map(|l| (l.distribution.symmetry(), l.distribution.c_angles().to_vec()));
+    let sym =
+        |h: &str, n| read_str(&mk(h, n)).map(|l| (l.distribution().symmetry(), l.distribution().c_angles().to_vec()));
     assert_eq!(sym("0 45 90", 3).unwrap().0, Symmetry::Quadrant);
     assert_eq!(sym("0 90 180", 3).unwrap().0, Symmetry::C0C180);
     assert_eq!(sym("90 180 270", 3).unwrap().0, Symmetry::C90C270);
@@ -485,10 +488,10 @@ fn symmetry_from_horizontal_angles() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 4 1 2 0 0 0\n1 1 0\n90 0\n180 0 90 90\n1 10\n3 30\n2 20\n9 9\n";
     assert!(read_str(s).is_err());
     let l = ies::read(s.as_bytes(), Path::new("r.ies"), &opts).unwrap();
-    assert_eq!(l.distribution.c_angles(), &[0.0, 90.0, 180.0]);
-    assert_eq!(l.distribution.gamma_angles(), &[0.0, 90.0]);
-    assert_eq!(l.distribution.intensities(), &[30.0, 3.0, 20.0, 2.0, 10.0, 1.0]);
-    assert!(l.warnings.iter().any(|w| w.code == "angles-repaired"));
+    assert_eq!(l.distribution().c_angles(), &[0.0, 90.0, 180.0]);
+    assert_eq!(l.distribution().gamma_angles(), &[0.0, 90.0]);
+    assert_eq!(l.distribution().intensities(), &[30.0, 3.0, 20.0, 2.0, 10.0, 1.0]);
+    assert!(l.warnings().iter().any(|w| w.code == "angles-repaired"));
 }
 
 #[test]
@@ -501,14 +504,14 @@ fn synthetic_luminaire_writes_and_reads_back() {
     )
     .unwrap();
     let mut l = Luminaire::from_distribution(d);
-    l.metadata.manufacturer = "Synth".into();
-    let text = ies::write(&l, IesWriteVersion::Lm63_2002);
+    l.metadata_mut().manufacturer = "Synth".into();
+    let text = ies::write(&l.clone().into(), IesWriteVersion::Lm63_2002);
     let back = read_str(&text).unwrap();
-    assert_eq!(back.distribution.c_angles(), &[0.0, 30.0, 150.0, 270.0]);
-    assert_eq!(back.distribution.plane(1), l.distribution.plane(0));
-    assert_eq!(back.distribution.plane(3), l.distribution.plane(2));
-    assert_eq!(back.metadata.manufacturer, "Synth");
-    assert!(back.declared.absolute);
+    assert_eq!(back.distribution().c_angles(), &[0.0, 30.0, 150.0, 270.0]);
+    assert_eq!(back.distribution().plane(1), l.distribution().plane(0));
+    assert_eq!(back.distribution().plane(3), l.distribution().plane(2));
+    assert_eq!(back.metadata().manufacturer, "Synth");
+    assert!(back.declared().absolute);
 }
 
 /// Parse speed on a large synthetic file (run with `--ignored --nocapture`).
@@ -549,5 +552,5 @@ fn parse_speed() {
         s.len() / 1_000_000,
         s.len() as f64 / dt / 1e6
     );
-    assert_eq!(l.distribution.n_c(), nh - 1);
+    assert_eq!(l.distribution().n_c(), nh - 1);
 }

@@ -28,12 +28,12 @@ fn corpus() -> Option<Vec<(PathBuf, bool)>> {
     Some(out)
 }
 
-fn read_file(p: &Path) -> Result<Luminaire, photosolid::ParseError> {
+fn read_file(p: &Path) -> Result<photosolid::formats::Document, photosolid::ParseError> {
     let bytes = std::fs::read(p).unwrap();
     ldt::read(&bytes, p, &ReadOptions::default())
 }
 
-fn read_str(s: &str) -> Result<Luminaire, photosolid::ParseError> {
+fn read_str(s: &str) -> Result<photosolid::formats::Document, photosolid::ParseError> {
     ldt::read(s.as_bytes(), Path::new("test.ldt"), &ReadOptions::default())
 }
 
@@ -66,14 +66,14 @@ fn corpus_loads_unless_malformed() {
         match read_file(p) {
             Ok(l) => {
                 assert!(!malformed, "{} is MALFORMED but loaded", p.display());
-                let d = &l.distribution;
+                let d = l.distribution();
                 report.push(format!(
                     "ok   {} isym {} planes {} x {} warnings {:?}",
                     p.display(),
                     d.symmetry().isym(),
                     d.n_c(),
                     d.n_gamma(),
-                    l.warnings.iter().map(|w| w.code).collect::<Vec<_>>()
+                    l.warnings().iter().map(|w| w.code).collect::<Vec<_>>()
                 ));
             }
             Err(e) => {
@@ -102,11 +102,11 @@ fn corpus_round_trips_through_the_writer() {
         let b = ldt::read(text.as_bytes(), &p, &ReadOptions::default())
             .unwrap_or_else(|e| panic!("{}: written file does not read back: {e}\n{text}", p.display()));
         let what = p.display().to_string();
-        assert_same_distribution(&a.distribution, &b.distribution, &what);
-        assert_eq!(a.metadata, b.metadata, "{what}");
-        assert_eq!(a.lamp_sets.len(), b.lamp_sets.len(), "{what}");
-        assert_eq!(a.declared.absolute, b.declared.absolute, "{what}");
-        let (ha, hb) = (a.ldt.as_ref().unwrap(), b.ldt.as_ref().unwrap());
+        assert_same_distribution(a.distribution(), b.distribution(), &what);
+        assert_eq!(a.metadata(), b.metadata(), "{what}");
+        assert_eq!(a.lamp_sets().len(), b.lamp_sets().len(), "{what}");
+        assert_eq!(a.declared().absolute, b.declared().absolute, "{what}");
+        let (ha, hb) = (a.ldt_header().unwrap(), b.ldt_header().unwrap());
         assert_eq!(ha.c_angles, hb.c_angles, "{what}");
         assert_eq!(ha.mc, hb.mc, "{what}");
         assert_eq!(ha.direct_ratios, hb.direct_ratios, "{what}");
@@ -124,28 +124,28 @@ fn corpus_special_files() {
     // ~1000 blank lines and 259 extra values after the data.
     let l = read_file(&root.join("r-lighting/0_CIE-2010-Table7.ldt")).unwrap();
     let w = l
-        .warnings
+        .warnings()
         .iter()
         .find(|w| w.code == "extra-values")
         .expect("extra-values warning");
     assert!(w.message.starts_with("259 "), "{}", w.message);
     // Block-layout lamp sets, detected.
     let l = read_file(&root.join("photometric-viewer/multiple_lamp_sets.ldt")).unwrap();
-    assert_eq!(l.ldt.as_ref().unwrap().lamp_set_layout, LampSetLayout::Blocks);
-    assert_eq!(l.lamp_sets.len(), 3);
-    assert_eq!(l.lamp_sets[1].lamp_type, "Double Lamp");
-    assert_eq!(l.lamp_sets[1].flux_lm, 1200.0);
-    assert!(l.warnings.iter().any(|w| w.code == "lamp-set-layout"));
+    assert_eq!(l.ldt_header().unwrap().lamp_set_layout, LampSetLayout::Blocks);
+    assert_eq!(l.lamp_sets().len(), 3);
+    assert_eq!(l.lamp_sets()[1].lamp_type, "Double Lamp");
+    assert_eq!(l.lamp_sets()[1].flux_lm, 1200.0);
+    assert!(l.warnings().iter().any(|w| w.code == "lamp-set-layout"));
     // Isym 3 with Mc = 36: C270 ... C350, C0 ... C90 = 19 planes, model C90 ... C270.
     let l = read_file(&root.join("photometric-viewer/symmetry_to_c90c270.ldt")).unwrap();
-    let d = &l.distribution;
+    let d = l.distribution();
     assert_eq!(d.symmetry(), Symmetry::C90C270);
     assert_eq!(d.n_c(), 19);
     assert_eq!((d.c_angles()[0], d.c_angles()[18]), (90.0, 270.0));
     // Several values per line in the data block.
     let l = read_file(&root.join("luxera/synthetic_basic.ldt")).unwrap();
-    assert_eq!(l.distribution.n_c(), 2);
-    assert_eq!(l.distribution.plane(1), &[2000.0, 1400.0, 100.0]);
+    assert_eq!(l.distribution().n_c(), 2);
+    assert_eq!(l.distribution().plane(1), &[2000.0, 1400.0, 100.0]);
 }
 
 /// A small xorshift PRNG: fixed seed, no dependency.
@@ -177,7 +177,7 @@ fn damaged_input_never_panics() {
     let path = Path::new("fuzz.ldt");
     let check = |bytes: &[u8], o: &ReadOptions| {
         if let Ok(l) = ldt::read(bytes, path, o) {
-            assert!(l.distribution.intensities().iter().all(|v| v.is_finite()));
+            assert!(l.distribution().intensities().iter().all(|v| v.is_finite()));
             // Whatever loads can be written and read again.
             let _ = ldt::read(ldt::write(&l).as_bytes(), path, o);
         }
@@ -269,7 +269,7 @@ fn isym3_planes_are_mirrored_into_c90_c270() {
         values.extend([100.0, 50.0 + fc / 10.0, 10.0 + fc / 100.0]);
     }
     let l = read_str(&ldt_text(3, &c, &gamma, &ONE_SET, &values)).unwrap();
-    let d = &l.distribution;
+    let d = l.distribution();
     assert_eq!(d.symmetry(), Symmetry::C90C270);
     assert_eq!(d.c_angles().first(), Some(&90.0));
     assert_eq!(d.c_angles().last(), Some(&270.0));
@@ -291,7 +291,7 @@ fn isym3_planes_are_mirrored_into_c90_c270() {
     let text = ldt::write(&l);
     assert_eq!(text, ldt::write(&read_str(&text).unwrap()));
     let back = read_str(&text).unwrap();
-    assert_same_distribution(d, &back.distribution, "isym 3");
+    assert_same_distribution(d, back.distribution(), "isym 3");
 }
 
 #[test]
@@ -301,9 +301,9 @@ fn decimal_commas_are_read() {
         .replace("\r\n50\r\n", "\r\n12,5\r\n")
         .replace("\r\n45\r\n", "\r\n45,0\r\n");
     let l = read_str(&text).unwrap();
-    assert_eq!(l.distribution.gamma_angles(), &[0.0, 45.0, 90.0]);
-    assert_eq!(l.distribution.plane(0), &[200.0, 25.0, 0.0]);
-    assert_eq!(l.ldt.unwrap().direct_ratios[0], 0.5);
+    assert_eq!(l.distribution().gamma_angles(), &[0.0, 45.0, 90.0]);
+    assert_eq!(l.distribution().plane(0), &[200.0, 25.0, 0.0]);
+    assert_eq!(l.ldt_header().unwrap().direct_ratios[0], 0.5);
 }
 
 #[test]
@@ -313,58 +313,58 @@ fn two_lamp_sets_in_field_groups() {
     ];
     let text = ldt_text(1, &[0.0], &[0.0, 90.0], &sets, &[100.0, 10.0]);
     let l = read_str(&text).unwrap();
-    let h = l.ldt.as_ref().unwrap();
+    let h = l.ldt_header().unwrap();
     assert_eq!(h.lamp_set_layout, LampSetLayout::FieldGroups);
-    assert_eq!(l.lamp_sets[1].lamp_type, "LED B");
-    assert_eq!(l.lamp_sets[1].flux_lm, 3000.0);
-    assert_eq!(l.lamp_sets[1].color, "840");
-    assert!(l.warnings.iter().any(|w| w.code == "lamp-set-layout"));
+    assert_eq!(l.lamp_sets()[1].lamp_type, "LED B");
+    assert_eq!(l.lamp_sets()[1].flux_lm, 3000.0);
+    assert_eq!(l.lamp_sets()[1].color, "840");
+    assert!(l.warnings().iter().any(|w| w.code == "lamp-set-layout"));
     // Set 1 is the reference by default.
-    assert_eq!(l.distribution.plane(0), &[100.0, 10.0]);
-    assert_eq!(l.declared.lamp_flux_lm, Some(1000.0));
-    assert_eq!(l.declared.input_watts, Some(10.0));
+    assert_eq!(l.distribution().plane(0), &[100.0, 10.0]);
+    assert_eq!(l.declared().lamp_flux_lm, Some(1000.0));
+    assert_eq!(l.declared().input_watts, Some(10.0));
     let sum = ReadOptions {
         lamp_set_flux: LampSetFlux::Sum,
         ..ReadOptions::default()
     };
     let l = ldt::read(text.as_bytes(), Path::new("t.ldt"), &sum).unwrap();
-    assert_eq!(l.distribution.plane(0), &[400.0, 40.0]);
-    assert_eq!(l.declared.lamp_flux_lm, Some(4000.0));
-    assert_eq!(l.declared.input_watts, Some(40.0));
+    assert_eq!(l.distribution().plane(0), &[400.0, 40.0]);
+    assert_eq!(l.declared().lamp_flux_lm, Some(4000.0));
+    assert_eq!(l.declared().input_watts, Some(40.0));
     // The same sets in blocks of six are detected too.
     let blocks = [
         "1", "LED A", "1000", "830", "1B", "10", "2", "LED B", "3000", "840", "1A", "30",
     ];
     let l = read_str(&ldt_text(1, &[0.0], &[0.0, 90.0], &blocks, &[100.0, 10.0])).unwrap();
-    assert_eq!(l.ldt.as_ref().unwrap().lamp_set_layout, LampSetLayout::Blocks);
-    assert_eq!(l.lamp_sets[1].flux_lm, 3000.0);
+    assert_eq!(l.ldt_header().unwrap().lamp_set_layout, LampSetLayout::Blocks);
+    assert_eq!(l.lamp_sets()[1].flux_lm, 3000.0);
 }
 
 #[test]
 fn absolute_photometry() {
     let set = ["-1", "LED module", "1500", "4000K", "80", "12"];
     let l = read_str(&ldt_text(1, &[0.0], &[0.0, 90.0], &set, &[200.0, 20.0])).unwrap();
-    assert!(l.declared.absolute);
-    assert_eq!(l.declared.lamp_flux_lm, None);
-    assert_eq!(l.declared.luminaire_flux_lm, Some(1500.0));
-    assert_eq!(l.distribution.plane(0), &[300.0, 30.0]);
+    assert!(l.declared().absolute);
+    assert_eq!(l.declared().lamp_flux_lm, None);
+    assert_eq!(l.declared().luminaire_flux_lm, Some(1500.0));
+    assert_eq!(l.distribution().plane(0), &[300.0, 30.0]);
     let back = read_str(&ldt::write(&l)).unwrap();
-    assert!(back.declared.absolute);
-    assert_same_distribution(&l.distribution, &back.distribution, "absolute");
+    assert!(back.declared().absolute);
+    assert_same_distribution(l.distribution(), back.distribution(), "absolute");
 }
 
 #[test]
 fn relative_photometry_fills_declared() {
     let l = read_str(&ldt_text(1, &[0.0], &[0.0, 90.0], &ONE_SET, &[200.0, 20.0])).unwrap();
-    assert!(!l.declared.absolute);
-    assert_eq!(l.declared.lamp_flux_lm, Some(2000.0));
-    assert_eq!(l.declared.luminaire_flux_lm, Some(1800.0));
-    assert_eq!(l.declared.lor, Some(0.9));
-    assert_eq!(l.declared.dff, Some(0.8));
-    assert_eq!(l.declared.input_watts, Some(25.0));
-    assert_eq!(l.dimensions.length_m, 0.6);
-    assert_eq!(l.luminous_opening.width_m, 0.0);
-    assert_eq!(l.metadata.lamp, "LED");
+    assert!(!l.declared().absolute);
+    assert_eq!(l.declared().lamp_flux_lm, Some(2000.0));
+    assert_eq!(l.declared().luminaire_flux_lm, Some(1800.0));
+    assert_eq!(l.declared().lor, Some(0.9));
+    assert_eq!(l.declared().dff, Some(0.8));
+    assert_eq!(l.declared().input_watts, Some(25.0));
+    assert_eq!(l.dimensions().length_m, 0.6);
+    assert_eq!(l.luminous_opening().width_m, 0.0);
+    assert_eq!(l.metadata().lamp, "LED");
 }
 
 #[test]
@@ -407,9 +407,9 @@ fn unsorted_angles_fail_or_are_repaired() {
         ..ReadOptions::default()
     };
     let l = ldt::read(text.as_bytes(), Path::new("t.ldt"), &repair).unwrap();
-    assert_eq!(l.distribution.gamma_angles(), &[0.0, 45.0, 90.0]);
-    assert_eq!(l.distribution.plane(0), &[6.0, 4.0, 2.0]);
-    assert!(l.warnings.iter().any(|w| w.code == "unsorted-angles"));
+    assert_eq!(l.distribution().gamma_angles(), &[0.0, 45.0, 90.0]);
+    assert_eq!(l.distribution().plane(0), &[6.0, 4.0, 2.0]);
+    assert!(l.warnings().iter().any(|w| w.code == "unsorted-angles"));
 }
 
 #[test]
@@ -417,13 +417,13 @@ fn poles_and_negative_values_are_kept_with_warnings() {
     let c: Vec<f64> = (0..4).map(|i| i as f64 * 90.0).collect();
     let values = [10.0, 5.0, 11.0, 5.0, 10.0, -1.0, 10.0, 5.0];
     let l = read_str(&ldt_text(0, &c, &[0.0, 90.0], &ONE_SET, &values)).unwrap();
-    let codes: Vec<_> = l.warnings.iter().map(|w| w.code.as_str()).collect();
+    let codes: Vec<_> = l.warnings().iter().map(|w| w.code.as_str()).collect();
     assert!(
         codes.contains(&"pole-mismatch") && codes.contains(&"negative-intensity"),
         "{codes:?}"
     );
-    assert_eq!(l.distribution.value(1, 0), 22.0);
-    assert_eq!(l.distribution.value(2, 1), -2.0);
+    assert_eq!(l.distribution().value(1, 0), 22.0);
+    assert_eq!(l.distribution().value(2, 1), -2.0);
 }
 
 #[test]
@@ -445,19 +445,19 @@ fn text_encodings_line_ends_and_padding() {
     b.extend_from_slice(b"\x1A");
     latin1 = b;
     let l = ldt::read(&latin1, Path::new("t.ldt"), &ReadOptions::default()).unwrap();
-    assert_eq!(l.metadata.manufacturer, "Soci\u{e9}t\u{e9}");
+    assert_eq!(l.metadata().manufacturer, "Soci\u{e9}t\u{e9}");
     for eol in ["\n", "\r"] {
         let t = text.replace("\r\n", eol);
         let t = t.trim_end();
         let l = read_str(t).unwrap();
-        assert_eq!(l.distribution.plane(0), &[200.0, 20.0]);
+        assert_eq!(l.distribution().plane(0), &[200.0, 20.0]);
     }
     // Integers written as 1.0, trailing blanks, junk after a header number.
     let t = text
         .replacen("\r\n1\r\n1\r\n", "\r\n1.0  \r\n1.0\r\n", 1)
         .replacen("\r\n80\r\n", "\r\n80 % dff\r\n", 1);
     let l = read_str(&t).unwrap();
-    assert!(l.warnings.iter().any(|w| w.code == "header-junk"));
+    assert!(l.warnings().iter().any(|w| w.code == "header-junk"));
 }
 
 #[test]
@@ -472,20 +472,20 @@ fn synthetic_distributions_are_written_with_derived_headers() {
         };
         let d = Distribution::new(c, g.clone(), cd.clone(), sym).unwrap();
         let lum = Luminaire::from_distribution(d.clone());
-        let text = ldt::write(&lum);
+        let text = ldt::write(&lum.clone().into());
         let back = read_str(&text).unwrap_or_else(|e| panic!("{sym:?}: {e}\n{text}"));
-        assert!(back.declared.absolute);
-        assert_same_distribution(&d, &back.distribution, &format!("{sym:?}"));
-        let h = back.ldt.unwrap();
+        assert!(back.declared().absolute);
+        assert_same_distribution(&d, back.distribution(), &format!("{sym:?}"));
+        let h = back.ldt_header().unwrap();
         assert_eq!(h.dc, 0.0, "non-uniform C");
         assert_eq!(h.dg, 0.0, "non-uniform gamma");
     }
     // Rotational: Mc = 24, Dc = 15, one stored plane.
     let d = Distribution::new(vec![0.0], g.clone(), cd[..4].to_vec(), Symmetry::Rotational).unwrap();
-    let back = read_str(&ldt::write(&Luminaire::from_distribution(d.clone()))).unwrap();
-    let h = back.ldt.as_ref().unwrap();
+    let back = read_str(&ldt::write(&Luminaire::from_distribution(d.clone()).into())).unwrap();
+    let h = back.ldt_header().unwrap();
     assert_eq!((h.isym, h.mc, h.dc), (1, 24, 15.0));
-    assert_same_distribution(&d, &back.distribution, "rotational");
+    assert_same_distribution(&d, back.distribution(), "rotational");
 }
 
 /// Throughput of the reader on a large file (run with `--ignored --nocapture`).

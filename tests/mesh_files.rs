@@ -83,7 +83,7 @@ fn corpus_measured_solids_are_written_as_manifolds() {
         .filter(|e| e.photometric() && !e.malformed())
     {
         let Ok(lum) = photosolid::load(&e.path) else { continue };
-        let Ok(m) = measured_solid(&lum.distribution, Units::Candela) else {
+        let Ok(m) = measured_solid(lum.distribution(), Units::Candela) else {
             continue;
         };
         if m.sanity_check().unwrap().origin_sheets > 1 {

@@ -554,7 +554,7 @@ fn spec_defaults_give_decodable_pngs_of_the_stated_size() {
     assert_eq!(decoded_size(&heatmap(&HeatmapSpec::default()).unwrap()), HEATMAP_SIZE);
     assert_eq!(decoded_size(&scatter(&ScatterSpec::default()).unwrap()), SCATTER_SIZE);
     let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
-    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let tex = LightTexture::new(lum.distribution()).unwrap();
     let r = render(&tex, Filter::Bilinear, 2).unwrap();
     assert_eq!(
         decoded_size(&texture_preview(&TexturePreview::new(&r)).unwrap()),
@@ -639,7 +639,7 @@ fn spec_defaults_give_decodable_pngs_of_the_stated_size() {
 #[test]
 fn texture_preview_bar_and_peak() {
     let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
-    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let tex = LightTexture::new(lum.distribution()).unwrap();
     let r = render(&tex, Filter::CatmullRom, 5).unwrap();
     let png = texture_preview(&TexturePreview::new(&r)).unwrap();
     keep("texture_roadway.png", &png);

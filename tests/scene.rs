@@ -97,7 +97,7 @@ fn isotropic_point_over_a_plane_is_i_cos3_over_h2_at_every_grid_point() {
 fn ten_thousand_lumen_isotropic_source_three_metres_above_a_point_gives_88_42_lux() {
     let i0 = 10_000.0 / (4.0 * PI);
     let lum = synth(Synth::Isotropic, i0);
-    let flux = photosolid::photometry::flux(&lum.distribution).total_lm;
+    let flux = photosolid::photometry::flux(lum.distribution()).total_lm;
     assert!((flux - 10_000.0).abs() < 1e-6, "{flux}");
     let s = scene(
         vec![placed("iso", lum, DVec3::new(0.0, 0.0, 3.0), Aim::default())],
@@ -606,7 +606,7 @@ fn a_wall_seen_through_a_small_sector_is_planned_with_the_cropped_grid() {
         l.max_error_pct, 0.0,
         "the cropped grid answers exactly what the scene looks up"
     );
-    let native = photosolid::reconstruct::LightTexture::new(&s.luminaires[0].luminaire.distribution).unwrap();
+    let native = photosolid::reconstruct::LightTexture::new(s.luminaires[0].luminaire.distribution()).unwrap();
     assert!(l.bytes * 10 < native.bytes(), "{} vs {}", l.bytes, native.bytes());
 }
 
@@ -617,18 +617,18 @@ fn the_opening_a_file_declares_drives_the_area_source() {
     let (l, r) = (4000.0, 0.25);
     let t = tempfile::tempdir().unwrap();
     let mut lum = synth(Synth::Lambertian, l * PI * r * r);
-    lum.luminous_opening = photosolid::model::Dimensions {
+    lum.set_luminous_opening(photosolid::model::Dimensions {
         length_m: -2.0 * r,
         width_m: -2.0 * r,
         height_m: 0.0,
-    };
-    photosolid::save(&lum, &t.path().join("disk.ies"), &Default::default()).unwrap();
-    lum.luminous_opening = photosolid::model::Dimensions {
+    });
+    photosolid::save(&lum.clone().into(), &t.path().join("disk.ies"), &Default::default()).unwrap();
+    lum.set_luminous_opening(photosolid::model::Dimensions {
         length_m: 2.0 * r,
         width_m: 0.0,
         height_m: 0.0,
-    };
-    photosolid::save(&lum, &t.path().join("disk.ldt"), &Default::default()).unwrap();
+    });
+    photosolid::save(&lum.clone().into(), &t.path().join("disk.ldt"), &Default::default()).unwrap();
     for file in ["disk.ies", "disk.ldt"] {
         let text = format!(
             "[[luminaire]]\nfile = \"{file}\"\nposition = [0.0, 0.0, 2.0]\n\n[[receiver]]\nname = \"axis\"\nkind = \"point\"\n\

@@ -87,7 +87,7 @@ fn measured_lambertian_volume_converges_second_order() {
         let lum = Synth::Lambertian
             .build(&GridSpec::uniform(step, step).unwrap(), 1.0)
             .unwrap();
-        let m = measured_solid(&lum.distribution, Units::Candela).unwrap();
+        let m = measured_solid(lum.distribution(), Units::Candela).unwrap();
         check(&m, "measured lambertian");
         (m.volume() - exact).abs()
     };
@@ -172,7 +172,7 @@ fn sanity_over_many_synthetic_distributions() {
         for kind in all_kinds() {
             for i0 in [1e-6, 1.0, 1e6] {
                 let what = format!("{} on {gname} at {i0} cd", kind.describe());
-                let d = kind.build(grid, i0).unwrap().distribution;
+                let d = kind.build(grid, i0).unwrap().into_distribution();
                 match check_measured(&d) {
                     Ok(r) => assert!(r.volume > 0.0, "{what}"),
                     // The upper-hemisphere grid of a downward kind is all zero.
@@ -233,7 +233,7 @@ fn single_plane_and_roadway_and_symmetries() {
     let road = Synth::Roadway
         .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0)
         .unwrap()
-        .distribution;
+        .into_distribution();
     for sym in [Symmetry::None, Symmetry::C90C270] {
         let r = check_measured(&road.with_symmetry(sym).unwrap()).unwrap();
         assert!(r.origin_sheets >= 1);
@@ -323,7 +323,7 @@ fn units_scale_and_metadata() {
     let lum = Synth::Isotropic
         .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 50.0)
         .unwrap();
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let cd = measured_solid(d, Units::Candela).unwrap();
     assert!((cd.max_radius() - 50.0).abs() < 1e-4);
     let peak = measured_solid(d, Units::Peak).unwrap();
@@ -429,7 +429,7 @@ fn exports_round_trip_through_files() {
     let d = Synth::Batwing
         .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 800.0)
         .unwrap()
-        .distribution;
+        .into_distribution();
     let mut m = measured_solid(&d, Units::Candela).unwrap();
     m.info_mut().source = "synthetic batwing".into();
     m.colorize(ColorMap::Viridis);

@@ -35,7 +35,7 @@ fn demo_roadway_against_the_truth() {
         .unwrap();
     let truth = Truth::of_luminaire(&lum).unwrap();
     let c = compare(
-        &lum.distribution,
+        lum.distribution(),
         None,
         &CompareOptions {
             truth: Some(truth),
@@ -79,7 +79,7 @@ fn demo_roadway_against_the_truth() {
 fn max_error(kind: Synth, filter: Filter, h: f64) -> f64 {
     let lum = kind.build(&GridSpec::uniform(15.0, h).unwrap(), 1000.0).unwrap();
     let truth = Truth::of_luminaire(&lum).unwrap();
-    let tex = LightTexture::new(&lum.distribution).unwrap();
+    let tex = LightTexture::new(lum.distribution()).unwrap();
     let s = tex.sampler(filter);
     (0..4000)
         .map(|k| {
@@ -125,7 +125,7 @@ fn errors_against_truth_fall_at_the_filters_order() {
 fn kfold_reproduces_the_peers_maxima_where_protocols_coincide() {
     let Some(root) = common::corpus() else { return };
     let lum = photosolid::load(root.join("eulumdat-rs/ITALO 1 5P5 S05 3.140-3M.IES")).unwrap();
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let folds = kfold(d, 4).unwrap();
     let fold = folds.iter().find(|f| f.axis == "gamma").unwrap();
     let tex = LightTexture::new(&fold.kept).unwrap();
@@ -160,7 +160,7 @@ fn extremes_give_finite_rows() {
             let l = Synth::CosinePower { p: 128.0 }
                 .build(&GridSpec::uniform(15.0, 1.0).unwrap(), 1000.0)
                 .unwrap();
-            ("cos^128", l.distribution.clone(), Truth::of_luminaire(&l))
+            ("cos^128", l.distribution().clone(), Truth::of_luminaire(&l))
         },
         {
             // A cut-off one grid step wide: the lobe ends between two knots.
@@ -170,7 +170,11 @@ fn extremes_give_finite_rows() {
             }
             .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
             .unwrap();
-            ("cut-off one step wide", l.distribution.clone(), Truth::of_luminaire(&l))
+            (
+                "cut-off one step wide",
+                l.distribution().clone(),
+                Truth::of_luminaire(&l),
+            )
         },
         (
             "1e-6 to 1e6 cd",
@@ -258,7 +262,7 @@ fn texture_errors_depend_on_the_factor() {
     let mut o = quick_trade();
     o.factors = vec![1, 5];
     o.compare.truth = Truth::of_luminaire(&lum);
-    let t = trade_table(&lum.distribution, None, &o, &|_, _, _| {}).unwrap();
+    let t = trade_table(lum.distribution(), None, &o, &|_, _, _| {}).unwrap();
     let row = |n: &str| t.rows.iter().find(|r| r.representation == n).unwrap();
     let (x1, x5) = (row("catmull-rom@x1/bilinear"), row("catmull-rom@x5/bilinear"));
     eprintln!(
@@ -286,7 +290,7 @@ fn withheld_is_the_default_without_truth_and_names_itself() {
         timing_repeats: 1,
         ..CompareOptions::default()
     };
-    let c = compare(&lum.distribution, None, &o).unwrap();
+    let c = compare(lum.distribution(), None, &o).unwrap();
     assert_eq!(c.reference_kind, "withheld");
     assert!(c.reference.starts_with("withheld (2-fold"), "{}", c.reference);
     for r in &c.results {
@@ -295,7 +299,7 @@ fn withheld_is_the_default_without_truth_and_names_itself() {
     }
     // Naming a reconstruction of FILE as the reference says what it is.
     let c = compare(
-        &lum.distribution,
+        lum.distribution(),
         None,
         &CompareOptions {
             against: Some(Against::Recon(Recon::Measured)),
@@ -314,7 +318,7 @@ fn cli_tradeoff_json_keys() {
     let lum = Synth::CosinePower { p: 5.0 }
         .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
         .unwrap();
-    photosolid::save(&lum, &file, &Default::default()).unwrap();
+    photosolid::save(&lum.clone().into(), &file, &Default::default()).unwrap();
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
         .arg("tradeoff")
         .arg(&file)

@@ -83,13 +83,13 @@ type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
 #[pyclass(frozen, module = "photosolid")]
 struct Luminaire {
     path: String,
-    lum: photosolid::Luminaire,
+    lum: photosolid::formats::Document,
 }
 
 /// Load an .ies or .ldt file. Raises `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
-    let lum = py.detach(|| photosolid::load(&path)).map_err(py_err)?;
+    let lum = py.detach(|| photosolid::formats::load_document(&path)).map_err(py_err)?;
     Ok(Luminaire {
         path: path.display().to_string(),
         lum,
@@ -99,7 +99,7 @@ fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
 impl Luminaire {
     /// The reconstructions of the measured grid that `recon` names.
     fn field_of(&self, recon: Recon) -> Result<Reconstructions, photosolid::ModelError> {
-        Reconstructions::new(self.lum.distribution.clone(), &[recon])
+        Reconstructions::new(self.lum.distribution().clone(), &[recon])
     }
 }
 
@@ -114,19 +114,19 @@ impl Luminaire {
     /// Stored C-planes, degrees, shape (n_c,).
     #[getter]
     fn c_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.lum.distribution.c_angles())
+        PyArray1::from_slice(py, self.lum.distribution().c_angles())
     }
 
     /// γ angles, degrees (0 = nadir), shape (n_gamma,).
     #[getter]
     fn gamma_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.lum.distribution.gamma_angles())
+        PyArray1::from_slice(py, self.lum.distribution().gamma_angles())
     }
 
     /// Measured intensities, cd, shape (n_c, n_gamma): `candela[i, j]` at `c_deg[i]`, `gamma_deg[j]`.
     #[getter]
     fn candela<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        let d = &self.lum.distribution;
+        let d = self.lum.distribution();
         let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(a.into_pyarray(py))
@@ -143,7 +143,7 @@ impl Luminaire {
         Bound<'py, PyArray1<f64>>,
         Bound<'py, PyArray2<f64>>,
     )> {
-        let d = self.lum.distribution.expand(1);
+        let d = self.lum.distribution().expand(1);
         let c = d.c_angles().to_vec();
         let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -157,7 +157,7 @@ impl Luminaire {
     /// Symmetry of the stored planes: `none`, `rotational`, `c0-c180`, `c90-c270`, `quadrant`.
     #[getter]
     fn symmetry(&self) -> String {
-        serde_json::to_value(self.lum.distribution.symmetry())
+        serde_json::to_value(self.lum.distribution().symmetry())
             .ok()
             .and_then(|v| v.as_str().map(str::to_string))
             .unwrap_or_default()
@@ -165,7 +165,7 @@ impl Luminaire {
 
     /// The photometric summary as a dict: exactly `photosolid info FILE --json`.
     fn photometry<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let report = py.detach(|| InfoReport::of(&self.lum));
+        let report = py.detach(|| InfoReport::of_document(&self.lum));
         to_py(py, &report)
     }
 
@@ -246,7 +246,7 @@ impl Luminaire {
         }
         let r = py
             .detach(|| -> Result<_, photosolid::ModelError> {
-                let tex = LightTexture::new(&self.lum.distribution)?;
+                let tex = LightTexture::new(self.lum.distribution())?;
                 render_with(
                     &tex,
                     &RenderOptions {
@@ -323,17 +323,17 @@ impl Luminaire {
             folds,
             normalize: arg::<Normalize>("normalize", normalize)?,
             lamp_flux_lm: [
-                self.lum.declared.lamp_flux_lm,
-                vs.as_ref().and_then(|o| o.lum.declared.lamp_flux_lm),
+                self.lum.declared().lamp_flux_lm,
+                vs.as_ref().and_then(|o| o.lum.declared().lamp_flux_lm),
             ],
             directions: arg::<Directions>("directions", directions)?,
             tolerance,
             factor,
             ..defaults
         };
-        let other = vs.as_ref().map(|o| &o.lum.distribution);
+        let other = vs.as_ref().map(|o| o.lum.distribution());
         let mut c = py
-            .detach(|| compare(&self.lum.distribution, other, &opts))
+            .detach(|| compare(self.lum.distribution(), other, &opts))
             .map_err(model_err)?;
         c.file = self.path.clone();
         c.vs = vs.as_ref().map(|o| o.path.clone());
@@ -363,13 +363,13 @@ impl Luminaire {
             ..Default::default()
         };
         let report = py
-            .detach(|| fit(&self.lum.distribution, &options).map(|f| FitReport::of(&f)))
+            .detach(|| fit(self.lum.distribution(), &options).map(|f| FitReport::of(&f)))
             .map_err(model_err)?;
         to_py(py, &report)
     }
 
     fn __repr__(&self) -> String {
-        let d = &self.lum.distribution;
+        let d = self.lum.distribution();
         format!(
             "<photosolid.Luminaire {:?}: {} C-planes x {} gamma angles>",
             self.path,

@@ -62,7 +62,7 @@ pub fn page_order(rows: &[BatchRecord]) -> Vec<usize> {
 /// The load error, or the plot's.
 pub fn thumbnail(path: &Path, read: &ReadOptions) -> Result<Vec<u8>, Error> {
     let lum = crate::load_with(path, read)?;
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let g = d.gamma_angles();
     let pair = |right: f64, left: f64| -> Vec<(f64, f64)> {
         let (r, l) = (plane_profile(d, right), plane_profile(d, left));
@@ -255,7 +255,7 @@ mod tests {
         let grid = crate::synth::GridSpec::uniform(15.0, 5.0).unwrap();
         let good = dir.path().join("a.ldt");
         crate::save(
-            &crate::synth::Synth::Isotropic.build(&grid, 10.0).unwrap(),
+            &crate::synth::Synth::Isotropic.build(&grid, 10.0).unwrap().into(),
             &good,
             &Default::default(),
         )

@@ -193,7 +193,7 @@ fn ms(t: Instant) -> f64 {
 pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     let mut row = BatchRecord::empty(path);
     let t = Instant::now();
-    let lum = match crate::load_with(path, &options.read) {
+    let lum = match crate::formats::load_document_with(path, &options.read) {
         Ok(l) => l,
         Err(e) => {
             row.errors.push(ErrorRecord::from(&e).message);
@@ -201,7 +201,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
             return row;
         }
     };
-    let info = InfoReport::of(&lum);
+    let info = InfoReport::of_document(&lum);
     row.parse_ms = ms(t);
     row.ok = true;
     row.warnings = info.warnings.iter().map(|w| w.code.as_str().to_string()).collect();
@@ -212,7 +212,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     row.n_c = u32::try_from(info.n_c).ok();
     row.n_c_full = u32::try_from(info.n_c_full).ok();
     row.n_gamma = u32::try_from(info.n_gamma).ok();
-    let g = lum.distribution.gamma_angles();
+    let g = lum.distribution().gamma_angles();
     row.gamma_min_deg = g.first().copied();
     row.gamma_max_deg = g.last().copied();
     row.max_cd = finite(Some(info.max_cd));
@@ -228,7 +228,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     row.field_angle_c90_deg = finite(info.beam_angles.ies_field_deg[1]);
 
     let t = Instant::now();
-    match holdout(&lum.distribution, HOLDOUT, &Filter::ALL) {
+    match holdout(lum.distribution(), HOLDOUT, &Filter::ALL) {
         Ok(reports) => {
             // The first of the smallest RMS errors (Filter::ALL order breaks ties).
             let best = reports
@@ -251,7 +251,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
         parallel: false,
         ..FitOptions::default()
     };
-    match fit(&lum.distribution, &opts) {
+    match fit(lum.distribution(), &opts) {
         Ok(f) => {
             row.fitted_gl = Some(f.chosen().combination.name().to_string());
             row.fitted_gl_error = finite(Some(f.error()));
@@ -336,7 +336,7 @@ mod tests {
         let grid = crate::synth::GridSpec::uniform(15.0, 5.0).unwrap();
         let lum = crate::synth::Synth::Isotropic.build(&grid, 100.0).unwrap();
         let p = dir.join("iso.ldt");
-        crate::save(&lum, &p, &Default::default()).unwrap();
+        crate::save(&lum.clone().into(), &p, &Default::default()).unwrap();
         p
     }
 

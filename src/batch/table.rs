@@ -315,7 +315,7 @@ mod tests {
         let grid = crate::synth::GridSpec::uniform(15.0, 5.0).unwrap();
         let lum = crate::synth::Synth::Lambertian.build(&grid, 50.0).unwrap();
         let good = dir.path().join("l.ies");
-        crate::save(&lum, &good, &Default::default()).unwrap();
+        crate::save(&lum.clone().into(), &good, &Default::default()).unwrap();
         let bad_file = dir.path().join("bad.ldt");
         std::fs::write(&bad_file, "not a file\n").unwrap();
         let rows = super::super::run(&[good, bad_file.clone()], &Default::default(), &|_, _, _| {});

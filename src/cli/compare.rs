@@ -83,8 +83,8 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         folds: a.folds,
         normalize: a.normalize,
         lamp_flux_lm: [
-            lum.declared.lamp_flux_lm,
-            other.as_ref().and_then(|o| o.declared.lamp_flux_lm),
+            lum.declared().lamp_flux_lm,
+            other.as_ref().and_then(|o| o.declared().lamp_flux_lm),
         ],
         directions: a.directions,
         tolerance: a.tolerance,
@@ -96,8 +96,8 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
     let bar = super::progress_bar("reconstructions");
     let progress = super::progress_fn(&bar);
     let mut c = compare_with_progress(
-        &lum.distribution,
-        other.as_ref().map(|o| &o.distribution),
+        lum.distribution(),
+        other.as_ref().map(|o| o.distribution()),
         &opts,
         &progress,
     )?;

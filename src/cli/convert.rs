@@ -36,13 +36,13 @@ pub struct ConvertArgs {
 }
 
 pub fn run(a: ConvertArgs) -> anyhow::Result<i32> {
-    let mut lum = super::load(&a.input, &a.read)?;
+    let mut doc = super::load(&a.input, &a.read)?;
     if a.rotate_c != 0.0 || a.mirror {
-        lum.distribution = lum.distribution.reoriented(a.rotate_c, a.mirror)?;
-        // The raw headers describe the old orientation; writers derive fresh ones.
-        lum.ies = None;
-        lum.ldt = None;
-        lum.source_grid = None;
+        // Setting the distribution drops the Type A/B source grid; the raw
+        // header describes the old orientation too: writers derive a fresh one.
+        let turned = doc.distribution().reoriented(a.rotate_c, a.mirror)?;
+        doc.luminaire.set_distribution(turned);
+        doc.header = photosolid::formats::Header::None;
     }
     let opts = WriteOptions {
         ies_version: if a.ies_version == "2019" {
@@ -51,7 +51,7 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<i32> {
             IesWriteVersion::Lm63_2002
         },
     };
-    photosolid::save(&lum, &a.output, &opts)?;
+    photosolid::save(&doc, &a.output, &opts)?;
     eprintln!("wrote {}", a.output.display());
     Ok(0)
 }

@@ -35,13 +35,13 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let mut text = String::new();
     for ext in ["ldt", "ies"] {
         let path = a.output.join(format!("demo_roadway.{ext}"));
-        photosolid::save(&lum, &path, &Default::default())?;
+        photosolid::save(&lum.clone().into(), &path, &Default::default())?;
         let back = photosolid::load(&path)?;
         text.push_str(&format!("\n== {} ==\n", path.display()));
         text.push_str(&InfoReport::of(&back).to_text());
     }
     outln!("{text}");
-    let d = &lum.distribution;
+    let d = lum.distribution();
 
     outln!("== textures (factor 5) ==");
     let tex = LightTexture::new(d)?;

@@ -43,7 +43,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<i32> {
         tolerance: a.tolerance,
         ..Default::default()
     };
-    let result = fit(&lum.distribution, &options)?;
+    let result = fit(lum.distribution(), &options)?;
     let report = FitReport::of(&result);
     super::print_report(a.json, &a.file, &report, &report.to_text())?;
     Ok(0)

@@ -66,7 +66,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
     for f in &files {
         match photosolid::load_with(f, &opts)
             .map_err(anyhow::Error::from)
-            .and_then(|l| Ok(LightTexture::new(&l.distribution)?))
+            .and_then(|l| Ok(LightTexture::new(l.distribution())?))
         {
             Ok(t) => textures.push((f, t)),
             Err(e) => {

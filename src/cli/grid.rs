@@ -42,9 +42,9 @@ struct Grid<'a> {
 pub fn run(a: GridArgs) -> anyhow::Result<i32> {
     let lum = super::load(&a.file, &a.read)?;
     let d = if a.full {
-        lum.distribution.expand(1)
+        lum.distribution().expand(1)
     } else {
-        lum.distribution.clone()
+        lum.distribution().clone()
     };
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     if a.csv {
@@ -57,7 +57,7 @@ pub fn run(a: GridArgs) -> anyhow::Result<i32> {
     } else {
         let g = Grid {
             source: a.file.display().to_string(),
-            symmetry: lum.distribution.symmetry(),
+            symmetry: lum.distribution().symmetry(),
             i_max_cd: d.max_cd(),
             c_deg: d.c_angles(),
             gamma_deg: d.gamma_angles(),

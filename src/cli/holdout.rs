@@ -44,7 +44,7 @@ pub fn run(a: HoldoutArgs) -> anyhow::Result<i32> {
         c_step: a.drop_c,
         gamma_step: a.drop_gamma,
     };
-    let reports = holdout(&lum.distribution, spec, &a.filters)?;
+    let reports = holdout(lum.distribution(), spec, &a.filters)?;
     let mut out = std::io::stdout().lock();
     if a.json {
         serde_json::to_writer_pretty(&mut out, &reports)?;

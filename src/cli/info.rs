@@ -34,11 +34,12 @@ pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
     };
     let mut reports = Vec::with_capacity(files.len());
     for f in &files {
-        let mut lum = super::load(f, &a.read)?;
+        let mut doc = super::load(f, &a.read)?;
         if let Some(t) = a.tilt {
-            lum.distribution = lum.tilted_distribution(t)?;
+            let tilted = doc.tilted_distribution(t)?;
+            doc.luminaire.set_distribution(tilted);
         }
-        reports.push(InfoReport::of(&lum));
+        reports.push(InfoReport::of_document(&doc));
     }
     match reports.as_slice() {
         [one] => super::print_report(a.json, &files[0], one, &one.to_text())?,

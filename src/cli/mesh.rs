@@ -62,10 +62,10 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         );
     }
     let lum = super::load(&a.file, &a.read)?;
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let units = match a.units.as_str() {
         "peak" => Units::Peak,
-        "klm" => match lum.declared.lamp_flux_lm {
+        "klm" => match lum.declared().lamp_flux_lm {
             Some(flux_lm) if flux_lm.is_finite() && flux_lm > 0.0 => Units::PerKilolumen { flux_lm },
             _ => anyhow::bail!(
                 "{}: --units klm is per 1000 lm of lamp flux, and this file has absolute photometry (no lamp \
@@ -83,7 +83,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             let rendered = render(&tex, f, factor)?;
             grid_solid(&rendered, &SolidGrid::of_texture(&rendered)?, units)?
         }
-        _ => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, a.factor, units)?,
+        _ => Reconstructions::new((*d).clone(), &[recon])?.solid_in(recon, a.factor, units)?,
     };
     mesh.info_mut().source = a.file.display().to_string();
     if a.color {

@@ -115,9 +115,10 @@ impl ReadArgs {
     }
 }
 
-/// Load one file with the reader options, as an anyhow error naming it.
-fn load(path: &PathBuf, read: &ReadArgs) -> anyhow::Result<photosolid::Luminaire> {
-    Ok(photosolid::load_with(path, &read.options())?)
+/// Load one file with the reader options (its luminaire, format header and
+/// container declarations), as an anyhow error naming it.
+fn load(path: &PathBuf, read: &ReadArgs) -> anyhow::Result<photosolid::formats::Document> {
+    Ok(photosolid::formats::load_document_with(path, &read.options())?)
 }
 
 /// Run a parsed command line; returns the exit code.

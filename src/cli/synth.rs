@@ -66,7 +66,7 @@ pub fn run(a: SynthArgs) -> anyhow::Result<i32> {
         grid.gamma = g;
     }
     let lum = kind.build(&grid, a.intensity).context("building the distribution")?;
-    photosolid::save(&lum, &a.output, &Default::default())?;
+    photosolid::save(&lum.clone().into(), &a.output, &Default::default())?;
     if let Some(f) = kind.exact_flux(a.intensity) {
         eprintln!("wrote {} (exact flux {f:.4} lm)", a.output.display());
     } else {

@@ -86,7 +86,7 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
         anyhow::bail!("nothing to write: give -o OUT.exr (float texture) and/or --png OUT.png (preview)");
     }
     let lum = super::load(&a.file, &a.read)?;
-    let tex = LightTexture::new(&lum.distribution).context("building the light distribution texture")?;
+    let tex = LightTexture::new(lum.distribution()).context("building the light distribution texture")?;
     let (rendered, on) = super::render_on(&a.backend, &tex, a.filter, a.factor, !a.unclamped)?;
     let (h, w) = (rendered.mapping.height, rendered.mapping.width);
     outln!(

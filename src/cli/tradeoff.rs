@@ -73,8 +73,8 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
     let bar = super::progress_bar("representations");
     let progress = super::progress_fn(&bar);
     let mut t = trade_table(
-        &lum.distribution,
-        other.as_ref().map(|o| &o.distribution),
+        lum.distribution(),
+        other.as_ref().map(|o| o.distribution()),
         &opts,
         &progress,
     )?;

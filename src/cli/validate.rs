@@ -54,13 +54,13 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     let results: Vec<Line> = files
         .par_iter()
         .map(|f| {
-            let r = photosolid::load_with(f, &opts);
+            let r = photosolid::formats::load_document_with(f, &opts);
             if let Some(b) = &bar {
                 b.inc(1);
             }
             match r {
                 Ok(lum) => {
-                    let info = InfoReport::of(&lum);
+                    let info = InfoReport::of_document(&lum);
                     Line {
                         path: f.display().to_string(),
                         ok: true,

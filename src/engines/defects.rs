@@ -60,7 +60,7 @@ fn web_field(t: &IesTable, lookup: web::WebLookup, i_max: f64) -> Box<dyn Intens
 /// The tilt angle (degrees) of the file's tilt table whose multiplier is
 /// furthest from 1, with that multiplier; `None` without a table.
 pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
-    let t = lum.tilt.table()?;
+    let t = lum.tilt().table()?;
     t.angles
         .iter()
         .zip(&t.multipliers)
@@ -83,7 +83,7 @@ pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
 /// # Errors
 /// A table Blender refuses.
 pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelError> {
-    let dist = &lum.distribution;
+    let dist = lum.distribution();
     let t = IesTable::of(dist);
     let i_max = t.max_cd();
     let tilted = match worst_tilt(lum) {
@@ -92,7 +92,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
     };
     let tilt_name = |a: f64| format!("ignores TILT (at tilt {a} deg)");
     // The file's own Type A/B grid, read as if it were Type C.
-    let as_type_c = lum.source_grid.as_ref().map(|sg| {
+    let as_type_c = lum.source_grid().as_ref().map(|sg| {
         let kind = if sg.kind == PhotometricType::A { "A" } else { "B" };
         let t = IesTable {
             h: sg.horizontal.clone(),

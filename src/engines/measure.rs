@@ -211,7 +211,7 @@ fn metrics(name: &str, field: &dyn IntensityField, r: &Reference, s: &Setup<'_>)
 /// `withheld` as the reference (it is not a field), `truth` without a
 /// recorded truth, all-zero data, a failed emulation.
 pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, ModelError> {
-    let dist = &lum.distribution;
+    let dist = lum.distribution();
     let grid = SolidGrid::refined(dist, opts.factor)?;
     let set = DirectionSet::fibonacci(opts.directions.max(100));
     let timing = random_directions(opts.timing_samples, 0x5eed);
@@ -235,7 +235,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
             })
         }
         Against::Recon(r) => {
-            recon_holder = Reconstructions::new(dist.clone(), &[r])?;
+            recon_holder = Reconstructions::new((*dist).clone(), &[r])?;
             recon_field = recon_holder.field(r)?;
             (
                 &*recon_field,
@@ -360,7 +360,7 @@ fn search(
     while n <= hi {
         let em = emulate(
             engine,
-            &lum.distribution,
+            lum.distribution(),
             &EngineOptions {
                 resolution: Some(n),
                 ..*layout

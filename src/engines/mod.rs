@@ -339,7 +339,7 @@ fn exr_attrs(engine: Engine, lum: &Luminaire, layout: &str, unit: &str, i_max: f
     use crate::reconstruct::exr_io::text;
     use exr::prelude::{AttributeValue, LayerAttributes, Text};
     let mut attrs = LayerAttributes::named(format!("photosolid-{engine}").as_str());
-    let source = lum.path.as_ref().map(|p| p.display().to_string()).unwrap_or_default();
+    let source = lum.path().map(|p| p.display().to_string()).unwrap_or_default();
     for (k, v) in [
         ("photosolid.engine", engine.name().to_string()),
         ("photosolid.source", source),
@@ -360,7 +360,7 @@ fn exr_attrs(engine: Engine, lum: &Luminaire, layout: &str, unit: &str, i_max: f
 /// # Errors
 /// What [`emulate`] fails on, and I/O errors.
 pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions) -> Result<Exported, Error> {
-    let dist = &lum.distribution;
+    let dist = lum.distribution();
     let i_max = dist.max_cd();
     if !(i_max > 0.0 && i_max.is_finite()) {
         return Err(ModelError::AllZero("an engine layout needs a positive maximum intensity").into());
@@ -368,7 +368,7 @@ pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions
     match engine {
         Engine::Blender => {
             resolution(engine, opts)?;
-            let text = crate::formats::ies::write(lum, Default::default());
+            let text = crate::formats::ies::write(&lum.clone().into(), Default::default());
             crate::formats::write_atomic(path, text.as_bytes())?;
             Ok(Exported {
                 engine,
@@ -384,7 +384,7 @@ pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions
             let mesh = crate::solid::grid_solid(&texture.sampler(opts.filter), &grid, crate::solid::Units::Peak)?;
             let fitted = crate::fit::fit(dist, &crate::fit::FitOptions::default())?;
             let lights = gltf::khr_lights(fitted.model());
-            let ies = crate::formats::ies::write(lum, Default::default());
+            let ies = crate::formats::ies::write(&lum.clone().into(), Default::default());
             crate::formats::write_atomic(path, &gltf::encode(&mesh, ies.as_bytes(), &lights))?;
             Ok(Exported {
                 engine,

@@ -31,7 +31,7 @@ impl IesTable {
 
     /// The table of the luminaire's distribution (absolute candela, untilted).
     pub fn of_luminaire(lum: &Luminaire) -> Self {
-        Self::of(&lum.distribution)
+        Self::of(lum.distribution())
     }
 
     /// Value at plane `ih`, vertical index `iv` (cd).

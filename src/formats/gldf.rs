@@ -30,8 +30,8 @@ use serde::Serialize;
 
 use crate::error::{Error, ErrorKind, Location, ParseError, Result};
 use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
-use crate::formats::{files, ReadOptions, MAX_FILE_BYTES};
-use crate::model::{Format, Luminaire};
+use crate::formats::{files, Document, ReadOptions, MAX_FILE_BYTES};
+use crate::model::Format;
 
 /// Most entries a container may hold (files and folders).
 pub const MAX_ENTRIES: usize = 10_000;
@@ -223,12 +223,12 @@ impl GldfContainer {
     }
 
     /// Load the photometry `id` with the ordinary readers; the luminaire's
-    /// path is `FILE.gldf#ID` and it carries the container's declared values.
+    /// path is `FILE.gldf#ID` and the document carries the container's declared values.
     ///
     /// # Errors
     /// An unknown id (the message lists the ids), a referenced file missing
     /// from the container, or the reader's error on the file (named `FILE.gldf#ID`).
-    pub fn load(&mut self, id: &str, opts: &ReadOptions) -> Result<Luminaire> {
+    pub fn load(&mut self, id: &str, opts: &ReadOptions) -> Result<Document> {
         let Some(p) = self.photometries.iter().find(|p| p.id == id).cloned() else {
             return Err(bad(
                 &self.path,
@@ -267,9 +267,9 @@ impl GldfContainer {
                 _ => None,
             })
             .unwrap_or_else(|| crate::formats::sniff(&bytes));
-        let mut lum = crate::formats::parse(&bytes, &name, format, opts)?;
-        lum.gldf = Some(p.declared);
-        Ok(lum)
+        let mut doc = crate::formats::parse(&bytes, &name, format, opts)?;
+        doc.gldf = Some(p.declared);
+        Ok(doc)
     }
 }
 
@@ -382,7 +382,7 @@ fn descriptive(
 /// As [`GldfContainer::open`] and [`GldfContainer::load`]; a container with
 /// no photometry, or several when no id is given (the message lists the ids
 /// and says to pick one as `FILE.gldf#ID`).
-pub fn load(container: &Path, id: Option<&str>, opts: &ReadOptions) -> Result<Luminaire> {
+pub fn load(container: &Path, id: Option<&str>, opts: &ReadOptions) -> Result<Document> {
     let mut c = GldfContainer::open(container)?;
     let id = match (id, c.ids().as_slice()) {
         (Some(id), _) => id.to_string(),

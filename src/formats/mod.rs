@@ -49,6 +49,97 @@ pub enum LampSetFlux {
     Sum,
 }
 
+/// A read photometric file: the canonical [`Luminaire`] and what only its
+/// format knows (the raw header a lossless write-back needs, what a GLDF
+/// container declares). Readers return one; writers take one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Document {
+    /// The luminaire, format-free.
+    pub luminaire: Luminaire,
+    /// The format's own header, when the file had one this crate keeps.
+    pub header: Header,
+    /// What the GLDF container declares about this photometry, when it was
+    /// read from one (`FILE.gldf#ID`).
+    pub gldf: Option<gldf::GldfDeclared>,
+}
+
+/// A format's raw header, kept so that a file is written back losslessly in
+/// its own format.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Header {
+    /// No header: a synthetic luminaire, a TM-33 document (its model is the
+    /// whole document), or one built in code.
+    #[default]
+    None,
+    /// The IES LM-63 header (labels and keywords, as written).
+    Ies(ies::IesHeader),
+    /// The EULUMDAT header fields the model does not hold.
+    Ldt(ldt::LdtHeader),
+}
+
+impl Document {
+    /// A document with no header: writers derive every header field from
+    /// the luminaire.
+    pub fn bare(luminaire: Luminaire) -> Self {
+        Self {
+            luminaire,
+            header: Header::None,
+            gldf: None,
+        }
+    }
+    /// The IES header, when read from an IES file.
+    pub fn ies_header(&self) -> Option<&ies::IesHeader> {
+        match &self.header {
+            Header::Ies(h) => Some(h),
+            _ => None,
+        }
+    }
+    /// The EULUMDAT header, when read from an LDT file.
+    pub fn ldt_header(&self) -> Option<&ldt::LdtHeader> {
+        match &self.header {
+            Header::Ldt(h) => Some(h),
+            _ => None,
+        }
+    }
+}
+
+/// A document is its luminaire plus format details: every luminaire query
+/// answers on the document directly.
+impl std::ops::Deref for Document {
+    type Target = Luminaire;
+    fn deref(&self) -> &Luminaire {
+        &self.luminaire
+    }
+}
+
+impl From<Luminaire> for Document {
+    fn from(luminaire: Luminaire) -> Self {
+        Self::bare(luminaire)
+    }
+}
+
+/// A reader's result: the checked luminaire with its header. A part the
+/// reader built inconsistently is a bug in that reader, reported as an error
+/// on the file rather than a panic.
+pub(crate) fn document(
+    path: &Path,
+    parts: crate::model::LuminaireParts,
+    header: Header,
+) -> Result<Document, ParseError> {
+    let luminaire = Luminaire::from_parts(parts).map_err(|e| ParseError {
+        path: path.to_path_buf(),
+        location: Location::line(0),
+        kind: ErrorKind::Invalid,
+        expected: "a luminaire the reader can build (a bug in photosolid's reader, please report it)".into(),
+        found: e.to_string(),
+    })?;
+    Ok(Document {
+        luminaire,
+        header,
+        gldf: None,
+    })
+}
+
 /// Options of the readers. `Default` is lenient: recoverable problems become warnings.
 #[derive(Debug, Clone, Default)]
 pub struct ReadOptions {
@@ -70,6 +161,17 @@ pub fn load(path: impl AsRef<Path>) -> Result<Luminaire> {
 
 /// [`load`] with options.
 pub fn load_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Luminaire> {
+    load_document_with(path, opts).map(|d| d.luminaire)
+}
+
+/// Read a photometric file with its format header and container
+/// declarations (see [`load`] for the paths accepted).
+pub fn load_document(path: impl AsRef<Path>) -> Result<Document> {
+    load_document_with(path, &ReadOptions::default())
+}
+
+/// [`load_document`] with options.
+pub fn load_document_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Document> {
     let path = path.as_ref();
     if let Some((container, id)) = gldf::split_reference(path) {
         return gldf::load(&container, id.as_deref(), opts);
@@ -131,7 +233,7 @@ fn looks_like(bytes: &[u8], format: Format) -> bool {
 
 /// Parse bytes as the given format; `path` is used for messages and, for
 /// `TILT=<file>`, to find the tilt file next to it.
-pub fn parse(bytes: &[u8], path: &Path, format: Format, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn parse(bytes: &[u8], path: &Path, format: Format, opts: &ReadOptions) -> Result<Document, ParseError> {
     match format {
         Format::Ies => ies::read(bytes, path, opts),
         Format::Ldt => ldt::read(bytes, path, opts),
@@ -159,8 +261,9 @@ pub struct WriteOptions {
     pub ies_version: ies::IesWriteVersion,
 }
 
-/// Write `lum` to `path` in the format of its extension, atomically.
-pub fn save(lum: &Luminaire, path: &Path, opts: &WriteOptions) -> Result<()> {
+/// Write `doc` to `path` in the format of its extension, atomically (a
+/// [`Luminaire`] converts into a header-less [`Document`]: `&lum.into()`).
+pub fn save(doc: &Document, path: &Path, opts: &WriteOptions) -> Result<()> {
     let format = Format::from_extension(path).ok_or_else(|| {
         Error::Unsupported(format!(
             "{}: cannot tell the output format; use the extension .ies, .ldt or .xml (TM-33-23)",
@@ -168,9 +271,9 @@ pub fn save(lum: &Luminaire, path: &Path, opts: &WriteOptions) -> Result<()> {
         ))
     })?;
     let text = match format {
-        Format::Ies => ies::write(lum, opts.ies_version),
-        Format::Ldt => ldt::write(lum),
-        Format::Tm33 => tm33::write(lum),
+        Format::Ies => ies::write(doc, opts.ies_version),
+        Format::Ldt => ldt::write(doc),
+        Format::Tm33 => tm33::write(doc),
     };
     write_atomic(path, text.as_bytes())
 }

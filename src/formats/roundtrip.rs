@@ -6,8 +6,8 @@
 
 use std::path::Path;
 
-use crate::formats::{ies, ldt, tm33, ReadOptions};
-use crate::model::{Distribution, Format, Luminaire, ANGLE_EPS};
+use crate::formats::{ies, ldt, tm33, Document, ReadOptions};
+use crate::model::{Distribution, Format, ANGLE_EPS};
 
 /// Relative tolerance (of the peak |cd|) of the IES writer: 15 significant
 /// digits when the header's factors are not 1, exact otherwise.
@@ -31,23 +31,24 @@ pub const TM33_TOLERANCE: f64 = 0.0;
 ///
 /// # Errors
 /// A message naming the format and the first difference.
-pub fn check(lum: &Luminaire) -> Result<(), String> {
+pub fn check(doc: &Document) -> Result<(), String> {
+    let lum = &doc.luminaire;
     let opts = ReadOptions::default();
     let cases = [
         (
             "IES LM-63-2002",
             Format::Ies,
-            ies::write(lum, ies::IesWriteVersion::Lm63_2002),
+            ies::write(doc, ies::IesWriteVersion::Lm63_2002),
             IES_TOLERANCE,
         ),
         (
             "IES LM-63-2019",
             Format::Ies,
-            ies::write(lum, ies::IesWriteVersion::Lm63_2019),
+            ies::write(doc, ies::IesWriteVersion::Lm63_2019),
             IES_TOLERANCE,
         ),
-        ("EULUMDAT", Format::Ldt, ldt::write(lum), LDT_TOLERANCE),
-        ("TM-33-23", Format::Tm33, tm33::write(lum), TM33_TOLERANCE),
+        ("EULUMDAT", Format::Ldt, ldt::write(doc), LDT_TOLERANCE),
+        ("TM-33-23", Format::Tm33, tm33::write(doc), TM33_TOLERANCE),
     ];
     for (name, format, text, tol) in cases {
         let path = Path::new(match format {
@@ -57,7 +58,8 @@ pub fn check(lum: &Luminaire) -> Result<(), String> {
         });
         let back = crate::formats::parse(text.as_bytes(), path, format, &opts)
             .map_err(|e| format!("{name}: the written text does not read back: {e}"))?;
-        same_distribution(&lum.distribution, &back.distribution, tol).map_err(|e| format!("{name}: {e}"))?;
+        same_distribution(lum.distribution(), back.luminaire.distribution(), tol)
+            .map_err(|e| format!("{name}: {e}"))?;
     }
     Ok(())
 }
@@ -143,8 +145,8 @@ mod tests {
         let mut files = Vec::new();
         crate::formats::collect_files(&dir, &mut files).unwrap();
         for p in files {
-            let lum = crate::formats::load(&p).unwrap();
-            check(&lum).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+            let doc = crate::formats::load_document(&p).unwrap();
+            check(&doc).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
             n += 1;
         }
         assert!(n >= 10);

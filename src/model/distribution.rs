@@ -744,7 +744,7 @@ mod tests {
         let lum = crate::synth::Synth::Roadway
             .build(&crate::synth::GridSpec::uniform(10.0, 10.0).unwrap(), 100.0)
             .unwrap();
-        let d = lum.distribution;
+        let d = lum.distribution();
         let r = d.reoriented(90.0, false).unwrap();
         // The C90-C270 mirror becomes a C0-C180 mirror after a 90° turn.
         assert_eq!(r.symmetry(), Symmetry::C0C180);

@@ -6,8 +6,9 @@
 //!   flux / 1000) already applied, untilted;
 //! - Type A and B data converted to Type C through direction vectors, the
 //!   original grid kept in [`Luminaire::source_grid`] for writing back;
-//! - the format's raw header (`ies` or `ldt`) so that a file is written back
-//!   losslessly in its own format;
+//! - nothing of any one format's header: a reader returns the luminaire with
+//!   its header in a `formats::Document`, so a file is written back
+//!   losslessly in its own format while the model stays format-free;
 //! - every recoverable oddity as a [`Warning`].
 
 use std::path::PathBuf;
@@ -192,9 +193,11 @@ pub struct Metadata {
     pub date: String,
 }
 
-/// A loaded luminaire. See the module docs for what is guaranteed.
+/// Everything a [`Luminaire`] is made of, as plain data: what a reader fills
+/// in before [`Luminaire::from_parts`] checks it, and what
+/// [`Luminaire::into_parts`] gives back.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Luminaire {
+pub struct LuminaireParts {
     /// The file it was read from, when it was read from a file.
     pub path: Option<PathBuf>,
     /// File format.
@@ -207,10 +210,13 @@ pub struct Luminaire {
     pub metadata: Metadata,
     /// Lamp sets (at least one).
     pub lamp_sets: Vec<LampSet>,
-    /// Luminaire dimensions.
+    /// Luminaire dimensions, m.
     pub dimensions: Dimensions,
-    /// Luminous opening dimensions.
+    /// Luminous opening dimensions, m.
     pub luminous_opening: Dimensions,
+    /// Heights of the luminous area at C0, C90, C180 and C270, m (EULUMDAT
+    /// lines 19-22); `None` when the file gives one height (IES, TM-33).
+    pub luminous_heights_m: Option<[f64; 4]>,
     /// What the file declares.
     pub declared: Declared,
     /// The file's TILT declaration.
@@ -221,13 +227,17 @@ pub struct Luminaire {
     pub source_grid: Option<SourceGrid>,
     /// Recoverable oddities found while reading.
     pub warnings: Vec<Warning>,
-    /// Raw IES header, when read from an IES file.
-    pub ies: Option<crate::formats::ies::IesHeader>,
-    /// Raw EULUMDAT header, when read from an LDT file.
-    pub ldt: Option<crate::formats::ldt::LdtHeader>,
-    /// What the GLDF container declares about this photometry, when it was
-    /// read from one (`FILE.gldf#ID`).
-    pub gldf: Option<crate::formats::gldf::GldfDeclared>,
+}
+
+/// A loaded luminaire. See the module docs for what is guaranteed.
+///
+/// The fields are private so that the guarantees hold: at least one lamp
+/// set, a tilt table with one multiplier per angle, a source grid of the
+/// size its angle lists say and that describes the distribution (replacing
+/// the distribution with [`Luminaire::set_distribution`] drops it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Luminaire {
+    parts: LuminaireParts,
 }
 
 impl Luminaire {
@@ -235,37 +245,194 @@ impl Luminaire {
     /// absolute photometry), as synthetic distributions need.
     pub fn from_distribution(distribution: Distribution) -> Self {
         Self {
-            path: None,
-            format: Format::Ldt,
-            version: String::new(),
-            photometric_type: PhotometricType::C,
-            metadata: Metadata::default(),
-            lamp_sets: vec![LampSet {
-                count: 1.0,
-                ..LampSet::default()
-            }],
-            dimensions: Dimensions::default(),
-            luminous_opening: Dimensions::default(),
-            declared: Declared {
-                absolute: true,
-                ..Declared::default()
+            parts: LuminaireParts {
+                path: None,
+                format: Format::Ldt,
+                version: String::new(),
+                photometric_type: PhotometricType::C,
+                metadata: Metadata::default(),
+                lamp_sets: vec![LampSet {
+                    count: 1.0,
+                    ..LampSet::default()
+                }],
+                dimensions: Dimensions::default(),
+                luminous_opening: Dimensions::default(),
+                luminous_heights_m: None,
+                declared: Declared {
+                    absolute: true,
+                    ..Declared::default()
+                },
+                tilt: Tilt::None,
+                distribution,
+                source_grid: None,
+                warnings: Vec::new(),
             },
-            tilt: Tilt::None,
-            distribution,
-            source_grid: None,
-            warnings: Vec::new(),
-            ies: None,
-            ldt: None,
-            gldf: None,
         }
+    }
+
+    /// A luminaire from its parts, checking what the type guarantees.
+    ///
+    /// # Errors
+    /// [`ModelError::Parameter`] for no lamp set, a tilt table whose angle and
+    /// multiplier lists differ in length, or a source grid whose table does
+    /// not have one value per (horizontal, vertical) pair.
+    pub fn from_parts(parts: LuminaireParts) -> Result<Self, ModelError> {
+        let bad = |name: &'static str, value: String, reason: &str| ModelError::Parameter {
+            name,
+            value,
+            reason: reason.into(),
+        };
+        if parts.lamp_sets.is_empty() {
+            return Err(bad("lamp_sets", "[]".into(), "a luminaire has at least one lamp set"));
+        }
+        if let Some(t) = parts.tilt.table() {
+            if t.angles.len() != t.multipliers.len() {
+                return Err(bad(
+                    "tilt",
+                    format!("{} angles, {} multipliers", t.angles.len(), t.multipliers.len()),
+                    "a tilt table has one multiplier per angle",
+                ));
+            }
+        }
+        if let Some(g) = &parts.source_grid {
+            if g.vertical.len().checked_mul(g.horizontal.len()) != Some(g.cd.len()) {
+                return Err(bad(
+                    "source_grid",
+                    format!(
+                        "{} x {} angles, {} values",
+                        g.horizontal.len(),
+                        g.vertical.len(),
+                        g.cd.len()
+                    ),
+                    "one value per (horizontal, vertical) angle pair",
+                ));
+            }
+        }
+        Ok(Self { parts })
+    }
+
+    /// The parts, to rebuild a changed luminaire with [`Luminaire::from_parts`].
+    pub fn into_parts(self) -> LuminaireParts {
+        self.parts
+    }
+
+    /// The file it was read from, when it was read from a file.
+    pub fn path(&self) -> Option<&std::path::Path> {
+        self.parts.path.as_deref()
+    }
+    /// File format.
+    pub fn format(&self) -> Format {
+        self.parts.format
+    }
+    /// Format version as a short string (`LM-63-2002`, `LM-63-1986`, `EULUMDAT`).
+    pub fn version(&self) -> &str {
+        &self.parts.version
+    }
+    /// Photometric type of the file's grid.
+    pub fn photometric_type(&self) -> PhotometricType {
+        self.parts.photometric_type
+    }
+    /// Descriptive text.
+    pub fn metadata(&self) -> &Metadata {
+        &self.parts.metadata
+    }
+    /// Lamp sets (at least one).
+    pub fn lamp_sets(&self) -> &[LampSet] {
+        &self.parts.lamp_sets
+    }
+    /// Luminaire dimensions, m.
+    pub fn dimensions(&self) -> Dimensions {
+        self.parts.dimensions
+    }
+    /// Luminous opening dimensions, m.
+    pub fn luminous_opening(&self) -> Dimensions {
+        self.parts.luminous_opening
+    }
+    /// Heights of the luminous area at C0, C90, C180 and C270, m, when the
+    /// file gives four (EULUMDAT).
+    pub fn luminous_heights_m(&self) -> Option<[f64; 4]> {
+        self.parts.luminous_heights_m
+    }
+    /// What the file declares.
+    pub fn declared(&self) -> &Declared {
+        &self.parts.declared
+    }
+    /// The file's TILT declaration.
+    pub fn tilt(&self) -> &Tilt {
+        &self.parts.tilt
+    }
+    /// Type C distribution, absolute cd, untilted.
+    pub fn distribution(&self) -> &Distribution {
+        &self.parts.distribution
+    }
+    /// The distribution, without the rest of the luminaire.
+    pub fn into_distribution(self) -> Distribution {
+        self.parts.distribution
+    }
+    /// Original Type A/B grid (None for Type C files and after
+    /// [`Luminaire::set_distribution`]).
+    pub fn source_grid(&self) -> Option<&SourceGrid> {
+        self.parts.source_grid.as_ref()
+    }
+    /// Recoverable oddities found while reading.
+    pub fn warnings(&self) -> &[Warning] {
+        &self.parts.warnings
+    }
+
+    /// Descriptive text, to edit.
+    pub fn metadata_mut(&mut self) -> &mut Metadata {
+        &mut self.parts.metadata
+    }
+    /// What the file declares, to edit.
+    pub fn declared_mut(&mut self) -> &mut Declared {
+        &mut self.parts.declared
+    }
+    /// Set the format version string.
+    pub fn set_version(&mut self, version: impl Into<String>) {
+        self.parts.version = version.into();
+    }
+    /// Set the luminous opening, m (and drop per-side heights, which belong
+    /// to the old opening).
+    pub fn set_luminous_opening(&mut self, opening: Dimensions) {
+        self.parts.luminous_opening = opening;
+        self.parts.luminous_heights_m = None;
+    }
+    /// Replace the distribution. The Type A/B source grid no longer
+    /// describes it and is dropped, so a writer writes the new Type C grid.
+    pub fn set_distribution(&mut self, distribution: Distribution) {
+        self.parts.distribution = distribution;
+        self.parts.source_grid = None;
+    }
+    /// Replace the lamp sets.
+    ///
+    /// # Errors
+    /// [`ModelError::Parameter`] when `lamp_sets` is empty.
+    pub fn set_lamp_sets(&mut self, lamp_sets: Vec<LampSet>) -> Result<(), ModelError> {
+        if lamp_sets.is_empty() {
+            return Err(ModelError::Parameter {
+                name: "lamp_sets",
+                value: "[]".into(),
+                reason: "a luminaire has at least one lamp set".into(),
+            });
+        }
+        self.parts.lamp_sets = lamp_sets;
+        Ok(())
+    }
+    /// Add a warning.
+    pub fn push_warning(&mut self, warning: Warning) {
+        self.parts.warnings.push(warning);
+    }
+    /// Set the path it was read from (a GLDF member is named `FILE.gldf#ID`).
+    pub fn set_path(&mut self, path: PathBuf) {
+        self.parts.path = Some(path);
     }
 
     /// The distribution as installed at `tilt_deg` degrees: every value
     /// multiplied by the tilt table's multiplier at that angle. Fails when
     /// the file has no tilt table.
     pub fn tilted_distribution(&self, tilt_deg: f64) -> Result<Distribution, ModelError> {
-        match self.tilt.table() {
-            Some(t) => self.distribution.scaled(t.multiplier_at(tilt_deg)),
+        match self.parts.tilt.table() {
+            Some(t) => self.parts.distribution.scaled(t.multiplier_at(tilt_deg)),
             None => Err(ModelError::Parameter {
                 name: "tilt",
                 value: tilt_deg.to_string(),

@@ -11,5 +11,6 @@ pub use distribution::{
 };
 pub use field::{Borrowed, IntensityField};
 pub use luminaire::{
-    Declared, Dimensions, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Tilt, TiltTable,
+    Declared, Dimensions, Format, LampSet, Luminaire, LuminaireParts, Metadata, PhotometricType, SourceGrid, Tilt,
+    TiltTable,
 };

@@ -78,7 +78,7 @@ impl Derived {
             },
             zonal_lumens: zonal_lumens(lum),
             ugr_table: Derivation::from_result(ugr_table(lum)),
-            bug_rating: bug_rating(&lum.distribution),
+            bug_rating: bug_rating(lum.distribution()),
             luminance_table: Derivation::from_result(luminance_table(lum)),
         }
     }
@@ -352,8 +352,11 @@ mod tests {
             for area in [0.0, 0.5] {
                 let d = Distribution::new(vec![0.0], g.clone(), cd.clone(), Symmetry::Rotational).unwrap();
                 let mut lum = Luminaire::from_distribution(d);
-                lum.luminous_opening.length_m = area;
-                lum.luminous_opening.width_m = area;
+                lum.set_luminous_opening(crate::model::Dimensions {
+                    length_m: area,
+                    width_m: area,
+                    ..lum.luminous_opening()
+                });
                 let der = Derived::of(&lum);
                 let text = der.to_text();
                 assert!(!text.contains("NaN") && !text.contains("inf"), "{g:?} {cd:?}:\n{text}");
@@ -366,7 +369,7 @@ mod tests {
                 if let Derivation::Value(t) = &der.ugr_table {
                     assert!(t.crosswise.iter().chain(&t.endwise).flatten().all(|u| u.is_finite()));
                 }
-                let down = crate::photometry::flux(&lum.distribution).downward_lm;
+                let down = crate::photometry::flux(lum.distribution()).downward_lm;
                 if down <= 0.0 || area == 0.0 {
                     assert!(matches!(der.ugr_table, Derivation::Undefined { .. }), "{g:?} {cd:?}");
                 }

@@ -192,7 +192,7 @@ pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, String> {
     if opening.is_point() {
         return Err("the file declares no luminous area (point source): luminance undefined".into());
     }
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let at = |c: f64, g: f64| {
         let a = projected_area_m2(&opening, direction(c, g));
         (a > 0.0).then(|| intensity_at(d, c, g) / a).filter(|l| l.is_finite())
@@ -223,18 +223,18 @@ mod tests {
         let cd = g.iter().map(|x| lum_cd_m2 * l * w * x.to_radians().cos()).collect();
         let d = Distribution::new(vec![0.0], g, cd, Symmetry::Rotational).unwrap();
         let mut lum = Luminaire::from_distribution(d);
-        lum.luminous_opening = crate::model::Dimensions {
+        lum.set_luminous_opening(crate::model::Dimensions {
             length_m: l,
             width_m: w,
             height_m: 0.0,
-        };
+        });
         let t = luminance_table(&lum).unwrap();
         for v in t.c0_cd_m2.iter().chain(&t.c90_cd_m2) {
             let v = v.unwrap();
             assert!((v - lum_cd_m2).abs() < 1e-9 * lum_cd_m2, "{v}");
         }
         // No luminous area: no table, a reason instead.
-        lum.luminous_opening = crate::model::Dimensions::default();
+        lum.set_luminous_opening(crate::model::Dimensions::default());
         assert!(luminance_table(&lum).unwrap_err().contains("no luminous area"));
     }
 

@@ -77,18 +77,18 @@ pub const LOR_MISMATCH: f64 = 0.01;
 
 /// Compute the summary of `lum` (untilted).
 pub fn summary(lum: &Luminaire) -> Summary {
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let (max_cd, mc, mg) = d.max();
     let flux = flux(d);
-    let lamp = if lum.declared.absolute {
+    let lamp = if lum.declared().absolute {
         None
     } else {
-        lum.declared.lamp_flux_lm.filter(|&v| v > 0.0)
+        lum.declared().lamp_flux_lm.filter(|&v| v > 0.0)
     };
     // A ratio to a declared flux is reported only when it is a number: a
     // file may declare a flux so small (1e-320 lm) that the ratio overflows.
     let ratio = |x: f64| lamp.map(|l| x / l).filter(|r| r.is_finite());
-    let declared = lum.declared.luminaire_flux_lm.filter(|&v| v > 0.0);
+    let declared = lum.declared().luminaire_flux_lm.filter(|&v| v > 0.0);
     let flux_ratio = declared.map(|dcl| flux.total_lm / dcl).filter(|r| r.is_finite());
     let mut warnings = Vec::new();
     if let (Some(r), Some(dcl)) = (flux_ratio, declared) {
@@ -105,7 +105,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
             ));
         }
     }
-    if let (Some(decl), Some(l)) = (lum.declared.lor, lamp) {
+    if let (Some(decl), Some(l)) = (lum.declared().lor, lamp) {
         let lor = flux.total_lm / l;
         if (lor - decl).abs() > LOR_MISMATCH {
             warnings.push(Warning::new(
@@ -119,7 +119,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
             ));
         }
     }
-    if let (Some(decl_dff), true) = (lum.declared.dff, flux.total_lm > 0.0) {
+    if let (Some(decl_dff), true) = (lum.declared().dff, flux.total_lm > 0.0) {
         let dff = flux.downward_lm / flux.total_lm;
         if (dff - decl_dff).abs() > 0.05 {
             warnings.push(Warning::new(

@@ -296,8 +296,8 @@ pub fn ugr_room(
     h_m: f64,
 ) -> Result<Option<f64>, String> {
     let opening = Opening::of_luminaire(lum)?;
-    let array = Array::new(&lum.distribution, &opening, view);
-    let f = super::flux::flux(&lum.distribution);
+    let array = Array::new(lum.distribution(), &opening, view);
+    let f = super::flux::flux(lum.distribution());
     Ok(one(&array, &f, room_h, rho, h_m))
 }
 
@@ -321,13 +321,13 @@ pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, String> {
     if opening.is_point() {
         return Err("the file declares no luminous area (point source): UGR undefined".into());
     }
-    let f = super::flux::flux(&lum.distribution);
+    let f = super::flux::flux(lum.distribution());
     if f.downward_lm.is_nan() || f.downward_lm <= 0.0 {
         return Err("no downward light: UGR undefined (no glare from the luminaires)".into());
     }
     let mut tables = Vec::new();
     for view in [View::Crosswise, View::Endwise] {
-        let array = Array::new(&lum.distribution, &opening, view);
+        let array = Array::new(lum.distribution(), &opening, view);
         let mut rows = Vec::new();
         for &room in &ROOMS_H {
             let mut row = Vec::new();

@@ -10,11 +10,11 @@ fn luminaire(f: impl Fn(f64) -> f64, a: f64) -> Luminaire {
     let cd = g.iter().map(|x| f(x.to_radians())).collect();
     let d = Distribution::new(vec![0.0], g, cd, Symmetry::Rotational).unwrap();
     let mut l = Luminaire::from_distribution(d);
-    l.luminous_opening = Dimensions {
+    l.set_luminous_opening(Dimensions {
         length_m: a,
         width_m: a,
         height_m: 0.0,
-    };
+    });
     l
 }
 
@@ -105,7 +105,7 @@ fn scaling_laws_and_height_independence() {
 fn floor_flux_is_bounded_by_the_downward_flux() {
     let l = luminaire(lambertian(1000.0), 0.3);
     let opening = Opening::of_luminaire(&l).unwrap();
-    let a = Array::new(&l.distribution, &opening, View::Crosswise);
+    let a = Array::new(l.distribution(), &opening, View::Crosswise);
     let (_, floor) = a.room(12.0, 8.0);
     let down = 96.0 * PI * 1000.0;
     assert!(floor < down && floor > 0.8 * down, "{floor} of {down}");

@@ -68,16 +68,16 @@ fn percent(x: f64, of: Option<f64>) -> Option<f64> {
 
 /// The lamp flux ratios refer to: the declared lamp flux of relative photometry.
 pub(crate) fn lamp_flux(lum: &Luminaire) -> Option<f64> {
-    if lum.declared.absolute {
+    if lum.declared().absolute {
         None
     } else {
-        lum.declared.lamp_flux_lm.filter(|&v| v > 0.0 && v.is_finite())
+        lum.declared().lamp_flux_lm.filter(|&v| v > 0.0 && v.is_finite())
     }
 }
 
 /// Zonal lumens of `lum`.
 pub fn zonal_lumens(lum: &Luminaire) -> ZonalLumens {
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let lamp = lamp_flux(lum);
     let total = ring(d, 0.0, 180.0);
     let zone = |a: f64, b: f64| {
@@ -115,7 +115,7 @@ pub fn cone_half_angle_deg(k: u8) -> f64 {
 /// The CIE flux code of `lum`; None when the luminaire emits nothing downward
 /// (N1..N3 are fractions of the downward flux) or the total flux is 0.
 pub fn cie_flux_code(lum: &Luminaire) -> Option<CieFluxCode> {
-    let d = &lum.distribution;
+    let d = lum.distribution();
     let down = ring(d, 0.0, 90.0);
     let total = ring(d, 0.0, 180.0);
     if !(down > 0.0 && total > 0.0) {
@@ -146,8 +146,8 @@ mod tests {
         let d = Distribution::new(vec![0.0], gamma, cd, Symmetry::Rotational).unwrap();
         let mut l = Luminaire::from_distribution(d);
         if let Some(v) = lamp {
-            l.declared.absolute = false;
-            l.declared.lamp_flux_lm = Some(v);
+            l.declared_mut().absolute = false;
+            l.declared_mut().lamp_flux_lm = Some(v);
         }
         l
     }

@@ -455,7 +455,7 @@ mod tests {
         let lum = Synth::CosinePower { p: 5.0 }
             .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 100.0)
             .unwrap();
-        let tex = LightTexture::new(&lum.distribution).unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
         let r = render(&tex, Filter::CatmullRom, 2).unwrap();
         let (h, w) = (r.mapping.height, r.mapping.width);
         for i in [0, h / 3, h - 1] {
@@ -486,7 +486,7 @@ mod tests {
     fn reduced_and_half_storage() {
         let g = GridSpec::uniform(15.0, 5.0).unwrap();
         let lum = Synth::Roadway.build(&g, 1000.0).unwrap();
-        let d = lum.distribution.with_symmetry(Symmetry::C90C270).unwrap();
+        let d = lum.distribution().with_symmetry(Symmetry::C90C270).unwrap();
         let tex = LightTexture::new(&d).unwrap();
         let r = render(&tex, Filter::CatmullRom, 2).unwrap();
         for l in Lookup::ALL {
@@ -530,7 +530,7 @@ mod tests {
     fn f32_lookup_differs_from_f64_by_rounding_only() {
         let g = GridSpec::uniform(15.0, 5.0).unwrap();
         let lum = Synth::Roadway.build(&g, 1000.0).unwrap();
-        let d = lum.distribution.with_symmetry(Symmetry::C90C270).unwrap();
+        let d = lum.distribution().with_symmetry(Symmetry::C90C270).unwrap();
         let r = render(&LightTexture::new(&d).unwrap(), Filter::CatmullRom, 2).unwrap();
         let dirs = crate::metrics::random_directions(20_000, 7);
         let mut worst_continuous: f64 = 0.0;

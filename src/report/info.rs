@@ -106,16 +106,26 @@ pub struct InfoReport {
 }
 
 impl InfoReport {
-    /// Build the report of `lum`.
+    /// Build the report of `lum` (no container declarations).
     pub fn of(lum: &Luminaire) -> Self {
-        let d = &lum.distribution;
+        Self::of_parts(lum, None)
+    }
+
+    /// Build the report of a read document: with a GLDF container's
+    /// declarations (`gldf_declared`) beside our values (`gldf_comparison`).
+    pub fn of_document(doc: &crate::formats::Document) -> Self {
+        Self::of_parts(&doc.luminaire, doc.gldf.as_ref())
+    }
+
+    fn of_parts(lum: &Luminaire, gldf: Option<&crate::formats::gldf::GldfDeclared>) -> Self {
+        let d = lum.distribution();
         let s = photometry::summary(lum);
-        let mut warnings = lum.warnings.clone();
+        let mut warnings = lum.warnings().to_vec();
         warnings.extend(s.warnings.iter().cloned());
         let mut report = InfoReport {
-            format: lum.format,
-            version: lum.version.clone(),
-            photometric_type: lum.photometric_type,
+            format: lum.format(),
+            version: lum.version().to_string(),
+            photometric_type: lum.photometric_type(),
             symmetry: d.symmetry(),
             n_c: d.n_c(),
             n_c_full: d.full_planes().len(),
@@ -127,38 +137,36 @@ impl InfoReport {
             downward_flux_lm: s.flux.downward_lm,
             upward_flux_lm: s.flux.upward_lm,
             declared_flux_lm: s.declared_flux_lm,
-            lamp_flux_lm: lum.declared.lamp_flux_lm,
+            lamp_flux_lm: lum.declared().lamp_flux_lm,
             flux_ratio: s.flux_ratio,
             lor: s.lor,
             dlor: s.dlor,
             ulor: s.ulor,
             dff: s.dff,
-            declared_lor: lum.declared.lor,
+            declared_lor: lum.declared().lor,
             beam_angle_deg: s.beams.ies_beam_deg[0],
             field_angle_deg: s.beams.ies_field_deg[0],
             beam_angles: s.beams,
-            tilt: match lum.tilt {
+            tilt: match lum.tilt() {
                 crate::model::Tilt::None => "none",
                 crate::model::Tilt::Include { .. } => "include",
                 crate::model::Tilt::File { .. } => "file",
             },
-            absolute: lum.declared.absolute,
-            manufacturer: lum.metadata.manufacturer.clone(),
-            catalogue: lum.metadata.catalogue.clone(),
+            absolute: lum.declared().absolute,
+            manufacturer: lum.metadata().manufacturer.clone(),
+            catalogue: lum.metadata().catalogue.clone(),
             lamp_color: lum
-                .lamp_sets
+                .lamp_sets()
                 .first()
                 .and_then(|l| crate::report::color::parse_cct(&l.color))
                 .map(crate::report::color::lamp_color),
-            gldf_declared: lum.gldf.clone(),
+            gldf_declared: gldf.cloned(),
             gldf_comparison: None,
             warnings,
             derived: photometry::Derived::of(lum),
         };
-        report.gldf_comparison = lum
-            .gldf
-            .as_ref()
-            .map(|g| crate::report::declared::declared_vs_computed(g, &report, lum.declared.input_watts));
+        report.gldf_comparison =
+            gldf.map(|g| crate::report::declared::declared_vs_computed(g, &report, lum.declared().input_watts));
         report
     }
 

@@ -39,7 +39,7 @@ pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Representati
         reference_label: &label,
         reference: &*reference,
         recons: &recons,
-        i_max: lum.luminaire.distribution.max_cd(),
+        i_max: lum.luminaire.distribution().max_cd(),
         note: None,
     }))
 }

@@ -158,7 +158,7 @@ impl SceneLuminaire {
     /// The light texture every grid representation samples; `None` for an
     /// all-zero distribution (whose every representation is [`Dark`]).
     pub fn texture(&self) -> Result<Option<LightTexture>, SceneError> {
-        match LightTexture::new(&self.luminaire.distribution) {
+        match LightTexture::new(self.luminaire.distribution()) {
             Ok(t) => Ok(Some(t)),
             Err(crate::ModelError::AllZero(_)) => Ok(None),
             Err(e) => Err(SceneError::Model {

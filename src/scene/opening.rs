@@ -87,16 +87,13 @@ impl Opening {
     /// # Errors
     /// A sign combination no LM-63 version defines, as a sentence naming the values.
     pub fn of_luminaire(lum: &Luminaire) -> Result<Opening, String> {
-        let o = lum.luminous_opening;
-        if lum.format == Format::Ldt {
-            let heights = lum
-                .ldt
-                .as_ref()
-                .map_or([o.height_m; 4], |h| h.luminous_heights_mm.map(|x| x / 1000.0));
+        let o = lum.luminous_opening();
+        if lum.format() == Format::Ldt {
+            let heights = lum.luminous_heights_m().unwrap_or([o.height_m; 4]);
             return Self::ldt(o.length_m, o.width_m, heights);
         }
-        let old = matches!(lum.version.as_str(), "LM-63-1986" | "LM-63-1991");
-        Self::ies(o.width_m, o.length_m, o.height_m, old, lum.version == "LM-63-1995")
+        let old = matches!(lum.version(), "LM-63-1986" | "LM-63-1991");
+        Self::ies(o.width_m, o.length_m, o.height_m, old, lum.version() == "LM-63-1995")
     }
 
     /// An EULUMDAT luminous area (metres; width 0 = circular).

@@ -196,7 +196,7 @@ impl<'a> Models<'a> {
     /// The models of `lum`; `texture` is its light texture (`None`: all-zero).
     pub fn new(lum: &'a SceneLuminaire, texture: Option<&'a LightTexture>) -> Self {
         Self {
-            dist: &lum.luminaire.distribution,
+            dist: lum.luminaire.distribution(),
             texture,
         }
     }
@@ -285,7 +285,7 @@ fn visible_grid(lum: &SceneLuminaire, patches: &[(DVec3, f64)], points: &[SceneP
             }
         }
     }
-    let d = &lum.luminaire.distribution;
+    let d = lum.luminaire.distribution();
     let g = d.gamma_angles();
     if lo > hi || lo.is_nan() || hi.is_nan() {
         return None;
@@ -457,7 +457,7 @@ fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> 
         }
     }
     // Half-float and symmetry-reduced storage of the x5 Catmull-Rom render (trade-table rows).
-    let sym = lum.luminaire.distribution.symmetry();
+    let sym = lum.luminaire.distribution().symmetry();
     for (precision, reduced) in [(Precision::F16, false), (Precision::F32, true), (Precision::F16, true)] {
         if reduced && sym == crate::model::Symmetry::None {
             continue;
@@ -479,7 +479,7 @@ fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> 
             c,
         });
     }
-    let d = &lum.luminaire.distribution;
+    let d = lum.luminaire.distribution();
     let found = d.detect_symmetry(1e-9 * d.max_cd());
     if found != d.symmetry() {
         if let Ok(s) = d.with_symmetry(found) {

@@ -76,10 +76,10 @@ fn two_photometries(dir: &Path) -> PathBuf {
 fn each_photometry_loads_like_its_file_and_carries_the_declared_values() {
     let dir = tempfile::tempdir().unwrap();
     let p = two_photometries(dir.path());
-    let road = load(reference(&p, "road")).unwrap();
+    let road = crate::formats::load_document(reference(&p, "road")).unwrap();
     let file = load(data("roadway.ldt")).unwrap();
-    assert_eq!(road.distribution, file.distribution);
-    assert_eq!(road.path.as_deref(), Some(reference(&p, "road").as_path()));
+    assert_eq!(road.distribution(), file.distribution());
+    assert_eq!(road.path(), Some(reference(&p, "road").as_path()));
     let g = road.gldf.as_ref().unwrap();
     assert_eq!((g.id.as_str(), g.file.as_str()), ("road", "ldc/roadway.ldt"));
     assert_eq!((g.lor, g.dff), (Some(0.85), Some(0.9)));
@@ -93,8 +93,8 @@ fn each_photometry_loads_like_its_file_and_carries_the_declared_values() {
     );
     assert_eq!(g.bug_rating.as_deref(), Some("B1 U0 G1"));
     assert_eq!(g.luminous_efficacy_lm_per_w, Some(98.2));
-    let bat = load(reference(&p, "bat")).unwrap();
-    assert_eq!(bat.distribution, load(data("batwing.ies")).unwrap().distribution);
+    let bat = crate::formats::load_document(reference(&p, "bat")).unwrap();
+    assert_eq!(bat.distribution(), load(data("batwing.ies")).unwrap().distribution());
     assert_eq!(bat.gldf.as_ref().unwrap().lor, None);
 }
 
@@ -122,7 +122,7 @@ fn several_photometries_need_an_id_and_a_directory_expands() {
         ],
     );
     let lum = load_with(&one, &ReadOptions::default()).unwrap();
-    assert_eq!(lum.distribution, load(data("lambertian.ldt")).unwrap().distribution);
+    assert_eq!(lum.distribution(), load(data("lambertian.ldt")).unwrap().distribution());
 }
 
 /// Every broken container: the error names the container and what was expected.

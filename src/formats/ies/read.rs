@@ -6,7 +6,9 @@ use crate::error::{Location, ParseError, Warning, WarningCode};
 use crate::formats::scan::{Scanner, Separators};
 use crate::formats::text::Source;
 use crate::formats::{declared_lamp_flux, ReadOptions};
-use crate::model::{Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, SourceGrid, Tilt};
+use crate::model::{
+    Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, SourceGrid, Tilt,
+};
 
 use super::grid::{check_or_repair, type_c, warn_negatives, warn_pole_spread};
 use super::tilt::{read_tilt_file, read_tilt_table};
@@ -94,7 +96,7 @@ fn tilt_value(line: &[u8]) -> Option<&[u8]> {
 }
 
 /// Read an IES file's bytes. `path` names the file in errors and locates `TILT=<file>`.
-pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
     let src = Source::new(path, bytes).map_err(|mut e| {
         // Every error names a line; an empty file is wrong from line 1.
         if e.location.line == 0 {
@@ -157,7 +159,7 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, 
     warn_negatives(&cd, warnings);
     let (kind, distribution, source_grid) = r.distribution(&v_start, &h_start, vertical, horizontal, cd)?;
     warn_pole_spread(&distribution, &mut r.warnings);
-    Ok(r.finish(text.version, kind, tilt, distribution, source_grid))
+    r.finish(text.version, kind, tilt, distribution, source_grid)
 }
 
 /// The reader's state: the source, the options, the header as read so far and the warnings.
@@ -472,7 +474,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         tilt: Tilt,
         distribution: Distribution,
         source_grid: Option<SourceGrid>,
-    ) -> Luminaire {
+    ) -> Result<crate::formats::Document, ParseError> {
         let (header, mut warnings, path) = (self.header, self.warnings, self.src.path);
         let metadata = metadata(&header);
         let lpl = header.lumens_per_lamp;
@@ -501,7 +503,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             cri: header.keyword("CRI").unwrap_or_default(),
             watts: header.input_watts,
         };
-        Luminaire {
+        let parts = LuminaireParts {
             path: Some(path.to_path_buf()),
             format: Format::Ies,
             version: version.name().to_string(),
@@ -514,6 +516,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 height_m: opening.height_m.abs(),
             },
             luminous_opening: opening,
+            luminous_heights_m: None,
             declared: declared_lamp_flux(
                 lamp_flux,
                 absolute,
@@ -523,10 +526,8 @@ impl<'s, 'a> Reader<'s, 'a> {
             distribution,
             source_grid,
             warnings,
-            ies: Some(header),
-            ldt: None,
-            gldf: None,
-        }
+        };
+        crate::formats::document(path, parts, crate::formats::Header::Ies(header))
     }
 }
 

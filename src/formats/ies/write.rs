@@ -2,7 +2,8 @@
 
 use std::fmt::Write as _;
 
-use crate::model::{Luminaire, PhotometricType, Symmetry, ANGLE_EPS};
+use crate::formats::Document;
+use crate::model::{PhotometricType, Symmetry, ANGLE_EPS};
 
 use super::{IesLabel, IesWriteVersion};
 
@@ -44,7 +45,8 @@ const WRAP: usize = 200;
 /// quotient overflow), multiplier and ballast factor are written as 1 and
 /// the values as absolute candela. Magnitudes outside [1e-5, 1e15) use exponent
 /// notation (`1.5e-7`).
-pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
+pub fn write(doc: &Document, version: IesWriteVersion) -> String {
+    let lum = &doc.luminaire;
     let mut w = Writer {
         out: String::with_capacity(64 * 1024),
         col: 0,
@@ -55,9 +57,9 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
     });
 
     // ---- Keywords.
-    let md = &lum.metadata;
+    let md = lum.metadata();
     let mut kws: Vec<(String, String)> = Vec::new();
-    match &lum.ies {
+    match doc.ies_header() {
         Some(h) => {
             for l in &h.labels {
                 match l {
@@ -68,7 +70,7 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
         }
         None => {
             let lamp = if md.lamp.is_empty() {
-                lum.lamp_sets.first().map(|s| s.lamp_type.clone()).unwrap_or_default()
+                lum.lamp_sets().first().map(|s| s.lamp_type.clone()).unwrap_or_default()
             } else {
                 md.lamp.clone()
             };
@@ -95,7 +97,7 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
     }
 
     // ---- TILT.
-    match lum.tilt.table() {
+    match lum.tilt().table() {
         None => w.line("TILT=NONE"),
         Some(t) => {
             w.line("TILT=INCLUDE");
@@ -109,7 +111,7 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
     }
 
     // ---- Grid: angles and planes (each plane = values at all vertical angles).
-    let (type_code, vertical, horizontal, planes): (u8, Vec<f64>, Vec<f64>, Vec<f64>) = match &lum.source_grid {
+    let (type_code, vertical, horizontal, planes): (u8, Vec<f64>, Vec<f64>, Vec<f64>) = match &lum.source_grid() {
         Some(sg) => (
             if sg.kind == PhotometricType::A { 3 } else { 2 },
             sg.vertical.clone(),
@@ -117,14 +119,14 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
             sg.cd.clone(),
         ),
         None => {
-            let (h, cd) = type_c_planes(&lum.distribution);
-            (1, lum.distribution.gamma_angles().to_vec(), h, cd)
+            let (h, cd) = type_c_planes(lum.distribution());
+            (1, lum.distribution().gamma_angles().to_vec(), h, cd)
         }
     };
 
     // ---- Header records.
     let (lamps, lpl, mult, units, width, length, height, bf, future, watts);
-    match &lum.ies {
+    match doc.ies_header() {
         Some(h) => {
             lamps = h.lamps;
             lpl = h.lumens_per_lamp;
@@ -132,24 +134,24 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
             units = h.units as f64;
             (width, length, height) = (h.width, h.length, h.height);
             bf = h.ballast_factor;
-            let blpf_applied = matches!(lum.version.as_str(), "LM-63-1986" | "LM-63-1991");
+            let blpf_applied = matches!(lum.version(), "LM-63-1986" | "LM-63-1991");
             future = match version {
-                IesWriteVersion::Lm63_2002 if !blpf_applied && lum.version != "LM-63-2019" => h.future_use,
+                IesWriteVersion::Lm63_2002 if !blpf_applied && lum.version() != "LM-63-2019" => h.future_use,
                 IesWriteVersion::Lm63_2002 => 1.0,
-                IesWriteVersion::Lm63_2019 if lum.version == "LM-63-2019" => h.future_use,
+                IesWriteVersion::Lm63_2019 if lum.version() == "LM-63-2019" => h.future_use,
                 IesWriteVersion::Lm63_2019 => 1.00001,
             };
             watts = h.input_watts;
         }
         None => {
-            let count: f64 = lum.lamp_sets.iter().map(|s| s.count.abs()).sum();
+            let count: f64 = lum.lamp_sets().iter().map(|s| s.count.abs()).sum();
             let n = if count > 0.0 && count.is_finite() { count } else { 1.0 };
             let flux = lum
-                .declared
+                .declared()
                 .lamp_flux_lm
-                .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.flux_lm).sum());
+                .unwrap_or_else(|| lum.lamp_sets().iter().map(|s| s.flux_lm).sum());
             // A lamp count so small that flux / count overflows is written as one lamp.
-            (lamps, lpl) = if lum.declared.absolute || flux <= 0.0 || !flux.is_finite() {
+            (lamps, lpl) = if lum.declared().absolute || flux <= 0.0 || !flux.is_finite() {
                 (n, -1.0)
             } else if (flux / n).is_finite() {
                 (n, flux / n)
@@ -158,11 +160,11 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
             };
             mult = 1.0;
             units = 2.0;
-            let o = &lum.luminous_opening;
+            let o = &lum.luminous_opening();
             let dims = if o.length_m != 0.0 || o.width_m != 0.0 || o.height_m != 0.0 {
                 *o
             } else {
-                lum.dimensions
+                lum.dimensions()
             };
             (width, length, height) = (dims.width_m, dims.length_m, dims.height_m);
             bf = 1.0;
@@ -171,9 +173,9 @@ pub fn write(lum: &Luminaire, version: IesWriteVersion) -> String {
                 IesWriteVersion::Lm63_2019 => 1.00001,
             };
             let w = lum
-                .declared
+                .declared()
                 .input_watts
-                .unwrap_or_else(|| lum.lamp_sets.iter().map(|s| s.watts).sum());
+                .unwrap_or_else(|| lum.lamp_sets().iter().map(|s| s.watts).sum());
             // Summed lamp-set wattages can overflow; an unknown wattage is written as 0.
             watts = if w.is_finite() { w } else { 0.0 };
         }

@@ -8,7 +8,7 @@ use crate::formats::scan::{parse_number, Scanner, Separators};
 use crate::formats::text::{Line, Lines, Source};
 use crate::formats::ReadOptions;
 use crate::model::{
-    Declared, Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt,
+    Declared, Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, Symmetry, Tilt,
 };
 
 mod grid;
@@ -27,7 +27,7 @@ const MAX_LAMP_SETS: i64 = 10_000;
 /// module docs for the conversion), with every recoverable oddity as a
 /// warning. Never panics; every error names the file, the line (and column
 /// where it helps), what was expected and what was found.
-pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
     let src = Source::new(path, bytes).map_err(|mut e| {
         // A file with no data at all still gets a line to point at.
         if e.location.line == 0 {
@@ -184,7 +184,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         }
     }
 
-    fn read(mut self, opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+    fn read(mut self, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
         let head = self.read_header()?;
         let (lamp_sets, layout, last_set_line) = self.read_lamp_sets(&head)?;
         // From line 27 on: a stream of numbers; positions counted from the last lamp-set line.
@@ -222,7 +222,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             gamma_angles: header_g,
             cd_per_cdklm: units.scale,
         };
-        Ok(self.finish(head, header, lamp_sets, &units, dist))
+        self.finish(head, header, lamp_sets, &units, dist)
     }
 
     /// Lines 1-25: texts, counts and steps, dimensions, DFF, LORL, CFLI, tilt, lamp-set count.
@@ -379,7 +379,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         lamp_sets: Vec<LampSet>,
         units: &Units,
         dist: Distribution,
-    ) -> Luminaire {
+    ) -> Result<crate::formats::Document, ParseError> {
         let Units {
             absolute,
             flux_ok,
@@ -410,7 +410,8 @@ impl<'s, 'a> Reader<'s, 'a> {
             head.test_report,
             head.date,
         );
-        Luminaire {
+        let luminous_heights_m = Some(header.luminous_heights_mm.map(|h| h / 1000.0));
+        let parts = LuminaireParts {
             path: Some(self.src.path.to_path_buf()),
             format: Format::Ldt,
             version: "EULUMDAT".into(),
@@ -435,15 +436,14 @@ impl<'s, 'a> Reader<'s, 'a> {
                 // One height for the opening: the mean of the four plane heights (all kept in the header).
                 height_m: (mm[5] + mm[6] + mm[7] + mm[8]) / 4000.0,
             },
+            luminous_heights_m,
             declared,
             tilt: Tilt::None,
             distribution: dist,
             source_grid: None,
             warnings: self.warnings,
-            ies: None,
-            ldt: Some(header),
-            gldf: None,
-        }
+        };
+        crate::formats::document(self.src.path, parts, crate::formats::Header::Ldt(header))
     }
 }
 

@@ -3,7 +3,8 @@
 use std::fmt::Write as _;
 
 use super::{stored_plane_indices, LdtHeader, SIGNIFICANT_DIGITS};
-use crate::model::{periodic_widths, Distribution, LampSet, Luminaire, Symmetry, ANGLE_EPS};
+use crate::formats::Document;
+use crate::model::{periodic_widths, Distribution, LampSet, Symmetry, ANGLE_EPS};
 
 /// Write `lum` as EULUMDAT text: lines 1-30 in order, CRLF line ends, one
 /// value per line, lamp sets in the field-group layout.
@@ -42,16 +43,17 @@ use crate::model::{periodic_widths, Distribution, LampSet, Luminaire, Symmetry, 
 /// at most 9 decimals, so file angles come back exactly. The flux written is
 /// the one the intensities are scaled by, so reading the file back gives the
 /// model's candela values within that relative error.
-pub fn write(lum: &Luminaire) -> String {
-    let dist = &lum.distribution;
+pub fn write(doc: &Document) -> String {
+    let lum = &doc.luminaire;
+    let dist = lum.distribution();
     let sym = dist.symmetry();
-    let header = lum.ldt.as_ref();
+    let header = doc.ldt_header();
     let grid = header
         .and_then(|h| header_grid(h, dist))
         .unwrap_or_else(|| derived_grid(dist));
 
     // Lamp sets and the flux the intensities are relative to.
-    let mut sets: Vec<LampSet> = lum.lamp_sets.clone();
+    let mut sets: Vec<LampSet> = lum.lamp_sets().to_vec();
     if sets.is_empty() {
         sets.push(LampSet {
             count: 1.0,
@@ -59,7 +61,7 @@ pub fn write(lum: &Luminaire) -> String {
         });
     }
     let (full_flux, down_flux) = zonal_flux(dist);
-    let mut lorl = lum.declared.lor.map(|l| l * 100.0);
+    let mut lorl = lum.declared().lor.map(|l| l * 100.0);
     // A scale is usable when every intensity divided by it prints as a finite number.
     let usable =
         |scale: f64| scale.is_normal() && scale > 0.0 && dist.intensities().iter().all(|v| (v / scale).is_finite());
@@ -67,11 +69,11 @@ pub fn write(lum: &Luminaire) -> String {
         Some(h) if usable(h.cd_per_cdklm) => h.cd_per_cdklm,
         _ => {
             let lamp_flux = round_sig(sets[0].flux_lm);
-            if !lum.declared.absolute && sets[0].count >= 0.0 && usable(lamp_flux / 1000.0) {
+            if !lum.declared().absolute && sets[0].count >= 0.0 && usable(lamp_flux / 1000.0) {
                 sets[0].flux_lm = lamp_flux;
                 lamp_flux / 1000.0
             } else {
-                let declared = lum.declared.luminaire_flux_lm.filter(|f| *f > 0.0 && f.is_finite());
+                let declared = lum.declared().luminaire_flux_lm.filter(|f| *f > 0.0 && f.is_finite());
                 let flux = declared.unwrap_or(if full_flux > 0.0 && full_flux.is_finite() {
                     full_flux
                 } else {
@@ -94,7 +96,7 @@ pub fn write(lum: &Luminaire) -> String {
             100.0
         }
     });
-    let dff = lum.declared.dff.map(|d| d * 100.0).unwrap_or(if full_flux > 0.0 {
+    let dff = lum.declared().dff.map(|d| d * 100.0).unwrap_or(if full_flux > 0.0 {
         100.0 * down_flux / full_flux
     } else {
         100.0
@@ -119,7 +121,7 @@ pub fn write(lum: &Luminaire) -> String {
     let int = |out: &mut String, v: i64| {
         let _ = write!(out, "{v}\r\n");
     };
-    let m = &lum.metadata;
+    let m = lum.metadata();
     text(&mut out, &m.manufacturer);
     int(
         &mut out,
@@ -136,7 +138,7 @@ pub fn write(lum: &Luminaire) -> String {
     let file_name = match header {
         Some(h) => h.file_name.clone(),
         None => lum
-            .path
+            .path()
             .as_ref()
             .and_then(|p| p.file_stem())
             .map(|s| format!("{}.ldt", s.to_string_lossy()))
@@ -144,12 +146,16 @@ pub fn write(lum: &Luminaire) -> String {
     };
     text(&mut out, &file_name);
     text(&mut out, &m.date);
-    for v in [lum.dimensions.length_m, lum.dimensions.width_m, lum.dimensions.height_m] {
+    for v in [
+        lum.dimensions().length_m,
+        lum.dimensions().width_m,
+        lum.dimensions().height_m,
+    ] {
         num(&mut out, v * 1000.0);
     }
-    num(&mut out, lum.luminous_opening.length_m * 1000.0);
-    num(&mut out, lum.luminous_opening.width_m * 1000.0);
-    let heights = header.map_or([lum.luminous_opening.height_m * 1000.0; 4], |h| h.luminous_heights_mm);
+    num(&mut out, lum.luminous_opening().length_m * 1000.0);
+    num(&mut out, lum.luminous_opening().width_m * 1000.0);
+    let heights = header.map_or([lum.luminous_opening().height_m * 1000.0; 4], |h| h.luminous_heights_mm);
     for v in heights {
         num(&mut out, v);
     }

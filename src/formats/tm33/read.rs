@@ -10,7 +10,7 @@ use crate::formats::scan::parse_f64;
 use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
 use crate::formats::{angles, declared_lamp_flux, ReadOptions};
 use crate::model::{
-    Dimensions, Distribution, Format, LampSet, Luminaire, Metadata, PhotometricType, Symmetry, Tilt, ANGLE_EPS,
+    Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, Symmetry, Tilt, ANGLE_EPS,
 };
 
 /// Names of the element holding the intensity data, by edition and spelling.
@@ -25,7 +25,7 @@ const INTENSITY_BLOCKS: [&str; 3] = ["LuminousData", "LuminousIntensity", "Inten
 /// symmetry code that does not match the `horz` angles; each at the line of
 /// the offending element, naming it. Type A/B data and non-luminous metrics
 /// are [`ErrorKind::Unsupported`].
-pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<Luminaire, ParseError> {
+pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
     let text = xml::decode(bytes, path)?;
     let doc = xml::parse(text, path, "a TM-33 document")?;
     let root = doc.root_element();
@@ -74,7 +74,7 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<Luminaire,
     };
     let header = child(root, &["Header"]);
     let text_of = |names: &[&str]| -> String { header.and_then(|h| child_text(h, names)).unwrap_or("").to_string() };
-    Ok(Luminaire {
+    let parts = LuminaireParts {
         path: Some(path.to_path_buf()),
         format: Format::Tm33,
         version: edition.version().into(),
@@ -90,15 +90,14 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<Luminaire,
         lamp_sets: vec![lamp_set],
         dimensions: dims,
         luminous_opening: Dimensions::default(),
+        luminous_heights_m: None,
         declared: declared_lamp_flux(lamp_flux, absolute, watts),
         tilt: Tilt::None,
         distribution,
         source_grid: None,
         warnings,
-        ies: None,
-        ldt: None,
-        gldf: None,
-    })
+    };
+    crate::formats::document(path, parts, crate::formats::Header::None)
 }
 
 /// The one emitter with intensity data.

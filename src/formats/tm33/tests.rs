@@ -9,7 +9,7 @@ use crate::error::ErrorKind;
 use crate::formats::ReadOptions;
 use crate::model::{Format, Symmetry};
 
-fn parse(text: &str) -> Result<crate::model::Luminaire, crate::error::ParseError> {
+fn parse(text: &str) -> Result<crate::formats::Document, crate::error::ParseError> {
     read(text.as_bytes(), Path::new("t.xml"), &ReadOptions::default())
 }
 
@@ -48,9 +48,9 @@ fn tm33_23_values_multiplier_symmetry_and_flags() {
         &pts,
     ))
     .unwrap();
-    assert_eq!(lum.format, Format::Tm33);
-    assert_eq!(lum.version, "TM-33-23");
-    let d = &lum.distribution;
+    assert_eq!(lum.format(), Format::Tm33);
+    assert_eq!(lum.version(), "TM-33-23");
+    let d = lum.distribution();
     assert_eq!(d.symmetry(), Symmetry::Quadrant);
     assert_eq!(d.c_angles(), &[0.0, 45.0, 90.0]);
     assert_eq!(d.gamma_angles(), &[0.0, 45.0, 90.0]);
@@ -59,14 +59,14 @@ fn tm33_23_values_multiplier_symmetry_and_flags() {
             assert_eq!(d.value(ic, ig), (100.0 + h - v) * 2.5);
         }
     }
-    assert!(!lum.declared.absolute);
+    assert!(!lum.declared().absolute);
     // Relative photometry: lamp flux = Quantity x RatedLumens.
-    assert_eq!(lum.declared.lamp_flux_lm, Some(3000.0));
-    assert_eq!(lum.declared.input_watts, Some(40.0));
-    assert_eq!(lum.metadata.manufacturer, "ACME & Sons");
-    assert_eq!(lum.metadata.date, "2024-01-15");
-    assert_eq!(lum.dimensions.length_m, 0.6);
-    assert_eq!(lum.lamp_sets[0].color, "4000K");
+    assert_eq!(lum.declared().lamp_flux_lm, Some(3000.0));
+    assert_eq!(lum.declared().input_watts, Some(40.0));
+    assert_eq!(lum.metadata().manufacturer, "ACME & Sons");
+    assert_eq!(lum.metadata().date, "2024-01-15");
+    assert_eq!(lum.dimensions().length_m, 0.6);
+    assert_eq!(lum.lamp_sets()[0].color, "4000K");
 }
 
 #[test]
@@ -86,13 +86,13 @@ fn absolute_flag_and_every_symmetry_code() {
             &grid(hs, &vs, |h, v| 10.0 + h + v),
         );
         let lum = parse(&text).unwrap_or_else(|e| panic!("{code}: {e}"));
-        assert_eq!(lum.distribution.symmetry(), want, "{code}");
-        assert!(lum.declared.absolute);
-        assert_eq!(lum.declared.lamp_flux_lm, None, "absolute: no lamp flux");
+        assert_eq!(lum.distribution().symmetry(), want, "{code}");
+        assert!(lum.declared().absolute);
+        assert_eq!(lum.declared().lamp_flux_lm, None, "absolute: no lamp flux");
         // Written back, the code and the values survive.
         let back = parse(&write(&lum)).unwrap();
-        assert_eq!(back.distribution, lum.distribution, "{code}");
-        assert!(back.declared.absolute);
+        assert_eq!(back.distribution(), lum.distribution(), "{code}");
+        assert!(back.declared().absolute);
     }
 }
 
@@ -105,12 +105,12 @@ fn tm33_18_with_namespace_and_no_symmetry_code() {
         <IntensityData horz=\"0\" vert=\"180\">80</IntensityData>\n</IntensityDistribution>\n</Emitter>\n\
         </LuminaireOpticalData>";
     let lum = parse(text).unwrap();
-    assert_eq!(lum.version, "TM-33-18");
-    assert_eq!(lum.distribution.symmetry(), Symmetry::Rotational);
-    assert_eq!(lum.distribution.intensities(), &[80.0, 65.0, 80.0]);
+    assert_eq!(lum.version(), "TM-33-18");
+    assert_eq!(lum.distribution().symmetry(), Symmetry::Rotational);
+    assert_eq!(lum.distribution().intensities(), &[80.0, 65.0, 80.0]);
     // No AbsolutePhotometry but a rated flux: relative.
-    assert_eq!(lum.declared.lamp_flux_lm, Some(1600.0));
-    assert_eq!(lum.metadata.date, "2024-01-20");
+    assert_eq!(lum.declared().lamp_flux_lm, Some(1600.0));
+    assert_eq!(lum.metadata().date, "2024-01-20");
     assert!(looks_like(text.as_bytes()));
     assert_eq!(crate::formats::sniff(text.as_bytes()), Format::Tm33);
 }
@@ -125,11 +125,11 @@ fn a_360_plane_is_dropped_and_compared_with_c0() {
         }
     });
     let lum = parse(&doc23("<SymmType>Symm _ None</SymmType>\n", &pts)).unwrap();
-    assert_eq!(lum.distribution.c_angles(), &[0.0, 180.0]);
+    assert_eq!(lum.distribution().c_angles(), &[0.0, 180.0]);
     assert!(
-        lum.warnings.iter().any(|w| w.code == "seam-mismatch"),
+        lum.warnings().iter().any(|w| w.code == "seam-mismatch"),
         "{:?}",
-        lum.warnings
+        lum.warnings()
     );
 }
 
@@ -190,13 +190,13 @@ fn malformed_documents_name_line_and_element() {
 /// root, the version and one IntensityData per stored grid point.
 #[test]
 fn written_document_structure() {
-    let lum = crate::formats::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
+    let lum = crate::formats::load_document(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
     let text = write(&lum);
     let doc = roxmltree::Document::parse(&text).unwrap();
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "IESTM33-22");
     let n = root.descendants().filter(|n| n.has_tag_name("IntensityData")).count();
-    assert_eq!(n, lum.distribution.intensities().len());
+    assert_eq!(n, lum.distribution().intensities().len());
     assert_eq!(
         root.descendants()
             .find(|n| n.has_tag_name("Version"))
@@ -204,9 +204,9 @@ fn written_document_structure() {
         Some("1.1")
     );
     let back = parse(&text).unwrap();
-    assert_eq!(back.distribution, lum.distribution);
-    assert_eq!(back.metadata.manufacturer, lum.metadata.manufacturer);
-    assert_eq!(back.declared.absolute, lum.declared.absolute);
+    assert_eq!(back.distribution(), lum.distribution());
+    assert_eq!(back.metadata().manufacturer, lum.metadata().manufacturer);
+    assert_eq!(back.declared().absolute, lum.declared().absolute);
 }
 
 /// Every truncation of a written document is refused (never a panic) with

@@ -3,7 +3,8 @@
 use std::fmt::Write;
 
 use crate::formats::xml::escape;
-use crate::model::{Luminaire, Symmetry};
+use crate::formats::Document;
+use crate::model::Symmetry;
 
 /// The TM-33-23 code of a symmetry.
 fn symmetry_code(s: Symmetry) -> &'static str {
@@ -28,9 +29,10 @@ fn element(out: &mut String, indent: usize, name: &str, text: &str) {
 /// one emitter with its rated flux (relative photometry only), wattage and
 /// the stored C-planes as `IntensityData` in absolute candela with
 /// `Multiplier` 1 (shortest round-trip decimals: lossless).
-pub fn write(lum: &Luminaire) -> String {
-    let m = &lum.metadata;
-    let d = &lum.distribution;
+pub fn write(doc: &Document) -> String {
+    let lum = &doc.luminaire;
+    let m = lum.metadata();
+    let d = lum.distribution();
     let mut s = String::with_capacity(64 * d.intensities().len() + 1024);
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<IESTM33-22>\n  <Version>1.1</Version>\n  <Header>\n");
     element(&mut s, 4, "Manufacturer", &m.manufacturer);
@@ -39,7 +41,7 @@ pub fn write(lum: &Luminaire) -> String {
     element(&mut s, 4, "ReportNumber", &m.test_report);
     element(&mut s, 4, "ReportDate", &m.date);
     s.push_str("  </Header>\n  <Luminaire>\n    <Dimensions>\n");
-    let dims = lum.dimensions;
+    let dims = lum.dimensions();
     for (name, metres) in [
         ("Length", dims.length_m),
         ("Width", dims.width_m),
@@ -52,13 +54,13 @@ pub fn write(lum: &Luminaire) -> String {
         }
     }
     s.push_str("    </Dimensions>\n    <NumEmitters>1</NumEmitters>\n  </Luminaire>\n  <Emitter>\n");
-    let quantity = lum.lamp_sets.first().map_or(1.0, |l| l.count.abs().max(1.0)).round();
+    let quantity = lum.lamp_sets().first().map_or(1.0, |l| l.count.abs().max(1.0)).round();
     let _ = writeln!(s, "    <Quantity>{quantity}</Quantity>");
     element(&mut s, 4, "Description", &m.lamp);
-    if let (false, Some(flux)) = (lum.declared.absolute, lum.declared.lamp_flux_lm) {
+    if let (false, Some(flux)) = (lum.declared().absolute, lum.declared().lamp_flux_lm) {
         let _ = writeln!(s, "    <RatedLumens>{}</RatedLumens>", flux / quantity);
     }
-    if let Some(w) = lum.declared.input_watts {
+    if let Some(w) = lum.declared().input_watts {
         let _ = writeln!(s, "    <InputWattage>{w}</InputWattage>");
     }
     s.push_str("    <LuminousData>\n      <PhotometryType>CIE _ C</PhotometryType>\n      <Metric>Luminous</Metric>\n");
@@ -67,7 +69,7 @@ pub fn write(lum: &Luminaire) -> String {
     let _ = writeln!(
         s,
         "      <AbsolutePhotometry>{}</AbsolutePhotometry>",
-        lum.declared.absolute
+        lum.declared().absolute
     );
     for (ic, &c) in d.c_angles().iter().enumerate() {
         for (ig, &g) in d.gamma_angles().iter().enumerate() {
