@@ -167,7 +167,7 @@ mod tests {
             }),
             ..GldfDeclared::default()
         });
-        let r = InfoReport::of(&lum);
+        let r = InfoReport::of_document(&lum);
         let rows = r.gldf_comparison.as_ref().unwrap();
         let lor = r.lor.unwrap();
         assert!((lor - 0.2 * std::f64::consts::PI).abs() < 1e-3, "{lor}");
