@@ -536,7 +536,13 @@ fn parse_speed() {
         }
     }
     let t = Instant::now();
-    let n = photosolid::formats::text::Tokens::new(s.as_bytes(), 0, 1, true).count_remaining();
+    let n = photosolid::formats::scan::Scanner::new(
+        s.as_bytes(),
+        0,
+        1,
+        photosolid::formats::scan::Separators::BlanksAndCommas,
+    )
+    .count_remaining();
     eprintln!("count_remaining: {n} tokens in {:.3} s", t.elapsed().as_secs_f64());
     let t = Instant::now();
     let l = read_str(&s).unwrap();

@@ -12,6 +12,7 @@ pub mod gldf;
 pub mod ies;
 pub mod ldt;
 pub mod roundtrip;
+pub mod scan;
 pub mod text;
 pub mod tm33;
 pub(crate) mod xml;
@@ -366,4 +367,22 @@ pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<Str
     }
     check_intensities(cd)?;
     Ok(note)
+}
+
+/// What a file that declares a lamp flux (none for absolute photometry) and
+/// input watts, but no luminaire flux, LOR or DFF, declares (IES, TM-33).
+/// `lamp_flux_lm` in lumens, `input_watts` in watts.
+pub(crate) fn declared_lamp_flux(
+    lamp_flux_lm: Option<f64>,
+    absolute: bool,
+    input_watts: Option<f64>,
+) -> crate::model::Declared {
+    crate::model::Declared {
+        lamp_flux_lm,
+        luminaire_flux_lm: None,
+        lor: None,
+        dff: None,
+        absolute,
+        input_watts,
+    }
 }

@@ -115,9 +115,9 @@ pub(crate) fn child_number(path: &Path, node: Node<'_, '_>, names: &[&str]) -> R
     if text.is_empty() {
         return Ok(None);
     }
-    match text.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(Some(v)),
-        _ => Err(error_at(
+    match crate::formats::scan::parse_f64(text.as_bytes()) {
+        Some(v) => Ok(Some(v)),
+        None => Err(error_at(
             path,
             c,
             ErrorKind::Invalid,

@@ -20,8 +20,8 @@
 //! # Writing
 //! See [`write()`]: LM-63-2002 or LM-63-2019 text with CRLF line ends.
 
+mod grid;
 mod read;
-mod stream;
 mod tilt;
 pub mod type_ab;
 mod write;

@@ -3,14 +3,14 @@
 use std::path::Path;
 
 use crate::error::{Location, ParseError, Warning, WarningCode};
+use crate::formats::scan::{Scanner, Separators};
 use crate::formats::text::Source;
-use crate::formats::{angles, ReadOptions};
+use crate::formats::{declared_lamp_flux, ReadOptions};
 use crate::model::{
-    Declared, Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, SourceGrid,
-    Symmetry, Tilt, ANGLE_EPS,
+    Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, SourceGrid, Tilt,
 };
 
-use super::stream::Stream;
+use super::grid::{check_or_repair, type_c, warn_negatives, warn_pole_spread};
 use super::tilt::{read_tilt_file, read_tilt_table};
 use super::{type_ab, IesHeader, IesLabel};
 
@@ -104,190 +104,24 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::form
         }
         e
     })?;
-    let mut warnings: Vec<Warning> = Vec::new();
-    let mut header = IesHeader::default();
-
-    // ---- Text part: version line, keywords, labels, up to TILT=.
-    let mut lines = src.lines();
-    let mut version = Version::V1986;
-    let mut first = true;
-    let mut tilt_line = None;
-    for line in lines.by_ref() {
-        if let Some(v) = tilt_value(line.bytes) {
-            tilt_line = Some((line.number, v));
-            break;
-        }
-        let t = trim(line.bytes);
-        if first && !t.is_empty() {
-            first = false;
-            if let Some((v, known)) = parse_version(t) {
-                version = v;
-                header.version_line = Some(src.text(t));
-                if !known {
-                    warnings.push(Warning::at(
-                        line.number,
-                        WarningCode::UnknownVersion,
-                        format!("unknown version line `{}`; read as LM-63-2002", src.text(t)),
-                    ));
-                }
-                continue;
-            }
-        }
-        if t.is_empty() {
-            continue;
-        }
-        if t[0] == b'[' {
-            if let Some(close) = t.iter().position(|&c| c == b']') {
-                header.labels.push(IesLabel::Keyword {
-                    key: src.text(&t[1..close]),
-                    value: src.text(&t[close + 1..]),
-                });
-                continue;
-            }
-        }
-        header.labels.push(IesLabel::Text(src.text(t)));
-    }
-    let (tilt_line_no, tilt_raw) = match tilt_line {
-        Some(t) => t,
-        None => {
-            return Err(src.invalid(
-                Location::line(lines.line_number().max(1)),
-                "a `TILT=` line (NONE, INCLUDE or a file name)",
-                format!("end of file after {} lines of text", lines.line_number()),
-            ))
-        }
+    let mut r = Reader {
+        src: &src,
+        opts,
+        header: IesHeader::default(),
+        warnings: Vec::new(),
     };
-    header.tilt = src.text(tilt_raw);
-
-    let mut tokens = Stream::new(src.bytes, lines.offset(), tilt_line_no + 1);
-
-    // ---- TILT.
-    let tilt = if tilt_raw.eq_ignore_ascii_case(b"NONE") {
-        Tilt::None
-    } else if tilt_raw.eq_ignore_ascii_case(b"INCLUDE") {
-        let remaining = tokens.count_remaining();
-        Tilt::Include {
-            table: read_tilt_table(&src, &mut tokens, remaining, opts, &mut warnings)?,
-        }
-    } else {
-        let (name, table) = read_tilt_file(&src, tilt_line_no, &header.tilt, opts, &mut warnings)?;
-        Tilt::File { name, table }
-    };
-
-    // ---- First header record.
-    let first_record = tokens.clone();
-    header.lamps = tokens.number(&src, "number of lamps")?;
-    header.lumens_per_lamp = tokens.number(&src, "lumens per lamp (-1 for absolute photometry)")?;
-    let mult_idx = tokens.index();
-    header.multiplier = tokens.number(&src, "candela multiplier")?;
-    if header.multiplier <= 0.0 {
-        let (loc, found) = tokens.locate(mult_idx);
-        return Err(src.invalid(loc, "candela multiplier (> 0)", found));
-    }
-    let nv_idx = tokens.index();
-    let nv = tokens.integer(&src, "number of vertical angles", 1, i64::MAX)? as u64;
-    let nh = tokens.integer(&src, "number of horizontal angles", 1, i64::MAX)? as u64;
-    header.photometric_type = tokens.integer(&src, "photometric type (1 = C, 2 = B, 3 = A)", 1, 3)? as u8;
-    header.units = tokens.integer(&src, "units type (1 = feet, 2 = metres)", 1, 2)? as u8;
-    header.width = tokens.number(&src, "luminous opening width")?;
-    header.length = tokens.number(&src, "luminous opening length")?;
-    header.height = tokens.number(&src, "luminous opening height")?;
-
-    // Size check before any allocation: the counts must fit in what the file
-    // holds. A byte bound first (no scan); the exact count only when it fails.
-    let grid = (nv as u128) * (nh as u128) + nv as u128 + nh as u128;
-    let exact_after_first = || first_record.count_remaining().saturating_sub(10) as u128;
-    let size_error = |tokens: &Stream, after_first: u128| {
-        let (loc, _) = tokens.locate(nv_idx);
-        src.invalid(
-            loc,
-            format!(
-                "angle counts that fit the data: {nv} vertical x {nh} horizontal angles need {grid} numbers \
-                 (+3 for the ballast record)"
-            ),
-            format!("only {after_first} numbers after the first header record"),
-        )
-    };
-    if grid > tokens.max_remaining() as u128 {
-        return Err(size_error(&tokens, exact_after_first()));
-    }
-    let (nv, nh) = (nv as usize, nh as usize);
-    let grid = grid as usize;
-    header.n_vertical = nv;
-    header.n_horizontal = nh;
-
-    // ---- Second header record, which some generators omit. Read as if it
-    // is there; when that runs out of data and the token count says the
-    // record is missing, read again without it (only that rare case counts).
-    let ballast_line = tokens.line_of(tokens.index());
-    let read_body = |t: &mut Stream<'_>, ballast: bool| -> Result<Body, ParseError> {
-        let (mut bf, mut fu, mut w) = (1.0, 1.0, 0.0);
-        if ballast {
-            bf = t.number(&src, "ballast factor")?;
-            fu = t.number(
-                &src,
-                "ballast-lamp photometric factor / future use / file-generation type",
-            )?;
-            w = t.number(&src, "input watts")?;
-        }
-        let v_start = t.index();
-        let mut vertical = Vec::with_capacity(nv);
-        t.numbers_into(&src, nv, &mut vertical, &|i| {
-            format!("vertical angle #{} of {nv}", i + 1)
-        })?;
-        let h_start = t.index();
-        let mut horizontal = Vec::with_capacity(nh);
-        t.numbers_into(&src, nh, &mut horizontal, &|i| {
-            format!("horizontal angle #{} of {nh}", i + 1)
-        })?;
-        let mut cd = Vec::with_capacity(nv * nh);
-        t.numbers_into(&src, nv * nh, &mut cd, &|i| {
-            format!(
-                "candela value #{} of {} (horizontal angle #{}, vertical angle #{})",
-                i + 1,
-                nv * nh,
-                i / nv + 1,
-                i % nv + 1
-            )
-        })?;
-        Ok(Body {
-            ballast: (bf, fu, w),
-            v_start,
-            h_start,
-            vertical,
-            horizontal,
-            cd,
-        })
-    };
-    let mut attempt = tokens.clone();
-    let body = match read_body(&mut attempt, true) {
-        Ok(b) => {
-            tokens = attempt;
-            header.ballast_record = true;
-            b
-        }
-        Err(e) => {
-            let after_first = exact_after_first();
-            if after_first == grid as u128 {
-                let mut again = tokens.clone();
-                let b = read_body(&mut again, false)?;
-                tokens = again;
-                header.ballast_record = false;
-                warnings.push(Warning::at(
-                    ballast_line,
-                    WarningCode::MissingBallastLine,
-                    "the ballast factor / future use / input watts record is missing (non-conformant LM-63); \
-                     assumed 1, 1, 0",
-                ));
-                b
-            } else if (grid as u128) > after_first {
-                return Err(size_error(&tokens, after_first));
-            } else {
-                return Err(e);
-            }
-        }
-    };
-    (header.ballast_factor, header.future_use, header.input_watts) = body.ballast;
+    let text = r.read_text()?;
+    let mut tokens = Scanner::new(
+        src.bytes,
+        text.numbers_at,
+        text.tilt_line + 1,
+        Separators::BlanksAndCommas,
+    );
+    let tilt = r.read_tilt(&text, &mut tokens)?;
+    let counts = r.read_first_record(&mut tokens)?;
+    let ballast_line = tokens.next_line();
+    let mut body = r.read_body_or_without_ballast(&mut tokens, &counts, ballast_line)?;
+    r.scale_candela(text.version, ballast_line, &tokens, &mut body)?;
     let Body {
         v_start,
         h_start,
@@ -296,193 +130,380 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::form
         mut cd,
         ..
     } = body;
-    let mut bf = header.ballast_factor;
-    if bf <= 0.0 {
-        warnings.push(Warning::at(
-            ballast_line,
-            WarningCode::InvalidBallastFactor,
-            format!("ballast factor {bf} is not positive; 1.0 used"),
-        ));
-        bf = 1.0;
-    }
-    let mut blpf = if version.applies_blpf() { header.future_use } else { 1.0 };
-    if blpf <= 0.0 {
-        warnings.push(Warning::at(
-            ballast_line,
-            WarningCode::InvalidBlpf,
-            format!("ballast-lamp photometric factor {blpf} is not positive; 1.0 used"),
-        ));
-        blpf = 1.0;
-    }
-    let scale = header.multiplier * bf * blpf;
-    if !(scale.is_normal() && scale > 0.0) {
-        return Err(src.invalid(
-            Location::line(ballast_line),
-            "candela multiplier x ballast factor x ballast-lamp factor a positive normal number",
-            format!("{} x {bf} x {blpf} = {scale}", header.multiplier),
-        ));
-    }
-    let extra = tokens.count_remaining();
-    if extra > 0 {
-        warnings.push(Warning::at(
-            tokens.line_of(tokens.index()),
-            WarningCode::ExtraValues,
-            format!("{extra} extra token(s) after the candela values ignored"),
-        ));
-    }
-    if scale != 1.0 {
-        for v in &mut cd {
-            *v *= scale;
-        }
-    }
-    match crate::formats::into_model_range(&mut cd) {
-        Ok(None) => {}
-        Ok(Some(note)) => warnings.push(Warning::at(ballast_line, WarningCode::RangeSnapped, note)),
-        Err((i, why)) => {
-            let (loc, _) = tokens.locate(h_start + nh + i);
-            return Err(src.invalid(
-                loc,
-                format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
-                why,
-            ));
-        }
-    }
-
     // Strictly ascending angle lists (or a warned repair).
-    let v_at = (&tokens, v_start);
-    let h_at = (&tokens, h_start);
+    let nh = horizontal.len();
+    let (src, opts, warnings) = (r.src, r.opts, &mut r.warnings);
     check_or_repair(
-        &src,
-        v_at,
+        src,
+        &v_start,
         "vertical",
         &mut vertical,
         nh,
         &mut cd,
         false,
         opts,
-        &mut warnings,
+        warnings,
     )?;
+    let nv = vertical.len();
     check_or_repair(
-        &src,
-        h_at,
+        src,
+        &h_start,
         "horizontal",
         &mut horizontal,
-        vertical.len(),
+        nv,
         &mut cd,
         true,
         opts,
-        &mut warnings,
+        warnings,
     )?;
+    warn_negatives(&cd, warnings);
+    let (kind, distribution, source_grid) = r.distribution(&v_start, &h_start, vertical, horizontal, cd)?;
+    warn_pole_spread(&distribution, &mut r.warnings);
+    r.finish(text.version, kind, tilt, distribution, source_grid)
+}
 
-    let negatives = cd.iter().filter(|&&v| v < 0.0).count();
-    if negatives > 0 {
-        let min = cd.iter().cloned().fold(f64::INFINITY, f64::min);
-        warnings.push(Warning::new(
-            WarningCode::NegativeIntensity,
-            format!(
-                "{negatives} negative candela value(s) kept (lowest {} cd)",
-                crate::report::significant(min, 6)
-            ),
-        ));
+/// The reader's state: the source, the options, the header as read so far and the warnings.
+struct Reader<'s, 'a> {
+    src: &'s Source<'a>,
+    opts: &'s ReadOptions,
+    header: IesHeader,
+    warnings: Vec<Warning>,
+}
+
+/// The text part: version, `TILT=` line, and where the numbers start.
+struct TextPart<'a> {
+    version: Version,
+    /// Line number of the `TILT=` line.
+    tilt_line: usize,
+    /// The value after `TILT=` (trimmed).
+    tilt_raw: &'a [u8],
+    /// Byte offset of the line after `TILT=`.
+    numbers_at: usize,
+}
+
+/// The first header record's angle counts, with marks to point errors at.
+struct Counts<'a> {
+    nv: usize,
+    nh: usize,
+    /// Numbers the grid needs: nv × nh candela values and both angle lists.
+    grid: usize,
+    /// The stream at the first header record (for the exact token count).
+    first_record: Scanner<'a>,
+    /// The stream at the number of vertical angles.
+    counts_at: Scanner<'a>,
+}
+
+impl Counts<'_> {
+    /// Numbers after the first header record (a full count: only on the rare paths).
+    fn after_first(&self) -> u128 {
+        self.first_record.count_remaining().saturating_sub(10) as u128
+    }
+}
+
+/// What follows the first header record: the ballast record (or its
+/// defaults), the angle lists with marks at their first values, and the raw
+/// candela values.
+struct Body<'a> {
+    ballast: (f64, f64, f64),
+    v_start: Scanner<'a>,
+    h_start: Scanner<'a>,
+    vertical: Vec<f64>,
+    horizontal: Vec<f64>,
+    cd: Vec<f64>,
+}
+
+impl<'s, 'a> Reader<'s, 'a> {
+    /// Version line, keywords and labels, up to the `TILT=` line.
+    fn read_text(&mut self) -> Result<TextPart<'a>, ParseError> {
+        let src = self.src;
+        let mut lines = src.lines();
+        let mut version = Version::V1986;
+        let mut first = true;
+        for line in lines.by_ref() {
+            if let Some(v) = tilt_value(line.bytes) {
+                self.header.tilt = src.text(v);
+                return Ok(TextPart {
+                    version,
+                    tilt_line: line.number,
+                    tilt_raw: v,
+                    numbers_at: lines.offset(),
+                });
+            }
+            let t = trim(line.bytes);
+            if t.is_empty() {
+                continue;
+            }
+            if first {
+                first = false;
+                if let Some((v, known)) = parse_version(t) {
+                    version = v;
+                    self.header.version_line = Some(src.text(t));
+                    if !known {
+                        self.warnings.push(Warning::at(
+                            line.number,
+                            WarningCode::UnknownVersion,
+                            format!("unknown version line `{}`; read as LM-63-2002", src.text(t)),
+                        ));
+                    }
+                    continue;
+                }
+            }
+            let label = match t.iter().position(|&c| c == b']') {
+                Some(close) if t[0] == b'[' => IesLabel::Keyword {
+                    key: src.text(&t[1..close]),
+                    value: src.text(&t[close + 1..]),
+                },
+                _ => IesLabel::Text(src.text(t)),
+            };
+            self.header.labels.push(label);
+        }
+        Err(src.invalid(
+            Location::line(lines.line_number().max(1)),
+            "a `TILT=` line (NONE, INCLUDE or a file name)",
+            format!("end of file after {} lines of text", lines.line_number()),
+        ))
     }
 
-    // ---- Grid to distribution.
-    let kind = match header.photometric_type {
-        1 => PhotometricType::C,
-        2 => PhotometricType::B,
-        _ => PhotometricType::A,
-    };
-    let (distribution, source_grid) = match kind {
-        PhotometricType::C => {
-            let d = type_c(&src, v_at, h_at, vertical, horizontal, cd, &mut warnings)?;
-            (d, None)
-        }
-        _ => {
-            let sg = SourceGrid {
-                kind,
-                vertical,
-                horizontal,
-                cd,
-            };
-            let d = type_ab::to_type_c(&sg, opts.handedness).map_err(|msg| {
-                src.unsupported(
-                    tokens.locate(h_start).0,
-                    format!("a Type {:?} grid that converts to Type C", kind),
-                    msg,
-                )
-            })?;
-            (d, Some(sg))
-        }
-    };
+    /// `TILT=NONE`, an included table, or a tilt file next to this one.
+    fn read_tilt(&mut self, text: &TextPart<'_>, tokens: &mut Scanner<'_>) -> Result<Tilt, ParseError> {
+        let (src, opts, warnings) = (self.src, self.opts, &mut self.warnings);
+        Ok(if text.tilt_raw.eq_ignore_ascii_case(b"NONE") {
+            Tilt::None
+        } else if text.tilt_raw.eq_ignore_ascii_case(b"INCLUDE") {
+            let remaining = tokens.count_remaining();
+            Tilt::Include {
+                table: read_tilt_table(src, tokens, remaining, opts, warnings)?,
+            }
+        } else {
+            let (name, table) = read_tilt_file(src, text.tilt_line, &self.header.tilt, opts, warnings)?;
+            Tilt::File { name, table }
+        })
+    }
 
-    let (nadir, zenith) = distribution.pole_spread();
-    let peak = distribution.max_cd().abs().max(f64::MIN_POSITIVE);
-    for (name, spread) in [("nadir (gamma 0)", nadir), ("zenith (gamma 180)", zenith)] {
-        if spread > 1e-9 * peak {
-            warnings.push(Warning::new(
-                WarningCode::PoleMismatch,
-                format!(
-                    "the {name} value differs between planes by {} cd; kept as measured",
-                    crate::report::significant(spread, 6)
-                ),
+    /// The first header record, and a size check of its counts against the
+    /// file before anything is allocated.
+    fn read_first_record(&mut self, tokens: &mut Scanner<'a>) -> Result<Counts<'a>, ParseError> {
+        let (src, header) = (self.src, &mut self.header);
+        let first_record = tokens.clone();
+        header.lamps = tokens.number(src, "number of lamps")?;
+        header.lumens_per_lamp = tokens.number(src, "lumens per lamp (-1 for absolute photometry)")?;
+        let multiplier_at = tokens.clone();
+        header.multiplier = tokens.number(src, "candela multiplier")?;
+        if header.multiplier <= 0.0 {
+            let (loc, found) = multiplier_at.nth(0);
+            return Err(src.invalid(loc, "candela multiplier (> 0)", found));
+        }
+        let counts_at = tokens.clone();
+        let nv = tokens.integer(src, "number of vertical angles", 1, i64::MAX)? as u64;
+        let nh = tokens.integer(src, "number of horizontal angles", 1, i64::MAX)? as u64;
+        header.photometric_type = tokens.integer(src, "photometric type (1 = C, 2 = B, 3 = A)", 1, 3)? as u8;
+        header.units = tokens.integer(src, "units type (1 = feet, 2 = metres)", 1, 2)? as u8;
+        header.width = tokens.number(src, "luminous opening width")?;
+        header.length = tokens.number(src, "luminous opening length")?;
+        header.height = tokens.number(src, "luminous opening height")?;
+        // The counts must fit in what the file holds: a byte bound first (no
+        // scan); the exact count only when it fails.
+        let grid = (nv as u128) * (nh as u128) + nv as u128 + nh as u128;
+        if grid > tokens.max_remaining() as u128 {
+            let (loc, _) = counts_at.nth(0);
+            let after_first = first_record.count_remaining().saturating_sub(10) as u128;
+            return Err(size_error(src, loc, nv, nh, grid, after_first));
+        }
+        (header.n_vertical, header.n_horizontal) = (nv as usize, nh as usize);
+        Ok(Counts {
+            nv: nv as usize,
+            nh: nh as usize,
+            grid: grid as usize,
+            first_record,
+            counts_at,
+        })
+    }
+
+    /// The second header record, which some generators omit, and the grid.
+    /// Read as if the record is there; when that runs out of data and the
+    /// token count says the record is missing, read again without it (only
+    /// that rare case counts).
+    fn read_body_or_without_ballast(
+        &mut self,
+        tokens: &mut Scanner<'a>,
+        counts: &Counts<'a>,
+        ballast_line: usize,
+    ) -> Result<Body<'a>, ParseError> {
+        let mut attempt = tokens.clone();
+        let body = match read_body(self.src, &mut attempt, counts.nv, counts.nh, true) {
+            Ok(b) => {
+                *tokens = attempt;
+                self.header.ballast_record = true;
+                b
+            }
+            Err(e) => {
+                let after_first = counts.after_first();
+                if after_first == counts.grid as u128 {
+                    let mut again = tokens.clone();
+                    let b = read_body(self.src, &mut again, counts.nv, counts.nh, false)?;
+                    *tokens = again;
+                    self.header.ballast_record = false;
+                    self.warnings.push(Warning::at(
+                        ballast_line,
+                        WarningCode::MissingBallastLine,
+                        "the ballast factor / future use / input watts record is missing (non-conformant LM-63); \
+                         assumed 1, 1, 0",
+                    ));
+                    b
+                } else if (counts.grid as u128) > after_first {
+                    let (loc, _) = counts.counts_at.nth(0);
+                    let (nv, nh) = (counts.nv as u64, counts.nh as u64);
+                    return Err(size_error(self.src, loc, nv, nh, counts.grid as u128, after_first));
+                } else {
+                    return Err(e);
+                }
+            }
+        };
+        (
+            self.header.ballast_factor,
+            self.header.future_use,
+            self.header.input_watts,
+        ) = body.ballast;
+        Ok(body)
+    }
+
+    /// Multiplier × ballast factor × ballast-lamp factor applied to the
+    /// candela values, which must then lie in the model's range; trailing
+    /// tokens warned about.
+    fn scale_candela(
+        &mut self,
+        version: Version,
+        ballast_line: usize,
+        tokens: &Scanner<'_>,
+        body: &mut Body<'_>,
+    ) -> Result<(), ParseError> {
+        let (src, header, warnings) = (self.src, &self.header, &mut self.warnings);
+        let bf = header.ballast_factor;
+        let bf = positive_or_one(
+            bf,
+            "ballast factor",
+            WarningCode::InvalidBallastFactor,
+            ballast_line,
+            warnings,
+        );
+        let blpf = if version.applies_blpf() { header.future_use } else { 1.0 };
+        let blpf = positive_or_one(
+            blpf,
+            "ballast-lamp photometric factor",
+            WarningCode::InvalidBlpf,
+            ballast_line,
+            warnings,
+        );
+        let scale = header.multiplier * bf * blpf;
+        if !(scale.is_normal() && scale > 0.0) {
+            return Err(src.invalid(
+                Location::line(ballast_line),
+                "candela multiplier x ballast factor x ballast-lamp factor a positive normal number",
+                format!("{} x {bf} x {blpf} = {scale}", header.multiplier),
             ));
         }
+        let extra = tokens.count_remaining();
+        if extra > 0 {
+            warnings.push(Warning::at(
+                tokens.next_line(),
+                WarningCode::ExtraValues,
+                format!("{extra} extra token(s) after the candela values ignored"),
+            ));
+        }
+        if scale != 1.0 {
+            for v in &mut body.cd {
+                *v *= scale;
+            }
+        }
+        match crate::formats::into_model_range(&mut body.cd) {
+            Ok(None) => Ok(()),
+            Ok(Some(note)) => {
+                warnings.push(Warning::at(ballast_line, WarningCode::RangeSnapped, note));
+                Ok(())
+            }
+            Err((i, why)) => {
+                let (loc, _) = body.h_start.nth(body.horizontal.len() + i);
+                Err(src.invalid(
+                    loc,
+                    format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
+                    why,
+                ))
+            }
+        }
     }
 
-    // ---- Metadata.
-    let kw = |k: &str| header.keyword(k).unwrap_or_default();
-    let mut metadata = Metadata {
-        manufacturer: kw("MANUFAC"),
-        catalogue: kw("LUMCAT"),
-        luminaire: kw("LUMINAIRE"),
-        lamp: kw("LAMP"),
-        test_report: kw("TEST"),
-        date: header
-            .keyword("ISSUEDATE")
-            .or_else(|| header.keyword("DATE"))
-            .unwrap_or_default(),
-    };
-    if metadata.luminaire.is_empty() {
-        // 1986 files carry their description as free-form label lines.
-        let texts: Vec<&str> = header
-            .labels
-            .iter()
-            .filter_map(|l| match l {
-                IesLabel::Text(t) if !t.is_empty() && t != "-" => Some(t.as_str()),
-                _ => None,
-            })
-            .collect();
-        metadata.luminaire = texts.join(" ");
+    /// The grid as a Type C distribution; a Type A/B grid converted, and kept as the source grid.
+    fn distribution(
+        &mut self,
+        v_start: &Scanner<'_>,
+        h_start: &Scanner<'_>,
+        vertical: Vec<f64>,
+        horizontal: Vec<f64>,
+        cd: Vec<f64>,
+    ) -> Result<(PhotometricType, Distribution, Option<SourceGrid>), ParseError> {
+        let kind = match self.header.photometric_type {
+            1 => PhotometricType::C,
+            2 => PhotometricType::B,
+            _ => PhotometricType::A,
+        };
+        if kind == PhotometricType::C {
+            let d = type_c(self.src, v_start, h_start, vertical, horizontal, cd, &mut self.warnings)?;
+            return Ok((kind, d, None));
+        }
+        let sg = SourceGrid {
+            kind,
+            vertical,
+            horizontal,
+            cd,
+        };
+        let d = type_ab::to_type_c(&sg, self.opts.handedness).map_err(|msg| {
+            self.src.unsupported(
+                h_start.nth(0).0,
+                format!("a Type {:?} grid that converts to Type C", kind),
+                msg,
+            )
+        })?;
+        Ok((kind, d, Some(sg)))
     }
-    let lpl = header.lumens_per_lamp;
-    let absolute = lpl < 0.0;
-    if absolute && (lpl + 1.0).abs() > 1e-9 {
-        warnings.push(Warning::new(
-            WarningCode::InvalidLumens,
-            format!("lumens per lamp {lpl} is negative but not -1; read as absolute photometry"),
-        ));
-    }
-    let lamp_flux = if absolute { None } else { Some(header.lamps * lpl) };
-    let to_m = if header.units == 1 { FEET_TO_M } else { 1.0 };
-    let opening = Dimensions {
-        length_m: header.length * to_m,
-        width_m: header.width * to_m,
-        height_m: header.height * to_m,
-    };
-    let lamp_set = LampSet {
-        count: header.lamps,
-        lamp_type: metadata.lamp.clone(),
-        flux_lm: lamp_flux.unwrap_or(0.0),
-        color: header
-            .keyword("COLORTEMP")
-            .or_else(|| header.keyword("CCT"))
-            .unwrap_or_default(),
-        cri: header.keyword("CRI").unwrap_or_default(),
-        watts: header.input_watts,
-    };
-    crate::formats::document(
-        path,
-        LuminaireParts {
+
+    /// The luminaire: metadata from the keywords, lamp and opening from the first record.
+    fn finish(
+        self,
+        version: Version,
+        kind: PhotometricType,
+        tilt: Tilt,
+        distribution: Distribution,
+        source_grid: Option<SourceGrid>,
+    ) -> Result<crate::formats::Document, ParseError> {
+        let (header, mut warnings, path) = (self.header, self.warnings, self.src.path);
+        let metadata = metadata(&header);
+        let lpl = header.lumens_per_lamp;
+        let absolute = lpl < 0.0;
+        if absolute && (lpl + 1.0).abs() > 1e-9 {
+            warnings.push(Warning::new(
+                WarningCode::InvalidLumens,
+                format!("lumens per lamp {lpl} is negative but not -1; read as absolute photometry"),
+            ));
+        }
+        let lamp_flux = if absolute { None } else { Some(header.lamps * lpl) };
+        let to_m = if header.units == 1 { FEET_TO_M } else { 1.0 };
+        let opening = Dimensions {
+            length_m: header.length * to_m,
+            width_m: header.width * to_m,
+            height_m: header.height * to_m,
+        };
+        let lamp_set = LampSet {
+            count: header.lamps,
+            lamp_type: metadata.lamp.clone(),
+            flux_lm: lamp_flux.unwrap_or(0.0),
+            color: header
+                .keyword("COLORTEMP")
+                .or_else(|| header.keyword("CCT"))
+                .unwrap_or_default(),
+            cri: header.keyword("CRI").unwrap_or_default(),
+            watts: header.input_watts,
+        };
+        let parts = LuminaireParts {
             path: Some(path.to_path_buf()),
             format: Format::Ies,
             version: version.name().to_string(),
@@ -496,191 +517,114 @@ pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::form
             },
             luminous_opening: opening,
             luminous_heights_m: None,
-            declared: Declared {
-                lamp_flux_lm: lamp_flux,
-                luminaire_flux_lm: None,
-                lor: None,
-                dff: None,
+            declared: declared_lamp_flux(
+                lamp_flux,
                 absolute,
-                input_watts: (header.input_watts > 0.0).then_some(header.input_watts),
-            },
+                (header.input_watts > 0.0).then_some(header.input_watts),
+            ),
             tilt,
             distribution,
             source_grid,
             warnings,
-        },
-        crate::formats::Header::Ies(header),
+        };
+        crate::formats::document(path, parts, crate::formats::Header::Ies(header))
+    }
+}
+
+/// The counts need more numbers than the file holds.
+fn size_error(src: &Source<'_>, at: Location, nv: u64, nh: u64, grid: u128, after_first: u128) -> ParseError {
+    src.invalid(
+        at,
+        format!(
+            "angle counts that fit the data: {nv} vertical x {nh} horizontal angles need {grid} numbers \
+             (+3 for the ballast record)"
+        ),
+        format!("only {after_first} numbers after the first header record"),
     )
 }
 
-/// A list's place in the stream: the stream and the index of its first token.
-type At<'s, 'a> = (&'s Stream<'a>, usize);
-
-/// Location and text of the `i`-th token of the list at `at`.
-fn token_location(at: At<'_, '_>, i: usize) -> (Location, String) {
-    at.0.locate(at.1 + i)
-}
-
-/// Check that `angles` ascend strictly; with `opts.repair` sort them (stable, so
-/// the first of duplicates is kept) and reorder the values with them.
-/// `planes`: the angles index planes of `stride` values (horizontal), or rows
-/// inside each of `stride` planes (vertical).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn check_or_repair(
+/// The ballast record (when `ballast`), both angle lists and the candela values.
+fn read_body<'a>(
     src: &Source<'_>,
-    start: At<'_, '_>,
-    what: &str,
-    angles: &mut Vec<f64>,
-    stride: usize,
-    cd: &mut Vec<f64>,
-    planes: bool,
-    opts: &ReadOptions,
-    warnings: &mut Vec<Warning>,
-) -> Result<(), ParseError> {
-    let Some(bad) = angles::first_disorder(angles) else {
-        return Ok(());
-    };
-    if !opts.repair {
-        let (loc, found) = token_location(start, bad);
-        let why = if angles::is_duplicate(angles[bad], angles[bad - 1]) {
-            "duplicate"
-        } else {
-            "unsorted"
-        };
-        return Err(src.invalid(
-            loc,
-            format!(
-                "{what} angles in strictly ascending order (angle #{} = {} follows {}: {why}; \
-                 the repair option sorts them)",
-                bad + 1,
-                angles[bad],
-                angles[bad - 1]
-            ),
-            found,
-        ));
+    t: &mut Scanner<'a>,
+    nv: usize,
+    nh: usize,
+    ballast: bool,
+) -> Result<Body<'a>, ParseError> {
+    let (mut bf, mut fu, mut w) = (1.0, 1.0, 0.0);
+    if ballast {
+        bf = t.number(src, "ballast factor")?;
+        fu = t.number(
+            src,
+            "ballast-lamp photometric factor / future use / file-generation type",
+        )?;
+        w = t.number(src, "input watts")?;
     }
-    let n = angles.len();
-    let order = angles::repair_order(angles);
-    let dropped = n - order.len();
-    let new_angles: Vec<f64> = order.iter().map(|&i| angles[i]).collect();
-    // Planes of `stride` (vertical count) values each, or rows inside each of `stride` planes of `n` values.
-    let new_cd = if planes {
-        angles::reorder_planes(cd, stride, &order)
-    } else {
-        angles::reorder_rows(cd, n, &order)
-    };
-    warnings.push(Warning::at(
-        start.0.line_of(start.1),
-        WarningCode::AnglesRepaired,
-        format!("{what} angles were not strictly ascending: sorted, {dropped} duplicate(s) dropped (first kept)"),
-    ));
-    *angles = new_angles;
-    *cd = new_cd;
-    Ok(())
-}
-
-/// Type C grid → distribution: symmetry from the horizontal angle set (LM-63 / DOMAIN §1.4).
-///
-/// | H set | symmetry |
-/// |---|---|
-/// | one angle (0, or anywhere: warned) | rotational |
-/// | 0 … 90 | quadrant |
-/// | 0 … 180 | C0-C180 |
-/// | 90 … 270 with a plane strictly between | C90-C270 |
-/// | last angle in (180, 360], first ≥ 0 | none (a 360 plane is checked against 0 and dropped) |
-///
-/// Anything else (0 … 45, 90 … 180, negative angles) matches no LM-63 layout
-/// and is refused rather than guessed. `{90, 270}` alone is refused too: both
-/// planes lie on the C90-C270 mirror, so the half circle the 90–270 layout
-/// describes (centred on C180) is not measured at all.
-fn type_c(
-    src: &Source<'_>,
-    v_start: At<'_, '_>,
-    h_start: At<'_, '_>,
-    vertical: Vec<f64>,
-    mut horizontal: Vec<f64>,
-    mut cd: Vec<f64>,
-    warnings: &mut Vec<Warning>,
-) -> Result<Distribution, ParseError> {
-    let nv = vertical.len();
-    let nh = horizontal.len();
-    let near = |a: f64, b: f64| (a - b).abs() <= ANGLE_EPS;
-    if let Some(i) = vertical
-        .iter()
-        .position(|&v| !(-ANGLE_EPS..=180.0 + ANGLE_EPS).contains(&v))
-    {
-        let (loc, found) = token_location(v_start, i);
-        return Err(src.invalid(
-            loc,
-            "Type C vertical angles within 0..180 degrees (negative angles suggest Type A/B data marked as C)",
-            found,
-        ));
-    }
-    if let Some(i) = horizontal
-        .iter()
-        .position(|&h| !(-ANGLE_EPS..=360.0 + ANGLE_EPS).contains(&h))
-    {
-        let (loc, found) = token_location(h_start, i);
-        return Err(src.invalid(loc, "Type C horizontal angles within 0..360 degrees", found));
-    }
-    // Snap angles within tolerance onto the range ends the model checks exactly.
-    let vertical: Vec<f64> = vertical.iter().map(|&v| v.clamp(0.0, 180.0)).collect();
-    for h in &mut horizontal {
-        *h = h.clamp(0.0, 360.0);
-    }
-    let (first, last) = (horizontal[0], horizontal[nh - 1]);
-    let symmetry = if nh == 1 {
-        if !near(first, 0.0) {
-            warnings.push(Warning::new(
-                WarningCode::SinglePlane,
-                format!("a single horizontal angle at {first} degrees: read as rotationally symmetric"),
-            ));
-        }
-        horizontal[0] = 0.0;
-        Symmetry::Rotational
-    } else if near(first, 0.0) && near(last, 90.0) {
-        Symmetry::Quadrant
-    } else if near(first, 0.0) && near(last, 180.0) {
-        Symmetry::C0C180
-    } else if near(first, 90.0) && near(last, 270.0) {
-        if nh == 2 {
-            let (loc, found) = token_location(h_start, 0);
-            return Err(src.invalid(
-                loc,
-                "a 90-270 horizontal angle set with planes between 90 and 270 (C90-C270 symmetry \
-                 describes the half circle around C180; 90 and 270 alone lie on its mirror plane)",
-                format!("{found} and `270` only"),
-            ));
-        }
-        Symmetry::C90C270
-    } else if last > 180.0 + ANGLE_EPS {
-        if near(last, 360.0) {
-            crate::formats::angles::drop_360_plane(&mut horizontal, &mut cd, nv, warnings);
-        }
-        Symmetry::None
-    } else {
-        let (loc, _) = token_location(h_start, 0);
-        return Err(src.unsupported(
-            loc,
-            "a horizontal angle set of LM-63 Type C: {0}, 0..90, 0..180, 90..270 or a last angle in (180, 360]",
-            format!("{first}..{last} ({nh} angles)"),
-        ));
-    };
-    Distribution::new(horizontal, vertical, cd, symmetry).map_err(|e| {
-        let (loc, _) = token_location(h_start, 0);
-        src.invalid(loc, "a valid Type C grid", e.to_string())
+    let v_start = t.clone();
+    let mut vertical = Vec::with_capacity(nv);
+    t.numbers_into(src, nv, &mut vertical, &|i| {
+        format!("vertical angle #{} of {nv}", i + 1)
+    })?;
+    let h_start = t.clone();
+    let mut horizontal = Vec::with_capacity(nh);
+    t.numbers_into(src, nh, &mut horizontal, &|i| {
+        format!("horizontal angle #{} of {nh}", i + 1)
+    })?;
+    let mut cd = Vec::with_capacity(nv * nh);
+    t.numbers_into(src, nv * nh, &mut cd, &|i| {
+        format!(
+            "candela value #{} of {} (horizontal angle #{}, vertical angle #{})",
+            i + 1,
+            nv * nh,
+            i / nv + 1,
+            i % nv + 1
+        )
+    })?;
+    Ok(Body {
+        ballast: (bf, fu, w),
+        v_start,
+        h_start,
+        vertical,
+        horizontal,
+        cd,
     })
 }
 
-/// What follows the first header record: the ballast record (or its
-/// defaults), the angle lists and the raw candela values.
-struct Body {
-    ballast: (f64, f64, f64),
-    v_start: usize,
-    h_start: usize,
-    vertical: Vec<f64>,
-    horizontal: Vec<f64>,
-    cd: Vec<f64>,
+/// `v` when positive; otherwise 1, and a warning at `line`.
+fn positive_or_one(v: f64, what: &str, code: WarningCode, line: usize, warnings: &mut Vec<Warning>) -> f64 {
+    if v > 0.0 {
+        return v;
+    }
+    warnings.push(Warning::at(line, code, format!("{what} {v} is not positive; 1.0 used")));
+    1.0
+}
+
+/// Metadata from the keywords; 1986 files carry their description as free-form label lines.
+fn metadata(header: &IesHeader) -> Metadata {
+    let kw = |k: &str| header.keyword(k).unwrap_or_default();
+    let mut metadata = Metadata {
+        manufacturer: kw("MANUFAC"),
+        catalogue: kw("LUMCAT"),
+        luminaire: kw("LUMINAIRE"),
+        lamp: kw("LAMP"),
+        test_report: kw("TEST"),
+        date: header
+            .keyword("ISSUEDATE")
+            .or_else(|| header.keyword("DATE"))
+            .unwrap_or_default(),
+    };
+    if metadata.luminaire.is_empty() {
+        let texts: Vec<&str> = header
+            .labels
+            .iter()
+            .filter_map(|l| match l {
+                IesLabel::Text(t) if !t.is_empty() && t != "-" => Some(t.as_str()),
+                _ => None,
+            })
+            .collect();
+        metadata.luminaire = texts.join(" ");
+    }
+    metadata
 }
 
 #[cfg(test)]

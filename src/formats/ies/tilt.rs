@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use super::read::check_or_repair;
-use super::stream::Stream;
+use super::grid::check_or_repair;
 use crate::error::{Location, ParseError, Warning, WarningCode};
+use crate::formats::scan::{Scanner, Separators};
 use crate::formats::text::Source;
 use crate::formats::ReadOptions;
 use crate::model::TiltTable;
@@ -13,17 +13,17 @@ use crate::model::TiltTable;
 /// Parse a tilt table (`geometry N angles... multipliers...`) from `tokens`.
 pub(super) fn read_tilt_table(
     src: &Source<'_>,
-    tokens: &mut Stream<'_>,
+    tokens: &mut Scanner<'_>,
     remaining: usize,
     opts: &ReadOptions,
     warnings: &mut Vec<Warning>,
 ) -> Result<TiltTable, ParseError> {
     let geometry = tokens.integer(src, "tilt lamp-to-luminaire geometry (1, 2 or 3)", 1, 3)? as u8;
-    let n_idx = tokens.index();
+    let n_at = tokens.clone();
     let max_pairs = remaining.saturating_sub(2) / 2;
     let n = tokens.integer(src, "number of tilt angle / multiplier pairs", 1, i64::MAX)? as u64;
     if n > max_pairs as u64 {
-        let (loc, found) = tokens.locate(n_idx);
+        let (loc, found) = n_at.nth(0);
         return Err(src.invalid(
             loc,
             format!("a number of tilt pairs that fits the file (at most {max_pairs})"),
@@ -31,7 +31,7 @@ pub(super) fn read_tilt_table(
         ));
     }
     let n = n as usize;
-    let a_start = tokens.index();
+    let a_start = tokens.clone();
     let mut angles = Vec::with_capacity(n);
     tokens.numbers_into(src, n, &mut angles, &|i| format!("tilt angle #{} of {n}", i + 1))?;
     let mut multipliers = Vec::with_capacity(n);
@@ -39,17 +39,7 @@ pub(super) fn read_tilt_table(
         format!("tilt multiplier #{} of {n}", i + 1)
     })?;
     let mut m = multipliers;
-    check_or_repair(
-        src,
-        (&*tokens, a_start),
-        "tilt",
-        &mut angles,
-        1,
-        &mut m,
-        true,
-        opts,
-        warnings,
-    )?;
+    check_or_repair(src, &a_start, "tilt", &mut angles, 1, &mut m, true, opts, warnings)?;
     Ok(TiltTable {
         geometry,
         angles,
@@ -102,7 +92,7 @@ pub(super) fn read_tilt_file(
         e.location.line = e.location.line.max(1);
         e
     })?;
-    let mut tokens = Stream::new(tsrc.bytes, 0, 1);
+    let mut tokens = Scanner::new(tsrc.bytes, 0, 1, Separators::BlanksAndCommas);
     let remaining = tokens.count_remaining();
     let table = read_tilt_table(&tsrc, &mut tokens, remaining, opts, warnings)?;
     let extra = tokens.count_remaining();
@@ -112,7 +102,7 @@ pub(super) fn read_tilt_file(
             format!(
                 "{extra} extra token(s) in tilt file `{}` from line {} ignored",
                 full.display(),
-                tokens.line_of(tokens.index())
+                tokens.next_line()
             ),
         ));
     }

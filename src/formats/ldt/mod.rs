@@ -31,7 +31,6 @@
 //! with at most [`SIGNIFICANT_DIGITS`] significant digits.
 
 mod read;
-mod stream;
 mod write;
 
 pub use read::read;
@@ -100,24 +99,6 @@ pub struct LdtHeader {
     pub cd_per_cdklm: f64,
 }
 
-/// Parse an EULUMDAT number: a decimal point or a decimal comma (`12,5` is 12.5).
-///
-/// No allocation: a comma token is copied to a stack buffer. Non-finite values are refused.
-#[inline]
-pub(crate) fn parse_number(tok: &[u8]) -> Option<f64> {
-    if let Some(v) = crate::formats::text::parse_f64(tok) {
-        return Some(v);
-    }
-    let comma = tok.iter().position(|&b| b == b',')?;
-    if tok.len() > 64 || tok[comma + 1..].contains(&b',') || tok.contains(&b'.') {
-        return None;
-    }
-    let mut buf = [0u8; 64];
-    buf[..tok.len()].copy_from_slice(tok);
-    buf[comma] = b'.';
-    crate::formats::text::parse_f64(&buf[..tok.len()])
-}
-
 /// Indices into the full C-angle list (line 28) of the planes stored in the
 /// intensity block, in file order, chosen by angle value (see the module docs).
 pub(crate) fn stored_plane_indices(sym: Symmetry, c: &[f64]) -> Vec<usize> {
@@ -144,26 +125,15 @@ pub(crate) fn formula_plane_count(sym: Symmetry, mc: usize) -> Option<usize> {
     match sym {
         Symmetry::None => Some(mc),
         Symmetry::Rotational => Some(1),
-        Symmetry::C0C180 => (mc % 2 == 0).then_some(mc / 2 + 1),
-        Symmetry::C90C270 => (mc % 4 == 0).then_some(mc / 2 + 1),
-        Symmetry::Quadrant => (mc % 4 == 0).then_some(mc / 4 + 1),
+        Symmetry::C0C180 => mc.is_multiple_of(2).then_some(mc / 2 + 1),
+        Symmetry::C90C270 => mc.is_multiple_of(4).then_some(mc / 2 + 1),
+        Symmetry::Quadrant => mc.is_multiple_of(4).then_some(mc / 4 + 1),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn numbers_accept_decimal_commas() {
-        assert_eq!(parse_number(b"12,5"), Some(12.5));
-        assert_eq!(parse_number(b"-0,25"), Some(-0.25));
-        assert_eq!(parse_number(b"1.0"), Some(1.0));
-        assert_eq!(parse_number(b"1,2,3"), None);
-        assert_eq!(parse_number(b"1.2,3"), None);
-        assert_eq!(parse_number(b","), None);
-        assert_eq!(parse_number(b"abc"), None);
-    }
 
     #[test]
     fn isym3_stores_c270_to_c90_wrapping() {

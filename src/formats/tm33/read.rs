@@ -6,11 +6,11 @@ use roxmltree::Node;
 
 use super::Tm33Edition;
 use crate::error::{ErrorKind, Location, ParseError, Warning, WarningCode};
+use crate::formats::scan::parse_f64;
 use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
-use crate::formats::ReadOptions;
+use crate::formats::{angles, declared_lamp_flux, ReadOptions};
 use crate::model::{
-    Declared, Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, Symmetry, Tilt,
-    ANGLE_EPS,
+    Dimensions, Distribution, Format, LampSet, LuminaireParts, Metadata, PhotometricType, Symmetry, Tilt, ANGLE_EPS,
 };
 
 /// Names of the element holding the intensity data, by edition and spelling.
@@ -43,29 +43,7 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
         }
     };
     let mut warnings = Vec::new();
-    let emitters: Vec<Node> = children(root, "Emitter").filter(|e| block_of(*e).is_some()).collect();
-    let emitter = match emitters.as_slice() {
-        [one] => *one,
-        [] => {
-            return Err(error_at(
-                path,
-                root,
-                ErrorKind::Invalid,
-                "an <Emitter> with a <LuminousData> (or <LuminousIntensity>, <IntensityDistribution>) block of \
-                 <IntensityData>",
-                "none",
-            ))
-        }
-        [_, second, ..] => {
-            return Err(error_at(
-                path,
-                *second,
-                ErrorKind::Unsupported,
-                "one <Emitter> with intensity data (several emitters are not combined)",
-                format!("{} emitters with intensity data", emitters.len()),
-            ))
-        }
-    };
+    let emitter = the_emitter(path, root)?;
     let block = block_of(emitter).expect("filtered above");
     check_type_and_metric(path, block)?;
     let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
@@ -76,37 +54,16 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
     let declared_symmetry = symmetry_code(path, block)?;
     let distribution = grid(path, block, multiplier, declared_symmetry, &mut warnings)?;
 
-    let header = child(root, &["Header"]);
-    let text_of = |names: &[&str]| -> String { header.and_then(|h| child_text(h, names)).unwrap_or("").to_string() };
     let quantity = child_number(path, emitter, &["Quantity"])?.unwrap_or(1.0);
     let rated = child_number(path, emitter, &["RatedLumens"])?;
     let watts = child_number(path, emitter, &["InputWattage", "InputWatts"])?;
-    let absolute = match child(block, &["AbsolutePhotometry"]) {
-        Some(n) => match n.text().map(str::trim).unwrap_or("") {
-            "true" | "1" => true,
-            "false" | "0" => false,
-            other => {
-                return Err(error_at(
-                    path,
-                    n,
-                    ErrorKind::Invalid,
-                    "true or false",
-                    format!("`{other}`"),
-                ))
-            }
-        },
-        None => rated.is_none(),
-    };
+    let absolute = absolute_photometry(path, block, rated.is_some())?;
     let lamp_flux = if absolute {
         None
     } else {
         rated.map(|r| r * quantity.max(1.0)).filter(|f| *f > 0.0)
     };
-    let cct = child_text(emitter, &["CCT", "FixedCCT"]).unwrap_or("");
-    let cri = child(emitter, &["ColorRendering"])
-        .and_then(|c| child_text(c, &["Ra"]))
-        .unwrap_or("");
-    let lamp = child_text(emitter, &["Description", "CatalogNumber"]).unwrap_or("");
+    let lamp_set = lamp_set(emitter, quantity, absolute, lamp_flux, watts);
     let dims = match child(root, &["Luminaire"]).and_then(|l| child(l, &["Dimensions"])) {
         Some(d) => Dimensions {
             length_m: child_number(path, d, &["Length"])?.unwrap_or(0.0) / 1000.0,
@@ -115,55 +72,104 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
         },
         None => Dimensions::default(),
     };
-    crate::formats::document(
-        path,
-        LuminaireParts {
-            path: Some(path.to_path_buf()),
-            format: Format::Tm33,
-            version: edition.version().into(),
-            photometric_type: PhotometricType::C,
-            metadata: Metadata {
-                manufacturer: text_of(&["Manufacturer"]),
-                catalogue: text_of(&["CatalogNumber"]),
-                luminaire: text_of(&["Description"]),
-                lamp: lamp.to_string(),
-                test_report: text_of(&["ReportNumber"]),
-                date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
-            },
-            lamp_sets: vec![LampSet {
-                count: if absolute {
-                    -quantity.max(1.0)
-                } else {
-                    quantity.max(1.0)
-                },
-                lamp_type: lamp.to_string(),
-                flux_lm: lamp_flux.unwrap_or(0.0),
-                color: if cct.is_empty() {
-                    String::new()
-                } else {
-                    format!("{cct}K")
-                },
-                cri: cri.to_string(),
-                watts: watts.unwrap_or(0.0),
-            }],
-            dimensions: dims,
-            luminous_opening: Dimensions::default(),
-            luminous_heights_m: None,
-            declared: Declared {
-                lamp_flux_lm: lamp_flux,
-                luminaire_flux_lm: None,
-                lor: None,
-                dff: None,
-                absolute,
-                input_watts: watts,
-            },
-            tilt: Tilt::None,
-            distribution,
-            source_grid: None,
-            warnings,
+    let header = child(root, &["Header"]);
+    let text_of = |names: &[&str]| -> String { header.and_then(|h| child_text(h, names)).unwrap_or("").to_string() };
+    let parts = LuminaireParts {
+        path: Some(path.to_path_buf()),
+        format: Format::Tm33,
+        version: edition.version().into(),
+        photometric_type: PhotometricType::C,
+        metadata: Metadata {
+            manufacturer: text_of(&["Manufacturer"]),
+            catalogue: text_of(&["CatalogNumber"]),
+            luminaire: text_of(&["Description"]),
+            lamp: lamp_set.lamp_type.clone(),
+            test_report: text_of(&["ReportNumber"]),
+            date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
         },
-        crate::formats::Header::None,
-    )
+        lamp_sets: vec![lamp_set],
+        dimensions: dims,
+        luminous_opening: Dimensions::default(),
+        luminous_heights_m: None,
+        declared: declared_lamp_flux(lamp_flux, absolute, watts),
+        tilt: Tilt::None,
+        distribution,
+        source_grid: None,
+        warnings,
+    };
+    crate::formats::document(path, parts, crate::formats::Header::None)
+}
+
+/// The one emitter with intensity data.
+fn the_emitter<'a, 'i>(path: &Path, root: Node<'a, 'i>) -> Result<Node<'a, 'i>, ParseError> {
+    let emitters: Vec<Node> = children(root, "Emitter").filter(|e| block_of(*e).is_some()).collect();
+    match emitters.as_slice() {
+        [one] => Ok(*one),
+        [] => Err(error_at(
+            path,
+            root,
+            ErrorKind::Invalid,
+            "an <Emitter> with a <LuminousData> (or <LuminousIntensity>, <IntensityDistribution>) block of \
+             <IntensityData>",
+            "none",
+        )),
+        [_, second, ..] => Err(error_at(
+            path,
+            *second,
+            ErrorKind::Unsupported,
+            "one <Emitter> with intensity data (several emitters are not combined)",
+            format!("{} emitters with intensity data", emitters.len()),
+        )),
+    }
+}
+
+/// `<AbsolutePhotometry>`; absent, absolute when no rated lumens are given.
+fn absolute_photometry(path: &Path, block: Node<'_, '_>, rated: bool) -> Result<bool, ParseError> {
+    let Some(n) = child(block, &["AbsolutePhotometry"]) else {
+        return Ok(!rated);
+    };
+    match n.text().map(str::trim).unwrap_or("") {
+        "true" | "1" => Ok(true),
+        "false" | "0" => Ok(false),
+        other => Err(error_at(
+            path,
+            n,
+            ErrorKind::Invalid,
+            "true or false",
+            format!("`{other}`"),
+        )),
+    }
+}
+
+/// The emitter as a lamp set: count (negative for absolute photometry), flux in lm, CCT, CRI, watts.
+fn lamp_set(
+    emitter: Node<'_, '_>,
+    quantity: f64,
+    absolute: bool,
+    lamp_flux: Option<f64>,
+    watts: Option<f64>,
+) -> LampSet {
+    let cct = child_text(emitter, &["CCT", "FixedCCT"]).unwrap_or("");
+    let cri = child(emitter, &["ColorRendering"])
+        .and_then(|c| child_text(c, &["Ra"]))
+        .unwrap_or("");
+    let lamp = child_text(emitter, &["Description", "CatalogNumber"]).unwrap_or("");
+    LampSet {
+        count: if absolute {
+            -quantity.max(1.0)
+        } else {
+            quantity.max(1.0)
+        },
+        lamp_type: lamp.to_string(),
+        flux_lm: lamp_flux.unwrap_or(0.0),
+        color: if cct.is_empty() {
+            String::new()
+        } else {
+            format!("{cct}K")
+        },
+        cri: cri.to_string(),
+        watts: watts.unwrap_or(0.0),
+    }
 }
 
 /// The emitter's intensity block, when it holds `IntensityData`.
@@ -254,7 +260,7 @@ fn attribute(path: &Path, n: Node<'_, '_>, name: &str) -> Result<f64, ParseError
             "none",
         )
     })?;
-    raw.trim().parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
+    parse_f64(raw.trim().as_bytes()).ok_or_else(|| {
         error_at(
             path,
             n,
@@ -265,17 +271,27 @@ fn attribute(path: &Path, n: Node<'_, '_>, name: &str) -> Result<f64, ParseError
     })
 }
 
-/// Sorted distinct angles (closer than [`ANGLE_EPS`] counts as the same).
-fn distinct(mut v: Vec<f64>) -> Vec<f64> {
-    v.sort_by(f64::total_cmp);
-    v.dedup_by(|b, a| (*b - *a).abs() <= ANGLE_EPS);
-    v
+/// Sorted distinct angles, by the readers' one de-duplication rule
+/// ([`angles::repair_order`]: closer than [`ANGLE_EPS`] counts as the same).
+fn distinct(v: Vec<f64>) -> Vec<f64> {
+    angles::repair_order(&v).into_iter().map(|i| v[i]).collect()
 }
 
 /// Index of `x` in the sorted distinct list `v` (it is there by construction).
 fn index_of(v: &[f64], x: f64) -> usize {
     let i = v.partition_point(|&a| a < x - ANGLE_EPS);
     i.min(v.len() - 1)
+}
+
+/// Two `IntensityData` at one (horz, vert).
+fn second_value(path: &Path, p: &Point<'_, '_>) -> ParseError {
+    error_at(
+        path,
+        p.node,
+        ErrorKind::Invalid,
+        "one IntensityData per (horz, vert)",
+        format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
+    )
 }
 
 /// The `IntensityData` points as a Type C [`Distribution`].
@@ -286,89 +302,11 @@ fn grid(
     declared: Option<(Symmetry, Location)>,
     warnings: &mut Vec<Warning>,
 ) -> Result<Distribution, ParseError> {
-    let mut points = Vec::new();
-    for n in children(block, "IntensityData") {
-        let c = attribute(path, n, "horz")?;
-        let gamma = attribute(path, n, "vert")?;
-        let raw = n.text().map(str::trim).unwrap_or("");
-        let v = raw.parse::<f64>().ok().filter(|v| v.is_finite()).ok_or_else(|| {
-            error_at(
-                path,
-                n,
-                ErrorKind::Invalid,
-                "an intensity (a finite number)",
-                format!("`{raw}`"),
-            )
-        })?;
-        if !(-ANGLE_EPS..=180.0 + ANGLE_EPS).contains(&gamma) {
-            return Err(error_at(
-                path,
-                n,
-                ErrorKind::Invalid,
-                "vert within 0..180 degrees (Type C)",
-                gamma,
-            ));
-        }
-        if !(-ANGLE_EPS..=360.0 + ANGLE_EPS).contains(&c) {
-            return Err(error_at(
-                path,
-                n,
-                ErrorKind::Invalid,
-                "horz within 0..360 degrees (Type C)",
-                c,
-            ));
-        }
-        points.push(Point {
-            c: c.clamp(0.0, 360.0),
-            gamma: gamma.clamp(0.0, 180.0),
-            cd: v * multiplier,
-            node: n,
-        });
-    }
+    let points = points(path, block, multiplier)?;
     let hs = distinct(points.iter().map(|p| p.c).collect());
     let vs = distinct(points.iter().map(|p| p.gamma).collect());
     let (nh, nv) = (hs.len(), vs.len());
-    if nh.checked_mul(nv) != Some(points.len()) {
-        // Find the first missing point to name it (only when the grid is small enough to enumerate).
-        let mut have = std::collections::HashSet::new();
-        for p in &points {
-            if !have.insert((index_of(&hs, p.c), index_of(&vs, p.gamma))) {
-                return Err(error_at(
-                    path,
-                    p.node,
-                    ErrorKind::Invalid,
-                    "one IntensityData per (horz, vert)",
-                    format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
-                ));
-            }
-        }
-        let missing = (0..nh)
-            .flat_map(|ih| (0..nv).map(move |iv| (ih, iv)))
-            .find(|k| !have.contains(k))
-            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", hs[ih], vs[iv]))
-            .unwrap_or_default();
-        return Err(error_at(
-            path,
-            block,
-            ErrorKind::Invalid,
-            format!("a complete grid of {nh} horz x {nv} vert angles"),
-            format!("{} IntensityData: {missing}", points.len()),
-        ));
-    }
-    let mut cd = vec![f64::NAN; nh * nv];
-    for p in &points {
-        let k = index_of(&hs, p.c) * nv + index_of(&vs, p.gamma);
-        if !cd[k].is_nan() {
-            return Err(error_at(
-                path,
-                p.node,
-                ErrorKind::Invalid,
-                "one IntensityData per (horz, vert)",
-                format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
-            ));
-        }
-        cd[k] = p.cd;
-    }
+    let mut cd = complete_grid(path, block, &points, &hs, &vs)?;
     match crate::formats::into_model_range(&mut cd) {
         Ok(Some(note)) => warnings.push(Warning::new(WarningCode::RangeSnapped, note)),
         Ok(None) => {}
@@ -426,20 +364,92 @@ fn grid(
 }
 
 /// Symmetry from the `horz` set when no code is given, by the LM-63 rule
-/// (one plane: rotational; 0..90 quadrant; 0..180 C0-C180; 90..270
-/// C90-C270; otherwise none).
+/// ([`angles::lm63_symmetry`]); any other set is a full circle.
 fn inferred(hs: &[f64]) -> Symmetry {
-    let near = |a: f64, b: f64| (a - b).abs() <= ANGLE_EPS;
-    let (first, last) = (hs[0], hs[hs.len() - 1]);
-    if hs.len() == 1 {
-        Symmetry::Rotational
-    } else if near(first, 0.0) && near(last, 90.0) {
-        Symmetry::Quadrant
-    } else if near(first, 0.0) && near(last, 180.0) {
-        Symmetry::C0C180
-    } else if near(first, 90.0) && near(last, 270.0) {
-        Symmetry::C90C270
-    } else {
-        Symmetry::None
+    angles::lm63_symmetry(hs).unwrap_or(Symmetry::None)
+}
+
+/// Every `IntensityData` point, angles checked and snapped onto Type C's range, values × `multiplier`.
+fn points<'a, 'i>(path: &Path, block: Node<'a, 'i>, multiplier: f64) -> Result<Vec<Point<'a, 'i>>, ParseError> {
+    let mut points = Vec::new();
+    for n in children(block, "IntensityData") {
+        let c = attribute(path, n, "horz")?;
+        let gamma = attribute(path, n, "vert")?;
+        let raw = n.text().map(str::trim).unwrap_or("");
+        let v = parse_f64(raw.as_bytes()).ok_or_else(|| {
+            error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "an intensity (a finite number)",
+                format!("`{raw}`"),
+            )
+        })?;
+        if angles::first_outside(&[gamma], 180.0).is_some() {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "vert within 0..180 degrees (Type C)",
+                gamma,
+            ));
+        }
+        if angles::first_outside(&[c], 360.0).is_some() {
+            return Err(error_at(
+                path,
+                n,
+                ErrorKind::Invalid,
+                "horz within 0..360 degrees (Type C)",
+                c,
+            ));
+        }
+        points.push(Point {
+            c: c.clamp(0.0, 360.0),
+            gamma: gamma.clamp(0.0, 180.0),
+            cd: v * multiplier,
+            node: n,
+        });
     }
+    Ok(points)
+}
+
+/// The values of `points` on the `hs` × `vs` grid (C-major), which they must fill exactly once.
+fn complete_grid(
+    path: &Path,
+    block: Node<'_, '_>,
+    points: &[Point<'_, '_>],
+    hs: &[f64],
+    vs: &[f64],
+) -> Result<Vec<f64>, ParseError> {
+    let (nh, nv) = (hs.len(), vs.len());
+    if nh.checked_mul(nv) != Some(points.len()) {
+        // Find the first missing point to name it (only when the grid is small enough to enumerate).
+        let mut have = std::collections::HashSet::new();
+        for p in points {
+            if !have.insert((index_of(hs, p.c), index_of(vs, p.gamma))) {
+                return Err(second_value(path, p));
+            }
+        }
+        let missing = (0..nh)
+            .flat_map(|ih| (0..nv).map(move |iv| (ih, iv)))
+            .find(|k| !have.contains(k))
+            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", hs[ih], vs[iv]))
+            .unwrap_or_default();
+        return Err(error_at(
+            path,
+            block,
+            ErrorKind::Invalid,
+            format!("a complete grid of {nh} horz x {nv} vert angles"),
+            format!("{} IntensityData: {missing}", points.len()),
+        ));
+    }
+    let mut cd = vec![f64::NAN; nh * nv];
+    for p in points {
+        let k = index_of(hs, p.c) * nv + index_of(vs, p.gamma);
+        if !cd[k].is_nan() {
+            return Err(second_value(path, p));
+        }
+        cd[k] = p.cd;
+    }
+    Ok(cd)
 }

@@ -146,84 +146,44 @@ fn malformed_documents_name_line_and_element() {
         assert!(e.to_string().contains(word), "{e}");
         assert_eq!(e.kind, kind, "{e}");
     };
-    // Not well formed: an unclosed element.
-    check(
-        good.replace("</Emitter>", ""),
-        "</IESTM33-22>",
-        "well-formed XML",
-        ErrorKind::Invalid,
-    );
-    // A missing attribute, a bad value, a bad angle.
-    check(
-        good.replacen(" vert=\"90\"", "", 1),
-        "<IntensityData horz=\"0\">",
-        "<IESTM33-22/Emitter/LuminousData/IntensityData>",
-        ErrorKind::Invalid,
-    );
-    check(good.replacen(">1</", ">abc</", 1), "abc", "`abc`", ErrorKind::Invalid);
-    check(
-        good.replacen("vert=\"90\"", "vert=\"190\"", 1),
-        "vert=\"190\"",
-        "0..180",
-        ErrorKind::Invalid,
-    );
+    use ErrorKind::{Invalid, Unsupported};
+    let all = usize::MAX;
+    // (replace, by, how often, where the error points, a word of its message, its kind).
+    #[rustfmt::skip]
+    let edits = [
+        // Not well formed: an unclosed element.
+        ("</Emitter>", "", 1, "</IESTM33-22>", "well-formed XML", Invalid),
+        // A missing attribute, a bad value, a bad angle.
+        (" vert=\"90\"", "", 1, "<IntensityData horz=\"0\">", "<IESTM33-22/Emitter/LuminousData/IntensityData>", Invalid),
+        (">1</", ">abc</", 1, "abc", "`abc`", Invalid),
+        ("vert=\"90\"", "vert=\"190\"", 1, "vert=\"190\"", "0..180", Invalid),
+        // A code that does not fit the angles, an unknown code.
+        ("Symm _ Quad", "Symm _ Bi _ 90", 1, "<SymmType>", "C90-C270", Invalid),
+        ("Symm _ Quad", "Symm _ Diagonal", 1, "<SymmType>", "Symm _ Quad", Invalid),
+        // Unsupported: Type B, radiant data.
+        ("CIE _ C", "CIE _ B", 1, "<PhotometryType>", "Type C", Unsupported),
+        (">Luminous<", ">Radiant<", 1, "<Metric>", "Luminous", Unsupported),
+        // A wrong root element.
+        ("IESTM33-22>", "Photometry>", all, "<Photometry>", "IESTM33-22", Invalid),
+        // A non-positive multiplier.
+        ("<SymmType>", "<Multiplier>0</Multiplier>\n<SymmType>", 1, "<Multiplier>", "multiplier > 0", Invalid),
+    ];
+    for (from, to, n, needle, word, kind) in edits {
+        check(good.replacen(from, to, n), needle, word, kind);
+    }
     // A point missing from the grid, a duplicated point.
-    check(
-        doc23("", &ok[..3]),
-        "<LuminousData>",
-        "no value at horz = 90, vert = 90",
-        ErrorKind::Invalid,
-    );
     let mut dup = ok.clone();
     dup[3] = dup[2];
-    check(
-        doc23("", &dup),
-        "horz=\"90\" vert=\"0\"",
-        "second value",
-        ErrorKind::Invalid,
-    );
-    // A code that does not fit the angles, an unknown code.
-    check(
-        good.replace("Symm _ Quad", "Symm _ Bi _ 90"),
-        "<SymmType>",
-        "C90-C270",
-        ErrorKind::Invalid,
-    );
-    check(
-        good.replace("Symm _ Quad", "Symm _ Diagonal"),
-        "<SymmType>",
-        "Symm _ Quad",
-        ErrorKind::Invalid,
-    );
-    // Unsupported: Type B, radiant data.
-    check(
-        good.replace("CIE _ C", "CIE _ B"),
-        "<PhotometryType>",
-        "Type C",
-        ErrorKind::Unsupported,
-    );
-    check(
-        good.replace(">Luminous<", ">Radiant<"),
-        "<Metric>",
-        "Luminous",
-        ErrorKind::Unsupported,
-    );
-    // A wrong root element, a DTD.
-    check(
-        good.replace("IESTM33-22>", "Photometry>"),
-        "<Photometry>",
-        "IESTM33-22",
-        ErrorKind::Invalid,
-    );
+    let grids = [
+        (&ok[..3], "<LuminousData>", "no value at horz = 90, vert = 90"),
+        (&dup[..], "horz=\"90\" vert=\"0\"", "second value"),
+    ];
+    for (points, needle, word) in grids {
+        check(doc23("", points), needle, word, Invalid);
+    }
+    // A DTD.
     let e = parse(&good.replace("<IESTM33-22>", "<!DOCTYPE x [<!ENTITY a \"b\">]><IESTM33-22>")).unwrap_err();
     assert!(e.to_string().contains("without a DTD"), "{e}");
-    // A non-positive multiplier.
-    check(
-        good.replace("<SymmType>", "<Multiplier>0</Multiplier>\n<SymmType>"),
-        "<Multiplier>",
-        "multiplier > 0",
-        ErrorKind::Invalid,
-    );
 }
 
 /// The writer's text read by the XML parser itself (not our reader): the
