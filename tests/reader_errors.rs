@@ -639,6 +639,27 @@ fn tm33_and_gldf_fixtures_load_and_fail_clearly() {
     std::fs::write(&p, gldf_bytes(&gldf_product("p1", "gone.ldt", "ldc/eulumdat"), &[])).unwrap();
     let e = photosolid::load(&p).unwrap_err().to_string();
     assert!(e.contains("missing.gldf") && e.contains("gone.ldt"), "{e}");
+    // An id the container does not hold, a file it only links to, no photometry at all.
+    let e = photosolid::load(format!("{}#nope", ok.display()))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("ok.gldf") && e.contains("a photometry id of the container: p1") && e.contains("`nope`"),
+        "{e}"
+    );
+    let p = dir.path().join("remote.gldf");
+    let remote = gldf_product("p1", "https://example.invalid/lum.ldt", "ldc/eulumdat").replace("localFileName", "url");
+    std::fs::write(&p, gldf_bytes(&remote, &[])).unwrap();
+    let e = photosolid::load(&p).unwrap_err().to_string();
+    assert!(e.contains("remote.gldf#p1") && e.contains("does not download"), "{e}");
+    let p = dir.path().join("empty.gldf");
+    let none = "<?xml version=\"1.0\"?>\n<Root><Header/><GeneralDefinitions/></Root>\n";
+    std::fs::write(&p, gldf_bytes(none, &[])).unwrap();
+    let e = photosolid::load(&p).unwrap_err().to_string();
+    assert!(
+        e.contains("empty.gldf") && e.contains("a GLDF container with a photometry"),
+        "{e}"
+    );
     let p = dir.path().join("notzip.gldf");
     std::fs::write(&p, b"PK\x03\x04 truncated").unwrap();
     let e = photosolid::load(&p).unwrap_err().to_string();

@@ -40,6 +40,19 @@ fn cos5_square_opening(height_m: f64, side_m: f64) -> SceneLuminaire {
     lum
 }
 
+/// The lighting plan of `s`, timing each candidate on `timing_directions` directions.
+fn plan_timed(s: &Scene, timing_directions: usize) -> photosolid::scene::plan::PlanResult {
+    plan(
+        s,
+        &PlanOptions {
+            timing_directions,
+            ..PlanOptions::default()
+        },
+        None,
+    )
+    .unwrap()
+}
+
 fn scene(luminaires: Vec<SceneLuminaire>, receivers: Vec<Receiver>) -> Scene {
     Scene {
         path: None,
@@ -254,15 +267,7 @@ fn far_receivers_let_the_plan_pick_fitted_lights_or_a_coarse_texture() {
         8,
     );
     let s = scene(vec![lum], vec![plane]);
-    let p = plan(
-        &s,
-        &PlanOptions {
-            timing_directions: 512,
-            ..PlanOptions::default()
-        },
-        None,
-    )
-    .unwrap();
+    let p = plan_timed(&s, 512);
     let l = &p.luminaires[0];
     assert!(l.far_field_ok && l.far_field.five_times_rule_holds);
     assert_eq!(l.source, SourceKind::Point, "{}", l.chosen);
@@ -311,15 +316,7 @@ fn a_receiver_at_one_luminaire_size_forces_the_area_source() {
             ),
         ],
     );
-    let p = plan(
-        &s,
-        &PlanOptions {
-            timing_directions: 512,
-            ..PlanOptions::default()
-        },
-        None,
-    )
-    .unwrap();
+    let p = plan_timed(&s, 512);
     let l = &p.luminaires[0];
     assert_eq!(l.source, SourceKind::Area, "{}", l.chosen);
     assert!(!l.far_field_ok);
@@ -414,15 +411,7 @@ fn extremes_never_give_nan() {
         assert!(all_finite(&r));
         assert_eq!(r.receivers[0].e_max_lux, 0.0);
         assert_eq!(r.receivers[0].emin_emax, None);
-        let p = plan(
-            &s,
-            &PlanOptions {
-                timing_directions: 256,
-                ..PlanOptions::default()
-            },
-            None,
-        )
-        .unwrap();
+        let p = plan_timed(&s, 256);
         assert!(p.luminaires[0].max_error_pct == 0.0 && p.combined_max_error_pct == 0.0);
         assert!(!serde_json::to_string(&p).unwrap().contains("NaN"));
     }
@@ -592,15 +581,7 @@ fn a_wall_seen_through_a_small_sector_is_planned_with_the_cropped_grid() {
     );
     assert!(wall.normal.x < -0.99, "faces the luminaire");
     let s = scene(vec![lum], vec![wall]);
-    let p = plan(
-        &s,
-        &PlanOptions {
-            timing_directions: 256,
-            ..PlanOptions::default()
-        },
-        None,
-    )
-    .unwrap();
+    let p = plan_timed(&s, 256);
     let l = &p.luminaires[0];
     assert!(
         l.representation.contains(", C ") && l.representation.ends_with(" only"),
