@@ -23,6 +23,16 @@ pub fn distribution(l: &Luminaire) -> &Distribution {
     &l.distribution
 }
 
+/// The tilt table of a loaded luminaire, if any.
+pub fn tilt_table(l: &Luminaire) -> Option<&photosolid::model::TiltTable> {
+    l.tilt.table()
+}
+
+/// How many lamp sets a loaded luminaire has.
+pub fn lamp_set_count(l: &Luminaire) -> usize {
+    l.lamp_sets.len()
+}
+
 /// The LM-63 editions: the first line each writes (none in 1986).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum IesVersion {
