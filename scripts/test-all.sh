@@ -7,7 +7,9 @@
 # found out and again in the summary at the end (the tests' own notices are captured by cargo and do not
 # reach the log). With CI=true a missing GPU adapter, Chromium or notebook environment is a failure
 # (exit 1), not a skip (the browser tests of the reports' 3D view, scripts/browser-tests.sh, likewise);
-# a missing corpus (third-party files next to the checkout) is a skip everywhere.
+# a missing corpus (third-party files next to the checkout, or $PHOTOSOLID_CORPUS) is a skip everywhere,
+# reported with the number of test checks that skipped it: each such test leaves one file in
+# $PHOTOSOLID_SKIPPED_CORPUS_DIR (tests/common/mod.rs, `corpus()`), counted after the cargo tests.
 #
 # One build: the dev and test profiles share their settings (Cargo.toml), so `cargo build --all-targets`
 # compiles the dependencies once, and the smoke run, data/ regeneration and notebooks use that binary
@@ -26,6 +28,9 @@ fi
 
 SKIPS=()
 MISSING_REQUIRED=()
+CORPUS_DIR="${PHOTOSOLID_CORPUS:-../shared/corpus}"
+PHOTOSOLID_SKIPPED_CORPUS_DIR="$(pwd)/target/skipped-corpus-checks"
+export PHOTOSOLID_SKIPPED_CORPUS_DIR
 # skip GROUP REASON: a group that cannot run here (never required).
 skip() {
   echo "SKIP $1: $2"
@@ -64,10 +69,12 @@ gpu_adapter() {
 # probe: one line per test group (ok, or SKIP/FAIL with the reason); sets GPU_BACKENDS.
 probe() {
   echo "== test groups on this machine (CI=${CI:-unset})"
-  if [ -d ../shared/corpus ]; then
-    echo "ok   corpus: $(cd ../shared/corpus && pwd)"
+  if [ -d "$CORPUS_DIR" ]; then
+    echo "ok   corpus: $(cd "$CORPUS_DIR" && pwd)"
+  elif [ "$PROBE_ONLY" = 1 ]; then
+    skip "corpus tests" "$CORPUS_DIR not found; corpus tests check only built-in data"
   else
-    skip "corpus tests" "../shared/corpus not found; corpus tests check only built-in data"
+    echo "note corpus: $CORPUS_DIR not found; the count of skipped corpus checks follows the cargo tests"
   fi
   if exe=$(chromium_exe); then
     echo "ok   HTML report rendering: $exe"
@@ -89,6 +96,13 @@ probe() {
   else
     need "notebooks (trimesh / colour-science cross-checks)" "python3 with the venv and ensurepip modules not found"
   fi
+}
+# corpus_skips: one SKIP line with the number of corpus checks the tests recorded as skipped
+# (scripts/corpus-skips.sh counts the files tests/common/mod.rs `corpus()` leaves).
+corpus_skips() {
+  local reason
+  reason=$(bash scripts/corpus-skips.sh "$PHOTOSOLID_SKIPPED_CORPUS_DIR" "$CORPUS_DIR")
+  [ -z "$reason" ] || skip "corpus tests" "$reason"
 }
 summary() {
   echo "== skipped test groups: ${#SKIPS[@]}"
@@ -132,6 +146,7 @@ if [ "${#MISSING_REQUIRED[@]}" -gt 0 ]; then
 fi
 
 echo "== cargo test (library, integration, doc tests)"
+rm -rf "$PHOTOSOLID_SKIPPED_CORPUS_DIR"
 cargo test --all-targets --locked
 cargo test --doc --locked
 
@@ -146,6 +161,7 @@ for backend in "${GPU_BACKENDS[@]+"${GPU_BACKENDS[@]}"}"; do
   PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND="$backend" cargo test --locked --test gpu --test gpu_realtime
 done
 echo "GPU tests: $((SECONDS - gpu_start)) s"
+corpus_skips
 
 echo "== data/ is reproducible from the code (scripts/make-data.sh)"
 bash scripts/make-data.sh 2>/dev/null

@@ -42,36 +42,24 @@ fn writers(name: &str) -> Vec<Vec<String>> {
     let ies = data("batwing.ies");
     let ldt = data("cosine_p5.ldt");
     let cmd = |v: &[&str]| -> Vec<String> { v.iter().map(|s| s.replace("OUT", name)).collect() };
+    let texture = [
+        "texture",
+        &ldt,
+        "--filter",
+        "bilinear",
+        "--factor",
+        "1",
+        "--backend",
+        "cpu",
+    ];
     vec![
         cmd(&["convert", &ies, "OUT.ldt"]),
         cmd(&["convert", &ldt, "OUT.ies"]),
         cmd(&["synth", "batwing", "-o", "OUT.ldt"]),
         cmd(&["mesh", &ldt, "--filter", "bilinear", "--factor", "1", "-o", "OUT.ply"]),
         cmd(&["mesh", &ldt, "--measured", "-o", "OUT.glb"]),
-        cmd(&[
-            "texture",
-            &ldt,
-            "--filter",
-            "bilinear",
-            "--factor",
-            "1",
-            "--backend",
-            "cpu",
-            "-o",
-            "OUT.exr",
-        ]),
-        cmd(&[
-            "texture",
-            &ldt,
-            "--filter",
-            "bilinear",
-            "--factor",
-            "1",
-            "--backend",
-            "cpu",
-            "--png",
-            "OUT.png",
-        ]),
+        cmd(&[texture.as_slice(), &["-o", "OUT.exr"]].concat()),
+        cmd(&[texture.as_slice(), &["--png", "OUT.png"]].concat()),
     ]
 }
 

@@ -4,6 +4,7 @@
 //! the JSON Lines and the catalogue page agree with the table; the corpus
 //! (when present) gives one row per file, failing exactly where the manifest says.
 
+#[macro_use]
 mod common;
 
 use std::collections::HashMap;
@@ -67,7 +68,7 @@ fn json(args: &[&str], dir: &Path) -> serde_json::Value {
 
 fn close(a: &serde_json::Value, b: &serde_json::Value, what: &str) {
     match (a.as_f64(), b.as_f64()) {
-        (Some(x), Some(y)) => assert!((x - y).abs() <= 1e-12 * x.abs().max(1.0), "{what}: {x} vs {y}"),
+        (Some(x), Some(y)) => assert_close!(x, y, abs = 1e-12 * x.abs().max(1.0), "{what}: {x} vs {y}"),
         _ => assert_eq!(a, b, "{what}"),
     }
 }

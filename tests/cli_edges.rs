@@ -1,6 +1,7 @@
 //! The CLI where a new user hit wrong outputs and rough edges (issue 12):
 //! the real binary, run in a temporary directory per test.
 
+#[macro_use]
 mod common;
 
 use common::cli::{bin, fails, ok, run, write_ies};
@@ -267,13 +268,10 @@ fn klm_is_lamp_flux_and_flux_is_equal_flux() {
     let sphere = |r: f64| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3);
     // 100 cd per 2000 lm of lamp flux = 50 cd/klm.
     let v = volume("iso.ies", "klm");
-    assert!((v / sphere(50.0) - 1.0).abs() < 0.01, "klm: {v}");
+    assert_close!(v, sphere(50.0), rel = 0.01, "klm: {v}");
     // Equal flux: the 100 cd sphere emits 400 pi lm: 1000 * 100 / (400 pi) cd/klm.
     let v = volume("iso.ies", "flux");
-    assert!(
-        (v / sphere(250.0 / std::f64::consts::PI) - 1.0).abs() < 0.01,
-        "flux: {v}"
-    );
+    assert_close!(v, sphere(250.0 / std::f64::consts::PI), rel = 0.01, "flux: {v}");
     let e = fails(
         &run(
             &["mesh", "abs.ies", "--measured", "--units", "klm", "-o", "m.ply"],
@@ -397,7 +395,7 @@ fn info_names_beam_definitions_and_lamp_flux() {
     assert_eq!(v["lamp_flux_lm"], 2000.0);
     // LOR is the computed flux over that lamp flux.
     let lor = v["lor"].as_f64().unwrap();
-    assert!((lor - v["flux_lm"].as_f64().unwrap() / 2000.0).abs() < 1e-9, "{v}");
+    assert_close!(lor, v["flux_lm"].as_f64().unwrap() / 2000.0, abs = 1e-9, "{v}");
     let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "abs.ies", "--json"], t.path()))).unwrap();
     assert!(v["lamp_flux_lm"].is_null(), "{v}");
 }

@@ -1,6 +1,7 @@
 //! `compare`: closed forms on analytic solids, alignment, the CLI and its
 //! report, the corpus, and (when `chromium` is on PATH) the HTML rendering.
 
+#[macro_use]
 mod common;
 
 use photosolid::compare::{compare, sphere_sag, Against, CompareOptions, Directions, Normalize};
@@ -85,13 +86,11 @@ fn isotropic_spheres_match_the_closed_form() {
             );
         }
         assert!(res.hausdorff_bound_cd <= 1e-3 * r2 + 1e-9);
-        assert!(
-            (res.radial_bound_cd - want).abs() <= slack,
-            "radial {}",
-            res.radial_bound_cd
-        );
-        assert!(
-            (res.radial_max_pct / 100.0 * r2 - want).abs() <= slack,
+        assert_close!(res.radial_bound_cd, want, abs = slack, "radial {}", res.radial_bound_cd);
+        assert_close!(
+            res.radial_max_pct / 100.0 * r2,
+            want,
+            abs = slack,
             "{}",
             res.radial_max_pct
         );
@@ -156,8 +155,10 @@ fn identical_inputs_give_zero_and_normalisations_scale() {
         o.lamp_flux_lm = lamps;
         let c = compare(&d, Some(&twice), &o).unwrap();
         let h = c.results[0].hausdorff_cd;
-        assert!(
-            (h - want).abs() <= c.results[0].hausdorff_bound_cd + 1e-3 * c.i_max_cd,
+        assert_close!(
+            h,
+            want,
+            abs = c.results[0].hausdorff_bound_cd + 1e-3 * c.i_max_cd,
             "{n:?} {lamps:?}: {h}"
         );
     }
@@ -208,7 +209,8 @@ fn alignment_finds_a_synthetic_mirror() {
     let r = compare(&a, Some(&b), &o).unwrap();
     let al = r.alignment.unwrap();
     eprintln!("mirror: {al:?}");
-    assert!(al.mirror && (al.rotate_deg - 40.0).abs() < 1e-9, "{al:?}");
+    assert!(al.mirror, "{al:?}");
+    assert_close!(al.rotate_deg, 40.0, abs = 1e-9, "{al:?}");
     assert!(
         r.results[0].hausdorff_cd <= 1e-3 * r.i_max_cd,
         "{}",

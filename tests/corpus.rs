@@ -2,6 +2,7 @@
 //! fails exactly as the manifest says, with clear messages; photometry agrees
 //! with what the files declare; LDT/IES pairs of one luminaire agree.
 
+#[macro_use]
 mod common;
 
 use common::{corpus, manifest, snapshot};
@@ -143,7 +144,7 @@ fn luxpy_ldt_ies_pairs_agree() {
             photometry::flux(a.distribution()).total_lm,
             photometry::flux(&bd).total_lm,
         );
-        assert!((fa - fb).abs() <= 0.01 * fa, "{l} vs {i}: flux {fa} vs {fb}");
+        assert_close!(fb, fa, rel = 0.01, "{l} vs {i}: flux {fa} vs {fb}");
         let full = a.distribution().expand(24);
         let mut worst: f64 = 0.0;
         for (k, &c) in full.c_angles().iter().enumerate() {

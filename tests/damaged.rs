@@ -12,6 +12,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
+mod common;
+
 use photosolid::formats::roundtrip::{check, non_finite_in_debug};
 use photosolid::model::Format;
 use photosolid::{Error, ReadOptions};
@@ -121,20 +123,9 @@ fn truncation_at_every_line() {
     }
 }
 
-/// A small deterministic PRNG (xorshift64*), so failures reproduce.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-}
-
 #[test]
 fn bit_flips() {
-    let mut rng = Rng(0x5eed_1234_abcd_0001);
+    let mut rng = common::Rng(0x5eed_1234_abcd_0001);
     for f in data_files() {
         let bytes = std::fs::read(&f).unwrap();
         let format = Format::from_extension(&f).unwrap();

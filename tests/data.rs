@@ -1,6 +1,9 @@
 //! The project's own analytic files in data/ (written by scripts/make-data.sh):
 //! both formats load, agree with each other, and integrate to their closed forms.
 
+#[macro_use]
+mod common;
+
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -58,7 +61,7 @@ fn nonuniform_knots_integrate_exactly() {
     let simpson = 2.0 * PI * s * h.to_radians() / 3.0;
     let ours = flux(d).total_lm;
     // Simpson on a kinked integrand converges as h² per kink: 1e-6 relative is ample.
-    assert!((ours - simpson).abs() <= 1e-6 * simpson, "{ours} vs {simpson}");
+    assert_close!(ours, simpson, rel = 1e-6, "{ours} vs {simpson}");
     // And the coarse grid really is coarse: several percent above the closed form.
     let exact = 2.0 * PI * 2000.0 / 21.0;
     assert!(ours > exact * 1.01);
@@ -72,10 +75,10 @@ fn data_files_integrate_to_closed_forms_in_both_formats() {
         let ies = photosolid::load(dir.join(format!("{stem}.ies"))).unwrap();
         let (fl, fi) = (flux(ldt.distribution()).total_lm, flux(ies.distribution()).total_lm);
         // The two formats hold the same numbers to their printed precision (8 significant digits in LDT).
-        assert!((fl - fi).abs() <= 1e-7 * fl, "{stem}: ldt {fl} vs ies {fi}");
+        assert_close!(fi, fl, rel = 1e-7, "{stem}: ldt {fl} vs ies {fi}");
         assert_eq!(ldt.distribution().symmetry(), ies.distribution().symmetry(), "{stem}");
         if let Some(x) = exact {
-            assert!((fl - x).abs() <= tol * x, "{stem}: {fl} vs exact {x} (tol {tol})");
+            assert_close!(fl, x, abs = tol * x, "{stem}: {fl} vs exact {x} (tol {tol})");
         }
         assert!(
             ldt.warnings().is_empty() && ies.warnings().is_empty(),
@@ -92,8 +95,12 @@ fn data_beam_angles_match_closed_forms() {
     let lam = photosolid::load(dir.join("lambertian.ldt")).unwrap();
     let b = beam_angles(lam.distribution());
     // 2.5° grid, linear crossing: cos is nearly linear over one step near 60°.
-    assert!((b.ies_beam_deg[0].unwrap() - 120.0).abs() < 0.05);
+    assert_close!(b.ies_beam_deg[0].unwrap(), 120.0, abs = 0.05);
     let cos5 = photosolid::load(dir.join("cosine_p5.ies")).unwrap();
     let exact = 2.0 * 0.5f64.powf(1.0 / 5.0).acos().to_degrees();
-    assert!((beam_angles(cos5.distribution()).ies_beam_deg[1].unwrap() - exact).abs() < 0.05);
+    assert_close!(
+        beam_angles(cos5.distribution()).ies_beam_deg[1].unwrap(),
+        exact,
+        abs = 0.05
+    );
 }

@@ -3,6 +3,9 @@
 //! serde_json for GLB), pbrt's flux convergence, the texel each layout puts
 //! the peak on, and the defect rows.
 
+#[macro_use]
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use exr::prelude::{read_first_flat_layer_from_file, AttributeValue, FlatSamples, Text};
@@ -86,7 +89,7 @@ fn ies_export_reads_back_as_the_same_distribution() {
         assert_eq!(a.c_angles(), b.c_angles(), "{name}");
         assert_eq!(a.gamma_angles(), b.gamma_angles(), "{name}");
         for (x, y) in a.intensities().iter().zip(b.intensities()) {
-            assert!((x - y).abs() <= 1e-9 * x.abs().max(1.0), "{name}: {x} vs {y}");
+            assert_close!(*x, *y, abs = 1e-9 * x.abs().max(1.0), "{name}: {x} vs {y}");
         }
     }
 }
@@ -137,7 +140,7 @@ fn glb_embeds_the_ies_profile_and_the_fitted_lights() {
     .unwrap();
     assert_eq!(back.distribution().gamma_angles(), lum.distribution().gamma_angles());
     let peak = lum.distribution().max_cd();
-    assert!((back.distribution().max_cd() - peak).abs() <= 1e-9 * peak);
+    assert_close!(back.distribution().max_cd(), peak, rel = 1e-9);
     // A node instantiates the profile; every KHR light has a node; the spot's cone is valid.
     let nodes = doc["nodes"].as_array().unwrap();
     assert!(nodes.iter().any(|n| n["extensions"]["EXT_lights_ies"]["light"] == 0));
@@ -319,8 +322,10 @@ fn squared_candela_rows_and_reference_choice() {
     let sq = r.rows.iter().find(|x| x.name == "babylon: squared candela").unwrap();
     // (I/I_max)² instead of I/I_max: cos^10 instead of cos^5, the flux goes from 2π/6 to 2π/11 of I_max.
     let expected = 100.0 * (6.0 / 11.0 - 1.0);
-    assert!(
-        (sq.metrics.flux_error_pct - expected).abs() < 1.0,
+    assert_close!(
+        sq.metrics.flux_error_pct,
+        expected,
+        abs = 1.0,
         "{} vs {expected}",
         sq.metrics.flux_error_pct
     );
@@ -422,13 +427,17 @@ fn tilt_and_type_b_rows_appear_for_such_files() {
             .find(|x| x.name == name)
             .unwrap_or_else(|| panic!("no row {name}"));
         // The untilted profile against 0.8 x the profile: 20 % of the peak at the peak.
-        assert!(
-            (row.metrics.radial_max_pct - 20.0).abs() < 0.5,
+        assert_close!(
+            row.metrics.radial_max_pct,
+            20.0,
+            abs = 0.5,
             "{name}: {}",
             row.metrics.radial_max_pct
         );
-        assert!(
-            (row.metrics.flux_error_pct - 25.0).abs() < 0.5,
+        assert_close!(
+            row.metrics.flux_error_pct,
+            25.0,
+            abs = 0.5,
             "{name}: {}",
             row.metrics.flux_error_pct
         );

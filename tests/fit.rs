@@ -1,6 +1,7 @@
 //! Fitted OpenGL lights (Zotti et al. 2005): recovery of known lights from
 //! synthetic data, extremes, honest failures, and the corpus table.
 
+#[macro_use]
 mod common;
 
 use photosolid::fit::{error_of, fit, ErrorMetric, Fit, FitOptions, FittedLights, Hemisphere, Light, Spot};
@@ -114,11 +115,11 @@ fn check(want: &FittedLights, f: &Fit, tol: Tol, what: &str) -> [f64; 4] {
         assert_eq!(key(a), key(b), "{what}: wrong lights\n{table}");
         let dw = (a.weight_cd() - b.weight_cd()).abs() / a.weight_cd();
         worst[3] = worst[3].max(dw);
-        assert!(
-            dw <= tol.weight_rel,
-            "{what}: weight {} vs {}\n{table}",
+        assert_close!(
             b.weight_cd(),
-            a.weight_cd()
+            a.weight_cd(),
+            rel = tol.weight_rel,
+            "{what}: weight\n{table}"
         );
         if let (Light::Spot(a), Light::Spot(b)) = (a, b) {
             let dp = (a.exponent - b.exponent).abs() / a.exponent.max(1.0);
@@ -133,11 +134,11 @@ fn check(want: &FittedLights, f: &Fit, tol: Tol, what: &str) -> [f64; 4] {
                 b.exponent,
                 a.exponent
             );
-            assert!(
-                dc <= tol.cutoff_deg,
-                "{what}: cut-off {} vs {}\n{table}",
+            assert_close!(
                 b.cutoff_deg,
-                a.cutoff_deg
+                a.cutoff_deg,
+                abs = tol.cutoff_deg,
+                "{what}: cut-off\n{table}"
             );
             assert!(dx <= tol.axis_deg, "{what}: axis off by {dx} deg\n{table}");
         }
@@ -284,7 +285,8 @@ fn cutoffs_near_zero_and_at_ninety() {
     let Light::Spot(s) = f.model().lights[0] else {
         panic!("{:?}", f.model())
     };
-    assert!(s.cutoff_deg < 1.0 && (s.weight_cd - 500.0).abs() < 1e-6, "{s:?}");
+    assert!(s.cutoff_deg < 1.0, "{s:?}");
+    assert_close!(s.weight_cd, 500.0, abs = 1e-6, "{s:?}");
     // Cut-off 0 exactly (OpenGL: only the axis itself).
     let (_, d) = rot(vec![spot(Hemisphere::Down, 500.0, 3.0, 0.0, 0.0, 0.0)], 1.0);
     let f = fit(&d, &FitOptions::default()).unwrap();
@@ -366,7 +368,7 @@ fn all_equal_data_is_a_point_light() {
     all_finite(&f);
     assert!(f.axis_vertical, "identical planes are rotational");
     assert_eq!(f.chosen().combination.name(), "point");
-    assert!((f.model().lights[0].weight_cd() - 250.0).abs() < 1e-9);
+    assert_close!(f.model().lights[0].weight_cd(), 250.0, abs = 1e-9);
     assert!(f.error() < 1e-12);
     // A flat lower hemisphere measured alone: a point light and a p = 0 spot both fit; the point wins.
     let g90: Vec<f64> = (0..=18).map(|k| k as f64 * 5.0).collect();
@@ -487,7 +489,7 @@ fn error_of_agrees_and_solid_angle_metric_recovers() {
     check(&m, &f, EXACT, "solid-angle metric");
     for t in f.trials.iter().filter(|t| t.model.is_some()) {
         let e = error_of(&d, t.model.as_ref().unwrap(), ErrorMetric::SolidAngle, opts.guard).unwrap();
-        assert!((e - t.error.unwrap()).abs() < 1e-12, "{e} vs {:?}", t.error);
+        assert_close!(e, t.error.unwrap(), abs = 1e-12, "{e} vs {:?}", t.error);
     }
     // The true model has zero error under both metrics.
     assert!(error_of(&d, &m, ErrorMetric::Relative, 0.02).unwrap() < 1e-12);
@@ -561,8 +563,8 @@ fn report_has_gl_units_and_snippets() {
     let dz = l["direction_luminaire"].as_array().unwrap();
     let dy = l["direction_gl"].as_array().unwrap();
     // y-up = (x, z, −y) of z-up.
-    assert!((dy[1].as_f64().unwrap() - dz[2].as_f64().unwrap()).abs() < 1e-12);
-    assert!((dy[2].as_f64().unwrap() + dz[1].as_f64().unwrap()).abs() < 1e-12);
+    assert_close!(dy[1].as_f64().unwrap(), dz[2].as_f64().unwrap(), abs = 1e-12);
+    assert_close!(dy[2].as_f64().unwrap(), -dz[1].as_f64().unwrap(), abs = 1e-12);
     assert!(r.glsl.contains("float luminaireIntensity(vec3 L)"));
     assert_eq!(r.gl_fixed_function[0].GL_QUADRATIC_ATTENUATION, 1.0);
     assert!(r.to_text().contains("* spot-down"));

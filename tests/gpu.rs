@@ -9,6 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
+mod common;
+
 use photosolid::gpu::{self, Backend, GpuContext, GpuError, RenderJob, RenderKernel, Resolved};
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions, Rendered};
 use photosolid::synth::{GridSpec, Synth};
@@ -150,16 +152,6 @@ fn two_pass_matches_fused_and_cpu_on_data_files() {
     );
 }
 
-fn corpus() -> Option<PathBuf> {
-    let p = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus"));
-    if p.is_dir() {
-        Some(p.to_path_buf())
-    } else {
-        eprintln!("notice: ../shared/corpus not found; GPU corpus checks skipped");
-        None
-    }
-}
-
 /// The representative subset: full sphere, Isym 3, Isym 4, lower hemisphere,
 /// non-uniform γ, single-plane rotational, Type B, partial γ range.
 const CORPUS_SUBSET: [&str; 8] = [
@@ -236,7 +228,7 @@ fn corpus_subset_every_filter_matches_cpu() {
     let Some(c) = ctx("corpus_subset_every_filter_matches_cpu") else {
         return;
     };
-    let Some(root) = corpus() else { return };
+    let Some(root) = common::corpus() else { return };
     let mut worst = 0.0f32;
     for rel in CORPUS_SUBSET {
         let tex = texture(&root.join(rel));

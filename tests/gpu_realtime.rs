@@ -5,6 +5,7 @@
 //! and pass, unless `PHOTOSOLID_REQUIRE_GPU=1`.
 #![cfg(feature = "gpu")]
 
+#[macro_use]
 mod common;
 
 use std::path::Path;
@@ -149,17 +150,14 @@ fn realtime_texture_as_field() {
     for (ic, &cc) in cs.iter().enumerate() {
         for (ig, &g) in gs.iter().enumerate() {
             let one = t.intensity_cd(cc, g);
-            assert!(
-                (one - grid[ic * gs.len() + ig]).abs() <= 1e-9 * r.i_max_cd,
-                "({cc}, {g})"
-            );
+            assert_close!(one, grid[ic * gs.len() + ig], abs = 1e-9 * r.i_max_cd, "({cc}, {g})");
         }
     }
     assert_eq!(t.intensity_dir_cd(DVec3::ZERO), 0.0);
     assert_eq!(t.intensity_cd(f64::NAN, 3.0), 0.0);
     let b = t.intensity_batch_cd(&[(f64::INFINITY, 1.0), (10.0, 45.0)]);
     assert_eq!(b[0], 0.0);
-    assert!((b[1] - t.intensity_cd(10.0, 45.0)).abs() <= 1e-9 * r.i_max_cd);
+    assert_close!(b[1], t.intensity_cd(10.0, 45.0), abs = 1e-9 * r.i_max_cd);
     assert!(t.sample_dirs_cd(&[]).unwrap().is_empty());
 }
 
@@ -264,8 +262,10 @@ fn trade_table_gpu_rows() {
             } else {
                 0.0
             };
-            assert!(
-                (g.radial_max_pct - e.radial_max_pct).abs() <= d + f16 + 1e-6,
+            assert_close!(
+                g.radial_max_pct,
+                e.radial_max_pct,
+                abs = d + f16 + 1e-6,
                 "{gpu}: {g:?} vs {e:?}"
             );
         }

@@ -8,9 +8,8 @@ use photosolid::formats::{Handedness, ReadOptions};
 use photosolid::model::{PhotometricType, Symmetry, Tilt};
 use photosolid::{Distribution, Luminaire};
 
+#[macro_use]
 mod common;
-
-const CORPUS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
 
 /// (path, malformed) of every .ies file of the corpus manifest (the shared
 /// manifest reader of `tests/common`); None when the corpus is missing.
@@ -44,10 +43,7 @@ fn assert_same(a: &Distribution, b: &Distribution, rel: f64, what: &str) {
     assert_eq!(a.gamma_angles(), b.gamma_angles(), "{what}: gamma angles");
     let tol = rel * a.max_cd().abs().max(1e-300);
     for (i, (x, y)) in a.intensities().iter().zip(b.intensities()).enumerate() {
-        assert!(
-            (x - y).abs() <= tol.max(rel * x.abs()),
-            "{what}: value #{i}: {x} vs {y}"
-        );
+        assert_close!(*x, *y, abs = tol.max(rel * x.abs()), "{what}: value #{i}: {x} vs {y}");
     }
 }
 
@@ -110,21 +106,10 @@ fn corpus_round_trips_through_the_writer() {
     }
 }
 
-/// A tiny deterministic PRNG (xorshift64*).
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
-    }
-}
-
 #[test]
 fn no_panic_on_truncated_flipped_or_random_input() {
     let Some(files) = corpus() else { return };
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    let mut rng = common::Rng(0x9E37_79B9_7F4A_7C15);
     let opts_all = [
         ReadOptions::default(),
         ReadOptions {
@@ -221,13 +206,13 @@ fn tilt_include_is_parsed_not_applied() {
     assert_eq!(table.multipliers, vec![1.0, 0.95, 0.9]);
     assert_eq!(l.distribution().intensities(), &[10.0, 5.0]);
     let t = l.tilted_distribution(30.0).unwrap();
-    assert!((t.intensities()[0] - 9.0).abs() < 1e-12);
+    assert_close!(t.intensities()[0], 9.0, abs = 1e-12);
 }
 
 #[test]
 fn tilt_file_is_resolved_next_to_the_file() {
-    let Some(_) = corpus() else { return };
-    let p = Path::new(CORPUS).join("luxera/tilt_file_variant.ies");
+    let Some(root) = common::corpus() else { return };
+    let p = root.join("luxera/tilt_file_variant.ies");
     let l = read_path(&p).unwrap();
     let Tilt::File { name, table } = l.tilt() else {
         panic!("{:?}", l.tilt())
@@ -243,7 +228,7 @@ fn tilt_file_is_resolved_next_to_the_file() {
         "{text}"
     );
 
-    let p = Path::new(CORPUS).join("luxera/tilt_file_missing.ies");
+    let p = root.join("luxera/tilt_file_missing.ies");
     let e = read_path(&p).unwrap_err();
     assert!(e.to_string().contains("does_not_exist.dat"), "{e}");
     assert_eq!(e.location.line, 4);
@@ -315,7 +300,7 @@ fn type_b_bright_direction_lands_at_the_expected_c_gamma() {
         let gamma = (-d[2]).acos().to_degrees();
         let c = d[1].atan2(d[0]).to_degrees().rem_euclid(360.0);
         let (peak, _, _) = l.distribution().max();
-        assert!((peak - 1000.0).abs() < 1e-9, "{peak}");
+        assert_close!(peak, 1000.0, abs = 1e-9, "{peak}");
         // The grid point nearest the bright direction lies inside the lit patch.
         let d2 = l.distribution();
         let near = |a: &[f64], x: f64| {
@@ -349,7 +334,7 @@ fn type_b_half_grid_is_c0c180() {
     let l = read_str(s).unwrap();
     assert_eq!(l.distribution().symmetry(), Symmetry::C0C180);
     // Nadir = H0 V0 = 2.
-    assert!((l.distribution().value(0, 0) - 2.0).abs() < 1e-9);
+    assert_close!(l.distribution().value(0, 0), 2.0, abs = 1e-9);
 }
 
 #[test]
@@ -367,8 +352,8 @@ fn file_1986_without_keyword_line_and_blpf() {
     // 100 x multiplier 2 x ballast 0.5 x BLPF 0.8 = 80.
     assert_eq!(l.distribution().intensities(), &[80.0, 40.0]);
     assert_eq!(l.declared().lamp_flux_lm, Some(2000.0));
-    assert!((l.luminous_opening().length_m - 2.0 * 0.3048).abs() < 1e-12);
-    assert!((l.luminous_opening().width_m - 0.3048).abs() < 1e-12);
+    assert_close!(l.luminous_opening().length_m, 2.0 * 0.3048, abs = 1e-12);
+    assert_close!(l.luminous_opening().width_m, 0.3048, abs = 1e-12);
     assert_eq!(l.metadata().luminaire, "ACME LIGHTING Some luminaire");
     // From 1995 the BLPF field is unused.
     let s95 = s.replace("ACME LIGHTING\n", "IESNA:LM-63-1995\n");

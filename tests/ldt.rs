@@ -8,9 +8,8 @@ use photosolid::formats::ldt::{self, LampSetLayout, SIGNIFICANT_DIGITS};
 use photosolid::formats::{LampSetFlux, ReadOptions};
 use photosolid::model::{Distribution, Luminaire, Symmetry};
 
+#[macro_use]
 mod common;
-
-const CORPUS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/corpus");
 
 /// (path, malformed) of every .ldt file of the corpus manifest (the shared
 /// manifest reader of `tests/common`); None when the corpus is missing.
@@ -49,8 +48,10 @@ fn assert_same_distribution(a: &Distribution, b: &Distribution, what: &str) {
     assert_eq!(a.gamma_angles(), b.gamma_angles(), "{what}: gamma angles");
     for (i, (x, y)) in a.intensities().iter().zip(b.intensities()).enumerate() {
         let g = a.n_gamma();
-        assert!(
-            (x - y).abs() <= tolerance(*x),
+        assert_close!(
+            *x,
+            *y,
+            abs = tolerance(*x),
             "{what}: C = {} > gamma = {}: {x} vs {y}",
             a.c_angles()[i / g],
             a.gamma_angles()[i % g]
@@ -119,8 +120,8 @@ fn corpus_round_trips_through_the_writer() {
 
 #[test]
 fn corpus_special_files() {
-    let Some(_) = corpus() else { return };
-    let root = Path::new(CORPUS);
+    let Some(root) = common::corpus() else { return };
+    let root = root.as_path();
     // ~1000 blank lines and 259 extra values after the data.
     let l = read_file(&root.join("r-lighting/0_CIE-2010-Table7.ldt")).unwrap();
     let w = l

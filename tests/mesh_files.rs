@@ -3,6 +3,7 @@
 //! and Blender do), must be a closed 2-manifold with the solid's components,
 //! also where several sheets of the solid meet at the origin.
 
+#[macro_use]
 mod common;
 
 use photosolid::solid::export::{self, MeshFormat};
@@ -23,8 +24,7 @@ fn check_files(m: &Mesh, what: &str) {
         assert_eq!(t.components, r.components, "{what} {f:?}");
         assert_eq!(t.euler_characteristic, 2 * r.components as i64, "{what} {f:?}");
         // The separated copies move by at most SHEET_SEPARATION x the largest radius.
-        let dv = (back.volume() - m.volume()).abs() / m.volume();
-        assert!(dv < 1e-4, "{what} {f:?}: volume {} vs {}", back.volume(), m.volume());
+        assert_close!(back.volume(), m.volume(), rel = 1e-4, "{what} {f:?}: volume");
         let r_back = back
             .sanity_check()
             .unwrap_or_else(|e| panic!("{what} {f:?} read back: {e}"));

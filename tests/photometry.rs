@@ -2,6 +2,7 @@
 //! real files, against the peer eulumdat-rs where it is right, and through
 //! the CLI (`info --json` keys, `compare --vs` side by side).
 
+#[macro_use]
 mod common;
 
 use std::path::Path;
@@ -56,7 +57,7 @@ fn cie_flux_codes_agree_with_the_peer_where_it_is_right() {
         if name == "road_luminaire.ldt" {
             assert!(worst > 5.0, "{name}: the peer's known error vanished? {worst}");
             let s = photosolid::photometry::summary(&lum);
-            assert!((s.flux_ratio.unwrap() - 1.0).abs() < 0.005, "{:?}", s.flux_ratio);
+            assert_close!(s.flux_ratio.unwrap(), 1.0, abs = 0.005, "{:?}", s.flux_ratio);
         } else {
             assert!(worst < 0.7, "{name}: ours {:?} vs peer {peer:?}", code.n);
         }
@@ -74,12 +75,9 @@ fn symmetric_files_have_equal_front_and_back_zones() {
         let z = bug_zones(lum.distribution());
         let total = z.fl + z.fm + z.fh + z.fvh + z.bl + z.bm + z.bh + z.bvh + z.ul + z.uh;
         let flux = photosolid::photometry::flux(lum.distribution()).total_lm;
-        assert!(
-            (total - flux).abs() < 1e-9 * flux,
-            "{name}: zones {total} vs flux {flux}"
-        );
+        assert_close!(total, flux, rel = 1e-9, "{name}: zones {total} vs flux {flux}");
         for (f, b) in [(z.fl, z.bl), (z.fm, z.bm), (z.fh, z.bh), (z.fvh, z.bvh)] {
-            assert!((f - b).abs() <= 1e-9 * flux, "{name}: front {f} back {b}");
+            assert_close!(f, b, abs = 1e-9 * flux, "{name}: front {f} back {b}");
         }
     }
 }
@@ -190,10 +188,10 @@ fn info_json_carries_the_derived_keys() {
     // Lambertian: L = I/A_p = (3600/π)/0.36 cd/m² at every angle.
     let l = v["luminance_table"]["c0_cd_m2"][4].as_f64().unwrap();
     let want = 3600.0 / std::f64::consts::PI / 0.36;
-    assert!((l - want).abs() < 1e-3 * want, "{l} vs {want}");
+    assert_close!(l, want, rel = 1e-3, "{l} vs {want}");
     // Isotropic-in-cosine: N1 = 43.75 % within the 5° grid's interpolation error.
     let n1 = v["cie_flux_code"]["n"][0].as_f64().unwrap();
-    assert!((n1 - 43.75).abs() < 0.3, "{n1}");
+    assert_close!(n1, 43.75, abs = 0.3, "{n1}");
     let text = ok(&run(&["info", "panel.ies"], dir.path()));
     assert!(
         text.contains("UGR table") && text.contains("CIE flux code") && text.contains("BUG rating"),
@@ -231,10 +229,10 @@ fn compare_vs_prints_photometry_side_by_side() {
     let row = |q: &str| rows.iter().find(|r| r["quantity"] == q).unwrap().clone();
     let flux = row("flux");
     let (a, d) = (flux["file"].as_f64().unwrap(), flux["difference"].as_f64().unwrap());
-    assert!((d - a).abs() < 1e-6 * a, "{flux}");
-    assert!(row("CIE flux code N1")["difference"].as_f64().unwrap().abs() < 1e-9);
+    assert_close!(d, a, rel = 1e-6, "{flux}");
+    assert_close!(row("CIE flux code N1")["difference"].as_f64().unwrap(), 0.0, abs = 1e-9);
     let du = row("UGR 4Hx8H 70/50/20 crosswise")["difference"].as_f64().unwrap();
-    assert!((du - 8.0 * 2f64.log10()).abs() < 1e-6, "{du}");
+    assert_close!(du, 8.0 * 2f64.log10(), abs = 1e-6, "{du}");
     let mut r = args.to_vec();
     r.extend(["--report", "rep"]);
     ok(&run(&r, dir.path()));

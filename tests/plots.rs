@@ -75,18 +75,23 @@ fn series_set(scale: f64) -> Vec<Series> {
     ]
 }
 
-#[test]
-fn polar_renders_for_all_inputs() {
-    let typical = series_set(420.0);
-    let png = polar_diagram(&PolarSpec {
-        title: "C0-C180: luminaire X",
+/// A C0-C180 polar diagram (cd) of `series` titled `title`.
+fn c0_c180_polar(title: &str, series: &[Series]) -> Vec<u8> {
+    polar_diagram(&PolarSpec {
+        title,
         left: "C180",
         right: "C0",
         unit: "cd",
-        series: &typical,
+        series,
         ..PolarSpec::default()
     })
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn polar_renders_for_all_inputs() {
+    let typical = series_set(420.0);
+    let png = c0_c180_polar("C0-C180: luminaire X", &typical);
     assert_eq!(png_size(&png), (800, 800));
     keep("polar_typical.png", &png);
 
@@ -138,15 +143,7 @@ fn polar_renders_for_all_inputs() {
         ),
     ];
     for (name, s) in cases {
-        let png = polar_diagram(&PolarSpec {
-            title: name,
-            left: "C180",
-            right: "C0",
-            unit: "cd",
-            series: &s,
-            ..PolarSpec::default()
-        })
-        .unwrap();
+        let png = c0_c180_polar(name, &s);
         assert_eq!(png_size(&png), (800, 800), "{name}");
         assert!(Pixmap::decode_png(&png).is_ok(), "{name}");
         keep(&format!("polar_{name}.png"), &png);
@@ -166,15 +163,7 @@ fn polar_nadir_points_down() {
         color,
         style: SeriesStyle::Line,
     }];
-    let png = polar_diagram(&PolarSpec {
-        title: "down",
-        left: "C180",
-        right: "C0",
-        unit: "cd",
-        series: &s,
-        ..PolarSpec::default()
-    })
-    .unwrap();
+    let png = c0_c180_polar("down", &s);
     keep("polar_down.png", &png);
     let pm = Pixmap::decode_png(&png).unwrap();
     let (w, h) = (pm.width(), pm.height());

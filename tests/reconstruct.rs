@@ -1,5 +1,8 @@
 //! Reconstruction on the sphere: filters, light distribution textures, render, files, hold-out.
 
+#[macro_use]
+mod common;
+
 use glam::DVec3;
 use photosolid::model::frame::{angles, direction};
 use photosolid::reconstruct::{exr_io, holdout, render, render_with, Filter, HoldoutSpec, LightTexture, RenderOptions};
@@ -53,8 +56,10 @@ fn interpolating_filters_return_measured_values_at_their_directions() {
                 assert_eq!(s.cd(c, g), want, "{f} at C {c} gamma {g}");
                 // by direction: acos/atan2 round trip costs a few ulps of the angle
                 let got = s.cd_dir(direction(c, g));
-                assert!(
-                    (got - want).abs() <= 1e-9 * d.max_cd(),
+                assert_close!(
+                    got,
+                    want,
+                    abs = 1e-9 * d.max_cd(),
                     "{f} dir at C {c} gamma {g}: {got} vs {want}"
                 );
             }
@@ -84,13 +89,13 @@ fn c_is_periodic_whatever_the_symmetry() {
                 assert_eq!(s.cd(720.0, g), at0);
                 for e in [1e-12, 1e-9] {
                     // continuity across the seam, from both sides
-                    assert!((s.cd(360.0 - e, g) - at0).abs() <= 1e-6 * tex.i_max_cd());
-                    assert!((s.cd(e, g) - at0).abs() <= 1e-6 * tex.i_max_cd());
+                    assert_close!(s.cd(360.0 - e, g), at0, abs = 1e-6 * tex.i_max_cd());
+                    assert_close!(s.cd(e, g), at0, abs = 1e-6 * tex.i_max_cd());
                 }
                 let d0 = s.cd_dir(DVec3::new(1.0, 0.0, -g.to_radians().cos() / g.to_radians().sin()));
                 let dm = s.cd_dir(DVec3::new(1.0, -1e-12, -g.to_radians().cos() / g.to_radians().sin()));
-                assert!((d0 - at0).abs() <= 1e-6 * tex.i_max_cd(), "{f}: {d0} vs {at0}");
-                assert!((dm - at0).abs() <= 1e-6 * tex.i_max_cd(), "{f}: {dm} vs {at0}");
+                assert_close!(d0, at0, abs = 1e-6 * tex.i_max_cd(), "{f}: {d0} vs {at0}");
+                assert_close!(dm, at0, abs = 1e-6 * tex.i_max_cd(), "{f}: {dm} vs {at0}");
             }
         }
     }
@@ -116,15 +121,15 @@ fn poles_are_continuous_and_independent_of_c() {
                     let by_angle = s.cd(c, pole);
                     if f.is_interpolating() {
                         // Exactly one value at the pole, whatever C.
-                        assert!((near - at).abs() <= tol, "{f} pole {pole} C {c}: {near} vs {at}");
-                        assert!((by_angle - at).abs() <= tol, "{f} pole {pole} C {c}");
+                        assert_close!(near, at, abs = tol, "{f} pole {pole} C {c}: {near} vs {at}");
+                        assert_close!(by_angle, at, abs = tol, "{f} pole {pole} C {c}");
                     }
                     // Continuous through the pole along every meridian: C and C + 180 meet
                     // (approximating filters: on grids closed under C + 180).
                     if f.is_interpolating() || closed {
                         let g = if pole == 0.0 { 1e-7 } else { 180.0 - 1e-7 };
                         let (a, b) = (s.cd(c, g), s.cd(c + 180.0, g));
-                        assert!((a - b).abs() <= 1e-6 * tex.i_max_cd(), "{f} meridian C {c}: {a} vs {b}");
+                        assert_close!(a, b, abs = 1e-6 * tex.i_max_cd(), "{f} meridian C {c}: {a} vs {b}");
                     }
                 }
             }
@@ -203,8 +208,10 @@ fn assert_same_lookups(a: &LightTexture, b: &LightTexture, tol: f64, what: &str)
             for j in 0..=37 {
                 let (c, g) = (i as f64 * 5.0 + 0.7, j as f64 * 4.87);
                 let (x, y) = (sa.cd(c, g), sb.cd(c, g));
-                assert!(
-                    (x - y).abs() <= tol * a.i_max_cd(),
+                assert_close!(
+                    x,
+                    y,
+                    abs = tol * a.i_max_cd(),
                     "{what} {f} at C {c} gamma {g}: {x} vs {y}"
                 );
             }
@@ -370,7 +377,7 @@ fn degenerate_axes() {
     let tex = LightTexture::new(&d).unwrap();
     for f in [Filter::CatmullRom, Filter::Pchip, Filter::BSpline, Filter::MITCHELL] {
         for g in [10.0, 20.0, 45.0, 79.0, 80.0] {
-            assert!((tex.sampler(f).cd(0.0, g) - g).abs() < 1e-9, "{f} at {g}");
+            assert_close!(tex.sampler(f).cd(0.0, g), g, abs = 1e-9, "{f} at {g}");
         }
     }
     // Two C-planes: no overshoot along C.
@@ -417,9 +424,9 @@ fn intensities_from_micro_to_mega_candela() {
 fn direction_angles_round_trip_and_edge_vectors() {
     for (c, g) in [(0.0, 0.0), (0.0, 180.0), (90.0, 90.0), (271.5, 33.0), (359.0, 179.0)] {
         let (c2, g2) = angles(direction(c, g)).unwrap();
-        assert!((g2 - g).abs() < 1e-9);
+        assert_close!(g2, g, abs = 1e-9);
         if g != 0.0 && g != 180.0 {
-            assert!((c2 - c).abs() < 1e-9, "{c} {c2}");
+            assert_close!(c2, c, abs = 1e-9, "{c} {c2}");
         }
     }
     assert_eq!(angles(DVec3::ZERO), None);
@@ -503,7 +510,7 @@ fn holdout_ranks_filters_on_a_smooth_solid() {
     assert!(by(Filter::Pchip).rms_percent < bl.rms_percent);
     for r in &reports {
         assert!(r.rms_percent.is_finite() && r.max_percent >= r.rms_percent);
-        assert!(r.flux_error_percent.abs() < 5.0, "{r:?}");
+        assert_close!(r.flux_error_percent, 0.0, abs = 5.0, "{r:?}");
         assert_eq!(r.kept, (18, 24));
     }
     let json = serde_json::to_string(&reports[2]).unwrap();

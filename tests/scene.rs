@@ -1,5 +1,8 @@
 //! Scenes: illuminance against closed forms, near-field sources, plans, extremes, the CLI.
 
+#[macro_use]
+mod common;
+
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -19,6 +22,35 @@ fn synth(kind: Synth, peak: f64) -> Luminaire {
 
 fn placed(name: &str, lum: Luminaire, at: DVec3, aim: Aim) -> SceneLuminaire {
     SceneLuminaire::new(name, lum, Pose::new(at, aim)).unwrap()
+}
+
+/// A cosine-power (p = 5, 2000 cd) luminaire `height_m` above the origin,
+/// aimed down, with a square luminous opening of side `side_m`.
+fn cos5_square_opening(height_m: f64, side_m: f64) -> SceneLuminaire {
+    let mut lum = placed(
+        "cos5",
+        synth(Synth::CosinePower { p: 5.0 }, 2000.0),
+        DVec3::new(0.0, 0.0, height_m),
+        Aim::default(),
+    );
+    lum.opening = Opening::Rectangle {
+        length_m: side_m,
+        width_m: side_m,
+    };
+    lum
+}
+
+/// The lighting plan of `s`, timing each candidate on `timing_directions` directions.
+fn plan_timed(s: &Scene, timing_directions: usize) -> photosolid::scene::plan::PlanResult {
+    plan(
+        s,
+        &PlanOptions {
+            timing_directions,
+            ..PlanOptions::default()
+        },
+        None,
+    )
+    .unwrap()
 }
 
 fn scene(luminaires: Vec<SceneLuminaire>, receivers: Vec<Receiver>) -> Scene {
@@ -64,18 +96,13 @@ fn isotropic_point_over_a_plane_is_i_cos3_over_h2_at_every_grid_point() {
         let d = DVec3::from_array(p.position) - DVec3::new(1.0, -2.0, h);
         let cos = h / d.length();
         let want = i0 * cos.powi(3) / (h * h);
-        assert!(
-            (p.e_lux - want).abs() <= 1e-12 * want,
-            "{:?}: {} vs {want}",
-            p.position,
-            p.e_lux
-        );
+        assert_close!(p.e_lux, want, rel = 1e-12, "{:?}: {} vs {want}", p.position, p.e_lux);
     }
     let rc = &r.receivers[0];
     let mean = rc.points.iter().map(|p| p.e_lux).sum::<f64>() / 63.0;
-    assert!((rc.e_avg_lux - mean).abs() < 1e-12 * mean);
-    assert!((rc.u0.unwrap() - rc.e_min_lux / rc.e_avg_lux).abs() < 1e-15);
-    assert!((rc.emin_emax.unwrap() - rc.e_min_lux / rc.e_max_lux).abs() < 1e-15);
+    assert_close!(rc.e_avg_lux, mean, rel = 1e-12);
+    assert_close!(rc.u0.unwrap(), rc.e_min_lux / rc.e_avg_lux, abs = 1e-15);
+    assert_close!(rc.emin_emax.unwrap(), rc.e_min_lux / rc.e_max_lux, abs = 1e-15);
     // The aim is undone: the same lamp turned any way gives the same light.
     let mut turned = s.clone();
     turned.luminaires[0].pose = Pose::new(
@@ -89,7 +116,7 @@ fn isotropic_point_over_a_plane_is_i_cos3_over_h2_at_every_grid_point() {
     );
     let r2 = evaluate(&turned, None).unwrap();
     for (a, b) in r.receivers[0].points.iter().zip(&r2.receivers[0].points) {
-        assert!((a.e_lux - b.e_lux).abs() <= 1e-12 * a.e_lux);
+        assert_close!(b.e_lux, a.e_lux, rel = 1e-12);
     }
 }
 
@@ -98,20 +125,24 @@ fn ten_thousand_lumen_isotropic_source_three_metres_above_a_point_gives_88_42_lu
     let i0 = 10_000.0 / (4.0 * PI);
     let lum = synth(Synth::Isotropic, i0);
     let flux = photosolid::photometry::flux(lum.distribution()).total_lm;
-    assert!((flux - 10_000.0).abs() < 1e-6, "{flux}");
+    assert_close!(flux, 10_000.0, abs = 1e-6, "{flux}");
     let s = scene(
         vec![placed("iso", lum, DVec3::new(0.0, 0.0, 3.0), Aim::default())],
         vec![Receiver::point("p", DVec3::ZERO, DVec3::Z)],
     );
     let r = evaluate(&s, None).unwrap();
     let e = r.receivers[0].e_avg_lux;
-    assert!((e - 88.42).abs() < 0.005, "{e}");
+    assert_close!(e, 88.42, abs = 0.005, "{e}");
     assert_eq!(r.receivers[0].e_min_lux, e);
     assert_eq!(r.receivers[0].e_max_lux, e);
     // Maintenance factor scales linearly.
     let mut m = s.clone();
     m.luminaires[0].maintenance_factor = 0.8;
-    assert!((evaluate(&m, None).unwrap().receivers[0].e_avg_lux - 0.8 * e).abs() < 1e-12 * e);
+    assert_close!(
+        evaluate(&m, None).unwrap().receivers[0].e_avg_lux,
+        0.8 * e,
+        abs = 1e-12 * e
+    );
 }
 
 /// A Lambertian opening of luminance `l` as a luminaire: I = L·A·cos γ, closed form.
@@ -145,7 +176,7 @@ fn lambertian_disk_on_axis_closed_form_and_the_subdivided_source_converges_to_it
     };
     for z in [0.15, 0.3, 0.6, 1.5] {
         let want = lambert_disk_on_axis_lux(l, r, z);
-        assert!((want - PI * l * r * r / (r * r + z * z)).abs() < 1e-9 * want);
+        assert_close!(PI * l * r * r / (r * r + z * z), want, rel = 1e-9);
         let p = at(DVec3::new(0.0, 0.0, -z), DVec3::Z);
         let mut last = f64::INFINITY;
         for n in [1, 2, 4, 8, 16, 32, 64] {
@@ -162,7 +193,7 @@ fn lambertian_disk_on_axis_closed_form_and_the_subdivided_source_converges_to_it
         assert!(last < 1e-3, "z {z}: {last}");
         // The point source is off by r²/z² relatively (the 1/(z² + r²) falloff).
         let point = truth.intensity_dir_cd(DVec3::new(0.0, 0.0, -1.0)) / (z * z);
-        assert!(((point - want) / want - r * r / (z * z)).abs() < 1e-9);
+        assert_close!((point - want) / want, r * r / (z * z), abs = 1e-9);
     }
     // Through the scene (measured grid, Catmull-Rom, refined to convergence).
     let lum = lambertian_opening(l, disk, PI * r * r);
@@ -172,8 +203,10 @@ fn lambertian_disk_on_axis_closed_form_and_the_subdivided_source_converges_to_it
     );
     let res = evaluate(&s, None).unwrap();
     let want = lambert_disk_on_axis_lux(l, r, 0.6);
-    assert!(
-        (res.receivers[0].e_avg_lux - want).abs() < 1e-3 * want,
+    assert_close!(
+        res.receivers[0].e_avg_lux,
+        want,
+        rel = 1e-3,
         "{} vs {want}",
         res.receivers[0].e_avg_lux
     );
@@ -205,7 +238,7 @@ fn rectangle_against_the_closed_form_form_factor_lambert_and_subdivision() {
         let want = PI * l * f;
         let p = DVec3::new(x, y, -z);
         let lam = lambert_polygon_lux(&verts, l, p, DVec3::Z);
-        assert!((lam - want).abs() < 1e-12 * want, "({x}, {y}, {z}): {lam} vs {want}");
+        assert_close!(lam, want, rel = 1e-12, "({x}, {y}, {z}): {lam} vs {want}");
         let mut last = f64::INFINITY;
         for n in [1, 2, 4, 8, 16, 32, 64, 128] {
             let src = Source {
@@ -224,16 +257,7 @@ fn rectangle_against_the_closed_form_form_factor_lambert_and_subdivision() {
 
 #[test]
 fn far_receivers_let_the_plan_pick_fitted_lights_or_a_coarse_texture() {
-    let mut lum = placed(
-        "cos5",
-        synth(Synth::CosinePower { p: 5.0 }, 2000.0),
-        DVec3::new(0.0, 0.0, 60.0),
-        Aim::default(),
-    );
-    lum.opening = Opening::Rectangle {
-        length_m: 0.5,
-        width_m: 0.5,
-    };
+    let lum = cos5_square_opening(60.0, 0.5);
     let plane = Receiver::plane(
         "field",
         DVec3::new(-30.0, -30.0, 0.0),
@@ -243,15 +267,7 @@ fn far_receivers_let_the_plan_pick_fitted_lights_or_a_coarse_texture() {
         8,
     );
     let s = scene(vec![lum], vec![plane]);
-    let p = plan(
-        &s,
-        &PlanOptions {
-            timing_directions: 512,
-            ..PlanOptions::default()
-        },
-        None,
-    )
-    .unwrap();
+    let p = plan_timed(&s, 512);
     let l = &p.luminaires[0];
     assert!(l.far_field_ok && l.far_field.five_times_rule_holds);
     assert_eq!(l.source, SourceKind::Point, "{}", l.chosen);
@@ -270,8 +286,10 @@ fn far_receivers_let_the_plan_pick_fitted_lights_or_a_coarse_texture() {
         .zip(&got.receivers[0].points)
         .map(|(a, b)| (a.e_lux - b.e_lux).abs() / a.e_lux)
         .fold(0.0, f64::max);
-    assert!(
-        (100.0 * max - l.max_error_pct).abs() < 1e-9 + 1e-6 * l.max_error_pct,
+    assert_close!(
+        100.0 * max,
+        l.max_error_pct,
+        abs = 1e-9 + 1e-6 * l.max_error_pct,
         "{} vs {}",
         100.0 * max,
         l.max_error_pct
@@ -282,16 +300,7 @@ fn far_receivers_let_the_plan_pick_fitted_lights_or_a_coarse_texture() {
 
 #[test]
 fn a_receiver_at_one_luminaire_size_forces_the_area_source() {
-    let mut lum = placed(
-        "cos5",
-        synth(Synth::CosinePower { p: 5.0 }, 2000.0),
-        DVec3::new(0.0, 0.0, 3.0),
-        Aim::default(),
-    );
-    lum.opening = Opening::Rectangle {
-        length_m: 0.6,
-        width_m: 0.6,
-    };
+    let lum = cos5_square_opening(3.0, 0.6);
     let size = lum.opening.largest_dimension_m();
     let s = scene(
         vec![lum],
@@ -307,15 +316,7 @@ fn a_receiver_at_one_luminaire_size_forces_the_area_source() {
             ),
         ],
     );
-    let p = plan(
-        &s,
-        &PlanOptions {
-            timing_directions: 512,
-            ..PlanOptions::default()
-        },
-        None,
-    )
-    .unwrap();
+    let p = plan_timed(&s, 512);
     let l = &p.luminaires[0];
     assert_eq!(l.source, SourceKind::Area, "{}", l.chosen);
     assert!(!l.far_field_ok);
@@ -350,10 +351,11 @@ fn extremes_never_give_nan() {
         assert!(all_finite(&r));
         assert_eq!(r.receivers[0].e_avg_lux, 0.0);
         assert_eq!(r.receivers[0].u0, None);
-        assert!((r.receivers[1].e_avg_lux - 1000.0 / 25.0).abs() < 0.02 * 40.0);
+        assert_close!(r.receivers[1].e_avg_lux, 1000.0 / 25.0, abs = 0.02 * 40.0);
         let g = r.receivers[2].e_avg_lux;
         let want = 1000.0 * h / (1e10 + h * h).powf(1.5);
-        assert!(g > 0.0 && (g - want).abs() < 1e-6 * want, "{g} vs {want}");
+        assert!(g > 0.0, "{g} vs {want}");
+        assert_close!(g, want, rel = 1e-6, "{g} vs {want}");
     }
     // A point inside the opening: a clear error naming the receiver.
     let mut lum = placed("lamp", iso(), DVec3::new(0.0, 0.0, h), Aim::default());
@@ -409,15 +411,7 @@ fn extremes_never_give_nan() {
         assert!(all_finite(&r));
         assert_eq!(r.receivers[0].e_max_lux, 0.0);
         assert_eq!(r.receivers[0].emin_emax, None);
-        let p = plan(
-            &s,
-            &PlanOptions {
-                timing_directions: 256,
-                ..PlanOptions::default()
-            },
-            None,
-        )
-        .unwrap();
+        let p = plan_timed(&s, 256);
         assert!(p.luminaires[0].max_error_pct == 0.0 && p.combined_max_error_pct == 0.0);
         assert!(!serde_json::to_string(&p).unwrap().contains("NaN"));
     }
@@ -449,7 +443,7 @@ fn an_occluder_casts_a_shadow() {
     );
     let r = evaluate(&s, None).unwrap();
     assert_eq!(r.receivers[0].e_avg_lux, 0.0);
-    assert!((r.receivers[1].e_avg_lux - 1000.0 * 4.0 / 125.0).abs() < 1e-9);
+    assert_close!(r.receivers[1].e_avg_lux, 1000.0 * 4.0 / 125.0, abs = 1e-9);
 }
 
 fn root() -> &'static Path {
@@ -465,7 +459,7 @@ fn the_example_scene_loads_and_bad_files_name_the_line() {
         16 * 3,
         "EN 12464-1 spacing on 40 m: 2.62 m"
     );
-    assert!((s.luminaires[0].maintenance_factor - 0.8).abs() < 1e-15);
+    assert_close!(s.luminaires[0].maintenance_factor, 0.8, abs = 1e-15);
     // aim_at points the nadir at the target.
     let nadir = s.luminaires[1].pose.nadir();
     assert!((nadir - (DVec3::new(15.0, 2.5, 0.0) - DVec3::new(15.0, -1.0, 8.0)).normalize()).length() < 1e-12);
@@ -587,15 +581,7 @@ fn a_wall_seen_through_a_small_sector_is_planned_with_the_cropped_grid() {
     );
     assert!(wall.normal.x < -0.99, "faces the luminaire");
     let s = scene(vec![lum], vec![wall]);
-    let p = plan(
-        &s,
-        &PlanOptions {
-            timing_directions: 256,
-            ..PlanOptions::default()
-        },
-        None,
-    )
-    .unwrap();
+    let p = plan_timed(&s, 256);
     let l = &p.luminaires[0];
     assert!(
         l.representation.contains(", C ") && l.representation.ends_with(" only"),
@@ -639,22 +625,17 @@ fn the_opening_a_file_declares_drives_the_area_source() {
         let s = Scene::load(&path).unwrap();
         match s.luminaires[0].opening {
             Opening::Ellipse { length_m, width_m } => {
-                assert!(
-                    (length_m - 2.0 * r).abs() < 1e-6 && (width_m - 2.0 * r).abs() < 1e-6,
-                    "{file}"
-                )
+                assert_close!(length_m, 2.0 * r, abs = 1e-6, "{file}");
+                assert_close!(width_m, 2.0 * r, abs = 1e-6, "{file}");
             }
             o => panic!("{file}: {o:?}"),
         }
         let res = evaluate(&s, None).unwrap();
         let want = lambert_disk_on_axis_lux(l, r, 0.5);
         let got = res.receivers[0].e_avg_lux;
-        assert!((got - want).abs() < 2e-3 * want, "{file}: {got} vs {want}");
+        assert_close!(got, want, rel = 2e-3, "{file}: {got} vs {want}");
         let point = res.receivers[0].points[0].clone();
-        assert!(
-            (point.far_field_error_pct / 100.0 - r * r / 0.25).abs() < 0.2 * r * r / 0.25,
-            "{point:?}"
-        );
-        assert!((point.distance_ratio.unwrap() - 1.0).abs() < 1e-9);
+        assert_close!(point.far_field_error_pct / 100.0, r * r / 0.25, rel = 0.2, "{point:?}");
+        assert_close!(point.distance_ratio.unwrap(), 1.0, abs = 1e-9);
     }
 }

@@ -3,6 +3,9 @@
 
 use std::process::Command;
 
+#[macro_use]
+mod common;
+
 fn probe(ci: bool) -> (Option<i32>, String) {
     let mut c = Command::new("bash");
     c.arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/test-all.sh"))
@@ -55,4 +58,94 @@ fn probe_reports_each_group_and_ci_requires_gpu_chromium_notebooks() {
             "{ci_out}"
         );
     }
+}
+
+/// A test that finds no corpus leaves one file named after itself (also when
+/// many test threads skip at once, and once however often it asks), and
+/// scripts/corpus-skips.sh counts the checks and the test binaries for the
+/// test command's "SKIP corpus tests" line.
+#[test]
+fn skipped_corpus_checks_are_counted_per_test() {
+    let t = tempfile::tempdir().unwrap();
+    let (missing, skipped) = (t.path().join("no-corpus"), t.path().join("skipped"));
+    // A present corpus is returned and records nothing.
+    assert_eq!(
+        common::corpus_at(t.path(), &skipped, "tests/x.rs").as_deref(),
+        Some(t.path())
+    );
+    assert!(!skipped.exists());
+    // This test itself: the file holds "<binary>::<test name>".
+    assert!(common::corpus_at(&missing, &skipped, "tests/scripts.rs").is_none());
+    let own = std::fs::read_to_string(skipped.join("scripts__skipped_corpus_checks_are_counted_per_test")).unwrap();
+    assert_eq!(own, "scripts::skipped_corpus_checks_are_counted_per_test\n");
+    // 12 threads named like tests of two binaries, each asking three times, all at once.
+    let threads: Vec<_> = (0..12)
+        .map(|i| {
+            let (missing, skipped) = (missing.clone(), skipped.clone());
+            std::thread::Builder::new()
+                .name(format!("module::case_{i}"))
+                .spawn(move || {
+                    let file = if i < 8 { "tests/ies.rs" } else { "tests/ldt.rs" };
+                    for _ in 0..3 {
+                        assert!(common::corpus_at(&missing, &skipped, file).is_none());
+                    }
+                })
+                .unwrap()
+        })
+        .collect();
+    for th in threads {
+        th.join().unwrap();
+    }
+    let o = Command::new("bash")
+        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/corpus-skips.sh"))
+        .arg(&skipped)
+        .arg(&missing)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        format!(
+            "13 checks in 3 test binaries skipped: {} not found\n",
+            missing.display()
+        )
+    );
+    // No skips: no line.
+    let none = Command::new("bash")
+        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/corpus-skips.sh"))
+        .arg(t.path().join("empty"))
+        .arg(&missing)
+        .output()
+        .unwrap();
+    assert!(none.status.success() && none.stdout.is_empty());
+}
+
+/// The panic message of `f`, which must panic.
+fn panic_message(f: impl FnOnce() + std::panic::UnwindSafe) -> String {
+    let e = std::panic::catch_unwind(f).expect_err("must fail");
+    e.downcast_ref::<String>().cloned().unwrap_or_default()
+}
+
+#[test]
+fn assert_close_passes_within_and_fails_outside_its_tolerance() {
+    assert_close!(1.0, 1.0 + 1e-10, abs = 1e-9);
+    assert_close!(100.0, 100.5, rel = 0.005, "exactly at the bound");
+    assert_close!(&2.0f32, 2.0, abs = 0.0);
+    let m = panic_message(|| assert_close!(1.0, 1.1, abs = 0.05, "case {}", 7));
+    for part in [
+        "1.0 = 1.0",
+        "1.1 = 1.1",
+        "|difference| = 0.1",
+        "absolute tolerance 0.05",
+        ": case 7",
+    ] {
+        assert!(m.contains(part), "{part:?} not in {m}");
+    }
+    // Relative to the second (reference) value: 0.5 % of 200 is 1.
+    assert_close!(201.0, 200.0, rel = 0.005);
+    let m = panic_message(|| assert_close!(202.0, 200.0, rel = 0.005));
+    assert!(m.contains("relative tolerance 0.005 of |200.0| = 1.0"), "{m}");
+    // NaN never passes, whatever the tolerance.
+    panic_message(|| assert_close!(f64::NAN, 1.0, abs = f64::INFINITY));
+    panic_message(|| assert_close!(f64::NAN, f64::NAN, rel = 1.0));
 }

@@ -1,6 +1,9 @@
 //! Photometric-solid meshes: closed forms, convergence rates, invariants over
 //! many synthetic distributions, and exports read back.
 
+#[macro_use]
+mod common;
+
 use std::f64::consts::PI;
 
 use photosolid::model::{Distribution, Symmetry};
@@ -23,10 +26,6 @@ fn all_kinds() -> Vec<Synth> {
         Synth::Batwing,
         Synth::Roadway,
     ]
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
 }
 
 fn check(m: &Mesh, what: &str) -> SanityReport {
@@ -59,7 +58,7 @@ fn isotropic_grid_solid_is_a_sphere_of_radius_i_second_order() {
         Units::Candela,
     )
     .unwrap();
-    assert!(rel(m.area(), 4.0 * PI * i0 * i0) < 1e-3);
+    assert_close!(m.area(), 4.0 * PI * i0 * i0, rel = 1e-3);
 }
 
 #[test]
@@ -118,11 +117,12 @@ fn measured_isotropic_on_nonuniform_partial_grid() {
     assert_eq!(r.origin_sheets, 0);
     // The 130.5-180 gap is one chord facet: the polyhedron loses about 3 %.
     let exact = 4.0 / 3.0 * PI * 1e6;
-    assert!(r.volume < exact && rel(r.volume, exact) < 0.05, "{}", r.volume);
+    assert!(r.volume < exact, "{}", r.volume);
+    assert_close!(r.volume, exact, rel = 0.05, "{}", r.volume);
     // Every vertex lies on the sphere of radius 100.
     for p in m.positions() {
         let rr = (p[0] as f64).hypot(p[1] as f64).hypot(p[2] as f64);
-        assert!((rr - 100.0).abs() < 1e-3);
+        assert_close!(rr, 100.0, abs = 1e-3);
     }
     // Stop at 130.5 (nothing above): the last ring joins the origin.
     let g2: Vec<f64> = gamma[..gamma.len() - 1].to_vec();
@@ -206,7 +206,7 @@ fn sanity_over_many_synthetic_distributions() {
                         Err(e) => panic!("grid x{factor} of {what}: {e}"),
                     };
                     let r = check(&m, &format!("grid x{factor} of {what}"));
-                    assert!((m.max_radius() - 1.0).abs() < 1e-6, "{what}: peak-relative");
+                    assert_close!(m.max_radius(), 1.0, abs = 1e-6, "{what}: peak-relative");
                     assert!(r.volume > 0.0);
                     n += 1;
                 }
@@ -325,12 +325,12 @@ fn units_scale_and_metadata() {
         .unwrap();
     let d = lum.distribution();
     let cd = measured_solid(d, Units::Candela).unwrap();
-    assert!((cd.max_radius() - 50.0).abs() < 1e-4);
+    assert_close!(cd.max_radius(), 50.0, abs = 1e-4);
     let peak = measured_solid(d, Units::Peak).unwrap();
-    assert!((peak.max_radius() - 1.0).abs() < 1e-6);
+    assert_close!(peak.max_radius(), 1.0, abs = 1e-6);
     let klm = measured_solid(d, Units::per_kilolumen(d).unwrap()).unwrap();
     // Isotropic: Φ = 4π I, so 1000 I / Φ = 1000 / 4π cd/klm.
-    assert!((klm.max_radius() - 1000.0 / (4.0 * PI)).abs() < 1e-3);
+    assert_close!(klm.max_radius(), 1000.0 / (4.0 * PI), abs = 1e-3);
     for (m, word) in [(&cd, "units: cd"), (&peak, "units: relative"), (&klm, "units: cd/klm")] {
         for f in [MeshFormat::Obj, MeshFormat::Ply] {
             let bytes = export::encode(m, f);
@@ -451,7 +451,7 @@ fn exports_round_trip_through_files() {
                 assert_eq!(back.triangles(), written.triangles(), "{f:?}");
                 assert_eq!(back.origin_vertex(), written.origin_vertex());
                 let r = check(&back, "read back");
-                assert!(rel(r.volume, m.volume()) < 1e-12);
+                assert_close!(r.volume, m.volume(), rel = 1e-12);
             }
             MeshFormat::Stl => {
                 assert_eq!(bytes.len(), 84 + 50 * m.n_triangles());
@@ -496,7 +496,7 @@ fn normals_are_unit_and_outward() {
     let n = m.normals().unwrap();
     for (p, n) in m.positions().iter().zip(n) {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        assert!((len - 1.0).abs() < 1e-5);
+        assert_close!(len, 1.0, abs = 1e-5);
         // Away from the origin the solid is star-shaped: normals face away from it.
         if p != &[0.0; 3] {
             assert!(p[0] * n[0] + p[1] * n[1] + p[2] * n[2] > -1e-3);

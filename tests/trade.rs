@@ -1,6 +1,7 @@
 //! The speed/accuracy trade measured against the truth: closed-form
 //! references, convergence orders, withheld measurements, extremes, the CLI.
 
+#[macro_use]
 mod common;
 
 use photosolid::compare::trade::{representations, trade_table, TradeOptions};
@@ -70,7 +71,7 @@ fn demo_roadway_against_the_truth() {
     // Against the truth Catmull-Rom beats bilinear (the measured solid ranked it the other way).
     assert!(cr.hausdorff_cd + cr.hausdorff_bound_cd < bl.hausdorff_cd);
     // The measured solid loses 0.9 % of the flux (linear between measured directions).
-    assert!((ms.flux_error_pct + 0.90).abs() < 0.02, "{}", ms.flux_error_pct);
+    assert_close!(ms.flux_error_pct, -0.90, abs = 0.02, "{}", ms.flux_error_pct);
 }
 
 /// Largest error (cd) of `filter` against the truth of `kind` on a γ step of `h`
@@ -113,7 +114,7 @@ fn errors_against_truth_fall_at_the_filters_order() {
             let errs: Vec<f64> = hs.iter().map(|&h| max_error(kind, filter, h)).collect();
             let k = slope(&hs, &errs);
             eprintln!("{kind:?} {filter}: errors {errs:.3?} -> slope {k:.3}");
-            assert!((k - order).abs() < 0.25, "{kind:?} {filter}: slope {k} vs {order}");
+            assert_close!(k, order, abs = 0.25, "{kind:?} {filter}: slope {k} vs {order}");
         }
     }
 }
@@ -274,7 +275,7 @@ fn texture_errors_depend_on_the_factor() {
     let reduced = row("catmull-rom@x5/bilinear+reduced");
     // A rotational render is `factor` columns wide; reduced, one column.
     assert_eq!(5 * reduced.bytes, x5.bytes);
-    assert!((reduced.radial_max_pct - x5.radial_max_pct).abs() < 1e-3);
+    assert_close!(reduced.radial_max_pct, x5.radial_max_pct, abs = 1e-3);
     assert!(t.rows.iter().any(|r| r.pareto));
 }
 

@@ -2,16 +2,15 @@
 //! data parses, states the reference, and a typical report stays under 1 MB.
 //! The browser checks (rendering, toggles, slider, offline) are in tests/browser/.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_photosolid"))
-}
+use common::cli::{bin, ok};
 
 fn run(cmd: &mut Command) {
-    let o = cmd.output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    ok(&cmd.output().unwrap());
 }
 
 /// A roadway luminaire written by `synth` (so `truth` is its reference).
@@ -59,17 +58,24 @@ fn check_solids(v: &serde_json::Value, min_recons: usize) {
     assert!((2.0..=5.0).contains(&step), "{step}");
 }
 
-#[test]
-fn compare_report_has_the_viewer_and_stays_under_a_megabyte() {
+/// `compare` of the synthetic roadway luminaire with `extra` arguments and
+/// `--report`: the report's HTML and viewer data.
+fn compare_report(extra: &[&str]) -> (String, serde_json::Value) {
     let dir = tempfile::tempdir().unwrap();
     let f = road(dir.path());
     let rep = dir.path().join("rep");
     run(bin()
         .arg("compare")
         .arg(&f)
+        .args(extra)
         .args(["--directions", "dense:2000", "--report"])
         .arg(&rep));
-    let (html, v) = viewer_data(&rep.join("index.html"));
+    viewer_data(&rep.join("index.html"))
+}
+
+#[test]
+fn compare_report_has_the_viewer_and_stays_under_a_megabyte() {
+    let (html, v) = compare_report(&[]);
     assert!(
         v["reference"].as_str().unwrap().starts_with("truth (roadway"),
         "{}",
@@ -82,15 +88,7 @@ fn compare_report_has_the_viewer_and_stays_under_a_megabyte() {
 
 #[test]
 fn withheld_compare_states_what_the_colours_are_against() {
-    let dir = tempfile::tempdir().unwrap();
-    let f = road(dir.path());
-    let rep = dir.path().join("rep");
-    run(bin()
-        .arg("compare")
-        .arg(&f)
-        .args(["--against", "withheld", "--directions", "dense:2000", "--report"])
-        .arg(&rep));
-    let (html, v) = viewer_data(&rep.join("index.html"));
+    let (html, v) = compare_report(&["--against", "withheld"]);
     assert!(v["reference"].as_str().unwrap().starts_with("the measured solid"));
     assert!(html.contains("against the withheld measurements"));
     // The measured solid is the reference here, not one of the coloured surfaces.
