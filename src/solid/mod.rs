@@ -60,6 +60,7 @@
 //! # Ok(()) }
 //! ```
 
+pub mod adaptive;
 pub mod colormap;
 pub mod export;
 pub mod grid;
@@ -68,6 +69,9 @@ pub mod mesh;
 pub mod radial;
 pub mod topology;
 
+pub use adaptive::{
+    adaptive_grid, radial_deviation, surface_distance, AdaptiveGrid, AdaptiveOptions, Refinement, Tolerance,
+};
 pub use colormap::ColorMap;
 pub use grid::{grid_solid, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};
