@@ -464,7 +464,8 @@ mod tests {
             triangles: &t,
         };
         let h = hausdorff(m, m, 1e-9);
-        assert_eq!((h.value, h.bound), (0.0, 0.0), "{h:?}");
+        // Centroids differ from the triangle by round-off only (1e-15 of the radius).
+        assert!(h.value <= 1e-12 && h.bound == 0.0, "{h:?}");
         assert_eq!(h.a_to_b.queries, p.len() + t.len());
         assert!(h.a_to_b.converged && h.b_to_a.converged);
     }
