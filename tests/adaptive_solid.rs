@@ -233,7 +233,7 @@ fn corpus_files_meet_the_tolerance() {
         "gldf-rs/SP542P_SRD_L1480_U3_1_xLED66S_940_OC.ldt",
     ];
     for rel in files {
-        let lum = photosolid::formats::load(&root.join(rel)).unwrap();
+        let lum = photosolid::formats::load(root.join(rel)).unwrap();
         let d = lum.distribution.clone();
         let recs = Reconstructions::new(d.clone(), &[Recon::Filter(Filter::Bilinear)]).unwrap();
         let field = recs.field(Recon::Filter(Filter::Bilinear)).unwrap();

@@ -160,7 +160,7 @@ pub fn adaptive_gammas(
         let at_params = crate::reconstruct::eval_all(field, &params);
         // With a zero on the profile the origin is a point of the solid: |m| bounds too
         // (the same rule as the grid solids', crate::solid::adaptive).
-        let any_zero = p.points.iter().any(|x| *x == DVec2::ZERO);
+        let any_zero = p.points.contains(&DVec2::ZERO);
         let dev: Vec<f64> = mids
             .iter()
             .zip(values)

@@ -260,7 +260,7 @@ pub fn adaptive_grid(
         let (c, c_cut) = halve(grid.c_angles(), &marks.c, min_step, Some(360.0));
         let (gamma, g_cut) = halve(grid.gamma_angles(), &marks.gamma, min_step, None);
         let within = marks.worst <= tolerance_cd;
-        let blocked = !within && !(c_cut || g_cut);
+        let blocked = !within && !c_cut && !g_cut;
         let too_many = (c.len() as u128) * (gamma.len() as u128) > opts.max_points as u128;
         if within || blocked || too_many {
             return Ok(AdaptiveGrid {
