@@ -371,6 +371,7 @@ fn corpus_runs_through_compare() {
         ],
         directions: Directions::Dense(2000),
         factor: 1,
+        solid_tolerance: None,
         tolerance: 0.01,
         timing_samples: 500,
         timing_repeats: 1,

@@ -329,6 +329,8 @@ impl Luminaire {
             directions: arg::<Directions>("directions", directions)?,
             tolerance,
             factor,
+            // `factor` names a fixed grid here (the CLI's default is the adaptive grid).
+            solid_tolerance: None,
             ..defaults
         };
         let other = vs.as_ref().map(|o| o.lum.distribution());

@@ -1,5 +1,5 @@
 //! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm|flux]
-//! [--align] [--directions measured|dense[:N]] [--tolerance T] [--factor K] [--json] [--report DIR]`.
+//! [--align] [--directions measured|dense[:N]] [--tolerance T] [--factor K | --solid-tolerance F] [--json] [--report DIR]`.
 //!
 //! Without `--vs`: each reconstruction of FILE against the truth (`--against
 //! truth`, the default for files written by `photosolid synth`, which record
@@ -56,9 +56,14 @@ pub struct CompareArgs {
     /// Hausdorff tolerance, fraction of I_max.
     #[arg(long, default_value_t = 1e-3, value_parser = super::parse::positive)]
     tolerance: f64,
-    /// Refinement factor of the grid solids.
-    #[arg(long, default_value_t = 3, value_parser = super::parse::at_least_one)]
-    factor: usize,
+    /// Grid solids on a fixed grid, each measured interval cut into this many steps
+    /// (default: adaptive grid solids within --solid-tolerance of their fields).
+    #[arg(long, value_parser = super::parse::at_least_one)]
+    factor: Option<usize>,
+    /// Adaptive grid solids: the largest radial deviation of a solid from its field at the
+    /// tested points, fraction of the reference I_max [default: 0.0005].
+    #[arg(long, value_parser = super::parse::positive, conflicts_with = "factor")]
+    solid_tolerance: Option<f64>,
     #[command(flatten)]
     out: ReportArgs,
     #[command(flatten)]
@@ -84,7 +89,11 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         ],
         directions: a.directions,
         tolerance: a.tolerance,
-        factor: a.factor,
+        factor: a.factor.unwrap_or(defaults.factor),
+        solid_tolerance: match a.factor {
+            Some(_) => None,
+            None => a.solid_tolerance.or(defaults.solid_tolerance),
+        },
         align: a.align,
         plots: a.out.report.is_some(),
         ..Default::default()

@@ -1,11 +1,14 @@
-//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm|flux] [--color] -o solid.{obj,ply,stl,glb}`.
+//! `photosolid mesh FILE [--filter F | --measured] [--tolerance PCT | --factor K] [--units cd|peak|klm|flux] [--color] -o solid.{obj,ply,stl,glb}`.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
 use photosolid::reconstruct::{Recon, Reconstructions};
-use photosolid::solid::{export, texture_solid, topology, ColorMap, Units, UnitsName};
+use photosolid::solid::adaptive::DEFAULT_TOLERANCE_PCT;
+use photosolid::solid::{
+    export, texture_solid, topology, AdaptiveOptions, ColorMap, Refinement, Tolerance, Units, UnitsName,
+};
 
 use super::ReadArgs;
 
@@ -25,9 +28,15 @@ pub struct MeshArgs {
     /// The measured points alone, Delaunay-triangulated (no interpolation).
     #[arg(long)]
     measured: bool,
-    /// Grid refinement of a filtered solid: each measured interval cut into this many steps.
-    #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
-    factor: usize,
+    /// A fixed grid for a filtered solid: each measured interval cut into this many steps
+    /// (with --texture: the render factor, default 5). Default: the adaptive grid of --tolerance.
+    #[arg(long, value_parser = super::parse::at_least_one)]
+    factor: Option<usize>,
+    /// Adaptive grid of a filtered solid: C planes and gamma rows are added where the mesh
+    /// deviates from the filter's field by more than PCT % of I_max (radially, at the tested
+    /// points: edge midpoints and triangle centres) [default: 0.1].
+    #[arg(long, value_parser = super::parse::positive, conflicts_with_all = ["factor", "texture"])]
+    tolerance: Option<f64>,
     /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd per 1000 lm
     /// of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux (cd per 1000 lm of
     /// the computed luminaire flux: solids of equal flux).
@@ -59,12 +68,26 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         return Err(anyhow::Error::from(export::MeshFormat::unknown_extension(&a.output)).context("-o"));
     }
     let lum = super::load(&a.file, &a.read)?;
-    let d = &lum.distribution();
+    let d = lum.distribution();
     let units =
         Units::resolve(a.units, d, lum.declared().lamp_flux_lm).with_context(|| a.file.display().to_string())?;
+    let mut adaptive = None;
     let mut mesh = match recon {
-        Recon::Filter(f) if a.texture => texture_solid(d, f, u32::try_from(a.factor).unwrap_or(u32::MAX), units)?,
-        _ => Reconstructions::new((*d).clone(), &[recon])?.solid_in(recon, a.factor, units)?,
+        Recon::Filter(f) if a.texture => {
+            texture_solid(d, f, u32::try_from(a.factor.unwrap_or(5)).unwrap_or(u32::MAX), units)?
+        }
+        Recon::Measured => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, 1, units)?,
+        _ => match a.factor {
+            Some(factor) => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, factor, units)?,
+            None => {
+                let recs = Reconstructions::new(d.clone(), &[recon])?;
+                let tolerance = Tolerance::PercentOfPeak(a.tolerance.unwrap_or(DEFAULT_TOLERANCE_PCT));
+                let (mesh, found) =
+                    Refinement::Adaptive(AdaptiveOptions::new(tolerance)).solid(&*recs.field(recon)?, d, units)?;
+                adaptive = found;
+                mesh
+            }
+        },
     };
     mesh.info_mut().source = a.file.display().to_string();
     if a.color {
@@ -93,6 +116,9 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             "watertight": topo.watertight,
             "manifold": topo.manifold,
             "file_topology": topo,
+            "tolerance_cd": adaptive.as_ref().map(|f| f.tolerance_cd),
+            "tested_deviation_cd": adaptive.as_ref().map(|f| f.tested_deviation_cd),
+            "tolerance_reached": adaptive.as_ref().map(|f| f.reached),
         });
         outln!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
@@ -109,5 +135,19 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         topo.components,
         u = units.name(),
     );
+    if let Some(f) = &adaptive {
+        outln!(
+            "adaptive grid {} C x {} gamma: largest tested deviation {:.4} cd, tolerance {:.4} cd{}",
+            f.grid.c_angles().len(),
+            f.grid.gamma_angles().len(),
+            f.tested_deviation_cd,
+            f.tolerance_cd,
+            if f.reached {
+                ""
+            } else {
+                " (NOT reached: the minimum step or the point limit stopped the refinement; a jump in the field?)"
+            }
+        );
+    }
     Ok(0)
 }

@@ -27,9 +27,10 @@ pub struct TradeoffArgs {
     /// Texture render factors (comma separated).
     #[arg(long, value_delimiter = ',', default_value = "1,2,5,10", value_parser = super::parse::texture_factor)]
     factors: Vec<u32>,
-    /// Grid refinement of the solids the Hausdorff distance is measured on.
-    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]
-    factor: usize,
+    /// Grid refinement of the solids the Hausdorff distance is measured on (a fixed grid;
+    /// default: adaptive solids, as `compare`).
+    #[arg(long, value_parser = super::parse::at_least_one)]
+    factor: Option<usize>,
     /// Timing repeats per representation (the median is reported).
     #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
     repeats: usize,
@@ -80,7 +81,12 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
         compare: CompareOptions {
             against,
             truth: Truth::of_luminaire(&lum),
-            factor: a.factor,
+            factor: a.factor.unwrap_or(2),
+            solid_tolerance: if a.factor.is_some() {
+                None
+            } else {
+                CompareOptions::default().solid_tolerance
+            },
             timing_repeats: a.repeats,
             directions: Directions::default(),
             plots: a.out.report.is_some(),

@@ -18,8 +18,28 @@
 //!   OTHER's measured solid), FILE optionally aligned first ([`align`]).
 //!
 //! Solids: the measured solid is [`crate::solid::measured_solid`] (Delaunay
-//! of the measured directions); the others are grid solids on
-//! [`SolidGrid::refined`]`(d, factor)`. As a field (radial metrics, plots),
+//! of the measured directions); the others are grid solids, by default
+//! adaptive ([`crate::solid::adaptive`]): each within
+//! [`CompareOptions::solid_tolerance`] of its field's solid at every tested
+//! point (a distance bound, checked independently in `tests/adaptive_solid.rs`),
+//! so the Hausdorff distance of the *fields'* solids lies within about twice
+//! that tolerance of the meshes' figure
+//! (`|H(S_a, S_b) − H(M_a, M_b)| ≤ H(M_a, S_a) + H(M_b, S_b)`, the triangle
+//! inequality); `solid_deviation_cd` reports the largest deviation
+//! tested. With a fixed `factor` ([`CompareOptions::solid_tolerance`] =
+//! `None`) they are on [`SolidGrid::refined`]`(d, factor)` and no such
+//! statement is made.
+//!
+//! # Rotationally symmetric files
+//! When FILE (and OTHER) are rotational and a reconstruction and the
+//! reference are both independent of C (tested on samples,
+//! [`crate::metrics::profile::is_c_independent`]), their solids are solids
+//! of revolution: the row's Hausdorff distance and radial bound are
+//! measured on the meridian profiles ([`crate::metrics::profile`]: exactly
+//! the distance of the solids of revolution, no C facets), the profile's γ
+//! angles refined to the same tolerance; `profile_segments` says so and
+//! `triangles` is 0. Other rows (the measured solid, a fit with a tilted
+//! axis) use meshes as before. As a field (radial metrics, plots),
 //! "measured" is the radial function of the measured solid (exact at the
 //! measured directions, linear on its triangles). The radial bound
 //! `radial_bound_cd` is max |r_A(ω) − r_B(ω)| over the direction set of the
@@ -32,6 +52,7 @@
 //! flux). Every length (`*_cd` keys) is in that unit; `units` says which.
 
 pub mod align;
+mod measure;
 mod plot_data;
 pub mod trade;
 mod withheld;
@@ -41,17 +62,20 @@ use std::str::FromStr;
 use serde::Serialize;
 
 pub use align::{best_alignment, Alignment};
+use measure::measure_profile;
+pub(crate) use measure::{measure_field, own_or_grid_solid, FieldTarget};
 pub(crate) use plot_data::plot_data;
 pub use plot_data::{ErrorMap, PlotData, PolarPlane};
 
 use crate::error::ModelError;
+use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
     hausdorff_bvh, pareto_front, radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, Hausdorff,
     OneSided, ZOTTI_C,
 };
-use crate::model::{Distribution, IntensityField};
+use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{eval_all, Recon, Reconstructions, DEFAULT_RECONS};
-use crate::solid::{grid_solid, Mesh, RadialMesh, SolidGrid, Units};
+use crate::solid::{AdaptiveOptions, Mesh, RadialMesh, Refinement, SolidGrid, Tolerance, Units};
 use crate::synth::Truth;
 
 /// How the distributions are scaled before comparing.
@@ -225,8 +249,12 @@ pub struct CompareOptions {
     pub directions: Directions,
     /// Hausdorff tolerance as a fraction of the reference I_max. Default: 0.001 (0.1 %).
     pub tolerance: f64,
-    /// Refinement factor of the grid solids. Default: 3.
+    /// Refinement factor of the grid solids when `solid_tolerance` is `None`. Default: 3.
     pub factor: usize,
+    /// Grid solids (and profiles) adaptive to within this fraction of the
+    /// reference I_max ([`crate::solid::adaptive`]); `None`: refined
+    /// `factor` times. Default: 0.0005 (0.05 %, half the Hausdorff tolerance).
+    pub solid_tolerance: Option<f64>,
     /// Search the best C rotation and mirror of FILE onto OTHER (only with `vs`).
     pub align: bool,
     /// Zotti's constant C, fraction of I_max. Default: [`ZOTTI_C`].
@@ -253,6 +281,7 @@ impl Default for CompareOptions {
             directions: Directions::default(),
             tolerance: 1e-3,
             factor: 3,
+            solid_tolerance: Some(5e-4),
             align: false,
             zotti_c: ZOTTI_C,
             timing_samples: 20_000,
@@ -309,8 +338,18 @@ pub struct ReconResult {
     pub misplaced_flux: f64,
     /// Median time (ns) per lookup from a unit direction (one thread).
     pub time_per_sample_ns: Option<f64>,
-    /// Triangles of the reconstruction's solid.
+    /// Triangles of the reconstruction's solid (0 when measured on profiles).
     pub triangles: usize,
+    /// Segments of the meridian profile when the row was measured on the
+    /// profiles of two solids of revolution (see the module docs); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profile_segments: Option<usize>,
+    /// The largest deviation of this row's adaptive solid (or profile) from
+    /// its field at the tested points, in `units`; absent for a fixed grid
+    /// or the measured solid. Above `solid_tolerance_cd` where the field
+    /// jumps (a cut-off, the nearest filter): refined to the minimum step.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid_deviation_cd: Option<f64>,
     /// On the Pareto front of (time per sample, bytes, H).
     pub pareto: bool,
 }
@@ -359,6 +398,8 @@ impl ReconResult {
             misplaced_flux: rad.misplaced_flux,
             time_per_sample_ns: time_ns,
             triangles,
+            profile_segments: None,
+            solid_deviation_cd: None,
             pareto: false,
         }
     }
@@ -390,8 +431,14 @@ pub struct Comparison {
     pub tolerance: f64,
     /// The same in `units`.
     pub tolerance_cd: f64,
-    /// Grid solid refinement factor.
+    /// Grid solid refinement factor (used when `solid_tolerance_cd` is null).
     pub factor: usize,
+    /// The adaptive solids' tolerance, in `units` (null: fixed `factor`).
+    pub solid_tolerance_cd: Option<f64>,
+    /// The largest deviation of the reference's adaptive solid (or profile)
+    /// from its field at the tested points, in `units` (null: fixed
+    /// `factor`, or no reference solid); each row has its own.
+    pub solid_deviation_cd: Option<f64>,
     /// Reference I_max, in `units`.
     pub i_max_cd: f64,
     /// Triangles of the reference solid (0 for `withheld`).
@@ -518,12 +565,15 @@ pub fn compare_with_progress(
                 peak_cd: truth.peak_cd * k,
                 ..truth
             };
+            let refinement = opts.refinement(a.max_cd());
+            let (solid, found) = refinement.solid(&truth, &a, Units::Candela)?;
             let reference = FieldReference {
                 label: format!("truth ({})", truth),
                 kind: "truth",
                 field: &truth,
                 dist: &a,
-                solid: grid_solid(&truth, &SolidGrid::refined(&a, opts.factor)?, Units::Candela)?,
+                solid,
+                deviation: found.map(|f| f.tested_deviation_cd),
                 file_dist: None,
             };
             compare_fields(&a, &reference, opts, progress)?
@@ -544,12 +594,15 @@ pub fn compare_with_progress(
             } else {
                 opts.recons.iter().copied().filter(|x| *x != r).collect()
             };
+            let refinement = opts.refinement(ref_dist.max_cd());
+            let (solid, deviation) = own_or_grid_solid(&refs, r, &*field, ref_dist, &refinement)?;
             let reference = FieldReference {
                 label,
                 kind,
                 field: &*field,
                 dist: ref_dist,
-                solid: refs.solid(r, opts.factor)?,
+                solid,
+                deviation,
                 file_dist: other.as_ref().map(|_| &a),
             };
             compare_fields(&a, &reference, &CompareOptions { recons, ..opts.clone() }, progress)?
@@ -567,6 +620,8 @@ struct FieldReference<'a> {
     /// The reference's own data (I_max, measured direction set, plots).
     dist: &'a Distribution,
     solid: Mesh,
+    /// The adaptive reference solid's tested deviation from its field (cd).
+    deviation: Option<f64>,
     /// FILE's data when the reference is another file (plots).
     file_dist: Option<&'a Distribution>,
 }
@@ -588,28 +643,51 @@ fn compare_fields(
     };
     let m = eval_all(reference.field, &set.directions);
     let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
+    let refinement = opts.refinement(i_max);
+    let mut deviation = reference.deviation;
+    // Solids of revolution: the reference's profile, when both files are rotational and it is C-independent.
+    let rotational = a.symmetry() == Symmetry::Rotational && reference.dist.symmetry() == Symmetry::Rotational;
+    let start = SolidGrid::knots(a)?;
+    let ref_profile = match rotational && profile::is_c_independent(reference.field, start.gamma_angles()) {
+        true => {
+            let (g, dev) = refinement.profile_gammas(reference.field, reference.dist)?;
+            deviation = dev;
+            Some(Profile::of_field(reference.field, &g))
+        }
+        false => None,
+    };
+    let target = FieldTarget {
+        solid: &reference.solid,
+        radial: &ref_rm,
+        set: &set,
+        values: &m,
+        i_max,
+        tol_cd: tol,
+        zotti_c: opts.zotti_c,
+        timing: &timing,
+        repeats: opts.timing_repeats,
+    };
     let mut results = Vec::with_capacity(opts.recons.len());
     let mut fields = Vec::with_capacity(opts.recons.len());
     for (i, &r) in opts.recons.iter().enumerate() {
         progress(i, opts.recons.len(), &r.to_string());
         let field = recs.field(r)?;
-        let solid = grid_or_own_solid(&recs, r, &*field, a, opts.factor)?;
-        results.push(measure_field(
-            &r.to_string(),
-            &*field,
-            &solid,
-            &FieldTarget {
-                solid: &reference.solid,
-                radial: &ref_rm,
-                set: &set,
-                values: &m,
-                i_max,
-                tol_cd: tol,
-                zotti_c: opts.zotti_c,
-                timing: &timing,
-                repeats: opts.timing_repeats,
-            },
-        ));
+        let on_profile = ref_profile
+            .as_ref()
+            .filter(|_| r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles()));
+        let (mut row, dev) = match on_profile {
+            Some(rp) => {
+                let (g, dev) = refinement.profile_gammas(&*field, a)?;
+                let row = measure_profile(&r.to_string(), &*field, &Profile::of_field(&*field, &g), rp, &target);
+                (row, dev)
+            }
+            None => {
+                let (solid, dev) = own_or_grid_solid(&recs, r, &*field, a, &refinement)?;
+                (measure_field(&r.to_string(), &*field, &solid, &target), dev)
+            }
+        };
+        row.solid_deviation_cd = dev;
+        results.push(row);
         fields.push((r.to_string(), field));
     }
     progress(opts.recons.len(), opts.recons.len(), "done");
@@ -636,6 +714,8 @@ fn compare_fields(
         tolerance: opts.tolerance,
         tolerance_cd: tol,
         factor: opts.factor,
+        solid_tolerance_cd: opts.solid_tolerance.map(|f| f * i_max),
+        solid_deviation_cd: deviation,
         i_max_cd: i_max,
         reference_triangles: reference.solid.n_triangles(),
         zotti_c: opts.zotti_c,
@@ -644,80 +724,6 @@ fn compare_fields(
         plots,
         photometry_side_by_side: None,
     })
-}
-
-/// What a field is measured against: the reference's solid, its radial
-/// function, its values on the direction set, and the measurement settings.
-pub(crate) struct FieldTarget<'a> {
-    pub solid: &'a Mesh,
-    pub radial: &'a RadialMesh,
-    pub set: &'a DirectionSet,
-    /// The reference's intensity (cd) at every direction of `set`.
-    pub values: &'a [f64],
-    /// The reference's peak (cd), for percentages.
-    pub i_max: f64,
-    /// Hausdorff tolerance, cd.
-    pub tol_cd: f64,
-    pub zotti_c: f64,
-    /// Unit directions to time lookups on (none: no timing).
-    pub timing: &'a [glam::DVec3],
-    pub repeats: usize,
-}
-
-/// One row: `field` (whose solid is `solid`) against `target`, every metric.
-pub(crate) fn measure_field(
-    name: &str,
-    field: &dyn IntensityField,
-    solid: &Mesh,
-    target: &FieldTarget<'_>,
-) -> ReconResult {
-    let h = solid_hausdorff(solid, target.solid, target.tol_cd);
-    let av = eval_all(field, &target.set.directions);
-    let rad = radial_errors(target.set, target.values, &av, target.i_max, target.zotti_c);
-    let (ab, ba) = (h.a_to_b, h.b_to_a);
-    ReconResult::new(
-        name.to_string(),
-        field.bytes(),
-        Distances {
-            value: h.value,
-            bound: h.bound,
-            recon_to_ref: Some(ab),
-            ref_to_recon: ba,
-            mean: 0.5 * (ab.mean + ba.mean),
-            rms: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
-            radial_bound: radial_bound(&RadialMesh::new(solid), target.radial, &target.set.directions),
-        },
-        &rad,
-        target.i_max,
-        (!target.timing.is_empty()).then(|| time_per_sample_ns(field, target.timing, target.repeats)),
-        solid.n_triangles(),
-    )
-}
-
-/// The solid of reconstruction `r` of `a`: the measured solid itself, else
-/// the grid solid of `field` (already built, so a texture is not rendered twice).
-pub(crate) fn grid_or_own_solid(
-    recs: &Reconstructions,
-    r: Recon,
-    field: &dyn IntensityField,
-    a: &Distribution,
-    factor: usize,
-) -> Result<Mesh, ModelError> {
-    match r {
-        Recon::Measured => recs.solid(r, factor),
-        _ => grid_solid(field, &SolidGrid::refined(a, factor)?, Units::Candela),
-    }
-}
-
-/// max over `dirs` of |r_a − r_b|.
-pub(crate) fn radial_bound(a: &RadialMesh, b: &RadialMesh, dirs: &[(f64, f64)]) -> f64 {
-    use rayon::prelude::*;
-    dirs.par_iter()
-        .map(|&(c, g)| {
-            let w = crate::model::frame::direction(c, g);
-            (a.radius(w) - b.radius(w)).abs()
-        })
-        .reduce(|| 0.0, f64::max)
 }
 
 /// Mark the rows on the Pareto front of (time per sample, bytes, H).

@@ -10,9 +10,10 @@
 
 use glam::DVec3;
 
-use super::{grid_or_own_solid, mark_pareto, CompareOptions, Comparison, Distances, Progress, ReconResult};
+use super::{mark_pareto, own_or_grid_solid, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
 use crate::metrics::hausdorff::distances;
+use crate::metrics::profile::{self, Profile};
 use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, OneSided};
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField};
@@ -64,12 +65,16 @@ pub(super) fn compare_withheld(
     let m_all: Vec<f64> = sets.iter().flat_map(|s| s.1.iter().copied()).collect();
     let full = Reconstructions::new(a.clone(), &opts.recons)?;
     let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
+    let refinement = opts.refinement(i_max);
+    let rotational = a.symmetry() == crate::model::Symmetry::Rotational;
     let mut results = Vec::with_capacity(opts.recons.len());
     for (i, &r) in opts.recons.iter().enumerate() {
         progress(i, opts.recons.len(), &r.to_string());
         let mut recon_all = Vec::with_capacity(m_all.len());
         let mut dist_all = Vec::with_capacity(m_all.len());
         let mut triangles = 0;
+        let mut deviation: Option<f64> = None;
+        let mut segments: Option<usize> = None;
         for (fold, (set, m)) in folds.iter().zip(&sets) {
             let points: Vec<DVec3> = set
                 .directions
@@ -93,8 +98,24 @@ pub(super) fn compare_withheld(
                 Some(recs) => {
                     let field = recs.field(r)?;
                     recon_all.extend(eval_all(&*field, &set.directions));
-                    match grid_or_own_solid(recs, r, &*field, &fold.kept, opts.factor) {
-                        Ok(solid) => {
+                    // Rotational data and a C-independent reconstruction: a solid of
+                    // revolution, the distances from its profile (metrics::profile).
+                    let start = crate::solid::SolidGrid::knots(&fold.kept)?;
+                    if rotational && r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles()) {
+                        let (g, dev) = refinement.profile_gammas(&*field, &fold.kept)?;
+                        if let Some(d) = dev {
+                            deviation = Some(deviation.map_or(d, |x| x.max(d)));
+                        }
+                        let own = Profile::of_field(&*field, &g);
+                        segments = segments.max(Some(own.n_segments()));
+                        dist_all.extend(profile::distances_3d(&points, &own));
+                        continue;
+                    }
+                    match own_or_grid_solid(recs, r, &*field, &fold.kept, &refinement) {
+                        Ok((solid, dev)) => {
+                            if let Some(d) = dev {
+                                deviation = Some(deviation.map_or(d, |x| x.max(d)));
+                            }
                             triangles = triangles.max(solid.n_triangles());
                             let pos = solid.positions_f64();
                             dist_all.extend(distances(&points, &Bvh::build(&pos, solid.triangles())));
@@ -112,7 +133,7 @@ pub(super) fn compare_withheld(
         let mean = dist_all.iter().sum::<f64>() / n;
         let rms = (dist_all.iter().map(|d| d * d).sum::<f64>() / n).sqrt();
         let field = full.field(r)?;
-        results.push(ReconResult::new(
+        let mut row = ReconResult::new(
             r.to_string(),
             field.bytes(),
             Distances {
@@ -136,7 +157,10 @@ pub(super) fn compare_withheld(
             i_max,
             Some(time_per_sample_ns(&*field, &timing, opts.timing_repeats)),
             triangles,
-        ));
+        );
+        row.solid_deviation_cd = deviation;
+        row.profile_segments = segments;
+        results.push(row);
     }
     progress(opts.recons.len(), opts.recons.len(), "done");
     mark_pareto(&mut results);
@@ -166,6 +190,8 @@ pub(super) fn compare_withheld(
         tolerance: opts.tolerance,
         tolerance_cd: 0.0,
         factor: opts.factor,
+        solid_tolerance_cd: opts.solid_tolerance.map(|f| f * i_max),
+        solid_deviation_cd: None,
         i_max_cd: i_max,
         reference_triangles: 0,
         zotti_c: opts.zotti_c,

@@ -3,6 +3,7 @@
 pub mod bvh;
 pub mod cost;
 pub mod hausdorff;
+pub mod profile;
 pub mod radial;
 
 pub use bvh::Bvh;

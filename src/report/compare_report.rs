@@ -37,11 +37,25 @@ fn header(c: &Comparison) -> Vec<String> {
         c.units,
         c.reference_triangles
     ));
+    let solids = match (c.solid_tolerance_cd, c.solid_deviation_cd) {
+        (Some(t), Some(d)) => format!(
+            "adaptive grid solids within {} {} of their fields at the tested points (the reference's: {} {})",
+            num(t),
+            c.units,
+            num(d),
+            c.units
+        ),
+        (Some(t), None) => format!(
+            "adaptive grid solids within {} {} of their fields at the tested points",
+            num(t),
+            c.units
+        ),
+        _ => format!("grid solids refined x{}", c.factor),
+    };
     l.push(format!(
-        "normalisation: {:?} (unit {}); grid solids refined x{}; Hausdorff tolerance {} % of I_max = {} {}",
+        "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {} % of I_max = {} {}",
         c.normalize,
         c.units,
-        c.factor,
         100.0 * c.tolerance,
         num(c.tolerance_cd),
         c.units

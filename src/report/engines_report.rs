@@ -27,6 +27,8 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         tolerance: r.hausdorff_tolerance,
         tolerance_cd: r.hausdorff_tolerance * r.i_max_cd,
         factor: r.factor,
+        solid_tolerance_cd: None,
+        solid_deviation_cd: None,
         i_max_cd: r.i_max_cd,
         reference_triangles: 0,
         zotti_c: crate::metrics::ZOTTI_C,

@@ -204,6 +204,94 @@ pub fn texture_solid(
 /// grid point), and the mesh's vectors, each allocated once at its final size bound.
 pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) -> Result<Mesh, ModelError> {
     let (nc, ng) = (grid.c.len(), grid.gamma.len());
+    let GridRadii {
+        radii: s,
+        r_nadir,
+        r_zenith,
+        scale,
+        any_zero,
+    } = grid_radii(field, grid, units)?;
+    let (sin_c, cos_c): (Vec<f64>, Vec<f64>) = grid.c.iter().map(|c| c.to_radians().sin_cos()).unzip();
+    let (sin_g, cos_g): (Vec<f64>, Vec<f64>) = grid.gamma.iter().map(|g| g.to_radians().sin_cos()).unzip();
+
+    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(grid.max_vertices() + 1);
+    let origin = any_zero.then(|| {
+        positions.push([0.0; 3]);
+        0u32
+    });
+    let o = origin.unwrap_or(u32::MAX);
+    let mut push = |r: f64, sg: f64, cg: f64, sc: f64, cc: f64| -> u32 {
+        if r == 0.0 {
+            return o;
+        }
+        positions.push(vertex(r, sg, cg, sc, cc));
+        (positions.len() - 1) as u32
+    };
+    let nadir_id = push(r_nadir, 0.0, 1.0, 0.0, 1.0);
+    // Index map for the inner rings, C-major like the samples.
+    let mut idx = vec![0u32; nc * ng];
+    for ic in 0..nc {
+        for ig in 1..ng - 1 {
+            idx[ic * ng + ig] = push(s[ic * ng + ig], sin_g[ig], cos_g[ig], sin_c[ic], cos_c[ic]);
+        }
+    }
+    let zenith_id = push(r_zenith, 0.0, -1.0, 0.0, 1.0);
+    for ic in 0..nc {
+        idx[ic * ng] = nadir_id;
+        idx[ic * ng + ng - 1] = zenith_id;
+    }
+
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(2 * nc * (ng - 1));
+    for ic in 0..nc {
+        let ic1 = if ic + 1 == nc { 0 } else { ic + 1 };
+        for ig in 0..ng - 1 {
+            let ids = [
+                idx[ic * ng + ig],
+                idx[ic1 * ng + ig],
+                idx[ic1 * ng + ig + 1],
+                idx[ic * ng + ig + 1],
+            ];
+            let corners = ids.map(|i| positions[i as usize]);
+            for t in quad_split(&corners, &ids).into_iter().flatten() {
+                triangles.push(t.map(|k| ids[k]));
+            }
+        }
+    }
+    let info = SolidInfo {
+        kind: format!(
+            "grid solid of {} ({} C x {} gamma angles, poles single vertices)",
+            field.name(),
+            nc,
+            ng
+        ),
+        source: String::new(),
+        units,
+        units_per_cd: scale,
+    };
+    Mesh::finish(positions, triangles, origin, info)
+}
+
+/// The vertex radii of a grid solid, in output units, as [`grid_solid`] places them.
+pub(crate) struct GridRadii {
+    /// C-major (`ic * n_gamma + ig`) radii of the inner rows; the pole rows are unused.
+    pub radii: Vec<f64>,
+    /// The nadir vertex's radius: the C-weighted mean of the field at γ = 0.
+    pub r_nadir: f64,
+    /// The zenith vertex's radius: the same at γ = 180.
+    pub r_zenith: f64,
+    /// Output units per cd.
+    pub scale: f64,
+    /// Whether any radius is zero (the merged origin vertex exists).
+    pub any_zero: bool,
+}
+
+/// Sample `field` on `grid` and turn the samples into stored radii (poles
+/// averaged over C, zero below [`super::ZERO_FRACTION`] of the peak).
+///
+/// # Errors
+/// As [`grid_solid`].
+pub(crate) fn grid_radii(field: &dyn IntensityField, grid: &SolidGrid, units: Units) -> Result<GridRadii, ModelError> {
+    let (nc, ng) = (grid.c.len(), grid.gamma.len());
     let mut s = vec![0.0f64; nc * ng];
     field.sample_grid(&grid.c, &grid.gamma, &mut s);
     // Poles: one value each, the C-weighted mean of the samples there.
@@ -226,10 +314,6 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
         return Err(ModelError::AllZero("photometric solid"));
     }
     let scale = units.units_per_cd(peak)?;
-
-    let (sin_c, cos_c): (Vec<f64>, Vec<f64>) = grid.c.iter().map(|c| c.to_radians().sin_cos()).unzip();
-    let (sin_g, cos_g): (Vec<f64>, Vec<f64>) = grid.gamma.iter().map(|g| g.to_radians().sin_cos()).unzip();
-
     // Radii in output units; zero means "at the origin".
     let r_nadir = stored_radius(nadir * scale, peak * scale)?;
     let r_zenith = stored_radius(zenith * scale, peak * scale)?;
@@ -241,80 +325,47 @@ pub fn grid_solid(field: &dyn IntensityField, grid: &SolidGrid, units: Units) ->
             any_zero |= r == 0.0;
         }
     }
+    Ok(GridRadii {
+        radii: s,
+        r_nadir,
+        r_zenith,
+        scale,
+        any_zero,
+    })
+}
 
-    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(grid.max_vertices() + 1);
-    let origin = any_zero.then(|| {
-        positions.push([0.0; 3]);
-        0u32
-    });
-    let o = origin.unwrap_or(u32::MAX);
-    let mut push = |r: f64, sg: f64, cg: f64, sc: f64, cc: f64| -> u32 {
-        if r == 0.0 {
-            return o;
-        }
-        positions.push([(r * sg * cc) as f32, (r * sg * sc) as f32, (-r * cg) as f32]);
-        (positions.len() - 1) as u32
-    };
-    let nadir_id = push(r_nadir, 0.0, 1.0, 0.0, 1.0);
-    // Index map for the inner rings, C-major like the samples.
-    let mut idx = vec![0u32; nc * ng];
-    for ic in 0..nc {
-        for ig in 1..ng - 1 {
-            idx[ic * ng + ig] = push(s[ic * ng + ig], sin_g[ig], cos_g[ig], sin_c[ic], cos_c[ic]);
-        }
-    }
-    let zenith_id = push(r_zenith, 0.0, -1.0, 0.0, 1.0);
-    for ic in 0..nc {
-        idx[ic * ng] = nadir_id;
-        idx[ic * ng + ng - 1] = zenith_id;
-    }
+/// The f32 vertex at radius `r` in the direction given by the sines and cosines of γ and C.
+#[inline]
+pub(crate) fn vertex(r: f64, sin_g: f64, cos_g: f64, sin_c: f64, cos_c: f64) -> [f32; 3] {
+    [
+        (r * sin_g * cos_c) as f32,
+        (r * sin_g * sin_c) as f32,
+        (-r * cos_g) as f32,
+    ]
+}
 
-    // Outward winding: ∂d/∂C × ∂d/∂γ points outwards, so (C, γ) → (C+1, γ)
-    // → (C+1, γ+1) is counter-clockwise seen from outside.
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(2 * nc * (ng - 1));
-    let zero_area = |t: [u32; 3], pos: &[[f32; 3]]| {
-        let (a, b, c) = (
-            p64(&pos[t[0] as usize]),
-            p64(&pos[t[1] as usize]),
-            p64(&pos[t[2] as usize]),
-        );
+/// The two triangles of a grid quad with corners (C, γ), (C+1, γ), (C+1,
+/// γ+1), (C, γ+1) (`corners` and their vertex ids `ids`), as corner
+/// numbers 0..4; `None` for a triangle that collapses (two corners are one
+/// vertex). The quad is split along (C, γ)–(C+1, γ+1) unless that split has
+/// a zero-area triangle and the other does not. Outward winding: ∂d/∂C ×
+/// ∂d/∂γ points outwards, so (C, γ) → (C+1, γ) → (C+1, γ+1) is
+/// counter-clockwise seen from outside.
+pub(crate) fn quad_split(corners: &[[f32; 3]; 4], ids: &[u32; 4]) -> [Option<[usize; 3]>; 2] {
+    let distinct = |t: &[usize; 3]| ids[t[0]] != ids[t[1]] && ids[t[1]] != ids[t[2]] && ids[t[0]] != ids[t[2]];
+    let zero_area = |t: &[usize; 3]| {
+        let (a, b, c) = (p64(&corners[t[0]]), p64(&corners[t[1]]), p64(&corners[t[2]]));
         (b - a).cross(c - a) == glam::DVec3::ZERO
     };
-    let distinct = |t: &[u32; 3]| t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
-    for ic in 0..nc {
-        let ic1 = if ic + 1 == nc { 0 } else { ic + 1 };
-        for ig in 0..ng - 1 {
-            let a = idx[ic * ng + ig];
-            let b = idx[ic1 * ng + ig];
-            let c = idx[ic1 * ng + ig + 1];
-            let d = idx[ic * ng + ig + 1];
-            let mut pair = [[a, b, c], [a, c, d]];
-            let bad = |p: &[[u32; 3]; 2]| p.iter().any(|t| distinct(t) && zero_area(*t, &positions));
-            if bad(&pair) {
-                let other = [[a, b, d], [b, c, d]];
-                if !bad(&other) {
-                    pair = other;
-                }
-            }
-            for t in pair {
-                if distinct(&t) {
-                    triangles.push(t);
-                }
-            }
+    let bad = |p: &[[usize; 3]; 2]| p.iter().any(|t| distinct(t) && zero_area(t));
+    let mut pair = [[0, 1, 2], [0, 2, 3]];
+    if bad(&pair) {
+        let other = [[0, 1, 3], [1, 2, 3]];
+        if !bad(&other) {
+            pair = other;
         }
     }
-    let info = SolidInfo {
-        kind: format!(
-            "grid solid of {} ({} C x {} gamma angles, poles single vertices)",
-            field.name(),
-            nc,
-            ng
-        ),
-        source: String::new(),
-        units,
-        units_per_cd: scale,
-    };
-    Mesh::finish(positions, triangles, origin, info)
+    pair.map(|t| distinct(&t).then_some(t))
 }
 
 #[cfg(test)]

@@ -35,11 +35,12 @@
 //! return [`ModelError::AllZero`].
 
 //! # Example (what `photosolid mesh` does)
-//! `photosolid mesh FILE [--filter F | --measured] [--factor 5] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`
+//! `photosolid mesh FILE [--filter F | --measured] [--tolerance 0.1 | --factor K] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`
 //! is: load, pick the units, build ([`measured_solid`], or [`grid_solid`]
 //! with the filter's sampler as the [`IntensityField`](crate::model::IntensityField) on
-//! [`SolidGrid::refined`]`(d, factor)`), optionally [`Mesh::colorize`], then
-//! [`export::write`] (format from the extension).
+//! the [`adaptive`] grid within `--tolerance` % of I_max ([`Refinement::Adaptive`],
+//! the default) or on [`SolidGrid::refined`]`(d, factor)` with `--factor`),
+//! optionally [`Mesh::colorize`], then [`export::write`] (format from the extension).
 //! ```
 //! use photosolid::solid::{self, export, ColorMap, SolidGrid, Units};
 //! use photosolid::synth::{GridSpec, Synth};
@@ -60,6 +61,7 @@
 //! # Ok(()) }
 //! ```
 
+pub mod adaptive;
 pub mod colormap;
 pub mod export;
 pub mod grid;
@@ -68,6 +70,9 @@ pub mod mesh;
 pub mod radial;
 pub mod topology;
 
+pub use adaptive::{
+    adaptive_grid, radial_deviation, surface_distance, AdaptiveGrid, AdaptiveOptions, Refinement, Tolerance,
+};
 pub use colormap::ColorMap;
 pub use grid::{grid_solid, texture_solid, SolidGrid};
 pub use measured::{measured_solid, measured_solid_with, MeasuredOptions};

@@ -1,0 +1,130 @@
+//! One row of a comparison: a field (its solid or its profile) measured
+//! against the reference's solid, profile and values.
+
+use super::*;
+
+/// What a field is measured against: the reference's solid, its radial
+/// function, its values on the direction set, and the measurement settings.
+pub(crate) struct FieldTarget<'a> {
+    pub solid: &'a Mesh,
+    pub radial: &'a RadialMesh,
+    pub set: &'a DirectionSet,
+    /// The reference's intensity (cd) at every direction of `set`.
+    pub values: &'a [f64],
+    /// The reference's peak (cd), for percentages.
+    pub i_max: f64,
+    /// Hausdorff tolerance, cd.
+    pub tol_cd: f64,
+    pub zotti_c: f64,
+    /// Unit directions to time lookups on (none: no timing).
+    pub timing: &'a [glam::DVec3],
+    pub repeats: usize,
+}
+
+/// One row: `field` (whose solid is `solid`) against `target`, every metric.
+pub(crate) fn measure_field(
+    name: &str,
+    field: &dyn IntensityField,
+    solid: &Mesh,
+    target: &FieldTarget<'_>,
+) -> ReconResult {
+    let h = solid_hausdorff(solid, target.solid, target.tol_cd);
+    let radial = radial_bound(&RadialMesh::new(solid), target.radial, &target.set.directions);
+    measured_row(name, field, &h, radial, target, solid.n_triangles())
+}
+
+/// One row of a C-independent `field` whose profile is `own` against the
+/// reference profile `reference`: the solids of revolution's Hausdorff
+/// distance and radial bound from the profiles (see the module docs).
+pub(super) fn measure_profile(
+    name: &str,
+    field: &dyn IntensityField,
+    own: &Profile,
+    reference: &Profile,
+    target: &FieldTarget<'_>,
+) -> ReconResult {
+    use rayon::prelude::*;
+    let h = profile::hausdorff(own, reference, target.tol_cd);
+    let radial = target
+        .set
+        .directions
+        .par_iter()
+        .map(|&(_, g)| (own.radius_at(g) - reference.radius_at(g)).abs())
+        .reduce(|| 0.0, f64::max);
+    let mut row = measured_row(name, field, &h, radial, target, 0);
+    row.profile_segments = Some(own.n_segments());
+    row
+}
+
+/// The row of `field` from its Hausdorff distance and radial bound to the target.
+fn measured_row(
+    name: &str,
+    field: &dyn IntensityField,
+    h: &Hausdorff,
+    radial: f64,
+    target: &FieldTarget<'_>,
+    triangles: usize,
+) -> ReconResult {
+    let av = eval_all(field, &target.set.directions);
+    let rad = radial_errors(target.set, target.values, &av, target.i_max, target.zotti_c);
+    let (ab, ba) = (h.a_to_b, h.b_to_a);
+    ReconResult::new(
+        name.to_string(),
+        field.bytes(),
+        Distances {
+            value: h.value,
+            bound: h.bound,
+            recon_to_ref: Some(ab),
+            ref_to_recon: ba,
+            mean: 0.5 * (ab.mean + ba.mean),
+            rms: (0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt(),
+            radial_bound: radial,
+        },
+        &rad,
+        target.i_max,
+        (!target.timing.is_empty()).then(|| time_per_sample_ns(field, target.timing, target.repeats)),
+        triangles,
+    )
+}
+
+/// The solid of reconstruction `r` of `a`: the measured solid itself, else
+/// the grid solid of `field` (already built, so a texture is not rendered
+/// twice) under `refinement`, with an adaptive solid's tested deviation (cd).
+pub(crate) fn own_or_grid_solid(
+    recs: &Reconstructions,
+    r: Recon,
+    field: &dyn IntensityField,
+    a: &Distribution,
+    refinement: &Refinement,
+) -> Result<(Mesh, Option<f64>), ModelError> {
+    match r {
+        Recon::Measured => Ok((recs.solid(r, 1)?, None)),
+        _ => {
+            let (mesh, found) = refinement.solid(field, a, Units::Candela)?;
+            Ok((mesh, found.map(|f| f.tested_deviation_cd)))
+        }
+    }
+}
+
+impl CompareOptions {
+    /// How the grid solids are built for a reference of peak `i_max_cd` (cd):
+    /// adaptive to `solid_tolerance` x `i_max_cd` (an absolute tolerance, the
+    /// same for every solid), or refined `factor` times.
+    pub fn refinement(&self, i_max_cd: f64) -> Refinement {
+        match self.solid_tolerance {
+            Some(f) => Refinement::Adaptive(AdaptiveOptions::new(Tolerance::Candela(f.max(0.0) * i_max_cd))),
+            None => Refinement::Factor(self.factor),
+        }
+    }
+}
+
+/// max over `dirs` of |r_a − r_b|.
+pub(crate) fn radial_bound(a: &RadialMesh, b: &RadialMesh, dirs: &[(f64, f64)]) -> f64 {
+    use rayon::prelude::*;
+    dirs.par_iter()
+        .map(|&(c, g)| {
+            let w = crate::model::frame::direction(c, g);
+            (a.radius(w) - b.radius(w)).abs()
+        })
+        .reduce(|| 0.0, f64::max)
+}
