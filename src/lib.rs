@@ -13,7 +13,7 @@
 //! use photosolid::{photometry, synth};
 //! let grid = synth::GridSpec::uniform(15.0, 5.0).unwrap();
 //! let lum = synth::Synth::Isotropic.build(&grid, 1.0).unwrap();
-//! let flux = photometry::flux(&lum.distribution).total_lm;
+//! let flux = photometry::flux(lum.distribution()).total_lm;
 //! assert!((flux - 4.0 * std::f64::consts::PI).abs() < 1e-9); // 4π lm per cd
 //! ```
 #![forbid(unsafe_code)]

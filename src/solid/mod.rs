@@ -45,7 +45,7 @@
 //! use photosolid::solid::{self, export, ColorMap, SolidGrid, Units};
 //! use photosolid::synth::{GridSpec, Synth};
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! let d = Synth::Lambertian.build(&GridSpec::uniform(15.0, 5.0)?, 1000.0)?.distribution;
+//! let d = Synth::Lambertian.build(&GridSpec::uniform(15.0, 5.0)?, 1000.0)?.into_distribution();
 //! // --measured --units klm --color
 //! let mut m = solid::measured_solid(&d, Units::per_kilolumen(&d)?)?;
 //! m.colorize(ColorMap::Viridis);
