@@ -124,7 +124,7 @@ mod tests {
         let lum = Synth::Lambertian
             .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
             .unwrap();
-        let tex = LightTexture::new(&lum.distribution).unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
         let e = render_on(Backend::Gpu, &tex, &RenderOptions::default()).unwrap_err();
         assert!(matches!(e, Error::Gpu(crate::error::GpuError::NotBuilt)), "{e}");
         assert_eq!(crate::error::ErrorRecord::from(&e).code, "gpu-not-built");
