@@ -24,6 +24,11 @@ fi
 export RUSTC_BOOTSTRAP=1
 if ! cargo fuzz build -s none --fuzz-dir fuzz >/tmp/fuzz-smoke-build.log 2>&1; then
     tail -5 /tmp/fuzz-smoke-build.log
+    # Our own code failing to compile is a failure, never a skip.
+    if grep -q "could not compile \`photosolid" /tmp/fuzz-smoke-build.log; then
+        echo "fuzz smoke: FAIL: the fuzz targets do not compile (see /tmp/fuzz-smoke-build.log)"
+        exit 1
+    fi
     skip "the fuzz targets do not build with this toolchain ($(rustc --version)); see /tmp/fuzz-smoke-build.log"
 fi
 

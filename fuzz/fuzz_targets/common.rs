@@ -30,7 +30,7 @@ pub fn reader(data: &[u8], format: Format) {
         let summary = photosolid::photometry::summary(&lum);
         let bad = non_finite_in_debug(&format!("{summary:?}"));
         assert!(bad.is_empty(), "non-finite numbers in the summary: {bad:?}");
-        let bad = non_finite_in_debug(&format!("{:?}", lum.distribution));
+        let bad = non_finite_in_debug(&format!("{:?}", lum.distribution()));
         assert!(bad.is_empty(), "non-finite numbers in the distribution: {bad:?}");
         if let Err(e) = check(&lum) {
             panic!("round trip failed: {e}");

@@ -67,9 +67,9 @@ class Luminaire:
         normalize: str = "cd",
         directions: str = "dense:20000",
         tolerance: float = 1e-3,
-        factor: int = 3,
+        factor: int | None = None,
     ) -> dict[str, Any]:
-        """The comparison of ``photosolid compare FILE --json`` as a dict."""
+        """The comparison of ``photosolid compare FILE --json`` as a dict (adaptive solids unless ``factor`` names a fixed grid)."""
     def fit(
         self, max_lights: int = 2, error: str = "relative", tolerance: float = 0.01, guard: float = 0.02
     ) -> dict[str, Any]:

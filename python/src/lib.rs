@@ -297,7 +297,7 @@ impl Luminaire {
     /// comparison as a dict. `recons`: names (default: the CLI's); `against`:
     /// `truth`, `withheld` or a reconstruction (default as the CLI: truth when
     /// the file records one, else withheld; with `vs`, catmull-rom of `vs`).
-    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = 1e-3, factor = 3))]
+    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = 1e-3, factor = None))]
     #[allow(clippy::too_many_arguments)]
     fn compare<'py>(
         &self,
@@ -309,7 +309,7 @@ impl Luminaire {
         normalize: &str,
         directions: &str,
         tolerance: f64,
-        factor: usize,
+        factor: Option<usize>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let defaults = CompareOptions::default();
         let recons = match recons {
@@ -328,9 +328,9 @@ impl Luminaire {
             ],
             directions: arg::<Directions>("directions", directions)?,
             tolerance,
-            factor,
-            // `factor` names a fixed grid here (the CLI's default is the adaptive grid).
-            solid_tolerance: None,
+            // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
+            factor: factor.unwrap_or(defaults.factor),
+            solid_tolerance: if factor.is_some() { None } else { defaults.solid_tolerance },
             ..defaults
         };
         let other = vs.as_ref().map(|o| o.lum.distribution());
