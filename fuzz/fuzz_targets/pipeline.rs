@@ -52,7 +52,10 @@ fuzz_target!(|data: &[u8]| {
     }
     let copts = CompareOptions {
         tolerance: 0.05,
+        // A fixed, coarse grid keeps one execution short (adaptive solids at
+        // the default tolerance can refine a tiny grid for seconds).
         factor: 1,
+        solid_tolerance: None,
         timing_samples: 16,
         timing_repeats: 1,
         ..CompareOptions::default()
