@@ -70,7 +70,7 @@ fn bench(c: &mut Criterion) {
             .iter()
             .map(|f| {
                 parse(&f.1, &f.0, f.2, &opts)
-                    .map(|l| l.distribution().intensities().len())
+                    .map(|l| l.distribution().intensities_cd().len())
                     .unwrap_or(0)
             })
             .sum();

@@ -413,9 +413,9 @@ mod tests {
             assert_eq!(t, kind.truth(1234.5));
             // The truth agrees with the samples at every measured direction.
             let d = lum.distribution();
-            for (ic, &c) in d.c_angles().iter().enumerate() {
-                for (ig, &gm) in d.gamma_angles().iter().enumerate() {
-                    assert_eq!(t.intensity_cd(c, gm), d.value(ic, ig), "{kind:?} ({c}, {gm})");
+            for (ic, &c) in d.c_angles_deg().iter().enumerate() {
+                for (ig, &gm) in d.gamma_angles_deg().iter().enumerate() {
+                    assert_eq!(t.intensity_cd(c, gm), d.value_cd(ic, ig), "{kind:?} ({c}, {gm})");
                 }
             }
         }

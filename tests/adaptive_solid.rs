@@ -62,8 +62,8 @@ fn check_grid(name: &str, field: &dyn IntensityField, a: &photosolid::solid::Ada
     assert!(
         dev <= SLACK * bound,
         "{name}: measured distance {dev} cd > {SLACK} x {bound} cd ({} C x {} gamma)",
-        a.grid.c_angles().len(),
-        a.grid.gamma_angles().len()
+        a.grid.c_angles_deg().len(),
+        a.grid.gamma_angles_deg().len()
     );
     // Watertight and manifold as a file reader sees it (pinch points split per sheet, as written).
     mesh.sanity_check().unwrap();
@@ -73,8 +73,8 @@ fn check_grid(name: &str, field: &dyn IntensityField, a: &photosolid::solid::Ada
     eprintln!(
         "{name}: {} triangles ({} C x {} gamma), distance {:.3e} cd = {:.2} x tolerance, radial {:.2} x tolerance",
         mesh.n_triangles(),
-        a.grid.c_angles().len(),
-        a.grid.gamma_angles().len(),
+        a.grid.c_angles_deg().len(),
+        a.grid.gamma_angles_deg().len(),
         dev,
         dev / a.tolerance_cd,
         radial / a.tolerance_cd
@@ -122,7 +122,7 @@ fn rotational_field_needs_far_fewer_triangles_than_the_fixed_grid() {
         &AdaptiveOptions::new(Tolerance::Candela(tol)),
     )
     .unwrap();
-    let step = 360.0 / a.grid.c_angles().len() as f64;
+    let step = 360.0 / a.grid.c_angles_deg().len() as f64;
     assert!(
         step <= widest_step && step > widest_step / 2.0,
         "{step} vs {widest_step}"

@@ -58,9 +58,9 @@ fn both(c: &[f64], g: &[f64], repair: bool) -> [Result<Document, ParseError>; 2]
 }
 
 fn assert_same_grid(a: &Document, b: &Document) {
-    assert_eq!(a.distribution().c_angles(), b.distribution().c_angles());
-    assert_eq!(a.distribution().gamma_angles(), b.distribution().gamma_angles());
-    assert_eq!(a.distribution().intensities(), b.distribution().intensities());
+    assert_eq!(a.distribution().c_angles_deg(), b.distribution().c_angles_deg());
+    assert_eq!(a.distribution().gamma_angles_deg(), b.distribution().gamma_angles_deg());
+    assert_eq!(a.distribution().intensities_cd(), b.distribution().intensities_cd());
 }
 
 #[test]
@@ -73,12 +73,12 @@ fn ies_and_ldt_readers_agree_on_angle_order_and_duplicates() {
     let (e1, e2) = (e1.unwrap_err(), e2.unwrap_err());
     assert!(e1.location.line > 0 && e2.location.line > 0, "{e1} / {e2}");
     let [a, b] = both(&c, &g, true).map(Result::unwrap);
-    assert_eq!(a.distribution().c_angles(), &[0.0, 45.0, 90.0, 180.0, 270.0]);
-    assert_eq!(a.distribution().gamma_angles(), &[0.0, 30.0, 60.0, 90.0]);
+    assert_eq!(a.distribution().c_angles_deg(), &[0.0, 45.0, 90.0, 180.0, 270.0]);
+    assert_eq!(a.distribution().gamma_angles_deg(), &[0.0, 30.0, 60.0, 90.0]);
     assert_same_grid(&a, &b);
     // The first of the duplicates is kept: C90 is file plane 1, γ 90 is file angle 3.
-    assert_eq!(a.distribution().value(2, 3), value(1, 3));
-    assert_eq!(a.distribution().value(1, 1), value(3, 2));
+    assert_eq!(a.distribution().value_cd(2, 3), value(1, 3));
+    assert_eq!(a.distribution().value_cd(1, 1), value(3, 2));
 }
 
 #[test]
@@ -102,8 +102,8 @@ fn one_disorder_at_a_time_is_named_alike_and_repaired_alike() {
         let named = format!("#{bad} = ");
         assert!(e1.contains(&named) && e2.contains(&named), "{named}: {e1} / {e2}");
         let [a, b] = both(ci, gi, true).map(Result::unwrap);
-        assert_eq!(a.distribution().c_angles(), c_fixed, "{ci:?}");
-        assert_eq!(a.distribution().gamma_angles(), g_fixed, "{gi:?}");
+        assert_eq!(a.distribution().c_angles_deg(), c_fixed, "{ci:?}");
+        assert_eq!(a.distribution().gamma_angles_deg(), g_fixed, "{gi:?}");
         assert_same_grid(&a, &b);
     }
 }
@@ -114,7 +114,7 @@ fn angles_just_beyond_the_tolerance_are_distinct_for_both() {
     let c = [0.0, 90.0, 90.000002, 180.0, 270.0];
     let g = [0.0, 30.0, 30.000002, 90.0];
     let [a, b] = both(&c, &g, false).map(Result::unwrap);
-    assert_eq!(a.distribution().c_angles(), &c);
-    assert_eq!(a.distribution().gamma_angles(), &g);
+    assert_eq!(a.distribution().c_angles_deg(), &c);
+    assert_eq!(a.distribution().gamma_angles_deg(), &g);
     assert_same_grid(&a, &b);
 }

@@ -78,9 +78,9 @@ fn convert_keeps_physical_intensities() {
     let peak = a.distribution().max_cd();
     for other in [&b, &c] {
         let (x, y) = (a.distribution().expand(1), other.distribution().expand(1));
-        assert_eq!(x.c_angles(), y.c_angles());
-        assert_eq!(x.gamma_angles(), y.gamma_angles());
-        for (p, q) in x.intensities().iter().zip(y.intensities()) {
+        assert_eq!(x.c_angles_deg(), y.c_angles_deg());
+        assert_eq!(x.gamma_angles_deg(), y.gamma_angles_deg());
+        for (p, q) in x.intensities_cd().iter().zip(y.intensities_cd()) {
             assert_close!(p, q, abs = 1e-6 * peak, "{p} vs {q}");
         }
     }

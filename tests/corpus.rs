@@ -24,7 +24,7 @@ fn every_file_loads_or_fails_as_the_manifest_says() {
                     problems.push(format!("{}: marked MALFORMED but loaded", e.rel));
                 }
                 let d = lum.distribution();
-                if d.intensities().iter().any(|v| !v.is_finite()) {
+                if d.intensities_cd().iter().any(|v| !v.is_finite()) {
                     problems.push(format!("{}: non-finite intensity", e.rel));
                 }
                 let json = serde_json::to_string(&InfoReport::of(&lum)).unwrap();
@@ -147,12 +147,12 @@ fn luxpy_ldt_ies_pairs_agree() {
         assert_close!(fb, fa, rel = 0.01, "{l} vs {i}: flux {fa} vs {fb}");
         let full = a.distribution().expand(24);
         let mut worst: f64 = 0.0;
-        for (k, &c) in full.c_angles().iter().enumerate() {
+        for (k, &c) in full.c_angles_deg().iter().enumerate() {
             let pb = photometry::plane_profile(&bd, c);
-            for (ig, &g) in full.gamma_angles().iter().enumerate() {
+            for (ig, &g) in full.gamma_angles_deg().iter().enumerate() {
                 // Compare on the IES grid's gamma angles that both share.
-                if let Some(jg) = bd.gamma_angles().iter().position(|&x| (x - g).abs() < 1e-6) {
-                    worst = worst.max((full.value(k, ig) - pb[jg]).abs());
+                if let Some(jg) = bd.gamma_angles_deg().iter().position(|&x| (x - g).abs() < 1e-6) {
+                    worst = worst.max((full.value_cd(k, ig) - pb[jg]).abs());
                 }
             }
         }

@@ -41,7 +41,7 @@ fn nonuniform_knots_integrate_exactly() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
     let lum = photosolid::load(dir.join("cosine_p20_nonuniform.ldt")).unwrap();
     let d = lum.distribution();
-    let (g, v) = (d.gamma_angles(), d.plane(0));
+    let (g, v) = (d.gamma_angles_deg(), d.plane_cd(0));
     let interp = |x: f64| {
         let i = g.partition_point(|&k| k <= x).clamp(1, g.len() - 1) - 1;
         let t = ((x - g[i]) / (g[i + 1] - g[i])).clamp(0.0, 1.0);

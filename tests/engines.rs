@@ -86,9 +86,9 @@ fn ies_export_reads_back_as_the_same_distribution() {
         export(Engine::Blender, &lum, &path, &EngineOptions::default()).unwrap();
         let back = photosolid::load(&path).unwrap();
         let (a, b) = (lum.distribution(), back.distribution());
-        assert_eq!(a.c_angles(), b.c_angles(), "{name}");
-        assert_eq!(a.gamma_angles(), b.gamma_angles(), "{name}");
-        for (x, y) in a.intensities().iter().zip(b.intensities()) {
+        assert_eq!(a.c_angles_deg(), b.c_angles_deg(), "{name}");
+        assert_eq!(a.gamma_angles_deg(), b.gamma_angles_deg(), "{name}");
+        for (x, y) in a.intensities_cd().iter().zip(b.intensities_cd()) {
             assert_close!(*x, *y, abs = 1e-9 * x.abs().max(1.0), "{name}: {x} vs {y}");
         }
     }
@@ -138,7 +138,10 @@ fn glb_embeds_the_ies_profile_and_the_fitted_lights() {
         &Default::default(),
     )
     .unwrap();
-    assert_eq!(back.distribution().gamma_angles(), lum.distribution().gamma_angles());
+    assert_eq!(
+        back.distribution().gamma_angles_deg(),
+        lum.distribution().gamma_angles_deg()
+    );
     let peak = lum.distribution().max_cd();
     assert_close!(back.distribution().max_cd(), peak, rel = 1e-9);
     // A node instantiates the profile; every KHR light has a node; the spot's cone is valid.
@@ -209,8 +212,8 @@ fn the_peak_lands_on_the_predicted_texel() {
     let d = lum.distribution();
     let ng = d.n_gamma();
     let peaks: Vec<(f64, f64)> = (0..d.n_c() * ng)
-        .filter(|&i| d.intensities()[i] == d.max_cd())
-        .map(|i| (d.c_angles()[i / ng], d.gamma_angles()[i % ng]))
+        .filter(|&i| d.intensities_cd()[i] == d.max_cd())
+        .map(|i| (d.c_angles_deg()[i / ng], d.gamma_angles_deg()[i % ng]))
         .collect();
     assert_eq!(peaks, vec![(60.0, 65.0), (120.0, 65.0)]);
     let dark = (240.0, 65.0);

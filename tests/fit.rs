@@ -52,11 +52,17 @@ impl Noise {
 fn noisy(d: &Distribution, sigma: f64, seed: u64) -> Distribution {
     let mut n = Noise(seed);
     let cd: Vec<f64> = d
-        .intensities()
+        .intensities_cd()
         .iter()
         .map(|v| v * (1.0 + sigma * n.gauss()).max(0.0))
         .collect();
-    Distribution::new(d.c_angles().to_vec(), d.gamma_angles().to_vec(), cd, d.symmetry()).unwrap()
+    Distribution::new(
+        d.c_angles_deg().to_vec(),
+        d.gamma_angles_deg().to_vec(),
+        cd,
+        d.symmetry(),
+    )
+    .unwrap()
 }
 
 fn angle_between(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -39,10 +39,10 @@ fn read_str(s: &str) -> Result<photosolid::formats::Document, photosolid::ParseE
 /// Same angles exactly, same symmetry, values within `rel` of the peak.
 fn assert_same(a: &Distribution, b: &Distribution, rel: f64, what: &str) {
     assert_eq!(a.symmetry(), b.symmetry(), "{what}: symmetry");
-    assert_eq!(a.c_angles(), b.c_angles(), "{what}: C angles");
-    assert_eq!(a.gamma_angles(), b.gamma_angles(), "{what}: gamma angles");
+    assert_eq!(a.c_angles_deg(), b.c_angles_deg(), "{what}: C angles");
+    assert_eq!(a.gamma_angles_deg(), b.gamma_angles_deg(), "{what}: gamma angles");
     let tol = rel * a.max_cd().abs().max(1e-300);
-    for (i, (x, y)) in a.intensities().iter().zip(b.intensities()).enumerate() {
+    for (i, (x, y)) in a.intensities_cd().iter().zip(b.intensities_cd()).enumerate() {
         assert_close!(*x, *y, abs = tol.max(rel * x.abs()), "{what}: value #{i}: {x} vs {y}");
     }
 }
@@ -190,7 +190,7 @@ fn reads_a_simple_file() {
     assert_eq!(l.metadata().test_report, "T1");
     assert!(l.declared().absolute);
     assert_eq!(l.distribution().symmetry(), Symmetry::Rotational);
-    assert_eq!(l.distribution().intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[100.0, 50.0, 0.0]);
     assert!(l.warnings().is_empty(), "{:?}", l.warnings());
 }
 
@@ -204,9 +204,9 @@ fn tilt_include_is_parsed_not_applied() {
     assert_eq!(table.geometry, 1);
     assert_eq!(table.angles, vec![0.0, 15.0, 30.0]);
     assert_eq!(table.multipliers, vec![1.0, 0.95, 0.9]);
-    assert_eq!(l.distribution().intensities(), &[10.0, 5.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[10.0, 5.0]);
     let t = l.tilted_distribution(30.0).unwrap();
-    assert_close!(t.intensities()[0], 9.0, abs = 1e-12);
+    assert_close!(t.intensities_cd()[0], 9.0, abs = 1e-12);
 }
 
 #[test]
@@ -299,7 +299,7 @@ fn type_b_bright_direction_lands_at_the_expected_c_gamma() {
         let d = [h.cos() * v.sin(), sign * h.sin(), -h.cos() * v.cos()];
         let gamma = (-d[2]).acos().to_degrees();
         let c = d[1].atan2(d[0]).to_degrees().rem_euclid(360.0);
-        let (peak, _, _) = l.distribution().max();
+        let (peak, _, _) = l.distribution().max_cd_at_deg();
         assert_close!(peak, 1000.0, abs = 1e-9, "{peak}");
         // The grid point nearest the bright direction lies inside the lit patch.
         let d2 = l.distribution();
@@ -308,17 +308,25 @@ fn type_b_bright_direction_lands_at_the_expected_c_gamma() {
                 .min_by(|&i, &j| (a[i] - x).abs().total_cmp(&(a[j] - x).abs()))
                 .unwrap()
         };
-        let (ic, ig) = (near(d2.c_angles(), c), near(d2.gamma_angles(), gamma));
+        let (ic, ig) = (near(d2.c_angles_deg(), c), near(d2.gamma_angles_deg(), gamma));
         assert!(
-            d2.value(ic, ig) > 999.0,
+            d2.value_cd(ic, ig) > 999.0,
             "dark at C {c} gamma {gamma}: {}",
-            d2.value(ic, ig)
+            d2.value_cd(ic, ig)
         );
         // Mirror image is dark.
         let mirror_c = (360.0 - c).rem_euclid(360.0);
-        let ic = d2.c_angles().iter().position(|&x| (x - mirror_c).abs() < 2.6).unwrap();
-        let ig = d2.gamma_angles().iter().position(|&x| (x - gamma).abs() < 2.6).unwrap();
-        assert!(d2.value(ic, ig) < 1e-9, "mirror lit: {}", d2.value(ic, ig));
+        let ic = d2
+            .c_angles_deg()
+            .iter()
+            .position(|&x| (x - mirror_c).abs() < 2.6)
+            .unwrap();
+        let ig = d2
+            .gamma_angles_deg()
+            .iter()
+            .position(|&x| (x - gamma).abs() < 2.6)
+            .unwrap();
+        assert!(d2.value_cd(ic, ig) < 1e-9, "mirror lit: {}", d2.value_cd(ic, ig));
         // The source grid is kept and written back as Type B.
         let sg = l.source_grid().unwrap();
         assert_eq!(sg.kind, PhotometricType::B);
@@ -334,14 +342,14 @@ fn type_b_half_grid_is_c0c180() {
     let l = read_str(s).unwrap();
     assert_eq!(l.distribution().symmetry(), Symmetry::C0C180);
     // Nadir = H0 V0 = 2.
-    assert_close!(l.distribution().value(0, 0), 2.0, abs = 1e-9);
+    assert_close!(l.distribution().value_cd(0, 0), 2.0, abs = 1e-9);
 }
 
 #[test]
 fn comma_separated_values() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1,-1,1,3,1,1,2,0,0,0\n1,1,0\n0,45,90\n0\n100,50.5,0\n";
     let l = read_str(s).unwrap();
-    assert_eq!(l.distribution().intensities(), &[100.0, 50.5, 0.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[100.0, 50.5, 0.0]);
 }
 
 #[test]
@@ -350,14 +358,14 @@ fn file_1986_without_keyword_line_and_blpf() {
     let l = read_str(s).unwrap();
     assert_eq!(l.version(), "LM-63-1986");
     // 100 x multiplier 2 x ballast 0.5 x BLPF 0.8 = 80.
-    assert_eq!(l.distribution().intensities(), &[80.0, 40.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[80.0, 40.0]);
     assert_eq!(l.declared().lamp_flux_lm, Some(2000.0));
     assert_close!(l.luminous_opening().length_m, 2.0 * 0.3048, abs = 1e-12);
     assert_close!(l.luminous_opening().width_m, 0.3048, abs = 1e-12);
     assert_eq!(l.metadata().luminaire, "ACME LIGHTING Some luminaire");
     // From 1995 the BLPF field is unused.
     let s95 = s.replace("ACME LIGHTING\n", "IESNA:LM-63-1995\n");
-    assert_eq!(read_str(&s95).unwrap().distribution().intensities(), &[100.0, 50.0]);
+    assert_eq!(read_str(&s95).unwrap().distribution().intensities_cd(), &[100.0, 50.0]);
     // Written as 2002 the BLPF is folded into the values.
     let l2 = read_str(&ies::write(&l, IesWriteVersion::Lm63_2002)).unwrap();
     assert_same(l.distribution(), l2.distribution(), 1e-14, "1986 rewrite");
@@ -366,12 +374,18 @@ fn file_1986_without_keyword_line_and_blpf() {
 #[test]
 fn ctrl_z_cr_only_bom_and_blank_lines() {
     let cr = SIMPLE.replace('\n', "\r");
-    assert_eq!(read_str(&cr).unwrap().distribution().intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(
+        read_str(&cr).unwrap().distribution().intensities_cd(),
+        &[100.0, 50.0, 0.0]
+    );
     let z = format!("\u{feff}{}\x1a", SIMPLE.replace('\n', "\r\n"));
-    assert_eq!(read_str(&z).unwrap().distribution().intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(
+        read_str(&z).unwrap().distribution().intensities_cd(),
+        &[100.0, 50.0, 0.0]
+    );
     let blank = SIMPLE.replace("TILT=NONE\n", &format!("TILT=NONE\n{}", "\n".repeat(1000)));
     let l = read_str(&blank).unwrap();
-    assert_eq!(l.distribution().intensities(), &[100.0, 50.0, 0.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[100.0, 50.0, 0.0]);
     let one_per_line = SIMPLE.replace(' ', "\n");
     assert!(read_str(&one_per_line).is_ok());
 }
@@ -442,11 +456,11 @@ fn warnings_extra_negative_pole_missing_ballast() {
     assert!(codes.contains(&"extra-values"), "{codes:?}");
     assert!(codes.contains(&"negative-intensity"), "{codes:?}");
     assert!(codes.contains(&"pole-mismatch"), "{codes:?}");
-    assert_eq!(l.distribution().intensities(), &[10.0, -1.0, 12.0, 3.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[10.0, -1.0, 12.0, 3.0]);
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n0 90\n0\n10 5\n";
     let l = read_str(s).unwrap();
     assert!(l.warnings().iter().any(|w| w.code == "missing-ballast-line"));
-    assert_eq!(l.distribution().intensities(), &[10.0, 5.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[10.0, 5.0]);
 }
 
 #[test]
@@ -455,8 +469,9 @@ fn symmetry_from_horizontal_angles() {
         let vals = vec!["1 2"; n].join("\n");
         format!("IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 {n} 1 2 0 0 0\n1 1 0\n0 90\n{h}\n{vals}\n")
     };
-    let sym =
-        |h: &str, n| read_str(&mk(h, n)).map(|l| (l.distribution().symmetry(), l.distribution().c_angles().to_vec()));
+    let sym = |h: &str, n| {
+        read_str(&mk(h, n)).map(|l| (l.distribution().symmetry(), l.distribution().c_angles_deg().to_vec()))
+    };
     assert_eq!(sym("0 45 90", 3).unwrap().0, Symmetry::Quadrant);
     assert_eq!(sym("0 90 180", 3).unwrap().0, Symmetry::C0C180);
     assert_eq!(sym("90 180 270", 3).unwrap().0, Symmetry::C90C270);
@@ -473,9 +488,9 @@ fn symmetry_from_horizontal_angles() {
     let s = "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 4 1 2 0 0 0\n1 1 0\n90 0\n180 0 90 90\n1 10\n3 30\n2 20\n9 9\n";
     assert!(read_str(s).is_err());
     let l = ies::read(s.as_bytes(), Path::new("r.ies"), &opts).unwrap();
-    assert_eq!(l.distribution().c_angles(), &[0.0, 90.0, 180.0]);
-    assert_eq!(l.distribution().gamma_angles(), &[0.0, 90.0]);
-    assert_eq!(l.distribution().intensities(), &[30.0, 3.0, 20.0, 2.0, 10.0, 1.0]);
+    assert_eq!(l.distribution().c_angles_deg(), &[0.0, 90.0, 180.0]);
+    assert_eq!(l.distribution().gamma_angles_deg(), &[0.0, 90.0]);
+    assert_eq!(l.distribution().intensities_cd(), &[30.0, 3.0, 20.0, 2.0, 10.0, 1.0]);
     assert!(l.warnings().iter().any(|w| w.code == "angles-repaired"));
 }
 
@@ -492,9 +507,9 @@ fn synthetic_luminaire_writes_and_reads_back() {
     l.metadata_mut().manufacturer = "Synth".into();
     let text = ies::write(&l.clone().into(), IesWriteVersion::Lm63_2002);
     let back = read_str(&text).unwrap();
-    assert_eq!(back.distribution().c_angles(), &[0.0, 30.0, 150.0, 270.0]);
-    assert_eq!(back.distribution().plane(1), l.distribution().plane(0));
-    assert_eq!(back.distribution().plane(3), l.distribution().plane(2));
+    assert_eq!(back.distribution().c_angles_deg(), &[0.0, 30.0, 150.0, 270.0]);
+    assert_eq!(back.distribution().plane_cd(1), l.distribution().plane_cd(0));
+    assert_eq!(back.distribution().plane_cd(3), l.distribution().plane_cd(2));
     assert_eq!(back.metadata().manufacturer, "Synth");
     assert!(back.declared().absolute);
 }

@@ -44,17 +44,17 @@ fn tolerance(v: f64) -> f64 {
 
 fn assert_same_distribution(a: &Distribution, b: &Distribution, what: &str) {
     assert_eq!(a.symmetry(), b.symmetry(), "{what}: symmetry");
-    assert_eq!(a.c_angles(), b.c_angles(), "{what}: C angles");
-    assert_eq!(a.gamma_angles(), b.gamma_angles(), "{what}: gamma angles");
-    for (i, (x, y)) in a.intensities().iter().zip(b.intensities()).enumerate() {
+    assert_eq!(a.c_angles_deg(), b.c_angles_deg(), "{what}: C angles");
+    assert_eq!(a.gamma_angles_deg(), b.gamma_angles_deg(), "{what}: gamma angles");
+    for (i, (x, y)) in a.intensities_cd().iter().zip(b.intensities_cd()).enumerate() {
         let g = a.n_gamma();
         assert_close!(
             *x,
             *y,
             abs = tolerance(*x),
             "{what}: C = {} > gamma = {}: {x} vs {y}",
-            a.c_angles()[i / g],
-            a.gamma_angles()[i % g]
+            a.c_angles_deg()[i / g],
+            a.gamma_angles_deg()[i % g]
         );
     }
 }
@@ -142,11 +142,11 @@ fn corpus_special_files() {
     let d = l.distribution();
     assert_eq!(d.symmetry(), Symmetry::C90C270);
     assert_eq!(d.n_c(), 19);
-    assert_eq!((d.c_angles()[0], d.c_angles()[18]), (90.0, 270.0));
+    assert_eq!((d.c_angles_deg()[0], d.c_angles_deg()[18]), (90.0, 270.0));
     // Several values per line in the data block.
     let l = read_file(&root.join("luxera/synthetic_basic.ldt")).unwrap();
     assert_eq!(l.distribution().n_c(), 2);
-    assert_eq!(l.distribution().plane(1), &[2000.0, 1400.0, 100.0]);
+    assert_eq!(l.distribution().plane_cd(1), &[2000.0, 1400.0, 100.0]);
 }
 
 /// A small xorshift PRNG: fixed seed, no dependency.
@@ -178,7 +178,7 @@ fn damaged_input_never_panics() {
     let path = Path::new("fuzz.ldt");
     let check = |bytes: &[u8], o: &ReadOptions| {
         if let Ok(l) = ldt::read(bytes, path, o) {
-            assert!(l.distribution().intensities().iter().all(|v| v.is_finite()));
+            assert!(l.distribution().intensities_cd().iter().all(|v| v.is_finite()));
             // Whatever loads can be written and read again.
             let _ = ldt::read(ldt::write(&l).as_bytes(), path, o);
         }
@@ -272,11 +272,11 @@ fn isym3_planes_are_mirrored_into_c90_c270() {
     let l = read_str(&ldt_text(3, &c, &gamma, &ONE_SET, &values)).unwrap();
     let d = l.distribution();
     assert_eq!(d.symmetry(), Symmetry::C90C270);
-    assert_eq!(d.c_angles().first(), Some(&90.0));
-    assert_eq!(d.c_angles().last(), Some(&270.0));
+    assert_eq!(d.c_angles_deg().first(), Some(&90.0));
+    assert_eq!(d.c_angles_deg().last(), Some(&270.0));
     let scale = 2.0; // 2000 lm / 1000
                      // File plane C0 is model C180; C270 stays; C90 stays; C300 is model C240.
-    let at = |c: f64, g: usize| d.value(d.find_plane(c).unwrap(), g) / scale;
+    let at = |c: f64, g: usize| d.value_cd(d.find_plane(c).unwrap(), g) / scale;
     assert_eq!(at(180.0, 1), 50.0);
     assert_eq!(at(270.0, 1), 50.0 + 27.0);
     assert_eq!(at(90.0, 1), 50.0 + 9.0);
@@ -285,8 +285,8 @@ fn isym3_planes_are_mirrored_into_c90_c270() {
     let full = d.expand(1);
     for &fc in &file_planes {
         let ic = full.find_plane(fc).unwrap();
-        assert_eq!(full.value(ic, 1) / scale, 50.0 + fc / 10.0, "file plane C{fc}");
-        assert_eq!(full.value(ic, 2) / scale, 10.0 + fc / 100.0, "file plane C{fc}");
+        assert_eq!(full.value_cd(ic, 1) / scale, 50.0 + fc / 10.0, "file plane C{fc}");
+        assert_eq!(full.value_cd(ic, 2) / scale, 10.0 + fc / 100.0, "file plane C{fc}");
     }
     // Written back, the same planes sit at the same file positions.
     let text = ldt::write(&l);
@@ -302,8 +302,8 @@ fn decimal_commas_are_read() {
         .replace("\r\n50\r\n", "\r\n12,5\r\n")
         .replace("\r\n45\r\n", "\r\n45,0\r\n");
     let l = read_str(&text).unwrap();
-    assert_eq!(l.distribution().gamma_angles(), &[0.0, 45.0, 90.0]);
-    assert_eq!(l.distribution().plane(0), &[200.0, 25.0, 0.0]);
+    assert_eq!(l.distribution().gamma_angles_deg(), &[0.0, 45.0, 90.0]);
+    assert_eq!(l.distribution().plane_cd(0), &[200.0, 25.0, 0.0]);
     assert_eq!(l.ldt_header().unwrap().direct_ratios[0], 0.5);
 }
 
@@ -321,7 +321,7 @@ fn two_lamp_sets_in_field_groups() {
     assert_eq!(l.lamp_sets()[1].color, "840");
     assert!(l.warnings().iter().any(|w| w.code == "lamp-set-layout"));
     // Set 1 is the reference by default.
-    assert_eq!(l.distribution().plane(0), &[100.0, 10.0]);
+    assert_eq!(l.distribution().plane_cd(0), &[100.0, 10.0]);
     assert_eq!(l.declared().lamp_flux_lm, Some(1000.0));
     assert_eq!(l.declared().input_watts, Some(10.0));
     let sum = ReadOptions {
@@ -329,7 +329,7 @@ fn two_lamp_sets_in_field_groups() {
         ..ReadOptions::default()
     };
     let l = ldt::read(text.as_bytes(), Path::new("t.ldt"), &sum).unwrap();
-    assert_eq!(l.distribution().plane(0), &[400.0, 40.0]);
+    assert_eq!(l.distribution().plane_cd(0), &[400.0, 40.0]);
     assert_eq!(l.declared().lamp_flux_lm, Some(4000.0));
     assert_eq!(l.declared().input_watts, Some(40.0));
     // The same sets in blocks of six are detected too.
@@ -348,7 +348,7 @@ fn absolute_photometry() {
     assert!(l.declared().absolute);
     assert_eq!(l.declared().lamp_flux_lm, None);
     assert_eq!(l.declared().luminaire_flux_lm, Some(1500.0));
-    assert_eq!(l.distribution().plane(0), &[300.0, 30.0]);
+    assert_eq!(l.distribution().plane_cd(0), &[300.0, 30.0]);
     let back = read_str(&ldt::write(&l)).unwrap();
     assert!(back.declared().absolute);
     assert_same_distribution(l.distribution(), back.distribution(), "absolute");
@@ -408,8 +408,8 @@ fn unsorted_angles_fail_or_are_repaired() {
         ..ReadOptions::default()
     };
     let l = ldt::read(text.as_bytes(), Path::new("t.ldt"), &repair).unwrap();
-    assert_eq!(l.distribution().gamma_angles(), &[0.0, 45.0, 90.0]);
-    assert_eq!(l.distribution().plane(0), &[6.0, 4.0, 2.0]);
+    assert_eq!(l.distribution().gamma_angles_deg(), &[0.0, 45.0, 90.0]);
+    assert_eq!(l.distribution().plane_cd(0), &[6.0, 4.0, 2.0]);
     assert!(l.warnings().iter().any(|w| w.code == "unsorted-angles"));
 }
 
@@ -423,8 +423,8 @@ fn poles_and_negative_values_are_kept_with_warnings() {
         codes.contains(&"pole-mismatch") && codes.contains(&"negative-intensity"),
         "{codes:?}"
     );
-    assert_eq!(l.distribution().value(1, 0), 22.0);
-    assert_eq!(l.distribution().value(2, 1), -2.0);
+    assert_eq!(l.distribution().value_cd(1, 0), 22.0);
+    assert_eq!(l.distribution().value_cd(2, 1), -2.0);
 }
 
 #[test]
@@ -451,7 +451,7 @@ fn text_encodings_line_ends_and_padding() {
         let t = text.replace("\r\n", eol);
         let t = t.trim_end();
         let l = read_str(t).unwrap();
-        assert_eq!(l.distribution().plane(0), &[200.0, 20.0]);
+        assert_eq!(l.distribution().plane_cd(0), &[200.0, 20.0]);
     }
     // Integers written as 1.0, trailing blanks, junk after a header number.
     let t = text

@@ -80,8 +80,8 @@ fn ies_every_edition_and_tilt_form_loads_type_c() {
             let l = read(Format::Ies, &path, f.text().as_bytes()).unwrap_or_else(|e| panic!("{what}: {e}"));
             let d = distribution(&l);
             assert_eq!(d.symmetry(), Symmetry::Quadrant, "{what}");
-            assert_eq!(d.c_angles(), &f.horizontal[..], "{what}");
-            assert_eq!(d.gamma_angles(), &f.vertical[..], "{what}");
+            assert_eq!(d.c_angles_deg(), &f.horizontal[..], "{what}");
+            assert_eq!(d.gamma_angles_deg(), &f.vertical[..], "{what}");
             let scale = if version.ballast_lamp_factor_applies() {
                 1.0
             } else {
@@ -89,7 +89,12 @@ fn ies_every_edition_and_tilt_form_loads_type_c() {
             };
             for (ic, row) in f.cd.chunks(f.vertical.len()).enumerate() {
                 for (ig, cd) in row.iter().enumerate() {
-                    assert_close!(d.value(ic, ig), cd * scale, rel = 1e-12, "{what}: C #{ic} gamma #{ig}");
+                    assert_close!(
+                        d.value_cd(ic, ig),
+                        cd * scale,
+                        rel = 1e-12,
+                        "{what}: C #{ic} gamma #{ig}"
+                    );
                 }
             }
             let table = tilt_table(&l);
@@ -117,8 +122,8 @@ fn ies_type_a_and_b_load_in_every_edition() {
             // H = 0, V = 0 and H = 45, V = 0 are unambiguous directions (Type B: nadir and
             // C90 gamma 45; Type A: C0 and C45 at gamma 90) on the converted grid's points.
             let at = |c: f64, g: f64| {
-                let ig = d.gamma_angles().iter().position(|&x| x == g).unwrap();
-                d.value_at_plane(c, ig)
+                let ig = d.gamma_angles_deg().iter().position(|&x| x == g).unwrap();
+                d.value_at_plane_cd(c, ig)
                     .unwrap_or_else(|| panic!("{what}: no plane C {c}"))
             };
             let (first, second) = if ptype == 2 {
@@ -136,7 +141,7 @@ fn ies_type_a_and_b_load_in_every_edition() {
             // Interpolation never exceeds the source's peak.
             let peak = f.cd.iter().cloned().fold(0.0, f64::max);
             assert!(d.max_cd() <= peak, "{what}: {} > {peak}", d.max_cd());
-            assert!(d.intensities().iter().all(|v| v.is_finite() && *v >= 0.0), "{what}");
+            assert!(d.intensities_cd().iter().all(|v| v.is_finite() && *v >= 0.0), "{what}");
         }
     }
 }
@@ -442,14 +447,14 @@ fn ldt_every_symmetry_and_several_lamp_sets_load() {
                 read(Format::Ldt, Path::new("sym.ldt"), f.text().as_bytes()).unwrap_or_else(|e| panic!("{what}: {e}"));
             assert_eq!(lamp_set_count(&l), sets, "{what}");
             let d = distribution(&l);
-            assert_eq!(d.gamma_angles(), &f.gamma[..], "{what}");
+            assert_eq!(d.gamma_angles_deg(), &f.gamma[..], "{what}");
             // Every stored value comes back (cd/klm x the first set's 1000 lm / 1000), at its plane.
             let stored: Vec<f64> = f.stored_planes().iter().map(|&i| f.c_angles[i]).collect();
             for (k, &c) in stored.iter().enumerate() {
                 for (ig, &g) in f.gamma.iter().enumerate() {
                     let want = f.cd_per_klm[k * f.ng + ig];
                     let got = d
-                        .value_at_plane(c, ig)
+                        .value_at_plane_cd(c, ig)
                         .unwrap_or_else(|| panic!("{what}: no plane C {c}"));
                     assert_close!(got, want, rel = 1e-9, "{what}: C {c} gamma {g}");
                 }

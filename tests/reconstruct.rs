@@ -50,9 +50,9 @@ fn interpolating_filters_return_measured_values_at_their_directions() {
     let tex = LightTexture::new(&d).unwrap();
     for f in INTERPOLATING {
         let s = tex.sampler(f);
-        for (ic, &c) in d.c_angles().iter().enumerate() {
-            for (ig, &g) in d.gamma_angles().iter().enumerate() {
-                let want = d.value(ic, ig);
+        for (ic, &c) in d.c_angles_deg().iter().enumerate() {
+            for (ig, &g) in d.gamma_angles_deg().iter().enumerate() {
+                let want = d.value_cd(ic, ig);
                 assert_eq!(s.cd(c, g), want, "{f} at C {c} gamma {g}");
                 // by direction: acos/atan2 round trip costs a few ulps of the angle
                 let got = s.cd_dir(direction(c, g));
@@ -406,12 +406,12 @@ fn intensities_from_micro_to_mega_candela() {
     let tex = LightTexture::new(&d).unwrap();
     for f in Filter::ALL {
         let s = tex.sampler(f);
-        for (ic, &c) in d.c_angles().iter().enumerate() {
+        for (ic, &c) in d.c_angles_deg().iter().enumerate() {
             for (ig, &gg) in g.iter().enumerate() {
                 let v = s.cd(c, gg);
                 assert!(v.is_finite() && v >= 0.0);
                 if f.is_interpolating() && gg != 0.0 && gg != 180.0 {
-                    assert_eq!(v, d.value(ic, ig), "{f}");
+                    assert_eq!(v, d.value_cd(ic, ig), "{f}");
                 }
             }
         }
@@ -563,9 +563,9 @@ proptest! {
         let Ok(tex) = LightTexture::new(&d) else { return Ok(()) };
         for f in INTERPOLATING {
             let s = tex.sampler(f);
-            for (ic, &c) in d.c_angles().iter().enumerate() {
-                for (ig, &g) in d.gamma_angles().iter().enumerate() {
-                    let (got, want) = (s.cd(c, g), d.value(ic, ig));
+            for (ic, &c) in d.c_angles_deg().iter().enumerate() {
+                for (ig, &g) in d.gamma_angles_deg().iter().enumerate() {
+                    let (got, want) = (s.cd(c, g), d.value_cd(ic, ig));
                     prop_assert!((got - want).abs() <= 1e-9 * tex.i_max_cd(), "{} at ({}, {}): {} vs {}", f, c, g, got, want);
                 }
             }
@@ -590,13 +590,13 @@ proptest! {
         let Ok(tex) = LightTexture::new(&d) else { return Ok(()) };
         let s = tex.sampler(Filter::Bilinear);
         let full = d.full_planes();
-        let g = d.gamma_angles();
+        let g = d.gamma_angles_deg();
         for &(c, gq) in &q {
             if gq < g[0] || gq > g[g.len() - 1] { continue; }
             let ig = g.partition_point(|&x| x <= gq).clamp(1, g.len() - 1) - 1;
             let jc = full.partition_point(|p| p.0 <= c);
             let planes = [full[(jc + full.len() - 1) % full.len()].1, full[jc % full.len()].1];
-            let vals: Vec<f64> = planes.iter().flat_map(|&p| [d.value(p, ig), d.value(p, ig + 1)]).collect();
+            let vals: Vec<f64> = planes.iter().flat_map(|&p| [d.value_cd(p, ig), d.value_cd(p, ig + 1)]).collect();
             let lo = vals.iter().cloned().fold(f64::INFINITY, f64::min);
             let hi = vals.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
             let v = s.cd(c, gq);

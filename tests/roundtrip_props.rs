@@ -218,6 +218,6 @@ fn two_lamp_sets_with_numeric_text_fields_keep_their_layout() {
     )
     .unwrap();
     assert_eq!(back.lamp_sets()[1].cri, "1B");
-    assert_eq!(back.distribution().plane(0), &[100.0, 10.0]);
+    assert_eq!(back.distribution().plane_cd(0), &[100.0, 10.0]);
     loads_and_round_trips(text.as_bytes(), Format::Ldt);
 }

@@ -179,9 +179,9 @@ fn sanity_over_many_synthetic_distributions() {
                     // No solid: only round-off is lit (a downward kind on the upper
                     // grid), or only a pole (a spot seen at 0 and 60 degrees).
                     Err(CheckError::Build(ModelError::AllZero(_))) => {
-                        let g = d.gamma_angles();
+                        let g = d.gamma_angles_deg();
                         let lit_inner = (0..d.n_c()).any(|ic| {
-                            (0..g.len()).any(|ig| g[ig] > 0.0 && g[ig] < 180.0 && d.value(ic, ig) > 1e-15 * i0)
+                            (0..g.len()).any(|ig| g[ig] > 0.0 && g[ig] < 180.0 && d.value_cd(ic, ig) > 1e-15 * i0)
                         });
                         assert!(!lit_inner, "{what}: AllZero with peak {}", d.max_cd())
                     }
@@ -195,9 +195,9 @@ fn sanity_over_many_synthetic_distributions() {
                         Ok(m) => m,
                         // A grid too coarse to see anything but a pole spans no solid.
                         Err(ModelError::AllZero(_)) => {
-                            let ga = g.gamma_angles();
+                            let ga = g.gamma_angles_deg();
                             let lit = g
-                                .c_angles()
+                                .c_angles_deg()
                                 .iter()
                                 .any(|&c| ga[1..ga.len() - 1].iter().any(|&gg| f(c, gg) > 1e-15 * i0));
                             assert!(!lit, "grid x{factor} of {what}: AllZero but lit");

@@ -142,7 +142,7 @@ fn kfold_reproduces_the_peers_maxima_where_protocols_coincide() {
         let max = fold
             .withheld
             .iter()
-            .map(|&(ic, ig)| (s.cd(d.c_angles()[ic], d.gamma_angles()[ig]) - d.value(ic, ig)).abs())
+            .map(|&(ic, ig)| (s.cd(d.c_angles_deg()[ic], d.gamma_angles_deg()[ig]) - d.value_cd(ic, ig)).abs())
             .fold(0.0, f64::max);
         let pct = 100.0 * max / i_max;
         eprintln!("ITALO 1/4 {filter}: max {pct:.3} % (PEERS {peers_max} %)");

@@ -114,20 +114,20 @@ impl Luminaire {
     /// Stored C-planes, degrees, shape (n_c,).
     #[getter]
     fn c_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.lum.distribution().c_angles())
+        PyArray1::from_slice(py, self.lum.distribution().c_angles_deg())
     }
 
     /// γ angles, degrees (0 = nadir), shape (n_gamma,).
     #[getter]
     fn gamma_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.lum.distribution().gamma_angles())
+        PyArray1::from_slice(py, self.lum.distribution().gamma_angles_deg())
     }
 
     /// Measured intensities, cd, shape (n_c, n_gamma): `candela[i, j]` at `c_deg[i]`, `gamma_deg[j]`.
     #[getter]
     fn candela<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let d = self.lum.distribution();
-        let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
+        let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities_cd().to_vec())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(a.into_pyarray(py))
     }
@@ -144,12 +144,12 @@ impl Luminaire {
         Bound<'py, PyArray2<f64>>,
     )> {
         let d = self.lum.distribution().expand(1);
-        let c = d.c_angles().to_vec();
-        let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities().to_vec())
+        let c = d.c_angles_deg().to_vec();
+        let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities_cd().to_vec())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok((
             PyArray1::from_vec(py, c),
-            PyArray1::from_slice(py, d.gamma_angles()),
+            PyArray1::from_slice(py, d.gamma_angles_deg()),
             a.into_pyarray(py),
         ))
     }

@@ -63,7 +63,7 @@ pub fn page_order(rows: &[BatchRecord]) -> Vec<usize> {
 pub fn thumbnail(path: &Path, read: &ReadOptions) -> Result<Vec<u8>, Error> {
     let lum = crate::load_with(path, read)?;
     let d = lum.distribution();
-    let g = d.gamma_angles();
+    let g = d.gamma_angles_deg();
     let pair = |right: f64, left: f64| -> Vec<(f64, f64)> {
         let (r, l) = (plane_profile(d, right), plane_profile(d, left));
         let mut pts: Vec<(f64, f64)> = g.iter().zip(&l).rev().map(|(&g, &v)| (-g, v)).collect();

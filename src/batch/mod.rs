@@ -212,7 +212,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     row.n_c = u32::try_from(info.n_c).ok();
     row.n_c_full = u32::try_from(info.n_c_full).ok();
     row.n_gamma = u32::try_from(info.n_gamma).ok();
-    let g = lum.distribution().gamma_angles();
+    let g = lum.distribution().gamma_angles_deg();
     row.gamma_min_deg = g.first().copied();
     row.gamma_max_deg = g.last().copied();
     row.max_cd = finite(Some(info.max_cd));

@@ -49,9 +49,9 @@ pub fn run(a: GridArgs) -> anyhow::Result<i32> {
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     if a.csv {
         writeln!(out, "c_deg,gamma_deg,cd")?;
-        for (ic, &c) in d.c_angles().iter().enumerate() {
-            for (ig, &g) in d.gamma_angles().iter().enumerate() {
-                writeln!(out, "{c},{g},{}", d.value(ic, ig))?;
+        for (ic, &c) in d.c_angles_deg().iter().enumerate() {
+            for (ig, &g) in d.gamma_angles_deg().iter().enumerate() {
+                writeln!(out, "{c},{g},{}", d.value_cd(ic, ig))?;
             }
         }
     } else {
@@ -59,9 +59,9 @@ pub fn run(a: GridArgs) -> anyhow::Result<i32> {
             source: a.file.display().to_string(),
             symmetry: lum.distribution().symmetry(),
             i_max_cd: d.max_cd(),
-            c_deg: d.c_angles(),
-            gamma_deg: d.gamma_angles(),
-            cd: (0..d.n_c()).map(|ic| d.plane(ic)).collect(),
+            c_deg: d.c_angles_deg(),
+            gamma_deg: d.gamma_angles_deg(),
+            cd: (0..d.n_c()).map(|ic| d.plane_cd(ic)).collect(),
         };
         serde_json::to_writer(&mut out, &g)?;
         writeln!(out)?;

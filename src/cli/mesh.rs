@@ -138,8 +138,8 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     if let Some(f) = &adaptive {
         outln!(
             "adaptive grid {} C x {} gamma: largest tested deviation {:.4} cd, tolerance {:.4} cd{}",
-            f.grid.c_angles().len(),
-            f.grid.gamma_angles().len(),
+            f.grid.c_angles_deg().len(),
+            f.grid.gamma_angles_deg().len(),
             f.tested_deviation_cd,
             f.tolerance_cd,
             if f.reached {

@@ -648,7 +648,7 @@ fn compare_fields(
     // Solids of revolution: the reference's profile, when both files are rotational and it is C-independent.
     let rotational = a.symmetry() == Symmetry::Rotational && reference.dist.symmetry() == Symmetry::Rotational;
     let start = SolidGrid::knots(a)?;
-    let ref_profile = match rotational && profile::is_c_independent(reference.field, start.gamma_angles()) {
+    let ref_profile = match rotational && profile::is_c_independent(reference.field, start.gamma_angles_deg()) {
         true => {
             let (g, dev) = refinement.profile_gammas(reference.field, reference.dist)?;
             deviation = dev;
@@ -674,7 +674,7 @@ fn compare_fields(
         let field = recs.field(r)?;
         let on_profile = ref_profile
             .as_ref()
-            .filter(|_| r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles()));
+            .filter(|_| r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles_deg()));
         let (mut row, dev) = match on_profile {
             Some(rp) => {
                 let (g, dev) = refinement.profile_gammas(&*field, a)?;

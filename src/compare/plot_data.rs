@@ -62,8 +62,8 @@ pub(crate) fn plot_data(
     let (mut best, mut c_max) = (f64::NEG_INFINITY, 0.0);
     for (c, ic) in d.full_planes() {
         for ig in 0..ng {
-            if d.value(ic, ig) > best {
-                best = d.value(ic, ig);
+            if d.value_cd(ic, ig) > best {
+                best = d.value_cd(ic, ig);
                 c_max = c;
             }
         }
@@ -75,7 +75,7 @@ pub(crate) fn plot_data(
         pts
     };
     let points = |dist: &Distribution, right: f64, left: f64| -> Vec<(f64, f64)> {
-        let g = dist.gamma_angles();
+        let g = dist.gamma_angles_deg();
         let (r, l) = (
             crate::photometry::plane_profile(dist, right),
             crate::photometry::plane_profile(dist, left),

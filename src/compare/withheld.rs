@@ -46,7 +46,7 @@ pub(super) fn compare_withheld(
             for ig in 0..a.n_gamma() {
                 for &(_, ic) in &planes {
                     if at(ic, ig) {
-                        m.push(a.value(ic, ig));
+                        m.push(a.value_cd(ic, ig));
                     }
                 }
             }
@@ -101,7 +101,10 @@ pub(super) fn compare_withheld(
                     // Rotational data and a C-independent reconstruction: a solid of
                     // revolution, the distances from its profile (metrics::profile).
                     let start = crate::solid::SolidGrid::knots(&fold.kept)?;
-                    if rotational && r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles()) {
+                    if rotational
+                        && r != Recon::Measured
+                        && profile::is_c_independent(&*field, start.gamma_angles_deg())
+                    {
                         let (g, dev) = refinement.profile_gammas(&*field, &fold.kept)?;
                         if let Some(d) = dev {
                             deviation = Some(deviation.map_or(d, |x| x.max(d)));

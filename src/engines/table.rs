@@ -24,7 +24,7 @@ impl IesTable {
         let (h, cd) = crate::formats::ies::type_c_planes(d);
         Self {
             h,
-            v: d.gamma_angles().to_vec(),
+            v: d.gamma_angles_deg().to_vec(),
             cd,
         }
     }

@@ -269,7 +269,7 @@ impl FittedLights {
     /// of planes (see [`FittedLights::sample`]).
     pub fn sample_like(&self, d: &Distribution) -> Result<Distribution, ModelError> {
         let c: Vec<f64> = d.full_planes().iter().map(|p| p.0).collect();
-        self.sample(&c, d.gamma_angles())
+        self.sample(&c, d.gamma_angles_deg())
     }
 }
 

@@ -132,7 +132,7 @@ impl Samples {
         let rotational = d.symmetry() == Symmetry::Rotational;
         let planes = d.full_planes();
         let widths = periodic_widths(&planes.iter().map(|p| p.0).collect::<Vec<_>>());
-        let g = d.gamma_angles();
+        let g = d.gamma_angles_deg();
         let ng = g.len();
         // γ band of each sample: half-way to its neighbours, inside the measured range.
         let band: Vec<f64> = (0..ng)
@@ -153,7 +153,7 @@ impl Samples {
         let mut measured = [false; 2];
         let mut lit = [false; 2];
         for (&(c, ic), w) in planes.iter().zip(&widths) {
-            let v = d.plane(ic);
+            let v = d.plane_cd(ic);
             for j in 0..ng {
                 dir.push(direction(c, g[j]));
                 let mk = v[j].max(0.0) / i_max;

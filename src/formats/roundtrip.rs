@@ -70,11 +70,11 @@ pub fn check(doc: &Document) -> Result<(), String> {
 /// # Errors
 /// The first difference found.
 pub fn same_distribution(orig: &Distribution, back: &Distribution, tol: f64) -> Result<(), String> {
-    let (g0, g1) = (orig.gamma_angles(), back.gamma_angles());
+    let (g0, g1) = (orig.gamma_angles_deg(), back.gamma_angles_deg());
     if g0.len() != g1.len() || g0.iter().zip(g1).any(|(a, b)| (a - b).abs() > ANGLE_EPS) {
         return Err(format!("gamma angles {g0:?} came back as {g1:?}"));
     }
-    let peak = orig.intensities().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let peak = orig.intensities_cd().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let allowed = tol * peak;
     let planes: Vec<(f64, usize)> = if orig.symmetry() == crate::model::Symmetry::Rotational {
         vec![(0.0, 0)]
@@ -83,14 +83,19 @@ pub fn same_distribution(orig: &Distribution, back: &Distribution, tol: f64) -> 
     };
     for (c, ic) in planes {
         for (ig, &g) in g0.iter().enumerate() {
-            let want = orig.value(ic, ig);
+            let want = orig.value_cd(ic, ig);
             let got = if back.symmetry() == crate::model::Symmetry::Rotational {
-                Some(back.value(0, ig))
+                Some(back.value_cd(0, ig))
             } else {
-                back.value_at_plane(c, ig)
+                back.value_at_plane_cd(c, ig)
             };
             match got {
-                None => return Err(format!("plane C = {c} is missing (planes back: {:?})", back.c_angles())),
+                None => {
+                    return Err(format!(
+                        "plane C = {c} is missing (planes back: {:?})",
+                        back.c_angles_deg()
+                    ))
+                }
                 Some(v) if (v - want).abs() > allowed || !v.is_finite() => {
                     return Err(format!(
                         "I(C = {c}, gamma = {g}) = {want} cd came back as {v} cd (allowed difference {allowed:e} cd)"

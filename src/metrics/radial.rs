@@ -49,7 +49,7 @@ impl DirectionSet {
         let planes = d.full_planes();
         let c: Vec<f64> = planes.iter().map(|p| p.0).collect();
         let wc = periodic_widths(&c);
-        let g = d.gamma_angles();
+        let g = d.gamma_angles_deg();
         let n = g.len();
         let mut directions = Vec::with_capacity(c.len() * n);
         let mut weights = Vec::with_capacity(c.len() * n);

@@ -327,24 +327,24 @@ impl Distribution {
     }
 
     /// Stored C-plane angles (degrees), ascending, within the symmetry's stored range.
-    pub fn c_angles(&self) -> &[f64] {
+    pub fn c_angles_deg(&self) -> &[f64] {
         &self.c
     }
     /// γ angles (degrees), ascending, within [0, 180].
-    pub fn gamma_angles(&self) -> &[f64] {
+    pub fn gamma_angles_deg(&self) -> &[f64] {
         &self.gamma
     }
     /// All intensities (cd), C-major, γ fastest.
-    pub fn intensities(&self) -> &[f64] {
+    pub fn intensities_cd(&self) -> &[f64] {
         &self.cd
     }
     /// Intensities (cd) of stored plane `ic` at every γ.
-    pub fn plane(&self, ic: usize) -> &[f64] {
+    pub fn plane_cd(&self, ic: usize) -> &[f64] {
         let n = self.gamma.len();
         &self.cd[ic * n..(ic + 1) * n]
     }
     /// Intensity (cd) at stored plane `ic`, γ index `ig`.
-    pub fn value(&self, ic: usize, ig: usize) -> f64 {
+    pub fn value_cd(&self, ic: usize, ig: usize) -> f64 {
         self.cd[ic * self.gamma.len() + ig]
     }
     /// The symmetry the stored planes rely on.
@@ -376,7 +376,7 @@ impl Distribution {
     }
 
     /// Largest intensity (cd) and its direction (C, γ) in degrees, C of the stored plane.
-    pub fn max(&self) -> (f64, f64, f64) {
+    pub fn max_cd_at_deg(&self) -> (f64, f64, f64) {
         let mut best = (f64::NEG_INFINITY, 0.0, 0.0);
         let n = self.gamma.len();
         for (i, &v) in self.cd.iter().enumerate() {
@@ -389,7 +389,7 @@ impl Distribution {
 
     /// Largest intensity (cd).
     pub fn max_cd(&self) -> f64 {
-        self.max().0
+        self.max_cd_at_deg().0
     }
 
     /// The same distribution with every value multiplied by `factor` (finite),
@@ -470,7 +470,7 @@ impl Distribution {
         };
         let mut cd = Vec::with_capacity(planes.len() * self.gamma.len());
         for &(_, ic) in &planes {
-            cd.extend_from_slice(self.plane(ic));
+            cd.extend_from_slice(self.plane_cd(ic));
         }
         Distribution {
             c: planes.iter().map(|p| p.0).collect(),
@@ -482,9 +482,9 @@ impl Distribution {
 
     /// Intensity (cd) at a stored-grid γ index for any C (degrees) that is
     /// one of the full-circle plane angles; `None` if C is not a grid plane.
-    pub fn value_at_plane(&self, c: f64, ig: usize) -> Option<f64> {
+    pub fn value_at_plane_cd(&self, c: f64, ig: usize) -> Option<f64> {
         let ic = self.find_plane(self.symmetry.fold(c))?;
-        Some(self.value(ic, ig))
+        Some(self.value_cd(ic, ig))
     }
 
     /// The smallest symmetry the data actually has, within `tol` (cd,
@@ -498,17 +498,17 @@ impl Distribution {
             let c = wrap360(c);
             let i = full.partition_point(|p| p.0 < c - ANGLE_EPS);
             let i = if i == full.len() && c > 360.0 - 1e-3 { 0 } else { i };
-            (i < full.len() && (full[i].0 - c).abs() <= ANGLE_EPS).then(|| self.plane(full[i].1))
+            (i < full.len() && (full[i].0 - c).abs() <= ANGLE_EPS).then(|| self.plane_cd(full[i].1))
         };
         let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol);
         let holds = |map: &dyn Fn(f64) -> f64| {
             full.iter().all(|&(c, ic)| match get(map(c)) {
-                Some(other) => close(self.plane(ic), other),
+                Some(other) => close(self.plane_cd(ic), other),
                 None => false,
             })
         };
-        let p0 = self.plane(full[0].1);
-        if full.iter().all(|&(_, ic)| close(self.plane(ic), p0)) {
+        let p0 = self.plane_cd(full[0].1);
+        if full.iter().all(|&(_, ic)| close(self.plane_cd(ic), p0)) {
             return Symmetry::Rotational;
         }
         // A half or quadrant can only be stored when its boundary planes exist.
@@ -539,7 +539,7 @@ impl Distribution {
         let mut cd = Vec::new();
         let mut push = |angle: f64, ic: usize| {
             c.push(angle);
-            cd.extend_from_slice(self.plane(ic));
+            cd.extend_from_slice(self.plane_cd(ic));
         };
         match target {
             Symmetry::Rotational => push(0.0, full[0].1),
@@ -593,7 +593,7 @@ impl Distribution {
         moved.dedup_by(|a, b| (a.0 - b.0).abs() <= ANGLE_EPS);
         let mut cd = Vec::with_capacity(moved.len() * self.gamma.len());
         for &(_, ic) in &moved {
-            cd.extend_from_slice(self.plane(ic));
+            cd.extend_from_slice(self.plane_cd(ic));
         }
         let d = Distribution::new(
             moved.iter().map(|m| m.0).collect(),
@@ -607,11 +607,11 @@ impl Distribution {
 
     /// Largest spread (cd) between planes of the value at γ = 0 and at
     /// γ = 180 (when measured): (nadir spread, zenith spread).
-    pub fn pole_spread(&self) -> (f64, f64) {
+    pub fn pole_spread_cd(&self) -> (f64, f64) {
         let spread = |ig: usize| {
             let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
             for ic in 0..self.c.len() {
-                let v = self.value(ic, ig);
+                let v = self.value_cd(ic, ig);
                 lo = lo.min(v);
                 hi = hi.max(v);
             }
@@ -648,7 +648,7 @@ impl Distribution {
             let avg = full
                 .iter()
                 .zip(&weights)
-                .map(|(&(_, ic), w)| self.value(ic, ig) * w)
+                .map(|(&(_, ic), w)| self.value_cd(ic, ig) * w)
                 .sum::<f64>()
                 / total;
             for ic in 0..self.c.len() {
@@ -712,11 +712,11 @@ mod tests {
     fn expansion_reproduces_stored_values_on_nonuniform_grid() {
         let d = quadrant();
         let full = d.expand(1);
-        let c = full.c_angles();
+        let c = full.c_angles_deg();
         assert_eq!(c, &[0.0, 30.0, 90.0, 150.0, 180.0, 210.0, 270.0, 330.0]);
         for (k, &a) in c.iter().enumerate() {
             let ic = d.find_plane(Symmetry::Quadrant.fold(a)).unwrap();
-            assert_eq!(full.plane(k), d.plane(ic));
+            assert_eq!(full.plane_cd(k), d.plane_cd(ic));
         }
         assert_eq!(full.detect_symmetry(1e-9), Symmetry::Quadrant);
         let back = full.with_symmetry(Symmetry::Quadrant).unwrap();
@@ -733,8 +733,8 @@ mod tests {
         )
         .unwrap();
         let full = d.expand(1);
-        assert_eq!(full.c_angles(), &[0.0, 90.0, 180.0, 270.0]);
-        assert_eq!(full.plane(0), d.plane(1)); // C0 = C180
+        assert_eq!(full.c_angles_deg(), &[0.0, 90.0, 180.0, 270.0]);
+        assert_eq!(full.plane_cd(0), d.plane_cd(1)); // C0 = C180
         assert_eq!(full.detect_symmetry(1e-9), Symmetry::C90C270);
         assert_eq!(full.with_symmetry(Symmetry::C90C270).unwrap(), d);
     }
@@ -749,11 +749,11 @@ mod tests {
         // The C90-C270 mirror becomes a C0-C180 mirror after a 90° turn.
         assert_eq!(r.symmetry(), Symmetry::C0C180);
         let full = d.expand(1);
-        for (k, &c) in full.c_angles().iter().enumerate() {
-            assert_eq!(r.value_at_plane(c + 90.0, 3), Some(full.value(k, 3)));
+        for (k, &c) in full.c_angles_deg().iter().enumerate() {
+            assert_eq!(r.value_at_plane_cd(c + 90.0, 3), Some(full.value_cd(k, 3)));
         }
         let m = d.reoriented(0.0, true).unwrap();
-        assert_eq!(m.value_at_plane(300.0, 5), d.expand(1).value_at_plane(60.0, 5));
+        assert_eq!(m.value_at_plane_cd(300.0, 5), d.expand(1).value_at_plane_cd(60.0, 5));
         assert_eq!(
             d.reoriented(360.0, false).unwrap(),
             d.with_symmetry(Symmetry::C90C270).unwrap()
@@ -780,10 +780,10 @@ mod tests {
             Symmetry::None,
         )
         .unwrap();
-        assert_eq!(d.pole_spread(), (3.0, 0.0));
+        assert_eq!(d.pole_spread_cd(), (3.0, 0.0));
         let a = d.with_averaged_poles();
         for ic in 0..4 {
-            assert!((a.value(ic, 0) - 2.5).abs() < 1e-12);
+            assert!((a.value_cd(ic, 0) - 2.5).abs() < 1e-12);
         }
     }
 }

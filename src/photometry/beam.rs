@@ -12,11 +12,11 @@ pub fn plane_profile(d: &Distribution, c: f64) -> Vec<f64> {
     let planes = d.full_planes();
     let n = planes.len();
     if n == 1 {
-        return d.plane(planes[0].1).to_vec();
+        return d.plane_cd(planes[0].1).to_vec();
     }
     let i = planes.partition_point(|p| p.0 < c - ANGLE_EPS);
     if i < n && (planes[i].0 - c).abs() <= ANGLE_EPS {
-        return d.plane(planes[i].1).to_vec();
+        return d.plane_cd(planes[i].1).to_vec();
     }
     // Neighbours on the periodic circle.
     let (lo, hi) = if i == 0 || i == n {
@@ -30,9 +30,9 @@ pub fn plane_profile(d: &Distribution, c: f64) -> Vec<f64> {
     } else {
         0.0
     };
-    d.plane(lo.1)
+    d.plane_cd(lo.1)
         .iter()
-        .zip(d.plane(hi.1))
+        .zip(d.plane_cd(hi.1))
         .map(|(a, b)| a + t * (b - a))
         .collect()
 }
@@ -51,7 +51,7 @@ pub fn plane_profile(d: &Distribution, c: f64) -> Vec<f64> {
 /// is not positive, when no crossing exists on a side (e.g. isotropic
 /// full-sphere data), or when γ = 0 is not measured (CIE).
 pub fn spread_angle(d: &Distribution, c: f64, fraction: f64, of_max: bool) -> Option<f64> {
-    let g = d.gamma_angles();
+    let g = d.gamma_angles_deg();
     let a = plane_profile(d, c);
     let b = plane_profile(d, c + 180.0);
     // Signed profile: the C+180 side reversed with negated angles, then the C side.

@@ -114,7 +114,7 @@ pub(crate) fn c_weights(angles: &[f64], c_lo: f64, c_hi: f64) -> Vec<f64> {
 /// [`flux`]: exact in γ on the linear interpolant, linear in C between planes.
 /// Zones that tile the sphere add up to [`flux`]'s total.
 pub fn zone_flux(d: &Distribution, gamma_deg: (f64, f64), c_deg: (f64, f64)) -> f64 {
-    let g: Vec<f64> = d.gamma_angles().iter().map(|x| x.to_radians()).collect();
+    let g: Vec<f64> = d.gamma_angles_deg().iter().map(|x| x.to_radians()).collect();
     let planes = d.full_planes();
     let angles: Vec<f64> = planes.iter().map(|p| p.0).collect();
     let weights = c_weights(&angles, c_deg.0, c_deg.1);
@@ -123,19 +123,19 @@ pub fn zone_flux(d: &Distribution, gamma_deg: (f64, f64), c_deg: (f64, f64)) -> 
         .iter()
         .zip(&weights)
         .filter(|(_, &w)| w > 0.0)
-        .map(|(&(_, ic), w)| w * band_integral(&g, d.plane(ic), lo, hi))
+        .map(|(&(_, ic), w)| w * band_integral(&g, d.plane_cd(ic), lo, hi))
         .sum()
 }
 
 /// Flux of `d` (see the module docs for the rule).
 pub fn flux(d: &Distribution) -> Flux {
-    let g: Vec<f64> = d.gamma_angles().iter().map(|x| x.to_radians()).collect();
+    let g: Vec<f64> = d.gamma_angles_deg().iter().map(|x| x.to_radians()).collect();
     let planes = d.full_planes();
     let angles: Vec<f64> = planes.iter().map(|p| p.0).collect();
     let widths = periodic_widths(&angles);
     let (mut down, mut up) = (0.0, 0.0);
     for (&(_, ic), w) in planes.iter().zip(&widths) {
-        let (pd, pu) = plane_integral(&g, d.plane(ic));
+        let (pd, pu) = plane_integral(&g, d.plane_cd(ic));
         let w = w.to_radians();
         down += w * pd;
         up += w * pu;

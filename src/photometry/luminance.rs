@@ -134,7 +134,7 @@ impl<'a> GridLookup<'a> {
 
     /// Intensity (cd) at (C, γ) in degrees.
     pub fn at(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        let g = self.d.gamma_angles();
+        let g = self.d.gamma_angles_deg();
         let (i, t) = if g.len() == 1 {
             if (g[0] - gamma_deg).abs() > 1e-9 {
                 return 0.0;
@@ -148,7 +148,7 @@ impl<'a> GridLookup<'a> {
             (i, (gamma_deg - g[i]) / (g[i + 1] - g[i]))
         };
         let row = |ic: usize| {
-            let p = self.d.plane(ic);
+            let p = self.d.plane_cd(ic);
             if t == 0.0 {
                 p[i]
             } else {

@@ -78,7 +78,7 @@ pub const LOR_MISMATCH: f64 = 0.01;
 /// Compute the summary of `lum` (untilted).
 pub fn summary(lum: &Luminaire) -> Summary {
     let d = lum.distribution();
-    let (max_cd, mc, mg) = d.max();
+    let (max_cd, mc, mg) = d.max_cd_at_deg();
     let flux = flux(d);
     let lamp = if lum.declared().absolute {
         None

@@ -101,12 +101,12 @@ fn kept_with_offset(n: usize, step: usize, offset: usize, keep_last: bool) -> Ve
 
 /// The distribution on the kept stored planes `kc` and γ rows `kg` of `dist`.
 fn thinned(dist: &Distribution, kc: &[usize], kg: &[usize]) -> Result<Distribution, ModelError> {
-    let (c, g) = (dist.c_angles(), dist.gamma_angles());
+    let (c, g) = (dist.c_angles_deg(), dist.gamma_angles_deg());
     Distribution::new(
         kc.iter().map(|&i| c[i]).collect(),
         kg.iter().map(|&i| g[i]).collect(),
         kc.iter()
-            .flat_map(|&ic| kg.iter().map(move |&ig| dist.value(ic, ig)))
+            .flat_map(|&ic| kg.iter().map(move |&ig| dist.value_cd(ic, ig)))
             .collect(),
         dist.symmetry(),
     )
@@ -164,7 +164,7 @@ pub fn kfold(dist: &Distribution, k: usize) -> Result<Vec<Fold>, ModelError> {
             };
             let dropped: Vec<usize> = (0..n).filter(|i| keep.binary_search(i).is_err()).collect();
             // A pole is one direction shared by every plane: dropping planes does not withhold it.
-            let g = dist.gamma_angles();
+            let g = dist.gamma_angles_deg();
             let off_pole: Vec<usize> = all_g
                 .iter()
                 .copied()
@@ -206,8 +206,8 @@ pub fn kfold(dist: &Distribution, k: usize) -> Result<Vec<Fold>, ModelError> {
 /// flux rule of the crate ([`crate::photometry::flux`]).
 fn flux(d: &Distribution, cd: &[f64]) -> f64 {
     Distribution::new(
-        d.c_angles().to_vec(),
-        d.gamma_angles().to_vec(),
+        d.c_angles_deg().to_vec(),
+        d.gamma_angles_deg().to_vec(),
         cd.to_vec(),
         d.symmetry(),
     )
@@ -235,31 +235,31 @@ pub fn holdout(dist: &Distribution, spec: HoldoutSpec, filters: &[Filter]) -> Re
             reason: "drops nothing on this grid; use a step of 2 or more on an axis with 3 or more angles".into(),
         });
     }
-    let c = dist.c_angles();
-    let g = dist.gamma_angles();
+    let c = dist.c_angles_deg();
+    let g = dist.gamma_angles_deg();
     let thin = thinned(dist, &kc, &kg)?;
     let tex = LightTexture::new(&thin)?;
     let is_kept_c: Vec<bool> = (0..dist.n_c()).map(|i| kc.binary_search(&i).is_ok()).collect();
     let is_kept_g: Vec<bool> = (0..dist.n_gamma()).map(|i| kg.binary_search(&i).is_ok()).collect();
-    let flux0 = flux(dist, dist.intensities());
+    let flux0 = flux(dist, dist.intensities_cd());
 
     let mut out = Vec::with_capacity(filters.len());
     for &filter in filters {
         let s = tex.sampler(filter);
-        let mut cd = dist.intensities().to_vec();
+        let mut cd = dist.intensities_cd().to_vec();
         let (mut n, mut sum2, mut max, mut max_at, mut clamped) = (0usize, 0.0, 0.0f64, (0.0, 0.0), 0usize);
         let mut sum2_all = 0.0;
         for ic in 0..dist.n_c() {
             for ig in 0..dist.n_gamma() {
                 if is_kept_c[ic] && is_kept_g[ig] {
-                    let e = s.cd(c[ic], g[ig]) - dist.value(ic, ig);
+                    let e = s.cd(c[ic], g[ig]) - dist.value_cd(ic, ig);
                     sum2_all += e * e;
                     continue;
                 }
                 let raw = s.unclamped().cd(c[ic], g[ig]);
                 clamped += usize::from(raw < 0.0);
                 let r = raw.max(0.0);
-                let e = (r - dist.value(ic, ig)).abs();
+                let e = (r - dist.value_cd(ic, ig)).abs();
                 cd[ic * dist.n_gamma() + ig] = r;
                 n += 1;
                 sum2 += e * e;
@@ -299,12 +299,12 @@ mod tests {
     fn flux_rule_is_exact_for_isotropic_and_lambertian() {
         let g: Vec<f64> = (0..=36).map(|k| k as f64 * 5.0).collect();
         let d = Distribution::new(vec![0.0], g.clone(), vec![1.0; 37], Symmetry::Rotational).unwrap();
-        assert!((flux(&d, d.intensities()) - 4.0 * std::f64::consts::PI).abs() < 1e-12);
+        assert!((flux(&d, d.intensities_cd()) - 4.0 * std::f64::consts::PI).abs() < 1e-12);
         // Lambertian on a fine grid: π I0 (piecewise-linear error only).
         let g: Vec<f64> = (0..=900).map(|k| k as f64 * 0.1).collect();
         let v: Vec<f64> = g.iter().map(|x| x.to_radians().cos().max(0.0)).collect();
         let d = Distribution::new(vec![0.0, 90.0], g, [v.clone(), v].concat(), Symmetry::Quadrant).unwrap();
-        assert!((flux(&d, d.intensities()) - std::f64::consts::PI).abs() < 1e-5);
+        assert!((flux(&d, d.intensities_cd()) - std::f64::consts::PI).abs() < 1e-5);
     }
 
     #[test]

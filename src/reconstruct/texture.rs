@@ -99,7 +99,7 @@ pub const DEFAULT_FACTOR: u32 = 5;
 fn linear_in_c(d: &Distribution, full: &[(f64, usize)], c: f64, ig: usize) -> f64 {
     let n = full.len();
     if n == 1 {
-        return d.value(full[0].1, ig);
+        return d.value_cd(full[0].1, ig);
     }
     let c = crate::model::wrap360(c);
     let i = full.partition_point(|p| p.0 <= c + ANGLE_EPS) as isize - 1;
@@ -109,7 +109,7 @@ fn linear_in_c(d: &Distribution, full: &[(f64, usize)], c: f64, ig: usize) -> f6
         (full[i as usize].0, full[i as usize].1)
     };
     if (c - a).abs() <= ANGLE_EPS {
-        return d.value(ia, ig);
+        return d.value_cd(ia, ig);
     }
     let (b, ib) = if (i + 1) as usize >= n {
         (full[0].0 + 360.0, full[0].1)
@@ -117,7 +117,7 @@ fn linear_in_c(d: &Distribution, full: &[(f64, usize)], c: f64, ig: usize) -> f6
         (full[(i + 1) as usize].0, full[(i + 1) as usize].1)
     };
     let f = (c - a) / (b - a);
-    (1.0 - f) * d.value(ia, ig) + f * d.value(ib, ig)
+    (1.0 - f) * d.value_cd(ia, ig) + f * d.value_cd(ib, ig)
 }
 
 impl LightTexture {
@@ -134,9 +134,9 @@ impl LightTexture {
                 "a light distribution texture is normalised by I_max, which must be positive",
             ));
         }
-        let g = d.gamma_angles();
+        let g = d.gamma_angles_deg();
         let ng = g.len();
-        let nonzero = |ig: usize| (0..d.n_c()).any(|ic| d.value(ic, ig) != 0.0);
+        let nonzero = |ig: usize| (0..d.n_c()).any(|ic| d.value_cd(ic, ig) != 0.0);
         let first = (0..ng).find(|&ig| nonzero(ig)).expect("I_max > 0");
         let last = (0..ng).rev().find(|&ig| nonzero(ig)).expect("I_max > 0");
         let lo = first.saturating_sub(2);
@@ -144,7 +144,7 @@ impl LightTexture {
         let gamma = g[lo..=hi].to_vec();
         let rows = gamma.len() + 2;
         let full = d.full_planes();
-        let columns = d.c_angles().to_vec();
+        let columns = d.c_angles_deg().to_vec();
 
         let lo_kind = if lo > 0 {
             GhostKind::Cropped
@@ -179,7 +179,7 @@ impl LightTexture {
 
         let mut cd = Vec::with_capacity(columns.len() * rows);
         for (ic, &c) in columns.iter().enumerate() {
-            let plane = d.plane(ic);
+            let plane = d.plane_cd(ic);
             cd.push(match lo_kind {
                 GhostKind::Cropped => 0.0,
                 GhostKind::Single => plane[0],

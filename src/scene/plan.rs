@@ -238,13 +238,13 @@ impl<'a> Models<'a> {
 /// C planes of the full circle from `c.0` counter-clockwise to `c.1` (degrees),
 /// stored without symmetry.
 fn crop(d: &Distribution, from: f64, to: f64, c: Option<(f64, f64)>) -> Result<Distribution, ModelError> {
-    let g = d.gamma_angles();
+    let g = d.gamma_angles_deg();
     let keep: Vec<usize> = (0..g.len()).filter(|&i| g[i] >= from && g[i] <= to).collect();
     let gamma: Vec<f64> = keep.iter().map(|&i| g[i]).collect();
-    let rows = |d: &Distribution, ic: usize| keep.iter().map(|&ig| d.value(ic, ig)).collect::<Vec<f64>>();
+    let rows = |d: &Distribution, ic: usize| keep.iter().map(|&ig| d.value_cd(ic, ig)).collect::<Vec<f64>>();
     let Some((c0, c1)) = c else {
         let cd = (0..d.n_c()).flat_map(|ic| rows(d, ic)).collect();
-        return Distribution::new(d.c_angles().to_vec(), gamma, cd, d.symmetry());
+        return Distribution::new(d.c_angles_deg().to_vec(), gamma, cd, d.symmetry());
     };
     let full = d.with_symmetry(Symmetry::None)?;
     let eps = crate::model::ANGLE_EPS;
@@ -255,8 +255,8 @@ fn crop(d: &Distribution, from: f64, to: f64, c: Option<(f64, f64)>) -> Result<D
             a >= c0 - eps || a <= c1 + eps
         }
     };
-    let planes: Vec<usize> = (0..full.n_c()).filter(|&i| inside(full.c_angles()[i])).collect();
-    let angles = planes.iter().map(|&i| full.c_angles()[i]).collect();
+    let planes: Vec<usize> = (0..full.n_c()).filter(|&i| inside(full.c_angles_deg()[i])).collect();
+    let angles = planes.iter().map(|&i| full.c_angles_deg()[i]).collect();
     let cd = planes.iter().flat_map(|&ic| rows(&full, ic)).collect();
     Distribution::new(angles, gamma, cd, Symmetry::None)
 }
@@ -286,7 +286,7 @@ fn visible_grid(lum: &SceneLuminaire, patches: &[(DVec3, f64)], points: &[SceneP
         }
     }
     let d = lum.luminaire.distribution();
-    let g = d.gamma_angles();
+    let g = d.gamma_angles_deg();
     if lo > hi || lo.is_nan() || hi.is_nan() {
         return None;
     }

@@ -192,9 +192,9 @@ impl Refinement {
     ) -> Result<(Vec<f64>, Option<f64>), ModelError> {
         let start = SolidGrid::knots(d)?;
         match self {
-            Refinement::Factor(f) => Ok((SolidGrid::refined(d, *f)?.gamma_angles().to_vec(), None)),
+            Refinement::Factor(f) => Ok((SolidGrid::refined(d, *f)?.gamma_angles_deg().to_vec(), None)),
             Refinement::Adaptive(o) => {
-                let (g, dev) = crate::metrics::profile::adaptive_gammas(field, start.gamma_angles(), o);
+                let (g, dev) = crate::metrics::profile::adaptive_gammas(field, start.gamma_angles_deg(), o);
                 Ok((g, Some(dev)))
             }
         }
@@ -214,7 +214,7 @@ impl SolidGrid {
             }
         }
         c.sort_by(f64::total_cmp);
-        SolidGrid::new(c, d.gamma_angles().to_vec())
+        SolidGrid::new(c, d.gamma_angles_deg().to_vec())
     }
 }
 
@@ -246,19 +246,19 @@ pub fn adaptive_grid(
     let mut grid = start.clone();
     let mut tolerance_cd = f64::NAN;
     // A C-independent field: the C planes follow from the circle's chord error alone.
-    let c_fixed = crate::metrics::profile::is_c_independent(field, start.gamma_angles());
+    let c_fixed = crate::metrics::profile::is_c_independent(field, start.gamma_angles_deg());
     if c_fixed {
         let radii = grid_radii(field, &grid, Units::Candela)?;
         let tol = opts.tolerance.candela(peak_of(&grid, &radii)).max(0.0);
-        grid = SolidGrid::new(rotational_planes(&grid, &radii, tol), grid.gamma_angles().to_vec())?;
+        grid = SolidGrid::new(rotational_planes(&grid, &radii, tol), grid.gamma_angles_deg().to_vec())?;
     }
     for round in 1.. {
         let radii = grid_radii(field, &grid, Units::Candela)?;
         let peak = peak_of(&grid, &radii);
         tolerance_cd = opts.tolerance.candela(peak).max(0.0);
         let marks = test_round(field, &grid, &radii, peak, tolerance_cd, c_fixed);
-        let (c, c_cut) = halve(grid.c_angles(), &marks.c, min_step, Some(360.0));
-        let (gamma, g_cut) = halve(grid.gamma_angles(), &marks.gamma, min_step, None);
+        let (c, c_cut) = halve(grid.c_angles_deg(), &marks.c, min_step, Some(360.0));
+        let (gamma, g_cut) = halve(grid.gamma_angles_deg(), &marks.gamma, min_step, None);
         let within = marks.worst <= tolerance_cd;
         let blocked = !within && !c_cut && !g_cut;
         let too_many = (c.len() as u128) * (gamma.len() as u128) > opts.max_points as u128;
@@ -281,9 +281,9 @@ pub fn adaptive_grid(
 /// with ρ = r sin γ, within half the tolerance `tol` (cd), so that the γ
 /// refinement has the other half; at least 4 (no gap of 180°).
 fn rotational_planes(grid: &SolidGrid, r: &GridRadii, tol: f64) -> Vec<f64> {
-    let ng = grid.gamma_angles().len();
+    let ng = grid.gamma_angles_deg().len();
     let rho = (1..ng - 1)
-        .map(|ig| r.radii[ig] * grid.gamma_angles()[ig].to_radians().sin())
+        .map(|ig| r.radii[ig] * grid.gamma_angles_deg()[ig].to_radians().sin())
         .fold(0.0, f64::max);
     let n = if rho > 0.0 {
         let step = 2.0 * (1.0 - 0.5 * tol / rho).clamp(-1.0, 1.0).acos();
@@ -297,7 +297,7 @@ fn rotational_planes(grid: &SolidGrid, r: &GridRadii, tol: f64) -> Vec<f64> {
 
 /// The largest radius of the grid (cd).
 fn peak_of(grid: &SolidGrid, r: &GridRadii) -> f64 {
-    let ng = grid.gamma_angles().len();
+    let ng = grid.gamma_angles_deg().len();
     r.radii
         .chunks(ng)
         .flat_map(|col| col[1..ng - 1].iter())
@@ -341,7 +341,7 @@ fn test_round(
     tol: f64,
     c_fixed: bool,
 ) -> Marks {
-    let (cs, gs) = (grid.c_angles(), grid.gamma_angles());
+    let (cs, gs) = (grid.c_angles_deg(), grid.gamma_angles_deg());
     let (nc, ng) = (cs.len(), gs.len());
     let sc: Vec<(f64, f64)> = cs.iter().map(|c| c.to_radians().sin_cos()).collect();
     let sg: Vec<(f64, f64)> = gs.iter().map(|g| g.to_radians().sin_cos()).collect();
@@ -523,7 +523,7 @@ mod tests {
         let a = adaptive_grid(&field, &start, &AdaptiveOptions::new(Tolerance::Candela(1.0))).unwrap();
         assert!(a.reached, "{a:?}");
         let widest = 2.0 * (1.0 - 1.0 / 1000.0f64).acos().to_degrees();
-        let step = 360.0 / a.grid.c_angles().len() as f64;
+        let step = 360.0 / a.grid.c_angles_deg().len() as f64;
         assert!(step <= widest && step > widest / 2.0, "{step} vs {widest}");
     }
 }

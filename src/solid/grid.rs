@@ -117,9 +117,9 @@ impl SolidGrid {
         if knots.len() < 4 {
             knots = (0..72).map(|k| k as f64 * 5.0).collect();
         }
-        let mut g_count = d.gamma_angles().len() + 1;
-        g_count += usize::from(d.gamma_angles()[0] > ANGLE_EPS)
-            + usize::from(*d.gamma_angles().last().unwrap() < 180.0 - ANGLE_EPS);
+        let mut g_count = d.gamma_angles_deg().len() + 1;
+        g_count += usize::from(d.gamma_angles_deg()[0] > ANGLE_EPS)
+            + usize::from(*d.gamma_angles_deg().last().unwrap() < 180.0 - ANGLE_EPS);
         let points = (knots.len() as u128) * (factor as u128) * (g_count as u128) * (factor as u128);
         if points > MAX_GRID_POINTS as u128 {
             return Err(ModelError::Parameter {
@@ -144,7 +144,7 @@ impl SolidGrid {
                 c.push(a + (b - a) * k as f64 / factor as f64);
             }
         }
-        let mut g_knots = d.gamma_angles().to_vec();
+        let mut g_knots = d.gamma_angles_deg().to_vec();
         if g_knots[0] > ANGLE_EPS {
             g_knots.insert(0, 0.0);
         }
@@ -162,11 +162,11 @@ impl SolidGrid {
     }
 
     /// C angles (degrees), ascending in [0, 360).
-    pub fn c_angles(&self) -> &[f64] {
+    pub fn c_angles_deg(&self) -> &[f64] {
         &self.c
     }
     /// γ angles (degrees), from 0 to 180.
-    pub fn gamma_angles(&self) -> &[f64] {
+    pub fn gamma_angles_deg(&self) -> &[f64] {
         &self.gamma
     }
     /// Vertices of the solid when nothing is zero: C x inner γ + 2 poles.
@@ -394,8 +394,8 @@ mod tests {
         )
         .unwrap();
         let g = SolidGrid::refined(&d, 2).unwrap();
-        assert_eq!(&g.c_angles()[..5], &[0.0, 15.0, 30.0, 60.0, 90.0]);
-        assert_eq!(g.gamma_angles(), &[0.0, 22.5, 45.0, 67.5, 90.0, 135.0, 180.0]);
+        assert_eq!(&g.c_angles_deg()[..5], &[0.0, 15.0, 30.0, 60.0, 90.0]);
+        assert_eq!(g.gamma_angles_deg(), &[0.0, 22.5, 45.0, 67.5, 90.0, 135.0, 180.0]);
         assert!(SolidGrid::new(vec![0.0, 180.0], vec![90.0]).is_err());
         assert!(SolidGrid::new(vec![0.0, 10.0, 20.0], vec![90.0]).is_err());
     }

@@ -89,7 +89,7 @@ fn close_c_gaps(d: &Distribution) -> Result<Distribution, ModelError> {
     c.sort_by(f64::total_cmp);
     c.dedup_by(|a, b| (*a - *b).abs() <= ANGLE_EPS);
     let cd: Vec<f64> = c.iter().flat_map(|&a| crate::photometry::plane_profile(d, a)).collect();
-    Distribution::new(c, d.gamma_angles().to_vec(), cd, crate::model::Symmetry::None)
+    Distribution::new(c, d.gamma_angles_deg().to_vec(), cd, crate::model::Symmetry::None)
 }
 
 /// A direction inserted into a planar triangulation, with its direction index.
@@ -159,7 +159,7 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
     let scale = units.units_per_cd(peak)?;
 
     // γ rows: (angle, Some(measured index) | None for an unmeasured, zero pole).
-    let g = d.gamma_angles();
+    let g = d.gamma_angles_deg();
     let mut rows: Vec<(f64, Option<usize>)> = g.iter().copied().zip((0..g.len()).map(Some)).collect();
     if g[0] > ANGLE_EPS {
         rows.insert(0, (0.0, None));
@@ -193,7 +193,7 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
     let (sin_c, cos_c): (Vec<f64>, Vec<f64>) = planes.iter().map(|p| p.0.to_radians().sin_cos()).unzip();
     for (j, &(a, ig)) in rows.iter().enumerate() {
         let (sg, cg) = a.to_radians().sin_cos();
-        let value = |ic: usize| ig.map_or(0.0, |ig| d.value(ic, ig));
+        let value = |ic: usize| ig.map_or(0.0, |ig| d.value_cd(ic, ig));
         if is_pole(a) {
             radius[dir_row[j]] = stored_radius(value(planes[0].1) * scale, peak * scale)?;
             unit_dir[dir_row[j]] = [0.0, 0.0, if a < 90.0 { -1.0 } else { 1.0 }];

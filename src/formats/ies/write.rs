@@ -120,7 +120,7 @@ pub fn write(doc: &Document, version: IesWriteVersion) -> String {
         ),
         None => {
             let (h, cd) = type_c_planes(lum.distribution());
-            (1, lum.distribution().gamma_angles().to_vec(), h, cd)
+            (1, lum.distribution().gamma_angles_deg().to_vec(), h, cd)
         }
     };
 
@@ -330,8 +330,8 @@ impl Writer {
 /// interpolated across the seam first). Engines that read IES files see this table.
 pub fn type_c_planes(d: &crate::model::Distribution) -> (Vec<f64>, Vec<f64>) {
     let ng = d.n_gamma();
-    let mut h = d.c_angles().to_vec();
-    let mut cd = d.intensities().to_vec();
+    let mut h = d.c_angles_deg().to_vec();
+    let mut cd = d.intensities_cd().to_vec();
     if d.symmetry() == Symmetry::None {
         // A first plane within ANGLE_EPS of 0 is the C0 plane (the reader's
         // duplicate rule): inserting another would write a duplicate.
@@ -340,8 +340,8 @@ pub fn type_c_planes(d: &crate::model::Distribution) -> (Vec<f64>, Vec<f64>) {
             // starts at 0 as LM-63 wants.
             let (c_last, c_first) = (h[h.len() - 1], h[0]);
             let t = (360.0 - c_last) / (c_first + 360.0 - c_last);
-            let last = d.plane(h.len() - 1);
-            let first = d.plane(0);
+            let last = d.plane_cd(h.len() - 1);
+            let first = d.plane_cd(0);
             let p0: Vec<f64> = (0..ng).map(|i| last[i] + t * (first[i] - last[i])).collect();
             h.insert(0, 0.0);
             let mut v = p0;

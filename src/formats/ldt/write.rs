@@ -64,7 +64,7 @@ pub fn write(doc: &Document) -> String {
     let mut lorl = lum.declared().lor.map(|l| l * 100.0);
     // A scale is usable when every intensity divided by it prints as a finite number.
     let usable =
-        |scale: f64| scale.is_normal() && scale > 0.0 && dist.intensities().iter().all(|v| (v / scale).is_finite());
+        |scale: f64| scale.is_normal() && scale > 0.0 && dist.intensities_cd().iter().all(|v| (v / scale).is_finite());
     let scale = match header {
         Some(h) if usable(h.cd_per_cdklm) => h.cd_per_cdklm,
         _ => {
@@ -102,7 +102,7 @@ pub fn write(doc: &Document) -> String {
         100.0
     });
 
-    let mut out = String::with_capacity(64 * 40 + dist.intensities().len() * 10 + grid.c.len() * 8);
+    let mut out = String::with_capacity(64 * 40 + dist.intensities_cd().len() * 10 + grid.c.len() * 8);
     let text = |out: &mut String, s: &str| {
         // A text field is one line: line breaks inside it would shift every later line.
         for ch in s.chars() {
@@ -188,19 +188,22 @@ pub fn write(doc: &Document) -> String {
     for &c in &grid.c {
         angle(&mut out, c);
     }
-    for &g in dist.gamma_angles() {
+    for &g in dist.gamma_angles_deg() {
         angle(&mut out, g);
     }
     // Small values get at least the decimals the peak needs, so every value
     // is written within 5e-8 of the peak even when the peak itself is tiny.
-    let peak = dist.intensities().iter().fold(0.0f64, |m, v| m.max((v / scale).abs()));
+    let peak = dist
+        .intensities_cd()
+        .iter()
+        .fold(0.0f64, |m, v| m.max((v / scale).abs()));
     let floor_decimals = if peak > 0.0 {
         (SIGNIFICANT_DIGITS as i32 - 1 - peak.log10().floor() as i32).clamp(15, 330) as usize
     } else {
         15
     };
     for &ic in &grid.planes {
-        for &v in dist.plane(ic) {
+        for &v in dist.plane_cd(ic) {
             push_sig_with(&mut out, v / scale, floor_decimals);
             out.push_str("\r\n");
         }
@@ -219,7 +222,7 @@ struct Grid {
 /// The header's grid, if it still describes `dist`.
 fn header_grid(h: &LdtHeader, dist: &Distribution) -> Option<Grid> {
     let sym = dist.symmetry();
-    let g = dist.gamma_angles();
+    let g = dist.gamma_angles_deg();
     // A header whose lists were repaired on reading (unsorted, duplicates)
     // no longer describes a readable file: the grid is derived instead.
     if h.isym != sym.isym()
@@ -280,7 +283,7 @@ fn derived_grid(dist: &Distribution) -> Grid {
     } else {
         0.0
     };
-    let g = dist.gamma_angles();
+    let g = dist.gamma_angles_deg();
     let dg = step(g, g[0]);
     let planes = file_planes(sym, &c, dist).unwrap_or_else(|| (0..dist.n_c()).collect());
     Grid { c, dc, dg, planes }
@@ -288,7 +291,7 @@ fn derived_grid(dist: &Distribution) -> Grid {
 
 /// Flux (lm) of the distribution by the zonal midpoint rule (DOMAIN §5), and its part below γ = 90.
 fn zonal_flux(dist: &Distribution) -> (f64, f64) {
-    let g = dist.gamma_angles();
+    let g = dist.gamma_angles_deg();
     let ng = g.len();
     let rad = std::f64::consts::PI / 180.0;
     // Zone bounds: midpoints between γ samples, clamped to the data range.
@@ -310,7 +313,7 @@ fn zonal_flux(dist: &Distribution) -> (f64, f64) {
     };
     let (mut total, mut down) = (0.0, 0.0);
     for (&ic, &w) in planes.iter().zip(&widths) {
-        let p = dist.plane(ic);
+        let p = dist.plane_cd(ic);
         for (i, &v) in p.iter().enumerate() {
             let (a, b) = (lo(i), hi(i));
             total += v * w * rad * zone(a, b);

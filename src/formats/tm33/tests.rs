@@ -52,11 +52,11 @@ fn tm33_23_values_multiplier_symmetry_and_flags() {
     assert_eq!(lum.version(), "TM-33-23");
     let d = lum.distribution();
     assert_eq!(d.symmetry(), Symmetry::Quadrant);
-    assert_eq!(d.c_angles(), &[0.0, 45.0, 90.0]);
-    assert_eq!(d.gamma_angles(), &[0.0, 45.0, 90.0]);
-    for (ic, &h) in d.c_angles().iter().enumerate() {
-        for (ig, &v) in d.gamma_angles().iter().enumerate() {
-            assert_eq!(d.value(ic, ig), (100.0 + h - v) * 2.5);
+    assert_eq!(d.c_angles_deg(), &[0.0, 45.0, 90.0]);
+    assert_eq!(d.gamma_angles_deg(), &[0.0, 45.0, 90.0]);
+    for (ic, &h) in d.c_angles_deg().iter().enumerate() {
+        for (ig, &v) in d.gamma_angles_deg().iter().enumerate() {
+            assert_eq!(d.value_cd(ic, ig), (100.0 + h - v) * 2.5);
         }
     }
     assert!(!lum.declared().absolute);
@@ -107,7 +107,7 @@ fn tm33_18_with_namespace_and_no_symmetry_code() {
     let lum = parse(text).unwrap();
     assert_eq!(lum.version(), "TM-33-18");
     assert_eq!(lum.distribution().symmetry(), Symmetry::Rotational);
-    assert_eq!(lum.distribution().intensities(), &[80.0, 65.0, 80.0]);
+    assert_eq!(lum.distribution().intensities_cd(), &[80.0, 65.0, 80.0]);
     // No AbsolutePhotometry but a rated flux: relative.
     assert_eq!(lum.declared().lamp_flux_lm, Some(1600.0));
     assert_eq!(lum.metadata().date, "2024-01-20");
@@ -125,7 +125,7 @@ fn a_360_plane_is_dropped_and_compared_with_c0() {
         }
     });
     let lum = parse(&doc23("<SymmType>Symm _ None</SymmType>\n", &pts)).unwrap();
-    assert_eq!(lum.distribution().c_angles(), &[0.0, 180.0]);
+    assert_eq!(lum.distribution().c_angles_deg(), &[0.0, 180.0]);
     assert!(
         lum.warnings().iter().any(|w| w.code == "seam-mismatch"),
         "{:?}",
@@ -196,7 +196,7 @@ fn written_document_structure() {
     let root = doc.root_element();
     assert_eq!(root.tag_name().name(), "IESTM33-22");
     let n = root.descendants().filter(|n| n.has_tag_name("IntensityData")).count();
-    assert_eq!(n, lum.distribution().intensities().len());
+    assert_eq!(n, lum.distribution().intensities_cd().len());
     assert_eq!(
         root.descendants()
             .find(|n| n.has_tag_name("Version"))

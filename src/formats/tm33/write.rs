@@ -33,7 +33,7 @@ pub fn write(doc: &Document) -> String {
     let lum = &doc.luminaire;
     let m = lum.metadata();
     let d = lum.distribution();
-    let mut s = String::with_capacity(64 * d.intensities().len() + 1024);
+    let mut s = String::with_capacity(64 * d.intensities_cd().len() + 1024);
     s.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<IESTM33-22>\n  <Version>1.1</Version>\n  <Header>\n");
     element(&mut s, 4, "Manufacturer", &m.manufacturer);
     element(&mut s, 4, "CatalogNumber", &m.catalogue);
@@ -71,12 +71,12 @@ pub fn write(doc: &Document) -> String {
         "      <AbsolutePhotometry>{}</AbsolutePhotometry>",
         lum.declared().absolute
     );
-    for (ic, &c) in d.c_angles().iter().enumerate() {
-        for (ig, &g) in d.gamma_angles().iter().enumerate() {
+    for (ic, &c) in d.c_angles_deg().iter().enumerate() {
+        for (ig, &g) in d.gamma_angles_deg().iter().enumerate() {
             let _ = writeln!(
                 s,
                 "      <IntensityData horz=\"{c}\" vert=\"{g}\">{}</IntensityData>",
-                d.value(ic, ig)
+                d.value_cd(ic, ig)
             );
         }
     }

@@ -336,12 +336,12 @@ impl<'s, 'a> Reader<'s, 'a> {
 
     /// The nadir and zenith are one direction each: values that differ between planes are warned about.
     pub(super) fn warn_pole_spread(&mut self, dist: &Distribution, g_first: usize) {
-        let (nadir, zenith) = dist.pole_spread();
-        let ng = dist.gamma_angles().len();
+        let (nadir, zenith) = dist.pole_spread_cd();
+        let ng = dist.gamma_angles_deg().len();
         for (spread, name, ig) in [(nadir, "nadir (gamma 0)", 0), (zenith, "zenith (gamma 180)", ng - 1)] {
             // Differences at float-noise level are no mismatch.
             if spread > 0.0 && spread > 1e-9 * dist.max_cd().abs().max(1.0) {
-                let mean = (0..dist.n_c()).map(|ic| dist.value(ic, ig)).sum::<f64>() / dist.n_c() as f64;
+                let mean = (0..dist.n_c()).map(|ic| dist.value_cd(ic, ig)).sum::<f64>() / dist.n_c() as f64;
                 self.warn(
                     g_first,
                     WarningCode::PoleMismatch,
