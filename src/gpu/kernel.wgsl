@@ -50,17 +50,12 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
     let n_tiles = inp[1];
     let tile = wg.y * inp[2] + wg.x;
     let t = texel_of(tile, lidx);
-    let d = t.desc;
-    let row = t.row;
-    let col = t.col;
-    let width = t.width;
-    let clamp = t.clamp;
     if (tile < n_tiles && t.inside) {
-        let tex_off = inp[d];
-        let rows = inp[d + 1u];
+        let tex_off = inp[t.desc];
+        let rows = inp[t.desc + 1u];
         let pchip = t.pchip;
-        let ge = inp[d + 3u] + row * ENTRY;
-        let ce = inp[d + 4u] + col * ENTRY;
+        let ge = t.ge;
+        let ce = t.ce;
         let gw = weights(ge);
         var r = 0.0;
         if (any(gw != vec4<f32>(0.0))) {
@@ -71,18 +66,18 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
                 gamma_pass(tex_off, rows, inp[ce + 3u], ge, pchip, gw),
             );
             r = combine(pchip, v, weights(ce));
-            if (clamp && r < 0.0) {
+            if (t.clamp && r < 0.0) {
                 r = 0.0;
                 atomicAdd(&wg_clamped, 1u);
             }
         }
-        outp[inp[d + 5u] + row * width + col] = r;
+        outp[t.out] = r;
     }
     workgroupBarrier();
     if (lidx == 0u && tile < n_tiles) {
         let n = atomicLoad(&wg_clamped);
         if (n > 0u) {
-            atomicAdd(&counts[inp[d + 11u]], n);
+            atomicAdd(&counts[inp[t.desc + 11u]], n);
         }
     }
 }

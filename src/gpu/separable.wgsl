@@ -59,27 +59,21 @@ fn c_main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index)
         return;
     }
     let t = texel_of(tile, lidx);
-    let d = t.desc;
-    let row = t.row;
-    let col = t.col;
-    let width = t.width;
-    let clamp = t.clamp;
     if (t.inside) {
-        let pchip = t.pchip;
-        let ge = inp[d + 3u] + row * ENTRY;
-        let ce = inp[d + 4u] + col * ENTRY;
+        let d = t.desc;
+        let ce = t.ce;
         var r = 0.0;
-        if (any(weights(ge) != vec4<f32>(0.0))) {
-            let t = inp[d + 12u] + row * inp[d + 2u];
-            let v = vec4<f32>(outp[t + inp[ce]], outp[t + inp[ce + 1u]], outp[t + inp[ce + 2u]], outp[t + inp[ce + 3u]]);
-            r = combine(pchip, v, weights(ce));
-            if (clamp && r < 0.0) {
+        if (any(weights(t.ge) != vec4<f32>(0.0))) {
+            let base = inp[d + 12u] + t.row * inp[d + 2u];
+            let v = vec4<f32>(outp[base + inp[ce]], outp[base + inp[ce + 1u]], outp[base + inp[ce + 2u]], outp[base + inp[ce + 3u]]);
+            r = combine(t.pchip, v, weights(ce));
+            if (t.clamp && r < 0.0) {
                 r = 0.0;
                 // Rare (cubic overshoot only): counted straight into the
                 // item's counter, so the pass needs no workgroup barrier.
                 atomicAdd(&counts[inp[d + 11u]], 1u);
             }
         }
-        outp[inp[d + 5u] + row * width + col] = r;
+        outp[t.out] = r;
     }
 }

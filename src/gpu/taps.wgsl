@@ -112,7 +112,8 @@ fn find_item(tile: u32, field: u32) -> u32 {
 // tiles, items sorted by their first tile in descriptor word 9): the item's
 // descriptor offset, the row (gamma) and column (C), the item's width,
 // whether the texel lies inside the item's image (its last tiles overhang),
-// and the item's flags (bit0 clamp, bit1 PCHIP).
+// the item's flags (bit0 clamp, bit1 PCHIP), the offsets of the row's gamma
+// and the column's C tap entries, and the texel's index in the output.
 struct Texel {
     desc: u32,
     row: u32,
@@ -121,6 +122,9 @@ struct Texel {
     inside: bool,
     clamp: bool,
     pchip: bool,
+    ge: u32,
+    ce: u32,
+    out: u32,
 }
 
 fn texel_of(tile: u32, lidx: u32) -> Texel {
@@ -131,5 +135,8 @@ fn texel_of(tile: u32, lidx: u32) -> Texel {
     let col = (local_tile % tiles_x) * TILE_X + lidx % TILE_X;
     let width = inp[d + 7u];
     let flags = inp[d + 10u];
-    return Texel(d, row, col, width, row < inp[d + 6u] && col < width, (flags & 1u) != 0u, (flags & 2u) != 0u);
+    let inside = row < inp[d + 6u] && col < width;
+    let ge = inp[d + 3u] + row * ENTRY;
+    let ce = inp[d + 4u] + col * ENTRY;
+    return Texel(d, row, col, width, inside, (flags & 1u) != 0u, (flags & 2u) != 0u, ge, ce, inp[d + 5u] + row * width + col);
 }

@@ -22,7 +22,7 @@ use serde::Serialize;
 
 use crate::model::frame::direction;
 use crate::model::{Distribution, Luminaire};
-use crate::scene::opening::Opening;
+use crate::scene::opening::{CylinderShape, Extent3, Opening};
 
 /// Projected area (m²) of `opening` seen from emission direction `d` (unit vector, luminaire frame).
 pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
@@ -33,17 +33,17 @@ pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
         Opening::Rectangle { length_m, width_m } => length_m * width_m * az,
         Opening::Ellipse { length_m, width_m } => ellipse(length_m, width_m) * az,
         Opening::VerticalEllipse { width_m, height_m } => ellipse(width_m, height_m) * ax,
-        Opening::Box {
+        Opening::Box(Extent3 {
             length_m,
             width_m,
             height_m,
-        } => length_m * width_m * az + width_m * height_m * ax + length_m * height_m * ay,
-        Opening::Cylinder {
+        }) => length_m * width_m * az + width_m * height_m * ax + length_m * height_m * ay,
+        Opening::Cylinder(CylinderShape {
             axis,
             length_m,
             diameter_a_m,
             diameter_b_m,
-        } => {
+        }) => {
             // Along the axis: the elliptic end; across it: the side's shadow (length × the
             // ellipse's width across the view), for a circular section d·L·sin(angle to axis).
             let (along, across) = match axis {
@@ -53,11 +53,11 @@ pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
             };
             ellipse(diameter_a_m, diameter_b_m) * along + length_m * across
         }
-        Opening::Ellipsoid {
+        Opening::Ellipsoid(Extent3 {
             length_m,
             width_m,
             height_m,
-        } => {
+        }) => {
             let (a, b, c) = (length_m / 2.0, width_m / 2.0, height_m / 2.0);
             std::f64::consts::PI * ((b * c * d.x).powi(2) + (a * c * d.y).powi(2) + (a * b * d.z).powi(2)).sqrt()
         }
@@ -243,29 +243,29 @@ mod tests {
     /// side d·L·sinθ.
     #[test]
     fn projected_areas() {
-        let sphere = Opening::Ellipsoid {
+        let sphere = Opening::Ellipsoid(Extent3 {
             length_m: 2.0,
             width_m: 2.0,
             height_m: 2.0,
-        };
+        });
         for (c, g) in [(0.0, 0.0), (30.0, 70.0), (200.0, 135.0)] {
             let a = projected_area_m2(&sphere, direction(c, g));
             assert!((a - std::f64::consts::PI).abs() < 1e-12);
         }
-        let b = Opening::Box {
+        let b = Opening::Box(Extent3 {
             length_m: 2.0,
             width_m: 1.0,
             height_m: 0.5,
-        };
+        });
         let d = direction(90.0, 60.0);
         let want = 2.0 * 60f64.to_radians().cos() + 2.0 * 0.5 * 60f64.to_radians().sin();
         assert!((projected_area_m2(&b, d) - want).abs() < 1e-12);
-        let cyl = Opening::Cylinder {
+        let cyl = Opening::Cylinder(CylinderShape {
             axis: 2,
             length_m: 1.0,
             diameter_a_m: 0.2,
             diameter_b_m: 0.2,
-        };
+        });
         let d = direction(33.0, 90.0);
         assert!((projected_area_m2(&cyl, d) - 0.2).abs() < 1e-12);
         // EULUMDAT disk with equal side heights: base·|cosγ| + D·h·sinγ, at any C.

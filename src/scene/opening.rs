@@ -38,34 +38,11 @@ pub enum Opening {
         height_m: f64,
     },
     /// A box with luminous sides, centred on the photometric centre.
-    Box {
-        /// Along x, m.
-        length_m: f64,
-        /// Along y, m.
-        width_m: f64,
-        /// Along z, m.
-        height_m: f64,
-    },
+    Box(Extent3),
     /// A cylinder along one axis (0 = x, 1 = y, 2 = z), centred.
-    Cylinder {
-        /// The axis: 0 = x, 1 = y, 2 = z.
-        axis: u8,
-        /// Length along the axis, m.
-        length_m: f64,
-        /// Cross-section diameter along the first other axis (x for a z cylinder, else y), m.
-        diameter_a_m: f64,
-        /// Cross-section diameter along the second other axis (y for a z cylinder, else z), m.
-        diameter_b_m: f64,
-    },
+    Cylinder(CylinderShape),
     /// An ellipsoid (a sphere when all three diameters are equal), centred.
-    Ellipsoid {
-        /// Diameter along x, m.
-        length_m: f64,
-        /// Diameter along y, m.
-        width_m: f64,
-        /// Diameter along z, m.
-        height_m: f64,
-    },
+    Ellipsoid(Extent3),
     /// An EULUMDAT luminous area: a horizontal rectangle (or a disk when
     /// `width_m` is 0) at z = 0 with luminous sides rising to the heights
     /// declared for the C0, C90, C180 and C270 planes.
@@ -77,6 +54,33 @@ pub enum Opening {
         /// Luminous heights on the C0, C90, C180, C270 sides, m.
         heights_m: [f64; 4],
     },
+}
+
+/// The three extents of a solid opening (a box's sides or an ellipsoid's
+/// diameters), m, along the luminaire frame's axes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Extent3 {
+    /// Along x (C0), m.
+    pub length_m: f64,
+    /// Along y (C90), m.
+    pub width_m: f64,
+    /// Along z (up), m.
+    pub height_m: f64,
+}
+
+/// A centred cylinder's size and axis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderShape {
+    /// The axis: 0 = x, 1 = y, 2 = z.
+    pub axis: u8,
+    /// Length along the axis, m.
+    pub length_m: f64,
+    /// Cross-section diameter along the first other axis (x for a z cylinder, else y), m.
+    pub diameter_a_m: f64,
+    /// Cross-section diameter along the second other axis (y for a z cylinder, else z), m.
+    pub diameter_b_m: f64,
 }
 
 impl Opening {
@@ -150,11 +154,11 @@ impl Opening {
                 length_m: al,
                 width_m: aw,
             },
-            (1, 1, 1) => Opening::Box {
+            (1, 1, 1) => Opening::Box(Extent3 {
                 length_m: al,
                 width_m: aw,
                 height_m: ah,
-            },
+            }),
             (-1, -1, 0) => Opening::Ellipse {
                 length_m: al,
                 width_m: aw,
@@ -163,40 +167,40 @@ impl Opening {
                 length_m: aw,
                 width_m: aw,
             },
-            (-1, -1, 1) => Opening::Cylinder {
+            (-1, -1, 1) => Opening::Cylinder(CylinderShape {
                 axis: 2,
                 length_m: ah,
                 diameter_a_m: al,
                 diameter_b_m: aw,
-            },
-            (-1, 0, 1) if old => Opening::Cylinder {
+            }),
+            (-1, 0, 1) if old => Opening::Cylinder(CylinderShape {
                 axis: 2,
                 length_m: ah,
                 diameter_a_m: aw,
                 diameter_b_m: aw,
-            },
-            (-1, -1, -1) => Opening::Ellipsoid {
+            }),
+            (-1, -1, -1) => Opening::Ellipsoid(Extent3 {
                 length_m: al,
                 width_m: aw,
                 height_m: ah,
-            },
-            (-1, 0, -1) if v1995 => Opening::Ellipsoid {
+            }),
+            (-1, 0, -1) if v1995 => Opening::Ellipsoid(Extent3 {
                 length_m: aw,
                 width_m: aw,
                 height_m: aw,
-            },
-            (-1, 1, -1) => Opening::Cylinder {
+            }),
+            (-1, 1, -1) => Opening::Cylinder(CylinderShape {
                 axis: 0,
                 length_m: al,
                 diameter_a_m: aw,
                 diameter_b_m: ah,
-            },
-            (1, -1, -1) => Opening::Cylinder {
+            }),
+            (1, -1, -1) => Opening::Cylinder(CylinderShape {
                 axis: 1,
                 length_m: aw,
                 diameter_a_m: al,
                 diameter_b_m: ah,
-            },
+            }),
             (-1, 0, -1) => Opening::VerticalEllipse {
                 width_m: aw,
                 height_m: ah,
@@ -222,22 +226,22 @@ impl Opening {
                 vec![length_m, width_m]
             }
             Opening::VerticalEllipse { width_m, height_m } => vec![width_m, height_m],
-            Opening::Box {
+            Opening::Box(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            }
-            | Opening::Ellipsoid {
+            })
+            | Opening::Ellipsoid(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => vec![length_m, width_m, height_m],
-            Opening::Cylinder {
+            }) => vec![length_m, width_m, height_m],
+            Opening::Cylinder(CylinderShape {
                 axis,
                 length_m,
                 diameter_a_m,
                 diameter_b_m,
-            } => {
+            }) => {
                 if axis > 2 {
                     return Err(format!("cylinder axis {axis}: expected 0 (x), 1 (y) or 2 (z)"));
                 }
@@ -267,22 +271,22 @@ impl Opening {
             Opening::Rectangle { length_m, width_m } => length_m.hypot(width_m),
             Opening::Ellipse { length_m, width_m } => length_m.max(width_m),
             Opening::VerticalEllipse { width_m, height_m } => width_m.max(height_m),
-            Opening::Box {
+            Opening::Box(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => DVec3::new(length_m, width_m, height_m).length(),
-            Opening::Cylinder {
+            }) => DVec3::new(length_m, width_m, height_m).length(),
+            Opening::Cylinder(CylinderShape {
                 length_m,
                 diameter_a_m,
                 diameter_b_m,
                 ..
-            } => length_m.hypot(diameter_a_m.max(diameter_b_m)),
-            Opening::Ellipsoid {
+            }) => length_m.hypot(diameter_a_m.max(diameter_b_m)),
+            Opening::Ellipsoid(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => length_m.max(width_m).max(height_m),
+            }) => length_m.max(width_m).max(height_m),
             Opening::LdtArea {
                 length_m,
                 width_m,
@@ -316,25 +320,25 @@ impl Opening {
             Opening::VerticalEllipse { width_m, height_m } => {
                 p.x.abs() <= tol && in_ellipse(p.y, p.z, width_m, height_m)
             }
-            Opening::Box {
+            Opening::Box(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => within(p.x, length_m) && within(p.y, width_m) && within(p.z, height_m),
-            Opening::Cylinder {
+            }) => within(p.x, length_m) && within(p.y, width_m) && within(p.z, height_m),
+            Opening::Cylinder(CylinderShape {
                 axis,
                 length_m,
                 diameter_a_m,
                 diameter_b_m,
-            } => {
+            }) => {
                 let (along, a, b) = cylinder_coords(axis, p);
                 within(along, length_m) && in_ellipse(a, b, diameter_a_m, diameter_b_m)
             }
-            Opening::Ellipsoid {
+            Opening::Ellipsoid(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => {
+            }) => {
                 length_m > 0.0
                     && width_m > 0.0
                     && height_m > 0.0
@@ -387,11 +391,11 @@ impl Opening {
                     out.push((DVec3::new(0.0, a * width_m / 2.0, b * height_m / 2.0), w));
                 }
             }
-            Opening::Box {
+            Opening::Box(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => {
+            }) => {
                 for i in 0..n {
                     for j in 0..n {
                         for k in 0..n {
@@ -405,12 +409,12 @@ impl Opening {
                     }
                 }
             }
-            Opening::Cylinder {
+            Opening::Cylinder(CylinderShape {
                 axis,
                 length_m,
                 diameter_a_m,
                 diameter_b_m,
-            } => {
+            }) => {
                 for (a, b, w) in disk_points(n) {
                     for k in 0..n {
                         let along = (mid(k, n) - 0.5) * length_m;
@@ -424,11 +428,11 @@ impl Opening {
                     }
                 }
             }
-            Opening::Ellipsoid {
+            Opening::Ellipsoid(Extent3 {
                 length_m,
                 width_m,
                 height_m,
-            } => {
+            }) => {
                 // Equal-volume cells: uniform in r³, cos θ and φ.
                 for i in 0..n {
                     let r = mid(i, n).cbrt();
@@ -551,11 +555,11 @@ mod tests {
         ));
         assert!(matches!(
             Opening::ies(-0.2, 0.5, -0.2, false, false).unwrap(),
-            Opening::Cylinder { axis: 0, .. }
+            Opening::Cylinder(CylinderShape { axis: 0, .. })
         ));
         assert!(matches!(
             Opening::ies(-0.2, 0.0, -0.2, false, true).unwrap(),
-            Opening::Ellipsoid { .. }
+            Opening::Ellipsoid(Extent3 { .. })
         ));
         assert!(matches!(
             Opening::ies(-0.2, 0.0, -0.2, false, false).unwrap(),
@@ -580,22 +584,22 @@ mod tests {
                 width_m: 0.3,
                 height_m: 0.2,
             },
-            Opening::Box {
+            Opening::Box(Extent3 {
                 length_m: 0.3,
                 width_m: 0.2,
                 height_m: 0.1,
-            },
-            Opening::Cylinder {
+            }),
+            Opening::Cylinder(CylinderShape {
                 axis: 1,
                 length_m: 1.2,
                 diameter_a_m: 0.1,
                 diameter_b_m: 0.1,
-            },
-            Opening::Ellipsoid {
+            }),
+            Opening::Ellipsoid(Extent3 {
                 length_m: 0.3,
                 width_m: 0.3,
                 height_m: 0.3,
-            },
+            }),
             Opening::ldt(0.5, 0.2, [0.05, 0.0, 0.05, 0.0]).unwrap(),
             Opening::ldt(0.5, 0.0, [0.05, 0.05, 0.05, 0.05]).unwrap(),
         ];
@@ -609,5 +613,45 @@ mod tests {
                 assert!(centre.x.abs() < 1e-12 && centre.y.abs() < 1e-12, "{s:?} {centre}");
             }
         }
+    }
+
+    /// Scene files spell a solid opening flat (`shape = "cylinder"` beside its
+    /// sizes): the newtype variants keep that layout and still refuse unknown keys.
+    #[test]
+    fn scene_toml_layout_of_solid_openings() {
+        #[derive(Deserialize)]
+        struct Holder {
+            opening: Opening,
+        }
+        let cyl: Holder = toml::from_str(
+            "[opening]\nshape = \"cylinder\"\naxis = 1\nlength_m = 1.2\ndiameter_a_m = 0.1\ndiameter_b_m = 0.2\n",
+        )
+        .unwrap();
+        assert_eq!(
+            cyl.opening,
+            Opening::Cylinder(CylinderShape {
+                axis: 1,
+                length_m: 1.2,
+                diameter_a_m: 0.1,
+                diameter_b_m: 0.2
+            })
+        );
+        let json = serde_json::to_value(cyl.opening).unwrap();
+        assert_eq!(json["shape"], "cylinder");
+        assert_eq!(json["diameter_b_m"], 0.2);
+        let b: Holder =
+            toml::from_str("[opening]\nshape = \"box\"\nlength_m = 1\nwidth_m = 2\nheight_m = 3\n").unwrap();
+        assert_eq!(
+            b.opening,
+            Opening::Box(Extent3 {
+                length_m: 1.0,
+                width_m: 2.0,
+                height_m: 3.0
+            })
+        );
+        let bad = toml::from_str::<Holder>(
+            "[opening]\nshape = \"ellipsoid\"\nlength_m = 1\nwidth_m = 2\nheight_m = 3\ndepth_m = 4\n",
+        );
+        assert!(bad.is_err(), "an unknown key must be refused");
     }
 }
