@@ -322,7 +322,7 @@ fn factors_1_to_32_and_clamping() {
                 RenderOptions {
                     filter,
                     factor,
-                    clamp: !(factor % 8 == 1 || (factor as usize + k) % 11 == 0),
+                    clamp: !(factor % 8 == 1 || (factor as usize + k).is_multiple_of(11)),
                     parallel: true,
                 },
             ));

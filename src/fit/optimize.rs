@@ -355,7 +355,7 @@ impl<'a> SpotSearch<'a> {
             if d.z * sign <= 0.0 {
                 continue;
             }
-            if peak.map_or(true, |(m, _)| s.m[k] > m) {
+            if peak.is_none_or(|(m, _)| s.m[k] > m) {
                 peak = Some((s.m[k], d));
             }
             mean += s.omega[k] * s.m[k] * d;

@@ -62,10 +62,10 @@ impl SolidGrid {
                 format!("a gap of {widest}° between C angles: the rings would not enclose the axis"),
             ));
         }
-        if gamma.first().map_or(true, |&g| g > ANGLE_EPS) {
+        if gamma.first().is_none_or(|&g| g > ANGLE_EPS) {
             gamma.insert(0, 0.0);
         }
-        if gamma.last().map_or(true, |&g| g < 180.0 - ANGLE_EPS) {
+        if gamma.last().is_none_or(|&g| g < 180.0 - ANGLE_EPS) {
             gamma.push(180.0);
         }
         let n = gamma.len();
@@ -368,6 +368,23 @@ pub(crate) fn quad_split(corners: &[[f32; 3]; 4], ids: &[u32; 4]) -> [Option<[us
     pair.map(|t| distinct(&t).then_some(t))
 }
 
+impl SolidGrid {
+    /// The texel centres of a rendered texture (plus the poles): a solid on
+    /// this grid has one vertex per texel, at exactly the texel's value. A
+    /// texture narrower than 72 columns (rotational data stores one plane,
+    /// so its render is only `factor` columns wide) gets 72 evenly spaced
+    /// columns instead, sampled between its texels.
+    pub fn of_texture(t: &crate::reconstruct::Rendered) -> Result<Self, ModelError> {
+        let c = if t.mapping.width >= 72 {
+            (0..t.mapping.width).map(|j| t.mapping.c_of_column(j)).collect()
+        } else {
+            (0..72).map(|j| j as f64 * 5.0).collect()
+        };
+        let g = (0..t.mapping.height).map(|i| t.mapping.gamma_of_row(i)).collect();
+        SolidGrid::new(c, g)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -398,22 +415,5 @@ mod tests {
         assert_eq!(g.gamma_angles_deg(), &[0.0, 22.5, 45.0, 67.5, 90.0, 135.0, 180.0]);
         assert!(SolidGrid::new(vec![0.0, 180.0], vec![90.0]).is_err());
         assert!(SolidGrid::new(vec![0.0, 10.0, 20.0], vec![90.0]).is_err());
-    }
-}
-
-impl SolidGrid {
-    /// The texel centres of a rendered texture (plus the poles): a solid on
-    /// this grid has one vertex per texel, at exactly the texel's value. A
-    /// texture narrower than 72 columns (rotational data stores one plane,
-    /// so its render is only `factor` columns wide) gets 72 evenly spaced
-    /// columns instead, sampled between its texels.
-    pub fn of_texture(t: &crate::reconstruct::Rendered) -> Result<Self, ModelError> {
-        let c = if t.mapping.width >= 72 {
-            (0..t.mapping.width).map(|j| t.mapping.c_of_column(j)).collect()
-        } else {
-            (0..72).map(|j| j as f64 * 5.0).collect()
-        };
-        let g = (0..t.mapping.height).map(|i| t.mapping.gamma_of_row(i)).collect();
-        SolidGrid::new(c, g)
     }
 }
