@@ -136,9 +136,22 @@ pub enum Error {
     /// A model invariant or parameter domain was violated.
     #[error(transparent)]
     Model(#[from] ModelError),
-    /// Something that cannot be done with this input (e.g. a mesh with no triangles).
-    #[error("{0}")]
-    Unsupported(String),
+    /// A mesh file (OBJ, PLY, STL or GLB) whose content is not a mesh this
+    /// crate reads.
+    #[error("{path}: cannot read the mesh: {source}", path = .path.display())]
+    MeshFile {
+        /// The file.
+        path: PathBuf,
+        /// What the mesh reader found wrong.
+        source: ModelError,
+    },
+    /// A mesh with no triangles where one with triangles is needed (a solid
+    /// is never empty, and glTF cannot hold an empty mesh).
+    #[error("{path}: the mesh has no triangles; expected at least one", path = .path.display())]
+    EmptyMesh {
+        /// The file that was to be written.
+        path: PathBuf,
+    },
     /// The GPU path failed: no adapter, the device, a pipeline, a read-back.
     #[error(transparent)]
     Gpu(#[from] GpuError),
@@ -284,7 +297,8 @@ impl From<&Error> for ErrorRecord {
             ),
             Error::Io { .. } => (None, None, "io"),
             Error::Model(_) => (None, None, "model"),
-            Error::Unsupported(_) => (None, None, "unsupported-operation"),
+            Error::MeshFile { .. } => (None, None, "mesh-file"),
+            Error::EmptyMesh { .. } => (None, None, "empty-mesh"),
             Error::Gpu(g) => (None, None, g.code()),
             Error::Encode { .. } => (None, None, "encode"),
             Error::UnknownExtension { .. } => (None, None, "unknown-extension"),

@@ -93,3 +93,69 @@ fn corpus_measured_solids_are_written_as_manifolds() {
     }
     assert!(pinched > 0, "the corpus has solids with several sheets at the origin");
 }
+
+/// Damaged mesh files give an error naming the file: counts and offsets past
+/// the data are refused before any loop or allocation runs on them, and
+/// arithmetic on them cannot overflow (these hung, allocated or panicked).
+#[test]
+fn damaged_mesh_files_are_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let ply = |body: &str| format!("ply\nformat ascii 1.0\n{body}");
+    let glb = |json: &str, bin: &[u8]| {
+        let mut j = json.as_bytes().to_vec();
+        while j.len() % 4 != 0 {
+            j.push(b' ');
+        }
+        let total = 12 + 8 + j.len() + 8 + bin.len();
+        let mut out = b"glTF".to_vec();
+        for v in [2u32, total as u32, j.len() as u32, 0x4E4F_534A] {
+            out.extend(v.to_le_bytes());
+        }
+        out.extend(&j);
+        out.extend((bin.len() as u32).to_le_bytes());
+        out.extend(0x004E_4942u32.to_le_bytes());
+        out.extend(bin);
+        out
+    };
+    let view = |offset: &str, count: &str| {
+        format!(
+            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":36}}],
+            "bufferViews":[{{"buffer":0,"byteOffset":{offset},"byteLength":36}}],
+            "accessors":[{{"bufferView":0,"componentType":5126,"count":{count},"type":"VEC3"}}],
+            "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}]}}"#
+        )
+    };
+    let cases: Vec<(&str, Vec<u8>, &str)> = vec![
+        (
+            "huge.ply",
+            ply("element vertex 1000000000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n").into(),
+            "declares 1000000000000000000 entries",
+        ),
+        (
+            "nolist.ply",
+            ply("element vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uint uint vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n").into(),
+            "list vertex_indices of 4000000000 entries",
+        ),
+        (
+            "empty-element.ply",
+            ply("element vertex 1000000000\nend_header\n").into(),
+            "element vertex has no properties",
+        ),
+        (
+            "noxyz.ply",
+            ply("element vertex 1\nproperty float x\nproperty float y\nend_header\n1 2\n").into(),
+            "without x, y and z",
+        ),
+        ("offset.glb", glb(&view("18446744073709551615", "3"), &[0; 36]), "past the BIN chunk"),
+        ("count.glb", glb(&view("0", "4611686018427387904"), &[0; 36]), "POSITION is not float VEC3"),
+    ];
+    for (name, bytes, expected) in cases {
+        let path = t.path().join(name);
+        std::fs::write(&path, &bytes).unwrap();
+        let e = export::read(&path).expect_err(name).to_string();
+        assert!(
+            e.starts_with(&path.display().to_string()) && e.contains(expected),
+            "{name}: {e}"
+        );
+    }
+}

@@ -1,5 +1,5 @@
 //! Issue 10 item 7: GPU, encoding, unknown-extension and caller-parameter
-//! failures are their own error variants (not `Error::Unsupported`), each
+//! failures are their own error variants (there is no catch-all `Unsupported`), each
 //! with a stable code in `ErrorRecord`; and the closed sets of CLI values
 //! are clap `ValueEnum`s listed by `--help`.
 
@@ -237,4 +237,37 @@ fn gpu_check_agrees_with_the_cpu_on_the_data_files() {
         check_file(ctx, path, tex, &none),
         Err(Error::NothingChecked(_))
     ));
+}
+
+/// Mesh files that are not meshes, and empty meshes, are their own variants
+/// naming the path (they were `Error::Unsupported(String)` with a code that
+/// said nothing).
+#[test]
+fn mesh_file_failures_are_typed() {
+    use photosolid::solid::{export, Mesh};
+    let t = tempfile::tempdir().unwrap();
+    let bad = t.path().join("bad.ply");
+    std::fs::write(&bad, b"ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n").unwrap();
+    let e = export::read(&bad).unwrap_err();
+    match &e {
+        Error::MeshFile { path, .. } => assert_eq!(path, &bad),
+        other => panic!("expected MeshFile, got {other:?}"),
+    }
+    assert!(
+        e.to_string()
+            .starts_with(&format!("{}: cannot read the mesh: ", bad.display())),
+        "{e}"
+    );
+    assert_eq!(ErrorRecord::from(&e).code, "mesh-file");
+
+    let empty = Mesh::from_parts(vec![[0.0; 3]], vec![], None, Default::default()).unwrap();
+    let out = t.path().join("empty.stl");
+    let e = export::write(&empty, &out).unwrap_err();
+    match &e {
+        Error::EmptyMesh { path } => assert_eq!(path, &out),
+        other => panic!("expected EmptyMesh, got {other:?}"),
+    }
+    assert!(e.to_string().contains("no triangles; expected at least one"), "{e}");
+    assert_eq!(ErrorRecord::from(&e).code, "empty-mesh");
+    assert!(!out.exists(), "nothing is written for a refused mesh");
 }

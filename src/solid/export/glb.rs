@@ -172,22 +172,30 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
         if view.get("byteStride").is_some() {
             return Err(err("interleaved buffer views (byteStride) are not read"));
         }
-        let start =
-            view["byteOffset"].as_u64().unwrap_or(0) as usize + acc["byteOffset"].as_u64().unwrap_or(0) as usize;
+        // Offsets and lengths come from the file: added with overflow checks,
+        // so a damaged document is refused rather than wrapping or panicking.
+        let offset = |v: &serde_json::Value| v["byteOffset"].as_u64().unwrap_or(0);
         let len = view["byteLength"]
             .as_u64()
-            .ok_or_else(|| err("bufferView without byteLength"))? as usize;
-        let data = bin
-            .get(start..start + len)
+            .ok_or_else(|| err("bufferView without byteLength"))?;
+        let range = offset(view).checked_add(offset(acc)).and_then(|start| {
+            Some((
+                usize::try_from(start).ok()?,
+                usize::try_from(start.checked_add(len)?).ok()?,
+            ))
+        });
+        let data = range
+            .and_then(|(start, end)| bin.get(start..end))
             .ok_or_else(|| err("bufferView past the BIN chunk"))?;
         let count = acc["count"].as_u64().ok_or_else(|| err("accessor without count"))? as usize;
         Ok((data, count, acc["componentType"].as_u64().unwrap_or(0)))
     };
     let (pdata, nv, ptype) = accessor(&prim["attributes"]["POSITION"])?;
-    if ptype != u64::from(FLOAT) || pdata.len() < 12 * nv {
-        return Err(err("POSITION is not float VEC3"));
-    }
-    let positions: Vec<[f32; 3]> = pdata[..12 * nv]
+    let position_bytes = nv.checked_mul(12).filter(|&b| b <= pdata.len());
+    let (Some(position_bytes), true) = (position_bytes, ptype == u64::from(FLOAT)) else {
+        return Err(err("POSITION is not float VEC3 within its bufferView"));
+    };
+    let positions: Vec<[f32; 3]> = pdata[..position_bytes]
         .chunks_exact(12)
         .map(|c| [0, 1, 2].map(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().expect("4 bytes"))))
         .collect();
@@ -201,8 +209,9 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
                 5125 => 4,
                 _ => return Err(err("indices are not unsigned byte, short or int")),
             };
-            let data = data
-                .get(..size * n)
+            let data = n
+                .checked_mul(size)
+                .and_then(|bytes| data.get(..bytes))
                 .ok_or_else(|| err("index accessor past its bufferView"))?;
             data.chunks_exact(size)
                 .map(|c| match size {

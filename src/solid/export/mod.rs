@@ -98,10 +98,7 @@ pub fn write(mesh: &Mesh, path: &Path) -> Result<()> {
 /// (glTF cannot hold one, and no solid is empty).
 pub fn write_as(mesh: &Mesh, path: &Path, format: MeshFormat) -> Result<()> {
     if mesh.n_triangles() == 0 {
-        return Err(Error::Unsupported(format!(
-            "{}: the mesh has no triangles",
-            path.display()
-        )));
+        return Err(Error::EmptyMesh { path: path.into() });
     }
     crate::formats::write_atomic(path, &encode(mesh, format))
 }
@@ -117,7 +114,10 @@ pub fn read(path: &Path) -> Result<Mesh> {
         MeshFormat::Stl => stl::read(&bytes),
         MeshFormat::Glb => glb::read(&bytes),
     };
-    mesh.map_err(|e| Error::Unsupported(format!("{}: {e}", path.display())))
+    mesh.map_err(|source| Error::MeshFile {
+        path: path.into(),
+        source,
+    })
 }
 
 /// Mesh metadata lines, ASCII only (STL headers and some PLY readers need

@@ -129,6 +129,24 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
             _ => f64::from_le_bytes(b.try_into().unwrap()),
         })
     };
+    // Every instance of an element takes at least one byte (binary) or one
+    // token (ASCII) of the body: a count past that is a damaged header, refused
+    // before any loop or allocation runs on it.
+    for (name, count, props) in &elements {
+        if props.is_empty() {
+            return Err(err(format!("element {name} has no properties")));
+        }
+        if *count > body.len() {
+            return Err(err(format!(
+                "element {name} declares {count} entries but the body has {} bytes",
+                body.len()
+            )));
+        }
+        let has = |axis: &str| props.iter().any(|(p, _, list)| p == axis && list.is_none());
+        if name == "vertex" && !(has("x") && has("y") && has("z")) {
+            return Err(err("vertex element without x, y and z properties".into()));
+        }
+    }
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
     for (name, count, props) in &elements {
@@ -136,7 +154,11 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
             let mut xyz = [0.0f32; 3];
             for (pname, t, list) in props {
                 if let Some(ct) = list {
-                    let n = scalar(ct)? as usize;
+                    let n = scalar(ct)?;
+                    if !(n >= 0.0 && n <= body.len() as f64 && n.fract() == 0.0) {
+                        return Err(err(format!("list {pname} of {n} entries")));
+                    }
+                    let n = n as usize;
                     let mut idx = Vec::with_capacity(n);
                     for _ in 0..n {
                         idx.push(scalar(t)? as u32);
