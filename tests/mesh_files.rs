@@ -103,7 +103,7 @@ fn damaged_mesh_files_are_refused() {
     let ply = |body: &str| format!("ply\nformat ascii 1.0\n{body}");
     let glb = |json: &str, bin: &[u8]| {
         let mut j = json.as_bytes().to_vec();
-        while j.len() % 4 != 0 {
+        while !j.len().is_multiple_of(4) {
             j.push(b' ');
         }
         let total = 12 + 8 + j.len() + 8 + bin.len();
