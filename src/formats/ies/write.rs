@@ -55,8 +55,74 @@ pub fn write(doc: &Document, version: IesWriteVersion) -> String {
         IesWriteVersion::Lm63_2002 => "IESNA:LM-63-2002",
         IesWriteVersion::Lm63_2019 => "IES:LM-63-2019",
     });
+    for (k, v) in keywords(doc) {
+        w.keyword(&k, &v);
+    }
+    match lum.tilt().table() {
+        None => w.line("TILT=NONE"),
+        Some(t) => {
+            w.line("TILT=INCLUDE");
+            w.num(t.geometry as f64);
+            w.end();
+            w.num(t.angles.len() as f64);
+            w.end();
+            w.nums(&t.angles);
+            w.nums(&t.multipliers);
+        }
+    }
+    let grid = Grid::of(lum);
+    let mut rec = HeaderRecords::of(doc, version);
+    // The reader multiplies by multiplier × ballast factor (a non-positive ballast factor reads as 1).
+    let mut scale = rec.multiplier
+        * if rec.ballast_factor > 0.0 {
+            rec.ballast_factor
+        } else {
+            1.0
+        };
+    let representable = scale.is_normal()
+        && scale > 0.0
+        && grid.planes.iter().all(|&v| {
+            let q = v / scale;
+            q.is_finite() && (q * scale).is_finite()
+        });
+    if !representable {
+        // Values divided by these factors would not print as numbers (an
+        // underflowing product gives NaN): write absolute candela instead.
+        (rec.multiplier, rec.ballast_factor, scale) = (1.0, 1.0, 1.0);
+    }
+    let (nv, nh) = (grid.vertical.len() as f64, grid.horizontal.len() as f64);
+    for v in [rec.lamps, rec.lumens_per_lamp, rec.multiplier, nv, nh] {
+        w.num(v);
+    }
+    w.num(grid.type_code as f64);
+    for v in [rec.units, rec.width, rec.length, rec.height] {
+        w.num(v);
+    }
+    w.end();
+    for v in [rec.ballast_factor, rec.future_use, rec.input_watts] {
+        w.num(v);
+    }
+    w.end();
+    w.nums(&grid.vertical);
+    w.nums(&grid.horizontal);
+    for p in grid.planes.chunks(grid.vertical.len().max(1)) {
+        if scale == 1.0 {
+            w.nums(p);
+        } else {
+            for &v in p {
+                w.num(v / scale);
+            }
+            w.end();
+        }
+    }
+    w.out
+}
 
-    // ---- Keywords.
+/// The keyword lines: the file's own labels (unlabelled text as `OTHER`) or
+/// the model's metadata, after the keywords LM-63-2002 requires that the
+/// file lacks (written empty when unknown).
+fn keywords(doc: &Document) -> Vec<(String, String)> {
+    let lum = &doc.luminaire;
     let md = lum.metadata();
     let mut kws: Vec<(String, String)> = Vec::new();
     match doc.ies_header() {
@@ -87,139 +153,135 @@ pub fn write(doc: &Document, version: IesWriteVersion) -> String {
         ("ISSUEDATE", md.date.clone()),
         ("MANUFAC", md.manufacturer.clone()),
     ];
-    let missing: Vec<(String, String)> = required
+    let mut out: Vec<(String, String)> = required
         .into_iter()
         .filter(|(k, _)| !kws.iter().any(|(kk, _)| kk.eq_ignore_ascii_case(k)))
         .map(|(k, v)| (k.to_string(), v))
         .collect();
-    for (k, v) in missing.iter().chain(kws.iter()) {
-        w.keyword(k, v);
-    }
+    out.extend(kws);
+    out
+}
 
-    // ---- TILT.
-    match lum.tilt().table() {
-        None => w.line("TILT=NONE"),
-        Some(t) => {
-            w.line("TILT=INCLUDE");
-            w.num(t.geometry as f64);
-            w.end();
-            w.num(t.angles.len() as f64);
-            w.end();
-            w.nums(&t.angles);
-            w.nums(&t.multipliers);
+/// The angle grid and values to write: the Type A/B source grid when the
+/// luminaire keeps one, else the Type C planes of its distribution.
+struct Grid {
+    /// LM-63 photometric type: 1 = C, 2 = B, 3 = A.
+    type_code: u8,
+    /// Vertical angles, degrees.
+    vertical: Vec<f64>,
+    /// Horizontal angles, degrees.
+    horizontal: Vec<f64>,
+    /// Candela, one run of `vertical.len()` values per horizontal angle.
+    planes: Vec<f64>,
+}
+
+impl Grid {
+    fn of(lum: &crate::model::Luminaire) -> Self {
+        match lum.source_grid() {
+            Some(sg) => Grid {
+                type_code: if sg.kind == PhotometricType::A { 3 } else { 2 },
+                vertical: sg.vertical.clone(),
+                horizontal: sg.horizontal.clone(),
+                planes: sg.cd.clone(),
+            },
+            None => {
+                let (horizontal, planes) = type_c_planes(lum.distribution());
+                Grid {
+                    type_code: 1,
+                    vertical: lum.distribution().gamma_angles_deg().to_vec(),
+                    horizontal,
+                    planes,
+                }
+            }
         }
     }
+}
 
-    // ---- Grid: angles and planes (each plane = values at all vertical angles).
-    let (type_code, vertical, horizontal, planes): (u8, Vec<f64>, Vec<f64>, Vec<f64>) = match &lum.source_grid() {
-        Some(sg) => (
-            if sg.kind == PhotometricType::A { 3 } else { 2 },
-            sg.vertical.clone(),
-            sg.horizontal.clone(),
-            sg.cd.clone(),
-        ),
-        None => {
-            let (h, cd) = type_c_planes(lum.distribution());
-            (1, lum.distribution().gamma_angles_deg().to_vec(), h, cd)
-        }
-    };
+/// The numeric header records (LM-63 lines 10 and 11) as they will be written.
+struct HeaderRecords {
+    lamps: f64,
+    /// -1 for absolute photometry.
+    lumens_per_lamp: f64,
+    multiplier: f64,
+    /// 1 = feet, 2 = metres.
+    units: f64,
+    /// Luminous opening, in `units` (feet or metres), LM-63's sign conventions.
+    width: f64,
+    length: f64,
+    height: f64,
+    ballast_factor: f64,
+    /// The 2002 "future use" field, or the 2019 file-generation type.
+    future_use: f64,
+    input_watts: f64,
+}
 
-    // ---- Header records.
-    let (lamps, lpl, mult, units, width, length, height, bf, future, watts);
-    match doc.ies_header() {
-        Some(h) => {
-            lamps = h.lamps;
-            lpl = h.lumens_per_lamp;
-            mult = h.multiplier;
-            units = h.units as f64;
-            (width, length, height) = (h.width, h.length, h.height);
-            bf = h.ballast_factor;
+impl HeaderRecords {
+    /// The file's own records when it was an IES file, else records derived
+    /// from the model (metres, absolute or relative by the declared flux).
+    fn of(doc: &Document, version: IesWriteVersion) -> Self {
+        let lum = &doc.luminaire;
+        if let Some(h) = doc.ies_header() {
             let blpf_applied = matches!(lum.version(), "LM-63-1986" | "LM-63-1991");
-            future = match version {
+            let future_use = match version {
                 IesWriteVersion::Lm63_2002 if !blpf_applied && lum.version() != "LM-63-2019" => h.future_use,
                 IesWriteVersion::Lm63_2002 => 1.0,
                 IesWriteVersion::Lm63_2019 if lum.version() == "LM-63-2019" => h.future_use,
                 IesWriteVersion::Lm63_2019 => 1.00001,
             };
-            watts = h.input_watts;
+            return HeaderRecords {
+                lamps: h.lamps,
+                lumens_per_lamp: h.lumens_per_lamp,
+                multiplier: h.multiplier,
+                units: h.units as f64,
+                width: h.width,
+                length: h.length,
+                height: h.height,
+                ballast_factor: h.ballast_factor,
+                future_use,
+                input_watts: h.input_watts,
+            };
         }
-        None => {
-            let count: f64 = lum.lamp_sets().iter().map(|s| s.count.abs()).sum();
-            let n = if count > 0.0 && count.is_finite() { count } else { 1.0 };
-            let flux = lum
-                .declared()
-                .lamp_flux_lm
-                .unwrap_or_else(|| lum.lamp_sets().iter().map(|s| s.flux_lm).sum());
-            // A lamp count so small that flux / count overflows is written as one lamp.
-            (lamps, lpl) = if lum.declared().absolute || flux <= 0.0 || !flux.is_finite() {
-                (n, -1.0)
-            } else if (flux / n).is_finite() {
-                (n, flux / n)
-            } else {
-                (1.0, flux)
-            };
-            mult = 1.0;
-            units = 2.0;
-            let o = &lum.luminous_opening();
-            let dims = if o.length_m != 0.0 || o.width_m != 0.0 || o.height_m != 0.0 {
-                *o
-            } else {
-                lum.dimensions()
-            };
-            (width, length, height) = (dims.width_m, dims.length_m, dims.height_m);
-            bf = 1.0;
-            future = match version {
+        let count: f64 = lum.lamp_sets().iter().map(|s| s.count.abs()).sum();
+        let n = if count > 0.0 && count.is_finite() { count } else { 1.0 };
+        let flux = lum
+            .declared()
+            .lamp_flux_lm
+            .unwrap_or_else(|| lum.lamp_sets().iter().map(|s| s.flux_lm).sum());
+        // A lamp count so small that flux / count overflows is written as one lamp.
+        let (lamps, lumens_per_lamp) = if lum.declared().absolute || flux <= 0.0 || !flux.is_finite() {
+            (n, -1.0)
+        } else if (flux / n).is_finite() {
+            (n, flux / n)
+        } else {
+            (1.0, flux)
+        };
+        let o = lum.luminous_opening();
+        let dims = if o.length_m != 0.0 || o.width_m != 0.0 || o.height_m != 0.0 {
+            o
+        } else {
+            lum.dimensions()
+        };
+        let watts = lum
+            .declared()
+            .input_watts
+            .unwrap_or_else(|| lum.lamp_sets().iter().map(|s| s.watts).sum());
+        HeaderRecords {
+            lamps,
+            lumens_per_lamp,
+            multiplier: 1.0,
+            units: 2.0,
+            width: dims.width_m,
+            length: dims.length_m,
+            height: dims.height_m,
+            ballast_factor: 1.0,
+            future_use: match version {
                 IesWriteVersion::Lm63_2002 => 1.0,
                 IesWriteVersion::Lm63_2019 => 1.00001,
-            };
-            let w = lum
-                .declared()
-                .input_watts
-                .unwrap_or_else(|| lum.lamp_sets().iter().map(|s| s.watts).sum());
+            },
             // Summed lamp-set wattages can overflow; an unknown wattage is written as 0.
-            watts = if w.is_finite() { w } else { 0.0 };
+            input_watts: if watts.is_finite() { watts } else { 0.0 },
         }
     }
-    // The reader multiplies by multiplier × ballast factor (a non-positive ballast factor reads as 1).
-    let mut scale = mult * if bf > 0.0 { bf } else { 1.0 };
-    let (mut mult, mut bf) = (mult, bf);
-    let representable = scale.is_normal()
-        && scale > 0.0
-        && planes.iter().all(|&v| {
-            let q = v / scale;
-            q.is_finite() && (q * scale).is_finite()
-        });
-    if !representable {
-        // Values divided by these factors would not print as numbers (an
-        // underflowing product gives NaN): write absolute candela instead.
-        (mult, bf, scale) = (1.0, 1.0, 1.0);
-    }
-    for v in [lamps, lpl, mult, vertical.len() as f64, horizontal.len() as f64] {
-        w.num(v);
-    }
-    w.num(type_code as f64);
-    for v in [units, width, length, height] {
-        w.num(v);
-    }
-    w.end();
-    for v in [bf, future, watts] {
-        w.num(v);
-    }
-    w.end();
-    w.nums(&vertical);
-    w.nums(&horizontal);
-    let nv = vertical.len();
-    for p in planes.chunks(nv.max(1)) {
-        if scale == 1.0 {
-            w.nums(p);
-        } else {
-            for &v in p {
-                w.num(v / scale);
-            }
-            w.end();
-        }
-    }
-    w.out
 }
 
 /// Round to 15 significant digits (so `v / scale` does not print 17 digits of noise).

@@ -10,7 +10,7 @@ use crate::model::{periodic_widths, Distribution, LampSet, Symmetry, ANGLE_EPS};
 /// value per line, lamp sets in the field-group layout.
 ///
 /// # Header fields
-/// For a luminaire read from an EULUMDAT file ([`Luminaire::ldt`] is set) the
+/// For a document read from an EULUMDAT file ([`Document::ldt_header`] is set) the
 /// header's Ityp, file name, luminous heights, CFLI, tilt, direct ratios and
 /// intensity scale are reproduced, and so are Mc, Dc, Dg and the line-28
 /// C-angle list as long as they still describe the distribution's grid (same
@@ -44,97 +44,130 @@ use crate::model::{periodic_widths, Distribution, LampSet, Symmetry, ANGLE_EPS};
 /// the one the intensities are scaled by, so reading the file back gives the
 /// model's candela values within that relative error.
 pub fn write(doc: &Document) -> String {
+    let dist = doc.luminaire.distribution();
+    let grid = doc
+        .ldt_header()
+        .and_then(|h| header_grid(h, dist))
+        .unwrap_or_else(|| derived_grid(dist));
+    let rel = Relative::of(doc);
+    let mut out = Lines(String::with_capacity(
+        64 * 40 + dist.intensities_cd().len() * 10 + grid.c.len() * 8,
+    ));
+    write_header(&mut out, doc, &grid, &rel);
+    write_intensities(&mut out, dist, &grid, rel.scale);
+    out.0
+}
+
+/// What the intensities are relative to: the lamp sets as written (the
+/// first one carries the flux the cd/klm values refer to), the scale
+/// (cd per cd/klm), and the LORL and DFF lines (%).
+struct Relative {
+    sets: Vec<LampSet>,
+    scale: f64,
+    lorl: f64,
+    dff: f64,
+}
+
+impl Relative {
+    fn of(doc: &Document) -> Self {
+        let lum = &doc.luminaire;
+        let dist = lum.distribution();
+        let mut sets: Vec<LampSet> = lum.lamp_sets().to_vec();
+        if sets.is_empty() {
+            sets.push(LampSet {
+                count: 1.0,
+                ..LampSet::default()
+            });
+        }
+        let (full_flux, down_flux) = zonal_flux(dist);
+        let mut lorl = lum.declared().lor.map(|l| l * 100.0);
+        // A scale is usable when every intensity divided by it prints as a finite number.
+        let usable = |scale: f64| {
+            scale.is_normal() && scale > 0.0 && dist.intensities_cd().iter().all(|v| (v / scale).is_finite())
+        };
+        let scale = match doc.ldt_header() {
+            Some(h) if usable(h.cd_per_cdklm) => h.cd_per_cdklm,
+            _ => {
+                let lamp_flux = round_sig(sets[0].flux_lm);
+                if !lum.declared().absolute && sets[0].count >= 0.0 && usable(lamp_flux / 1000.0) {
+                    sets[0].flux_lm = lamp_flux;
+                    lamp_flux / 1000.0
+                } else {
+                    let declared = lum.declared().luminaire_flux_lm.filter(|f| *f > 0.0 && f.is_finite());
+                    let flux = declared.unwrap_or(if full_flux > 0.0 && full_flux.is_finite() {
+                        full_flux
+                    } else {
+                        1000.0
+                    });
+                    // A flux that rounds to 0 in print would make every intensity infinite.
+                    let flux = Some(round_sig(flux)).filter(|f| usable(f / 1000.0)).unwrap_or(1000.0);
+                    sets[0].count = -sets[0].count.abs().max(1.0);
+                    sets[0].flux_lm = flux;
+                    lorl = Some(100.0);
+                    flux / 1000.0
+                }
+            }
+        };
+        let lorl = lorl.unwrap_or_else(|| {
+            let lamp = sets[0].flux_lm;
+            if lamp > 0.0 {
+                100.0 * full_flux / lamp
+            } else {
+                100.0
+            }
+        });
+        let dff = lum.declared().dff.map(|d| d * 100.0).unwrap_or(if full_flux > 0.0 {
+            100.0 * down_flux / full_flux
+        } else {
+            100.0
+        });
+        Relative { sets, scale, lorl, dff }
+    }
+}
+
+/// EULUMDAT output: one value per CRLF-terminated line.
+struct Lines(String);
+
+impl Lines {
+    /// A text field: one line, so line breaks inside it (which would shift
+    /// every later line) become spaces.
+    fn text(&mut self, s: &str) {
+        for ch in s.chars() {
+            self.0.push(if ch == '\r' || ch == '\n' { ' ' } else { ch });
+        }
+        self.0.push_str("\r\n");
+    }
+    fn num(&mut self, v: f64) {
+        push_sig(&mut self.0, v);
+        self.0.push_str("\r\n");
+    }
+    fn angle(&mut self, v: f64) {
+        push_fixed(&mut self.0, v, 9);
+        self.0.push_str("\r\n");
+    }
+    fn int(&mut self, v: i64) {
+        let _ = write!(self.0, "{v}\r\n");
+    }
+}
+
+/// Lines 1-28 and the γ list: identification, grid, dimensions, lamp sets,
+/// direct ratios and angles.
+fn write_header(out: &mut Lines, doc: &Document, grid: &Grid, rel: &Relative) {
     let lum = &doc.luminaire;
     let dist = lum.distribution();
     let sym = dist.symmetry();
     let header = doc.ldt_header();
-    let grid = header
-        .and_then(|h| header_grid(h, dist))
-        .unwrap_or_else(|| derived_grid(dist));
-
-    // Lamp sets and the flux the intensities are relative to.
-    let mut sets: Vec<LampSet> = lum.lamp_sets().to_vec();
-    if sets.is_empty() {
-        sets.push(LampSet {
-            count: 1.0,
-            ..LampSet::default()
-        });
-    }
-    let (full_flux, down_flux) = zonal_flux(dist);
-    let mut lorl = lum.declared().lor.map(|l| l * 100.0);
-    // A scale is usable when every intensity divided by it prints as a finite number.
-    let usable =
-        |scale: f64| scale.is_normal() && scale > 0.0 && dist.intensities_cd().iter().all(|v| (v / scale).is_finite());
-    let scale = match header {
-        Some(h) if usable(h.cd_per_cdklm) => h.cd_per_cdklm,
-        _ => {
-            let lamp_flux = round_sig(sets[0].flux_lm);
-            if !lum.declared().absolute && sets[0].count >= 0.0 && usable(lamp_flux / 1000.0) {
-                sets[0].flux_lm = lamp_flux;
-                lamp_flux / 1000.0
-            } else {
-                let declared = lum.declared().luminaire_flux_lm.filter(|f| *f > 0.0 && f.is_finite());
-                let flux = declared.unwrap_or(if full_flux > 0.0 && full_flux.is_finite() {
-                    full_flux
-                } else {
-                    1000.0
-                });
-                // A flux that rounds to 0 in print would make every intensity infinite.
-                let flux = Some(round_sig(flux)).filter(|f| usable(f / 1000.0)).unwrap_or(1000.0);
-                sets[0].count = -sets[0].count.abs().max(1.0);
-                sets[0].flux_lm = flux;
-                lorl = Some(100.0);
-                flux / 1000.0
-            }
-        }
-    };
-    let lorl = lorl.unwrap_or_else(|| {
-        let lamp = sets[0].flux_lm;
-        if lamp > 0.0 {
-            100.0 * full_flux / lamp
-        } else {
-            100.0
-        }
-    });
-    let dff = lum.declared().dff.map(|d| d * 100.0).unwrap_or(if full_flux > 0.0 {
-        100.0 * down_flux / full_flux
-    } else {
-        100.0
-    });
-
-    let mut out = String::with_capacity(64 * 40 + dist.intensities_cd().len() * 10 + grid.c.len() * 8);
-    let text = |out: &mut String, s: &str| {
-        // A text field is one line: line breaks inside it would shift every later line.
-        for ch in s.chars() {
-            out.push(if ch == '\r' || ch == '\n' { ' ' } else { ch });
-        }
-        out.push_str("\r\n");
-    };
-    let num = |out: &mut String, v: f64| {
-        push_sig(out, v);
-        out.push_str("\r\n");
-    };
-    let angle = |out: &mut String, v: f64| {
-        push_fixed(out, v, 9);
-        out.push_str("\r\n");
-    };
-    let int = |out: &mut String, v: i64| {
-        let _ = write!(out, "{v}\r\n");
-    };
     let m = lum.metadata();
-    text(&mut out, &m.manufacturer);
-    int(
-        &mut out,
-        header.map_or(if sym == Symmetry::Rotational { 1 } else { 3 }, |h| h.ityp),
-    );
-    int(&mut out, sym.isym() as i64);
-    int(&mut out, grid.c.len() as i64);
-    angle(&mut out, grid.dc);
-    int(&mut out, dist.n_gamma() as i64);
-    angle(&mut out, grid.dg);
-    text(&mut out, &m.test_report);
-    text(&mut out, &m.luminaire);
-    text(&mut out, &m.catalogue);
+    out.text(&m.manufacturer);
+    out.int(header.map_or(if sym == Symmetry::Rotational { 1 } else { 3 }, |h| h.ityp));
+    out.int(sym.isym() as i64);
+    out.int(grid.c.len() as i64);
+    out.angle(grid.dc);
+    out.int(dist.n_gamma() as i64);
+    out.angle(grid.dg);
+    out.text(&m.test_report);
+    out.text(&m.luminaire);
+    out.text(&m.catalogue);
     let file_name = match header {
         Some(h) => h.file_name.clone(),
         None => lum
@@ -144,53 +177,39 @@ pub fn write(doc: &Document) -> String {
             .map(|s| format!("{}.ldt", s.to_string_lossy()))
             .unwrap_or_default(),
     };
-    text(&mut out, &file_name);
-    text(&mut out, &m.date);
-    for v in [
-        lum.dimensions().length_m,
-        lum.dimensions().width_m,
-        lum.dimensions().height_m,
-    ] {
-        num(&mut out, v * 1000.0);
+    out.text(&file_name);
+    out.text(&m.date);
+    let dims = lum.dimensions();
+    for v in [dims.length_m, dims.width_m, dims.height_m] {
+        out.num(v * 1000.0);
     }
-    num(&mut out, lum.luminous_opening().length_m * 1000.0);
-    num(&mut out, lum.luminous_opening().width_m * 1000.0);
-    let heights = header.map_or([lum.luminous_opening().height_m * 1000.0; 4], |h| h.luminous_heights_mm);
-    for v in heights {
-        num(&mut out, v);
+    let opening = lum.luminous_opening();
+    out.num(opening.length_m * 1000.0);
+    out.num(opening.width_m * 1000.0);
+    for v in header.map_or([opening.height_m * 1000.0; 4], |h| h.luminous_heights_mm) {
+        out.num(v);
     }
-    num(&mut out, dff);
-    num(&mut out, lorl);
-    num(&mut out, header.map_or(1.0, |h| h.cfli));
-    num(&mut out, header.map_or(0.0, |h| h.tilt_deg));
-    int(&mut out, sets.len() as i64);
-    for s in &sets {
-        num(&mut out, s.count);
-    }
-    for s in &sets {
-        text(&mut out, &s.lamp_type);
-    }
-    for s in &sets {
-        num(&mut out, s.flux_lm);
-    }
-    for s in &sets {
-        text(&mut out, &s.color);
-    }
-    for s in &sets {
-        text(&mut out, &s.cri);
-    }
-    for s in &sets {
-        num(&mut out, s.watts);
-    }
+    out.num(rel.dff);
+    out.num(rel.lorl);
+    out.num(header.map_or(1.0, |h| h.cfli));
+    out.num(header.map_or(0.0, |h| h.tilt_deg));
+    let sets = &rel.sets;
+    out.int(sets.len() as i64);
+    sets.iter().for_each(|s| out.num(s.count));
+    sets.iter().for_each(|s| out.text(&s.lamp_type));
+    sets.iter().for_each(|s| out.num(s.flux_lm));
+    sets.iter().for_each(|s| out.text(&s.color));
+    sets.iter().for_each(|s| out.text(&s.cri));
+    sets.iter().for_each(|s| out.num(s.watts));
     for v in header.map_or([0.0; 10], |h| h.direct_ratios) {
-        num(&mut out, v);
+        out.num(v);
     }
-    for &c in &grid.c {
-        angle(&mut out, c);
-    }
-    for &g in dist.gamma_angles_deg() {
-        angle(&mut out, g);
-    }
+    grid.c.iter().for_each(|&c| out.angle(c));
+    dist.gamma_angles_deg().iter().for_each(|&g| out.angle(g));
+}
+
+/// The intensities of the stored planes, in cd/klm (cd / `scale`).
+fn write_intensities(out: &mut Lines, dist: &Distribution, grid: &Grid, scale: f64) {
     // Small values get at least the decimals the peak needs, so every value
     // is written within 5e-8 of the peak even when the peak itself is tiny.
     let peak = dist
@@ -204,11 +223,10 @@ pub fn write(doc: &Document) -> String {
     };
     for &ic in &grid.planes {
         for &v in dist.plane_cd(ic) {
-            push_sig_with(&mut out, v / scale, floor_decimals);
-            out.push_str("\r\n");
+            push_sig_with(&mut out.0, v / scale, floor_decimals);
+            out.0.push_str("\r\n");
         }
     }
-    out
 }
 
 /// The grid as written: line-28 angles, steps, and the model plane of each stored file plane.
