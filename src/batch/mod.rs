@@ -3,7 +3,7 @@
 //!
 //! Each file is loaded ([`crate::load_with`]), summarised with the numbers of
 //! `photosolid info` ([`InfoReport`]), checked by a hold-out of its own
-//! measurements ([`crate::reconstruct::holdout`], every filter, the best one
+//! measurements ([`crate::reconstruct::holdout()`], every filter, the best one
 //! kept) and fitted with OpenGL lights ([`crate::fit::fit`]). Files are
 //! processed in parallel (rayon); rows come back in input order. A file
 //! that cannot be read is a row with `ok = false` and its error, never a

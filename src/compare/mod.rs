@@ -4,7 +4,7 @@
 //! fitted OpenGL lights, another file's distribution (Ashdown 1999, DOMAIN §6):
 //! - the **Hausdorff distance** of the photometric solids (symmetric and both
 //!   one-sided, with mean and RMS surface distance), certified to within a
-//!   tolerance ([`crate::metrics::hausdorff`]): "H = 12.31 cd (+0.05)";
+//!   tolerance ([`crate::metrics::hausdorff()`]): "H = 12.31 cd (+0.05)";
 //! - the **radial errors** over a stated direction set
 //!   ([`crate::metrics::radial_errors`]); their maximum is the cheap radial
 //!   bound of H (max over directions of |I1 − I2| ≥ H, estimated on the set);

@@ -7,7 +7,7 @@
 //! Catmull–Rom textures rendered at factors k read back with nearest,
 //! bilinear and Catmull–Rom lookups; the k = 5 bilinear texture stored in
 //! f16 and/or only in the symmetry's C sector; the fitted OpenGL lights with
-//! precomputed axes and cut-off cosines. Errors come from [`compare`]
+//! precomputed axes and cut-off cosines. Errors come from [`compare`](super::compare())
 //! (same metrics, same reference rules); a row is on the Pareto front when
 //! no other row is at most as costly in time, bytes and Hausdorff error and
 //! cheaper in one.

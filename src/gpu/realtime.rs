@@ -3,7 +3,7 @@
 //! directions, and the accuracy that costs.
 //!
 //! A [`RealtimeTexture`] uploads the texels of a
-//! [`StoredTexture`](crate::reconstruct::StoredTexture) (a render of the LDT,
+//! [`crate::reconstruct::StoredTexture`] (a render of the LDT,
 //! I / I_max, whole or only its symmetry's C sector) as an `R32Float`
 //! texture when the adapter can filter it (`FLOAT32_FILTERABLE`), else as
 //! `R16Float` (values rounded to f16), with a sampler, and evaluates a

@@ -17,7 +17,7 @@
 //! γ-refinement of [`crate::solid::adaptive`]).
 //!
 //! # Certificate
-//! As [`super::hausdorff`], in one dimension less: exact point-to-segment
+//! As [`super::hausdorff()`], in one dimension less: exact point-to-segment
 //! distances; over a segment T of A, `f = d(·, B)` is at most
 //! `max(d(v0, K), d(v1, K))` for any segment K of B (distance to a segment
 //! is convex) and at most `(f0 + f1 + |T|)/2` (f is 1-Lipschitz); segments

@@ -16,7 +16,7 @@
 //! (e.g. OutdoorRoadway 2/2 bilinear 0.53 %, Catmull-Rom 0.29 %). The flux
 //! error compares the flux of the original grid with that of the same grid
 //! holding the reconstructed values at the dropped samples, by the crate's
-//! flux rule ([`crate::photometry::flux`]).
+//! flux rule ([`crate::photometry::flux()`]).
 
 use serde::Serialize;
 
@@ -203,7 +203,7 @@ pub fn kfold(dist: &Distribution, k: usize) -> Result<Vec<Fold>, ModelError> {
 }
 
 /// Flux (lm) of `cd` (C-major on the stored planes of `d`), by the one
-/// flux rule of the crate ([`crate::photometry::flux`]).
+/// flux rule of the crate ([`crate::photometry::flux()`]).
 fn flux(d: &Distribution, cd: &[f64]) -> f64 {
     Distribution::new(
         d.c_angles_deg().to_vec(),

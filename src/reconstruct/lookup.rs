@@ -159,7 +159,7 @@ impl StoredTexture {
     }
 
     /// The stored texels (I / I_max, already rounded to the precision),
-    /// row-major, [`StoredTexture::columns`] wide: what a renderer uploads.
+    /// row-major, `columns` wide: what a renderer uploads.
     pub fn texels(&self) -> &[f32] {
         &self.data
     }

@@ -1,12 +1,12 @@
 //! Scenes: luminaires placed and aimed over receivers, the illuminance they
 //! put there, and the cheapest representation that keeps it within a tolerance.
 //!
-//! - [`file`]: the TOML scene file (schema in `docs/scene.md`);
+//! - [`mod@file`]: the TOML scene file (schema in `docs/scene.md`);
 //! - [`aim`]: LM-72 aiming, the luminaire frame in the world;
 //! - [`near_field`]: luminous openings, Lambert's polygon formula, the
 //!   directional area source;
 //! - [`illuminance`]: E = Σ MF · I(d) cos(incidence) / r² at every receiver
-//!   point, with any [`IntensityField`](crate::model::IntensityField);
+//!   point, with any [`crate::model::IntensityField`];
 //! - [`plan`]: per luminaire, the cheapest representation within a
 //!   tolerance of the reference, measured on the scene.
 //!

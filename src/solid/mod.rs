@@ -111,7 +111,7 @@ pub enum Units {
     /// Relative: the peak intensity of the solid is 1 (dimensionless).
     Peak,
     /// cd/klm: 1000 I / Φ, with Φ in lm ([`Units::per_kilolumen`] computes it
-    /// with [`crate::photometry::flux`]), so that solids of equal flux compare.
+    /// with [`crate::photometry::flux()`]), so that solids of equal flux compare.
     PerKilolumen {
         /// The flux Φ (lm) the intensities are divided by.
         flux_lm: f64,
@@ -119,7 +119,7 @@ pub enum Units {
 }
 
 impl Units {
-    /// cd/klm with the flux of `d` from [`crate::photometry::flux`]; fails for zero flux.
+    /// cd/klm with the flux of `d` from [`crate::photometry::flux()`]; fails for zero flux.
     pub fn per_kilolumen(d: &Distribution) -> Result<Units, ModelError> {
         let flux_lm = crate::photometry::flux(d).total_lm;
         if !(flux_lm.is_finite() && flux_lm > 0.0) {

@@ -27,7 +27,7 @@
 //! C0 becomes model C180, C270 stays C270, C90 stays C90.
 //!
 //! # Writing
-//! See [`write`]: CRLF line ends, lamp sets in the field-group layout, numbers
+//! See [`write()`]: CRLF line ends, lamp sets in the field-group layout, numbers
 //! with at most [`SIGNIFICANT_DIGITS`] significant digits.
 
 mod read;

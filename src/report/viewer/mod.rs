@@ -114,7 +114,7 @@ pub struct ViewerData {
     pub solids: Vec<PackedSolid>,
 }
 
-/// The finest step of [`STEPS_DEG`] whose mesh data for `n_recons`
+/// The finest step of `STEPS_DEG` ((C, γ) steps from 2° × 2° to 5° × 5°) whose mesh data for `n_recons`
 /// reconstructions and one reference fits [`MESH_BUDGET_BYTES`] (else the coarsest).
 pub fn grid_step(n_recons: usize) -> (f64, f64) {
     let fits = |&&(dc, dg): &&(f64, f64)| {
@@ -151,7 +151,7 @@ fn quantise_u16(x: f64, r: f64) -> u16 {
     ((x / r).clamp(0.0, 1.0) * 65535.0).round() as u16
 }
 
-/// The inverse of [`quantise_u16`] (for tests and readers).
+/// The inverse of `quantise_u16` (for tests and readers).
 pub fn dequantise_u16(q: u16, r: f64) -> f64 {
     f64::from(q) / 65535.0 * r
 }
