@@ -22,7 +22,7 @@ use serde::Serialize;
 
 use crate::model::frame::direction;
 use crate::model::{Distribution, Luminaire};
-use crate::scene::opening::{CylinderShape, Extent3, Opening};
+use crate::scene::opening::Opening;
 
 /// Projected area (m²) of `opening` seen from emission direction `d` (unit vector, luminaire frame).
 pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
@@ -33,32 +33,19 @@ pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
         Opening::Rectangle { length_m, width_m } => length_m * width_m * az,
         Opening::Ellipse { length_m, width_m } => ellipse(length_m, width_m) * az,
         Opening::VerticalEllipse { width_m, height_m } => ellipse(width_m, height_m) * ax,
-        Opening::Box(Extent3 {
-            length_m,
-            width_m,
-            height_m,
-        }) => length_m * width_m * az + width_m * height_m * ax + length_m * height_m * ay,
-        Opening::Cylinder(CylinderShape {
-            axis,
-            length_m,
-            diameter_a_m,
-            diameter_b_m,
-        }) => {
+        Opening::Box(e) => e.length_m * e.width_m * az + e.width_m * e.height_m * ax + e.length_m * e.height_m * ay,
+        Opening::Cylinder(cyl) => {
             // Along the axis: the elliptic end; across it: the side's shadow (length × the
             // ellipse's width across the view), for a circular section d·L·sin(angle to axis).
-            let (along, across) = match axis {
-                0 => (ax, (d.y * diameter_b_m).hypot(d.z * diameter_a_m)),
-                1 => (ay, (d.x * diameter_b_m).hypot(d.z * diameter_a_m)),
-                _ => (az, (d.x * diameter_b_m).hypot(d.y * diameter_a_m)),
+            let (along, across) = match cyl.axis {
+                0 => (ax, (d.y * cyl.diameter_b_m).hypot(d.z * cyl.diameter_a_m)),
+                1 => (ay, (d.x * cyl.diameter_b_m).hypot(d.z * cyl.diameter_a_m)),
+                _ => (az, (d.x * cyl.diameter_b_m).hypot(d.y * cyl.diameter_a_m)),
             };
-            ellipse(diameter_a_m, diameter_b_m) * along + length_m * across
+            ellipse(cyl.diameter_a_m, cyl.diameter_b_m) * along + cyl.length_m * across
         }
-        Opening::Ellipsoid(Extent3 {
-            length_m,
-            width_m,
-            height_m,
-        }) => {
-            let (a, b, c) = (length_m / 2.0, width_m / 2.0, height_m / 2.0);
+        Opening::Ellipsoid(e) => {
+            let (a, b, c) = (e.length_m / 2.0, e.width_m / 2.0, e.height_m / 2.0);
             std::f64::consts::PI * ((b * c * d.x).powi(2) + (a * c * d.y).powi(2) + (a * b * d.z).powi(2)).sqrt()
         }
         Opening::LdtArea {
@@ -212,6 +199,7 @@ pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, String> {
 mod tests {
     use super::*;
     use crate::model::Symmetry;
+    use crate::scene::opening::{CylinderShape, Extent3};
 
     /// A Lambertian emitter of uniform luminance L over a flat area A has
     /// I(γ) = L·A·cos γ, so the table must read L at every angle (the

@@ -226,26 +226,12 @@ impl Opening {
                 vec![length_m, width_m]
             }
             Opening::VerticalEllipse { width_m, height_m } => vec![width_m, height_m],
-            Opening::Box(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            })
-            | Opening::Ellipsoid(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => vec![length_m, width_m, height_m],
-            Opening::Cylinder(CylinderShape {
-                axis,
-                length_m,
-                diameter_a_m,
-                diameter_b_m,
-            }) => {
-                if axis > 2 {
-                    return Err(format!("cylinder axis {axis}: expected 0 (x), 1 (y) or 2 (z)"));
+            Opening::Box(e) | Opening::Ellipsoid(e) => vec![e.length_m, e.width_m, e.height_m],
+            Opening::Cylinder(cyl) => {
+                if cyl.axis > 2 {
+                    return Err(format!("cylinder axis {}: expected 0 (x), 1 (y) or 2 (z)", cyl.axis));
                 }
-                vec![length_m, diameter_a_m, diameter_b_m]
+                vec![cyl.length_m, cyl.diameter_a_m, cyl.diameter_b_m]
             }
             Opening::LdtArea {
                 length_m,
@@ -271,22 +257,14 @@ impl Opening {
             Opening::Rectangle { length_m, width_m } => length_m.hypot(width_m),
             Opening::Ellipse { length_m, width_m } => length_m.max(width_m),
             Opening::VerticalEllipse { width_m, height_m } => width_m.max(height_m),
-            Opening::Box(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => DVec3::new(length_m, width_m, height_m).length(),
+            Opening::Box(e) => DVec3::new(e.length_m, e.width_m, e.height_m).length(),
             Opening::Cylinder(CylinderShape {
                 length_m,
                 diameter_a_m,
                 diameter_b_m,
                 ..
             }) => length_m.hypot(diameter_a_m.max(diameter_b_m)),
-            Opening::Ellipsoid(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => length_m.max(width_m).max(height_m),
+            Opening::Ellipsoid(e) => e.length_m.max(e.width_m).max(e.height_m),
             Opening::LdtArea {
                 length_m,
                 width_m,
@@ -320,29 +298,18 @@ impl Opening {
             Opening::VerticalEllipse { width_m, height_m } => {
                 p.x.abs() <= tol && in_ellipse(p.y, p.z, width_m, height_m)
             }
-            Opening::Box(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => within(p.x, length_m) && within(p.y, width_m) && within(p.z, height_m),
-            Opening::Cylinder(CylinderShape {
-                axis,
-                length_m,
-                diameter_a_m,
-                diameter_b_m,
-            }) => {
-                let (along, a, b) = cylinder_coords(axis, p);
-                within(along, length_m) && in_ellipse(a, b, diameter_a_m, diameter_b_m)
+            Opening::Box(e) => within(p.x, e.length_m) && within(p.y, e.width_m) && within(p.z, e.height_m),
+            Opening::Cylinder(cyl) => {
+                let (along, a, b) = cylinder_coords(cyl.axis, p);
+                within(along, cyl.length_m) && in_ellipse(a, b, cyl.diameter_a_m, cyl.diameter_b_m)
             }
-            Opening::Ellipsoid(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => {
-                length_m > 0.0
-                    && width_m > 0.0
-                    && height_m > 0.0
-                    && (2.0 * p.x / length_m).powi(2) + (2.0 * p.y / width_m).powi(2) + (2.0 * p.z / height_m).powi(2)
+            Opening::Ellipsoid(e) => {
+                e.length_m > 0.0
+                    && e.width_m > 0.0
+                    && e.height_m > 0.0
+                    && (2.0 * p.x / e.length_m).powi(2)
+                        + (2.0 * p.y / e.width_m).powi(2)
+                        + (2.0 * p.z / e.height_m).powi(2)
                         <= 1.0 + 1e-12
             }
             Opening::LdtArea {
@@ -391,35 +358,26 @@ impl Opening {
                     out.push((DVec3::new(0.0, a * width_m / 2.0, b * height_m / 2.0), w));
                 }
             }
-            Opening::Box(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => {
+            Opening::Box(e) => {
                 for i in 0..n {
                     for j in 0..n {
                         for k in 0..n {
                             let p = DVec3::new(
-                                (mid(i, n) - 0.5) * length_m,
-                                (mid(j, n) - 0.5) * width_m,
-                                (mid(k, n) - 0.5) * height_m,
+                                (mid(i, n) - 0.5) * e.length_m,
+                                (mid(j, n) - 0.5) * e.width_m,
+                                (mid(k, n) - 0.5) * e.height_m,
                             );
                             out.push((p, 1.0));
                         }
                     }
                 }
             }
-            Opening::Cylinder(CylinderShape {
-                axis,
-                length_m,
-                diameter_a_m,
-                diameter_b_m,
-            }) => {
+            Opening::Cylinder(cyl) => {
                 for (a, b, w) in disk_points(n) {
                     for k in 0..n {
-                        let along = (mid(k, n) - 0.5) * length_m;
-                        let (a, b) = (a * diameter_a_m / 2.0, b * diameter_b_m / 2.0);
-                        let p = match axis {
+                        let along = (mid(k, n) - 0.5) * cyl.length_m;
+                        let (a, b) = (a * cyl.diameter_a_m / 2.0, b * cyl.diameter_b_m / 2.0);
+                        let p = match cyl.axis {
                             0 => DVec3::new(along, a, b),
                             1 => DVec3::new(a, along, b),
                             _ => DVec3::new(a, b, along),
@@ -428,11 +386,7 @@ impl Opening {
                     }
                 }
             }
-            Opening::Ellipsoid(Extent3 {
-                length_m,
-                width_m,
-                height_m,
-            }) => {
+            Opening::Ellipsoid(e) => {
                 // Equal-volume cells: uniform in r³, cos θ and φ.
                 for i in 0..n {
                     let r = mid(i, n).cbrt();
@@ -442,7 +396,7 @@ impl Opening {
                         for k in 0..4 * n {
                             let (sp, cp) = crate::model::frame::sin_cos_deg(360.0 * mid(k, 4 * n));
                             let u = DVec3::new(st * cp, st * sp, ct) * r;
-                            out.push((u * DVec3::new(length_m, width_m, height_m) / 2.0, 1.0));
+                            out.push((u * DVec3::new(e.length_m, e.width_m, e.height_m) / 2.0, 1.0));
                         }
                     }
                 }
