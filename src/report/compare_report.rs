@@ -81,7 +81,7 @@ fn header(c: &Comparison) -> Vec<String> {
     let solids = match short.is_empty() {
         true => solids,
         false => format!(
-            "{solids}, NOT reached by {} (a jump in the field or the point budget stopped the refinement)",
+            "{solids}, NOT reached by {} (a jump in the field, the minimum step or the point budget stopped the refinement)",
             short.join(", ")
         ),
     };
