@@ -198,12 +198,18 @@ fn compare_of_a_rotational_synth_uses_profiles_and_agrees_with_meshes() {
     assert!(fast.solid_deviation_cd.unwrap() <= tol);
     for (p, m) in fast.results.iter().zip(&meshes.results) {
         assert_eq!(p.name, m.name);
-        let on_profile = p.name != "measured";
-        assert_eq!(p.profile_segments.is_some(), on_profile, "{}", p.name);
+        // Every row of rotational data on profiles, the measured one too (its solid of
+        // revolution: the polyline through the measured points).
+        assert!(p.profile_segments.is_some() && p.triangles == 0, "{}", p.name);
         assert!(m.profile_segments.is_none() && m.triangles > 0);
         assert!(p.hausdorff_cd.is_finite() && p.radial_bound_cd.is_finite());
-        if !on_profile {
-            continue; // the measured solids differ (72 expanded planes vs 4 planes)
+        if p.name == "measured" {
+            assert_eq!(p.profile_segments, Some(d.n_gamma() - 1));
+            // The measured points lie on the truth: the revolved polyline is within the
+            // largest chord sag of the truth's solid, which the four-plane Delaunay solid
+            // (facets in C as well) cannot beat.
+            assert!(p.hausdorff_cd <= m.hausdorff_cd + 1e-9, "{p:?} vs {m:?}");
+            continue; // the measured solids differ (a solid of revolution vs 4 planes)
         }
         // Both certified intervals hold the fields' H up to each solid's deviation from its
         // field (at most SLACK x tol, see above, for each of the two solids of each pair).
@@ -217,6 +223,59 @@ fn compare_of_a_rotational_synth_uses_profiles_and_agrees_with_meshes() {
         );
         assert!((p.radial_max_cd - m.radial_max_cd).abs() <= 1e-9 * 1000.0, "{}", p.name);
     }
+}
+
+/// Bounded work (issue 12, fuzz finding): a jump along a tilted curve would
+/// refine every row and column to the minimum step; a tiny tolerance would
+/// refine to the point limit. Each stops within its bound and says what
+/// stopped it, with the deviation actually reached.
+#[test]
+fn refinement_work_is_bounded_and_the_stop_is_reported() {
+    use photosolid::model::frame::direction;
+    use photosolid::solid::Stop;
+    // A spot cone of 30° about a tilted axis: a jump no halving reduces.
+    let axis = direction(40.0, 35.0);
+    let cone = |c: f64, g: f64| {
+        if direction(c, g).dot(axis) > 30f64.to_radians().cos() {
+            1000.0
+        } else {
+            100.0
+        }
+    };
+    let c: Vec<f64> = (0..24).map(|k| 15.0 * k as f64).collect();
+    let d = sampled(&cone, c, gammas(5.0));
+    let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(0.1));
+    let a = adaptive_grid(&cone, &SolidGrid::knots(&d).unwrap(), &opts).unwrap();
+    let points = a.grid.c_angles_deg().len() * a.grid.gamma_angles_deg().len();
+    assert_eq!(a.stop, Stop::Stalled, "{}", a.stop);
+    assert!(!a.reached && a.tested_deviation_cd > a.tolerance_cd, "{a:?}");
+    // The jump is half the step (450 cd) at a chord across it; nothing was hidden.
+    assert!(a.tested_deviation_cd > 100.0 && a.tested_deviation_cd.is_finite());
+    assert!(points <= opts.max_points / 16, "{points} points");
+
+    // A tolerance of 1e-9 % on a smooth lobe, with a small budget: the point limit.
+    let lobe = |c: f64, g: f64| 1000.0 * photosolid::model::frame::cos_deg(g).max(0.0).powi(3) + 10.0 + c / 360.0;
+    let d = sampled(&lobe, vec![0.0, 90.0, 180.0, 270.0], gammas(10.0));
+    let small = AdaptiveOptions {
+        max_points: 20_000,
+        ..AdaptiveOptions::new(Tolerance::PercentOfPeak(1e-9))
+    };
+    let a = adaptive_grid(&lobe, &SolidGrid::knots(&d).unwrap(), &small).unwrap();
+    let points = a.grid.c_angles_deg().len() * a.grid.gamma_angles_deg().len();
+    assert_eq!(a.stop, Stop::PointLimit, "{a:?}");
+    assert!(!a.reached && a.tested_deviation_cd > a.tolerance_cd && points <= 20_000);
+    // The same on a rotational field: the chord-error planes are capped by the budget too.
+    let bw = Synth::Batwing;
+    let batwing = |c: f64, g: f64| 1000.0 * bw.relative(c, g);
+    let d = sampled(&batwing, vec![0.0], gammas(0.5));
+    let a = adaptive_grid(&batwing, &SolidGrid::knots(&d).unwrap(), &small).unwrap();
+    let points = a.grid.c_angles_deg().len() * a.grid.gamma_angles_deg().len();
+    assert!(
+        !a.reached && a.stop != Stop::Reached && points <= 20_000,
+        "{points} points, {}",
+        a.stop
+    );
+    assert!(a.tested_deviation_cd > a.tolerance_cd && a.tested_deviation_cd.is_finite());
 }
 
 mod common;

@@ -56,3 +56,61 @@ const LDT_FIRST_PLANE_NEAR_ZERO: &[u8] = b"m\n1\n0\n2\n0\n2\n0\n\n\n\n\n\n0\n0\n
 fn ies_writer_does_not_duplicate_a_near_zero_first_plane() {
     assert_eq!(reader_check(LDT_FIRST_PLANE_NEAR_ZERO, Format::Ldt), 2);
 }
+
+/// pipeline (and `photosolid compare FILE` with its defaults): a 2 x 5 Type B
+/// file took over 20 s. Its reconstructions jump (the fit's spot cone, the
+/// converted grid at γ = 90°), and the adaptive solids refined whole rows and
+/// columns down to the 0.05° minimum step: the fitted-gl solid alone had
+/// 1,274,976 triangles. Fixed: a halving that leaves an interval's deviation
+/// where it was stops (twice in a row), every solid has a point budget, and each
+/// row says whether its tolerance was reached.
+const IES_TYPE_B_2X5: &[u8] = b"IESNA91\r\nTILT=NONE\r\n1 0 1 2 5 2 1 0 0 0\r\n1 1 0\r\n-90 90\r\n-90 -45 0 45 90\r\n0.1 0.2\r\n0.3 0.4\r\n0.5 0.6\r\n0.7 0.8\r\n0.9 1.0\r\n";
+
+#[test]
+fn compare_with_defaults_does_bounded_work_and_says_what_it_reached() {
+    use photosolid::compare::{compare, CompareOptions, SOLID_MAX_POINTS};
+    assert_eq!(reader_check(IES_TYPE_B_2X5, Format::Ies), 2);
+    let lum = photosolid::formats::parse(
+        IES_TYPE_B_2X5,
+        Path::new("/nonexistent-fuzz-dir/regression.ies"),
+        Format::Ies,
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let opts = CompareOptions {
+        timing_samples: 100,
+        timing_repeats: 1,
+        ..CompareOptions::default()
+    };
+    let c = compare(lum.distribution(), None, &opts).unwrap();
+    assert_eq!(c.reference_kind, "withheld");
+    let tol = c.solid_tolerance_cd.expect("adaptive solids by default");
+    let json = serde_json::to_value(&c).unwrap();
+    for (row, value) in c.results.iter().zip(json["results"].as_array().unwrap()) {
+        assert!(non_finite_in_debug(&format!("{row:?}")).is_empty(), "{row:?}");
+        assert!(
+            row.triangles <= 2 * SOLID_MAX_POINTS + 2,
+            "{}: {}",
+            row.name,
+            row.triangles
+        );
+        match row.solid_deviation_cd {
+            None => assert_eq!(row.name, "measured"),
+            // Honest: reached exactly when the deviation reached is within the tolerance.
+            Some(dev) => {
+                assert_eq!(row.solid_tolerance_reached, Some(dev <= tol), "{}", row.name);
+                assert_eq!(value["solid_tolerance_reached"], dev <= tol, "{}", row.name);
+                assert_eq!(value["solid_deviation_cd"], dev, "{}", row.name);
+            }
+        }
+    }
+    // The fit's cone is a jump: not reached, said so, and refined only a little.
+    let fit = c.results.iter().find(|r| r.name == "fitted-gl").unwrap();
+    assert_eq!(fit.solid_tolerance_reached, Some(false), "{fit:?}");
+    assert!(fit.solid_deviation_cd.unwrap() > 10.0 * tol, "{fit:?}");
+    assert!(
+        fit.triangles < 100_000,
+        "{} triangles (1,274,976 before the fix)",
+        fit.triangles
+    );
+}

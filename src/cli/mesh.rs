@@ -82,8 +82,11 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             None => {
                 let recs = Reconstructions::new(d.clone(), &[recon])?;
                 let tolerance = Tolerance::PercentOfPeak(a.tolerance.unwrap_or(DEFAULT_TOLERANCE_PCT));
-                let (mesh, found) =
-                    Refinement::Adaptive(AdaptiveOptions::new(tolerance)).solid(&*recs.field(recon)?, d, units)?;
+                let field = recs.field(recon)?;
+                let (mesh, found) = super::with_progress("adaptive solid", |progress| {
+                    Refinement::Adaptive(AdaptiveOptions::new(tolerance))
+                        .solid_with_progress(&*field, d, units, progress)
+                })?;
                 adaptive = found;
                 mesh
             }
@@ -119,6 +122,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             "tolerance_cd": adaptive.as_ref().map(|f| f.tolerance_cd),
             "tested_deviation_cd": adaptive.as_ref().map(|f| f.tested_deviation_cd),
             "tolerance_reached": adaptive.as_ref().map(|f| f.reached),
+            "stopped_by": adaptive.as_ref().map(|f| f.stop),
         });
         outln!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
@@ -143,9 +147,9 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             f.tested_deviation_cd,
             f.tolerance_cd,
             if f.reached {
-                ""
+                String::new()
             } else {
-                " (NOT reached: the minimum step or the point limit stopped the refinement; a jump in the field?)"
+                format!(" (NOT reached: {})", f.stop)
             }
         );
     }

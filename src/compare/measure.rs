@@ -30,15 +30,19 @@ pub(crate) fn measure_field(
 ) -> ReconResult {
     let h = solid_hausdorff(solid, target.solid, target.tol_cd);
     let radial = radial_bound(&RadialMesh::new(solid), target.radial, &target.set.directions);
-    measured_row(name, field, &h, radial, target, solid.n_triangles())
+    measured_row(name, field, field, &h, radial, target, solid.n_triangles())
 }
 
 /// One row of a C-independent `field` whose profile is `own` against the
 /// reference profile `reference`: the solids of revolution's Hausdorff
 /// distance and radial bound from the profiles (see the module docs).
+/// `surface` gives the radial errors' values (the field itself, or for the
+/// measured solid of rotational data the revolution of its profile);
+/// `field` the bytes and the lookup time.
 pub(super) fn measure_profile(
     name: &str,
     field: &dyn IntensityField,
+    surface: &dyn IntensityField,
     own: &Profile,
     reference: &Profile,
     target: &FieldTarget<'_>,
@@ -51,21 +55,23 @@ pub(super) fn measure_profile(
         .par_iter()
         .map(|&(_, g)| (own.radius_at(g) - reference.radius_at(g)).abs())
         .reduce(|| 0.0, f64::max);
-    let mut row = measured_row(name, field, &h, radial, target, 0);
+    let mut row = measured_row(name, field, surface, &h, radial, target, 0);
     row.profile_segments = Some(own.n_segments());
     row
 }
 
-/// The row of `field` from its Hausdorff distance and radial bound to the target.
+/// The row of `field` from its Hausdorff distance and radial bound to the
+/// target, the radial errors from `surface`'s values.
 fn measured_row(
     name: &str,
     field: &dyn IntensityField,
+    surface: &dyn IntensityField,
     h: &Hausdorff,
     radial: f64,
     target: &FieldTarget<'_>,
     triangles: usize,
 ) -> ReconResult {
-    let av = eval_all(field, &target.set.directions);
+    let av = eval_all(surface, &target.set.directions);
     let rad = radial_errors(target.set, target.values, &av, target.i_max, target.zotti_c);
     let (ab, ba) = (h.a_to_b, h.b_to_a);
     ReconResult::new(
@@ -89,30 +95,41 @@ fn measured_row(
 
 /// The solid of reconstruction `r` of `a`: the measured solid itself, else
 /// the grid solid of `field` (already built, so a texture is not rendered
-/// twice) under `refinement`, with an adaptive solid's tested deviation (cd).
+/// twice) under `refinement`, with an adaptive solid's tested deviation (cd);
+/// each adaptive round is reported to `progress`.
 pub(crate) fn own_or_grid_solid(
     recs: &Reconstructions,
     r: Recon,
     field: &dyn IntensityField,
     a: &Distribution,
     refinement: &Refinement,
+    progress: &Progress<'_>,
 ) -> Result<(Mesh, Option<f64>), ModelError> {
     match r {
         Recon::Measured => Ok((recs.solid(r, 1)?, None)),
         _ => {
-            let (mesh, found) = refinement.solid(field, a, Units::Candela)?;
+            let (mesh, found) = refinement.solid_with_progress(field, a, Units::Candela, progress)?;
             Ok((mesh, found.map(|f| f.tested_deviation_cd)))
         }
     }
 }
 
+/// The point budget (C x γ) of each adaptive grid solid of a comparison:
+/// 2^19, about a million triangles. A comparison builds several solids (one
+/// per reconstruction and fold) and measures each; where the budget stops a
+/// refinement the row says so (`solid_tolerance_reached` false).
+pub const SOLID_MAX_POINTS: usize = 1 << 19;
+
 impl CompareOptions {
     /// How the grid solids are built for a reference of peak `i_max_cd` (cd):
     /// adaptive to `solid_tolerance` x `i_max_cd` (an absolute tolerance, the
-    /// same for every solid), or refined `factor` times.
+    /// same for every solid) within [`SOLID_MAX_POINTS`], or refined `factor` times.
     pub fn refinement(&self, i_max_cd: f64) -> Refinement {
         match self.solid_tolerance {
-            Some(f) => Refinement::Adaptive(AdaptiveOptions::new(Tolerance::Candela(f.max(0.0) * i_max_cd))),
+            Some(f) => Refinement::Adaptive(AdaptiveOptions {
+                max_points: SOLID_MAX_POINTS,
+                ..AdaptiveOptions::new(Tolerance::Candela(f.max(0.0) * i_max_cd))
+            }),
             None => Refinement::Factor(self.factor),
         }
     }

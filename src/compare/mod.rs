@@ -38,10 +38,20 @@
 //! measured on the meridian profiles ([`crate::metrics::profile`]: exactly
 //! the distance of the solids of revolution, no C facets), the profile's γ
 //! angles refined to the same tolerance; `profile_segments` says so and
-//! `triangles` is 0. Other rows (the measured solid, a fit with a tilted
-//! axis) use meshes as before. As a field (radial metrics, plots),
+//! `triangles` is 0. The measured row of rotational data is measured the
+//! same way: its solid is the solid of revolution of the measured profile
+//! (the polyline through the measured points, one segment per γ interval),
+//! and its radial errors are those of that solid's radial function (the
+//! expanded Delaunay solid of [`crate::solid::measured_solid`] adds facets
+//! in C that the data does not have). Other rows (a fit with a tilted axis)
+//! use meshes as before. As a field elsewhere (plots, `withheld`),
 //! "measured" is the radial function of the measured solid (exact at the
-//! measured directions, linear on its triangles). The radial bound
+//! measured directions, linear on its triangles).
+//!
+//! Each adaptive solid is refined within [`SOLID_MAX_POINTS`] and stops
+//! where halving no longer reduces a deviation (a jump,
+//! [`crate::solid::adaptive`]); `solid_tolerance_reached` says per row
+//! whether its `solid_deviation_cd` is within `solid_tolerance_cd`. The radial bound
 //! `radial_bound_cd` is max |r_A(ω) − r_B(ω)| over the direction set of the
 //! two *meshes'* radial functions (ray cast), so it bounds the meshes'
 //! Hausdorff distance up to the set's density.
@@ -63,6 +73,7 @@ use serde::Serialize;
 
 pub use align::{best_alignment, Alignment};
 use measure::measure_profile;
+pub use measure::SOLID_MAX_POINTS;
 pub(crate) use measure::{measure_field, own_or_grid_solid, FieldTarget};
 pub(crate) use plot_data::plot_data;
 pub use plot_data::{ErrorMap, PlotData, PolarPlane};
@@ -350,6 +361,11 @@ pub struct ReconResult {
     /// jumps (a cut-off, the nearest filter): refined to the minimum step.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solid_deviation_cd: Option<f64>,
+    /// Whether `solid_deviation_cd` is within `solid_tolerance_cd` (false
+    /// where a jump, the minimum step or the point budget stopped the
+    /// refinement: [`crate::solid::adaptive::Stop`]); absent with it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid_tolerance_reached: Option<bool>,
     /// On the Pareto front of (time per sample, bytes, H).
     pub pareto: bool,
 }
@@ -400,6 +416,7 @@ impl ReconResult {
             triangles,
             profile_segments: None,
             solid_deviation_cd: None,
+            solid_tolerance_reached: None,
             pareto: false,
         }
     }
@@ -439,6 +456,8 @@ pub struct Comparison {
     /// from its field at the tested points, in `units` (null: fixed
     /// `factor`, or no reference solid); each row has its own.
     pub solid_deviation_cd: Option<f64>,
+    /// Whether the reference's `solid_deviation_cd` is within `solid_tolerance_cd` (null with it).
+    pub solid_tolerance_reached: Option<bool>,
     /// Reference I_max, in `units`.
     pub i_max_cd: f64,
     /// Triangles of the reference solid (0 for `withheld`).
@@ -566,7 +585,9 @@ pub fn compare_with_progress(
                 ..truth
             };
             let refinement = opts.refinement(a.max_cd());
-            let (solid, found) = refinement.solid(&truth, &a, Units::Candela)?;
+            let (solid, found) = refinement.solid_with_progress(&truth, &a, Units::Candela, &|_, _, what| {
+                progress(0, opts.recons.len(), &format!("reference: {what}"))
+            })?;
             let reference = FieldReference {
                 label: format!("truth ({})", truth),
                 kind: "truth",
@@ -595,7 +616,9 @@ pub fn compare_with_progress(
                 opts.recons.iter().copied().filter(|x| *x != r).collect()
             };
             let refinement = opts.refinement(ref_dist.max_cd());
-            let (solid, deviation) = own_or_grid_solid(&refs, r, &*field, ref_dist, &refinement)?;
+            let (solid, deviation) = own_or_grid_solid(&refs, r, &*field, ref_dist, &refinement, &|_, _, what| {
+                progress(0, opts.recons.len(), &format!("reference: {what}"))
+            })?;
             let reference = FieldReference {
                 label,
                 kind,
@@ -669,24 +692,44 @@ fn compare_fields(
     };
     let mut results = Vec::with_capacity(opts.recons.len());
     let mut fields = Vec::with_capacity(opts.recons.len());
+    let solid_tol_cd = opts.solid_tolerance.map(|f| f.max(0.0) * i_max);
     for (i, &r) in opts.recons.iter().enumerate() {
         progress(i, opts.recons.len(), &r.to_string());
+        let row_progress = |_: usize, _: usize, what: &str| progress(i, opts.recons.len(), &format!("{r}: {what}"));
         let field = recs.field(r)?;
+        // The measured solid of rotational data is the solid of revolution of its measured
+        // profile (the measured field is exact at the measured directions, so the profile at
+        // the file's γ angles passes through every measured point); a C-independent
+        // reconstruction's profile is refined to the solid tolerance.
         let on_profile = ref_profile
             .as_ref()
-            .filter(|_| r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles_deg()));
+            .filter(|_| r == Recon::Measured || profile::is_c_independent(&*field, start.gamma_angles_deg()));
         let (mut row, dev) = match on_profile {
+            Some(rp) if r == Recon::Measured => {
+                let own = Profile::of_field(&*field, a.gamma_angles_deg());
+                let revolved = |_c: f64, g: f64| own.radius_at(g);
+                let row = measure_profile(&r.to_string(), &*field, &revolved, &own, rp, &target);
+                (row, None)
+            }
             Some(rp) => {
                 let (g, dev) = refinement.profile_gammas(&*field, a)?;
-                let row = measure_profile(&r.to_string(), &*field, &Profile::of_field(&*field, &g), rp, &target);
+                let row = measure_profile(
+                    &r.to_string(),
+                    &*field,
+                    &*field,
+                    &Profile::of_field(&*field, &g),
+                    rp,
+                    &target,
+                );
                 (row, dev)
             }
             None => {
-                let (solid, dev) = own_or_grid_solid(&recs, r, &*field, a, &refinement)?;
+                let (solid, dev) = own_or_grid_solid(&recs, r, &*field, a, &refinement, &row_progress)?;
                 (measure_field(&r.to_string(), &*field, &solid, &target), dev)
             }
         };
         row.solid_deviation_cd = dev;
+        row.solid_tolerance_reached = dev.zip(solid_tol_cd).map(|(d, t)| d <= t);
         results.push(row);
         fields.push((r.to_string(), field));
     }
@@ -714,8 +757,9 @@ fn compare_fields(
         tolerance: opts.tolerance,
         tolerance_cd: tol,
         factor: opts.factor,
-        solid_tolerance_cd: opts.solid_tolerance.map(|f| f * i_max),
+        solid_tolerance_cd: solid_tol_cd,
         solid_deviation_cd: deviation,
+        solid_tolerance_reached: deviation.zip(solid_tol_cd).map(|(d, t)| d <= t),
         i_max_cd: i_max,
         reference_triangles: reference.solid.n_triangles(),
         zotti_c: opts.zotti_c,

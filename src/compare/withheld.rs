@@ -68,8 +68,10 @@ pub(super) fn compare_withheld(
     let refinement = opts.refinement(i_max);
     let rotational = a.symmetry() == crate::model::Symmetry::Rotational;
     let mut results = Vec::with_capacity(opts.recons.len());
+    let solid_tol_cd = opts.solid_tolerance.map(|f| f.max(0.0) * i_max);
     for (i, &r) in opts.recons.iter().enumerate() {
         progress(i, opts.recons.len(), &r.to_string());
+        let row_progress = |_: usize, _: usize, what: &str| progress(i, opts.recons.len(), &format!("{r}: {what}"));
         let mut recon_all = Vec::with_capacity(m_all.len());
         let mut dist_all = Vec::with_capacity(m_all.len());
         let mut triangles = 0;
@@ -114,7 +116,7 @@ pub(super) fn compare_withheld(
                         dist_all.extend(profile::distances_3d(&points, &own));
                         continue;
                     }
-                    match own_or_grid_solid(recs, r, &*field, &fold.kept, &refinement) {
+                    match own_or_grid_solid(recs, r, &*field, &fold.kept, &refinement, &row_progress) {
                         Ok((solid, dev)) => {
                             if let Some(d) = dev {
                                 deviation = Some(deviation.map_or(d, |x| x.max(d)));
@@ -162,6 +164,7 @@ pub(super) fn compare_withheld(
             triangles,
         );
         row.solid_deviation_cd = deviation;
+        row.solid_tolerance_reached = deviation.zip(solid_tol_cd).map(|(d, t)| d <= t);
         row.profile_segments = segments;
         results.push(row);
     }
@@ -193,8 +196,9 @@ pub(super) fn compare_withheld(
         tolerance: opts.tolerance,
         tolerance_cd: 0.0,
         factor: opts.factor,
-        solid_tolerance_cd: opts.solid_tolerance.map(|f| f * i_max),
+        solid_tolerance_cd: solid_tol_cd,
         solid_deviation_cd: None,
+        solid_tolerance_reached: None,
         i_max_cd: i_max,
         reference_triangles: 0,
         zotti_c: opts.zotti_c,

@@ -52,6 +52,39 @@ fn header(c: &Comparison) -> Vec<String> {
         ),
         _ => format!("grid solids refined x{}", c.factor),
     };
+    // Say which solids did not get there (a jump in the field, the point budget).
+    let short: Vec<String> = c
+        .solid_tolerance_reached
+        .filter(|r| !r)
+        .map(|_| {
+            format!(
+                "the reference ({} {})",
+                num(c.solid_deviation_cd.unwrap_or(f64::NAN)),
+                c.units
+            )
+        })
+        .into_iter()
+        .chain(
+            c.results
+                .iter()
+                .filter(|r| r.solid_tolerance_reached == Some(false))
+                .map(|r| {
+                    format!(
+                        "{} ({} {})",
+                        r.name,
+                        num(r.solid_deviation_cd.unwrap_or(f64::NAN)),
+                        c.units
+                    )
+                }),
+        )
+        .collect();
+    let solids = match short.is_empty() {
+        true => solids,
+        false => format!(
+            "{solids}, NOT reached by {} (a jump in the field, the minimum step or the point budget stopped the refinement)",
+            short.join(", ")
+        ),
+    };
     l.push(format!(
         "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {} % of I_max = {} {}",
         c.normalize,

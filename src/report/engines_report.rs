@@ -29,6 +29,7 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         factor: r.factor,
         solid_tolerance_cd: None,
         solid_deviation_cd: None,
+        solid_tolerance_reached: None,
         i_max_cd: r.i_max_cd,
         reference_triangles: 0,
         zotti_c: crate::metrics::ZOTTI_C,

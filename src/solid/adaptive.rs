@@ -49,6 +49,25 @@
 //! Features narrower than the start grid's spacing that leave no trace at
 //! any tested point can be missed: start from the data's own knots
 //! ([`SolidGrid::knots`]).
+//!
+//! # Bounded work
+//! A jump in the field (a cut-off, a spot's cone, the nearest filter) cannot
+//! be met by a continuous mesh: halving an interval across it leaves the
+//! deviation where it was. Refined as whole rows and columns, a jump along
+//! a tilted curve would otherwise drive every row and column down to the
+//! minimum step (7200 x 3600 points at 0.05°). Three bounds stop it, each
+//! checked before the next grid is allocated, and each reported
+//! ([`AdaptiveGrid::stop`], `reached` false, the deviation actually reached):
+//! - an interval whose tested deviation stayed above [`STALL_RATIO`] of its
+//!   parent's (and above twice the tolerance) on [`STALLS`] successive
+//!   halvings is not halved again (a
+//!   smooth field's deviation falls to about 1/4 per halving, a kink's to
+//!   1/2, a jump's not at all; a feature narrower than the interval looks
+//!   like a jump until the interval is narrower than it): [`Stop::Stalled`];
+//! - the point budget [`AdaptiveOptions::max_points`]: [`Stop::PointLimit`];
+//! - the resolution of the mesh's `f32` vertices: a tolerance under
+//!   [`RESOLUTION_FLOOR`] x I_max is refined only down to that floor:
+//!   [`Stop::Resolution`].
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -56,6 +75,7 @@ use rayon::prelude::*;
 use super::grid::{grid_radii, quad_split, vertex, GridRadii, MAX_GRID_POINTS};
 use super::mesh::p64;
 use super::{SolidGrid, Units, ZERO_FRACTION};
+use crate::compare::Progress;
 use crate::error::ModelError;
 use crate::model::frame::unit_angles;
 use crate::model::{Distribution, IntensityField, ANGLE_EPS};
@@ -92,6 +112,52 @@ impl std::fmt::Display for Tolerance {
 /// Default tolerance of the `mesh` command: 0.1 % of I_max.
 pub const DEFAULT_TOLERANCE_PCT: f64 = 0.1;
 
+/// Default point budget of an adaptive grid (C x γ points): 2^21, about
+/// 4 M triangles (about 100 MB of mesh). Checked before a grid is allocated.
+pub const DEFAULT_MAX_POINTS: usize = 1 << 21;
+
+/// A halving that leaves an interval's tested deviation above this fraction
+/// of its parent's is a stall (see the module docs: smooth fields fall to
+/// about 1/4 per halving, kinks to 1/2, jumps stay).
+pub const STALL_RATIO: f64 = 0.75;
+
+/// Successive stalled halvings after which an interval is left as it is.
+pub const STALLS: u8 = 2;
+
+/// The smallest tolerance refined for, as a fraction of I_max: 8 units in
+/// the last place of the mesh's `f32` coordinates (about 9.5e-7). Below it
+/// the tested deviations are rounding of the vertices, not geometry.
+pub const RESOLUTION_FLOOR: f64 = 8.0 * f32::EPSILON as f64;
+
+/// What ended an adaptive refinement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Stop {
+    /// Every tested point is within the tolerance.
+    Reached,
+    /// Every offending interval is at the minimum step.
+    MinStep,
+    /// Every offending interval that could still be halved kept its deviation
+    /// on the last halving (a jump in the field), or is at the minimum step.
+    Stalled,
+    /// The next grid would exceed [`AdaptiveOptions::max_points`].
+    PointLimit,
+    /// The tolerance is below [`RESOLUTION_FLOOR`] x I_max, and the floor is reached.
+    Resolution,
+}
+
+impl std::fmt::Display for Stop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Stop::Reached => "tolerance reached",
+            Stop::MinStep => "the minimum step stopped the refinement",
+            Stop::Stalled => "halving stopped reducing the deviation (a jump in the field?)",
+            Stop::PointLimit => "the point budget stopped the refinement",
+            Stop::Resolution => "the tolerance is below the f32 resolution of the mesh's vertices",
+        })
+    }
+}
+
 /// Options of [`adaptive_grid`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AdaptiveOptions {
@@ -101,7 +167,8 @@ pub struct AdaptiveOptions {
     /// (a jump in the field, e.g. the nearest filter's, cannot be met by a
     /// continuous mesh: it is refined down to this step and reported as not reached).
     pub min_step_deg: f64,
-    /// Largest number of grid points (C x γ). Default: [`MAX_GRID_POINTS`].
+    /// Largest number of grid points (C x γ), checked before a grid is
+    /// allocated. Default: [`DEFAULT_MAX_POINTS`] (at most [`MAX_GRID_POINTS`]).
     pub max_points: usize,
 }
 
@@ -110,7 +177,7 @@ impl Default for AdaptiveOptions {
         Self {
             tolerance: Tolerance::PercentOfPeak(DEFAULT_TOLERANCE_PCT),
             min_step_deg: 0.05,
-            max_points: MAX_GRID_POINTS,
+            max_points: DEFAULT_MAX_POINTS,
         }
     }
 }
@@ -137,6 +204,8 @@ pub struct AdaptiveGrid {
     /// Whether every tested point is within the tolerance (false when the
     /// minimum step or the point limit stopped the refinement first).
     pub reached: bool,
+    /// What ended the refinement ([`Stop::Reached`] exactly when `reached`).
+    pub stop: Stop,
     /// Refinement rounds made.
     pub rounds: usize,
 }
@@ -159,10 +228,21 @@ impl Refinement {
         field: &dyn IntensityField,
         d: &Distribution,
     ) -> Result<(SolidGrid, Option<AdaptiveGrid>), ModelError> {
+        self.grid_with_progress(field, d, &|_, _, _| {})
+    }
+
+    /// [`Refinement::grid`], reporting each adaptive round to `progress`
+    /// (see [`adaptive_grid_with_progress`]).
+    pub fn grid_with_progress(
+        &self,
+        field: &dyn IntensityField,
+        d: &Distribution,
+        progress: &Progress<'_>,
+    ) -> Result<(SolidGrid, Option<AdaptiveGrid>), ModelError> {
         match self {
             Refinement::Factor(f) => Ok((SolidGrid::refined(d, *f)?, None)),
             Refinement::Adaptive(o) => {
-                let a = adaptive_grid(field, &SolidGrid::knots(d)?, o)?;
+                let a = adaptive_grid_with_progress(field, &SolidGrid::knots(d)?, o, progress)?;
                 Ok((a.grid.clone(), Some(a)))
             }
         }
@@ -176,7 +256,18 @@ impl Refinement {
         d: &Distribution,
         units: Units,
     ) -> Result<(super::Mesh, Option<AdaptiveGrid>), ModelError> {
-        let (grid, found) = self.grid(field, d)?;
+        self.solid_with_progress(field, d, units, &|_, _, _| {})
+    }
+
+    /// [`Refinement::solid`], reporting each adaptive round to `progress`.
+    pub fn solid_with_progress(
+        &self,
+        field: &dyn IntensityField,
+        d: &Distribution,
+        units: Units,
+        progress: &Progress<'_>,
+    ) -> Result<(super::Mesh, Option<AdaptiveGrid>), ModelError> {
+        let (grid, found) = self.grid_with_progress(field, d, progress)?;
         Ok((super::grid_solid(field, &grid, units)?, found))
     }
 
@@ -225,15 +316,16 @@ enum Split {
     Gamma(usize),
 }
 
-/// A round's verdict: which intervals to halve, and the largest deviation.
+/// A round's verdict: the largest tested deviation (cd) attributed to each
+/// C and γ interval, and over all.
 struct Marks {
-    c: Vec<bool>,
-    gamma: Vec<bool>,
+    c: Vec<f64>,
+    gamma: Vec<f64>,
     worst: f64,
 }
 
 /// Refine `start` until the grid solid of `field` is within the tolerance
-/// at every tested point (see the module docs), or the limits stop it.
+/// at every tested point (see the module docs), or a bound stops it.
 ///
 /// # Errors
 /// As [`grid_solid`](super::grid_solid): an all-zero field, NaN samples.
@@ -242,56 +334,152 @@ pub fn adaptive_grid(
     start: &SolidGrid,
     opts: &AdaptiveOptions,
 ) -> Result<AdaptiveGrid, ModelError> {
+    adaptive_grid_with_progress(field, start, opts, &|_, _, _| {})
+}
+
+/// [`adaptive_grid`], calling `progress(points, max_points, what)` after
+/// each round (`points`: the grid's C x γ points).
+pub fn adaptive_grid_with_progress(
+    field: &dyn IntensityField,
+    start: &SolidGrid,
+    opts: &AdaptiveOptions,
+    progress: &Progress<'_>,
+) -> Result<AdaptiveGrid, ModelError> {
     let min_step = opts.min_step_deg.max(1e-6);
+    let max_points = opts.max_points.clamp(1, MAX_GRID_POINTS);
     let mut grid = start.clone();
-    let mut tolerance_cd = f64::NAN;
     // A C-independent field: the C planes follow from the circle's chord error alone.
     let c_fixed = crate::metrics::profile::is_c_independent(field, start.gamma_angles_deg());
     if c_fixed {
         let radii = grid_radii(field, &grid, Units::Candela)?;
-        let tol = opts.tolerance.candela(peak_of(&grid, &radii)).max(0.0);
-        grid = SolidGrid::new(rotational_planes(&grid, &radii, tol), grid.gamma_angles_deg().to_vec())?;
+        let peak = peak_of(&grid, &radii);
+        let tol = opts.tolerance.candela(peak).max(RESOLUTION_FLOOR * peak);
+        // Within the point budget: the chord test then reports what the planes miss.
+        let most = (max_points / grid.gamma_angles_deg().len()).max(4);
+        grid = SolidGrid::new(
+            rotational_planes(&grid, &radii, tol, most),
+            grid.gamma_angles_deg().to_vec(),
+        )?;
     }
+    // Each interval's history: its parent's deviation (∞ for the start intervals) and stalls.
+    let mut c_parent = vec![History::START; grid.c_angles_deg().len()];
+    let mut g_parent = vec![History::START; grid.gamma_angles_deg().len()];
     for round in 1.. {
         let radii = grid_radii(field, &grid, Units::Candela)?;
         let peak = peak_of(&grid, &radii);
-        tolerance_cd = opts.tolerance.candela(peak).max(0.0);
-        let marks = test_round(field, &grid, &radii, peak, tolerance_cd, c_fixed);
-        let (c, c_cut) = halve(grid.c_angles_deg(), &marks.c, min_step, Some(360.0));
-        let (gamma, g_cut) = halve(grid.gamma_angles_deg(), &marks.gamma, min_step, None);
-        let within = marks.worst <= tolerance_cd;
-        let blocked = !within && !c_cut && !g_cut;
-        let too_many = (c.len() as u128) * (gamma.len() as u128) > opts.max_points as u128;
-        if within || blocked || too_many {
+        let tolerance_cd = opts.tolerance.candela(peak).max(0.0);
+        let refine_cd = tolerance_cd.max(RESOLUTION_FLOOR * peak);
+        let marks = test_round(field, &grid, &radii, peak, c_fixed);
+        let (c_mark, c_now, c_stalled) = verdicts(&marks.c, &c_parent, refine_cd);
+        let (g_mark, g_now, g_stalled) = verdicts(&marks.gamma, &g_parent, refine_cd);
+        let (c, c_from, c_cut) = halve(grid.c_angles_deg(), &c_mark, min_step, Some(360.0));
+        let (gamma, g_from, g_cut) = halve(grid.gamma_angles_deg(), &g_mark, min_step, None);
+        let (nc, ng) = (grid.c_angles_deg().len(), grid.gamma_angles_deg().len());
+        progress(
+            nc * ng,
+            max_points,
+            &format!(
+                "adaptive solid, round {round}: {nc} C x {ng} gamma, largest tested deviation {:.3e} cd \
+                 (tolerance {tolerance_cd:.3e} cd)",
+                marks.worst
+            ),
+        );
+        let stop = if marks.worst <= tolerance_cd {
+            Some(Stop::Reached)
+        } else if marks.worst <= refine_cd {
+            Some(Stop::Resolution)
+        } else if !c_cut && !g_cut {
+            Some(if c_stalled || g_stalled {
+                Stop::Stalled
+            } else {
+                Stop::MinStep
+            })
+        } else if (c.len() as u128) * (gamma.len() as u128) > max_points as u128 {
+            Some(Stop::PointLimit)
+        } else {
+            None
+        };
+        if let Some(stop) = stop {
             return Ok(AdaptiveGrid {
                 grid,
                 tolerance_cd,
                 tested_deviation_cd: marks.worst,
-                reached: within,
+                reached: stop == Stop::Reached,
+                stop,
                 rounds: round,
             });
         }
+        // A half remembers its parent's deviation and stalls; an interval left whole keeps its history.
+        c_parent = c_from
+            .iter()
+            .map(|&(i, cut)| if cut { c_now[i] } else { c_parent[i] })
+            .collect();
+        g_parent = g_from
+            .iter()
+            .map(|&(i, cut)| if cut { g_now[i] } else { g_parent[i] })
+            .collect();
         grid = SolidGrid::new(c, gamma)?;
     }
-    unreachable!("the loop returns: intervals halve down to the minimum step {tolerance_cd}")
+    unreachable!("the loop returns: intervals halve down to the minimum step")
+}
+
+/// An interval's refinement history.
+#[derive(Clone, Copy)]
+struct History {
+    /// The tested deviation of the interval it was halved from (cd).
+    parent_cd: f64,
+    /// Successive halvings that left the deviation where it was.
+    stalls: u8,
+}
+
+impl History {
+    const START: History = History {
+        parent_cd: f64::INFINITY,
+        stalls: 0,
+    };
+}
+
+/// Which intervals to halve: those deviating by more than `tol` (cd),
+/// unless [`STALLS`] successive halvings each left the deviation above
+/// twice the tolerance and between [`STALL_RATIO`] and 1.5 times their
+/// parent's (a jump; a deviation far above the parent's is news from the
+/// other axis' new points, not a stall).
+/// Returns the marks, each interval's history as its halves inherit it, and
+/// whether an offending interval was stopped as stalled.
+fn verdicts(dev: &[f64], parent: &[History], tol: f64) -> (Vec<bool>, Vec<History>, bool) {
+    let mut stalled = false;
+    let (marks, now) = dev
+        .iter()
+        .zip(parent)
+        .map(|(&d, h)| {
+            // Near the tolerance the tensor product's attribution (a row's largest deviation
+            // over columns that change as C is refined) can hover; a jump stands well above it.
+            let stuck = d > 2.0 * tol && d > STALL_RATIO * h.parent_cd && d <= 1.5 * h.parent_cd;
+            let stalls = if stuck { h.stalls.saturating_add(1) } else { 0 };
+            let stop = stalls >= STALLS;
+            stalled |= d > tol && stop;
+            (d > tol && !stop, History { parent_cd: d, stalls })
+        })
+        .unzip();
+    (marks, now, stalled)
 }
 
 /// Evenly spaced C planes (degrees, from 0) for a C-independent field:
 /// as many as keep the chord sag of the widest ring, `ρ (1 − cos(ΔC/2))`
 /// with ρ = r sin γ, within half the tolerance `tol` (cd), so that the γ
-/// refinement has the other half; at least 4 (no gap of 180°).
-fn rotational_planes(grid: &SolidGrid, r: &GridRadii, tol: f64) -> Vec<f64> {
+/// refinement has the other half; at least 4 (no gap of 180°), at most `most`.
+fn rotational_planes(grid: &SolidGrid, r: &GridRadii, tol: f64, most: usize) -> Vec<f64> {
     let ng = grid.gamma_angles_deg().len();
     let rho = (1..ng - 1)
         .map(|ig| r.radii[ig] * grid.gamma_angles_deg()[ig].to_radians().sin())
         .fold(0.0, f64::max);
     let n = if rho > 0.0 {
         let step = 2.0 * (1.0 - 0.5 * tol / rho).clamp(-1.0, 1.0).acos();
-        (std::f64::consts::TAU / step).ceil().min(1e6) as usize
+        (std::f64::consts::TAU / step).ceil().min(most as f64) as usize
     } else {
         4
     };
-    let n = n.max(4);
+    let n = n.clamp(4, most.max(4));
     (0..n).map(|k| k as f64 * 360.0 / n as f64).collect()
 }
 
@@ -307,12 +495,16 @@ fn peak_of(grid: &SolidGrid, r: &GridRadii) -> f64 {
 
 /// `angles` with every marked interval halved, unless it is under twice
 /// `min_step`; `period` closes the list (C: the last interval wraps to 360).
-fn halve(angles: &[f64], marked: &[bool], min_step: f64, period: Option<f64>) -> (Vec<f64>, bool) {
+/// Returns the angles, for each new interval the index of its interval in
+/// `angles` and whether that was halved, and whether anything was cut.
+fn halve(angles: &[f64], marked: &[bool], min_step: f64, period: Option<f64>) -> (Vec<f64>, Vec<(usize, bool)>, bool) {
     let n = angles.len();
     let mut out = Vec::with_capacity(2 * n);
+    let mut from = Vec::with_capacity(2 * n);
     let mut cut = false;
     for i in 0..n {
         out.push(angles[i]);
+        from.push((i, false));
         let next = match (i + 1 < n, period) {
             (true, _) => angles[i + 1],
             (false, Some(p)) => angles[0] + p,
@@ -323,24 +515,21 @@ fn halve(angles: &[f64], marked: &[bool], min_step: f64, period: Option<f64>) ->
             // The midpoint of the wrapping interval may equal 360 in floating point.
             if mid < period.unwrap_or(f64::INFINITY) {
                 out.push(mid);
+                from.push((i, true));
+                if let Some(last) = from.len().checked_sub(2) {
+                    from[last].1 = true;
+                }
                 cut = true;
             }
         }
     }
-    (out, cut)
+    (out, from, cut)
 }
 
-/// Test every quad of `grid` (see the module docs); intervals to halve.
-/// With `c_fixed` (a C-independent field: every column alike) only the
-/// first column is tested, and a C interval marked there marks them all.
-fn test_round(
-    field: &dyn IntensityField,
-    grid: &SolidGrid,
-    r: &GridRadii,
-    peak: f64,
-    tol: f64,
-    c_fixed: bool,
-) -> Marks {
+/// Test every quad of `grid` (see the module docs): the largest deviation
+/// per interval. With `c_fixed` (a C-independent field: every column alike)
+/// only the first column is tested, and its worst C interval stands for all.
+fn test_round(field: &dyn IntensityField, grid: &SolidGrid, r: &GridRadii, peak: f64, c_fixed: bool) -> Marks {
     let (cs, gs) = (grid.c_angles_deg(), grid.gamma_angles_deg());
     let (nc, ng) = (cs.len(), gs.len());
     let sc: Vec<(f64, f64)> = cs.iter().map(|c| c.to_radians().sin_cos()).collect();
@@ -428,8 +617,8 @@ fn test_round(
     let zero = (f32::MIN_POSITIVE as f64).max(ZERO_FRACTION * peak);
     let clean = |v: f64| if v < zero || v.is_nan() { 0.0 } else { v };
     let mut marks = Marks {
-        c: vec![false; nc],
-        gamma: vec![false; ng],
+        c: vec![0.0; nc],
+        gamma: vec![0.0; ng],
         worst: 0.0,
     };
     for (((p, (c, g), split), v), vm) in tests.iter().zip(values).zip(at_params) {
@@ -444,16 +633,16 @@ fn test_round(
         }
         .min(beside);
         marks.worst = marks.worst.max(dev);
-        if dev > tol {
-            match *split {
-                Split::C(i) => marks.c[i] = true,
-                Split::Gamma(i) => marks.gamma[i] = true,
-            }
-        }
+        let slot = match *split {
+            Split::C(i) => &mut marks.c[i],
+            Split::Gamma(i) => &mut marks.gamma[i],
+        };
+        *slot = slot.max(dev);
     }
-    if c_fixed && marks.c.iter().any(|&m| m) {
-        // Every column is alike: refine all of them, the planes stay evenly spaced.
-        marks.c.fill(true);
+    if c_fixed {
+        // Every column is alike: refine all of them together, the planes stay evenly spaced.
+        let worst_c = marks.c.iter().copied().fold(0.0, f64::max);
+        marks.c.fill(worst_c);
     }
     marks
 }
@@ -502,7 +691,7 @@ mod tests {
 
     #[test]
     fn halving_wraps_c_and_stops_at_the_minimum_step() {
-        let (c, cut) = halve(
+        let (c, from, cut) = halve(
             &[0.0, 90.0, 180.0, 270.0],
             &[false, true, false, true],
             1.0,
@@ -510,7 +699,11 @@ mod tests {
         );
         assert!(cut);
         assert_eq!(c, vec![0.0, 90.0, 135.0, 180.0, 270.0, 315.0]);
-        let (g, cut) = halve(&[0.0, 1.5, 180.0], &[true, false], 1.0, None);
+        assert_eq!(
+            from,
+            vec![(0, false), (1, true), (1, true), (2, false), (3, true), (3, true)]
+        );
+        let (g, _, cut) = halve(&[0.0, 1.5, 180.0], &[true, false], 1.0, None);
         assert!(!cut);
         assert_eq!(g, vec![0.0, 1.5, 180.0]);
     }

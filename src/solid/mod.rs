@@ -71,7 +71,8 @@ pub mod radial;
 pub mod topology;
 
 pub use adaptive::{
-    adaptive_grid, radial_deviation, surface_distance, AdaptiveGrid, AdaptiveOptions, Refinement, Tolerance,
+    adaptive_grid, adaptive_grid_with_progress, radial_deviation, surface_distance, AdaptiveGrid, AdaptiveOptions,
+    Refinement, Stop, Tolerance,
 };
 pub use colormap::ColorMap;
 pub use grid::{grid_solid, texture_solid, SolidGrid};
