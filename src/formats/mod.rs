@@ -369,6 +369,22 @@ pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<Str
     Ok(note)
 }
 
+/// The `negative-intensity` warning text of every reader, `None` when no
+/// value is negative. Negative values are kept as they are: files hold small
+/// negative noise around 0 from the measurement, and clamping it would change
+/// the flux. The text gives their count and the lowest, in `unit` (the
+/// values' unit as the file states them: cd, cd/klm).
+pub(crate) fn negative_intensities(values: &[f64], unit: &str) -> Option<String> {
+    let n = values.iter().filter(|&&v| v < 0.0).count();
+    (n > 0).then(|| {
+        let lowest = values.iter().copied().fold(f64::INFINITY, f64::min);
+        format!(
+            "{n} negative intensities kept as they are (lowest {} {unit})",
+            crate::error::Num(lowest)
+        )
+    })
+}
+
 /// What a file that declares a lamp flux (none for absolute photometry) and
 /// input watts, but no luminaire flux, LOR or DFF, declares (IES, TM-33).
 /// `lamp_flux_lm` in lumens, `input_watts` in watts.

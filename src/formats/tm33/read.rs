@@ -5,7 +5,7 @@ use std::path::Path;
 use roxmltree::Node;
 
 use super::Tm33Edition;
-use crate::error::{ErrorKind, Location, ParseError, Warning, WarningCode};
+use crate::error::{ErrorKind, Location, Num, ParseError, Warning, WarningCode};
 use crate::formats::scan::parse_f64;
 use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
 use crate::formats::{angles, declared_lamp_flux, ReadOptions};
@@ -49,7 +49,13 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
     let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
     if multiplier <= 0.0 {
         let node = child(block, &["Multiplier"]).unwrap_or(block);
-        return Err(error_at(path, node, ErrorKind::Invalid, "a multiplier > 0", multiplier));
+        return Err(error_at(
+            path,
+            node,
+            ErrorKind::Invalid,
+            "a multiplier > 0",
+            Num(multiplier),
+        ));
     }
     let declared_symmetry = symmetry_code(path, block)?;
     let distribution = grid(path, block, multiplier, declared_symmetry, &mut warnings)?;
@@ -290,7 +296,7 @@ fn second_value(path: &Path, p: &Point<'_, '_>) -> ParseError {
         p.node,
         ErrorKind::Invalid,
         "one IntensityData per (horz, vert)",
-        format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
+        format!("a second value at horz = {}, vert = {}", Num(p.c), Num(p.gamma)),
     )
 }
 
@@ -307,6 +313,14 @@ fn grid(
     let vs = distinct(points.iter().map(|p| p.gamma).collect());
     let (nh, nv) = (hs.len(), vs.len());
     let mut cd = complete_grid(path, block, &points, &hs, &vs)?;
+    if let Some(note) = crate::formats::negative_intensities(&cd, "cd") {
+        let first = points.iter().find(|p| p.cd < 0.0).map_or(block, |p| p.node);
+        warnings.push(Warning::at(
+            xml::location(first).line,
+            WarningCode::NegativeIntensity,
+            note,
+        ));
+    }
     match crate::formats::into_model_range(&mut cd) {
         Ok(Some(note)) => warnings.push(Warning::new(WarningCode::RangeSnapped, note)),
         Ok(None) => {}
@@ -391,7 +405,7 @@ fn points<'a, 'i>(path: &Path, block: Node<'a, 'i>, multiplier: f64) -> Result<V
                 n,
                 ErrorKind::Invalid,
                 "vert within 0..180 degrees (Type C)",
-                gamma,
+                Num(gamma),
             ));
         }
         if angles::first_outside(&[c], 360.0).is_some() {
@@ -400,7 +414,7 @@ fn points<'a, 'i>(path: &Path, block: Node<'a, 'i>, multiplier: f64) -> Result<V
                 n,
                 ErrorKind::Invalid,
                 "horz within 0..360 degrees (Type C)",
-                c,
+                Num(c),
             ));
         }
         points.push(Point {
@@ -433,7 +447,7 @@ fn complete_grid(
         let missing = (0..nh)
             .flat_map(|ih| (0..nv).map(move |iv| (ih, iv)))
             .find(|k| !have.contains(k))
-            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", hs[ih], vs[iv]))
+            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", Num(hs[ih]), Num(vs[iv])))
             .unwrap_or_default();
         return Err(error_at(
             path,
