@@ -8,8 +8,13 @@
 //! - a regular array at spacing S = 1.0 H (CIE 190: spacing-to-height ratio
 //!   1:1), luminaires at the cell centres; the observer at the middle of one
 //!   X wall at eye level, looking horizontally along Y;
-//! - crosswise: the luminaires' C0 axis (length) across the line of sight;
-//!   endwise: along it;
+//! - crosswise and endwise as CIE 117 eqs. 4.5 and 4.6 define them through
+//!   the C angle toward the eye: crosswise C = arctan(T/R), so the C0
+//!   direction points along the line of sight (the luminaire axis, C90–C270,
+//!   lies across it); endwise C = 90° − arctan(T/R), so C90 points along the
+//!   line of sight (T across, R along the line of sight). Until 2026-11 this
+//!   module had the two swapped; the CIE 190:2010 example table settled it
+//!   (docs/photometry.md, "UGR against CIE 190");
 //! - reflectances ceiling / walls / floor 0.7/0.5/0.2, 0.7/0.3/0.2,
 //!   0.5/0.5/0.2, 0.5/0.3/0.2, 0.3/0.3/0.2 (effective cavity reflectances).
 //!
@@ -102,12 +107,15 @@ pub struct UgrTable {
     pub max: f64,
 }
 
-/// View of the array: how the luminaire frame sits in the room frame.
+/// View of the array: how the luminaire frame sits in the room frame
+/// (room +y is the line of sight, +x across it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum View {
-    /// Luminaire C0 along room x (across the line of sight).
+    /// Luminaire C0 along the line of sight, its C90–C270 axis across it:
+    /// the eye sees C = arctan(T/R) (CIE 117 eq. 4.5).
     Crosswise,
-    /// Luminaire C0 along room y (the line of sight).
+    /// Luminaire C90 along the line of sight: the eye sees
+    /// C = 90° − arctan(T/R) (CIE 117 eq. 4.6).
     Endwise,
 }
 
@@ -115,8 +123,8 @@ impl View {
     /// A room-frame vector in the luminaire frame.
     fn to_luminaire(self, v: DVec3) -> DVec3 {
         match self {
-            View::Crosswise => v,
-            View::Endwise => DVec3::new(v.y, -v.x, v.z),
+            View::Crosswise => DVec3::new(v.y, -v.x, v.z),
+            View::Endwise => v,
         }
     }
 }

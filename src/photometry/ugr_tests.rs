@@ -148,3 +148,39 @@ fn lambertian_panel_orders_like_published_tables() {
     let r = ROOMS_H.iter().position(|&r| r == (4.0, 8.0)).unwrap();
     assert!((19.0..=23.0).contains(&t.crosswise[r][0]), "{}", t.crosswise[r][0]);
 }
+
+/// CIE 117 eqs. 4.5 and 4.6: viewed crosswise, the eye sees the luminaires
+/// ahead at C = arctan(T/R), near the C0 plane; endwise at 90° − arctan(T/R),
+/// near C90. A luminaire brighter toward C0/C180 than toward C90/C270 (same
+/// flux split otherwise) therefore rates higher crosswise, in every room;
+/// turned by 90° it rates higher endwise by the same amounts.
+#[test]
+fn crosswise_sees_the_c0_plane() {
+    let make = |phase: f64| {
+        let c: Vec<f64> = (0..24).map(|k| f64::from(k) * 15.0).collect();
+        let g: Vec<f64> = (0..=180).map(f64::from).collect();
+        let cd = c
+            .iter()
+            .flat_map(|&c| {
+                let k = 1.0 + 0.8 * (c + phase).to_radians().cos().powi(2);
+                g.iter().map(move |&g: &f64| k * lambertian(1000.0)(g.to_radians()))
+            })
+            .collect();
+        let d = Distribution::new(c, g, cd, Symmetry::None).unwrap();
+        let mut l = Luminaire::from_distribution(d);
+        l.set_luminous_opening(Dimensions {
+            length_m: 0.6,
+            width_m: 0.6,
+            height_m: 0.0,
+        });
+        ugr_table(&l).unwrap()
+    };
+    let (c0, c90) = (make(0.0), make(90.0));
+    for r in 0..ROOMS_H.len() {
+        for c in 0..REFLECTANCES.len() {
+            assert!(c0.crosswise[r][c] > c0.endwise[r][c] + 0.1, "room {:?}", ROOMS_H[r]);
+            assert!((c0.crosswise[r][c] - c90.endwise[r][c]).abs() < 1e-6);
+            assert!((c0.endwise[r][c] - c90.crosswise[r][c]).abs() < 1e-6);
+        }
+    }
+}
