@@ -176,9 +176,9 @@ fn crosswise_sees_the_c0_plane() {
         ugr_table(&l).unwrap()
     };
     let (c0, c90) = (make(0.0), make(90.0));
-    for r in 0..ROOMS_H.len() {
+    for (r, room) in ROOMS_H.iter().enumerate() {
         for c in 0..REFLECTANCES.len() {
-            assert!(c0.crosswise[r][c] > c0.endwise[r][c] + 0.1, "room {:?}", ROOMS_H[r]);
+            assert!(c0.crosswise[r][c] > c0.endwise[r][c] + 0.1, "room {room:?}");
             assert!((c0.crosswise[r][c] - c90.endwise[r][c]).abs() < 1e-6);
             assert!((c0.endwise[r][c] - c90.crosswise[r][c]).abs() < 1e-6);
         }
