@@ -440,22 +440,14 @@ fn extreme_numbers_print_short_in_every_message() {
         IesFile::type_ab(IesVersion::Lm2002, 2).text(),
     ));
     inputs.push(("isym3.ldt".into(), Format::Ldt, LdtFile::isym(3).text()));
-    let values = [
-        "1e-200",
-        "-1e-200",
-        "1e300",
-        "-1e300",
-        "4e-320",
-        "123456789012345678901234567890",
-        "0.0000123456789012345678",
-    ];
+    let values = ["1e-200", "-1e-200", "1e300", "4e-320", "123456789012345678901234567890"];
     // One example per message template (digits collapsed), so each site shows once.
     let (mut cases, mut failures) = (0usize, std::collections::BTreeMap::new());
     for (path, format, text) in &inputs {
         let spans = number_spans(text);
-        // Every number in the header part, then every k-th (at most ~150 per file).
+        // Every number in the header part, then every k-th (at most ~100 per file).
         let head = text.lines().take(60).map(|l| l.len() + 1).sum::<usize>();
-        let stride = (spans.len() / 150).max(1);
+        let stride = (spans.len() / 100).max(1);
         for (k, &(a, b)) in spans.iter().enumerate() {
             if a >= head && k % stride != 0 {
                 continue;

@@ -16,16 +16,35 @@ use crate::model::{
 /// Names of the element holding the intensity data, by edition and spelling.
 const INTENSITY_BLOCKS: [&str; 3] = ["LuminousData", "LuminousIntensity", "IntensityDistribution"];
 
-/// Read a TM-33-18 or TM-33-23 document. `path` names the file in messages.
+/// Read a TM-33-18 or TM-33-23 document of one emitter (with intensity
+/// data). `path` names the file in messages.
+///
+/// # Errors
+/// As [`read_emitter`]; a document with several emitters is refused with
+/// their ids (name one as `FILE.xml#ID`).
+pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
+    read_emitter(bytes, path, None, opts)
+}
+
+/// Read one emitter of a TM-33-18 or TM-33-23 document: the one named
+/// `emitter` (its `<ID>`, or its 1-based position when it has none; see
+/// [`super::emitters`]), or the only one when `None`. `path` names the
+/// file in messages (`FILE.xml#ID` when an emitter is named).
 ///
 /// # Errors
 /// Malformed XML, a root element that is neither `LuminaireOpticalData` nor
-/// `IESTM33-22`, no or several emitters with intensity data, a missing or
+/// `IESTM33-22`, no emitter with intensity data, several and none named, an
+/// id the document does not hold, a missing or
 /// unreadable `horz`/`vert`/value, an incomplete or duplicated grid point, a
 /// symmetry code that does not match the `horz` angles; each at the line of
 /// the offending element, naming it. Type A/B data and non-luminous metrics
 /// are [`ErrorKind::Unsupported`].
-pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
+pub fn read_emitter(
+    bytes: &[u8],
+    path: &Path,
+    emitter: Option<&str>,
+    _opts: &ReadOptions,
+) -> Result<crate::formats::Document, ParseError> {
     let text = xml::decode(bytes, path)?;
     let doc = xml::parse(text, path, "a TM-33 document")?;
     let root = doc.root_element();
@@ -43,7 +62,7 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
         }
     };
     let mut warnings = Vec::new();
-    let emitter = the_emitter(path, root)?;
+    let emitter = super::emitters::choose(path, root, emitter)?;
     let block = block_of(emitter).expect("filtered above");
     check_type_and_metric(path, block)?;
     let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
@@ -106,29 +125,6 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
     crate::formats::document(path, parts, crate::formats::Header::None)
 }
 
-/// The one emitter with intensity data.
-fn the_emitter<'a, 'i>(path: &Path, root: Node<'a, 'i>) -> Result<Node<'a, 'i>, ParseError> {
-    let emitters: Vec<Node> = children(root, "Emitter").filter(|e| block_of(*e).is_some()).collect();
-    match emitters.as_slice() {
-        [one] => Ok(*one),
-        [] => Err(error_at(
-            path,
-            root,
-            ErrorKind::Invalid,
-            "an <Emitter> with a <LuminousData> (or <LuminousIntensity>, <IntensityDistribution>) block of \
-             <IntensityData>",
-            "none",
-        )),
-        [_, second, ..] => Err(error_at(
-            path,
-            *second,
-            ErrorKind::Unsupported,
-            "one <Emitter> with intensity data (several emitters are not combined)",
-            format!("{} emitters with intensity data", emitters.len()),
-        )),
-    }
-}
-
 /// `<AbsolutePhotometry>`; absent, absolute when no rated lumens are given.
 fn absolute_photometry(path: &Path, block: Node<'_, '_>, rated: bool) -> Result<bool, ParseError> {
     let Some(n) = child(block, &["AbsolutePhotometry"]) else {
@@ -179,7 +175,7 @@ fn lamp_set(
 }
 
 /// The emitter's intensity block, when it holds `IntensityData`.
-fn block_of<'a, 'i>(emitter: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
+pub(super) fn block_of<'a, 'i>(emitter: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
     emitter
         .children()
         .filter(|c| c.is_element() && INTENSITY_BLOCKS.contains(&c.tag_name().name()))
