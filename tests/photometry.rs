@@ -293,12 +293,12 @@ const CIE_190_EXAMPLE_TABLE: [[f64; 10]; 19] = [
 /// `r-lighting/0_CIE-2010-Table7.ldt` of the corpus, from Wei-Lim/lighting)
 /// against the table the standard publishes for it. With crosswise and
 /// endwise as CIE 117 eqs. 4.5/4.6 define them, every cell lies within
-/// 0.0 .. +1.0 of the published one (mean +0.38, largest +0.94 in the rooms
+/// +0.12 .. +0.94 of the published one (mean +0.36; the largest in the rooms
 /// only 2H deep); with the two views swapped (this crate before 2026-11-30)
 /// cells were off by −1.7 .. +2.4. What is left comes from where our method
-/// departs from CIE 190 (docs/photometry.md, "UGR against CIE 190"): the
-/// Guth index in closed form instead of CIE 117 Table 4.1 and no field
-/// cut-off, and the background from an exact three-surface interreflection
+/// departs from CIE 190 (docs/photometry.md, "Against the CIE 190:2010
+/// example table"): the Guth index in closed form instead of CIE 117
+/// Table 4.1, and the background from an exact three-surface interreflection
 /// instead of the preset F_GL / F_T factors of CIE 190 Tables 4 and 5.
 #[test]
 fn ugr_table_of_the_cie_190_example_luminaire() {

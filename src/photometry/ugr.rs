@@ -38,9 +38,12 @@
 //! Φ' add 8 log₁₀(Φ'/Φ) (L and I scale with the flux, L_b with it too).
 //! UGR does not depend on H (every length scales with it), checked in the tests.
 //!
-//! Not modelled: CIE 117's exclusion of luminaires outside the Guth table's
-//! field (all luminaires in front of the observer count), the 0.25 H array of
-//! the older CIE 117 tables, and the correction tables for other spacings.
+//! Luminaires outside CIE 117's field, T/R > 3 or γ > 85° (the range of its
+//! Guth table; the rule as the eulumdat-ugr notes quote CIE 117), are left out
+//! of the glare sum; they still light the room. Not modelled: CIE 117's
+//! Table 4.1 (the closed form above stands in for it), CIE 190's preset
+//! F_GL / F_T background factors (the exact interreflection stands in), the
+//! 0.25 H array of catalogue tables, and the correction tables for other spacings.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -209,6 +212,12 @@ pub fn position_index(s: DVec3) -> Option<f64> {
     Some(ln_p.exp())
 }
 
+/// Whether a luminaire at (x across, y along the line of sight), in H, lies
+/// outside the field CIE 117 evaluates: T/R > 3 or γ > 85°.
+fn field_cut(x: f64, y: f64) -> bool {
+    x.abs() > 3.0 * y || (x * x + y * y).sqrt() > 85f64.to_radians().tan()
+}
+
 /// What the table needs from the luminaire, precomputed per view.
 struct Array<'a> {
     look: GridLookup<'a>,
@@ -277,6 +286,9 @@ impl<'a> Array<'a> {
                 // coordinate (i + 0.5)·S·k, so offsets run from −that.
                 let (ox, oy) = (i * s_cells + s_cells / 2, j * s_cells + s_cells / 2);
                 floor += self.floor_sum(-ox, room_x - ox, -oy, room_y - oy);
+                if field_cut(x, y) {
+                    continue;
+                }
                 let to_lum = DVec3::new(x, y, 1.0);
                 let r2 = to_lum.length_squared();
                 let s = to_lum / r2.sqrt();

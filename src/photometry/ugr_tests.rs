@@ -184,3 +184,13 @@ fn crosswise_sees_the_c0_plane() {
         }
     }
 }
+
+/// CIE 117's field for the tabular method: a luminaire counts while T/R ≤ 3
+/// and γ ≤ 85° (T across, R along the line of sight, in H; tan 85° = 11.43).
+#[test]
+fn field_cut_at_t_over_r_3_and_gamma_85() {
+    assert!(!field_cut(2.99, 1.0) && field_cut(3.01, 1.0));
+    assert!(!field_cut(-2.99, 1.0) && field_cut(-3.01, 1.0));
+    assert!(!field_cut(0.0, 11.4) && field_cut(0.0, 11.5));
+    assert!(field_cut(8.0, 8.5) && !field_cut(8.0, 8.0));
+}
