@@ -321,12 +321,62 @@ pub fn ugr_room(
     Ok(one(&array, &f, room_h, rho, h_m))
 }
 
-fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), (rc, rw, rf): (f64, f64, f64), h_m: f64) -> Option<f64> {
-    let (glare_1m, floor) = array.room(x_h, y_h);
+/// The background of one standard room: where each luminaire's flux lands
+/// first and the indirect wall illuminance that sets L_b = E_WID / π.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Background {
+    /// Direct flux of one luminaire (mean over the array) onto the floor
+    /// (the reference plane at eye level), lm: CIE 190's Φ_zL at this flux.
+    pub floor_lm: f64,
+    /// Direct flux of one luminaire onto the walls, lm (the rest of its downward flux).
+    pub walls_lm: f64,
+    /// Direct flux of one luminaire onto the ceiling, lm (its upward flux).
+    pub ceiling_lm: f64,
+    /// Indirect illuminance on the walls, E_WID, lx.
+    pub e_wid_lx: f64,
+}
+
+/// The [`Background`] of room `room_h` (X, Y in H) for `view` with
+/// reflectances `rho` (ceiling, walls, floor) at luminaire height `h_m` above the eye.
+///
+/// # Errors
+/// The luminous opening cannot be built from the file's dimensions.
+pub fn background(
+    lum: &Luminaire,
+    view: View,
+    room_h: (f64, f64),
+    rho: (f64, f64, f64),
+    h_m: f64,
+) -> Result<Background, String> {
+    let opening = Opening::of_luminaire(lum)?;
+    let array = Array::new(lum.distribution(), &opening, view);
+    let f = super::flux::flux(lum.distribution());
+    let (_, floor) = array.room(room_h.0, room_h.1);
+    Ok(room_background(&f, room_h, floor, rho, h_m))
+}
+
+/// [`Background`] from the array's direct floor flux (`floor`, all luminaires, lm).
+fn room_background(
+    f: &super::Flux,
+    (x_h, y_h): (f64, f64),
+    floor: f64,
+    (rc, rw, rf): (f64, f64, f64),
+    h_m: f64,
+) -> Background {
     let n = (x_h / SPACING_H).round() * (y_h / SPACING_H).round();
     let direct = [n * f.upward_lm, floor, (n * f.downward_lm - floor).max(0.0)];
     let (_, e_wid) = box_interreflection(x_h * h_m, y_h * h_m, h_m, direct, [rc, rf, rw]);
-    let lb = e_wid / std::f64::consts::PI;
+    Background {
+        floor_lm: direct[1] / n,
+        walls_lm: direct[2] / n,
+        ceiling_lm: direct[0] / n,
+        e_wid_lx: e_wid,
+    }
+}
+
+fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), rho: (f64, f64, f64), h_m: f64) -> Option<f64> {
+    let (glare_1m, floor) = array.room(x_h, y_h);
+    let lb = room_background(f, (x_h, y_h), floor, rho, h_m).e_wid_lx / std::f64::consts::PI;
     // Σ I²/(A_p r² p²) scales as 1/H² (r ∝ H).
     let glare = glare_1m / (h_m * h_m);
     (glare > 0.0 && lb > 0.0)
