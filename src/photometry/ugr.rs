@@ -38,9 +38,12 @@
 //! Φ' add 8 log₁₀(Φ'/Φ) (L and I scale with the flux, L_b with it too).
 //! UGR does not depend on H (every length scales with it), checked in the tests.
 //!
-//! Luminaires outside CIE 117's field, T/R > 3 or γ > 85° (the range of its
-//! Guth table; the rule as the eulumdat-ugr notes quote CIE 117), are left out
-//! of the glare sum; they still light the room. Not modelled: CIE 117's
+//! Luminaires outside CIE 117's field are left out of the glare sum (they
+//! still light the room): outside the domain of its Guth Table 4.1, T/R ≤ 3
+//! and H/R ≤ 1.9 (the table's axes as transcribed in 123VincentB/eulumdat-ugr,
+//! `guth.py`: the first row of the standard array, at R = H/2, is out), or
+//! γ > 85° (the eulumdat-ugr notes quoting CIE 117). With this field the CIE
+//! 190:2010 example table is met to ±0.22 in every cell (tests/photometry.rs). Not modelled: CIE 117's
 //! Table 4.1 (the closed form above stands in for it), CIE 190's preset
 //! F_GL / F_T background factors (the exact interreflection stands in), the
 //! 0.25 H array of catalogue tables, and the correction tables for other spacings.
@@ -213,9 +216,11 @@ pub fn position_index(s: DVec3) -> Option<f64> {
 }
 
 /// Whether a luminaire at (x across, y along the line of sight), in H, lies
-/// outside the field CIE 117 evaluates: T/R > 3 or γ > 85°.
+/// outside the field CIE 117 evaluates: outside its Guth Table 4.1, whose
+/// axes run T/R 0 … 3 and H/R 0 … 1.9 (so the first row of the standard
+/// array, at R = H/2, H/R = 2, is out), or γ > 85°.
 fn field_cut(x: f64, y: f64) -> bool {
-    x.abs() > 3.0 * y || (x * x + y * y).sqrt() > 85f64.to_radians().tan()
+    x.abs() > 3.0 * y || 1.0 > 1.9 * y || (x * x + y * y).sqrt() > 85f64.to_radians().tan()
 }
 
 /// What the table needs from the luminaire, precomputed per view.

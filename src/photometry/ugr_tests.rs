@@ -185,12 +185,14 @@ fn crosswise_sees_the_c0_plane() {
     }
 }
 
-/// CIE 117's field for the tabular method: a luminaire counts while T/R ≤ 3
-/// and γ ≤ 85° (T across, R along the line of sight, in H; tan 85° = 11.43).
+/// CIE 117's field for the tabular method: a luminaire counts while T/R ≤ 3,
+/// H/R ≤ 1.9 and γ ≤ 85° (T across, R along the line of sight, in H;
+/// tan 85° = 11.43): the first row of the standard array (R = H/2) is out.
 #[test]
-fn field_cut_at_t_over_r_3_and_gamma_85() {
+fn field_cut_at_t_over_r_3_h_over_r_1_9_and_gamma_85() {
     assert!(!field_cut(2.99, 1.0) && field_cut(3.01, 1.0));
     assert!(!field_cut(-2.99, 1.0) && field_cut(-3.01, 1.0));
     assert!(!field_cut(0.0, 11.4) && field_cut(0.0, 11.5));
     assert!(field_cut(8.0, 8.5) && !field_cut(8.0, 8.0));
+    assert!(field_cut(0.0, 0.5) && !field_cut(0.0, 0.53) && !field_cut(1.5, 1.5));
 }
