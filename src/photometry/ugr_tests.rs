@@ -131,7 +131,7 @@ fn undefined_cases_are_errors() {
 /// must order like every published CIE table does: UGR rises with the room
 /// length along the line of sight, and the columns order 70/50 < 50/50 <
 /// 70/30 < 50/30 < 30/30 (less reflected light, darker background). Its
-/// 4H x 8H 70/50/20 value (21.7 here) lies in the 19-22 band catalogues
+/// 4H x 8H 70/50/20 value (21.6 here) lies in the 19-22 band catalogues
 /// give for opal panels of this luminance (not a cited table: a plausibility bound).
 #[test]
 fn lambertian_panel_orders_like_published_tables() {
