@@ -50,6 +50,41 @@ impl Location {
     }
 }
 
+/// A number as error and warning messages print it: the shortest text that
+/// reads back to the same `f64`, in scientific notation below 1e-4 and from
+/// 1e16 on in magnitude (`1e-200`, not two hundred digits). Units are the
+/// caller's; `NaN` and `inf` print as such.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-4..1e16).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
+
+/// Several numbers as messages print them ([`Num`]), comma-separated in brackets.
+#[derive(Debug, Clone, Copy)]
+pub struct Nums<'a>(pub &'a [f64]);
+
+impl fmt::Display for Nums<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("[")?;
+        for (i, &x) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "{}", Num(x))?;
+        }
+        f.write_str("]")
+    }
+}
+
 /// A photometric file could not be read: where, what was expected, what was found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParseError {
@@ -470,5 +505,37 @@ impl fmt::Display for Warning {
             Some(l) => write!(f, "line {l}: [{}] {}", self.code, self.message),
             None => write!(f, "[{}] {}", self.code, self.message),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Num, Nums};
+
+    #[test]
+    fn numbers_print_short_and_read_back() {
+        let cases = [
+            (1e-200, "1e-200"),
+            (-1e-200, "-1e-200"),
+            (1e300, "1e300"),
+            (4e-320, "4e-320"),
+            (1.2345678901234568e29, "1.2345678901234568e29"),
+            (0.0001, "0.0001"),
+            (0.00009, "9e-5"),
+            (123.25, "123.25"),
+            (1e15, "1000000000000000"),
+            (1e16, "1e16"),
+            (0.0, "0"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-inf"),
+        ];
+        for (x, want) in cases {
+            let s = Num(x).to_string();
+            assert_eq!(s, want);
+            if x.is_finite() {
+                assert_eq!(s.parse::<f64>().unwrap(), x, "{s} reads back");
+            }
+        }
+        assert_eq!(Nums(&[0.0, 1e-300, 90.0]).to_string(), "[0, 1e-300, 90]");
     }
 }

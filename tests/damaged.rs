@@ -352,3 +352,132 @@ fn user_controlled_sizes_and_iterations_are_bounded() {
     // the cap itself is not exercised by this test (RELIABILITY.md, "Left open").
     eprintln!("tolerance-0 sides stopped at the cap: {partial}");
 }
+
+/// Byte ranges of the numbers in `text`: maximal runs of digits, signs, dots
+/// and exponents that parse as a number and do not sit inside a word
+/// (`IESTM33-22` and dates are skipped).
+fn number_spans(text: &str) -> Vec<(usize, usize)> {
+    let b = text.as_bytes();
+    let in_number = |c: u8| c.is_ascii_digit() || matches!(c, b'.' | b'+' | b'-' | b'e' | b'E');
+    let word = |c: u8| c.is_ascii_alphanumeric() || c == b'_';
+    let mut spans = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        let starts = (b[i].is_ascii_digit() || matches!(b[i], b'.' | b'+' | b'-')) && (i == 0 || !word(b[i - 1]));
+        if !starts {
+            i += 1;
+            continue;
+        }
+        let mut j = i;
+        while j < b.len() && in_number(b[j]) {
+            j += 1;
+        }
+        let s = &text[i..j];
+        let after_ok = j == b.len() || !word(b[j]);
+        if after_ok && s.bytes().any(|c| c.is_ascii_digit()) && s.parse::<f64>().is_ok() {
+            spans.push((i, j));
+        }
+        i = j.max(i + 1);
+    }
+    spans
+}
+
+/// The longest run of digits (a decimal point inside it counted) in `s`.
+fn longest_digit_run(s: &str) -> usize {
+    let (mut best, mut run) = (0, 0);
+    for c in s.chars() {
+        run = if c.is_ascii_digit() || (c == '.' && run > 0) {
+            run + 1
+        } else {
+            0
+        };
+        best = best.max(run);
+    }
+    best
+}
+
+/// The texts a reader gives back for `bytes`: the error's expected and found
+/// texts, or every warning's message.
+fn messages(bytes: &[u8], path: &Path, format: Format, repair: bool) -> Vec<String> {
+    let opts = ReadOptions {
+        repair,
+        ..ReadOptions::default()
+    };
+    match photosolid::formats::parse(bytes, path, format, &opts) {
+        Ok(doc) => doc.warnings().iter().map(|w| w.message.clone()).collect(),
+        Err(e) => vec![e.expected, e.found],
+    }
+}
+
+/// Every number of every reader's input set, one at a time, to magnitudes
+/// whose plain decimal form runs to hundreds of digits: no error or warning
+/// message may print one that way (a ballast factor of 1e-200 printed 200
+/// digits). Inputs: the data/ files, a TM-33-23 document written from one,
+/// and the generated fixtures with an inline TILT table and a Type B grid.
+#[test]
+fn extreme_numbers_print_short_in_every_message() {
+    use common::fixtures::{tm33_points, tm33_text, IesFile, IesTilt, IesVersion, LdtFile};
+    let mut inputs: Vec<(PathBuf, Format, String)> = data_files()
+        .into_iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(&f).unwrap();
+            (f.clone(), Format::from_extension(&f).unwrap(), text)
+        })
+        .collect();
+    let road = photosolid::formats::load_document_with(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt"),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    inputs.push(("road.xml".into(), Format::Tm33, photosolid::formats::tm33::write(&road)));
+    inputs.push(("fixture.xml".into(), Format::Tm33, tm33_text(&tm33_points())));
+    let mut tilted = IesFile::type_c(IesVersion::Lm1986);
+    tilted.tilt = IesTilt::Include(1, vec![0.0, 45.0, 90.0], vec![1.0, 0.9, 0.7]);
+    inputs.push(("tilted.ies".into(), Format::Ies, tilted.text()));
+    inputs.push((
+        "type_b.ies".into(),
+        Format::Ies,
+        IesFile::type_ab(IesVersion::Lm2002, 2).text(),
+    ));
+    inputs.push(("isym3.ldt".into(), Format::Ldt, LdtFile::isym(3).text()));
+    let values = ["1e-200", "-1e-200", "1e300", "4e-320", "123456789012345678901234567890"];
+    // One example per message template (digits collapsed), so each site shows once.
+    let (mut cases, mut failures) = (0usize, std::collections::BTreeMap::new());
+    for (path, format, text) in &inputs {
+        let spans = number_spans(text);
+        // Every number in the header part, then every k-th (at most ~100 per file).
+        let head = text.lines().take(60).map(|l| l.len() + 1).sum::<usize>();
+        let stride = (spans.len() / 100).max(1);
+        for (k, &(a, b)) in spans.iter().enumerate() {
+            if a >= head && k % stride != 0 {
+                continue;
+            }
+            for v in values {
+                let damaged = format!("{}{v}{}", &text[..a], &text[b..]);
+                for repair in [false, true] {
+                    cases += 1;
+                    for m in messages(damaged.as_bytes(), path, *format, repair) {
+                        // Quoting the file's own text is fine: only numbers the reader formats count.
+                        if longest_digit_run(&m.replace(v, "")) > 24 {
+                            let template: String = m
+                                .chars()
+                                .filter(|c| !c.is_ascii_digit() && *c != '.' && *c != '-')
+                                .collect();
+                            let short: String = m.chars().take(300).collect();
+                            failures
+                                .entry(template)
+                                .or_insert_with(|| format!("{} `{}` -> {v}: {short}", path.display(), &text[a..b]));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(cases > 1000, "{cases} cases");
+    assert!(
+        failures.is_empty(),
+        "{} message kinds (of {cases} cases) print a number at full length:\n{}",
+        failures.len(),
+        failures.values().cloned().collect::<Vec<_>>().join("\n")
+    );
+}

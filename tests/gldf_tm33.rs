@@ -137,3 +137,44 @@ fn convert_to_tm33_and_back() {
     let e = fails(&run(&["info", "bad.xml"], t.path()), 1);
     assert!(e.contains("bad.xml:") && e.contains("IntensityData"), "{e}");
 }
+
+/// A TM-33-23 document with two emitters (written here: bat.xml's emitter
+/// twice, with the `<ID>`s `a` and `b`): `info` reports each, named
+/// `FILE.xml#ID`; `FILE.xml#b` reads one; a one-file command on `FILE.xml`
+/// names the ids; `validate` of a directory expands it.
+#[test]
+fn tm33_with_several_emitters_by_id() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(
+        &["convert", data("batwing.ies").to_str().unwrap(), "bat.xml"],
+        t.path(),
+    ));
+    let text = std::fs::read_to_string(t.path().join("bat.xml")).unwrap();
+    let (start, end) = (text.find("<Emitter>").unwrap(), text.find("</Emitter>").unwrap() + 10);
+    let emitter = &text[start..end];
+    let two = format!(
+        "{}{}\n{}{}",
+        &text[..start],
+        emitter.replacen("<Emitter>", "<Emitter>\n<ID>a</ID>", 1),
+        emitter.replacen("<Emitter>", "<Emitter>\n<ID>b</ID>", 1),
+        &text[end..]
+    );
+    std::fs::write(t.path().join("two.xml"), two).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "two.xml", "--json"], t.path()))).unwrap();
+    let all = v.as_array().expect("two emitters: an array");
+    assert_eq!(all.len(), 2);
+    let one: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "two.xml#b", "--json"], t.path()))).unwrap();
+    let bat: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "bat.xml", "--json"], t.path()))).unwrap();
+    for key in ["flux_lm", "max_cd", "symmetry"] {
+        assert_eq!(one[key], bat[key], "{key}");
+        assert_eq!(all[0][key], bat[key], "{key}");
+    }
+    let text = ok(&run(&["info", "two.xml"], t.path()));
+    assert!(text.contains("two.xml#a\n") && text.contains("two.xml#b\n"), "{text}");
+    let e = fails(&run(&["grid", "two.xml"], t.path()), 1);
+    assert!(e.contains("the ids a, b") && e.contains("two.xml#ID"), "{e}");
+    let e = fails(&run(&["grid", "two.xml#c"], t.path()), 1);
+    assert!(e.contains("two.xml#c") && e.contains("a, b"), "{e}");
+    let out = ok(&run(&["validate", "."], t.path()));
+    assert!(out.contains("two.xml#a") && out.contains("two.xml#b"), "{out}");
+}

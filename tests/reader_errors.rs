@@ -670,3 +670,42 @@ fn tm33_and_gldf_fixtures_load_and_fail_clearly() {
     let e = photosolid::load(&p).unwrap_err().to_string();
     assert!(e.contains("notzip.gldf") && e.contains("zip archive"), "{e}");
 }
+
+/// A negative intensity (-5) is kept as it is, with one `negative-intensity`
+/// warning of one wording, in every reader: IES and EULUMDAT did so, and the
+/// TM-33 reader accepted it silently.
+#[test]
+fn a_negative_intensity_is_kept_and_warned_alike_by_every_reader() {
+    use photosolid::error::WarningCode;
+    let mut ies = IesFile::type_c(IesVersion::Lm2002);
+    ies.cd[1] = -5.0;
+    let mut ldt = LdtFile::isym(4);
+    ldt.cd_per_klm[1] = -5.0;
+    let mut points = tm33_points();
+    points[1].2 = -5.0;
+    let tm33 = tm33_text(&points);
+    let tm33_line = tm33.lines().position(|l| l.contains(">-5<")).unwrap() + 1;
+    let cases = [
+        (Format::Ies, ies.text(), "cd", None),
+        (Format::Ldt, ldt.text(), "cd/klm", Some(ldt.lines().cd)),
+        (Format::Tm33, tm33, "cd", Some(tm33_line)),
+    ];
+    for (format, text, unit, line) in cases {
+        let what = format!("{format:?}");
+        let doc = read(format, Path::new("neg"), text.as_bytes()).unwrap_or_else(|e| panic!("{what}: {e}"));
+        // Plane C0, gamma 30: the value the file holds (x 1 multiplier, 1000 lm / 1000 for cd/klm).
+        assert_eq!(distribution(&doc).value_cd(0, 1), -5.0, "{what}: kept as it is");
+        let w: Vec<_> = doc
+            .warnings()
+            .iter()
+            .filter(|w| w.code == WarningCode::NegativeIntensity)
+            .collect();
+        assert_eq!(w.len(), 1, "{what}: {:?}", doc.warnings());
+        assert_eq!(
+            w[0].message,
+            format!("1 negative intensities kept as they are (lowest -5 {unit})"),
+            "{what}"
+        );
+        assert_eq!(w[0].line, line, "{what}");
+    }
+}

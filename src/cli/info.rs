@@ -3,7 +3,9 @@
 //! A GLDF container given without an id (`FILE.gldf`) reports every
 //! photometry in it, in document order, each named `FILE.gldf#ID`: text
 //! blocks one after the other, or with `--json` one object when it holds a
-//! single photometry and an array of objects when it holds several.
+//! single photometry and an array of objects when it holds several. A TM-33
+//! document with several emitters reports each the same way, named
+//! `FILE.xml#ID`.
 
 use std::path::PathBuf;
 
@@ -14,8 +16,8 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct InfoArgs {
-    /// A photometric file (.ies, .ldt, TM-33 .xml), a GLDF container (FILE.gldf: every photometry) or one
-    /// photometry of it (FILE.gldf#ID).
+    /// A photometric file (.ies, .ldt, TM-33 .xml: every emitter), a GLDF container (FILE.gldf: every
+    /// photometry), one photometry of it (FILE.gldf#ID) or one emitter of a TM-33 document (FILE.xml#ID).
     file: PathBuf,
     /// Print JSON (keys documented in `photosolid::report::info`).
     #[arg(long)]
@@ -28,10 +30,7 @@ pub struct InfoArgs {
 }
 
 pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
-    let files = match photosolid::formats::gldf::split_reference(&a.file) {
-        Some((container, None)) => photosolid::formats::gldf::expand(&container),
-        _ => vec![a.file.clone()],
-    };
+    let files = photosolid::formats::photometries_in(&a.file);
     let mut reports = Vec::with_capacity(files.len());
     for f in &files {
         let mut doc = super::load(f, &a.read)?;

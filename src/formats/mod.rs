@@ -176,17 +176,11 @@ pub fn load_document_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<
     if let Some((container, id)) = gldf::split_reference(path) {
         return gldf::load(&container, id.as_deref(), opts);
     }
-    let bytes = files::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
-        files::ReadCappedError::Io(e) => Error::io(path, e),
-        other => ParseError {
-            path: path.to_path_buf(),
-            location: Location::line(0),
-            kind: ErrorKind::Invalid,
-            expected: format!("a regular photometric file of at most {MAX_FILE_BYTES} bytes"),
-            found: other.to_string(),
-        }
-        .into(),
-    })?;
+    if let Some((file, id)) = tm33::split_reference(path) {
+        let bytes = read_photometric_file(&file)?;
+        return Ok(tm33::read_emitter(&bytes, path, Some(&id), opts)?);
+    }
+    let bytes = read_photometric_file(path)?;
     let by_extension = Format::from_extension(path);
     let format = by_extension.unwrap_or_else(|| sniff(&bytes));
     parse(&bytes, path, format, opts).map_err(|mut e| {
@@ -213,6 +207,35 @@ pub fn load_document_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<
         }
         e.into()
     })
+}
+
+/// The bytes of the file at `path`, refused over [`MAX_FILE_BYTES`] or when it is not a regular file.
+fn read_photometric_file(path: &Path) -> Result<Vec<u8>> {
+    files::read_capped(path, MAX_FILE_BYTES).map_err(|e| match e {
+        files::ReadCappedError::Io(e) => Error::io(path, e),
+        other => ParseError {
+            path: path.to_path_buf(),
+            location: Location::line(0),
+            kind: ErrorKind::Invalid,
+            expected: format!("a regular photometric file of at most {MAX_FILE_BYTES} bytes"),
+            found: other.to_string(),
+        }
+        .into(),
+    })
+}
+
+/// The photometries a path names, each as a path [`load`] reads: every
+/// photometry of a GLDF container given without an id (`FILE.gldf#ID`,
+/// [`gldf::expand`]), every emitter of a TM-33 document that holds several
+/// (`FILE.xml#ID`, [`tm33::expand`]); any other path as it is.
+pub fn photometries_in(path: &Path) -> Vec<std::path::PathBuf> {
+    if let Some((container, None)) = gldf::split_reference(path) {
+        return gldf::expand(&container);
+    }
+    if Format::from_extension(path) == Some(Format::Tm33) && path.is_file() {
+        return tm33::expand(path);
+    }
+    vec![path.to_path_buf()]
 }
 
 /// Positive evidence that `bytes` are `format` (used only to explain a failed
@@ -281,7 +304,8 @@ pub fn save(doc: &Document, path: &Path, opts: &WriteOptions) -> Result<()> {
 /// extension, or every `.ies`/`.ldt` file, TM-33 `.xml` file (by its root
 /// element) and `.gldf` container below a directory (recursive, sorted by
 /// path), appended to `out`. A container becomes one `FILE.gldf#ID` path per
-/// photometry ([`gldf::expand`]).
+/// photometry ([`gldf::expand`]), a TM-33 document with several emitters one
+/// `FILE.xml#ID` path per emitter ([`tm33::expand`]).
 ///
 /// # Errors
 /// [`Error::Io`] naming the directory that cannot be read.
@@ -300,16 +324,14 @@ pub fn collect_files(path: &std::path::Path, out: &mut Vec<std::path::PathBuf>) 
             } else {
                 match Format::from_extension(&e) {
                     // Other XML files (a GLDF's product.xml unpacked, say) are not photometry.
-                    Some(Format::Tm33) if e.is_file() && tm33::looks_like(&head(&e)) => out.push(e),
+                    Some(Format::Tm33) if e.is_file() && tm33::looks_like(&head(&e)) => out.extend(tm33::expand(&e)),
                     Some(Format::Ies | Format::Ldt) => out.push(e),
                     _ => {}
                 }
             }
         }
-    } else if let Some((container, None)) = gldf::split_reference(path) {
-        out.extend(gldf::expand(&container));
     } else {
-        out.push(path.to_path_buf());
+        out.extend(photometries_in(path));
     }
     Ok(())
 }
@@ -367,6 +389,22 @@ pub(crate) fn into_model_range(cd: &mut [f64]) -> std::result::Result<Option<Str
     }
     check_intensities(cd)?;
     Ok(note)
+}
+
+/// The `negative-intensity` warning text of every reader, `None` when no
+/// value is negative. Negative values are kept as they are: files hold small
+/// negative noise around 0 from the measurement, and clamping it would change
+/// the flux. The text gives their count and the lowest, in `unit` (the
+/// values' unit as the file states them: cd, cd/klm).
+pub(crate) fn negative_intensities(values: &[f64], unit: &str) -> Option<String> {
+    let n = values.iter().filter(|&&v| v < 0.0).count();
+    (n > 0).then(|| {
+        let lowest = values.iter().copied().fold(f64::INFINITY, f64::min);
+        format!(
+            "{n} negative intensities kept as they are (lowest {} {unit})",
+            crate::error::Num(lowest)
+        )
+    })
 }
 
 /// What a file that declares a lamp flux (none for absolute photometry) and

@@ -25,7 +25,7 @@
 
 use serde::Serialize;
 
-use crate::error::ModelError;
+use crate::error::{ModelError, Num};
 
 /// Tolerance (degrees) under which two angles are the same angle.
 pub const ANGLE_EPS: f64 = 1e-6;
@@ -52,10 +52,10 @@ pub fn check_intensities(cd: &[f64]) -> Result<(), (usize, String)> {
     let mut peak = (0.0f64, 0usize);
     for (i, &v) in cd.iter().enumerate() {
         if !v.is_finite() {
-            return Err((i, format!("{v} is not finite")));
+            return Err((i, format!("{} is not finite", Num(v))));
         }
         if v.abs() > MAX_CD {
-            return Err((i, format!("|{v}| cd exceeds the model's bound of {MAX_CD:e} cd")));
+            return Err((i, format!("|{}| cd exceeds the model's bound of {MAX_CD:e} cd", Num(v))));
         }
         if v.abs() > peak.0 {
             peak = (v.abs(), i);
@@ -66,7 +66,7 @@ pub fn check_intensities(cd: &[f64]) -> Result<(), (usize, String)> {
             peak.1,
             format!(
                 "the peak |{}| cd is below the model's smallest non-zero peak {MIN_PEAK_CD:e} cd",
-                peak.0
+                Num(peak.0)
             ),
         ));
     }
@@ -243,7 +243,7 @@ fn check_ascending(axis: &'static str, v: &[f64], lo: f64, hi: f64) -> Result<()
         if !a.is_finite() || a < lo - ANGLE_EPS || a > hi + ANGLE_EPS {
             return Err(ModelError::Angles {
                 axis,
-                reason: format!("angle #{} = {a} is outside [{lo}, {hi}]", i + 1),
+                reason: format!("angle #{} = {} is outside [{lo}, {hi}]", i + 1, Num(a)),
             });
         }
         if i > 0 && a <= v[i - 1] + ANGLE_EPS {
@@ -252,8 +252,8 @@ fn check_ascending(axis: &'static str, v: &[f64], lo: f64, hi: f64) -> Result<()
                 reason: format!(
                     "not strictly ascending by more than {ANGLE_EPS} degrees: angle #{} = {} follows {}",
                     i + 1,
-                    a,
-                    v[i - 1]
+                    Num(a),
+                    Num(v[i - 1])
                 ),
             });
         }
@@ -291,8 +291,8 @@ impl Distribution {
                     reason: format!(
                         "{} symmetry needs planes from {lo} to {hi}, got {} to {}",
                         symmetry.describe(),
-                        c[0],
-                        c[c.len() - 1]
+                        Num(c[0]),
+                        Num(c[c.len() - 1])
                     ),
                 });
             }
@@ -311,8 +311,8 @@ impl Distribution {
         if let Err((i, why)) = check_intensities(&cd) {
             return Err(ModelError::Intensities(format!(
                 "value at C = {}, gamma = {}: {why}",
-                c[i / gamma.len()],
-                gamma[i % gamma.len()]
+                Num(c[i / gamma.len()]),
+                Num(gamma[i % gamma.len()])
             )));
         }
         if symmetry == Symmetry::C90C270 && c.len() < 3 {
@@ -399,7 +399,7 @@ impl Distribution {
         if !factor.is_finite() {
             return Err(ModelError::Parameter {
                 name: "scale",
-                value: factor.to_string(),
+                value: Num(factor).to_string(),
                 reason: "must be finite".into(),
             });
         }
@@ -408,7 +408,7 @@ impl Distribution {
         flush_round_off(&mut d.cd);
         check_intensities(&d.cd).map_err(|(_, why)| ModelError::Parameter {
             name: "scale",
-            value: factor.to_string(),
+            value: Num(factor).to_string(),
             reason: format!("the scaled distribution leaves the model's range: {why}"),
         })?;
         Ok(d)

@@ -8,8 +8,13 @@
 //! - a regular array at spacing S = 1.0 H (CIE 190: spacing-to-height ratio
 //!   1:1), luminaires at the cell centres; the observer at the middle of one
 //!   X wall at eye level, looking horizontally along Y;
-//! - crosswise: the luminaires' C0 axis (length) across the line of sight;
-//!   endwise: along it;
+//! - crosswise and endwise as CIE 117 eqs. 4.5 and 4.6 define them through
+//!   the C angle toward the eye: crosswise C = arctan(T/R), so the C0
+//!   direction points along the line of sight (the luminaire axis, C90–C270,
+//!   lies across it); endwise C = 90° − arctan(T/R), so C90 points along the
+//!   line of sight (T across, R along the line of sight). Until 2026-11 this
+//!   module had the two swapped; the CIE 190:2010 example table settled it
+//!   (docs/photometry.md, "UGR against CIE 190");
 //! - reflectances ceiling / walls / floor 0.7/0.5/0.2, 0.7/0.3/0.2,
 //!   0.5/0.5/0.2, 0.5/0.3/0.2, 0.3/0.3/0.2 (effective cavity reflectances).
 //!
@@ -33,9 +38,15 @@
 //! Φ' add 8 log₁₀(Φ'/Φ) (L and I scale with the flux, L_b with it too).
 //! UGR does not depend on H (every length scales with it), checked in the tests.
 //!
-//! Not modelled: CIE 117's exclusion of luminaires outside the Guth table's
-//! field (all luminaires in front of the observer count), the 0.25 H array of
-//! the older CIE 117 tables, and the correction tables for other spacings.
+//! Luminaires outside CIE 117's field are left out of the glare sum (they
+//! still light the room): outside the domain of its Guth Table 4.1, T/R ≤ 3
+//! and H/R ≤ 1.9 (the table's axes as transcribed in 123VincentB/eulumdat-ugr,
+//! `guth.py`: the first row of the standard array, at R = H/2, is out), or
+//! γ > 85° (the eulumdat-ugr notes quoting CIE 117). With this field the CIE
+//! 190:2010 example table is met to ±0.22 in every cell (tests/photometry.rs). Not modelled: CIE 117's
+//! Table 4.1 (the closed form above stands in for it), CIE 190's preset
+//! F_GL / F_T background factors (the exact interreflection stands in), the
+//! 0.25 H array of catalogue tables, and the correction tables for other spacings.
 
 use glam::DVec3;
 use serde::Serialize;
@@ -102,12 +113,15 @@ pub struct UgrTable {
     pub max: f64,
 }
 
-/// View of the array: how the luminaire frame sits in the room frame.
+/// View of the array: how the luminaire frame sits in the room frame
+/// (room +y is the line of sight, +x across it).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum View {
-    /// Luminaire C0 along room x (across the line of sight).
+    /// Luminaire C0 along the line of sight, its C90–C270 axis across it:
+    /// the eye sees C = arctan(T/R) (CIE 117 eq. 4.5).
     Crosswise,
-    /// Luminaire C0 along room y (the line of sight).
+    /// Luminaire C90 along the line of sight: the eye sees
+    /// C = 90° − arctan(T/R) (CIE 117 eq. 4.6).
     Endwise,
 }
 
@@ -115,8 +129,8 @@ impl View {
     /// A room-frame vector in the luminaire frame.
     fn to_luminaire(self, v: DVec3) -> DVec3 {
         match self {
-            View::Crosswise => v,
-            View::Endwise => DVec3::new(v.y, -v.x, v.z),
+            View::Crosswise => DVec3::new(v.y, -v.x, v.z),
+            View::Endwise => v,
         }
     }
 }
@@ -201,6 +215,14 @@ pub fn position_index(s: DVec3) -> Option<f64> {
     Some(ln_p.exp())
 }
 
+/// Whether a luminaire at (x across, y along the line of sight), in H, lies
+/// outside the field CIE 117 evaluates: outside its Guth Table 4.1, whose
+/// axes run T/R 0 … 3 and H/R 0 … 1.9 (so the first row of the standard
+/// array, at R = H/2, H/R = 2, is out), or γ > 85°.
+fn field_cut(x: f64, y: f64) -> bool {
+    x.abs() > 3.0 * y || 1.0 > 1.9 * y || (x * x + y * y).sqrt() > 85f64.to_radians().tan()
+}
+
 /// What the table needs from the luminaire, precomputed per view.
 struct Array<'a> {
     look: GridLookup<'a>,
@@ -269,6 +291,9 @@ impl<'a> Array<'a> {
                 // coordinate (i + 0.5)·S·k, so offsets run from −that.
                 let (ox, oy) = (i * s_cells + s_cells / 2, j * s_cells + s_cells / 2);
                 floor += self.floor_sum(-ox, room_x - ox, -oy, room_y - oy);
+                if field_cut(x, y) {
+                    continue;
+                }
                 let to_lum = DVec3::new(x, y, 1.0);
                 let r2 = to_lum.length_squared();
                 let s = to_lum / r2.sqrt();
@@ -301,12 +326,62 @@ pub fn ugr_room(
     Ok(one(&array, &f, room_h, rho, h_m))
 }
 
-fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), (rc, rw, rf): (f64, f64, f64), h_m: f64) -> Option<f64> {
-    let (glare_1m, floor) = array.room(x_h, y_h);
+/// The background of one standard room: where each luminaire's flux lands
+/// first and the indirect wall illuminance that sets L_b = E_WID / π.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Background {
+    /// Direct flux of one luminaire (mean over the array) onto the floor
+    /// (the reference plane at eye level), lm: CIE 190's Φ_zL at this flux.
+    pub floor_lm: f64,
+    /// Direct flux of one luminaire onto the walls, lm (the rest of its downward flux).
+    pub walls_lm: f64,
+    /// Direct flux of one luminaire onto the ceiling, lm (its upward flux).
+    pub ceiling_lm: f64,
+    /// Indirect illuminance on the walls, E_WID, lx.
+    pub e_wid_lx: f64,
+}
+
+/// The [`Background`] of room `room_h` (X, Y in H) for `view` with
+/// reflectances `rho` (ceiling, walls, floor) at luminaire height `h_m` above the eye.
+///
+/// # Errors
+/// The luminous opening cannot be built from the file's dimensions.
+pub fn background(
+    lum: &Luminaire,
+    view: View,
+    room_h: (f64, f64),
+    rho: (f64, f64, f64),
+    h_m: f64,
+) -> Result<Background, String> {
+    let opening = Opening::of_luminaire(lum)?;
+    let array = Array::new(lum.distribution(), &opening, view);
+    let f = super::flux::flux(lum.distribution());
+    let (_, floor) = array.room(room_h.0, room_h.1);
+    Ok(room_background(&f, room_h, floor, rho, h_m))
+}
+
+/// [`Background`] from the array's direct floor flux (`floor`, all luminaires, lm).
+fn room_background(
+    f: &super::Flux,
+    (x_h, y_h): (f64, f64),
+    floor: f64,
+    (rc, rw, rf): (f64, f64, f64),
+    h_m: f64,
+) -> Background {
     let n = (x_h / SPACING_H).round() * (y_h / SPACING_H).round();
     let direct = [n * f.upward_lm, floor, (n * f.downward_lm - floor).max(0.0)];
     let (_, e_wid) = box_interreflection(x_h * h_m, y_h * h_m, h_m, direct, [rc, rf, rw]);
-    let lb = e_wid / std::f64::consts::PI;
+    Background {
+        floor_lm: direct[1] / n,
+        walls_lm: direct[2] / n,
+        ceiling_lm: direct[0] / n,
+        e_wid_lx: e_wid,
+    }
+}
+
+fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), rho: (f64, f64, f64), h_m: f64) -> Option<f64> {
+    let (glare_1m, floor) = array.room(x_h, y_h);
+    let lb = room_background(f, (x_h, y_h), floor, rho, h_m).e_wid_lx / std::f64::consts::PI;
     // Σ I²/(A_p r² p²) scales as 1/H² (r ∝ H).
     let glare = glare_1m / (h_m * h_m);
     (glare > 0.0 && lb > 0.0)

@@ -131,7 +131,7 @@ fn undefined_cases_are_errors() {
 /// must order like every published CIE table does: UGR rises with the room
 /// length along the line of sight, and the columns order 70/50 < 50/50 <
 /// 70/30 < 50/30 < 30/30 (less reflected light, darker background). Its
-/// 4H x 8H 70/50/20 value (21.7 here) lies in the 19-22 band catalogues
+/// 4H x 8H 70/50/20 value (21.6 here) lies in the 19-22 band catalogues
 /// give for opal panels of this luminance (not a cited table: a plausibility bound).
 #[test]
 fn lambertian_panel_orders_like_published_tables() {
@@ -147,4 +147,52 @@ fn lambertian_panel_orders_like_published_tables() {
     }
     let r = ROOMS_H.iter().position(|&r| r == (4.0, 8.0)).unwrap();
     assert!((19.0..=23.0).contains(&t.crosswise[r][0]), "{}", t.crosswise[r][0]);
+}
+
+/// CIE 117 eqs. 4.5 and 4.6: viewed crosswise, the eye sees the luminaires
+/// ahead at C = arctan(T/R), near the C0 plane; endwise at 90° − arctan(T/R),
+/// near C90. A luminaire brighter toward C0/C180 than toward C90/C270 (same
+/// flux split otherwise) therefore rates higher crosswise, in every room;
+/// turned by 90° it rates higher endwise by the same amounts.
+#[test]
+fn crosswise_sees_the_c0_plane() {
+    let make = |phase: f64| {
+        let c: Vec<f64> = (0..24).map(|k| f64::from(k) * 15.0).collect();
+        let g: Vec<f64> = (0..=180).map(f64::from).collect();
+        let cd = c
+            .iter()
+            .flat_map(|&c| {
+                let k = 1.0 + 0.8 * (c + phase).to_radians().cos().powi(2);
+                g.iter().map(move |&g: &f64| k * lambertian(1000.0)(g.to_radians()))
+            })
+            .collect();
+        let d = Distribution::new(c, g, cd, Symmetry::None).unwrap();
+        let mut l = Luminaire::from_distribution(d);
+        l.set_luminous_opening(Dimensions {
+            length_m: 0.6,
+            width_m: 0.6,
+            height_m: 0.0,
+        });
+        ugr_table(&l).unwrap()
+    };
+    let (c0, c90) = (make(0.0), make(90.0));
+    for (r, room) in ROOMS_H.iter().enumerate() {
+        for c in 0..REFLECTANCES.len() {
+            assert!(c0.crosswise[r][c] > c0.endwise[r][c] + 0.1, "room {room:?}");
+            assert!((c0.crosswise[r][c] - c90.endwise[r][c]).abs() < 1e-6);
+            assert!((c0.endwise[r][c] - c90.crosswise[r][c]).abs() < 1e-6);
+        }
+    }
+}
+
+/// CIE 117's field for the tabular method: a luminaire counts while T/R ≤ 3,
+/// H/R ≤ 1.9 and γ ≤ 85° (T across, R along the line of sight, in H;
+/// tan 85° = 11.43): the first row of the standard array (R = H/2) is out.
+#[test]
+fn field_cut_at_t_over_r_3_h_over_r_1_9_and_gamma_85() {
+    assert!(!field_cut(2.99, 1.0) && field_cut(3.01, 1.0));
+    assert!(!field_cut(-2.99, 1.0) && field_cut(-3.01, 1.0));
+    assert!(!field_cut(0.0, 11.4) && field_cut(0.0, 11.5));
+    assert!(field_cut(8.0, 8.5) && !field_cut(8.0, 8.0));
+    assert!(field_cut(0.0, 0.5) && !field_cut(0.0, 0.53) && !field_cut(1.5, 1.5));
 }

@@ -1,7 +1,7 @@
 //! The IES grid checks: angle order (with the repair option), the Type C
 //! layouts and their symmetry, warnings about the values.
 
-use crate::error::{ParseError, Warning, WarningCode};
+use crate::error::{Num, ParseError, Warning, WarningCode};
 use crate::formats::scan::Scanner;
 use crate::formats::text::Source;
 use crate::formats::{angles, ReadOptions};
@@ -40,8 +40,8 @@ pub(super) fn check_or_repair(
                 "{what} angles in strictly ascending order (angle #{} = {} follows {}: {why}; \
                  the repair option sorts them)",
                 bad + 1,
-                angles[bad],
-                angles[bad - 1]
+                Num(angles[bad]),
+                Num(angles[bad - 1])
             ),
             found,
         ));
@@ -115,7 +115,10 @@ pub(super) fn type_c(
             if !near(first, 0.0) {
                 warnings.push(Warning::new(
                     WarningCode::SinglePlane,
-                    format!("a single horizontal angle at {first} degrees: read as rotationally symmetric"),
+                    format!(
+                        "a single horizontal angle at {} degrees: read as rotationally symmetric",
+                        Num(first)
+                    ),
                 ));
             }
             horizontal[0] = 0.0;
@@ -161,22 +164,14 @@ fn full_circle(
     Err(src.unsupported(
         loc,
         "a horizontal angle set of LM-63 Type C: {0}, 0..90, 0..180, 90..270 or a last angle in (180, 360]",
-        format!("{first}..{last} ({nh} angles)"),
+        format!("{}..{} ({nh} angles)", Num(first), Num(last)),
     ))
 }
 
-/// Negative candela values are kept (some files hold small negative noise), with a warning.
+/// Negative candela values are kept, with the readers' one warning ([`crate::formats::negative_intensities`]).
 pub(super) fn warn_negatives(cd: &[f64], warnings: &mut Vec<Warning>) {
-    let negatives = cd.iter().filter(|&&v| v < 0.0).count();
-    if negatives > 0 {
-        let min = cd.iter().cloned().fold(f64::INFINITY, f64::min);
-        warnings.push(Warning::new(
-            WarningCode::NegativeIntensity,
-            format!(
-                "{negatives} negative candela value(s) kept (lowest {} cd)",
-                crate::report::significant(min, 6)
-            ),
-        ));
+    if let Some(note) = crate::formats::negative_intensities(cd, "cd") {
+        warnings.push(Warning::new(WarningCode::NegativeIntensity, note));
     }
 }
 

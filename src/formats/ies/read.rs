@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::error::{Location, ParseError, Warning, WarningCode};
+use crate::error::{Location, Num, ParseError, Warning, WarningCode};
 use crate::formats::scan::{Scanner, Separators};
 use crate::formats::text::Source;
 use crate::formats::{declared_lamp_flux, ReadOptions};
@@ -399,7 +399,13 @@ impl<'s, 'a> Reader<'s, 'a> {
             return Err(src.invalid(
                 Location::line(ballast_line),
                 "candela multiplier x ballast factor x ballast-lamp factor a positive normal number",
-                format!("{} x {bf} x {blpf} = {scale}", header.multiplier),
+                format!(
+                    "{} x {} x {} = {}",
+                    Num(header.multiplier),
+                    Num(bf),
+                    Num(blpf),
+                    Num(scale)
+                ),
             ));
         }
         let extra = tokens.count_remaining();
@@ -425,7 +431,10 @@ impl<'s, 'a> Reader<'s, 'a> {
                 let (loc, _) = body.h_start.nth(body.horizontal.len() + i);
                 Err(src.invalid(
                     loc,
-                    format!("candela values in the model's range after multiplier x ballast factor = {scale}"),
+                    format!(
+                        "candela values in the model's range after multiplier x ballast factor = {}",
+                        Num(scale)
+                    ),
                     why,
                 ))
             }
@@ -482,7 +491,10 @@ impl<'s, 'a> Reader<'s, 'a> {
         if absolute && (lpl + 1.0).abs() > 1e-9 {
             warnings.push(Warning::new(
                 WarningCode::InvalidLumens,
-                format!("lumens per lamp {lpl} is negative but not -1; read as absolute photometry"),
+                format!(
+                    "lumens per lamp {} is negative but not -1; read as absolute photometry",
+                    Num(lpl)
+                ),
             ));
         }
         let lamp_flux = if absolute { None } else { Some(header.lamps * lpl) };
@@ -595,7 +607,11 @@ fn positive_or_one(v: f64, what: &str, code: WarningCode, line: usize, warnings:
     if v > 0.0 {
         return v;
     }
-    warnings.push(Warning::at(line, code, format!("{what} {v} is not positive; 1.0 used")));
+    warnings.push(Warning::at(
+        line,
+        code,
+        format!("{what} {} is not positive; 1.0 used", Num(v)),
+    ));
     1.0
 }
 

@@ -144,7 +144,8 @@ pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distributi
     let h0 = hs[0];
     if h0 > 1e-9 {
         return Err(format!(
-            "horizontal angles start at {h0}: Type {:?} data starts at 0 (laterally symmetric) or below 0",
+            "horizontal angles start at {}: Type {:?} data starts at 0 (laterally symmetric) or below 0",
+            crate::error::Num(h0),
             grid.kind
         ));
     }

@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use super::{LampSetLayout, LdtHeader};
-use crate::error::{Location, ParseError, Warning, WarningCode};
+use crate::error::{Location, Num, ParseError, Warning, WarningCode};
 use crate::formats::scan::{parse_number, Scanner, Separators};
 use crate::formats::text::{Line, Lines, Source};
 use crate::formats::ReadOptions;
@@ -148,7 +148,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             _ => Err(self.src.invalid(
                 Location::line(line),
                 format!("{what} (integer {min}..={max})"),
-                format!("`{v}`"),
+                format!("`{}`", Num(v)),
             )),
         }
     }
@@ -237,7 +237,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 self.warn(
                     ityp_line,
                     WarningCode::Ityp,
-                    format!("Ityp = {ityp} is not 0-3; kept as 0"),
+                    format!("Ityp = {} is not 0-3; kept as 0", Num(ityp)),
                 );
                 0
             }
@@ -310,7 +310,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 self.warn(
                     cfli_line,
                     WarningCode::Cfli,
-                    format!("CFLI = {cfli_raw}: intensities are multiplied by it"),
+                    format!("CFLI = {}: intensities are multiplied by it", Num(cfli_raw)),
                 );
             }
             cfli_raw
@@ -318,7 +318,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             self.warn(
                 cfli_line,
                 WarningCode::Cfli,
-                format!("CFLI = {cfli_raw} is not positive; taken as 1"),
+                format!("CFLI = {} is not positive; taken as 1", Num(cfli_raw)),
             );
             1.0
         })

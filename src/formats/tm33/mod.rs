@@ -10,7 +10,8 @@
 //! - `Header`: `Manufacturer`, `CatalogNumber`, `Description`,
 //!   `ReportNumber`, `ReportDate` (or `TestDate`, `IssueDate`);
 //! - `Luminaire/Dimensions`: `Length`, `Width`, `Height` in millimetres;
-//! - the one `Emitter` with intensity data: `Quantity`, `RatedLumens` (lm per
+//! - one `Emitter` with intensity data (a document with several is read one
+//!   emitter at a time, `FILE.xml#ID`: see [`emitters`]): `Quantity`, `RatedLumens` (lm per
 //!   emitter), `InputWattage` (or `InputWatts`, W), `CCT` (or `FixedCCT`, K),
 //!   `ColorRendering/Ra`, and its intensity block (`LuminousData`,
 //!   `LuminousIntensity` or `IntensityDistribution`) with `PhotometryType`
@@ -33,10 +34,12 @@
 //! C90-C270, quadrant, none. Without a code the symmetry follows from the
 //! set of `horz` angles as for IES LM-63.
 
+pub mod emitters;
 mod read;
 mod write;
 
-pub use read::read;
+pub use emitters::{emitter_ids, expand, split_reference};
+pub use read::{read, read_emitter};
 pub use write::write;
 
 /// Which TM-33 edition a document follows, from its root element.

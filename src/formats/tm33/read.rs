@@ -5,7 +5,7 @@ use std::path::Path;
 use roxmltree::Node;
 
 use super::Tm33Edition;
-use crate::error::{ErrorKind, Location, ParseError, Warning, WarningCode};
+use crate::error::{ErrorKind, Location, Num, ParseError, Warning, WarningCode};
 use crate::formats::scan::parse_f64;
 use crate::formats::xml::{self, child, child_number, child_text, children, error_at};
 use crate::formats::{angles, declared_lamp_flux, ReadOptions};
@@ -16,16 +16,35 @@ use crate::model::{
 /// Names of the element holding the intensity data, by edition and spelling.
 const INTENSITY_BLOCKS: [&str; 3] = ["LuminousData", "LuminousIntensity", "IntensityDistribution"];
 
-/// Read a TM-33-18 or TM-33-23 document. `path` names the file in messages.
+/// Read a TM-33-18 or TM-33-23 document of one emitter (with intensity
+/// data). `path` names the file in messages.
+///
+/// # Errors
+/// As [`read_emitter`]; a document with several emitters is refused with
+/// their ids (name one as `FILE.xml#ID`).
+pub fn read(bytes: &[u8], path: &Path, opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
+    read_emitter(bytes, path, None, opts)
+}
+
+/// Read one emitter of a TM-33-18 or TM-33-23 document: the one named
+/// `emitter` (its `<ID>`, or its 1-based position when it has none; see
+/// [`super::emitters`]), or the only one when `None`. `path` names the
+/// file in messages (`FILE.xml#ID` when an emitter is named).
 ///
 /// # Errors
 /// Malformed XML, a root element that is neither `LuminaireOpticalData` nor
-/// `IESTM33-22`, no or several emitters with intensity data, a missing or
+/// `IESTM33-22`, no emitter with intensity data, several and none named, an
+/// id the document does not hold, a missing or
 /// unreadable `horz`/`vert`/value, an incomplete or duplicated grid point, a
 /// symmetry code that does not match the `horz` angles; each at the line of
 /// the offending element, naming it. Type A/B data and non-luminous metrics
 /// are [`ErrorKind::Unsupported`].
-pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::formats::Document, ParseError> {
+pub fn read_emitter(
+    bytes: &[u8],
+    path: &Path,
+    emitter: Option<&str>,
+    _opts: &ReadOptions,
+) -> Result<crate::formats::Document, ParseError> {
     let text = xml::decode(bytes, path)?;
     let doc = xml::parse(text, path, "a TM-33 document")?;
     let root = doc.root_element();
@@ -43,13 +62,19 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
         }
     };
     let mut warnings = Vec::new();
-    let emitter = the_emitter(path, root)?;
+    let emitter = super::emitters::choose(path, root, emitter)?;
     let block = block_of(emitter).expect("filtered above");
     check_type_and_metric(path, block)?;
     let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
     if multiplier <= 0.0 {
         let node = child(block, &["Multiplier"]).unwrap_or(block);
-        return Err(error_at(path, node, ErrorKind::Invalid, "a multiplier > 0", multiplier));
+        return Err(error_at(
+            path,
+            node,
+            ErrorKind::Invalid,
+            "a multiplier > 0",
+            Num(multiplier),
+        ));
     }
     let declared_symmetry = symmetry_code(path, block)?;
     let distribution = grid(path, block, multiplier, declared_symmetry, &mut warnings)?;
@@ -98,29 +123,6 @@ pub fn read(bytes: &[u8], path: &Path, _opts: &ReadOptions) -> Result<crate::for
         warnings,
     };
     crate::formats::document(path, parts, crate::formats::Header::None)
-}
-
-/// The one emitter with intensity data.
-fn the_emitter<'a, 'i>(path: &Path, root: Node<'a, 'i>) -> Result<Node<'a, 'i>, ParseError> {
-    let emitters: Vec<Node> = children(root, "Emitter").filter(|e| block_of(*e).is_some()).collect();
-    match emitters.as_slice() {
-        [one] => Ok(*one),
-        [] => Err(error_at(
-            path,
-            root,
-            ErrorKind::Invalid,
-            "an <Emitter> with a <LuminousData> (or <LuminousIntensity>, <IntensityDistribution>) block of \
-             <IntensityData>",
-            "none",
-        )),
-        [_, second, ..] => Err(error_at(
-            path,
-            *second,
-            ErrorKind::Unsupported,
-            "one <Emitter> with intensity data (several emitters are not combined)",
-            format!("{} emitters with intensity data", emitters.len()),
-        )),
-    }
 }
 
 /// `<AbsolutePhotometry>`; absent, absolute when no rated lumens are given.
@@ -173,7 +175,7 @@ fn lamp_set(
 }
 
 /// The emitter's intensity block, when it holds `IntensityData`.
-fn block_of<'a, 'i>(emitter: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
+pub(super) fn block_of<'a, 'i>(emitter: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
     emitter
         .children()
         .filter(|c| c.is_element() && INTENSITY_BLOCKS.contains(&c.tag_name().name()))
@@ -290,7 +292,7 @@ fn second_value(path: &Path, p: &Point<'_, '_>) -> ParseError {
         p.node,
         ErrorKind::Invalid,
         "one IntensityData per (horz, vert)",
-        format!("a second value at horz = {}, vert = {}", p.c, p.gamma),
+        format!("a second value at horz = {}, vert = {}", Num(p.c), Num(p.gamma)),
     )
 }
 
@@ -307,6 +309,14 @@ fn grid(
     let vs = distinct(points.iter().map(|p| p.gamma).collect());
     let (nh, nv) = (hs.len(), vs.len());
     let mut cd = complete_grid(path, block, &points, &hs, &vs)?;
+    if let Some(note) = crate::formats::negative_intensities(&cd, "cd") {
+        let first = points.iter().find(|p| p.cd < 0.0).map_or(block, |p| p.node);
+        warnings.push(Warning::at(
+            xml::location(first).line,
+            WarningCode::NegativeIntensity,
+            note,
+        ));
+    }
     match crate::formats::into_model_range(&mut cd) {
         Ok(Some(note)) => warnings.push(Warning::new(WarningCode::RangeSnapped, note)),
         Ok(None) => {}
@@ -391,7 +401,7 @@ fn points<'a, 'i>(path: &Path, block: Node<'a, 'i>, multiplier: f64) -> Result<V
                 n,
                 ErrorKind::Invalid,
                 "vert within 0..180 degrees (Type C)",
-                gamma,
+                Num(gamma),
             ));
         }
         if angles::first_outside(&[c], 360.0).is_some() {
@@ -400,7 +410,7 @@ fn points<'a, 'i>(path: &Path, block: Node<'a, 'i>, multiplier: f64) -> Result<V
                 n,
                 ErrorKind::Invalid,
                 "horz within 0..360 degrees (Type C)",
-                c,
+                Num(c),
             ));
         }
         points.push(Point {
@@ -433,7 +443,7 @@ fn complete_grid(
         let missing = (0..nh)
             .flat_map(|ih| (0..nv).map(move |iv| (ih, iv)))
             .find(|k| !have.contains(k))
-            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", hs[ih], vs[iv]))
+            .map(|(ih, iv)| format!("no value at horz = {}, vert = {}", Num(hs[ih]), Num(vs[iv])))
             .unwrap_or_default();
         return Err(error_at(
             path,

@@ -221,3 +221,94 @@ fn every_truncation_is_refused_with_a_line() {
         assert_eq!(e.path, Path::new("t.xml"));
     }
 }
+
+/// A TM-33-23 document with one emitter per `(id, peak cd)`: `<ID>` when
+/// given, a rotationally symmetric grid (γ 0, 90, 180) falling from the peak.
+fn multi(emitters: &[(Option<&str>, f64)]) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<IESTM33-22>\n<Version>1.1</Version>\n\
+         <Luminaire><NumEmitters>2</NumEmitters></Luminaire>\n",
+    );
+    for (id, peak) in emitters {
+        s.push_str("<Emitter>\n");
+        if let Some(id) = id {
+            s.push_str(&format!("<ID>{id}</ID>\n"));
+        }
+        s.push_str("<Quantity>1</Quantity>\n<RatedLumens>1000</RatedLumens>\n<LuminousData>\n<SymmType>Symm _ Full</SymmType>\n");
+        for (v, k) in [(0.0, 1.0), (90.0, 0.5), (180.0, 0.0)] {
+            s.push_str(&format!(
+                "<IntensityData horz=\"0\" vert=\"{v}\">{}</IntensityData>\n",
+                peak * k
+            ));
+        }
+        s.push_str("</LuminousData>\n</Emitter>\n");
+    }
+    s.push_str("</IESTM33-22>\n");
+    s
+}
+
+/// Several emitters: each is read by its `<ID>` (or its position when it has
+/// none or shares it); unnamed, the document is refused with the ids listed
+/// and how to name one; an unknown id is refused with the ids it holds.
+#[test]
+fn several_emitters_are_read_one_at_a_time_by_id() {
+    let text = multi(&[(Some("down"), 100.0), (Some("up"), 300.0), (None, 500.0)]);
+    assert_eq!(emitter_ids(text.as_bytes()), ["down", "up", "3"]);
+    let opts = ReadOptions::default();
+    for (id, peak) in [("down", 100.0), ("up", 300.0), ("3", 500.0)] {
+        let name = format!("m.xml#{id}");
+        let d = read_emitter(text.as_bytes(), Path::new(&name), Some(id), &opts).unwrap();
+        assert_eq!(d.distribution().max_cd(), peak, "{id}");
+        assert_eq!(d.path(), Some(Path::new(&name)));
+    }
+    let e = parse(&text).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Invalid);
+    assert!(
+        e.expected.contains("this document holds 3") && e.expected.contains("t.xml#ID"),
+        "{e}"
+    );
+    assert_eq!(e.found, "the ids down, up, 3");
+    let e = read_emitter(text.as_bytes(), Path::new("m.xml#side"), Some("side"), &opts).unwrap_err();
+    assert!(
+        e.expected.contains("an emitter id of the document: down, up, 3") && e.found == "`side`",
+        "{e}"
+    );
+    // A shared id names neither emitter: both go by position.
+    let dup = multi(&[(Some("a"), 100.0), (Some("a"), 200.0)]);
+    assert_eq!(emitter_ids(dup.as_bytes()), ["1", "2"]);
+    // One emitter reads as before, with or without an id; not TM-33 has none.
+    assert!(parse(&multi(&[(Some("only"), 100.0)])).is_ok());
+    assert!(emitter_ids(b"<Root/>").is_empty() && emitter_ids(b"not xml").is_empty());
+}
+
+/// `FILE.xml#ID` through `load`, and a several-emitter document expanded to
+/// one path per emitter by `photometries_in` and `collect_files` (as a GLDF
+/// container is); `FILE.xml` alone names the ids in its error.
+#[test]
+fn file_xml_hash_id_loads_one_emitter() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("two.xml");
+    std::fs::write(&p, multi(&[(Some("down"), 100.0), (Some("up"), 300.0)])).unwrap();
+    let want: Vec<std::path::PathBuf> = ["down", "up"].iter().map(|id| emitters::reference(&p, id)).collect();
+    assert_eq!(crate::formats::photometries_in(&p), want);
+    let mut files = Vec::new();
+    crate::formats::collect_files(dir.path(), &mut files).unwrap();
+    assert_eq!(files, want);
+    let l = crate::formats::load(&want[1]).unwrap();
+    assert_eq!(l.distribution().max_cd(), 300.0);
+    let e = crate::formats::load(&p).unwrap_err().to_string();
+    assert!(e.contains("two.xml") && e.contains("the ids down, up"), "{e}");
+    let e = crate::formats::load(emitters::reference(&p, "nope"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("two.xml#nope") && e.contains("`nope`"), "{e}");
+    assert_eq!(
+        split_reference(Path::new("a/b.XML#x#y")),
+        Some((std::path::PathBuf::from("a/b.XML"), "x#y".to_string()))
+    );
+    assert_eq!(split_reference(Path::new("a/b.ldt#x")), None);
+    // One emitter: the path itself.
+    let one = dir.path().join("one.xml");
+    std::fs::write(&one, multi(&[(None, 100.0)])).unwrap();
+    assert_eq!(crate::formats::photometries_in(&one), vec![one.clone()]);
+}

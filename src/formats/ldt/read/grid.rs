@@ -2,12 +2,13 @@
 //! the stored planes, the intensities, their units and the model's grid.
 
 use super::{Head, Reader};
-use crate::error::{Location, ParseError, WarningCode};
+use crate::error::{Location, Num, Nums, ParseError, WarningCode};
 use crate::formats::ldt::{formula_plane_count, stored_plane_indices};
 use crate::formats::scan::Scanner;
 use crate::formats::text::Source;
 use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{Distribution, LampSet, Symmetry, ANGLE_EPS};
+use crate::report::significant;
 
 impl<'s, 'a> Reader<'s, 'a> {
     /// Lines 27-29: direct ratios, C-angles, γ angles.
@@ -77,8 +78,10 @@ impl<'s, 'a> Reader<'s, 'a> {
                         loc,
                         format!("strictly ascending {what} angles"),
                         format!(
-                            "{what} angle #{} = {b} after {a} (use the repair option to sort them)",
-                            i + 1
+                            "{what} angle #{} = {} after {} (use the repair option to sort them)",
+                            i + 1,
+                            Num(b),
+                            Num(a)
                         ),
                     ));
                 }
@@ -86,8 +89,10 @@ impl<'s, 'a> Reader<'s, 'a> {
                     loc.line,
                     WarningCode::UnsortedAngles,
                     format!(
-                        "{what} angles not strictly ascending (#{} = {b} after {a}); sorted, duplicates dropped",
-                        i + 1
+                        "{what} angles not strictly ascending (#{} = {} after {}); sorted, duplicates dropped",
+                        i + 1,
+                        Num(b),
+                        Num(a)
                     ),
                 );
             }
@@ -118,7 +123,10 @@ impl<'s, 'a> Reader<'s, 'a> {
                 self.warn(
                     line + 1,
                     code,
-                    format!("{name} = {step} but the {what} are not spaced by it; the list is used"),
+                    format!(
+                        "{name} = {} but the {what} are not spaced by it; the list is used",
+                        Num(step)
+                    ),
                 );
             }
         }
@@ -229,18 +237,16 @@ impl<'s, 'a> Reader<'s, 'a> {
             self.warn(
                 head.n_line + 1,
                 WarningCode::ZeroLampFlux,
-                format!("reference flux is {phi} lm; intensities taken as cd (1000 lm assumed)"),
+                format!(
+                    "reference flux is {} lm; intensities taken as cd (1000 lm assumed)",
+                    Num(phi)
+                ),
             );
             phi = 1000.0;
         }
         let scale = cfli * phi / 1000.0;
-        let mut min = f64::INFINITY;
-        let mut negatives = 0usize;
+        let negatives = crate::formats::negative_intensities(cd, "cd/klm");
         for v in cd.iter_mut() {
-            if *v < 0.0 {
-                negatives += 1;
-                min = min.min(*v);
-            }
             *v *= scale;
         }
         let snapped = crate::formats::into_model_range(cd);
@@ -251,18 +257,16 @@ impl<'s, 'a> Reader<'s, 'a> {
             return Err(self.src.invalid(
                 Location::line(cd_first),
                 format!(
-                    "intensities whose candela values (cd/klm × flux {phi} lm × CFLI {cfli} / 1000) \
-                     lie in the model's range"
+                    "intensities whose candela values (cd/klm × flux {} lm × CFLI {} / 1000) \
+                     lie in the model's range",
+                    Num(phi),
+                    Num(cfli)
                 ),
                 format!("plane {} of {nstored}, gamma {} of {ng}: {why}", i / ng + 1, i % ng + 1),
             ));
         }
-        if negatives > 0 {
-            self.warn(
-                cd_first,
-                WarningCode::NegativeIntensity,
-                format!("{negatives} negative intensities (lowest {min} cd/klm) kept as they are"),
-            );
+        if let Some(note) = negatives {
+            self.warn(cd_first, WarningCode::NegativeIntensity, note);
         }
         Ok(Units {
             absolute,
@@ -316,7 +320,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 return Err(self.src.invalid(
                     Location::line(c_first),
                     "stored C-planes with distinct, ordered angles",
-                    format!("{c_model:?} after mapping Isym {isym} planes"),
+                    format!("{} after mapping Isym {isym} planes", Nums(&c_model)),
                 ));
             }
             (c_model, cd) = sort_planes(&c_model, &cd, ng);
@@ -346,8 +350,17 @@ impl<'s, 'a> Reader<'s, 'a> {
                     g_first,
                     WarningCode::PoleMismatch,
                     format!(
-                        "{name} values differ between planes by {spread:.6} cd ({:.3} % of their mean {mean:.6} cd); kept",
-                        if mean.abs() > 0.0 { 100.0 * spread / mean.abs() } else { 0.0 }
+                        "{name} values differ between planes by {} cd ({} % of their mean {} cd); kept",
+                        significant(spread, 7),
+                        significant(
+                            if mean.abs() > 0.0 {
+                                100.0 * spread / mean.abs()
+                            } else {
+                                0.0
+                            },
+                            4
+                        ),
+                        significant(mean, 7)
                     ),
                 );
             }
@@ -402,7 +415,7 @@ fn check_range(src: &Source<'_>, v: &[f64], at: &Scanner<'_>, what: &str, hi: f6
         Some(i) => Err(src.invalid(
             at.nth(i).0,
             format!("{what} angles in [0, {hi}] degrees"),
-            format!("{what} angle #{} = {}", i + 1, v[i]),
+            format!("{what} angle #{} = {}", i + 1, Num(v[i])),
         )),
     }
 }
