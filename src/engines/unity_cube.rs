@@ -13,7 +13,7 @@
 //!    face texel takes the bilinear value of the buffer at its centre's
 //!    direction, the buffer's angles read as the inverse of
 //!    `BuildTypeCCylindricalTexture` ([`super::unity::cylindrical_coords`]),
-//!    stored as 8-bit (uncompressed RGBA32; the importer's default BC7
+//!    rounded to 8 bits (uncompressed RGBA32; the importer's default BC7
 //!    compression is not modelled).
 //! 2. Face layout: the cube-map face selection and face coordinates of the
 //!    OpenGL 4.6 specification, §8.13 "Cube Map Texture Selection", table 8.19
@@ -40,7 +40,7 @@
 
 use glam::DVec3;
 
-use super::table::{to_byte, to_f11, Image};
+use super::table::{to_f11, Image};
 
 /// `(major axis, s axis, t axis)` of each face, in the order +X, −X, +Y,
 /// −Y, +Z, −Z: a direction on face f is `major + sc·s + tc·t` with
@@ -117,7 +117,10 @@ impl CubeMap {
             let d = texel_direction(face, i, j, size);
             let (c, g) = crate::model::frame::unit_angles(cube_to_frame(d));
             let (x, y) = super::unity::cylindrical_coords(c, g, buffer.width, buffer.height);
-            to_byte(buffer.bilinear_clamped(x, y))
+            // Rounded to the nearest 8-bit step (a resampler's output; IESEngine's own
+            // truncation is in the buffer already, and truncating twice would halve the
+            // flux of dim regions by another half step).
+            ((buffer.bilinear_clamped(x, y) * 255.0).round().clamp(0.0, 255.0) / 255.0) as f32
         })
     }
 
