@@ -22,7 +22,8 @@
 //!    (`com.unity.render-pipelines.high-definition/Runtime/Lighting/LightCookieManager.cs`,
 //!    commit 85898ebe, `UNITY_2020_1_OR_NEWER`): `projectionSize = 2 * cookie.width`,
 //!    `FilterAreaLightTexture` pass 3 ("Project Cube to Octahedral",
-//!    `com.unity.render-pipelines.core/.../FilterAreaLightCookies.shader`):
+//!    `com.unity.render-pipelines.high-definition/Runtime/Core/CoreResources/FilterAreaLightCookies.shader`,
+//!    commit cfc4b936, lines 129–142):
 //!    each texel samples the cube with its own sampler (bilinear, set by
 //!    `IESEngine.GenerateTexture`) at `UnpackNormalOctQuadEncode(2·uv − 1)`;
 //!    the shader compiles only for d3d11, consoles, Vulkan and Metal, whose
@@ -30,7 +31,7 @@
 //!    cube corner the missing texel is the mean of the three others, as the
 //!    Direct3D 11 specification describes). The atlas is `R11G11B10` by
 //!    default (`GlobalLightLoopSettings.NewDefault`): 6-bit mantissas.
-//! 4. Lookup: `CookieSampling.hlsl` `SamplePointCookie`:
+//! 4. Lookup: `CookieSampling.hlsl` (commit a1e46132) lines 45–52 `SamplePointCookie`:
 //!    `uv = saturate(PackNormalOctQuadEncode(lightToSample) * 0.5 + 0.5)`,
 //!    `SampleCookie2D` bilinear at mip 0 (`s_trilinear_clamp_sampler`, LOD 0).
 //!    `RemapUVWithPadding` (the atlas padding, under a texel) is not modelled.
