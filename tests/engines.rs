@@ -400,6 +400,22 @@ fn cli_export_and_engines() {
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
     assert!(html.contains("Engines: lookup errors") && html.contains("The reference over C x gamma"));
     assert!(report.join("reference.png").exists() && report.join("error_pbrt.png").exists());
+    // Layout rows whose emulation has a stand-in step say so in the report.
+    let o = std::process::Command::new(bin)
+        .arg("engines")
+        .arg(data("cosine_p5.ldt"))
+        .args(["--engines", "unity-point", "--json", "--report"])
+        .arg(dir.path().join("unity"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["rows"][0]["stand_ins"][0]
+        .as_str()
+        .unwrap()
+        .contains("cube-map conversion"));
+    let md = std::fs::read_to_string(dir.path().join("unity").join("report.md")).unwrap();
+    assert!(md.contains("unity-point: stand-in, not from the engine's source: cube-map conversion"));
 }
 
 /// Write `text` to `dir/name` and load it.
