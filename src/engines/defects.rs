@@ -4,7 +4,7 @@
 //! ([`super::measure`] reports it as a separate row).
 
 use super::table::IesTable;
-use super::{blender, ue, web, Engine};
+use super::{blender, ue, unity, web, Engine};
 use crate::error::ModelError;
 use crate::model::{IntensityField, Luminaire, PhotometricType, Symmetry};
 
@@ -42,6 +42,14 @@ const BABYLON_TYPE: &str = "Babylon.js iesLoader.ts, LoadIESData: \
     `data.photometricType = header[5]; // We ignore cylindrical type for now`";
 const UE_TYPE_B: &str = "UE IESLoader.cpp, FIESLoader::Interpolate2D: only `EIESPhotometricType::TypeA` is \
     converted; Type B takes the Type C path";
+const UE4_INTEGRAL: &str = "UE 4.19.2 Engine/Source/Editor/UnrealEd/Private/Factories/IESLoader.cpp, \
+    FIESLoadHelper::ComputeFullIntegral: `float HAngle = FMath::Acos(Dir.Z) / PI * 180;` \
+    `float VAngle = FMath::Atan2(Dir.Y, Dir.X) / PI * 180 + 180;` `Sum += Interpolate2D(HAngle, VAngle);` \
+    (polar angle as the horizontal angle); ExtractInRGBA16F returns `MaxValue / Integral`, \
+    which ULightComponent::ComputeLightBrightness multiplies into the brightness";
+const UNITY_90_270: &str = "Unity com.unity.render-pipelines.core/Editor/Lighting/IESReader.cs, \
+    ComputeTypeCHorizontalAnglePosition: `default: // the luminaire is assumed to exhibit no lateral symmetry` \
+    leaves a 90-270 file unfolded, and ComputeAnglePosition clamps C < 90 and C > 270 to the first and last plane";
 const BLENDER_TILT: &str = "Blender intern/cycles/util/ies.cpp, IESFile::parse: \
     TILT=INCLUDE angles and factors are read and skipped";
 
@@ -69,7 +77,7 @@ pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
 }
 
 /// The defects of `engine` that apply to `lum` (none for the engines
-/// without documented defects: pbrt, UE, Unity, glTF).
+/// without documented defects: pbrt, UE5 on Type C files, glTF).
 ///
 /// Rows: three.js and Babylon square each candela value; three.js keeps one
 /// C-plane; Babylon's shader reads row 0 of its 360-wide texture; Blender
@@ -78,7 +86,9 @@ pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
 /// table's angle furthest from a multiplier of 1); three.js and Babylon read
 /// Type A/B angles as Type C, and UE reads Type B as Type C (only for such
 /// files: the file's own grid taken as a Type C table, against the engine
-/// on photosolid's Type C conversion).
+/// on photosolid's Type C conversion); UE4 scales by a mean taken with the
+/// polar angle and the azimuth swapped (every file); Unity leaves 90-270
+/// files unfolded (only for such files).
 ///
 /// # Errors
 /// A table Blender refuses.
@@ -176,7 +186,48 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                 });
             }
         }
+        Engine::UnityPoint | Engine::UnitySpot if dist.symmetry() == Symmetry::C90C270 => {
+            let n = super::resolution(engine, &super::EngineOptions::default())?.unwrap_or(unity::DEFAULT_SIZE);
+            let field = |fold: bool| -> Result<Box<dyn IntensityField>, ModelError> {
+                Ok(if engine == Engine::UnityPoint {
+                    Box::new(unity::UnityField::point(&unity::bake_point(&t, n, fold)?, n, i_max)?)
+                } else {
+                    let cone = unity::DEFAULT_CONE_DEG;
+                    Box::new(unity::UnityField::spot(
+                        &unity::bake_spot(&t, n, cone, fold)?,
+                        cone,
+                        i_max,
+                    ))
+                })
+            };
+            out.push(Defect {
+                engine,
+                name: "90-270 file clamped outside 90..270".into(),
+                source: UNITY_90_270,
+                with: field(false)?,
+                without: field(true)?,
+            });
+        }
         Engine::Ue5 | Engine::Ue4 => {
+            if engine == Engine::Ue4 {
+                let strip = ue::bake_ue4(&t)?;
+                let (right, swapped) = (ue::ue4_integral(&t, false), ue::ue4_integral(&t, true));
+                if right > 0.0 && swapped > 0.0 {
+                    out.push(Defect {
+                        engine,
+                        name: "swapped-angle integral".into(),
+                        source: UE4_INTEGRAL,
+                        with: Box::new(ue::UeField {
+                            image: strip.clone(),
+                            i_max_cd: i_max * right / swapped,
+                        }),
+                        without: Box::new(ue::UeField {
+                            image: strip,
+                            i_max_cd: i_max,
+                        }),
+                    });
+                }
+            }
             if let Some((PhotometricType::B, name, tab)) = &as_type_c {
                 let bake = |t: &IesTable| {
                     if engine == Engine::Ue5 {

@@ -85,6 +85,9 @@ pub struct EngineRow {
     pub against: String,
     /// The source line of a defect (file, function, statement).
     pub source: Option<String>,
+    /// Steps of the emulation that follow no source photosolid could read
+    /// (stand-ins, parts not modelled); empty when every step is from source.
+    pub stand_ins: Vec<String>,
     /// The metrics (lengths in cd).
     pub metrics: ReconResult,
 }
@@ -279,6 +282,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
             resolution: em.resolution,
             against: "reference".into(),
             source: None,
+            stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
             metrics: metrics(engine.name(), &*em.field, &reference, &setup)?,
         });
         fields.push((engine.name().into(), em.field));
@@ -293,6 +297,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
                 resolution: em.resolution,
                 against: format!("{engine} without the defect"),
                 source: Some(d.source.to_string()),
+                stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
                 metrics: metrics(&name, &*d.with, &own, &setup)?,
             });
             fields.push((name, d.with));

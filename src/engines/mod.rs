@@ -4,7 +4,8 @@
 //!
 //! One file per engine, each citing the engine's own source:
 //! [`pbrt`] (pbrt-v4 goniometric light), [`ue`] (Unreal Engine 5 and 4),
-//! [`unity`] (HDRP point and spot), [`web`] (three.js, Babylon.js),
+//! [`unity`] (HDRP point and spot; [`unity_cube`] the point light's cube map
+//! and HDRP's octahedral atlas copy), [`web`] (three.js, Babylon.js),
 //! [`blender`] (Cycles), [`gltf`] (`KHR_lights_punctual` + `EXT_lights_ies`).
 //! `docs/engines.md` describes every layout and its orientation.
 //!
@@ -23,6 +24,7 @@ pub mod pbrt;
 pub mod table;
 pub mod ue;
 pub mod unity;
+pub mod unity_cube;
 pub mod web;
 
 use std::fmt;
@@ -169,6 +171,9 @@ pub struct Emulation {
     pub field: Box<dyn IntensityField>,
     /// The image the engine holds (texture layouts).
     pub image: Option<Image>,
+    /// Steps of the emulation that follow no source photosolid could read
+    /// (stand-ins, or parts not modelled); empty when every step is from source.
+    pub stand_ins: Vec<&'static str>,
 }
 
 /// The resolution `opts` asks of `engine`, checked against its range.
@@ -248,30 +253,24 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
         }
         Engine::UnityPoint | Engine::UnitySpot => {
             let n = n.unwrap_or(unity::DEFAULT_SIZE);
-            let bilinear = texture.sampler(Filter::Bilinear);
-            let (image, cone, layout) = if engine == Engine::UnityPoint {
-                (
-                    unity::bake_point(&bilinear, i_max, n)?,
-                    None,
-                    format!(
-                        "{0}x{0} cylindrical, 8-bit I/I_max, bilinear (cube map not modelled)",
-                        2 * n
-                    ),
-                )
+            if engine == Engine::UnityPoint {
+                let image = unity::bake_point(&table, n, true)?;
+                let f = unity::UnityField::point(&image, n, i_max)?;
+                let layout = format!(
+                    "{0}x{0} cylindrical, 8-bit I/I_max -> cube map {n}x{n} per face -> HDRP octahedral atlas {1}x{1} R11G11B10, bilinear (90-270 files folded; Unity's clamp is a defect row)",
+                    2 * n,
+                    f.image.width
+                );
+                (layout, Box::new(f), Some(image))
             } else {
                 let cone = unity::DEFAULT_CONE_DEG;
-                (
-                    unity::bake_spot(&bilinear, i_max, n, cone)?,
-                    Some(cone),
-                    format!("{n}x{n} gnomonic cookie, cone {cone} deg, attenuation on, 8-bit I/I_max, bilinear"),
-                )
-            };
-            let f = unity::UnityField {
-                image: image.clone(),
-                i_max_cd: i_max,
-                spot_cone_deg: cone,
-            };
-            (layout, Box::new(f), Some(image))
+                let image = unity::bake_spot(&table, n, cone, true)?;
+                let f = unity::UnityField::spot(&image, cone, i_max);
+                let layout = format!(
+                    "{n}x{n} gnomonic cookie, cone {cone} deg, attenuation on, 8-bit I/I_max, atlas R11G11B10, bilinear"
+                );
+                (layout, Box::new(f), Some(image))
+            }
         }
         Engine::Threejs | Engine::Babylon => {
             let three = engine == Engine::Threejs;
@@ -313,12 +312,18 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
             (layout, Box::new(gltf::KhrField { lights }), None)
         }
     };
+    let stand_ins = match engine {
+        Engine::UnityPoint => unity::POINT_STAND_INS.to_vec(),
+        Engine::UnitySpot => unity::SPOT_STAND_INS.to_vec(),
+        _ => Vec::new(),
+    };
     Ok(Emulation {
         engine,
         resolution: n,
         layout,
         field,
         image,
+        stand_ins,
     })
 }
 

@@ -5,7 +5,7 @@
 //! (square image with a `Y` channel or averaged RGB; NaN/Inf refused;
 //! `power` rescales by `k_e = 4π·mean(Y)`; the light frame is
 //! `renderFromLight * swapYZ`) and `GoniometricLight::I` in `lights.h`
-//! (`image.LookupNearest(EqualAreaSphereToSquare(w))`);
+//! (`image.LookupNearestChannel(EqualAreaSphereToSquare(w), 0)`);
 //! `src/pbrt/util/math.cpp`, `EqualAreaSquareToSphere` / `EqualAreaSphereToSquare`.
 //!
 //! Frame: the pbrt light's own frame is the luminaire frame

@@ -145,6 +145,23 @@ pub fn to_half(v: f64) -> f32 {
     exr::prelude::f16::from_f64(v).to_f32()
 }
 
+/// Round a non-negative value to the nearest unsigned 11-bit float (5-bit
+/// exponent, bias 15, 6-bit mantissa: the R and G channels of an
+/// `R11G11B10` texture, HDRP's default cookie-atlas format) and back.
+/// Negative and non-finite values give 0; values above the largest finite
+/// 11-bit float (65024) give it.
+#[inline]
+pub fn to_f11(v: f64) -> f32 {
+    if !(v > 0.0 && v.is_finite()) {
+        return 0.0;
+    }
+    const MAX: f64 = 65024.0;
+    // Below 2^-14 the format is denormal: a fixed step of 2^-20.
+    let e = v.log2().floor().max(-14.0);
+    let step = (e - 6.0).exp2();
+    ((v / step).round_ties_even() * step).min(MAX) as f32
+}
+
 /// Quantise a value in [0, 1] to an 8-bit channel the way a C# `(byte)` cast
 /// of `v * 255` does (truncation toward zero, wrap-free because clamped).
 #[inline]
@@ -180,5 +197,15 @@ mod tests {
         assert_eq!(to_byte(0.999), 254.0 / 255.0);
         assert_eq!(to_half(1.0), 1.0);
         assert!((to_half(0.1) - 0.1).abs() < 1e-4);
+        // 6-bit mantissa: 1 + 1/64 is exact, 1 + 1/128 ties to even (1).
+        assert_eq!(to_f11(1.0 + 1.0 / 64.0), 1.0 + 1.0 / 64.0);
+        assert_eq!(to_f11(1.0 + 1.0 / 128.0), 1.0);
+        assert_eq!(to_f11(0.75), 0.75);
+        assert_eq!(to_f11(-1.0), 0.0);
+        assert_eq!(to_f11(1e9), 65024.0);
+        // Relative error at most half a mantissa step.
+        for v in [0.013, 0.37, 0.999, 3.3] {
+            assert!((f64::from(to_f11(v)) - v).abs() <= v / 128.0, "{v}");
+        }
     }
 }

@@ -18,9 +18,26 @@
 //!   Y = C/360, each scaled by the size and clamped to [0, size − 1], bilinear
 //!   between the two texels around it (no half-texel offset).
 //!
-//! UE4's strip is emulated with UE5's `Interpolate1D` and the same
-//! normalisation (256 x 1, x → γ = 180·x/256); UE4's own `FIESLoadHelper`
-//! was not read.
+//! - UE4 (4.19.2, mirror Kryptexas/UE4-GameWorks-4.19.2, commit 324683ce,
+//!   `Engine/Source/Editor/UnrealEd/Private/Factories/IESLoader.cpp`,
+//!   `FIESLoadHelper`): `GetWidth` 256, `GetHeight` 1; `ExtractInRGBA16F`
+//!   writes `Interpolate1D(180·x/256) / ComputeMax()` (the same
+//!   `ComputeFilterPos`, `InterpolateBilinear` and `Interpolate1D` as UE5;
+//!   UE4's `Interpolate2D` folds no symmetry) and returns the texture
+//!   multiplier `ComputeMax() / ComputeFullIntegral()`, which
+//!   `ULightComponent::ComputeLightBrightness` (`LightComponent.cpp`)
+//!   multiplies into the light's brightness. `ComputeFullIntegral` is a
+//!   Monte Carlo mean over 1 000 000 `FRandomStream(0x1234).GetUnitVector()`
+//!   directions of `Interpolate2D(acos(z)·180/π, atan2(y, x)·180/π + 180)`:
+//!   the polar angle goes in as the *horizontal* angle and the azimuth as
+//!   the vertical one (UE5's `FIESLoader::ComputeFullIntegral` passes them
+//!   the right way round, and UE5's multiplier is 1). [`ue4_integral`]
+//!   replays that stream (`Engine/Source/Runtime/Core/Public/Math/RandomStream.h`:
+//!   `MutateSeed` `seed·196314165 + 907633515`, `GetFraction` from the low
+//!   23 bits, `GetUnitVector` by rejection in the cube); the error the
+//!   swapped angles cause is a defect row ([`crate::engines::defects`]).
+//!   The layout row takes the light's intensity as UE's integral without
+//!   the swap, so it shows the strip's own error (the C-average).
 
 use super::table::{lerp, to_half, IesTable, Image};
 use crate::model::IntensityField;
@@ -56,8 +73,10 @@ pub fn filter_pos(value: f64, sorted: &[f64]) -> f64 {
     start as f64 + fraction
 }
 
-/// `FIESLoader::InterpolateBilinear` at fractional indices (h, v) of the table.
-fn bilinear_index(t: &IesTable, fh: f64, fv: f64) -> f64 {
+/// `FIESLoader::InterpolateBilinear` at fractional indices (h, v) of the
+/// table (cd): indices wrap modulo the angle counts. Unity's
+/// `IESReader.InterpolateBilinear` is the same function.
+pub fn bilinear_index(t: &IesTable, fh: f64, fv: f64) -> f64 {
     let (x, y) = (fh as usize, fv as usize);
     let (fx, fy) = (fh - x as f64, fv - y as f64);
     let (nh, nv) = (t.h.len(), t.v.len());
@@ -89,6 +108,55 @@ pub fn interpolate_2d(t: &IesTable, mut h: f64, v: f64) -> f64 {
 pub fn interpolate_1d(t: &IesTable, v: f64) -> f64 {
     let fv = filter_pos(v, &t.v);
     (0..t.h.len()).map(|i| bilinear_index(t, i as f64, fv)).sum::<f64>() / t.h.len() as f64
+}
+
+/// The mean of the table over the sphere as UE computes it
+/// (`ComputeFullIntegral`: 1 000 000 directions of `FRandomStream(0x1234)`),
+/// cd. `swapped`: UE4's call, the polar angle as the horizontal angle and
+/// the azimuth as the vertical one, through UE4's `Interpolate2D` (no
+/// symmetry folding); otherwise UE5's call, through [`interpolate_2d`].
+pub fn ue4_integral(t: &IesTable, swapped: bool) -> f64 {
+    const SAMPLES: usize = 1_000_000;
+    let mut stream = RandomStream(0x1234);
+    let mut sum = 0.0;
+    for _ in 0..SAMPLES {
+        let [x, y, z] = stream.unit_vector();
+        let polar = f64::from(z).clamp(-1.0, 1.0).acos().to_degrees();
+        let azimuth = f64::from(y).atan2(f64::from(x)).to_degrees() + 180.0;
+        sum += if swapped {
+            bilinear_index(t, filter_pos(polar, &t.h), filter_pos(azimuth, &t.v))
+        } else {
+            interpolate_2d(t, azimuth, polar)
+        };
+    }
+    sum / SAMPLES as f64
+}
+
+/// UE's `FRandomStream` (an LCG on an `int32` seed).
+struct RandomStream(i32);
+
+impl RandomStream {
+    /// `GetFraction`: the low 23 bits of the next seed as the mantissa of a float in [1, 2), minus 1.
+    fn fraction(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(196_314_165).wrapping_add(907_633_515);
+        f32::from_bits(0x3f80_0000 | (self.0 as u32 & 0x007f_ffff)) - 1.0
+    }
+    /// `GetUnitVector`: rejection sampling in the cube [−1, 1]³, then normalised.
+    fn unit_vector(&mut self) -> [f32; 3] {
+        loop {
+            let v = [
+                self.fraction() * 2.0 - 1.0,
+                self.fraction() * 2.0 - 1.0,
+                self.fraction() * 2.0 - 1.0,
+            ];
+            let l = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+            // KINDA_SMALL_NUMBER = 1e-4.
+            if (1e-4..=1.0).contains(&l) {
+                let inv = 1.0 / l.sqrt();
+                return [v[0] * inv, v[1] * inv, v[2] * inv];
+            }
+        }
+    }
 }
 
 /// UE5's texture: 256 x 256 half floats, x → γ = 180·x/256, y → C = 360·y/256, I / I_max.
@@ -175,5 +243,61 @@ mod tests {
         assert_eq!(interpolate_2d(&t, 270.0, 10.0), 2.0);
         assert_eq!(interpolate_2d(&t, 135.0, 10.0), 1.5);
         assert_eq!(interpolate_1d(&t, 10.0), 1.5);
+    }
+
+    #[test]
+    fn integrals_meet_their_closed_forms_on_a_single_plane_table() {
+        // cos⁵ on the lower hemisphere, 2.5° vertical steps, one plane.
+        let v: Vec<f64> = (0..=72).map(|i| f64::from(i) * 2.5).collect();
+        let cd: Vec<f64> = v
+            .iter()
+            .map(|&g: &f64| {
+                if g < 90.0 {
+                    1000.0 * g.to_radians().cos().powi(5)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let t = IesTable { h: vec![0.0], v, cd };
+        // Right: the mean over the sphere, 1000 / (2 (p + 1)).
+        let right = ue4_integral(&t, false);
+        assert!((right / (1000.0 / 12.0) - 1.0).abs() < 5e-3, "{right}");
+        // Swapped: the azimuth (uniform on 0..360) is the vertical angle, clamped
+        // at 180: the table's mean over 0..360 degrees of vertical angle.
+        let linear: f64 =
+            t.v.windows(2)
+                .enumerate()
+                .map(|(i, w)| 0.5 * (t.cd[i] + t.cd[i + 1]) * (w[1] - w[0]))
+                .sum::<f64>()
+                / 360.0;
+        let swapped = ue4_integral(&t, true);
+        // UE's LCG stream leaves its Monte Carlo mean about 0.5 % from the exact one here.
+        assert!((swapped / linear - 1.0).abs() < 1e-2, "{swapped} vs {linear}");
+        // An isotropic table: both are the constant, exactly.
+        let iso = IesTable {
+            h: vec![0.0],
+            v: vec![0.0, 180.0],
+            cd: vec![5.0, 5.0],
+        };
+        assert_eq!((ue4_integral(&iso, false), ue4_integral(&iso, true)), (5.0, 5.0));
+    }
+
+    #[test]
+    fn random_stream_is_uniform_on_the_sphere() {
+        let mut s = RandomStream(0x1234);
+        let n = 20_000;
+        let (mut mean_z, mut mean_z2) = (0.0, 0.0);
+        for _ in 0..n {
+            let [x, y, z] = s.unit_vector();
+            assert!((x * x + y * y + z * z - 1.0).abs() < 1e-5);
+            mean_z += f64::from(z) / n as f64;
+            mean_z2 += f64::from(z * z) / n as f64;
+        }
+        // Uniform on the sphere: E[z] = 0, E[z²] = 1/3.
+        assert!(
+            mean_z.abs() < 0.02 && (mean_z2 - 1.0 / 3.0).abs() < 0.01,
+            "{mean_z} {mean_z2}"
+        );
     }
 }

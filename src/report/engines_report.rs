@@ -63,7 +63,7 @@ pub fn figures(r: &EnginesReport) -> Result<Vec<Figure>, Error> {
     Ok(out)
 }
 
-/// Defect sources and resolution searches, as `(heading, lines)`.
+/// Defect sources, resolution searches, layouts and their stand-in steps, one line each.
 fn notes(r: &EnginesReport) -> Vec<String> {
     let mut lines = Vec::new();
     for row in &r.rows {
@@ -95,6 +95,9 @@ fn notes(r: &EnginesReport) -> Vec<String> {
     }
     for row in r.rows.iter().filter(|x| x.kind == "layout") {
         lines.push(format!("{}: {}", row.name, row.layout));
+        for step in &row.stand_ins {
+            lines.push(format!("{}: stand-in, not from the engine's source: {step}", row.name));
+        }
     }
     lines
 }
