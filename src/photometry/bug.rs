@@ -81,6 +81,16 @@ pub struct BugRating {
     pub rating: String,
     /// Zone lumens, lm.
     pub zones: BugZones,
+    /// Which glare table rated `g`: always the Addendum's asymmetric
+    /// (Type I-IV) limits, `"type-i-iv"` (see the module docs).
+    pub glare_table: &'static str,
+    /// Whether the distribution sends the same lumens forward and back in
+    /// every zone pair within 2 % (FL/BL, FM/BM, FH/BH, FVH/BVH), as a
+    /// quadrilateral-symmetric (Type V) luminaire does.
+    pub quadrilateral_symmetric: bool,
+    /// Set for a quadrilateral-symmetric distribution: the Addendum rates
+    /// those with their own glare table, which is not applied here.
+    pub glare_caveat: Option<String>,
 }
 
 /// Backlight limits (lm) per class 0-4: (BH, BM, BL).
@@ -145,14 +155,37 @@ pub fn rate(z: &BugZones, noise_lm: f64) -> BugRating {
         g,
         rating: format!("B{b} U{u} G{g}"),
         zones: *z,
+        glare_table: "type-i-iv",
+        quadrilateral_symmetric: false,
+        glare_caveat: None,
     }
+}
+
+/// Whether `d` sends the same lumens (within 2 %) forward and back in each
+/// of the four downward BUG bands, and left (C 0-180) and right (C 180-360)
+/// in each: the quadrilateral symmetry of a Type V luminaire.
+fn is_quadrilateral_symmetric(d: &Distribution, z: &BugZones, noise_lm: f64) -> bool {
+    let bands = [(0.0, 30.0), (30.0, 60.0), (60.0, 80.0), (80.0, 90.0)];
+    let front_back = [(z.fl, z.bl), (z.fm, z.bm), (z.fh, z.bh), (z.fvh, z.bvh)];
+    let left_right = bands.map(|g| (zone_flux(d, g, (0.0, 180.0)), zone_flux(d, g, (180.0, 360.0))));
+    let same = |(a, b): (f64, f64)| (a - b).abs() <= 0.02 * a.max(b).max(noise_lm);
+    let lit = front_back.iter().any(|&(f, b)| f.max(b) > noise_lm);
+    lit && front_back.into_iter().chain(left_right).all(same)
 }
 
 /// BUG rating of `d` (absolute candela: the limits are absolute lumens).
 pub fn bug_rating(d: &Distribution) -> BugRating {
     let z = bug_zones(d);
     let total = z.fl + z.fm + z.fh + z.fvh + z.bl + z.bm + z.bh + z.bvh + z.ul + z.uh;
-    rate(&z, 1e-9 * total.abs())
+    let noise_lm = 1e-9 * total.abs();
+    let mut r = rate(&z, noise_lm);
+    r.quadrilateral_symmetric = is_quadrilateral_symmetric(d, &z, noise_lm);
+    r.glare_caveat = r.quadrilateral_symmetric.then(|| {
+        "quadrilateral-symmetric (Type V) distribution rated with the Type I-IV glare limits: TM-15-11 Addendum A's \
+         Type V glare table is not applied (no public source), so G may be higher than it gives"
+            .to_string()
+    });
+    r
 }
 
 #[cfg(test)]
@@ -273,5 +306,28 @@ mod tests {
         assert_eq!(r.rating, "B3 U0 G4");
         // All-zero data: nothing anywhere.
         assert_eq!(bug_rating(&iso(0.0, 180.0)).rating, "B0 U0 G0");
+    }
+
+    /// A rotationally symmetric lamp is quadrilateral symmetric and says that
+    /// its G comes from the Type I-IV table; a forward-throw one does not.
+    #[test]
+    fn type_v_distributions_carry_the_glare_caveat() {
+        let grid = crate::synth::GridSpec::uniform(5.0, 2.5).unwrap();
+        let round = crate::synth::Synth::Lambertian.build(&grid, 10_000.0).unwrap();
+        let r = bug_rating(round.distribution());
+        assert!(r.quadrilateral_symmetric, "{r:?}");
+        assert!(r.glare_caveat.as_deref().unwrap().contains("Type V"), "{r:?}");
+        assert_eq!(r.glare_table, "type-i-iv");
+        let road = crate::synth::Synth::Roadway.build(&grid, 10_000.0).unwrap();
+        let r = bug_rating(road.distribution());
+        assert!(!r.quadrilateral_symmetric && r.glare_caveat.is_none(), "{:?}", r.zones);
+        let dark = Distribution::new(
+            vec![0.0],
+            vec![0.0, 90.0, 180.0],
+            vec![0.0; 3],
+            crate::model::Symmetry::Rotational,
+        )
+        .unwrap();
+        assert!(!bug_rating(&dark).quadrilateral_symmetric, "no light is no symmetry");
     }
 }

@@ -114,6 +114,9 @@ impl Derived {
                 b.rating, b.zones.bl, b.zones.bm, b.zones.bh, b.zones.bvh, b.zones.fl, b.zones.fm, b.zones.fh, b.zones.fvh, b.zones.ul, b.zones.uh
             ),
         );
+        if let Some(caveat) = &b.glare_caveat {
+            row(&mut o, "  BUG glare", caveat.clone());
+        }
         let pct = |v: Option<f64>| v.map_or("-".to_string(), |p| format!("{p:.1} %"));
         let _ = writeln!(o, "zonal lumens (zone: lm, % lamp, % luminaire):");
         for z in &self.zonal_lumens.summary {
