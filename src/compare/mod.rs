@@ -100,8 +100,8 @@ pub enum Normalize {
     /// I_max = 1 (each distribution by its own peak).
     Peak,
     /// cd/klm as in EULUMDAT and lighting practice: candela per 1000 lm of
-    /// *lamp* flux (each distribution by its file's declared lamp flux,
-    /// [`CompareOptions::lamp_flux_lm`]). Does not apply to absolute photometry.
+    /// *lamp* flux (each distribution by its file's declared lamp flux, or
+    /// the option `lamp_flux_lm`). Does not apply to absolute photometry.
     Klm,
     /// Equal flux: each distribution divided by its own computed luminaire
     /// flux (x 1000: cd per 1000 lm of luminaire flux).
