@@ -150,6 +150,9 @@ rm -rf "$PHOTOSOLID_SKIPPED_CORPUS_DIR"
 cargo test --all-targets --locked
 cargo test --doc --locked
 
+echo "== rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --locked 2>&1 | tail -n 3
+
 echo "== the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
 cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1

@@ -1,7 +1,7 @@
 //! Documented defects of the engines' loaders, each as a pair of lookups:
 //! the engine with the defect and the same engine without it. The error the
 //! defect causes on a file is the distance between the two
-//! ([`super::measure`] reports it as a separate row).
+//! ([`super::measure()`] reports it as a separate row).
 
 use super::table::IesTable;
 use super::{blender, ue, unity, web, Engine};

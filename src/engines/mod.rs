@@ -1,6 +1,6 @@
 //! Light profiles for real renderers: each engine's layout, written out, and
 //! each engine's lookup emulated as an [`IntensityField`] so that the metrics
-//! of the trade table measure what the engine loses ([`measure`]).
+//! of the trade table measure what the engine loses ([`measure()`]).
 //!
 //! One file per engine, each citing the engine's own source:
 //! [`pbrt`] (pbrt-v4 goniometric light), [`ue`] (Unreal Engine 5 and 4),

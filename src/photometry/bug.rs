@@ -11,7 +11,7 @@
 //! (= LM-63 horizontal) angles: forward = C 270-90, the half-space around C0;
 //! back = C 90-270. Checked against manufacturers' declared ratings: two
 //! LM-63 roadway files (Type II, symmetric about the C0-C180 plane, throw
-//! toward C0) rate B2 U0 G2 and B2 U3 G2 as printed in their [DISTRIBUTION]
+//! toward C0) rate B2 U0 G2 and B2 U3 G2 as printed in their `[DISTRIBUTION]`
 //! keyword only under this convention; with forward = C 0-180 both come out
 //! B3 (tests/photometry.rs, `declared_bug_ratings_of_manufacturer_files`).
 //! A EULUMDAT road luminaire whose street side is C90 (CIE convention) must
@@ -39,7 +39,7 @@
 //!   commit c7e8b5d). Its glare rows differ (FH 10/180/600/2000/4000, FVH
 //!   10/10/50/200/400, BH tested against the FH limits) and are not used.
 //! - The whole chain (zones + all three tables) against the BUG ratings
-//!   that manufacturers print in their LM-63 files, [DISTRIBUTION] keyword,
+//!   that manufacturers print in their LM-63 files, `[DISTRIBUTION]` keyword,
 //!   computed by their photometric labs (test
 //!   `declared_bug_ratings_of_manufacturer_files` in tests/photometry.rs).
 //! - The glare rows (FVH/BVH, FH, BH) have no second public source here.

@@ -5,7 +5,7 @@
 //!
 //! Every quantity here integrates or samples the **bilinear reconstruction**
 //! of the measured grid (piecewise linear in γ, trapezoid/linear in C), the
-//! same rule as [`flux`], so flux, zonal lumens, flux codes and BUG zones add
+//! same rule as [`flux()`], so flux, zonal lumens, flux codes and BUG zones add
 //! up exactly. See [`flux`](mod@flux) for the rule.
 
 pub mod beam;

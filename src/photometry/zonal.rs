@@ -2,7 +2,7 @@
 //!
 //! # Zonal lumens
 //! Flux in γ zones over the whole circle of C, by [`zone_flux`] (the rule of
-//! [`flux`](super::flux)): the eighteen 10° zones 0-10 … 170-180 and the
+//! [`flux`](super::flux())): the eighteen 10° zones 0-10 … 170-180 and the
 //! cumulative IES zones 0-30, 0-40, 0-60, 0-90, 90-180 (IES LM-63 /
 //! Photometric Toolbox "zonal lumen summary"), each in lm, in % of the lamp
 //! flux (relative photometry only) and in % of the luminaire flux.
