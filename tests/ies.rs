@@ -516,7 +516,7 @@ fn synthetic_luminaire_writes_and_reads_back() {
 
 /// Parse speed on a large synthetic file (run with `--ignored --nocapture`).
 #[test]
-#[ignore]
+#[ignore = "a timing run that checks nothing (benches/parse.rs measures parsing): run with --ignored --nocapture"]
 fn parse_speed() {
     let nv = 721;
     let nh = 1441;

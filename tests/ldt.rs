@@ -491,7 +491,7 @@ fn synthetic_distributions_are_written_with_derived_headers() {
 
 /// Throughput of the reader on a large file (run with `--ignored --nocapture`).
 #[test]
-#[ignore]
+#[ignore = "a timing run that checks nothing (benches/parse.rs measures parsing): run with --ignored --nocapture"]
 fn parse_speed() {
     let c: Vec<f64> = (0..720).map(|i| i as f64 * 0.5).collect();
     let g: Vec<f64> = (0..=1800).map(|i| i as f64 * 0.1).collect();
