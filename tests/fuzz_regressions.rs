@@ -114,3 +114,82 @@ fn compare_with_defaults_does_bounded_work_and_says_what_it_reached() {
         fit.triangles
     );
 }
+
+/// ldt_reader, run of 2026-12-01: text fields whose bytes decode to the
+/// noncharacter U+FFFF; the TM-33 writer put it into the XML, which no XML
+/// 1.0 parser (ours included) reads back. Fixed: the XML escaper drops the
+/// characters XML 1.0 cannot hold (U+FFFE, U+FFFF, C0 controls).
+#[test]
+fn tm33_writer_drops_characters_xml_cannot_hold() {
+    let input = b"ACME Lighting\n\
+      1\n\
+      0\n\
+      2\n\
+      180\n\
+      3\n\
+      45\n\
+      \xfe\xff\xff\xff-001\n\
+      Synthetic LDT\n\
+      LDT-001\n\
+      synthetic_b\x9f\x8c\x96\x9c\xd1\x93\x9b\x93\n\
+      2026-02-10 test\n\
+      100\n\
+      100\n\
+      50\n\
+      60\n\
+      90\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      100\n\
+      100\n\
+      1.0\n\
+      0\n\
+      1\n\
+      1\n\
+      L\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff5.00001\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xff\xffED\n\
+      2000\n\
+      4000K\n\
+      80\n\
+      20\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      0\n\
+      180\n\
+      0\n\
+      45\n\
+      90\n\
+      1000 800 100\n\
+      1000 700 50\n\
+      ";
+    assert!(
+        reader_check(input, Format::Ldt) > 0,
+        "the input must load to check its round trip"
+    );
+}
+
+/// ldt_reader, run of 2026-12-01: a lamp count of 1.7976931348623157e308
+/// (f64::MAX) written to IES as its 15-digit rounding, which reads back as
+/// infinity ("expected number of lamps, found `inf`"). Fixed: a rounding that
+/// overflows keeps the exact value.
+#[test]
+fn ies_writer_keeps_a_lamp_count_near_f64_max() {
+    let lum = photosolid::synth::Synth::Lambertian
+        .build(&photosolid::synth::GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
+        .unwrap();
+    let text = photosolid::formats::ldt::write(&lum.into());
+    let mut lines: Vec<&str> = text.split("\r\n").collect();
+    // Line 27: the first lamp set's number of lamps.
+    lines[26] = "1.7976931348623157e308";
+    let input = lines.join("\r\n");
+    assert_eq!(reader_check(input.as_bytes(), Format::Ldt), 2);
+}

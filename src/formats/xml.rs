@@ -128,7 +128,8 @@ pub(crate) fn child_number(path: &Path, node: Node<'_, '_>, names: &[&str]) -> R
 }
 
 /// `s` escaped for XML text and attribute values (`&`, `<`, `>`, `"`, `'`);
-/// control characters XML 1.0 cannot hold are dropped.
+/// characters XML 1.0 cannot hold (controls below U+0020 other than tab and
+/// line ends, and the noncharacters U+FFFE and U+FFFF) are dropped.
 pub(crate) fn escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for ch in s.chars() {
@@ -139,7 +140,7 @@ pub(crate) fn escape(s: &str) -> String {
             '"' => out.push_str("&quot;"),
             '\'' => out.push_str("&apos;"),
             '\t' | '\n' | '\r' => out.push(ch),
-            c if (c as u32) < 0x20 => {}
+            c if (c as u32) < 0x20 || c == '\u{FFFE}' || c == '\u{FFFF}' => {}
             c => out.push(c),
         }
     }
@@ -152,7 +153,7 @@ mod tests {
 
     #[test]
     fn escape_round_trips_through_the_parser() {
-        let nasty = "a<b & \"c\" 'd' > e\u{1}";
+        let nasty = "a<b & \"c\" 'd' > e\u{1}\u{FFFF}\u{FFFE}";
         let text = format!("<r x=\"{0}\">{0}</r>", escape(nasty));
         let doc = parse(&text, Path::new("t.xml"), "test").unwrap();
         let r = doc.root_element();

@@ -290,7 +290,8 @@ fn round15(v: f64) -> f64 {
         return v;
     }
     let s = format!("{v:.14e}");
-    s.parse().unwrap_or(v)
+    // Near f64::MAX the rounded text would read back as infinity: keep the value.
+    s.parse().ok().filter(|r: &f64| r.is_finite()).unwrap_or(v)
 }
 
 struct Writer {
