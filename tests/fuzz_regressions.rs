@@ -193,3 +193,18 @@ fn ies_writer_keeps_a_lamp_count_near_f64_max() {
     let input = lines.join("\r\n");
     assert_eq!(reader_check(input.as_bytes(), Format::Ldt), 2);
 }
+
+/// ldt_reader run 5 (finding 9): a declared flux so small that the flux ratio,
+/// finite, overflows as a percentage; the warning printed "inf %". Fixed: the
+/// warning gives the ratio as "N times" then.
+#[test]
+fn flux_mismatch_warning_never_prints_inf() {
+    let mut lum = photosolid::synth::Synth::Lambertian
+        .build(&photosolid::synth::GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
+        .unwrap();
+    lum.declared_mut().luminaire_flux_lm = Some(1e-303);
+    let s = photosolid::photometry::summary(&lum);
+    let text = format!("{s:?}");
+    assert!(non_finite_in_debug(&text).is_empty(), "{text}");
+    assert!(text.contains("times of the declared"), "{text}");
+}

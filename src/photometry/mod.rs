@@ -96,9 +96,14 @@ pub fn summary(lum: &Luminaire) -> Summary {
             warnings.push(Warning::new(
                 WarningCode::FluxMismatch,
                 format!(
-                    "integrated flux {:.1} lm is {:.1} % of the declared {:.1} lm (more than {:.0} % off)",
+                    "integrated flux {:.1} lm is {} of the declared {:.1} lm (more than {:.0} % off)",
                     flux.total_lm,
-                    100.0 * r,
+                    // A finite ratio near f64::MAX overflows as a percentage (fuzz finding 9).
+                    if (100.0 * r).is_finite() {
+                        format!("{:.1} %", 100.0 * r)
+                    } else {
+                        format!("{} times", crate::error::Num(r))
+                    },
                     dcl,
                     100.0 * FLUX_MISMATCH
                 ),
