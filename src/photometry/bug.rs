@@ -137,8 +137,10 @@ fn class(ok: impl Fn(usize) -> bool) -> u8 {
 }
 
 /// Rate zone lumens `z` (module docs); `noise_lm` is the level below which
-/// lumens count as none for the 0-lm limits.
-pub fn rate(z: &BugZones, noise_lm: f64) -> BugRating {
+/// lumens count as none for the 0-lm limits. The symmetry fields need the
+/// distribution, not only its zones: [`bug_rating`] fills them, so this
+/// stays private.
+fn rate(z: &BugZones, noise_lm: f64) -> BugRating {
     let le = |x: f64, limit: f64| x <= limit.max(noise_lm);
     let b = class(|k| {
         let (bh, bm, bl) = BACKLIGHT[k];
