@@ -370,6 +370,8 @@ pub enum WarningCode {
     DgMismatch,
     /// `extra-values`.
     ExtraValues,
+    /// `flux-above-lamp`: a declared luminaire flux above the lamp flux (declared separately).
+    FluxAboveLamp,
     /// `flux-mismatch`.
     FluxMismatch,
     /// `header-junk`.
@@ -384,8 +386,13 @@ pub enum WarningCode {
     Ityp,
     /// `lamp-set-layout`.
     LampSetLayout,
+    /// `lor-above-100`: a declared or computed light output ratio above 100.5 % (relative photometry).
+    #[serde(rename = "lor-above-100")]
+    LorAbove100,
     /// `lor-mismatch`.
     LorMismatch,
+    /// `luminous-area-larger-than-luminaire`: the luminous area exceeds the luminaire's own dimensions.
+    LuminousAreaLargerThanLuminaire,
     /// `mc-divisibility`.
     McDivisibility,
     /// `missing-ballast-line`.
@@ -428,6 +435,7 @@ impl WarningCode {
             WarningCode::DffMismatch => "dff-mismatch",
             WarningCode::DgMismatch => "dg-mismatch",
             WarningCode::ExtraValues => "extra-values",
+            WarningCode::FluxAboveLamp => "flux-above-lamp",
             WarningCode::FluxMismatch => "flux-mismatch",
             WarningCode::HeaderJunk => "header-junk",
             WarningCode::InvalidBallastFactor => "invalid-ballast-factor",
@@ -435,7 +443,9 @@ impl WarningCode {
             WarningCode::InvalidLumens => "invalid-lumens",
             WarningCode::Ityp => "ityp",
             WarningCode::LampSetLayout => "lamp-set-layout",
+            WarningCode::LorAbove100 => "lor-above-100",
             WarningCode::LorMismatch => "lor-mismatch",
+            WarningCode::LuminousAreaLargerThanLuminaire => "luminous-area-larger-than-luminaire",
             WarningCode::McDivisibility => "mc-divisibility",
             WarningCode::MissingBallastLine => "missing-ballast-line",
             WarningCode::NegativeIntensity => "negative-intensity",

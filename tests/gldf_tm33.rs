@@ -178,3 +178,42 @@ fn tm33_with_several_emitters_by_id() {
     let out = ok(&run(&["validate", "."], t.path()));
     assert!(out.contains("two.xml#a") && out.contains("two.xml#b"), "{out}");
 }
+
+/// `convert X.ldt Y.xml` keeps what the derived photometry needs, on every
+/// readable EULUMDAT file of the corpus: the XML read back has the same
+/// luminous area (so the same UGR table and luminance table, or both
+/// undefined), the same lamp colour, and LDT -> XML -> LDT gives the same
+/// `declared_flux_lm`, LOR and DFF in `info --json` (before: the XML had no
+/// luminous area, a 4000 K colour was gone, and `eulumdat-rs/wiki-batwing.ldt`
+/// went from 3400 to 11664.5 lm).
+#[test]
+fn tm33_conversion_keeps_what_the_derived_photometry_needs() {
+    use photosolid::formats::{load_document, save, WriteOptions};
+    use photosolid::report::InfoReport;
+    let Some(root) = common::corpus() else { return };
+    let t = tempfile::tempdir().unwrap();
+    let mut checked = 0;
+    for e in common::manifest(&root) {
+        if e.format != "ldt" || e.malformed() {
+            continue;
+        }
+        let Ok(doc) = load_document(&e.path) else { continue };
+        let (xml, back) = (t.path().join("y.xml"), t.path().join("z.ldt"));
+        save(&doc, &xml, &WriteOptions::default()).unwrap();
+        let via_xml = load_document(&xml).unwrap_or_else(|err| panic!("{}: {err}", e.rel));
+        save(&via_xml, &back, &WriteOptions::default()).unwrap();
+        let again = load_document(&back).unwrap_or_else(|err| panic!("{}: {err}", e.rel));
+        let json = |d: &photosolid::formats::Document| serde_json::to_value(InfoReport::of_document(d)).unwrap();
+        let (a, x, z) = (json(&doc), json(&via_xml), json(&again));
+        for key in ["declared_flux_lm", "declared_lor", "dff", "lamp_color"] {
+            assert_eq!(a[key], z[key], "{}: {key} after LDT -> XML -> LDT", e.rel);
+        }
+        assert_eq!(a["lamp_color"], x["lamp_color"], "{}: lamp colour in the XML", e.rel);
+        for key in ["ugr_table", "luminance_table"] {
+            assert_eq!(a[key], x[key], "{}: {key} of the XML", e.rel);
+            assert_eq!(a[key], z[key], "{}: {key} after LDT -> XML -> LDT", e.rel);
+        }
+        checked += 1;
+    }
+    assert!(checked >= 20, "only {checked} EULUMDAT files checked");
+}

@@ -301,7 +301,8 @@ const CIE_190_EXAMPLE_TABLE: [[f64; 10]; 19] = [
 fn ugr_table_of_the_cie_190_example_luminaire() {
     let Some(root) = corpus() else { return };
     let lum = photosolid::load(root.join("r-lighting/0_CIE-2010-Table7.ldt")).unwrap();
-    let t = photosolid::photometry::ugr::ugr_table(&lum).unwrap();
+    let t = photosolid::photometry::ugr::ugr_table_at(&lum, photosolid::photometry::ugr::CIE_190_EXAMPLE_SPACING_H)
+        .unwrap();
     assert_eq!(t.rooms_h.len(), CIE_190_EXAMPLE_TABLE.len());
     let mut sum = 0.0;
     for (k, published) in CIE_190_EXAMPLE_TABLE.iter().enumerate() {
@@ -334,15 +335,140 @@ fn ugr_table_of_the_cie_190_example_luminaire() {
 /// what is left of the table's difference lies in the glare sum.
 #[test]
 fn background_of_the_cie_190_worked_example() {
-    use photosolid::photometry::ugr::{background, View};
+    use photosolid::photometry::ugr::{background, View, CIE_190_EXAMPLE_SPACING_H};
     let Some(root) = corpus() else { return };
     let lum = photosolid::load(root.join("r-lighting/0_CIE-2010-Table7.ldt")).unwrap();
     assert_eq!(lum.declared().lamp_flux_lm, Some(1000.0));
     for view in [View::Crosswise, View::Endwise] {
-        let b = background(&lum, view, (2.0, 4.0), (0.7, 0.5, 0.2), 2.0).unwrap();
+        let b = background(&lum, view, (2.0, 4.0), (0.7, 0.5, 0.2), 2.0, CIE_190_EXAMPLE_SPACING_H).unwrap();
         assert_close!(b.e_wid_lx, 27.37, rel = 0.01, "{view:?}");
         assert_close!(b.floor_lm / 1000.0, 0.390, abs = 0.01, "{view:?}");
         assert_close!(b.walls_lm / 1000.0, 0.260, abs = 0.01, "{view:?}");
         assert!(b.ceiling_lm < 1.0, "{view:?}: {b:?}");
+    }
+}
+
+/// A reference UGR table as DIALux or Relux export it (19 rows × 10
+/// columns, `ROOMS_H` order, crosswise then endwise): `None` for a cell the
+/// tool writes as `<10.0` (not comparable).
+fn reference_ugr_csv(path: &Path) -> Vec<[Option<f64>; 10]> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let rows: Vec<[Option<f64>; 10]> = text
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let cells: Vec<Option<f64>> = l.split(',').map(|c| c.trim().parse::<f64>().ok()).collect();
+            assert_eq!(cells.len(), 10, "{}: {l}", path.display());
+            let mut row = [None; 10];
+            row.copy_from_slice(&cells);
+            row
+        })
+        .collect();
+    assert_eq!(rows.len(), 19, "{}", path.display());
+    rows
+}
+
+/// Every comparable cell of our catalogue table (SHR 0.25, the default) for
+/// the 11 luminaires of `../shared/ugr-reference` against the tables DIALux
+/// and Relux export for them: within 0.6 of Relux and 1.1 of DIALux in every
+/// cell (the tables are rounded to 0.1; Relux writes cells below 10 as
+/// `<10.0`, which are skipped). 4,032 cells are compared; the test prints max
+/// and mean |difference| per tool and per file (docs/photometry.md, "UGR
+/// against DIALux and Relux").
+#[test]
+fn ugr_tables_agree_with_dialux_and_relux() {
+    let Some(root) = common::ugr_reference() else { return };
+    let mut total = 0;
+    for (tool, limit) in [("Relux", 0.6), ("Dialux", 1.1)] {
+        let (mut max, mut sum, mut n, mut worst) = (0.0f64, 0.0, 0usize, String::new());
+        for k in 1..=11 {
+            let lum = photosolid::load(root.join(format!("sample_{k:02}.ldt"))).unwrap();
+            let t = photosolid::photometry::ugr::ugr_table(&lum).unwrap();
+            assert_eq!(t.spacing_h, 0.25, "catalogue spacing by default");
+            let reference = reference_ugr_csv(&root.join(format!("ugr_table_{k:02}_{tool}.csv")));
+            let (mut file_max, mut file_sum, mut file_n) = (0.0f64, 0.0, 0usize);
+            for (room, refs) in reference.iter().enumerate() {
+                let ours = t.crosswise[room].iter().chain(&t.endwise[room]);
+                for (col, (o, r)) in ours.zip(refs).enumerate() {
+                    let Some(r) = r else { continue };
+                    let d = (o - r).abs();
+                    if d > max {
+                        worst = format!(
+                            "sample_{k:02} room {:?} column {col}: ours {o:.2}, {tool} {r}",
+                            t.rooms_h[room]
+                        );
+                    }
+                    max = max.max(d);
+                    file_max = file_max.max(d);
+                    (sum, file_sum, n, file_n) = (sum + d, file_sum + d, n + 1, file_n + 1);
+                }
+            }
+            println!(
+                "{tool:6} sample_{k:02}: {file_n} cells, max |diff| {file_max:.2}, mean {:.2}",
+                file_sum / file_n as f64
+            );
+        }
+        println!(
+            "{tool:6} all: {n} cells, max |diff| {max:.2} (limit {limit}), mean {:.3}; worst {worst}",
+            sum / n as f64
+        );
+        assert!(max <= limit, "{tool}: max |difference| {max:.2} > {limit}: {worst}");
+        total += n;
+    }
+    assert_eq!(total, 4032, "comparable cells");
+}
+
+/// A declared LOR of 112 % (a real catalogue has such files) is flagged
+/// `lor-above-100` by `validate --json` and `info --json`, and a luminous
+/// area larger than the luminaire `luminous-area-larger-than-luminaire`; a
+/// plausible file gets neither.
+#[test]
+fn impossible_declarations_are_warned_in_validate_and_info() {
+    let t = tempfile::tempdir().unwrap();
+    // 10 cd/klm everywhere: 4π · 10 = 126 lm per klm, a LOR of 12.6 %.
+    let mut fixture = common::fixtures::LdtFile::isym(1);
+    fixture.cd_per_klm.iter_mut().for_each(|v| *v = 10.0);
+    let text = fixture.text();
+    let mut lines: Vec<String> = text.split("\r\n").map(String::from).collect();
+    std::fs::write(t.path().join("ok.ldt"), lines.join("\r\n")).unwrap();
+    assert_eq!(lines[22], "80", "line 23 is the LORL");
+    lines[22] = "112".into();
+    std::fs::write(t.path().join("lor.ldt"), lines.join("\r\n")).unwrap();
+    lines[22] = "80".into();
+    assert_eq!(lines[15], "600", "line 16 is the luminous length");
+    lines[15] = "700".into();
+    std::fs::write(t.path().join("area.ldt"), lines.join("\r\n")).unwrap();
+    let codes = |v: &serde_json::Value| -> Vec<String> {
+        v["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w["code"].as_str().unwrap().to_string())
+            .collect()
+    };
+    for (file, code) in [
+        ("lor.ldt", Some("lor-above-100")),
+        ("area.ldt", Some("luminous-area-larger-than-luminaire")),
+        ("ok.ldt", None),
+    ] {
+        let v: serde_json::Value = serde_json::from_str(&ok(&run(&["validate", file, "--json"], t.path()))).unwrap();
+        let i: serde_json::Value = serde_json::from_str(&ok(&run(&["info", file, "--json"], t.path()))).unwrap();
+        for (what, c) in [("validate", codes(&v)), ("info", codes(&i))] {
+            let impossible: Vec<&String> = c
+                .iter()
+                .filter(|c| {
+                    [
+                        "lor-above-100",
+                        "flux-above-lamp",
+                        "luminous-area-larger-than-luminaire",
+                    ]
+                    .contains(&c.as_str())
+                })
+                .collect();
+            match code {
+                Some(code) => assert_eq!(impossible, [code], "{what} {file}: {c:?}"),
+                None => assert!(impossible.is_empty(), "{what} {file}: {c:?}"),
+            }
+        }
     }
 }

@@ -26,13 +26,25 @@ use crate::report::plot::{self, PolarSpec, Series, SeriesStyle};
 pub const THUMB_SIZE: (u32, u32) = (360, 360);
 
 /// Why `r` is an outlier (empty when it is not), and its rank: 0 not loaded,
-/// 1 a step failed, 2 flux mismatch, 3 warnings, 4 none.
+/// 1 a step failed, 2 a physically impossible declaration or a flux mismatch, 3 other warnings, 4 none.
 pub fn outlier(r: &BatchRecord) -> (u8, String) {
     if !r.ok {
         return (0, "failed to load".into());
     }
     if !r.errors.is_empty() {
         return (1, r.errors.join("; "));
+    }
+    let impossible: Vec<&str> = r
+        .warnings
+        .iter()
+        .map(String::as_str)
+        .filter(|w| crate::photometry::IMPOSSIBLE_DECLARATIONS.contains(w))
+        .collect();
+    if !impossible.is_empty() {
+        return (
+            2,
+            format!("physically impossible declaration: {}", impossible.join(", ")),
+        );
     }
     if r.flux_mismatch() {
         let ratio = r.flux_ratio.unwrap_or(f64::NAN);
@@ -271,5 +283,22 @@ mod tests {
         assert!(html.contains("<script>"));
         let png = std::fs::read(out.join("thumb-00000.png")).unwrap();
         assert_eq!(&png[..4], b"\x89PNG");
+    }
+
+    /// A file with a physically impossible declaration is an outlier of rank
+    /// 2 that names it, ahead of files with other warnings (rank 3).
+    #[test]
+    fn impossible_declarations_are_outliers() {
+        let mut row = BatchRecord::empty(std::path::Path::new("x.ldt"));
+        row.ok = true;
+        row.warnings = vec!["dff-mismatch".into()];
+        assert_eq!(outlier(&row).0, 3);
+        row.warnings.push("lor-above-100".into());
+        let (rank, why) = outlier(&row);
+        assert_eq!(rank, 2);
+        assert!(
+            why.contains("physically impossible") && why.contains("lor-above-100"),
+            "{why}"
+        );
     }
 }

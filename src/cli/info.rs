@@ -10,6 +10,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use photosolid::photometry::derived::DerivedOptions;
 use photosolid::report::InfoReport;
 
 use super::ReadArgs;
@@ -25,6 +26,11 @@ pub struct InfoArgs {
     /// Report the distribution at this installed tilt angle (degrees), using the file's tilt table.
     #[arg(long, value_parser = super::parse::finite)]
     tilt: Option<f64>,
+    /// Spacing of the UGR table's luminaire array, in units of H (the luminaires' height above the
+    /// eye): 0.25, the catalogue spacing DIALux and Relux tabulate, by default; 1.0 for CIE 190's
+    /// example table; any 1/n of H from 0.1 to 1. JSON: `ugr_table.spacing_h`.
+    #[arg(long, default_value_t = photosolid::photometry::ugr::CATALOGUE_SPACING_H, value_parser = ugr_spacing)]
+    ugr_spacing: f64,
     #[command(flatten)]
     read: ReadArgs,
 }
@@ -38,7 +44,10 @@ pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
             let tilted = doc.tilted_distribution(t)?;
             doc.luminaire.set_distribution(tilted);
         }
-        reports.push(InfoReport::of_document(&doc));
+        let options = DerivedOptions {
+            ugr_spacing_h: a.ugr_spacing,
+        };
+        reports.push(InfoReport::of_document_with(&doc, &options));
     }
     match reports.as_slice() {
         [one] => super::print_report(a.json, &files[0], one, &one.to_text())?,
@@ -50,4 +59,11 @@ pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
         }
     }
     Ok(0)
+}
+
+/// `--ugr-spacing`: a finite number that [`photosolid::photometry::ugr::check_spacing_h`] accepts.
+fn ugr_spacing(s: &str) -> Result<f64, String> {
+    let v = super::parse::finite(s)?;
+    photosolid::photometry::ugr::check_spacing_h(v)?;
+    Ok(v)
 }

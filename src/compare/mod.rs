@@ -478,6 +478,16 @@ pub struct Comparison {
     pub photometry_side_by_side: Option<Vec<crate::photometry::derived::SideRow>>,
 }
 
+impl Comparison {
+    /// Whether H is a certified Hausdorff distance between two solids
+    /// (within `tolerance_cd`, with a bound per row): false against withheld
+    /// measurements, where H is the exact one-sided distance from the
+    /// withheld points and no solid of the reference exists.
+    pub fn hausdorff_certified(&self) -> bool {
+        self.reference_kind != "withheld"
+    }
+}
+
 /// Symmetric Hausdorff distance between two solids (f32 positions widened to f64,
 /// held once, by the BVHs).
 pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {

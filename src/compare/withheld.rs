@@ -194,7 +194,8 @@ pub(super) fn compare_withheld(
         directions: pooled.label.clone(),
         n_directions: pooled.len(),
         tolerance: opts.tolerance,
-        tolerance_cd: 0.0,
+        // Printed in the file's unit; the withheld H is exact and uses no tolerance.
+        tolerance_cd: opts.tolerance * i_max,
         factor: opts.factor,
         solid_tolerance_cd: solid_tol_cd,
         solid_deviation_cd: None,

@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use super::bug::{bug_rating, BugRating};
 use super::luminance::{luminance_table, LuminanceTable};
-use super::ugr::{ugr_table, UgrTable, REFLECTANCES, ROOMS_H};
+use super::ugr::{ugr_table_at, UgrTable, CATALOGUE_SPACING_H, REFLECTANCES, ROOMS_H};
 use super::zonal::{cie_flux_code, zonal_lumens, CieFluxCode, ZonalLumens};
 use crate::model::Luminaire;
 
@@ -66,9 +66,29 @@ fn reference_room() -> usize {
     ROOMS_H.iter().position(|&r| r == (4.0, 8.0)).unwrap_or(0)
 }
 
+/// What the derived tables are computed for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DerivedOptions {
+    /// Spacing of the UGR table's array, in H ([`CATALOGUE_SPACING_H`] by default).
+    pub ugr_spacing_h: f64,
+}
+
+impl Default for DerivedOptions {
+    fn default() -> Self {
+        DerivedOptions {
+            ugr_spacing_h: CATALOGUE_SPACING_H,
+        }
+    }
+}
+
 impl Derived {
-    /// Compute everything for `lum` (its untilted distribution).
+    /// Compute everything for `lum` (its untilted distribution) with the default options.
     pub fn of(lum: &Luminaire) -> Self {
+        Self::with(lum, &DerivedOptions::default())
+    }
+
+    /// Compute everything for `lum` (its untilted distribution) as `options` say.
+    pub fn with(lum: &Luminaire, options: &DerivedOptions) -> Self {
         Derived {
             cie_flux_code: match cie_flux_code(lum) {
                 Some(c) => Derivation::Value(c),
@@ -77,7 +97,7 @@ impl Derived {
                 },
             },
             zonal_lumens: zonal_lumens(lum),
-            ugr_table: Derivation::from_result(ugr_table(lum)),
+            ugr_table: Derivation::from_result(ugr_table_at(lum, options.ugr_spacing_h)),
             bug_rating: bug_rating(lum.distribution()),
             luminance_table: Derivation::from_result(luminance_table(lum)),
         }

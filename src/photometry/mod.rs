@@ -75,6 +75,87 @@ pub const FLUX_MISMATCH: f64 = 0.05;
 /// Difference (fraction, i.e. 0.01 = 1 percentage point) past which computed and declared LOR disagree.
 pub const LOR_MISMATCH: f64 = 0.01;
 
+/// Largest light output ratio a luminaire can have (fraction): 100 % plus
+/// half a percentage point for rounding in the files.
+pub const LOR_PHYSICAL_MAX: f64 = 1.005;
+
+/// Codes of the warnings [`summary`] gives for declarations no luminaire can
+/// have (the batch catalogue lists such files among its first outliers).
+pub const IMPOSSIBLE_DECLARATIONS: [&str; 3] = [
+    "lor-above-100",
+    "flux-above-lamp",
+    "luminous-area-larger-than-luminaire",
+];
+
+/// Declarations no luminaire can have: a light output ratio above 100 %
+/// (declared or computed, relative photometry only: a luminaire cannot emit
+/// more than its lamps), a luminaire flux declared above the lamp flux where
+/// the file declares both separately (no LOR links them; with a LOR the
+/// first check says it), and a luminous area larger than the luminaire
+/// (EULUMDAT, which declares both).
+fn impossible_declarations(lum: &Luminaire, computed_lm: f64) -> Vec<Warning> {
+    let mut out = Vec::new();
+    let dcl = lum.declared();
+    let pct = |x: f64| format!("{:.1} %", 100.0 * x);
+    if !dcl.absolute {
+        let lamp = dcl.lamp_flux_lm.filter(|&l| l > 0.0 && l.is_finite());
+        let computed = lamp.map(|l| computed_lm / l).filter(|r| r.is_finite());
+        let declared = dcl.lor.filter(|r| r.is_finite());
+        let over: Vec<String> = [("declared", declared), ("computed", computed)]
+            .into_iter()
+            .filter_map(|(what, lor)| {
+                lor.filter(|&r| r > LOR_PHYSICAL_MAX)
+                    .map(|r| format!("{what} {}", pct(r)))
+            })
+            .collect();
+        if !over.is_empty() {
+            out.push(Warning::new(
+                WarningCode::LorAbove100,
+                format!(
+                    "light output ratio above 100 % ({}): a luminaire cannot emit more than its lamps",
+                    over.join(", ")
+                ),
+            ));
+        }
+        if let (Some(l), Some(f), None) = (lamp, dcl.luminaire_flux_lm, dcl.lor) {
+            if f > LOR_PHYSICAL_MAX * l {
+                out.push(Warning::new(
+                    WarningCode::FluxAboveLamp,
+                    format!(
+                        "declared luminaire flux {f:.1} lm is above the lamp flux {l:.1} lm ({})",
+                        pct(f / l)
+                    ),
+                ));
+            }
+        }
+    }
+    if lum.format() == crate::model::Format::Ldt {
+        let (body, area) = (lum.dimensions(), lum.luminous_opening());
+        // Width 0 is a circle of diameter `length` (EULUMDAT), for the body and the area alike.
+        let width = |d: crate::model::Dimensions| if d.width_m == 0.0 { d.length_m } else { d.width_m };
+        // Half a millimetre for files that round to whole millimetres.
+        let larger = |a: f64, b: f64| b > 0.0 && a > b + 5e-4;
+        let size = |d: crate::model::Dimensions| {
+            if d.width_m == 0.0 {
+                format!("a circle of {:.0} mm", 1000.0 * d.length_m)
+            } else {
+                format!("{:.0} x {:.0} mm", 1000.0 * d.length_m, 1000.0 * d.width_m)
+            }
+        };
+        if larger(area.length_m, body.length_m) || larger(width(area), width(body)) {
+            out.push(Warning::new(
+                WarningCode::LuminousAreaLargerThanLuminaire,
+                format!(
+                    "the luminous area ({}) is larger than the luminaire ({})",
+                    size(area),
+                    size(body)
+                ),
+            ));
+        }
+    }
+    out
+}
+
 /// Compute the summary of `lum` (untilted).
 pub fn summary(lum: &Luminaire) -> Summary {
     let d = lum.distribution();
@@ -137,6 +218,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
             ));
         }
     }
+    warnings.extend(impossible_declarations(lum, flux.total_lm));
     Summary {
         max_cd,
         max_direction_deg: (mc, mg),
@@ -149,5 +231,109 @@ pub fn summary(lum: &Luminaire) -> Summary {
         dff: (flux.total_lm > 0.0).then(|| flux.downward_lm / flux.total_lm),
         beams: beam_angles(d),
         warnings,
+    }
+}
+
+#[cfg(test)]
+mod impossible_tests {
+    use super::*;
+    use crate::model::{Declared, Dimensions, Format};
+
+    /// An isotropic 1000 cd luminaire (4π klm) with `declared` and an EULUMDAT body/area.
+    fn luminaire(declared: Declared, body: Dimensions, area: Dimensions) -> Luminaire {
+        let d = test_support::rot(vec![0.0, 90.0, 180.0], |_| 1000.0);
+        let mut parts = Luminaire::from_distribution(d).into_parts();
+        parts.format = Format::Ldt;
+        parts.declared = declared;
+        parts.dimensions = body;
+        parts.luminous_opening = area;
+        Luminaire::from_parts(parts).unwrap()
+    }
+
+    fn codes(l: &Luminaire) -> Vec<&'static str> {
+        summary(l).warnings.iter().map(|w| w.code.as_str()).collect()
+    }
+
+    fn dims(l: f64, w: f64) -> Dimensions {
+        Dimensions {
+            length_m: l,
+            width_m: w,
+            height_m: 0.05,
+        }
+    }
+
+    fn declared(lamp: f64, luminaire: Option<f64>, lor: Option<f64>, absolute: bool) -> Declared {
+        Declared {
+            lamp_flux_lm: (!absolute).then_some(lamp),
+            luminaire_flux_lm: luminaire,
+            lor,
+            dff: None,
+            absolute,
+            input_watts: None,
+        }
+    }
+
+    /// Each impossible declaration is flagged by its code, and only it:
+    /// a declared LOR of 112 %, a computed one of 4π klm / 10 klm = 126 %, a
+    /// luminaire flux above the lamp flux with no LOR between them, a
+    /// luminous area longer (or, for a circle, wider) than the body.
+    #[test]
+    fn impossible_declarations_are_flagged() {
+        let flux = 4.0 * std::f64::consts::PI * 1000.0;
+        let ok = luminaire(
+            declared(flux, Some(flux), Some(1.0), false),
+            dims(0.6, 0.3),
+            dims(0.6, 0.3),
+        );
+        assert!(impossible_declarations(&ok, flux).is_empty(), "{:?}", codes(&ok));
+        // 100.4 % is rounding, not physics.
+        let rounding = luminaire(
+            declared(flux / 1.004, None, Some(1.004), false),
+            dims(0.6, 0.3),
+            dims(0.6, 0.3),
+        );
+        assert!(impossible_declarations(&rounding, flux).is_empty());
+        // The JSON spelling is the code's (serde's kebab-case alone would write `lor-above100`).
+        for code in [
+            WarningCode::LorAbove100,
+            WarningCode::FluxAboveLamp,
+            WarningCode::LuminousAreaLargerThanLuminaire,
+        ] {
+            assert_eq!(serde_json::to_value(code).unwrap(), code.as_str());
+        }
+        let declared_lor = luminaire(
+            declared(2.0 * flux, None, Some(1.12), false),
+            dims(0.6, 0.3),
+            dims(0.6, 0.3),
+        );
+        let w = impossible_declarations(&declared_lor, flux);
+        assert_eq!(w.len(), 1);
+        assert_eq!(w[0].code, WarningCode::LorAbove100);
+        assert!(w[0].message.contains("declared 112.0 %"), "{}", w[0].message);
+        let computed_lor = luminaire(
+            declared(10_000.0, None, Some(0.9), false),
+            dims(0.6, 0.3),
+            dims(0.6, 0.3),
+        );
+        let w = impossible_declarations(&computed_lor, flux);
+        assert!(w[0].message.contains("computed 125.7 %"), "{}", w[0].message);
+        // Absolute photometry has no lamp flux to exceed.
+        let absolute = luminaire(declared(0.0, Some(flux), None, true), dims(0.6, 0.3), dims(0.6, 0.3));
+        assert!(impossible_declarations(&absolute, flux).is_empty());
+        let separate = luminaire(
+            declared(1000.0, Some(1200.0), None, false),
+            dims(0.6, 0.3),
+            dims(0.6, 0.3),
+        );
+        assert!(codes(&separate).contains(&"flux-above-lamp"), "{:?}", codes(&separate));
+        let long = luminaire(declared(flux, None, Some(1.0), false), dims(0.6, 0.3), dims(0.7, 0.3));
+        assert!(codes(&long).contains(&"luminous-area-larger-than-luminaire"));
+        // A 105 mm circle in a 96 x 96 mm body (corpus gldf-rs/SLV_Tria2_narrow.ldt).
+        let circle = luminaire(
+            declared(flux, None, Some(1.0), false),
+            dims(0.096, 0.096),
+            dims(0.105, 0.0),
+        );
+        assert!(codes(&circle).contains(&"luminous-area-larger-than-luminaire"));
     }
 }

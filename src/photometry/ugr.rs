@@ -53,7 +53,7 @@ use serde::Serialize;
 
 use super::luminance::{projected_area_m2, GridLookup};
 use crate::model::frame::unit_angles;
-use crate::model::{Distribution, Luminaire};
+use crate::model::Luminaire;
 use crate::scene::opening::Opening;
 
 /// Standard rooms (X, Y) in units of H (CIE 190 / CIE 117 table rows).
@@ -88,11 +88,21 @@ pub const REFLECTANCES: [(f64, f64, f64); 5] = [
     (0.3, 0.3, 0.2),
 ];
 
-/// Luminaire spacing of the standard array, in H (CIE 190: 1:1).
-pub const SPACING_H: f64 = 1.0;
+/// Luminaire spacing of catalogue tables, in H: the spacing-to-height
+/// ratio 0.25 at which manufacturers' catalogues, DIALux and Relux publish
+/// the table (CIE 117:1995 §4.4) and [`ugr_table`] computes it.
+pub const CATALOGUE_SPACING_H: f64 = 0.25;
 
-/// Floor integration cells per H.
-const CELLS_PER_H: usize = 8;
+/// The spacing of CIE 190:2010's own example table, in H (1:1).
+pub const CIE_190_EXAMPLE_SPACING_H: f64 = 1.0;
+
+/// Floor integration cells per H at spacings up to [`CATALOGUE_SPACING_H`]
+/// (a larger spacing keeps cells of at most H/8).
+const CELLS_PER_H: f64 = 8.0;
+
+/// Smallest spacing accepted, in H (a finer array only adds cost: the table
+/// converges as the array becomes continuous).
+pub const MIN_SPACING_H: f64 = 0.1;
 
 /// The UGR table.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -223,31 +233,86 @@ fn field_cut(x: f64, y: f64) -> bool {
     x.abs() > 3.0 * y || 1.0 > 1.9 * y || (x * x + y * y).sqrt() > 85f64.to_radians().tan()
 }
 
+/// Whether `spacing_h` (in H) is a spacing the table can be computed at:
+/// 1/n of H (every standard room then holds a whole array in both
+/// directions) between [`MIN_SPACING_H`] and 1.
+///
+/// # Errors
+/// The reason it is not, naming the accepted values.
+pub fn check_spacing_h(spacing_h: f64) -> Result<(), String> {
+    let per_h = 1.0 / spacing_h;
+    let whole = (per_h - per_h.round()).abs() <= 1e-9 * per_h;
+    if spacing_h.is_finite() && (MIN_SPACING_H - 1e-12..=1.0 + 1e-12).contains(&spacing_h) && whole {
+        return Ok(());
+    }
+    Err(format!(
+        "UGR spacing {} H: expected 1/n of H from {MIN_SPACING_H} to 1 (0.25 the catalogue spacing, 0.5, 1.0 as CIE 190's example table), so that every standard room holds a whole array",
+        crate::error::Num(spacing_h)
+    ))
+}
+
+/// The regular array of a standard room: `spacing_h` between luminaires (in
+/// H), the floor integrated on cells of `cell_h` (in H), an even number of
+/// cells per spacing so that every luminaire sits on a cell corner.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Layout {
+    spacing_h: f64,
+    /// Floor cells per spacing (even).
+    cells_per_spacing: i64,
+}
+
+impl Layout {
+    /// The layout at `spacing_h`, which must divide H (every standard room
+    /// is a whole number of spacings in both directions) and be at least
+    /// [`MIN_SPACING_H`].
+    fn new(spacing_h: f64) -> Result<Self, String> {
+        check_spacing_h(spacing_h)?;
+        let cells = 2 * ((spacing_h * CELLS_PER_H / 2.0).ceil() as i64).max(1);
+        Ok(Layout {
+            spacing_h,
+            cells_per_spacing: cells,
+        })
+    }
+
+    /// Floor cell size, in H.
+    fn cell_h(&self) -> f64 {
+        self.spacing_h / self.cells_per_spacing as f64
+    }
+
+    /// Luminaires across (X) and along (Y) the line of sight in room X × Y (in H).
+    fn counts(&self, x_h: f64, y_h: f64) -> (i64, i64) {
+        (
+            (x_h / self.spacing_h).round() as i64,
+            (y_h / self.spacing_h).round() as i64,
+        )
+    }
+}
+
 /// What the table needs from the luminaire, precomputed per view.
 struct Array<'a> {
     look: GridLookup<'a>,
     opening: &'a Opening,
     view: View,
+    layout: Layout,
     /// Flux (in units of H² lx … i.e. lm for H = 1) into each floor cell at
     /// offset (m_x, m_y) from a luminaire, as a summed-area table.
     floor_sat: Vec<f64>,
-    side: usize,
+    /// Cells from the luminaire to the edge of the table (12 H).
+    half: usize,
 }
 
 impl<'a> Array<'a> {
-    /// Floor cells span offsets −12H..12H in both directions.
-    const HALF: usize = 12 * CELLS_PER_H;
-
-    fn new(d: &'a Distribution, opening: &'a Opening, view: View) -> Self {
-        let side = 2 * Self::HALF;
-        let cell = 1.0 / CELLS_PER_H as f64;
-        let look = GridLookup::new(d);
+    /// Floor cells span offsets −12H..12H in both directions (the largest room is 12 H).
+    fn new(look: GridLookup<'a>, opening: &'a Opening, view: View, layout: Layout) -> Self {
+        let cell = layout.cell_h();
+        let half = (12.0 / cell).round() as usize;
+        let side = 2 * half;
         let mut sat = vec![0.0; (side + 1) * (side + 1)];
         for iy in 0..side {
             let mut row = 0.0;
             for ix in 0..side {
-                let dx = (ix as f64 - Self::HALF as f64 + 0.5) * cell;
-                let dy = (iy as f64 - Self::HALF as f64 + 0.5) * cell;
+                let dx = (ix as f64 - half as f64 + 0.5) * cell;
+                let dy = (iy as f64 - half as f64 + 0.5) * cell;
                 let v = DVec3::new(dx, dy, -1.0);
                 let r2 = v.length_squared();
                 let (c, g) = unit_angles(view.to_luminaire(v / r2.sqrt()));
@@ -261,32 +326,33 @@ impl<'a> Array<'a> {
             look,
             opening,
             view,
+            layout,
             floor_sat: sat,
-            side,
+            half,
         }
     }
 
-    /// Sum of floor cells with offsets in [x0, x1) × [y0, y1) (cell indices from −HALF).
+    /// Sum of floor cells with offsets in [x0, x1) × [y0, y1) (cell indices from −half).
     fn floor_sum(&self, x0: i64, x1: i64, y0: i64, y1: i64) -> f64 {
-        let h = Self::HALF as i64;
-        let w = self.side + 1;
-        let idx = |x: i64, y: i64| {
-            ((y + h).clamp(0, self.side as i64) as usize) * w + (x + h).clamp(0, self.side as i64) as usize
-        };
+        let h = self.half as i64;
+        let side = 2 * h;
+        let w = (side + 1) as usize;
+        let idx = |x: i64, y: i64| ((y + h).clamp(0, side) as usize) * w + (x + h).clamp(0, side) as usize;
         self.floor_sat[idx(x1, y1)] - self.floor_sat[idx(x0, y1)] - self.floor_sat[idx(x1, y0)]
             + self.floor_sat[idx(x0, y0)]
     }
 
     /// (Σ L²ω/p² for H = 1 m, direct flux to the floor for H = 1) in room X × Y (in H).
     fn room(&self, x_h: f64, y_h: f64) -> (f64, f64) {
-        let (nx, ny) = ((x_h / SPACING_H).round() as i64, (y_h / SPACING_H).round() as i64);
-        let s_cells = (SPACING_H * CELLS_PER_H as f64).round() as i64;
+        let s = self.layout.spacing_h;
+        let (nx, ny) = self.layout.counts(x_h, y_h);
+        let s_cells = self.layout.cells_per_spacing;
         let (room_x, room_y) = (nx * s_cells, ny * s_cells);
         let (mut glare, mut floor) = (0.0, 0.0);
         for i in 0..nx {
             for j in 0..ny {
-                let x = -x_h / 2.0 + (i as f64 + 0.5) * SPACING_H;
-                let y = (j as f64 + 0.5) * SPACING_H;
+                let x = -x_h / 2.0 + (i as f64 + 0.5) * s;
+                let y = (j as f64 + 0.5) * s;
                 // Floor cells 0..room_x, 0..room_y; the luminaire sits at cell
                 // coordinate (i + 0.5)·S·k, so offsets run from −that.
                 let (ox, oy) = (i * s_cells + s_cells / 2, j * s_cells + s_cells / 2);
@@ -296,9 +362,9 @@ impl<'a> Array<'a> {
                 }
                 let to_lum = DVec3::new(x, y, 1.0);
                 let r2 = to_lum.length_squared();
-                let s = to_lum / r2.sqrt();
-                let Some(p) = position_index(s) else { continue };
-                let emit = self.view.to_luminaire(-s);
+                let dir = to_lum / r2.sqrt();
+                let Some(p) = position_index(dir) else { continue };
+                let emit = self.view.to_luminaire(-dir);
                 let (c, g) = unit_angles(emit);
                 let a_p = projected_area_m2(self.opening, emit);
                 let i_cd = self.look.at(c, g);
@@ -311,17 +377,20 @@ impl<'a> Array<'a> {
     }
 }
 
-/// UGR for one room, view and reflectance set at luminaire height `h_m` above the eye.
-/// None when no luminaire sends light toward the observer or the background is dark.
+/// UGR for one room, view and reflectance set at luminaire height `h_m`
+/// above the eye, luminaires `spacing_h` (in H) apart. None when no
+/// luminaire sends light toward the observer or the background is dark.
 pub fn ugr_room(
     lum: &Luminaire,
     view: View,
     room_h: (f64, f64),
     rho: (f64, f64, f64),
     h_m: f64,
+    spacing_h: f64,
 ) -> Result<Option<f64>, String> {
     let opening = Opening::of_luminaire(lum)?;
-    let array = Array::new(lum.distribution(), &opening, view);
+    let layout = Layout::new(spacing_h)?;
+    let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
     let f = super::flux::flux(lum.distribution());
     Ok(one(&array, &f, room_h, rho, h_m))
 }
@@ -342,33 +411,38 @@ pub struct Background {
 }
 
 /// The [`Background`] of room `room_h` (X, Y in H) for `view` with
-/// reflectances `rho` (ceiling, walls, floor) at luminaire height `h_m` above the eye.
+/// reflectances `rho` (ceiling, walls, floor) at luminaire height `h_m`
+/// above the eye, luminaires `spacing_h` (in H) apart.
 ///
 /// # Errors
-/// The luminous opening cannot be built from the file's dimensions.
+/// The luminous opening cannot be built from the file's dimensions, or the spacing is not 1/n of H.
 pub fn background(
     lum: &Luminaire,
     view: View,
     room_h: (f64, f64),
     rho: (f64, f64, f64),
     h_m: f64,
+    spacing_h: f64,
 ) -> Result<Background, String> {
     let opening = Opening::of_luminaire(lum)?;
-    let array = Array::new(lum.distribution(), &opening, view);
+    let layout = Layout::new(spacing_h)?;
+    let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
     let f = super::flux::flux(lum.distribution());
     let (_, floor) = array.room(room_h.0, room_h.1);
-    Ok(room_background(&f, room_h, floor, rho, h_m))
+    Ok(room_background(&f, layout, room_h, floor, rho, h_m))
 }
 
 /// [`Background`] from the array's direct floor flux (`floor`, all luminaires, lm).
 fn room_background(
     f: &super::Flux,
+    layout: Layout,
     (x_h, y_h): (f64, f64),
     floor: f64,
     (rc, rw, rf): (f64, f64, f64),
     h_m: f64,
 ) -> Background {
-    let n = (x_h / SPACING_H).round() * (y_h / SPACING_H).round();
+    let (nx, ny) = layout.counts(x_h, y_h);
+    let n = (nx * ny) as f64;
     let direct = [n * f.upward_lm, floor, (n * f.downward_lm - floor).max(0.0)];
     let (_, e_wid) = box_interreflection(x_h * h_m, y_h * h_m, h_m, direct, [rc, rf, rw]);
     Background {
@@ -381,7 +455,7 @@ fn room_background(
 
 fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), rho: (f64, f64, f64), h_m: f64) -> Option<f64> {
     let (glare_1m, floor) = array.room(x_h, y_h);
-    let lb = room_background(f, (x_h, y_h), floor, rho, h_m).e_wid_lx / std::f64::consts::PI;
+    let lb = room_background(f, array.layout, (x_h, y_h), floor, rho, h_m).e_wid_lx / std::f64::consts::PI;
     // Σ I²/(A_p r² p²) scales as 1/H² (r ∝ H).
     let glare = glare_1m / (h_m * h_m);
     (glare > 0.0 && lb > 0.0)
@@ -389,9 +463,15 @@ fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), rho: (f64, f64, f
         .filter(|u| u.is_finite())
 }
 
-/// The full table of `lum`, or the reason it is undefined (no luminous area,
-/// no downward light).
+/// The catalogue table of `lum` (luminaires [`CATALOGUE_SPACING_H`] apart),
+/// or the reason it is undefined (no luminous area, no downward light).
 pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, String> {
+    ugr_table_at(lum, CATALOGUE_SPACING_H)
+}
+
+/// The table of `lum` with luminaires `spacing_h` (in H, 1/n of H) apart.
+pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, String> {
+    let layout = Layout::new(spacing_h)?;
     let opening = Opening::of_luminaire(lum)?;
     if opening.is_point() {
         return Err("the file declares no luminous area (point source): UGR undefined".into());
@@ -402,7 +482,7 @@ pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, String> {
     }
     let mut tables = Vec::new();
     for view in [View::Crosswise, View::Endwise] {
-        let array = Array::new(lum.distribution(), &opening, view);
+        let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
         let mut rows = Vec::new();
         for &room in &ROOMS_H {
             let mut row = Vec::new();
@@ -434,7 +514,7 @@ pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, String> {
         reflectances: REFLECTANCES.iter().map(|&(a, b, c)| [a, b, c]).collect(),
         crosswise,
         endwise,
-        spacing_h: SPACING_H,
+        spacing_h,
         flux_lm: f.total_lm,
         max,
     })

@@ -1,7 +1,7 @@
 //! Tests of the UGR table (src/photometry/ugr.rs).
 
 use super::*;
-use crate::model::{Dimensions, Symmetry};
+use crate::model::{Dimensions, Distribution, Symmetry};
 use std::f64::consts::PI;
 
 /// A rotationally symmetric luminaire with `f(γ)` cd and a square luminous area of side `a` m.
@@ -84,9 +84,16 @@ fn scaling_laws_and_height_independence() {
         }
     }
     for h in [2.0, 2.8, 6.0] {
-        let u = ugr_room(&base, View::Crosswise, (4.0, 8.0), REFLECTANCES[0], h)
-            .unwrap()
-            .unwrap();
+        let u = ugr_room(
+            &base,
+            View::Crosswise,
+            (4.0, 8.0),
+            REFLECTANCES[0],
+            h,
+            CATALOGUE_SPACING_H,
+        )
+        .unwrap()
+        .unwrap();
         assert!(
             (u - t0.crosswise[10][0]).abs() < 1e-9,
             "H {h}: {u} vs {}",
@@ -105,10 +112,16 @@ fn scaling_laws_and_height_independence() {
 fn floor_flux_is_bounded_by_the_downward_flux() {
     let l = luminaire(lambertian(1000.0), 0.3);
     let opening = Opening::of_luminaire(&l).unwrap();
-    let a = Array::new(l.distribution(), &opening, View::Crosswise);
-    let (_, floor) = a.room(12.0, 8.0);
-    let down = 96.0 * PI * 1000.0;
-    assert!(floor < down && floor > 0.8 * down, "{floor} of {down}");
+    for (spacing, n) in [(CIE_190_EXAMPLE_SPACING_H, 96.0), (CATALOGUE_SPACING_H, 1536.0)] {
+        let layout = Layout::new(spacing).unwrap();
+        let a = Array::new(GridLookup::new(l.distribution()), &opening, View::Crosswise, layout);
+        let (_, floor) = a.room(12.0, 8.0);
+        let down = n * PI * 1000.0;
+        assert!(
+            floor < down && floor > 0.8 * down,
+            "spacing {spacing}: {floor} of {down}"
+        );
+    }
 }
 
 /// Undefined cases say so instead of printing NaN: upward-only light, no

@@ -25,18 +25,42 @@ pub fn hausdorff_text(r: &ReconResult, unit: &str) -> String {
     format!("H = {} {unit} (+{})", num(r.hausdorff_cd), num(r.hausdorff_bound_cd))
 }
 
+/// What H and the radial max mean for this comparison: certified to a bound
+/// against a reference solid, or exact (one-sided) against withheld points.
+fn hausdorff_meaning(c: &Comparison) -> String {
+    if c.hausdorff_certified() {
+        "H certified: the true Hausdorff distance lies in [H, H + bound]; radial max is the radial bound (>= H)".into()
+    } else {
+        format!(
+            "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
+             (no bound to certify); radial max over the same points",
+            c.n_directions
+        )
+    }
+}
+
 fn header(c: &Comparison) -> Vec<String> {
     let mut l = vec![format!("file: {}", c.file)];
     if let Some(v) = &c.vs {
         l.push(format!("vs: {v}"));
     }
-    l.push(format!(
-        "reference: {} (I_max {} {}, {} triangles)",
-        c.reference,
-        num(c.i_max_cd),
-        c.units,
-        c.reference_triangles
-    ));
+    l.push(if c.hausdorff_certified() {
+        format!(
+            "reference: {} (I_max {} {}, {} triangles)",
+            c.reference,
+            num(c.i_max_cd),
+            c.units,
+            c.reference_triangles
+        )
+    } else {
+        format!(
+            "reference: {} (I_max {} {}, {} withheld measured directions)",
+            c.reference,
+            num(c.i_max_cd),
+            c.units,
+            c.n_directions
+        )
+    });
     let solids = match (c.solid_tolerance_cd, c.solid_deviation_cd) {
         (Some(t), Some(d)) => format!(
             "adaptive grid solids within {} {} of their fields at the tested points (the reference's: {} {})",
@@ -86,12 +110,17 @@ fn header(c: &Comparison) -> Vec<String> {
         ),
     };
     l.push(format!(
-        "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {} % of I_max = {} {}",
+        "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {} % of I_max = {} {}{}",
         c.normalize,
         c.units,
-        100.0 * c.tolerance,
+        crate::error::Num(100.0 * c.tolerance),
         num(c.tolerance_cd),
-        c.units
+        c.units,
+        if c.hausdorff_certified() {
+            ""
+        } else {
+            " (not needed: H against withheld points is computed exactly)"
+        }
     ));
     l.push(format!(
         "radial metrics over {} directions ({}), Zotti C = {} of I_max",
@@ -187,8 +216,9 @@ pub fn to_text(c: &Comparison) -> String {
     }
     let _ = writeln!(
         s,
-        "lengths in {}; H certified: the true value lies in [H, H + bound]; radial max is the radial bound (>= H); * = Pareto (time, bytes, H)",
-        c.units
+        "lengths in {}; {}; * = Pareto (time, bytes, H)",
+        c.units,
+        hausdorff_meaning(c)
     );
     for r in &c.results {
         let partial = r.recon_to_ref.is_some_and(|h| !h.converged) || !r.ref_to_recon.converged;
@@ -389,9 +419,9 @@ pub fn to_markdown(c: &Comparison, figs: &[Figure]) -> String {
     let _ = writeln!(s, "\n## Metrics\n\n{}", md_table(c));
     let _ = writeln!(
         s,
-        "Lengths in {}. H is certified: the true Hausdorff distance lies in [H, H + bound]. \
-         The radial max is the cheap radial bound (>= H). * marks the Pareto front (time vs H).\n",
-        c.units
+        "Lengths in {}. {}. * marks the Pareto front (time vs H).\n",
+        c.units,
+        hausdorff_meaning(c)
     );
     for r in &c.results {
         let _ = writeln!(s, "- {}: {}", r.name, hausdorff_text(r, &c.units));
@@ -452,9 +482,9 @@ img{max-width:100%;border:1px solid #ddd}\n\
     }
     let _ = writeln!(
         s,
-        "</table>\n<p>Lengths in {}. H is certified: the true Hausdorff distance lies in [H, H + bound]. \
-         The radial max is the cheap radial bound (&ge; H). * marks the Pareto front (time vs H).</p>",
-        esc(&c.units)
+        "</table>\n<p>Lengths in {}. {}. * marks the Pareto front (time vs H).</p>",
+        esc(&c.units),
+        esc(&hausdorff_meaning(c))
     );
     if let Some(v) = c.plots.as_ref().and_then(|p| p.viewer.as_ref()) {
         s.push_str(&crate::report::viewer::html(v, "the static figures below"));

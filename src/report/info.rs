@@ -108,16 +108,25 @@ pub struct InfoReport {
 impl InfoReport {
     /// Build the report of `lum` (no container declarations).
     pub fn of(lum: &Luminaire) -> Self {
-        Self::of_parts(lum, None)
+        Self::of_parts(lum, None, &photometry::derived::DerivedOptions::default())
     }
 
     /// Build the report of a read document: with a GLDF container's
     /// declarations (`gldf_declared`) beside our values (`gldf_comparison`).
     pub fn of_document(doc: &crate::formats::Document) -> Self {
-        Self::of_parts(&doc.luminaire, doc.gldf.as_ref())
+        Self::of_document_with(doc, &photometry::derived::DerivedOptions::default())
     }
 
-    fn of_parts(lum: &Luminaire, gldf: Option<&crate::formats::gldf::GldfDeclared>) -> Self {
+    /// [`InfoReport::of_document`] with the derived tables computed as `options` say.
+    pub fn of_document_with(doc: &crate::formats::Document, options: &photometry::derived::DerivedOptions) -> Self {
+        Self::of_parts(&doc.luminaire, doc.gldf.as_ref(), options)
+    }
+
+    fn of_parts(
+        lum: &Luminaire,
+        gldf: Option<&crate::formats::gldf::GldfDeclared>,
+        options: &photometry::derived::DerivedOptions,
+    ) -> Self {
         let d = lum.distribution();
         let s = photometry::summary(lum);
         let mut warnings = lum.warnings().to_vec();
@@ -163,7 +172,7 @@ impl InfoReport {
             gldf_declared: gldf.cloned(),
             gldf_comparison: None,
             warnings,
-            derived: photometry::Derived::of(lum),
+            derived: photometry::Derived::with(lum, options),
         };
         report.gldf_comparison =
             gldf.map(|g| crate::report::declared::declared_vs_computed(g, &report, lum.declared().input_watts));

@@ -92,7 +92,9 @@ impl Opening {
     /// A sign combination no LM-63 version defines, as a sentence naming the values.
     pub fn of_luminaire(lum: &Luminaire) -> Result<Opening, String> {
         let o = lum.luminous_opening();
-        if lum.format() == Format::Ldt {
+        // EULUMDAT dimensions, read from the file or kept in a TM-33 document
+        // we wrote (which then carries the four heights too).
+        if lum.format() == Format::Ldt || (lum.format() == Format::Tm33 && lum.luminous_heights_m().is_some()) {
             let heights = lum.luminous_heights_m().unwrap_or([o.height_m; 4]);
             return Self::ldt(o.length_m, o.width_m, heights);
         }

@@ -7,7 +7,9 @@ SwiftShader (software), so no GPU is needed. Screenshots go to $BROWSER_TEST_OUT
 """
 
 import io
+import json
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -45,10 +47,15 @@ def reports(tmp_path_factory):
     run("compare", str(d / "road.ldt"), "--against", "withheld", "--directions", "dense:2000",
         "--report", str(d / "withheld"))
     run("scene", str(ROOT / "data" / "road_scene.toml"), "--report", str(d / "scene"))
+    # A denser measurement of the same luminaire: `--vs` measures against it.
+    run("synth", "roadway", "--c-step", "2.5", "--gamma-step", "1", "-o", str(d / "dense.ldt"))
+    run("compare", str(d / "road.ldt"), "--vs", str(d / "dense.ldt"), "--directions", "dense:2000",
+        "--report", str(d / "vs"))
     return {
         "truth": d / "truth" / "index.html",
         "withheld": d / "withheld" / "index.html",
         "scene": d / "scene" / "index.html",
+        "vs": d / "vs" / "index.html",
     }
 
 
@@ -205,3 +212,42 @@ def test_without_webgl_the_static_figures_remain(pw, reports):
     assert errors == [] and outside == [], (errors, outside)
     ctx.close()
     b.close()
+
+
+def legend(page) -> dict:
+    """Each reconstruction's legend entry of the 3D view: name -> (quantity, value in %)."""
+    page.wait_for_selector("section.psv[data-psv-state=ready]", timeout=30_000)
+    out = {}
+    for text in page.locator("section.psv .psv-toggles label").all_inner_texts():
+        m = re.fullmatch(r"(.+) \((max \|[^|]+\|) ([0-9.eE+-]+) %\)", text.strip())
+        if m:
+            out[m.group(1)] = (m.group(2), float(m.group(3)))
+    return out
+
+
+@pytest.mark.parametrize("kind", ["truth", "vs"])
+def test_legend_max_agrees_with_the_table(browser, reports, kind):
+    """Against the truth and against a denser file (`--vs`), the legend's max |err| of each
+    reconstruction agrees with the table's radial max within 10 %: the view samples the error between
+    the measured directions, where it is (it showed 0.00 % for interpolating filters)."""
+    ctx, page, errors, _ = open_page(browser, reports[kind])
+    shown = legend(page)
+    rows = json.loads((reports[kind].parent / "report.json").read_text())["results"]
+    assert len(shown) >= 3, shown
+    for r in rows:
+        quantity, value = shown[r["name"]]
+        assert quantity == "max |err|", (r["name"], quantity)
+        table = r["radial_max_pct"]
+        assert abs(value - table) <= 0.1 * table + 0.0015, (kind, r["name"], value, table)
+    assert not errors, errors
+    ctx.close()
+
+
+def test_withheld_legend_says_what_it_shows(browser, reports):
+    """Against withheld measurements the colours show the difference from the measured solid, and the
+    legend says so instead of calling it an error."""
+    ctx, page, errors, _ = open_page(browser, reports["withheld"])
+    shown = legend(page)
+    assert shown and all(q == "max |diff from the measured solid|" for q, _ in shown.values()), shown
+    assert not errors, errors
+    ctx.close()

@@ -221,3 +221,17 @@ pub fn snapshot(name: &str, actual: &str) {
         );
     }
 }
+
+/// The UGR reference tables (`../shared/ugr-reference`: 11 real luminaires
+/// with the catalogue tables DIALux and Relux export for them), when present;
+/// `$PHOTOSOLID_UGR_REFERENCE` overrides the folder. A missing folder is
+/// recorded as a skipped corpus check, like [`corpus`].
+#[track_caller]
+pub fn ugr_reference() -> Option<PathBuf> {
+    let root = match std::env::var_os("PHOTOSOLID_UGR_REFERENCE") {
+        Some(p) if !p.is_empty() => PathBuf::from(p),
+        _ => Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/ugr-reference"),
+    };
+    let caller = std::panic::Location::caller();
+    corpus_at(&root, &skipped_corpus_dir(), caller.file())
+}

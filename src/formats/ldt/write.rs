@@ -186,7 +186,10 @@ fn write_header(out: &mut Lines, doc: &Document, grid: &Grid, rel: &Relative) {
     let opening = lum.luminous_opening();
     out.num(opening.length_m * 1000.0);
     out.num(opening.width_m * 1000.0);
-    for v in header.map_or([opening.height_m * 1000.0; 4], |h| h.luminous_heights_mm) {
+    let heights_mm = lum
+        .luminous_heights_m()
+        .map_or([opening.height_m * 1000.0; 4], |h| h.map(|v| v * 1000.0));
+    for v in header.map_or(heights_mm, |h| h.luminous_heights_mm) {
         out.num(v);
     }
     out.num(rel.dff);

@@ -42,6 +42,11 @@ pub use emitters::{emitter_ids, expand, split_reference};
 pub use read::{read, read_emitter};
 pub use write::write;
 
+/// `UniqueIdentifier` of the `CustomData` item in which the writer keeps
+/// what TM-33-23 has no element for (luminous area, declared LOR/DFF/flux,
+/// lamp colour texts) and the reader restores it.
+pub const DECLARATIONS_ID: &str = "urn:photosolid:declarations:v1";
+
 /// Which TM-33 edition a document follows, from its root element.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Tm33Edition {

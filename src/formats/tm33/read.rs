@@ -88,7 +88,20 @@ pub fn read_emitter(
     } else {
         rated.map(|r| r * quantity.max(1.0)).filter(|f| *f > 0.0)
     };
-    let lamp_set = lamp_set(emitter, quantity, absolute, lamp_flux, watts);
+    let mut lamp_set = lamp_set(emitter, quantity, absolute, lamp_flux, watts);
+    let kept = declarations(path, root)?;
+    let mut declared = declared_lamp_flux(lamp_flux, absolute, watts);
+    if let Some(k) = &kept {
+        declared.lor = k.lor;
+        declared.dff = k.dff;
+        declared.luminaire_flux_lm = k.luminaire_flux_lm;
+        if let Some(c) = &k.colour {
+            lamp_set.color.clone_from(c);
+        }
+        if let Some(c) = &k.cri {
+            lamp_set.cri.clone_from(c);
+        }
+    }
     let dims = match child(root, &["Luminaire"]).and_then(|l| child(l, &["Dimensions"])) {
         Some(d) => Dimensions {
             length_m: child_number(path, d, &["Length"])?.unwrap_or(0.0) / 1000.0,
@@ -114,15 +127,82 @@ pub fn read_emitter(
         },
         lamp_sets: vec![lamp_set],
         dimensions: dims,
-        luminous_opening: Dimensions::default(),
-        luminous_heights_m: None,
-        declared: declared_lamp_flux(lamp_flux, absolute, watts),
+        luminous_opening: kept.as_ref().map_or_else(Dimensions::default, |k| k.luminous_area),
+        luminous_heights_m: kept.as_ref().and_then(|k| k.luminous_heights_m),
+        declared,
         tilt: Tilt::None,
         distribution,
         source_grid: None,
         warnings,
     };
     crate::formats::document(path, parts, crate::formats::Header::None)
+}
+
+/// What our writer keeps in its `CustomData` item ([`super::DECLARATIONS_ID`]).
+struct Kept {
+    luminous_area: Dimensions,
+    luminous_heights_m: Option<[f64; 4]>,
+    lor: Option<f64>,
+    dff: Option<f64>,
+    luminaire_flux_lm: Option<f64>,
+    colour: Option<String>,
+    cri: Option<String>,
+}
+
+/// The declarations a document written by photosolid keeps (None in other documents).
+///
+/// # Errors
+/// A number in them that does not parse, at its line.
+fn declarations(path: &Path, root: Node<'_, '_>) -> Result<Option<Kept>, ParseError> {
+    let Some(item) =
+        children(root, "CustomData").find(|c| child_text(*c, &["UniqueIdentifier"]) == Some(super::DECLARATIONS_ID))
+    else {
+        return Ok(None);
+    };
+    let Some(d) = child(item, &["Declarations"]) else {
+        return Ok(None);
+    };
+    let attr = |node: Node<'_, '_>, name: &str| -> Result<f64, ParseError> {
+        let text = node.attribute(name).unwrap_or("0");
+        parse_f64(text.trim().as_bytes())
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| {
+                error_at(
+                    path,
+                    node,
+                    ErrorKind::Invalid,
+                    format!("`{name}`, a finite number of metres"),
+                    text,
+                )
+            })
+    };
+    let luminous_area = match child(d, &["LuminousArea"]) {
+        Some(a) => Dimensions {
+            length_m: attr(a, "length_m")?,
+            width_m: attr(a, "width_m")?,
+            height_m: attr(a, "height_m")?,
+        },
+        None => Dimensions::default(),
+    };
+    let luminous_heights_m = match child(d, &["LuminousHeights"]) {
+        Some(h) => Some([
+            attr(h, "c0_m")?,
+            attr(h, "c90_m")?,
+            attr(h, "c180_m")?,
+            attr(h, "c270_m")?,
+        ]),
+        None => None,
+    };
+    let text = |name: &str| child(d, &[name]).and_then(|c| c.text()).map(str::to_string);
+    Ok(Some(Kept {
+        luminous_area,
+        luminous_heights_m,
+        lor: child_number(path, d, &["LOR"])?,
+        dff: child_number(path, d, &["DFF"])?,
+        luminaire_flux_lm: child_number(path, d, &["LuminaireFlux"])?,
+        colour: text("LampColour"),
+        cri: text("LampCri"),
+    }))
 }
 
 /// `<AbsolutePhotometry>`; absent, absolute when no rated lumens are given.

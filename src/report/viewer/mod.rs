@@ -11,7 +11,12 @@
 //!   [0, R] (R the largest radius of all solids): vertex = direction · radius;
 //! - per reconstruction, the signed radial error against the reference at each
 //!   vertex, (recon − reference) / I_max · 100 (% of I_max, computed here, in
-//!   Rust, not in the page), quantised to an `i16` over ±`err_max_pct`.
+//!   Rust, not in the page), quantised to an `i16` over ±`err_max_pct`: the
+//!   error of largest magnitude among nine points around the vertex, a
+//!   fraction of a step off it in C and γ, so that the error between the
+//!   measured directions shows (interpolating filters are exact at them);
+//!   each solid's `max_abs_err_pct`, the legend's "max |err|", is the largest
+//!   of these.
 //!
 //! The triangles are implied by the grid (vertex `ic * ng + ig`, C-planes
 //! wrapping at 360°), so no index buffer is embedded. [`html`] returns the
@@ -92,6 +97,10 @@ pub struct ViewerData {
     pub reference: String,
     /// Optional note on the colours.
     pub note: Option<String>,
+    /// What the legend's number beside each reconstruction is: `max |err|`
+    /// (against the report's reference), or, when the colours show something
+    /// else (a [`SolidSet::note`]), `max |diff from <the reference shown>|`.
+    pub legend_quantity: String,
     /// Reference I_max (report unit).
     pub i_max: f64,
     /// C step of the grid, degrees.
@@ -122,6 +131,45 @@ pub fn grid_step(n_recons: usize) -> (f64, f64) {
         verts * (6 + 2 * (n_recons + 1) + 2 * n_recons) <= MESH_BUDGET_BYTES
     };
     *STEPS_DEG.iter().find(fits).unwrap_or(&STEPS_DEG[STEPS_DEG.len() - 1])
+}
+
+/// Where the errors are sampled around each vertex, in grid steps: −φ, 0
+/// and +φ in C and in γ. A filter that interpolates the measurements is
+/// exact at the measured directions, and the view's grid (2–5° steps from
+/// 0°) falls on them for most files; φ = 0.37 keeps the other eight points
+/// off every grid of whole or half degrees, so the colours and the legend
+/// show the error between the measurements, where it is.
+const ERR_OFFSET: f64 = 0.37;
+
+/// Per vertex of the grid `cs` × `gs` (steps `(dc, dg)`), the signed error of
+/// `recon` against `reference` (% of `i_max`) of largest magnitude among the
+/// nine points at offsets {−φ, 0, +φ} × {−φ, 0, +φ} steps around it
+/// ([`ERR_OFFSET`]; γ clamped to 0–180°).
+fn vertex_errors(
+    reference: &dyn IntensityField,
+    recon: &dyn IntensityField,
+    cs: &[f64],
+    gs: &[f64],
+    (dc, dg): (f64, f64),
+    i_max: f64,
+) -> Vec<f64> {
+    let mut worst = vec![0.0f64; cs.len() * gs.len()];
+    let (mut a, mut b) = (vec![0.0; worst.len()], vec![0.0; worst.len()]);
+    for oc in [-ERR_OFFSET, 0.0, ERR_OFFSET] {
+        let c: Vec<f64> = cs.iter().map(|&c| (c + oc * dc).rem_euclid(360.0)).collect();
+        for og in [-ERR_OFFSET, 0.0, ERR_OFFSET] {
+            let g: Vec<f64> = gs.iter().map(|&g| (g + og * dg).clamp(0.0, 180.0)).collect();
+            reference.sample_grid(&c, &g, &mut a);
+            recon.sample_grid(&c, &g, &mut b);
+            for ((w, x), y) in worst.iter_mut().zip(&b).zip(&a) {
+                let e = 100.0 * (x - y) / i_max;
+                if e.is_finite() && e.abs() > w.abs() {
+                    *w = e;
+                }
+            }
+        }
+    }
+    worst
 }
 
 /// The smallest of 1, 2, 5 × 10^k at or above `x` (> 0); 1 for 0 or non-finite.
@@ -180,21 +228,10 @@ impl ViewerData {
         };
         let reference = sample(set.reference);
         let recons: Vec<Vec<f64>> = set.recons.iter().map(|(_, f)| sample(*f)).collect();
-        let errors: Vec<Vec<f64>> = recons
+        let errors: Vec<Vec<f64>> = set
+            .recons
             .iter()
-            .map(|v| {
-                v.iter()
-                    .zip(&reference)
-                    .map(|(a, b)| {
-                        let e = 100.0 * (a - b) / i_max;
-                        if e.is_finite() {
-                            e
-                        } else {
-                            0.0
-                        }
-                    })
-                    .collect()
-            })
+            .map(|(_, f)| vertex_errors(set.reference, *f, &cs, &gs, (dc, dg), i_max))
             .collect();
         let radius = std::iter::once(&reference)
             .chain(&recons)
@@ -247,6 +284,13 @@ impl ViewerData {
         ViewerData {
             reference: set.reference_label.to_string(),
             note: set.note.clone(),
+            legend_quantity: match set.note {
+                None => "max |err|".into(),
+                Some(_) => format!(
+                    "max |diff from {}|",
+                    set.reference_label.split(" (").next().unwrap_or(set.reference_label)
+                ),
+            },
             i_max,
             c_step_deg: dc,
             gamma_step_deg: dg,

@@ -181,7 +181,7 @@
       sw.className = 'psv-swatch';
       sw.style.background = s.color;
       label.append(box, sw, document.createTextNode(s.role === 'reference' ? 'reference (wire)' :
-        s.name + ' (max |err| ' + s.maxErr.toPrecision(3) + ' %)'));
+        s.name + ' (' + data.legend_quantity + ' ' + s.maxErr.toPrecision(3) + ' %)'));
       toggles.append(label);
     });
     const slider = root.querySelector('.psv-c'), cval = root.querySelector('.psv-cval');
