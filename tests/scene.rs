@@ -468,12 +468,12 @@ fn the_example_scene_loads_and_bad_files_name_the_line() {
     let dir = root().join("data");
     let cases = [
         ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0, 0]\n", 3, "position"),
-        ("\n[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nmaintenance_factor = 1.5\n", 2, "maintenance_factor"),
+        ("\n[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nmaintenance_factor = 1.5\n", 5, "maintenance_factor"),
         ("[[receiver]]\nname = \"r\"\nkind = \"plane\"\norigin = [0.0, 0.0, 0.0]\nu = [1.0, 0.0, 0.0]\nv = [2.0, 0.0, 0.0]\nspacing = \"en12464\"\n", 1, "non-parallel"),
         ("[[receiver]]\nname = \"r\"\nkind = \"plane\"\norigin = [0.0, 0.0, 0.0]\nu = [1e6, 0.0, 0.0]\nv = [0.0, 1e6, 0.0]\nspacing = [0.001, 0.001]\n", 1, "coarser"),
-        ("[[luminaire]]\nfile = \"missing.ldt\"\nposition = [0.0, 0.0, 8.0]\n", 1, "missing.ldt"),
+        ("[[luminaire]]\nfile = \"missing.ldt\"\nposition = [0.0, 0.0, 8.0]\n", 2, "missing.ldt"),
         ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\ncolour = 3\n", 4, "colour"),
-        ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nrepresentation = \"cubic\"\n", 1, "representation"),
+        ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nrepresentation = \"cubic\"\n", 4, "representation"),
     ];
     for (text, line, word) in cases {
         let e = Scene::from_toml(text, &dir.join("bad.toml")).unwrap_err().to_string();
