@@ -68,6 +68,62 @@ impl fmt::Display for Num {
     }
 }
 
+/// `n` and the noun, singular for exactly one: `count(1, "file", "files")`
+/// is `1 file`, `count(3, ...)` is `3 files`.
+pub fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// `x` with `n` significant digits as a reader expects it: plain decimals
+/// without trailing zeros from 1e-4 to below 1e9 (`3153`, `0.316992`,
+/// `-12.5`), scientific outside (`1.5e-7`); `NaN` and `inf` as such.
+pub fn sig(x: f64, n: usize) -> String {
+    let n = n.max(1);
+    if x == 0.0 {
+        return "0".into();
+    }
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let a = x.abs();
+    if !(1e-4..1e9).contains(&a) {
+        let s = format!("{:.*e}", n - 1, x);
+        // 1.500e-7 -> 1.5e-7
+        return match s.split_once('e') {
+            Some((m, e)) if m.contains('.') => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+            _ => s,
+        };
+    }
+    let decimals = (n as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
+/// `fraction` in percent, rounded to 12 significant digits so that a
+/// percent typed by a user reads back as typed (`0.001` is `0.1`, not
+/// `0.10000000000000002`).
+pub fn percent_of(fraction: f64) -> f64 {
+    let p = 100.0 * fraction;
+    if p == 0.0 || !p.is_finite() {
+        return p;
+    }
+    let digits = 12 - p.abs().log10().ceil() as i32;
+    if !(-300..=300).contains(&digits) {
+        return p;
+    }
+    let k = 10f64.powi(digits);
+    (p * k).round() / k
+}
+
 /// Several numbers as messages print them ([`Num`]), comma-separated in brackets.
 #[derive(Debug, Clone, Copy)]
 pub struct Nums<'a>(pub &'a [f64]);
@@ -490,6 +546,32 @@ pub struct Warning {
     pub message: String,
 }
 
+/// A warning as `validate --json` writes it, in the shape of an
+/// [`ErrorRecord`]: `{line, column, code, message}` (`line` and `column`
+/// `null` when the warning has none; warnings carry no column today).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct WarningRecord {
+    /// 1-based line in the file, when the warning has one.
+    pub line: Option<usize>,
+    /// 1-based column, when the warning has one.
+    pub column: Option<usize>,
+    /// Stable machine-readable code, kebab-case.
+    pub code: WarningCode,
+    /// Human explanation with the numbers involved.
+    pub message: String,
+}
+
+impl From<&Warning> for WarningRecord {
+    fn from(w: &Warning) -> Self {
+        Self {
+            line: w.line,
+            column: None,
+            code: w.code,
+            message: w.message.clone(),
+        }
+    }
+}
+
 impl Warning {
     /// A warning about the file as a whole.
     pub fn new(code: WarningCode, message: impl Into<String>) -> Self {
@@ -505,6 +587,15 @@ impl Warning {
             line: Some(line),
             code,
             message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for WarningRecord {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(l) => write!(f, "line {l}: [{}] {}", self.code, self.message),
+            None => write!(f, "[{}] {}", self.code, self.message),
         }
     }
 }

@@ -100,13 +100,13 @@ fn bad_numeric_arguments_are_refused_before_loading() {
         vec!["texture", "missing.ies", "--factor", "0", "-o", "t.exr"],
         vec!["texture", "missing.ies", "--factor", "33", "-o", "t.exr"],
         vec!["texture", "missing.ies", "-o", "t.exr", "--exposure=-1"],
-        vec!["gpu-check", "missing.ies", "--tolerance=-1e-5"],
-        vec!["compare", "missing.ies", "--tolerance=-0.1"],
+        vec!["gpu-check", "missing.ies", "--tolerance=-1e-5%"],
+        vec!["compare", "missing.ies", "--tolerance=-0.1%"],
         vec!["compare", "missing.ies", "--factor", "0"],
         vec!["tradeoff", "missing.ies", "--factors", "1,0"],
         vec!["tradeoff", "missing.ies", "--repeats", "0"],
         vec!["fit", "missing.ies", "--tolerance=-1"],
-        vec!["fit", "missing.ies", "--guard", "0"],
+        vec!["fit", "missing.ies", "--guard", "0%"],
         vec!["hausdorff", "a.ply", "b.ply", "--tolerance", "0"],
         vec!["synth", "isotropic", "--c-step", "0", "-o", "s.ldt"],
         vec!["synth", "isotropic", "-o", "s.ldt", "--gamma-step=-5"],
@@ -417,4 +417,340 @@ fn readme_says_where_demo_writes_and_how_to_install() {
         t.path().join("out/demo/index.html").is_file(),
         "demo did not write out/demo/"
     );
+}
+
+/// Issue 27, item 1: in a directory, files whose names lost their extension
+/// are read by their content, other files are skipped and counted, plurals
+/// right; a walk that finds nothing photometric is exit 1 for validate and
+/// batch (no empty table written).
+#[test]
+fn directories_read_files_without_extension_by_content_and_count_skips() {
+    let t = tempfile::tempdir().unwrap();
+    let data = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+    let cat = t.path().join("cat");
+    std::fs::create_dir(&cat).unwrap();
+    std::fs::copy(data.join("cosine_p5.ies"), cat.join("TH_400MP_A15_SCWA_(LEG_12,_SC")).unwrap();
+    std::fs::copy(data.join("batwing.ldt"), cat.join("BATWING_LDT")).unwrap();
+    std::fs::copy(data.join("spot_p8_c40.ies"), cat.join("spot.ies")).unwrap();
+    std::fs::write(cat.join("catalogue.pdf"), b"%PDF-1.4\n%\xe2\xe3\xcf\xd3\n1 0 obj\n").unwrap();
+    std::fs::write(cat.join("photo.png"), b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR").unwrap();
+    std::fs::write(cat.join("README"), "Lamps: see the datasheets.\nTILT is none.\n").unwrap();
+
+    let out = ok(&run(&["validate", "cat"], t.path()));
+    assert!(out.contains("3 files, 3 ok, 0 failed"), "{out}");
+    assert!(out.contains("TH_400MP_A15_SCWA_(LEG_12,_SC"), "{out}");
+    assert!(
+        out.contains("2 files without a photometric extension read by content"),
+        "{out}"
+    );
+    assert!(out.contains("3 files skipped: not photometric"), "{out}");
+
+    let out = ok(&run(&["batch", "cat", "-o", "t.parquet"], t.path()));
+    assert!(out.contains("3 files (0 resumed, 3 analysed): 3 loaded"), "{out}");
+    assert!(
+        out.contains("2 files without a photometric extension read by content"),
+        "{out}"
+    );
+
+    // One of each: singular.
+    let one = t.path().join("one");
+    std::fs::create_dir(&one).unwrap();
+    std::fs::copy(data.join("batwing.ldt"), one.join("x")).unwrap();
+    std::fs::write(one.join("y.pdf"), b"%PDF-1.4\n").unwrap();
+    let out = ok(&run(&["validate", "one"], t.path()));
+    assert!(out.contains("1 file, 1 ok, 0 failed"), "{out}");
+    assert!(
+        out.contains("1 file without a photometric extension read by content"),
+        "{out}"
+    );
+    assert!(out.contains("1 file skipped: not photometric (one/y.pdf)"), "{out}");
+
+    // Nothing photometric: an empty folder, a folder of other files.
+    let empty = t.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let err = fails(&run(&["validate", "empty"], t.path()), 1);
+    assert!(err.contains("nothing photometric found in empty"), "{err}");
+    let pdfs = t.path().join("pdfs");
+    std::fs::create_dir(&pdfs).unwrap();
+    std::fs::write(pdfs.join("a.pdf"), b"%PDF-1.4\n").unwrap();
+    let err = fails(&run(&["validate", "pdfs"], t.path()), 1);
+    assert!(err.contains("1 file skipped: not photometric"), "{err}");
+    let err = fails(&run(&["batch", "pdfs", "-o", "none.parquet"], t.path()), 1);
+    assert!(
+        err.contains("nothing photometric found in pdfs; no table written"),
+        "{err}"
+    );
+    assert!(!t.path().join("none.parquet").exists());
+}
+
+/// Issue 27, item 2: every flag relative to I_max is a percent with its sign.
+/// A bare number is a usage error (exit 2) with the hint, before any file is
+/// read; outputs echo the percent and JSON gives `_pct` keys beside the old ones.
+#[test]
+fn tolerances_relative_to_i_max_are_percents_with_their_sign() {
+    let t = tempfile::tempdir().unwrap();
+    for (args, hint) in [
+        (
+            vec![
+                "mesh",
+                "missing.ies",
+                "--filter",
+                "bilinear",
+                "--tolerance",
+                "0.1",
+                "-o",
+                "m.ply",
+            ],
+            "did you mean 0.1%?",
+        ),
+        (
+            vec!["compare", "missing.ies", "--tolerance", "0.001"],
+            "did you mean 0.001%?",
+        ),
+        (
+            vec!["compare", "missing.ies", "--solid-tolerance", "0.0005"],
+            "write 0.05%",
+        ),
+        (vec!["engines", "missing.ies", "--tolerance", "0.01"], "write 1%"),
+        (vec!["plan", "missing.toml", "--tolerance", "5"], "did you mean 5%?"),
+        (vec!["fit", "missing.ies", "--guard", "0.02"], "write 2%"),
+        (vec!["gpu-check", "missing.ies", "--tolerance", "1e-5"], "write 0.001%"),
+    ] {
+        let e = fails(&run(&args, t.path()), 2);
+        assert!(
+            e.contains(hint) && e.contains("percent") && !e.contains("missing."),
+            "{args:?}: {e}"
+        );
+    }
+    ok(&run(&["synth", "cosine-power", "--p", "5", "-o", "c.ldt"], t.path()));
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(
+        &[
+            "mesh",
+            "c.ldt",
+            "--filter",
+            "bilinear",
+            "--tolerance",
+            "0.5%",
+            "-o",
+            "m.ply",
+            "--json",
+        ],
+        t.path(),
+    )))
+    .unwrap();
+    assert_eq!(v["tolerance_pct"], 0.5, "{v}");
+    let text = ok(&run(
+        &[
+            "mesh",
+            "c.ldt",
+            "--filter",
+            "bilinear",
+            "--tolerance",
+            "0.5%",
+            "-o",
+            "m.ply",
+        ],
+        t.path(),
+    ));
+    assert!(text.contains("tolerance 0.5% of I_max = "), "{text}");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(
+        &[
+            "compare",
+            "c.ldt",
+            "--recon",
+            "bilinear",
+            "--tolerance",
+            "1%",
+            "--solid-tolerance",
+            "0.5%",
+            "--json",
+        ],
+        t.path(),
+    )))
+    .unwrap();
+    assert_eq!(
+        (v["tolerance_pct"].as_f64(), v["tolerance"].as_f64()),
+        (Some(1.0), Some(0.01)),
+        "{v}"
+    );
+    assert_eq!(v["solid_tolerance_pct"], 0.5, "{v}");
+    let text = ok(&run(
+        &["compare", "c.ldt", "--recon", "bilinear", "--tolerance", "1%"],
+        t.path(),
+    ));
+    assert!(text.contains("Hausdorff tolerance 1% of I_max"), "{text}");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(
+        &["fit", "c.ldt", "--max-lights", "1", "--guard", "3%", "--json"],
+        t.path(),
+    )))
+    .unwrap();
+    assert_eq!(
+        (v["guard_pct"].as_f64(), v["guard"].as_f64()),
+        (Some(3.0), Some(0.03)),
+        "{v}"
+    );
+    // hausdorff's tolerance is a length, and its help says so.
+    let help = ok(&run(&["hausdorff", "--help"], t.path()));
+    assert!(help.contains("absolute length in the meshes' unit"), "{help}");
+    let help = ok(&run(&["compare", "--help"], t.path()));
+    assert!(
+        help.contains("[default: 0.1%]") && help.contains("percent of I_max"),
+        "{help}"
+    );
+    // The contract change is stated in the top-level help.
+    let help = ok(&run(&["--help"], t.path()));
+    assert!(
+        help.contains("percents written with their sign") && help.contains("issue 27"),
+        "{help}"
+    );
+}
+
+/// Issue 27, item 3: help and error messages a new user met.
+#[test]
+fn help_and_errors_say_what_is_wrong_and_where() {
+    let t = tempfile::tempdir().unwrap();
+    // compare --help names no option that does not exist.
+    let help = ok(&run(&["compare", "--help"], t.path()));
+    assert!(!help.contains("lamp_flux_lm"), "{help}");
+    // A negative factor is a real message, not clap's "use '-- -3'" tip.
+    for args in [
+        vec![
+            "mesh",
+            "missing.ies",
+            "--filter",
+            "bilinear",
+            "--factor",
+            "-3",
+            "-o",
+            "m.ply",
+        ],
+        vec!["compare", "missing.ies", "--factor", "-3"],
+        vec!["texture", "missing.ies", "--factor", "-3", "-o", "t.exr"],
+        vec!["engines", "missing.ies", "--factor", "-3"],
+    ] {
+        let e = fails(&run(&args, t.path()), 2);
+        assert!(
+            e.contains("must be a positive integer") && !e.contains("-- -3"),
+            "{args:?}: {e}"
+        );
+    }
+    // A truncated TM-33 document is reported where it ends, not at 1:1.
+    ok(&run(&["synth", "cosine-power", "--p", "5", "-o", "c.ldt"], t.path()));
+    ok(&run(&["convert", "c.ldt", "c.xml"], t.path()));
+    let xml = std::fs::read_to_string(t.path().join("c.xml")).unwrap();
+    let cut = &xml[..xml.len() / 2];
+    std::fs::write(t.path().join("cut.xml"), cut).unwrap();
+    let lines = cut.lines().count();
+    let e = fails(&run(&["info", "cut.xml"], t.path()), 1);
+    assert!(!e.contains("cut.xml:1:1:"), "{e}");
+    assert!(e.contains(&format!("cut.xml:{lines}:")), "line {lines}: {e}");
+    // Outputs are checked before the work: a missing folder fails at once, naming it.
+    for args in [
+        vec!["mesh", "c.ldt", "--filter", "bilinear", "-o", "nowhere/m.ply"],
+        vec!["texture", "c.ldt", "-o", "nowhere/t.exr"],
+        vec!["convert", "c.ldt", "nowhere/c.ies"],
+        vec!["synth", "isotropic", "-o", "nowhere/s.ldt"],
+        vec!["export", "c.ldt", "--engine", "pbrt", "-o", "nowhere/p.exr"],
+        vec!["batch", "c.ldt", "-o", "nowhere/t.parquet"],
+    ] {
+        let e = fails(&run(&args, t.path()), 1);
+        assert!(e.contains("the folder nowhere does not exist"), "{args:?}: {e}");
+    }
+    // batch -o x.csv would hold Parquet: refused, with the way out.
+    let e = fails(&run(&["batch", "c.ldt", "-o", "x.csv"], t.path()), 1);
+    assert!(
+        e.contains("writes its table as Parquet") && e.contains("--jsonl"),
+        "{e}"
+    );
+    assert!(!t.path().join("x.csv").exists());
+    // validate --json: warnings have the documented {line, column, code, message}.
+    let gamma: Vec<f64> = (0..=18).map(|k| 10.0 * k as f64).collect();
+    let cd: Vec<f64> = gamma.iter().map(|&g| if g == 30.0 { -1.0 } else { 100.0 }).collect();
+    write_ies(t.path(), "neg.ies", 1000.0, &gamma, &cd);
+    let out = ok(&run(&["validate", "neg.ies", "--json"], t.path()));
+    let v: serde_json::Value = serde_json::from_str(out.lines().next().unwrap()).unwrap();
+    let w = &v["warnings"][0];
+    for key in ["line", "column", "code", "message"] {
+        assert!(w.get(key).is_some(), "{key} missing: {v}");
+    }
+}
+
+/// Issue 27, item 6: `hausdorff` refuses meshes in different units (or
+/// converts both to cd with `--units cd`), prints the unit with H, and
+/// accepts a mesh without a units header as "units unknown".
+#[test]
+fn hausdorff_refuses_mixed_units_and_names_its_unit() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "cosine-power", "--p", "5", "-o", "c.ldt"], t.path()));
+    ok(&run(&["mesh", "c.ldt", "--measured", "-o", "a_cd.ply"], t.path()));
+    ok(&run(&["mesh", "c.ldt", "--measured", "-o", "a_cd.glb"], t.path()));
+    ok(&run(
+        &["mesh", "c.ldt", "--measured", "--units", "peak", "-o", "b_peak.ply"],
+        t.path(),
+    ));
+    ok(&run(
+        &["mesh", "c.ldt", "--measured", "--units", "peak", "-o", "b_peak.stl"],
+        t.path(),
+    ));
+    for (a, b) in [("a_cd.ply", "b_peak.ply"), ("a_cd.glb", "b_peak.stl")] {
+        let e = fails(&run(&["hausdorff", a, b], t.path()), 1);
+        assert!(
+            e.contains(&format!("{a} is in cd and {b} in peak")) && e.contains("--units cd"),
+            "{e}"
+        );
+    }
+    // Same units: H with its unit.
+    let out = ok(&run(&["hausdorff", "a_cd.ply", "a_cd.glb"], t.path()));
+    assert!(out.starts_with("H = ") && out.contains(" cd (+"), "{out}");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(
+        &["hausdorff", "b_peak.ply", "b_peak.stl", "--json"],
+        t.path(),
+    )))
+    .unwrap();
+    assert_eq!(v["units"], "peak", "{v}");
+    // --units cd converts the peak mesh by its recorded scale: the same solid, H ~ 0 cd.
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(
+        &["hausdorff", "a_cd.ply", "b_peak.ply", "--units", "cd", "--json"],
+        t.path(),
+    )))
+    .unwrap();
+    assert_eq!(v["units"], "cd", "{v}");
+    let peak = photosolid::load(t.path().join("c.ldt"))
+        .unwrap()
+        .distribution()
+        .max_cd();
+    assert!(v["hausdorff"].as_f64().unwrap() < 1e-5 * peak, "{v}");
+    // A mesh from another tool (no units header): accepted, "units unknown".
+    let obj = "v 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 0 0\nf 1 2 3\nf 1 4 2\nf 2 4 3\nf 3 4 1\n";
+    std::fs::write(t.path().join("other.obj"), obj).unwrap();
+    let out = ok(&run(&["hausdorff", "other.obj", "other.obj"], t.path()));
+    assert!(out.contains("(units unknown)"), "{out}");
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&run(&["hausdorff", "other.obj", "other.obj", "--json"], t.path()))).unwrap();
+    assert!(v["units"].is_null(), "{v}");
+}
+
+/// Issue 27, item 5: numbers in the units a reader expects, each once, plurals right.
+#[test]
+fn numbers_are_printed_once_with_sensible_precision() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(&["synth", "cosine-power", "--p", "5", "-o", "c.ldt"], t.path()));
+    let out = ok(&run(&["mesh", "c.ldt", "--measured", "-o", "m.ply"], t.path()));
+    assert_eq!(out.matches("vertices").count(), 1, "{out}");
+    assert_eq!(out.matches("volume").count(), 1, "{out}");
+    assert!(out.contains("1 component") && !out.contains("component(s)"), "{out}");
+    assert!(!out.contains("e6") && !out.contains("e3 "), "{out}");
+    // compare --vs: BUG classes are integers, not 0.0000.
+    let out = ok(&run(
+        &["compare", "c.ldt", "--vs", "c.ldt", "--recon", "bilinear"],
+        t.path(),
+    ));
+    let bug = out.lines().find(|l| l.starts_with("BUG B (class)")).expect(&out);
+    assert!(!bug.contains('.'), "{bug}");
+    let w = |n: usize| photosolid::error::count(n, "warning", "warnings");
+    assert_eq!((w(1), w(2)), ("1 warning".to_string(), "2 warnings".to_string()));
+    assert_eq!(photosolid::error::sig(3153.04, 4), "3153");
+    assert_eq!(photosolid::error::sig(-0.31699200000000005, 6), "-0.316992");
+    assert_eq!(photosolid::error::sig(1.5e-7, 4), "1.5e-7");
+    assert_eq!(photosolid::error::percent_of(0.001), 0.1);
 }

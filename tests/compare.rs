@@ -448,7 +448,7 @@ fn withheld_compare_says_what_it_measured() {
     assert!(out.contains("withheld measured directions"), "{out}");
     assert!(!out.contains(" 0 triangles") && !out.contains("H certified"), "{out}");
     let tol = out
-        .split("Hausdorff tolerance 0.1 % of I_max = ")
+        .split("Hausdorff tolerance 0.1% of I_max = ")
         .nth(1)
         .and_then(|s| s.split_whitespace().next())
         .and_then(|v| v.parse::<f64>().ok())

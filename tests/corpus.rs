@@ -202,3 +202,50 @@ fn every_loadable_file_gives_sane_solids() {
     );
     assert!(checked >= 100, "{checked}");
 }
+
+/// Issue 27: a file whose name lost its extension is recognised by its first
+/// 4 kB. Every corpus file the manifest calls IES or EULUMDAT is sniffed as
+/// that format (malformed ones included: their header is intact), and no other
+/// file (tilt tables, the manifest, the GLDF zips, notes) passes as photometric.
+#[test]
+fn every_corpus_file_is_sniffed_as_its_format() {
+    use photosolid::formats::{sniff_photometric, SNIFF_BYTES};
+    use photosolid::model::Format;
+    let Some(root) = corpus() else { return };
+    let mut problems = Vec::new();
+    let mut checked = 0;
+    for e in manifest(&root) {
+        let Ok(bytes) = std::fs::read(&e.path) else { continue };
+        let head = &bytes[..bytes.len().min(SNIFF_BYTES)];
+        let want = match e.format.as_str() {
+            "ies" => Some(Format::Ies),
+            "ldt" => Some(Format::Ldt),
+            _ => continue,
+        };
+        checked += 1;
+        let got = sniff_photometric(head);
+        if got != want && !(e.malformed() && got.is_none()) {
+            problems.push(format!("{}: sniffed {got:?}, manifest says {want:?}", e.rel));
+        }
+    }
+    // Files that are not photometric: the manifest, the tilt table, whatever else has no photometric extension.
+    let mut others = Vec::new();
+    let mut stack = vec![root.clone()];
+    while let Some(d) = stack.pop() {
+        for f in std::fs::read_dir(&d).unwrap().flatten().map(|f| f.path()) {
+            if f.is_dir() {
+                stack.push(f);
+            } else if photosolid::model::Format::from_extension(&f).is_none() {
+                others.push(f);
+            }
+        }
+    }
+    for f in &others {
+        let bytes = std::fs::read(f).unwrap();
+        if let Some(fmt) = sniff_photometric(&bytes) {
+            problems.push(format!("{}: not photometric but sniffed as {fmt:?}", f.display()));
+        }
+    }
+    assert!(checked > 50, "only {checked} corpus files checked");
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}

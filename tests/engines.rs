@@ -373,7 +373,7 @@ fn cli_export_and_engines() {
     let o = std::process::Command::new(bin)
         .arg("engines")
         .arg(data("cosine_p5.ldt"))
-        .args(["--engines", "pbrt,threejs", "--tolerance", "0.05", "--json", "--report"])
+        .args(["--engines", "pbrt,threejs", "--tolerance", "5%", "--json", "--report"])
         .arg(&report)
         .output()
         .unwrap();

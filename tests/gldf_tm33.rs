@@ -128,10 +128,12 @@ fn convert_to_tm33_and_back() {
         assert_eq!(xml[key], ies[key], "{key}");
     }
     ok(&run(&["convert", "bat.xml", "back.ldt"], t.path()));
-    // A directory: TM-33 documents are found by their root element, other XML is left alone.
+    // A directory: TM-33 documents are found by their root element, other XML is not
+    // loaded, only counted as skipped (issue 27).
     std::fs::write(t.path().join("product.xml"), "<Root/>").unwrap();
     let out = ok(&run(&["validate", "."], t.path()));
-    assert!(out.contains("bat.xml") && !out.contains("product.xml"), "{out}");
+    assert!(out.contains("bat.xml") && !out.contains("ok   ./product.xml"), "{out}");
+    assert!(out.contains("1 file skipped: not photometric (./product.xml)"), "{out}");
     // A malformed document: line and element in the message.
     std::fs::write(t.path().join("bad.xml"), text.replacen(" vert=", " vertical=", 1)).unwrap();
     let e = fails(&run(&["info", "bad.xml"], t.path()), 1);

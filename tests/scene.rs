@@ -468,12 +468,12 @@ fn the_example_scene_loads_and_bad_files_name_the_line() {
     let dir = root().join("data");
     let cases = [
         ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0, 0]\n", 3, "position"),
-        ("\n[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nmaintenance_factor = 1.5\n", 2, "maintenance_factor"),
+        ("\n[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nmaintenance_factor = 1.5\n", 5, "maintenance_factor"),
         ("[[receiver]]\nname = \"r\"\nkind = \"plane\"\norigin = [0.0, 0.0, 0.0]\nu = [1.0, 0.0, 0.0]\nv = [2.0, 0.0, 0.0]\nspacing = \"en12464\"\n", 1, "non-parallel"),
         ("[[receiver]]\nname = \"r\"\nkind = \"plane\"\norigin = [0.0, 0.0, 0.0]\nu = [1e6, 0.0, 0.0]\nv = [0.0, 1e6, 0.0]\nspacing = [0.001, 0.001]\n", 1, "coarser"),
-        ("[[luminaire]]\nfile = \"missing.ldt\"\nposition = [0.0, 0.0, 8.0]\n", 1, "missing.ldt"),
+        ("[[luminaire]]\nfile = \"missing.ldt\"\nposition = [0.0, 0.0, 8.0]\n", 2, "missing.ldt"),
         ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\ncolour = 3\n", 4, "colour"),
-        ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nrepresentation = \"cubic\"\n", 1, "representation"),
+        ("[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\nrepresentation = \"cubic\"\n", 4, "representation"),
     ];
     for (text, line, word) in cases {
         let e = Scene::from_toml(text, &dir.join("bad.toml")).unwrap_err().to_string();
@@ -638,4 +638,84 @@ fn the_opening_a_file_declares_drives_the_area_source() {
         assert_close!(point.far_field_error_pct / 100.0, r * r / 0.25, rel = 0.2, "{point:?}");
         assert_close!(point.distance_ratio.unwrap(), 1.0, abs = 1e-9);
     }
+}
+
+/// Issue 27, item 4: a receiver that no luminaire lights is warned about by
+/// name with the reason (facing away, behind the luminaire, outside every
+/// beam); an empty scene is an error; a missing file names the resolved path.
+#[test]
+fn unlit_receivers_are_named_and_empty_scenes_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let spot = root().join("data/spot_p8_c40.ldt");
+    let lum = format!(
+        "[[luminaire]]\nfile = {:?}\nposition = [0.0, 0.0, 8.0]\n",
+        spot.display().to_string()
+    );
+    let text = format!(
+        "{lum}\n[[receiver]]\nname = \"floor\"\nkind = \"plane\"\norigin = [-5.0, -5.0, 0.0]\n\
+         u = [0.0, 10.0, 0.0]\nv = [10.0, 0.0, 0.0]\nspacing = [1.0, 1.0]\n\n\
+         [[receiver]]\nname = \"ceiling\"\nkind = \"point\"\nposition = [0.0, 0.0, 10.0]\nnormal = [0.0, 0.0, -1.0]\n\n\
+         [[receiver]]\nname = \"far\"\nkind = \"point\"\nposition = [20.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n\n\
+         [[receiver]]\nname = \"lit\"\nkind = \"point\"\nposition = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n"
+    );
+    let path = t.path().join("s.toml");
+    std::fs::write(&path, &text).unwrap();
+    let r = evaluate(&Scene::load(&path).unwrap(), None).unwrap();
+    assert_eq!(r.warnings.len(), 3, "{:?}", r.warnings);
+    let says = |name: &str, why: &str| {
+        assert!(
+            r.warnings
+                .iter()
+                .any(|w| w.contains(&format!("receiver {name:?}")) && w.contains(why)),
+            "{name}: {why}: {:?}",
+            r.warnings
+        )
+    };
+    says("floor", "faces away");
+    says("floor", "swap u and v");
+    says("ceiling", "behind");
+    says("far", "outside every beam");
+    // The CLI prints them on stderr and still succeeds; JSON carries them.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+        .args(["scene", path.to_str().unwrap(), "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("warning: receiver \"floor\" gets no light"), "{err}");
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["warnings"].as_array().unwrap().len(), 3);
+
+    // No receivers, no luminaires: errors (exit 1), not 0 lx.
+    for (text, word) in [
+        (lum.clone(), "no receivers"),
+        (
+            "[[receiver]]\nname = \"r\"\nkind = \"point\"\nposition = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\n"
+                .into(),
+            "no luminaires",
+        ),
+        (String::new(), "no luminaires"),
+    ] {
+        std::fs::write(&path, &text).unwrap();
+        let e = Scene::load(&path).unwrap_err().to_string();
+        assert!(e.contains(word), "{e}");
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+            .args(["scene", path.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{word}");
+    }
+    // A missing file: the line of `file`, the resolved path, the reason once.
+    std::fs::write(
+        &path,
+        "[[luminaire]]\nposition = [0.0, 0.0, 8.0]\nfile = \"nothere.ldt\"\n",
+    )
+    .unwrap();
+    let e = Scene::load(&path).unwrap_err().to_string();
+    let resolved = t.path().join("nothere.ldt");
+    assert!(
+        e.contains("s.toml:3:") && e.contains(&resolved.display().to_string()),
+        "{e}"
+    );
+    assert_eq!(e.matches("nothere.ldt").count(), 2, "{e}");
 }

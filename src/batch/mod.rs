@@ -286,11 +286,7 @@ pub fn run(
 /// # Errors
 /// [`Error::Io`] when a directory cannot be listed.
 pub fn collect(paths: &[PathBuf]) -> crate::Result<Vec<PathBuf>> {
-    let mut files = Vec::new();
-    for p in paths {
-        crate::formats::collect_files(p, &mut files)?;
-    }
-    Ok(files)
+    Ok(crate::formats::collect(paths)?.files)
 }
 
 /// The rows as JSON Lines, one [`BatchRecord`] object per line (keys = the field names).

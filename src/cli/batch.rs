@@ -18,7 +18,7 @@ use photosolid::batch::{self, catalogue, table, BatchOptions, BatchRecord};
 
 #[derive(Args, Debug)]
 pub struct BatchArgs {
-    /// Files and directories (searched recursively for .ies/.ldt, any case).
+    /// Files and directories (searched recursively for .ies/.ldt, TM-33 .xml and .gldf, any case, and files without such an extension by their first bytes). Exit 1 when nothing photometric is found.
     #[arg(required = true)]
     paths: Vec<PathBuf>,
     /// The table, Parquet (schema in docs/batch.md).
@@ -59,8 +59,48 @@ fn write_outputs(a: &BatchArgs, rows: &[BatchRecord]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Refuse an `-o` whose extension names another format (`x.csv` would hold
+/// Parquet bytes): `.parquet`, `.pq` or no extension.
+fn check_table_name(out: &std::path::Path) -> anyhow::Result<()> {
+    let ext = out.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        None | Some("parquet" | "pq") => Ok(()),
+        Some(e) => {
+            let hint = match e {
+                "jsonl" | "json" | "ndjson" => " (for JSON Lines add --jsonl OUT.jsonl next to -o OUT.parquet)",
+                "csv" | "tsv" | "txt" | "xlsx" => {
+                    " (pandas, DuckDB, polars and Arrow read Parquet; --jsonl OUT.jsonl gives text rows)"
+                }
+                _ => "",
+            };
+            anyhow::bail!(
+                "-o {}: batch writes its table as Parquet; name it OUT.parquet{hint}",
+                out.display()
+            )
+        }
+    }
+}
+
 pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
-    let files = batch::collect(&a.paths)?;
+    check_table_name(&a.output)?;
+    super::check_output("-o", &a.output)?;
+    if let Some(j) = &a.jsonl {
+        super::check_output("--jsonl", j)?;
+    }
+    let walked = photosolid::formats::collect(&a.paths)?;
+    let notes = walked.summary();
+    let files = walked.files;
+    if files.is_empty() {
+        // An empty table would look like a successful run.
+        eprintln!(
+            "photosolid: nothing photometric found in {}; no table written",
+            super::list_paths(&a.paths)
+        );
+        for n in &notes {
+            eprintln!("{n}");
+        }
+        return Ok(1);
+    }
     let mut rows = previous(&a)?;
     let resumed = rows.len();
     let seen: HashSet<String> = rows.iter().map(|r| r.path.clone()).collect();
@@ -94,15 +134,18 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
     let ok = rows.iter().filter(|r| r.ok).count();
     let outliers = rows.iter().filter(|r| r.is_outlier()).count();
     outln!(
-        "{} files ({} resumed, {} analysed): {} loaded, {} failed to load, {} outliers; table written to {}",
-        rows.len(),
+        "{} ({} resumed, {} analysed): {} loaded, {} failed to load, {}; table written to {}",
+        photosolid::error::count(rows.len(), "file", "files"),
         resumed,
         todo.len(),
         ok,
         rows.len() - ok,
-        outliers,
+        photosolid::error::count(outliers, "outlier", "outliers"),
         a.output.display()
     );
+    for n in &notes {
+        outln!("{n}");
+    }
     if let Some(j) = &a.jsonl {
         outln!("JSON Lines written to {}", j.display());
     }

@@ -1,5 +1,5 @@
 //! `photosolid compare FILE [--vs OTHER] [--recon ...] [--against ...] [--normalize cd|peak|klm|flux]
-//! [--align] [--directions measured|dense[:N]] [--tolerance T] [--factor K | --solid-tolerance F] [--json] [--report DIR]`.
+//! [--align] [--directions measured|dense[:N]] [--tolerance PCT%] [--factor K | --solid-tolerance PCT%] [--json] [--report DIR]`.
 //!
 //! Without `--vs`: each reconstruction of FILE against the truth (`--against
 //! truth`, the default for files written by `photosolid synth`, which record
@@ -21,6 +21,7 @@ use photosolid::reconstruct::Recon;
 use photosolid::report::compare_report;
 use photosolid::synth::Truth;
 
+use super::parse::PctOfPeak;
 use super::{ReadArgs, ReportArgs};
 
 #[derive(Args, Debug)]
@@ -53,17 +54,17 @@ pub struct CompareArgs {
     /// Direction set of the radial metrics: measured, dense, dense:N.
     #[arg(long, default_value = "dense:20000")]
     directions: Directions,
-    /// Hausdorff tolerance, fraction of I_max.
-    #[arg(long, default_value_t = 1e-3, value_parser = super::parse::positive)]
-    tolerance: f64,
+    /// Hausdorff tolerance, a percent of I_max with its sign (a bare number is refused).
+    #[arg(long, default_value = "0.1%", value_parser = super::parse::pct_of_peak, allow_hyphen_values = true)]
+    tolerance: PctOfPeak,
     /// Grid solids on a fixed grid, each measured interval cut into this many steps
     /// (default: adaptive grid solids within --solid-tolerance of their fields).
-    #[arg(long, value_parser = super::parse::at_least_one)]
+    #[arg(long, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     factor: Option<usize>,
     /// Adaptive grid solids: the largest radial deviation of a solid from its field at the
-    /// tested points, fraction of the reference I_max [default: 0.0005].
-    #[arg(long, value_parser = super::parse::positive, conflicts_with = "factor")]
-    solid_tolerance: Option<f64>,
+    /// tested points, a percent of the reference I_max with its sign [default: 0.05%].
+    #[arg(long, value_parser = super::parse::pct_of_peak, conflicts_with = "factor", allow_hyphen_values = true)]
+    solid_tolerance: Option<PctOfPeak>,
     #[command(flatten)]
     out: ReportArgs,
     #[command(flatten)]
@@ -88,11 +89,11 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
             other.as_ref().and_then(|o| o.declared().lamp_flux_lm),
         ],
         directions: a.directions,
-        tolerance: a.tolerance,
+        tolerance: a.tolerance.fraction(),
         factor: a.factor.unwrap_or(defaults.factor),
         solid_tolerance: match a.factor {
             Some(_) => None,
-            None => a.solid_tolerance.or(defaults.solid_tolerance),
+            None => a.solid_tolerance.map(PctOfPeak::fraction).or(defaults.solid_tolerance),
         },
         align: a.align,
         plots: a.out.report.is_some(),

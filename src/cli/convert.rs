@@ -36,6 +36,7 @@ pub struct ConvertArgs {
 }
 
 pub fn run(a: ConvertArgs) -> anyhow::Result<i32> {
+    super::check_output("OUT", &a.output)?;
     let mut doc = super::load(&a.input, &a.read)?;
     if a.rotate_c != 0.0 || a.mirror {
         // Setting the distribution drops the Type A/B source grid; the raw

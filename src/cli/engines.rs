@@ -1,4 +1,4 @@
-//! `photosolid engines FILE [--engines ...] [--reference ...] [--json] [--report DIR] [--tolerance T]`:
+//! `photosolid engines FILE [--engines ...] [--reference ...] [--json] [--report DIR] [--tolerance PCT%]`:
 //! each engine's emulated lookup against the reference, with the trade-table metrics; one row per
 //! documented loader defect. JSON keys: `photosolid::engines::EnginesReport`.
 
@@ -25,9 +25,10 @@ pub struct EnginesArgs {
     #[arg(long, default_value = "catmull-rom")]
     reference: Against,
     /// Resolution search: for each engine whose resolution is a choice, the smallest power of two
-    /// whose certified Hausdorff distance (plus its bound) is within T, a fraction of I_max (0.01 = 1 %).
-    #[arg(long)]
-    tolerance: Option<f64>,
+    /// whose certified Hausdorff distance (plus its bound) is within PCT, a percent of I_max with
+    /// its sign (`1%`; a bare number is refused).
+    #[arg(long, value_name = "PCT%", value_parser = super::parse::pct_of_peak, allow_hyphen_values = true)]
+    tolerance: Option<super::parse::PctOfPeak>,
     /// Resolution of the engines where it is a choice (pbrt, unity-point, unity-spot).
     #[arg(long)]
     resolution: Option<usize>,
@@ -35,7 +36,7 @@ pub struct EnginesArgs {
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
     /// Refinement factor of the solids' grid.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 3, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     factor: usize,
     // --json, --report DIR (the plots: error maps next to the reference).
     #[command(flatten)]
@@ -45,11 +46,6 @@ pub struct EnginesArgs {
 }
 
 pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
-    if let Some(t) = a.tolerance {
-        if !(t.is_finite() && t > 0.0) {
-            anyhow::bail!("--tolerance {t}: expected a positive fraction of I_max (0.01 = 1 %)");
-        }
-    }
     let lum = super::load(&a.file, &a.read)?;
     let opts = EnginesOptions {
         engines: a.engines.clone().unwrap_or_else(|| Engine::ALL.to_vec()),
@@ -60,7 +56,7 @@ pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
             filter: a.filter,
         },
         factor: a.factor,
-        tolerance: a.tolerance,
+        tolerance: a.tolerance.map(super::parse::PctOfPeak::fraction),
         plots: a.out.report.is_some(),
         ..Default::default()
     };
@@ -111,9 +107,9 @@ fn text(r: &EnginesReport) -> String {
             .collect();
         let _ = writeln!(
             s,
-            "{} within {} % of I_max: {} (tried {})",
+            "{} within {}% of I_max: {} (tried {})",
             search.engine,
-            100.0 * search.tolerance,
+            search.tolerance_pct,
             search
                 .resolution
                 .map_or("none up to the largest".into(), |n| n.to_string()),

@@ -41,6 +41,7 @@ pub fn run(a: ExportArgs) -> anyhow::Result<i32> {
     if ext != want {
         anyhow::bail!("{}: the {} layout is written as .{want}", a.output.display(), a.engine);
     }
+    super::check_output("-o", &a.output)?;
     let lum = super::load(&a.file, &a.read)?;
     let opts = EngineOptions {
         resolution: a.resolution,

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
+use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_TOLERANCE};
 
 use super::ReadArgs;
 
@@ -20,9 +20,9 @@ pub struct FitArgs {
     /// Pick the fewest lights whose error is within T of the best (0.01 = one percentage point).
     #[arg(long, default_value_t = DEFAULT_TOLERANCE, value_parser = super::parse::non_negative)]
     tolerance: f64,
-    /// Guard constant C of the error, as a fraction of the peak intensity.
-    #[arg(long, default_value_t = DEFAULT_GUARD, value_parser = super::parse::positive)]
-    guard: f64,
+    /// Guard constant C of the error, a percent of the peak intensity with its sign (a bare number is refused).
+    #[arg(long, default_value = "2%", value_parser = super::parse::pct_of_peak, allow_hyphen_values = true)]
+    guard: super::parse::PctOfPeak,
     /// Print JSON (keys documented on `photosolid::fit::FitReport`).
     #[arg(long)]
     json: bool,
@@ -35,7 +35,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<i32> {
     let options = FitOptions {
         max_lights: a.max_lights as usize,
         metric: a.error,
-        guard: a.guard,
+        guard: a.guard.fraction(),
         tolerance: a.tolerance,
         ..Default::default()
     };

@@ -1,4 +1,4 @@
-//! `photosolid gpu-check [PATHS...] [--factor 5] [--filter F]... [--tolerance 1e-5]`:
+//! `photosolid gpu-check [PATHS...] [--factor 5] [--filter F]... [--tolerance 0.001%]`:
 //! render every loadable file with every filter on the GPU and on the CPU,
 //! from the same plans, and compare texel by texel.
 //!
@@ -23,15 +23,15 @@ pub struct GpuCheckArgs {
     #[arg(default_value = "../shared/corpus")]
     paths: Vec<PathBuf>,
     /// Supersampling factor in both axes (1-32).
-    #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor, allow_negative_numbers = true)]
     factor: u32,
     /// Filters to check (repeatable). Default: every filter (nearest, bilinear,
     /// catmull-rom, mitchell, bspline, pchip) and mitchell:0,0.75.
     #[arg(long)]
     filter: Vec<Filter>,
-    /// Largest allowed |gpu - cpu| per texel (fraction of I_max).
-    #[arg(long, default_value_t = 1e-5, value_parser = super::parse::non_negative)]
-    tolerance: f64,
+    /// Largest allowed |gpu - cpu| per texel, a percent of I_max with its sign (a bare number is refused).
+    #[arg(long, default_value = "0.001%", value_parser = super::parse::pct_of_peak_or_zero, allow_hyphen_values = true)]
+    tolerance: super::parse::PctOfPeak,
     #[command(flatten)]
     read: ReadArgs,
 }
@@ -53,7 +53,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
         } else {
             a.filter.clone()
         },
-        tolerance: a.tolerance,
+        tolerance: a.tolerance.fraction(),
     };
     // Load every file before touching the GPU: a run that would check nothing fails early.
     let inputs = CheckInputs::collect(&a.paths, &a.read.options())?;
@@ -97,7 +97,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
     let (worst, at) = summary.worst.clone().unwrap_or((0.0, "-".into()));
     outln!(
         "overall: {} files x {} filters = {} renders at factor {} on {}: max |gpu - cpu| = {:.3e} \
-         (at {}), tolerance {:e}; {} over tolerance; {} clamped-count mismatches; {} \
+         (at {}; fractions of I_max), tolerance {} of I_max; {} over tolerance; {} clamped-count mismatches; {} \
          files skipped; {:.1?}",
         inputs.textures.len(),
         opts.filters.len(),
@@ -106,7 +106,7 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
         ctx.adapter(),
         worst,
         at,
-        opts.tolerance,
+        a.tolerance,
         summary.failed,
         summary.clamp_mismatches,
         inputs.skipped.len(),

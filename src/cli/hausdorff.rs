@@ -18,9 +18,16 @@ pub struct HausdorffArgs {
     a: PathBuf,
     /// Second mesh (.ply, .obj, .stl or .glb).
     b: PathBuf,
-    /// Certified gap to reach, in mesh units (default: 0.1 % of the larger mesh's largest radius).
+    /// Certified gap to reach: an absolute length in the meshes' unit (cd for solids written with
+    /// `mesh --units cd`, 1 = I_max with `--units peak`), not a percent
+    /// [default: 0.1 % of the larger mesh's largest radius].
     #[arg(long, value_parser = super::parse::positive)]
     tolerance: Option<f64>,
+    /// Convert both meshes to candela first, by the scale their headers record
+    /// (`mesh --units peak|klm|flux` files record it), so that meshes written
+    /// in different units compare. Without it, meshes in different units are refused.
+    #[arg(long, value_parser = ["cd"])]
+    units: Option<String>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -33,6 +40,8 @@ struct Out {
     a_to_b: photosolid::metrics::OneSided,
     b_to_a: photosolid::metrics::OneSided,
     tolerance: f64,
+    /// The unit of every length here (`cd`, `peak`, `cd/klm`); null when the files record none.
+    units: Option<&'static str>,
     triangles: [usize; 2],
     seconds: f64,
 }
@@ -46,9 +55,71 @@ fn read(p: &Path) -> anyhow::Result<Triangles> {
     Ok((pos, mesh.triangles().to_vec()))
 }
 
+/// The units the file at `p` records (none when it cannot be read: the mesh reader says why).
+fn units_of(p: &Path) -> export::RecordedUnits {
+    std::fs::read(p).map(|b| export::recorded_units(&b)).unwrap_or_default()
+}
+
+/// Both meshes in one unit: the recorded units must agree (a file without
+/// them is accepted as "units unknown"); with `--units cd` each is scaled to
+/// cd by its recorded scale. Returns the common unit.
+fn common_units(
+    a: &HausdorffArgs,
+    pa: &mut [DVec3],
+    pb: &mut [DVec3],
+) -> anyhow::Result<(Option<&'static str>, Vec<String>)> {
+    let (ua, ub) = (units_of(&a.a), units_of(&a.b));
+    let mut notes = Vec::new();
+    if a.units.is_some() {
+        for (path, u, pos) in [(&a.a, &ua, pa), (&a.b, &ub, pb)] {
+            let scale = match (u.name, u.units_per_cd) {
+                (Some("cd"), _) => 1.0,
+                (_, Some(s)) => s,
+                _ => anyhow::bail!(
+                    "--units cd: {} records no scale (units per cd), so it cannot be converted",
+                    path.display()
+                ),
+            };
+            if scale != 1.0 {
+                pos.iter_mut().for_each(|p| *p /= scale);
+                notes.push(format!(
+                    "{} converted from {} to cd (scale {} unit per cd)",
+                    path.display(),
+                    u.name.unwrap_or("its units"),
+                    scale
+                ));
+            }
+        }
+        return Ok((Some("cd"), notes));
+    }
+    Ok(match (ua.name, ub.name) {
+        (Some(x), Some(y)) if x != y => anyhow::bail!(
+            "{} is in {x} and {} in {y}: a distance between them would mix units; write both with the same \
+             `mesh --units`, or pass --units cd to convert both to candela by the scale their headers record",
+            a.a.display(),
+            a.b.display()
+        ),
+        (Some(x), Some(_)) => (Some(x), notes),
+        (None, None) => {
+            notes.push("units unknown: neither file records its units".into());
+            (None, notes)
+        }
+        (Some(x), None) | (None, Some(x)) => {
+            let unknown = if ua.name.is_none() { &a.a } else { &a.b };
+            notes.push(format!(
+                "{} records no units (another tool's mesh?): assumed to be in {x} like the other",
+                unknown.display()
+            ));
+            (Some(x), notes)
+        }
+    })
+}
+
 pub fn run(a: HausdorffArgs) -> anyhow::Result<i32> {
-    let (pa, ta) = read(&a.a)?;
-    let (pb, tb) = read(&a.b)?;
+    let (mut pa, ta) = read(&a.a)?;
+    let (mut pb, tb) = read(&a.b)?;
+    let (units, notes) = common_units(&a, &mut pa, &mut pb)?;
+    let unit = units.map_or(String::new(), |u| format!(" {u}"));
     let radius = pa.iter().chain(&pb).map(|p| p.length()).fold(0.0, f64::max);
     let tol = a.tolerance.unwrap_or(1e-3 * radius);
     let t0 = Instant::now();
@@ -72,6 +143,7 @@ pub fn run(a: HausdorffArgs) -> anyhow::Result<i32> {
             a_to_b: h.a_to_b,
             b_to_a: h.b_to_a,
             tolerance: tol,
+            units,
             triangles: [ta.len(), tb.len()],
             seconds,
         };
@@ -80,24 +152,33 @@ pub fn run(a: HausdorffArgs) -> anyhow::Result<i32> {
     } else {
         writeln!(
             out,
-            "H = {:.6} (+{:.6}); h(A,B) = {:.6}, h(B,A) = {:.6}; mean A->B {:.6}, RMS A->B {:.6}; {} and {} triangles in {:.3} s",
-            h.value,
-            h.bound,
-            h.a_to_b.value,
-            h.b_to_a.value,
-            h.a_to_b.mean,
-            h.a_to_b.rms,
-            ta.len(),
-            tb.len(),
-            seconds
+            "H = {}{unit} (+{}{unit}); h(A,B) = {}{unit}, h(B,A) = {}{unit}; mean A->B {}{unit}, RMS A->B {}{unit}; {} and {} in {:.3} s{}",
+            sig(h.value),
+            sig(h.bound),
+            sig(h.a_to_b.value),
+            sig(h.b_to_a.value),
+            sig(h.a_to_b.mean),
+            sig(h.a_to_b.rms),
+            photosolid::error::count(ta.len(), "triangle", "triangles"),
+            photosolid::error::count(tb.len(), "triangle", "triangles"),
+            seconds,
+            if units.is_none() { " (units unknown)" } else { "" }
         )?;
         if !(h.a_to_b.converged && h.b_to_a.converged) {
             writeln!(
                 out,
-                "partial: bound not reached (refinement stopped after {} queries per direction; tolerance {tol})",
+                "partial: bound not reached (refinement stopped after {} queries per direction; tolerance {tol}{unit})",
                 photosolid::metrics::hausdorff::MAX_REFINEMENT_QUERIES
             )?;
         }
     }
+    for n in &notes {
+        eprintln!("note: {n}");
+    }
     Ok(0)
+}
+
+/// A distance with 6 significant digits.
+fn sig(x: f64) -> String {
+    photosolid::error::sig(x, 6)
 }

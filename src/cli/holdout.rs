@@ -19,10 +19,10 @@ pub struct HoldoutArgs {
     /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
     /// Keep every K-th C-plane, reconstruct the others.
-    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]
+    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     drop_c: usize,
     /// Keep every K-th gamma row, reconstruct the others.
-    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one)]
+    #[arg(long, default_value_t = 2, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     drop_gamma: usize,
     /// Filters to compare (comma separated).
     #[arg(

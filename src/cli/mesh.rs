@@ -1,4 +1,4 @@
-//! `photosolid mesh FILE [--filter F | --measured] [--tolerance PCT | --factor K] [--units cd|peak|klm|flux] [--color] -o solid.{obj,ply,stl,glb}`.
+//! `photosolid mesh FILE [--filter F | --measured] [--tolerance PCT% | --factor K] [--units cd|peak|klm|flux] [--color] -o solid.{obj,ply,stl,glb}`.
 
 use std::path::PathBuf;
 
@@ -30,13 +30,14 @@ pub struct MeshArgs {
     measured: bool,
     /// A fixed grid for a filtered solid: each measured interval cut into this many steps
     /// (with --texture: the render factor, default 5). Default: the adaptive grid of --tolerance.
-    #[arg(long, value_parser = super::parse::at_least_one)]
+    #[arg(long, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     factor: Option<usize>,
     /// Adaptive grid of a filtered solid: C planes and gamma rows are added where the mesh
-    /// deviates from the filter's field by more than PCT % of I_max (radially, at the tested
-    /// points: edge midpoints and triangle centres) [default: 0.1].
-    #[arg(long, value_parser = super::parse::positive, conflicts_with_all = ["factor", "texture"])]
-    tolerance: Option<f64>,
+    /// deviates from the filter's field by more than PCT of I_max (radially, at the tested
+    /// points: edge midpoints and triangle centres), a percent with its sign (`0.1%`; a bare
+    /// number is refused) [default: 0.1%].
+    #[arg(long, value_name = "PCT%", value_parser = super::parse::pct_of_peak, allow_hyphen_values = true, conflicts_with_all = ["factor", "texture"])]
+    tolerance: Option<super::parse::PctOfPeak>,
     /// Units of the vertex coordinates: cd (1 unit = 1 cd), peak (I_max = 1), klm (cd per 1000 lm
     /// of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux (cd per 1000 lm of
     /// the computed luminaire flux: solids of equal flux).
@@ -67,6 +68,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     if export::MeshFormat::from_path(&a.output).is_none() {
         return Err(anyhow::Error::from(export::MeshFormat::unknown_extension(&a.output)).context("-o"));
     }
+    super::check_output("-o", &a.output)?;
     let lum = super::load(&a.file, &a.read)?;
     let d = lum.distribution();
     let units =
@@ -81,7 +83,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             Some(factor) => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, factor, units)?,
             None => {
                 let recs = Reconstructions::new(d.clone(), &[recon])?;
-                let tolerance = Tolerance::PercentOfPeak(a.tolerance.unwrap_or(DEFAULT_TOLERANCE_PCT));
+                let tolerance = Tolerance::PercentOfPeak(a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct()));
                 let field = recs.field(recon)?;
                 let (mesh, found) = super::with_progress("adaptive solid", |progress| {
                     Refinement::Adaptive(AdaptiveOptions::new(tolerance))
@@ -120,6 +122,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             "manifold": topo.manifold,
             "file_topology": topo,
             "tolerance_cd": adaptive.as_ref().map(|f| f.tolerance_cd),
+            "tolerance_pct": adaptive.as_ref().map(|_| a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct())),
             "tested_deviation_cd": adaptive.as_ref().map(|f| f.tested_deviation_cd),
             "tolerance_reached": adaptive.as_ref().map(|f| f.reached),
             "stopped_by": adaptive.as_ref().map(|f| f.stop),
@@ -127,24 +130,34 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         outln!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(0);
     }
+    // Each number once: the file's vertices and triangles (as read back), the solid's volume and area.
+    let count = photosolid::error::count;
     outln!(
-        "{}: {} vertices, {} triangles, volume {:.6e} {u}^3, area {:.6e} {u}^2; {report}; as read back: {}, {}, {} component(s)",
+        "{}: {}, {}, {}, χ = {}, {} at the origin; volume {} {u}³, area {} {u}²; as read back: {}, {}, {}",
         a.output.display(),
-        written.positions().len(),
-        written.triangles().len(),
-        mesh.volume(),
-        mesh.area(),
-        if topo.watertight { "watertight" } else { "NOT watertight" },
+        count(written.positions().len(), "vertex", "vertices"),
+        count(written.triangles().len(), "triangle", "triangles"),
+        count(report.edges, "edge", "edges"),
+        report.euler_characteristic,
+        count(report.origin_sheets, "sheet", "sheets"),
+        photosolid::error::sig(mesh.volume(), 6),
+        photosolid::error::sig(mesh.area(), 6),
+        if topo.watertight {
+            "watertight"
+        } else {
+            "NOT watertight"
+        },
         if topo.manifold { "manifold" } else { "NOT manifold" },
-        topo.components,
+        count(topo.components, "component", "components"),
         u = units.name(),
     );
     if let Some(f) = &adaptive {
         outln!(
-            "adaptive grid {} C x {} gamma: largest tested deviation {:.4} cd, tolerance {:.4} cd{}",
+            "adaptive grid {} C x {} gamma: largest tested deviation {:.4} cd, tolerance {}% of I_max = {:.4} cd{}",
             f.grid.c_angles_deg().len(),
             f.grid.gamma_angles_deg().len(),
             f.tested_deviation_cd,
+            super::parse::short(a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct())),
             f.tolerance_cd,
             if f.reached {
                 String::new()

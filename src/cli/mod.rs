@@ -36,7 +36,16 @@ use photosolid::formats::ReadOptions;
 
 /// Analyse and compare the photometric solids of real luminaires (IES LM-63, EULUMDAT).
 #[derive(Parser, Debug)]
-#[command(name = "photosolid", version, about, propagate_version = true)]
+#[command(
+    name = "photosolid",
+    version,
+    about,
+    propagate_version = true,
+    after_help = "Tolerances relative to I_max (mesh/compare/engines/plan --tolerance, compare --solid-tolerance, \
+                  fit --guard, gpu-check --tolerance) are percents written with their sign, e.g. 0.1%; a bare \
+                  number is refused. Until issue 27 compare, engines, fit --guard and gpu-check took fractions \
+                  (0.001 = 0.1%). hausdorff --tolerance is a length in the meshes' unit."
+)]
 pub struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -169,6 +178,41 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
     }
 }
 
+/// Check, before any work, that an output file can be created where it is
+/// asked for: its folder exists and is a folder, and the path is not itself a
+/// folder. `flag` names the option in the message (`-o`, `--jsonl`).
+fn check_output(flag: &str, path: &std::path::Path) -> anyhow::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    if path.is_dir() {
+        anyhow::bail!("{flag} {}: is a folder; give a file name", path.display());
+    }
+    if !dir.is_dir() {
+        let what = if dir.exists() {
+            "is not a folder"
+        } else {
+            "does not exist"
+        };
+        anyhow::bail!(
+            "{flag} {}: the folder {} {what} (nothing was computed; create it first)",
+            path.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+/// Paths as a user typed them, comma-separated (for messages).
+fn list_paths(paths: &[PathBuf]) -> String {
+    paths
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// Print `value` as pretty JSON, or `text` as it is.
 fn emit(json: bool, value: &impl serde::Serialize, text: &str) -> anyhow::Result<()> {
     use std::io::Write;
@@ -234,16 +278,24 @@ pub(crate) mod parse {
     fn number<T: std::str::FromStr>(s: &str) -> Result<T, String> {
         s.trim().parse().map_err(|_| format!("`{s}` is not a number"))
     }
+    /// An integer, or the reason it is not one: a negative number or a
+    /// fraction gets "must be a positive integer" rather than "not a number".
+    fn integer<T: std::str::FromStr>(s: &str) -> Result<T, String> {
+        s.trim().parse().map_err(|_| match s.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() => format!("must be a positive integer (1, 2, 3, ...), got {s}"),
+            _ => format!("`{s}` is not a number"),
+        })
+    }
     /// An integer >= 1 (a factor, a step, a count).
     pub fn at_least_one(s: &str) -> Result<usize, String> {
-        match number::<usize>(s)? {
-            0 => Err("must be at least 1".into()),
+        match integer::<usize>(s)? {
+            0 => Err("must be a positive integer (1, 2, 3, ...), got 0".into()),
             n => Ok(n),
         }
     }
     /// A supersampling factor of a texture: 1 to 32.
     pub fn texture_factor(s: &str) -> Result<u32, String> {
-        match number::<u32>(s)? {
+        match integer::<u32>(s).map_err(|e| e.replace("(1, 2, 3, ...)", "from 1 to 32"))? {
             n @ 1..=32 => Ok(n),
             n => Err(format!("{n} is outside 1..=32")),
         }
@@ -265,6 +317,78 @@ pub(crate) mod parse {
         } else {
             Err(format!("{x} must be a finite number >= 0"))
         }
+    }
+    /// A quantity relative to I_max (a tolerance, a guard), as every flag
+    /// spells it: a percent with its sign, `0.1%`. Holds the percent.
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    pub struct PctOfPeak(pub f64);
+
+    impl PctOfPeak {
+        /// The value in percent of I_max (`0.1%` is 0.1).
+        pub fn pct(self) -> f64 {
+            self.0
+        }
+        /// The value as a fraction of I_max (`0.1%` is 0.001), as the library takes it.
+        pub fn fraction(self) -> f64 {
+            self.0 / 100.0
+        }
+    }
+
+    impl std::fmt::Display for PctOfPeak {
+        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            write!(f, "{}%", short(self.0))
+        }
+    }
+
+    /// `x` with at most 10 decimals and no trailing zeros (`0.1`, not
+    /// `0.10000000000000002`; `5`, not `5.0`); scientific below 1e-10.
+    pub fn short(x: f64) -> String {
+        if x != 0.0 && x.abs() < 1e-10 {
+            return format!("{x:e}");
+        }
+        let s = format!("{x:.10}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s == "-0" {
+            "0".into()
+        } else {
+            s.into()
+        }
+    }
+
+    /// A percent of I_max, with its sign (`0.1%`); `zero_allowed`: whether 0% is accepted.
+    fn pct(s: &str, zero_allowed: bool) -> Result<PctOfPeak, String> {
+        let t = s.trim();
+        let Some(body) = t.strip_suffix('%') else {
+            return Err(match t.parse::<f64>() {
+                Ok(x) if x.is_finite() => format!(
+                    "`{s}` has no unit: values relative to I_max are percents written with their sign; \
+                     did you mean {}%? (If {} was meant as a fraction of I_max, write {}%.)",
+                    short(x),
+                    short(x),
+                    short(100.0 * x)
+                ),
+                _ => format!("`{s}` is not a percent of I_max such as 0.1%"),
+            });
+        };
+        let x: f64 = body
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{s}` is not a percent of I_max such as 0.1%"))?;
+        if !x.is_finite() || x < 0.0 || (x == 0.0 && !zero_allowed) {
+            return Err(format!(
+                "{s} must be a finite percent {} 0%",
+                if zero_allowed { ">=" } else { ">" }
+            ));
+        }
+        Ok(PctOfPeak(x))
+    }
+    /// A percent of I_max > 0% (`0.1%`); a bare number is refused with a hint.
+    pub fn pct_of_peak(s: &str) -> Result<PctOfPeak, String> {
+        pct(s, false)
+    }
+    /// A percent of I_max >= 0% (`0%` allowed); a bare number is refused with a hint.
+    pub fn pct_of_peak_or_zero(s: &str) -> Result<PctOfPeak, String> {
+        pct(s, true)
     }
     /// A finite number (an angle, an offset).
     pub fn finite(s: &str) -> Result<f64, String> {

@@ -28,30 +28,16 @@ pub struct SceneArgs {
 pub struct PlanArgs {
     /// A scene file (TOML; see docs/scene.md).
     scene: PathBuf,
-    /// Largest illuminance error allowed at any receiver point: `1%` or a fraction (`0.01`).
-    #[arg(long, default_value = "1%", value_parser = parse_tolerance)]
-    tolerance: f64,
+    /// Largest illuminance error allowed at any receiver point, relative to the receiver's
+    /// largest illuminance: a percent with its sign (`1%`; a bare number is refused).
+    #[arg(long, value_name = "PCT%", default_value = "1%", value_parser = super::parse::pct_of_peak_or_zero, allow_hyphen_values = true)]
+    tolerance: super::parse::PctOfPeak,
     /// Print JSON.
     #[arg(long)]
     json: bool,
     /// Write plan.json and index.html (a 3D view of each luminaire's chosen representation) into DIR.
     #[arg(long)]
     report: Option<PathBuf>,
-}
-
-/// `1%` → 0.01, `0.01` → 0.01.
-fn parse_tolerance(s: &str) -> Result<f64, String> {
-    let t = s.trim();
-    let v = match t.strip_suffix('%') {
-        Some(p) => p.trim().parse::<f64>().map(|x| x / 100.0),
-        None => t.parse::<f64>(),
-    }
-    .map_err(|_| format!("expected a percentage such as 1% or a fraction such as 0.01, got {s:?}"))?;
-    if v.is_finite() && v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("expected a tolerance >= 0, got {s:?}"))
-    }
 }
 
 pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
@@ -77,6 +63,9 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
         }
     }
     super::emit(a.json, &result, &scene_text(&result))?;
+    for w in &result.warnings {
+        eprintln!("warning: {w}");
+    }
     Ok(0)
 }
 
@@ -92,7 +81,7 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
         }
     };
     let options = PlanOptions {
-        tolerance: a.tolerance,
+        tolerance: a.tolerance.fraction(),
         ..PlanOptions::default()
     };
     let result = plan(&scene, &options, Some(&say))?;

@@ -47,6 +47,7 @@ pub struct SynthArgs {
 }
 
 pub fn run(a: SynthArgs) -> anyhow::Result<i32> {
+    super::check_output("-o", &a.output)?;
     let kind = match a.kind {
         Kind::Isotropic => Synth::Isotropic,
         Kind::Lambertian => Synth::Lambertian,

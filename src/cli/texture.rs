@@ -18,7 +18,7 @@ pub struct TextureArgs {
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
     /// Supersampling factor in both axes (1-32).
-    #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor, allow_negative_numbers = true)]
     factor: u32,
     /// Output, format from the extension: .exr (single float channel, I / I_max;
     /// metadata in the header) or .png (the preview, as --png).
@@ -75,6 +75,9 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
     }
     if outputs.is_empty() {
         anyhow::bail!("nothing to write: give -o OUT.exr (float texture) and/or --png OUT.png (preview)");
+    }
+    for (path, _) in &outputs {
+        super::check_output(if Some(*path) == a.png.as_ref() { "--png" } else { "-o" }, path)?;
     }
     let lum = super::load(&a.file, &a.read)?;
     let tex = LightTexture::new(lum.distribution()).context("building the light distribution texture")?;

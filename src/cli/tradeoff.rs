@@ -25,14 +25,14 @@ pub struct TradeoffArgs {
     #[arg(long)]
     reference: Option<Reference>,
     /// Texture render factors (comma separated).
-    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10", value_parser = super::parse::texture_factor)]
+    #[arg(long, value_delimiter = ',', default_value = "1,2,5,10", value_parser = super::parse::texture_factor, allow_negative_numbers = true)]
     factors: Vec<u32>,
     /// Grid refinement of the solids the Hausdorff distance is measured on (a fixed grid;
     /// default: adaptive solids, as `compare`).
-    #[arg(long, value_parser = super::parse::at_least_one)]
+    #[arg(long, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     factor: Option<usize>,
     /// Timing repeats per representation (the median is reported).
-    #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one)]
+    #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     repeats: usize,
     /// Add rows for the k = 5 texture read by the GPU's texture hardware
     /// (bilinear, and Catmull-Rom from linear fetches; `+gpu`): their errors,

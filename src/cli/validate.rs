@@ -17,7 +17,7 @@ use super::ReadArgs;
 
 #[derive(Args, Debug)]
 pub struct ValidateArgs {
-    /// Files and directories (searched recursively for .ies/.ldt, TM-33 .xml and .gldf, any case; a .gldf gives every photometry).
+    /// Files and directories (searched recursively for .ies/.ldt, TM-33 .xml and .gldf, any case, and files without such an extension by their first bytes; a .gldf gives every photometry). Exit 1 when nothing photometric is found.
     #[arg(required = true)]
     paths: Vec<PathBuf>,
     /// One JSON object per line: path, ok, errors, warnings, and the info numbers when ok.
@@ -32,15 +32,25 @@ struct Line {
     path: String,
     ok: bool,
     errors: Vec<photosolid::error::ErrorRecord>,
-    warnings: Vec<photosolid::Warning>,
+    warnings: Vec<photosolid::error::WarningRecord>,
     #[serde(skip_serializing_if = "Option::is_none")]
     info: Option<InfoReport>,
 }
 
 pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
-    let mut files = Vec::new();
-    for p in &a.paths {
-        photosolid::formats::collect_files(p, &mut files)?;
+    let walked = photosolid::formats::collect(&a.paths)?;
+    let notes = walked.summary();
+    let files = walked.files;
+    if files.is_empty() {
+        // Nothing to check is a failure, not "0 files, 0 ok".
+        eprintln!(
+            "photosolid: nothing photometric found in {}",
+            super::list_paths(&a.paths)
+        );
+        for n in &notes {
+            eprintln!("{n}");
+        }
+        return Ok(1);
     }
     let opts = a.read.options();
     let bar = (std::io::stderr().is_terminal() && files.len() > 20).then(|| {
@@ -65,7 +75,7 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
                         path: f.display().to_string(),
                         ok: true,
                         errors: vec![],
-                        warnings: info.warnings.clone(),
+                        warnings: info.warnings.iter().map(Into::into).collect(),
                         info: Some(info),
                     }
                 }
@@ -92,7 +102,12 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
             serde_json::to_writer(&mut out, r)?;
             writeln!(out)?;
         } else if r.ok {
-            writeln!(out, "ok   {} ({} warnings)", r.path, r.warnings.len())?;
+            writeln!(
+                out,
+                "ok   {} ({})",
+                r.path,
+                photosolid::error::count(r.warnings.len(), "warning", "warnings")
+            )?;
             for w in &r.warnings {
                 writeln!(out, "       {w}")?;
             }
@@ -106,11 +121,19 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     if !a.json {
         writeln!(
             out,
-            "{} files, {} ok, {} failed",
-            results.len(),
+            "{}, {} ok, {} failed",
+            photosolid::error::count(results.len(), "file", "files"),
             results.len() - failed,
             failed
         )?;
+        for n in &notes {
+            writeln!(out, "{n}")?;
+        }
+    } else {
+        // stdout stays one JSON object per line.
+        for n in &notes {
+            eprintln!("{n}");
+        }
     }
     out.flush()?;
     Ok(if failed == 0 { 0 } else { 1 })

@@ -101,7 +101,14 @@ pub enum Normalize {
     Peak,
     /// cd/klm as in EULUMDAT and lighting practice: candela per 1000 lm of
     /// *lamp* flux (each distribution by its file's declared lamp flux, or
-    /// the option `lamp_flux_lm`). Does not apply to absolute photometry.
+    /// [`CompareOptions::lamp_flux_lm`] in the library). Does not apply to
+    /// absolute photometry.
+    #[cfg_attr(
+        feature = "cli",
+        value(
+            help = "cd/klm as in EULUMDAT: candela per 1000 lm of the lamp flux each file declares (not for absolute photometry)"
+        )
+    )]
     Klm,
     /// Equal flux: each distribution divided by its own computed luminaire
     /// flux (x 1000: cd per 1000 lm of luminaire flux).
@@ -446,12 +453,16 @@ pub struct Comparison {
     pub n_directions: usize,
     /// Hausdorff tolerance, fraction of I_max.
     pub tolerance: f64,
+    /// The same in percent of I_max (`--tolerance 0.1%` is 0.1).
+    pub tolerance_pct: f64,
     /// The same in `units`.
     pub tolerance_cd: f64,
     /// Grid solid refinement factor (used when `solid_tolerance_cd` is null).
     pub factor: usize,
     /// The adaptive solids' tolerance, in `units` (null: fixed `factor`).
     pub solid_tolerance_cd: Option<f64>,
+    /// The same in percent of I_max (`--solid-tolerance 0.05%` is 0.05; null: fixed `factor`).
+    pub solid_tolerance_pct: Option<f64>,
     /// The largest deviation of the reference's adaptive solid (or profile)
     /// from its field at the tested points, in `units` (null: fixed
     /// `factor`, or no reference solid); each row has its own.
@@ -765,9 +776,11 @@ fn compare_fields(
         directions: set.label.clone(),
         n_directions: set.len(),
         tolerance: opts.tolerance,
+        tolerance_pct: crate::error::percent_of(opts.tolerance),
         tolerance_cd: tol,
         factor: opts.factor,
         solid_tolerance_cd: solid_tol_cd,
+        solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
         solid_deviation_cd: deviation,
         solid_tolerance_reached: deviation.zip(solid_tol_cd).map(|(d, t)| d <= t),
         i_max_cd: i_max,

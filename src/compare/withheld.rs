@@ -194,10 +194,12 @@ pub(super) fn compare_withheld(
         directions: pooled.label.clone(),
         n_directions: pooled.len(),
         tolerance: opts.tolerance,
+        tolerance_pct: crate::error::percent_of(opts.tolerance),
         // Printed in the file's unit; the withheld H is exact and uses no tolerance.
         tolerance_cd: opts.tolerance * i_max,
         factor: opts.factor,
         solid_tolerance_cd: solid_tol_cd,
+        solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
         solid_deviation_cd: None,
         solid_tolerance_reached: None,
         i_max_cd: i_max,

@@ -110,6 +110,8 @@ pub struct ResolutionSearch {
     pub engine: Engine,
     /// The tolerance, fraction of I_max (H + its bound must not exceed it).
     pub tolerance: f64,
+    /// The same in percent of I_max (`--tolerance 1%` is 1).
+    pub tolerance_pct: f64,
     /// The smallest power-of-two resolution within it; `null` when none up to the engine's largest.
     pub resolution: Option<usize>,
     /// Every resolution tried, ascending.
@@ -388,6 +390,7 @@ fn search(
     Ok(ResolutionSearch {
         engine,
         tolerance: tol,
+        tolerance_pct: crate::error::percent_of(tol),
         resolution: found,
         tried,
     })

@@ -102,7 +102,7 @@ pub struct TrialRow {
 /// The `photosolid fit --json` document.
 ///
 /// Keys: `reconstruction` (`"fitted-gl"`), `metric` (`relative` |
-/// `solid-angle`), `guard` (C, relative to I_max), `tolerance`, `i_max_cd`,
+/// `solid-angle`), `guard` (C, a fraction of I_max), `guard_pct` (the same in percent), `tolerance`, `i_max_cd`,
 /// `directions`, `axis_vertical`, `chosen` (combination name), `error`,
 /// `lights` ([`GlLight`]s of the chosen combination), `trials` ([`TrialRow`]s,
 /// every combination), `frames` (a note), `glsl` (a paste-able function),
@@ -115,6 +115,8 @@ pub struct FitReport {
     pub metric: ErrorMetric,
     /// Guard constant C, relative to I_max.
     pub guard: f64,
+    /// The same in percent of I_max (`--guard 2%` is 2).
+    pub guard_pct: f64,
     /// Model-selection tolerance.
     pub tolerance: f64,
     /// Largest measured intensity, cd.
@@ -261,6 +263,7 @@ impl FitReport {
             reconstruction: super::RECONSTRUCTION_NAME,
             metric: fit.options.metric,
             guard: fit.options.guard,
+            guard_pct: crate::error::percent_of(fit.options.guard),
             tolerance: fit.options.tolerance,
             i_max_cd: i_max,
             directions: fit.directions,
@@ -282,13 +285,13 @@ impl FitReport {
         let n = self.lights.len();
         let _ = writeln!(
             o,
-            "fitted-gl: {} ({} light{}), error {:.5} ({}, C = {} I_max), I_max {:.2} cd, {} directions{}",
+            "fitted-gl: {} ({} light{}), error {:.5} ({}, C = {} % of I_max), I_max {:.2} cd, {} directions{}",
             self.chosen,
             n,
             if n == 1 { "" } else { "s" },
             self.error,
             self.metric.name(),
-            self.guard,
+            self.guard_pct,
             self.i_max_cd,
             self.directions,
             if self.axis_vertical {

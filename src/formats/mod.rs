@@ -303,45 +303,169 @@ pub fn save(doc: &Document, path: &Path, opts: &WriteOptions) -> Result<()> {
 /// The photometric files at `path`: a file named explicitly, whatever its
 /// extension, or every `.ies`/`.ldt` file, TM-33 `.xml` file (by its root
 /// element) and `.gldf` container below a directory (recursive, sorted by
-/// path), appended to `out`. A container becomes one `FILE.gldf#ID` path per
-/// photometry ([`gldf::expand`]), a TM-33 document with several emitters one
-/// `FILE.xml#ID` path per emitter ([`tm33::expand`]).
+/// path), appended to `out`; files below a directory with no or another
+/// extension are read by their content ([`sniff_photometric`]). A container
+/// becomes one `FILE.gldf#ID` path per photometry ([`gldf::expand`]), a TM-33
+/// document with several emitters one `FILE.xml#ID` path per emitter
+/// ([`tm33::expand`]). [`collect`] also counts what was read by content and
+/// what was skipped.
 ///
 /// # Errors
 /// [`Error::Io`] naming the directory that cannot be read.
 pub fn collect_files(path: &std::path::Path, out: &mut Vec<std::path::PathBuf>) -> Result<()> {
-    if path.is_dir() {
-        let mut entries: Vec<std::path::PathBuf> = std::fs::read_dir(path)
-            .map_err(|e| Error::io(path, e))?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .collect();
-        entries.sort();
-        for e in entries {
-            if e.is_dir() {
-                collect_files(&e, out)?;
-            } else if gldf::split_reference(&e).is_some() {
-                out.extend(gldf::expand(&e));
-            } else {
-                match Format::from_extension(&e) {
-                    // Other XML files (a GLDF's product.xml unpacked, say) are not photometry.
-                    Some(Format::Tm33) if e.is_file() && tm33::looks_like(&head(&e)) => out.extend(tm33::expand(&e)),
-                    Some(Format::Ies | Format::Ldt) => out.push(e),
-                    _ => {}
+    let mut c = Collected::default();
+    collect_into(path, &mut c)?;
+    out.append(&mut c.files);
+    Ok(())
+}
+
+/// What walking paths found: the photometric files (as [`collect_files`]
+/// lists them), how many of those were recognised by content because their
+/// name has no photometric extension, and the files below a directory that
+/// were skipped as not photometric.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Collected {
+    /// The paths to load, in walking order.
+    pub files: Vec<std::path::PathBuf>,
+    /// Files found in directories without a `.ies`/`.ldt`/`.xml`/`.gldf`
+    /// extension whose first bytes are a photometric file (counted in `files`).
+    pub by_content: usize,
+    /// Files found in directories that are not photometric (by extension
+    /// and content), in walking order.
+    pub skipped: Vec<std::path::PathBuf>,
+}
+
+impl Collected {
+    /// The summary lines of a walk, plurals right: `N files without a
+    /// photometric extension read by content`, `N files skipped: not
+    /// photometric (a, b, c, ...)`; none when there is nothing to say.
+    pub fn summary(&self) -> Vec<String> {
+        let mut lines = Vec::new();
+        if self.by_content > 0 {
+            lines.push(format!(
+                "{} without a photometric extension read by content",
+                crate::error::count(self.by_content, "file", "files")
+            ));
+        }
+        if !self.skipped.is_empty() {
+            let names: Vec<String> = self.skipped.iter().take(3).map(|p| p.display().to_string()).collect();
+            let more = if self.skipped.len() > 3 { ", ..." } else { "" };
+            lines.push(format!(
+                "{} skipped: not photometric ({}{more})",
+                crate::error::count(self.skipped.len(), "file", "files"),
+                names.join(", ")
+            ));
+        }
+        lines
+    }
+}
+
+/// Walk every path of `paths` (see [`collect_files`]), counting what was read
+/// by content and what was skipped.
+///
+/// # Errors
+/// [`Error::Io`] naming the directory that cannot be read.
+pub fn collect(paths: &[std::path::PathBuf]) -> Result<Collected> {
+    let mut c = Collected::default();
+    for p in paths {
+        collect_into(p, &mut c)?;
+    }
+    Ok(c)
+}
+
+/// How many leading bytes [`collect`] reads of a file whose extension does
+/// not say its format.
+pub const SNIFF_BYTES: usize = 4096;
+
+fn collect_into(path: &std::path::Path, c: &mut Collected) -> Result<()> {
+    if !path.is_dir() {
+        c.files.extend(photometries_in(path));
+        return Ok(());
+    }
+    let mut entries: Vec<std::path::PathBuf> = std::fs::read_dir(path)
+        .map_err(|e| Error::io(path, e))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .collect();
+    entries.sort();
+    for e in entries {
+        if e.is_dir() {
+            collect_into(&e, c)?;
+        } else if gldf::split_reference(&e).is_some() {
+            c.files.extend(gldf::expand(&e));
+        } else {
+            match Format::from_extension(&e) {
+                // Other XML files (a GLDF's product.xml unpacked, say) are not photometry.
+                Some(Format::Tm33) if e.is_file() && tm33::looks_like(&head(&e, 64 * 1024)) => {
+                    c.files.extend(tm33::expand(&e))
                 }
+                Some(Format::Tm33) => c.skipped.push(e),
+                Some(Format::Ies | Format::Ldt) => c.files.push(e),
+                // Only regular files are opened: a FIFO would block.
+                None if e.is_file() && sniff_photometric(&head(&e, SNIFF_BYTES as u64)).is_some() => {
+                    c.by_content += 1;
+                    c.files.push(e);
+                }
+                None => c.skipped.push(e),
             }
         }
-    } else {
-        out.extend(photometries_in(path));
     }
     Ok(())
 }
 
-/// The first 64 KiB of a regular file (empty when it cannot be read): enough to see a root element.
-fn head(path: &Path) -> Vec<u8> {
+/// The format of `bytes` when their start is a photometric file, `None`
+/// when it is not (binary data, a PDF, an image, other text). Only the
+/// first [`SNIFF_BYTES`] are looked at: IES LM-63 starts with `IESNA` or
+/// `IES:`, or has a `TILT=` line; TM-33 is XML with its root element;
+/// EULUMDAT has no magic, so its header lines must have the structure of
+/// one (type 0-3, symmetry 0-4, plane and angle counts, numbers where the
+/// format has numbers). [`sniff`] instead always picks a format.
+pub fn sniff_photometric(bytes: &[u8]) -> Option<Format> {
+    let head = &bytes[..bytes.len().min(SNIFF_BYTES)];
+    if head.is_empty() || head.contains(&0) {
+        return None;
+    }
+    if tm33::looks_like(head) {
+        return Some(Format::Tm33);
+    }
+    let text = String::from_utf8_lossy(head);
+    let text = text.trim_start_matches('\u{feff}');
+    let mut lines = text.lines().map(str::trim);
+    let first = lines.clone().find(|l| !l.is_empty()).unwrap_or("").to_ascii_uppercase();
+    if first.starts_with("IESNA")
+        || first.starts_with("IES:")
+        || lines.any(|l| l.to_ascii_uppercase().starts_with("TILT="))
+    {
+        return Some(Format::Ies);
+    }
+    looks_like_ldt_header(text).then_some(Format::Ldt)
+}
+
+/// The EULUMDAT header structure (lines 2 to 7 and 13 to 24): cheap and
+/// strict enough that no text that is not EULUMDAT passes by chance.
+fn looks_like_ldt_header(text: &str) -> bool {
+    let lines: Vec<&str> = text.lines().map(str::trim).take(26).collect();
+    if lines.len() < 26 {
+        return false;
+    }
+    let num = |i: usize| lines[i].replace(',', ".").parse::<f64>().ok().filter(|x| x.is_finite());
+    let int_in =
+        |i: usize, r: std::ops::RangeInclusive<f64>| num(i).is_some_and(|x| x.fract() == 0.0 && r.contains(&x));
+    int_in(1, 0.0..=3.0)
+        && int_in(2, 0.0..=4.0)
+        && int_in(3, 0.0..=3600.0)
+        && num(4).is_some()
+        && int_in(5, 0.0..=3600.0)
+        && num(6).is_some()
+        && (12..=23).all(|i| num(i).is_some())
+        && int_in(25, 0.0..=1000.0)
+}
+
+/// The first `cap` bytes of a regular file (empty when it cannot be read).
+fn head(path: &Path, cap: u64) -> Vec<u8> {
     use std::io::Read;
     let mut b = Vec::new();
     if let Ok(f) = std::fs::File::open(path) {
-        let _ = f.take(64 * 1024).read_to_end(&mut b);
+        let _ = f.take(cap).read_to_end(&mut b);
     }
     b
 }

@@ -38,13 +38,28 @@ pub(crate) fn decode<'a>(bytes: &'a [u8], path: &Path) -> Result<&'a str, ParseE
 /// Malformed XML (or a DTD), at the line and column the parser stopped.
 pub(crate) fn parse<'a>(text: &'a str, path: &Path, what: &str) -> Result<Document<'a>, ParseError> {
     Document::parse(text).map_err(|e| {
-        let pos = e.pos();
+        // The parser gives no position for a document that ends too early
+        // (1:1): the end of the text is where it stopped.
+        let (location, found) = match e {
+            roxmltree::Error::UnclosedRootNode | roxmltree::Error::UnexpectedEndOfStream => {
+                let line = 1 + text.bytes().filter(|&b| b == b'\n').count();
+                let column = 1 + text.len() - text.rfind('\n').map_or(0, |i| i + 1);
+                (
+                    Location::at(line, column),
+                    format!("{e}: the text ends here (a truncated file?)"),
+                )
+            }
+            _ => {
+                let pos = e.pos();
+                (Location::at(pos.row as usize, pos.col as usize), e.to_string())
+            }
+        };
         ParseError {
             path: path.to_path_buf(),
-            location: Location::at(pos.row as usize, pos.col as usize),
+            location,
             kind: ErrorKind::Invalid,
             expected: format!("well-formed XML ({what}) without a DTD"),
-            found: e.to_string(),
+            found,
         }
     })
 }

@@ -187,7 +187,7 @@ impl Derived {
             Derivation::Value(t) => {
                 let _ = writeln!(o, "luminance, cd/m² (gamma: C0, C90):");
                 for (k, g) in t.gamma_deg.iter().enumerate() {
-                    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4e}"));
+                    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| crate::error::sig(x, 4));
                     let _ = writeln!(o, "  {:>4.0}°  {:>11}  {:>11}", g, f(t.c0_cd_m2[k]), f(t.c90_cd_m2[k]));
                 }
             }
@@ -286,12 +286,12 @@ pub fn side_by_side(a: &Luminaire, b: &Luminaire) -> Vec<SideRow> {
 
 /// Rows as an aligned text table.
 pub fn side_by_side_text(rows: &[SideRow], file: &str, other: &str) -> String {
-    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
     let mut o = format!(
         "{:<32} {:>14} {:>14} {:>14}\n",
         "photometry (unit)", file, other, "difference"
     );
     for r in rows {
+        let f = |v: Option<f64>| side_value(r.unit, v, "-");
         let name = if r.unit.is_empty() {
             r.quantity.clone()
         } else {
@@ -309,11 +309,21 @@ pub fn side_by_side_text(rows: &[SideRow], file: &str, other: &str) -> String {
     o
 }
 
+/// One value of a side-by-side row: classes (BUG) as integers, luminance
+/// with 4 significant digits, the rest with 4 decimals; `none` when undefined.
+fn side_value(unit: &str, v: Option<f64>, none: &str) -> String {
+    v.map_or(none.to_string(), |x| match unit {
+        "class" => format!("{x:.0}"),
+        "cd/m2" => crate::error::sig(x, 4),
+        _ => format!("{x:.4}"),
+    })
+}
+
 /// Rows as a Markdown table.
 pub fn side_by_side_markdown(rows: &[SideRow], file: &str, other: &str) -> String {
-    let f = |v: Option<f64>| v.map_or("–".to_string(), |x| format!("{x:.4}"));
     let mut o = format!("| quantity | unit | {file} | {other} | difference |\n|---|---|---:|---:|---:|\n");
     for r in rows {
+        let f = |v: Option<f64>| side_value(r.unit, v, "–");
         let _ = writeln!(
             o,
             "| {} | {} | {} | {} | {} |",

@@ -63,14 +63,16 @@ fn header(c: &Comparison) -> Vec<String> {
     });
     let solids = match (c.solid_tolerance_cd, c.solid_deviation_cd) {
         (Some(t), Some(d)) => format!(
-            "adaptive grid solids within {} {} of their fields at the tested points (the reference's: {} {})",
+            "adaptive grid solids within {}{} {} of their fields at the tested points (the reference's: {} {})",
+            pct_note(c.solid_tolerance_pct),
             num(t),
             c.units,
             num(d),
             c.units
         ),
         (Some(t), None) => format!(
-            "adaptive grid solids within {} {} of their fields at the tested points",
+            "adaptive grid solids within {}{} {} of their fields at the tested points",
+            pct_note(c.solid_tolerance_pct),
             num(t),
             c.units
         ),
@@ -110,10 +112,10 @@ fn header(c: &Comparison) -> Vec<String> {
         ),
     };
     l.push(format!(
-        "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {} % of I_max = {} {}{}",
+        "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {}% of I_max = {} {}{}",
         c.normalize,
         c.units,
-        crate::error::Num(100.0 * c.tolerance),
+        c.tolerance_pct,
         num(c.tolerance_cd),
         c.units,
         if c.hausdorff_certified() {
@@ -540,4 +542,9 @@ pub fn write_files(
     put("report.md", markdown.as_bytes())?;
     put("index.html", html.as_bytes())?;
     Ok(written)
+}
+
+/// `0.05% of I_max = ` before a tolerance in cd, when the percent is known.
+fn pct_note(pct: Option<f64>) -> String {
+    pct.map(|p| format!("{p}% of I_max = ")).unwrap_or_default()
 }

@@ -182,12 +182,12 @@ pub fn scene_text(r: &SceneResult) -> String {
         let ff = &l.far_field;
         let _ = writeln!(
             s,
-            "luminaire {:?}: {}, {} source ({} patches{}), {} bytes; point-source error max {:.3} % (largest \
+            "luminaire {:?}: {}, {} source ({}{}), {} bytes; point-source error max {:.3} % (largest \
              dimension {:.3} m, under 1 % from {} x it, five-times rule {})",
             l.name,
             l.representation,
             l.source,
-            l.area.patches,
+            crate::error::count(l.area.patches, "patch", "patches"),
             if l.area.converged { "" } else { ", NOT converged" },
             l.bytes,
             ff.max_error_pct,

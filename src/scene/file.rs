@@ -137,6 +137,27 @@ fn table_line(text: &str, table: &str, k: usize) -> usize {
         .map_or(0, |(i, _)| i + 1)
 }
 
+/// The 1-based line of `key = ...` inside the `k`-th (0-based) `[[table]]`
+/// of `text` (the table's own lines, up to the next table header); the
+/// table's header line when the key is not written there (a default).
+fn key_line(text: &str, table: &str, k: usize, key: &str) -> usize {
+    let start = table_line(text, table, k);
+    if start == 0 {
+        return 0;
+    }
+    for (i, l) in text.lines().enumerate().skip(start) {
+        let l = l.trim_start();
+        if l.starts_with('[') {
+            break;
+        }
+        let name = l.split('=').next().unwrap_or("").trim().trim_matches('"');
+        if l.contains('=') && name == key {
+            return i + 1;
+        }
+    }
+    start
+}
+
 fn vec3(a: [f64; 3]) -> DVec3 {
     DVec3::from_array(a)
 }
@@ -185,19 +206,29 @@ impl Scene {
             line: table_line(text, table, k),
             message: format!("{table} #{}: {message}", k + 1),
         };
+        // An error in one key's value: at that key's line.
+        let err_key = |table: &str, k: usize, key: &str, message: String| SceneError::Invalid {
+            path: path.to_path_buf(),
+            line: key_line(text, table, k, key),
+            message: format!("{table} #{}: {message}", k + 1),
+        };
         let finite3 = |a: &[f64; 3]| a.iter().all(|v| v.is_finite());
         let mut luminaires = Vec::new();
         for (k, l) in spec.luminaires.iter().enumerate() {
             let bad = |m: String| err("luminaire", k, m);
+            let bad_key = |key: &str, m: String| err_key("luminaire", k, key, m);
             if !finite3(&l.position) {
-                return Err(bad(format!("position {:?}: expected 3 finite numbers (m)", l.position)));
+                return Err(bad_key(
+                    "position",
+                    format!("position {:?}: expected 3 finite numbers (m)", l.position),
+                ));
             }
             let position = vec3(l.position);
             let aim = match (&l.aim, &l.aim_at) {
                 (Some(_), Some(_)) => return Err(bad("give either aim or aim_at, not both".into())),
                 (Some(a), None) => {
                     if ![a.orient, a.tilt, a.roll, a.spin].iter().all(|v| v.is_finite()) {
-                        return Err(bad(format!("aim {a:?}: expected finite degrees")));
+                        return Err(bad_key("aim", format!("aim {a:?}: expected finite degrees")));
                     }
                     Aim {
                         orient: a.orient,
@@ -208,32 +239,63 @@ impl Scene {
                 }
                 (None, Some(t)) => {
                     if !finite3(t) {
-                        return Err(bad(format!("aim_at {t:?}: expected 3 finite numbers (m)")));
+                        return Err(bad_key(
+                            "aim_at",
+                            format!("aim_at {t:?}: expected 3 finite numbers (m)"),
+                        ));
                     }
-                    Aim::at(position, vec3(*t))
-                        .ok_or_else(|| bad("aim_at is the luminaire's own position: no direction".into()))?
+                    Aim::at(position, vec3(*t)).ok_or_else(|| {
+                        bad_key("aim_at", "aim_at is the luminaire's own position: no direction".into())
+                    })?
                 }
                 (None, None) => Aim::default(),
             };
             let mf = l.maintenance_factor.unwrap_or(1.0);
             if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
-                return Err(bad(format!("maintenance_factor = {mf}: expected a number in (0, 1]")));
+                return Err(bad_key(
+                    "maintenance_factor",
+                    format!("maintenance_factor = {mf}: expected a number in (0, 1]"),
+                ));
             }
             let representation = match &l.representation {
                 None => None,
-                Some(r) => Some(r.parse::<Representation>().map_err(|e| bad(e.to_string()))?),
+                Some(r) => Some(
+                    r.parse::<Representation>()
+                        .map_err(|e| bad_key("representation", format!("representation = {r:?}: {e}")))?,
+                ),
             };
             let source = match l.source.as_deref() {
                 None => None,
                 Some("point") => Some(SourceKind::Point),
                 Some("area") => Some(SourceKind::Area),
-                Some(s) => return Err(bad(format!("source = {s:?}: expected \"point\" or \"area\""))),
+                Some(s) => {
+                    return Err(bad_key(
+                        "source",
+                        format!("source = {s:?}: expected \"point\" or \"area\""),
+                    ))
+                }
             };
             let file = base.join(&l.file);
-            let luminaire = crate::load(&file).map_err(|e| bad(format!("{}: {e}", l.file.display())))?;
+            let luminaire = crate::load(&file).map_err(|e| {
+                // The path as resolved (relative to the scene file), and the
+                // reason once (an I/O error's text already names the path).
+                let resolved = std::path::absolute(&file).unwrap_or_else(|_| file.clone());
+                let why = match &e {
+                    crate::Error::Io { source, .. } => source.to_string(),
+                    other => other.to_string(),
+                };
+                bad_key(
+                    "file",
+                    format!(
+                        "file = {:?} (resolved next to the scene file: {}): {why}",
+                        l.file.display().to_string(),
+                        resolved.display()
+                    ),
+                )
+            })?;
             let opening = match l.opening {
                 Some(o) => {
-                    Opening::check(&o).map_err(|m| bad(format!("opening: {m}")))?;
+                    Opening::check(&o).map_err(|m| bad_key("opening", format!("opening: {m}")))?;
                     o
                 }
                 None => Opening::of_luminaire(&luminaire).map_err(|m| {
@@ -258,6 +320,7 @@ impl Scene {
         let mut total = 0usize;
         for (k, r) in spec.receivers.iter().enumerate() {
             let bad = |m: String| err("receiver", k, m);
+            let bad_key = |key: &str, m: String| err_key("receiver", k, key, m);
             let rec = match r {
                 ReceiverSpec::Point { name, position, normal } => {
                     if !finite3(position) || !finite3(normal) {
@@ -265,7 +328,7 @@ impl Scene {
                     }
                     let n = vec3(*normal)
                         .try_normalize()
-                        .ok_or_else(|| bad(format!("normal {normal:?}: expected a non-zero vector")))?;
+                        .ok_or_else(|| bad_key("normal", format!("normal {normal:?}: expected a non-zero vector")))?;
                     Receiver::point(name, vec3(*position), n)
                 }
                 ReceiverSpec::Plane {
@@ -288,13 +351,17 @@ impl Scene {
                             (p, p)
                         }
                         SpacingSpec::Named(s) => {
-                            return Err(bad(format!(
-                                "spacing = {s:?}: expected \"en12464\" or [du, dv] in metres"
-                            )))
+                            return Err(bad_key(
+                                "spacing",
+                                format!("spacing = {s:?}: expected \"en12464\" or [du, dv] in metres"),
+                            ))
                         }
                         SpacingSpec::Metres([a, b]) => {
                             if !(a.is_finite() && b.is_finite() && *a > 0.0 && *b > 0.0) {
-                                return Err(bad(format!("spacing [{a}, {b}]: expected two positive metres")));
+                                return Err(bad_key(
+                                    "spacing",
+                                    format!("spacing [{a}, {b}]: expected two positive metres"),
+                                ));
                             }
                             (*a, *b)
                         }
@@ -318,6 +385,18 @@ impl Scene {
         for (k, o) in spec.occluders.iter().enumerate() {
             let verts: Vec<DVec3> = o.vertices.iter().map(|v| vec3(*v)).collect();
             occluders.push(Occluder::new(verts).map_err(|m| err("occluder", k, m))?);
+        }
+        // A scene that cannot light anything is a mistake, not 0 lx.
+        let none = |what: &str, table: &str| SceneError::Invalid {
+            path: path.to_path_buf(),
+            line: 0,
+            message: format!("the scene has no {what}: add at least one [[{table}]] table (docs/scene.md)"),
+        };
+        if luminaires.is_empty() {
+            return Err(none("luminaires", "luminaire"));
+        }
+        if receivers.is_empty() {
+            return Err(none("receivers", "receiver"));
         }
         Ok(Scene {
             path: Some(path.to_path_buf()),

@@ -312,6 +312,10 @@ pub struct SceneResult {
     pub luminaires: Vec<LuminaireResult>,
     /// Per receiver.
     pub receivers: Vec<ReceiverResult>,
+    /// What a reader must know: each receiver that no luminaire lights, by
+    /// name, with why (it faces away, it lies behind the luminaires, outside
+    /// every beam, or in the occluders' shadow). Empty when all is lit.
+    pub warnings: Vec<String>,
 }
 
 /// Per luminaire: the illuminance (lx) at every scene point with the
@@ -430,6 +434,18 @@ pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Resul
             points: pts,
         });
     }
+    let mut warnings = Vec::new();
+    for (k, r) in receivers.iter().enumerate() {
+        if r.e_max_lux <= 0.0 && !r.points.is_empty() {
+            let these: Vec<&ScenePoint> = points.iter().filter(|p| p.receiver == k).collect();
+            warnings.push(format!(
+                "receiver {:?} gets no light (0 lx at all {} points): {}",
+                r.name,
+                these.len(),
+                why_unlit(scene, &scene.receivers[k], &these)?
+            ));
+        }
+    }
     Ok(SceneResult {
         scene: scene
             .path
@@ -437,6 +453,75 @@ pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Resul
             .map_or("built-in scene".into(), |p| p.display().to_string()),
         luminaires,
         receivers,
+        warnings,
+    })
+}
+
+/// Why a receiver that gets 0 lx is dark, in words: every point faces away
+/// from every luminaire; or the luminaires it faces emit nothing towards it
+/// (it lies behind them, above the horizontal of their frame, or outside
+/// their beams); or it is lit without the occluders (their shadow).
+fn why_unlit(scene: &Scene, receiver: &super::Receiver, points: &[&ScenePoint]) -> Result<String, SceneError> {
+    let facing: Vec<(&ScenePoint, &SceneLuminaire)> = points
+        .iter()
+        .flat_map(|p| scene.luminaires.iter().map(move |l| (*p, l)))
+        .filter(|(p, l)| p.normal.dot(l.pose.position - p.position) > 0.0)
+        .collect();
+    let n = receiver.normal;
+    if facing.is_empty() {
+        let fix = match receiver.shape {
+            ReceiverShape::Plane { .. } => "its normal u × v",
+            ReceiverShape::Point => "its normal",
+        };
+        let swap = match receiver.shape {
+            ReceiverShape::Plane { .. } => "; swap u and v to turn it over",
+            ReceiverShape::Point => "; reverse the normal",
+        };
+        return Ok(format!(
+            "it faces away from every luminaire ({fix} = ({:.3}, {:.3}, {:.3}) points away from them{swap})",
+            n.x + 0.0,
+            n.y + 0.0,
+            n.z + 0.0
+        ));
+    }
+    // Lit when the occluders are taken away: their shadow.
+    for lum in &scene.luminaires {
+        let texture = lum.texture()?;
+        let models = super::plan::Models::new(lum, texture.as_ref());
+        let rep = lum.representation.clone().unwrap_or_default();
+        let field = models.field(&rep).map_err(|e| SceneError::Model {
+            luminaire: lum.name.clone(),
+            source: e,
+        })?;
+        let source = Source {
+            field: &*field,
+            pose: lum.pose,
+            maintenance_factor: lum.maintenance_factor,
+            patches: vec![(DVec3::ZERO, 1.0)],
+        };
+        if points.iter().any(|p| source.lux(p, &[]) > 0.0) {
+            return Ok("every point lies in the shadow of the occluders".into());
+        }
+    }
+    // Behind: every direction it is seen in lies above the luminaire's horizontal (gamma > 90°).
+    let behind = facing
+        .iter()
+        .all(|(p, l)| l.pose.to_local(p.position - l.pose.position).z > 0.0);
+    let names: Vec<&str> = {
+        let mut v: Vec<&str> = facing.iter().map(|(_, l)| l.name.as_str()).collect();
+        v.dedup();
+        v
+    };
+    Ok(if behind {
+        format!(
+            "it lies behind the luminaires it faces ({}): above their horizontal (gamma > 90°), where they emit nothing",
+            names.join(", ")
+        )
+    } else {
+        format!(
+            "it lies outside every beam: the luminaires it faces ({}) emit 0 cd towards it",
+            names.join(", ")
+        )
     })
 }
 

@@ -137,7 +137,10 @@ impl Opening {
     pub fn ies(w: f64, l: f64, h: f64, old: bool, v1995: bool) -> Result<Opening, String> {
         if ![w, l, h].iter().all(|v| v.is_finite()) {
             return Err(format!(
-                "luminous opening W {w}, L {l}, H {h} m: expected finite numbers"
+                "luminous opening W {}, L {}, H {} m: expected finite numbers",
+                crate::error::sig(w, 6),
+                crate::error::sig(l, 6),
+                crate::error::sig(h, 6)
             ));
         }
         let s = |v: f64| {
@@ -213,8 +216,11 @@ impl Opening {
             },
             _ => {
                 return Err(format!(
-                    "luminous opening signs W {w}, L {l}, H {h} m match no LM-63 shape (point, rectangle, box, disk or \
-                     ellipse, cylinder, sphere or ellipsoid, vertical disk)"
+                    "luminous opening signs W {}, L {}, H {} m match no LM-63 shape (point, rectangle, box, disk or \
+                     ellipse, cylinder, sphere or ellipsoid, vertical disk)",
+                    crate::error::sig(w, 6),
+                    crate::error::sig(l, 6),
+                    crate::error::sig(h, 6)
                 ))
             }
         })

@@ -35,7 +35,7 @@
 //! return [`ModelError::AllZero`].
 
 //! # Example (what `photosolid mesh` does)
-//! `photosolid mesh FILE [--filter F | --measured] [--tolerance 0.1 | --factor K] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`
+//! `photosolid mesh FILE [--filter F | --measured] [--tolerance 0.1% | --factor K] [--units cd|peak|klm] [--color] -o solid.{obj,ply,stl,glb}`
 //! is: load, pick the units, build ([`measured_solid`], or [`grid_solid`]
 //! with the filter's sampler as the [`IntensityField`](crate::model::IntensityField) on
 //! the [`adaptive`] grid within `--tolerance` % of I_max ([`Refinement::Adaptive`],

@@ -120,6 +120,54 @@ pub fn read(path: &Path) -> Result<Mesh> {
     })
 }
 
+/// The units a mesh file records in its header (photosolid writes them in
+/// every format: PLY `comment`, OBJ `#` lines, the STL header, the glTF
+/// extras); `name` is `None` for a file without them (another tool's).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RecordedUnits {
+    /// `cd`, `peak` or `cd/klm`.
+    pub name: Option<&'static str>,
+    /// Units per cd (the `scale:` line, glTF `units_per_cd`), when recorded:
+    /// dividing coordinates by it gives cd.
+    pub units_per_cd: Option<f64>,
+}
+
+/// The units recorded in the first 64 KiB of a mesh file's bytes (see
+/// [`RecordedUnits`]).
+pub fn recorded_units(bytes: &[u8]) -> RecordedUnits {
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(64 * 1024)]);
+    let mut r = RecordedUnits::default();
+    let after = |key: &str| {
+        head.find(key)
+            .map(|i| head[i + key.len()..].trim_start_matches([' ', '"', ':']))
+    };
+    if let Some(text) = after("units: ") {
+        r.name = if text.starts_with("cd/klm") {
+            Some("cd/klm")
+        } else if text.starts_with("cd") {
+            Some("cd")
+        } else if text.starts_with("relative to the peak") {
+            Some("peak")
+        } else {
+            None
+        };
+    } else if let Some(text) = after("\"units\"") {
+        r.name = ["cd/klm", "cd", "peak"]
+            .into_iter()
+            .find(|n| text.starts_with(&format!("{n}\"")));
+    }
+    let number = |text: &str| {
+        let end = text
+            .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '-' | '+')))
+            .unwrap_or(text.len());
+        text[..end].parse::<f64>().ok().filter(|x| x.is_finite() && *x > 0.0)
+    };
+    r.units_per_cd = after("scale: ")
+        .and_then(number)
+        .or_else(|| after("\"units_per_cd\"").and_then(number));
+    r
+}
+
 /// Mesh metadata lines, ASCII only (STL headers and some PLY readers need
 /// it): non-ASCII characters become `?`, line breaks spaces.
 pub(crate) fn ascii_lines(mesh: &Mesh) -> Vec<String> {
