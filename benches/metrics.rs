@@ -75,5 +75,25 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// The UGR table (19 rooms × 5 reflectances × 2 views) of a real linear
+/// luminaire (`../shared/ugr-reference/sample_10.ldt`, 1395 × 78 mm) at the
+/// catalogue spacing 0.25 H (up to 1,536 luminaires a room) and at CIE 190's
+/// 1 H, in the same run: what `info` pays for the catalogue spacing.
+fn ugr(c: &mut Criterion) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/ugr-reference/sample_10.ldt");
+    let Ok(lum) = photosolid::load(&path) else {
+        println!("ugr bench skipped: {} not found", path.display());
+        return;
+    };
+    let mut g = c.benchmark_group("ugr_table");
+    g.sample_size(20);
+    for spacing in [1.0, 0.25] {
+        g.bench_function(format!("spacing {spacing} H"), |b| {
+            b.iter(|| black_box(photosolid::photometry::ugr::ugr_table_at(&lum, spacing).map(|t| t.max)))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, ugr);
 criterion_main!(benches);

@@ -453,9 +453,21 @@ fn room_background(
     }
 }
 
-fn one(array: &Array, f: &super::Flux, (x_h, y_h): (f64, f64), rho: (f64, f64, f64), h_m: f64) -> Option<f64> {
-    let (glare_1m, floor) = array.room(x_h, y_h);
-    let lb = room_background(f, array.layout, (x_h, y_h), floor, rho, h_m).e_wid_lx / std::f64::consts::PI;
+fn one(array: &Array, f: &super::Flux, room_h: (f64, f64), rho: (f64, f64, f64), h_m: f64) -> Option<f64> {
+    let (glare_1m, floor) = array.room(room_h.0, room_h.1);
+    ugr_of(array.layout, f, room_h, (glare_1m, floor), rho, h_m)
+}
+
+/// UGR from a room's glare sum (for H = 1 m) and direct floor flux ([`Array::room`]).
+fn ugr_of(
+    layout: Layout,
+    f: &super::Flux,
+    (x_h, y_h): (f64, f64),
+    (glare_1m, floor): (f64, f64),
+    rho: (f64, f64, f64),
+    h_m: f64,
+) -> Option<f64> {
+    let lb = room_background(f, layout, (x_h, y_h), floor, rho, h_m).e_wid_lx / std::f64::consts::PI;
     // Σ I²/(A_p r² p²) scales as 1/H² (r ∝ H).
     let glare = glare_1m / (h_m * h_m);
     (glare > 0.0 && lb > 0.0)
@@ -486,8 +498,10 @@ pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, String>
         let mut rows = Vec::new();
         for &room in &ROOMS_H {
             let mut row = Vec::new();
+            // The array's sums do not depend on the reflectances: once per room.
+            let sums = array.room(room.0, room.1);
             for &rho in &REFLECTANCES {
-                match one(&array, &f, room, rho, 1.0) {
+                match ugr_of(layout, &f, room, sums, rho, 1.0) {
                     Some(u) => row.push(u),
                     None => {
                         return Err(format!(
