@@ -28,10 +28,10 @@ pub struct EnginesArgs {
     /// whose certified Hausdorff distance (plus its bound) is within T, a fraction of I_max (0.01 = 1 %).
     #[arg(long)]
     tolerance: Option<f64>,
-    /// Resolution of the engines where it is a choice (pbrt, unity-point, unity-spot).
+    /// Resolution of the engines where it is a choice (pbrt, unity-point, unity-spot, godot).
     #[arg(long)]
     resolution: Option<usize>,
-    /// Filter of pbrt's bake.
+    /// Filter of pbrt's and godot's bakes.
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
     /// Refinement factor of the solids' grid.
@@ -96,6 +96,9 @@ fn text(r: &EnginesReport) -> String {
             m.misplaced_flux,
             row.against
         );
+    }
+    for row in &r.rows {
+        let _ = writeln!(s, "  {} emulates: {}", row.name, row.engine_version);
     }
     for row in r.rows.iter().filter(|x| x.source.is_some()) {
         let _ = writeln!(s, "  {}: {}", row.name, row.source.as_deref().unwrap_or(""));
