@@ -998,3 +998,23 @@ fn godot_lookup_follows_the_panorama() {
     assert!(nadir < 0.75 * i_max, "nadir {nadir} of {i_max}");
     assert!(em.field.intensity_cd(0.0, 180.0) < 1e-6 * i_max);
 }
+
+/// `photosolid export FILE --engine godot -o OUT.exr` (the CLI): the panorama, nadir row first.
+#[test]
+fn cli_export_godot() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("godot.exr");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+        .arg("export")
+        .arg(data("cosine_p5.ldt"))
+        .args(["--engine", "godot", "--resolution", "64", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (w, h, channels) = read_exr_channels(&out);
+    assert_eq!((w, h), (128, 64));
+    let g = &channels.iter().find(|(n, _)| n == "G").unwrap().1;
+    assert!(g[..w].iter().all(|&v| v > 0.99), "the nadir row");
+    assert!(g[(h - 1) * w..].iter().all(|&v| v < 1e-3), "the zenith row");
+}
