@@ -1018,3 +1018,21 @@ fn cli_export_godot() {
     assert!(g[..w].iter().all(|&v| v > 0.99), "the nadir row");
     assert!(g[(h - 1) * w..].iter().all(|&v| v < 1e-3), "the zenith row");
 }
+
+/// Godot decodes its projector atlas as sRGB: a linear I/I_max texture comes out darker
+/// (about (I/I_max)^2.2); the export writes sRGB-encoded values, the defect row measures the
+/// naive linear export against it.
+#[test]
+fn godot_srgb_view_defect_row() {
+    let r = measure(&load("cosine_p5.ldt"), &quick(vec![Engine::Godot])).unwrap();
+    let d = r
+        .rows
+        .iter()
+        .find(|x| x.name == "godot: linear texture read through the sRGB atlas view")
+        .expect("the sRGB defect row");
+    assert_eq!(d.kind, "defect");
+    assert!(d.source.as_deref().unwrap().contains("decal_atlas_srgb"));
+    assert!(!d.metrics.pareto);
+    // cos^5 read as about cos^11: the flux drops by roughly half.
+    assert!(d.metrics.flux_error_pct < -30.0, "{}", d.metrics.flux_error_pct);
+}

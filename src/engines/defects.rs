@@ -55,6 +55,11 @@ const UE4_INTEGRAL: &str = "UE 4.19.2 Engine/Source/Editor/UnrealEd/Private/Fact
 const UNITY_90_270: &str = "Unity com.unity.render-pipelines.core/Editor/Lighting/IESReader.cs, \
     ComputeTypeCHorizontalAnglePosition: `default: // the luminaire is assumed to exhibit no lateral symmetry` \
     leaves a 90-270 file unfolded, and ComputeAnglePosition clamps C < 90 and C > 270 to the first and last plane";
+const GODOT_SRGB: &str = "Godot servers/rendering/renderer_rd/storage_rd/texture_storage.cpp, update_decal_atlas: \
+    the atlas is DATA_FORMAT_R8G8B8A8_UNORM, filled by copy_to_atlas_fb from the texture's rd_texture with no \
+    sRGB conversion; scene_forward_lights_inc.glsl light_process_omni samples \
+    `sampler2D(decal_atlas_srgb, light_projector_sampler)`, the R8G8B8A8_SRGB view: a linear texture's values \
+    are decoded as sRGB (about v^2.2)";
 const BLENDER_TILT: &str = "Blender intern/cycles/util/ies.cpp, IESFile::parse: \
     TILT=INCLUDE angles and factors are read and skipped";
 
@@ -297,6 +302,21 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     }),
                 });
             }
+        }
+        Engine::Godot => {
+            // The naive export: linear I/I_max in the EXR, decoded as sRGB by the atlas view.
+            let texture = crate::reconstruct::LightTexture::new(dist)?;
+            let h = super::godot::DEFAULT_HEIGHT;
+            let linear = super::godot::bake_linear(&texture.sampler(crate::reconstruct::Filter::CatmullRom), h, i_max)?;
+            let encoded = super::godot::encode_for_godot(&linear)?;
+            out.push(Defect {
+                engine,
+                name: "linear texture read through the sRGB atlas view".into(),
+                source: GODOT_SRGB,
+                versions: engine.version(),
+                with: Box::new(super::godot::GodotField::new(&linear, i_max)),
+                without: Box::new(super::godot::GodotField::new(&encoded, i_max)),
+            });
         }
         _ => {}
     }
