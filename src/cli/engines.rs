@@ -29,10 +29,10 @@ pub struct EnginesArgs {
     /// its sign (`1%`; a bare number is refused).
     #[arg(long, value_name = "PCT%", value_parser = super::parse::pct_of_peak, allow_hyphen_values = true)]
     tolerance: Option<super::parse::PctOfPeak>,
-    /// Resolution of the engines where it is a choice (pbrt, unity-point, unity-spot).
+    /// Resolution of the engines where it is a choice (pbrt, unity-point, unity-spot, godot).
     #[arg(long)]
     resolution: Option<usize>,
-    /// Filter of pbrt's bake.
+    /// Filter of pbrt's and godot's bakes.
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
     /// Refinement factor of the solids' grid.
@@ -92,6 +92,9 @@ fn text(r: &EnginesReport) -> String {
             m.misplaced_flux,
             row.against
         );
+    }
+    for row in &r.rows {
+        let _ = writeln!(s, "  {} emulates: {}", row.name, row.engine_version);
     }
     for row in r.rows.iter().filter(|x| x.source.is_some()) {
         let _ = writeln!(s, "  {}: {}", row.name, row.source.as_deref().unwrap_or(""));

@@ -1,4 +1,4 @@
-//! `photosolid export FILE --engine pbrt|ue5|ue4|unity-point|unity-spot|threejs|babylon|blender|gltf -o OUT
+//! `photosolid export FILE --engine pbrt|ue5|ue4|unity-point|unity-spot|threejs|babylon|blender|gltf|godot -o OUT
 //! [--resolution N] [--filter F]`: write one engine's light-profile layout (see `docs/engines.md`).
 
 use std::path::PathBuf;
@@ -13,17 +13,17 @@ use super::ReadArgs;
 pub struct ExportArgs {
     /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
-    /// The engine: pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf.
+    /// The engine: pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf, godot.
     #[arg(long)]
     engine: Engine,
     /// Output: .exr for the image layouts, .ies for blender, .glb for gltf.
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
     /// Resolution, for engines where it is a choice (pbrt: image side, default 256; unity-point and
-    /// unity-spot: N, default 128).
+    /// unity-spot: N, default 128; godot: panorama height, default 256, width twice it).
     #[arg(long)]
     resolution: Option<usize>,
-    /// Filter photosolid samples the file with where it bakes the layout (pbrt; the solid of gltf).
+    /// Filter photosolid samples the file with where it bakes the layout (pbrt, godot; the solid of gltf).
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
     #[command(flatten)]

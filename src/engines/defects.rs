@@ -16,6 +16,8 @@ pub struct Defect {
     pub name: String,
     /// Where the engine's source does it (file, function and the statement).
     pub source: &'static str,
+    /// The engine versions that have the defect (`engine_version` of the row).
+    pub versions: &'static str,
     /// The engine's lookup with the defect, cd.
     pub with: Box<dyn IntensityField>,
     /// The same lookup without it, cd.
@@ -29,7 +31,10 @@ const THREE_PLANE: &str = "three.js examples/jsm/loaders/IESLoader.js, parse: \
 const THREE_TILT: &str =
     "three.js examples/jsm/loaders/IESLoader.js, IESLamp: readTilt() fills tiltData, which nothing applies";
 const BABYLON_SQUARE: &str = "Babylon.js packages/dev/core/src/Lights/IES/iesLoader.ts, LoadIESData: \
-    `data.candelaValues[index][subIndex] *= data.candelaValues[index][subIndex] * data.candelaMultiplier * ...`";
+    `data.candelaValues[index][subIndex] *= data.candelaValues[index][subIndex] * data.candelaMultiplier * \
+    data.ballastFactor * data.fileGenerationType` (before PR #18833); the factors cancel in the division by \
+    the maximum that follows whenever their product is positive (fileGenerationType is 1 in LM-63-2002 files \
+    and >= 1.00001 in LM-63-2019 ones), so the row measures the squaring";
 const BABYLON_ROW: &str = "Babylon.js iesLoader.ts `RawTexture.CreateRTexture(arrayBuffer, width=360, height=180)` \
     filled at `arrayBuffer[phi + theta * height]`, read by lightsFragmentFunctions getIESAttenuation \
     `texture(iesLightSampler, vec2(acos(cosAngle)/PI, 0.))`: row 0 = theta 0 and 1, gamma doubled";
@@ -50,8 +55,27 @@ const UE4_INTEGRAL: &str = "UE 4.19.2 Engine/Source/Editor/UnrealEd/Private/Fact
 const UNITY_90_270: &str = "Unity com.unity.render-pipelines.core/Editor/Lighting/IESReader.cs, \
     ComputeTypeCHorizontalAnglePosition: `default: // the luminaire is assumed to exhibit no lateral symmetry` \
     leaves a 90-270 file unfolded, and ComputeAnglePosition clamps C < 90 and C > 270 to the first and last plane";
+const GODOT_SRGB: &str = "Godot servers/rendering/renderer_rd/storage_rd/texture_storage.cpp, update_decal_atlas: \
+    the atlas is DATA_FORMAT_R8G8B8A8_UNORM, filled by copy_to_atlas_fb from the texture's rd_texture with no \
+    sRGB conversion; scene_forward_lights_inc.glsl light_process_omni samples \
+    `sampler2D(decal_atlas_srgb, light_projector_sampler)`, the R8G8B8A8_SRGB view: a linear texture's values \
+    are decoded as sRGB (about v^2.2)";
 const BLENDER_TILT: &str = "Blender intern/cycles/util/ies.cpp, IESFile::parse: \
     TILT=INCLUDE angles and factors are read and skipped";
+
+/// Versions with three.js's squared candela.
+pub const THREE_SQUARE_VERSIONS: &str =
+    "three.js <= 0.186.1 (npm; 0.186.0 and 0.186.1 checked in the published packages) and main before PR \
+    #34554 (merged 2026-09-14): squared candela";
+/// Versions with Babylon.js's squared candela.
+pub const BABYLON_SQUARE_VERSIONS: &str = "Babylon.js (@babylonjs/core) < 9.23.0, before PR #18833 (merged \
+    2026-08-25): squared candela x file-generation type";
+const THREE_ALL_VERSIONS: &str = "three.js <= 0.186.1 (IESLoader.js at commits 0a5a85c7, f959b152 and in the npm \
+    packages 0.186.0/0.186.1): the 180 x 1 texture; 0.187.0 uploads every plane";
+const BABYLON_ALL_VERSIONS: &str = "Babylon.js: every iesLoader.ts read (commits 0571ea8c, 48fd6640) and 9.23.0 \
+    (PR #18833 changes only the candela scaling)";
+const BABYLON_ROW_VERSIONS: &str = "Babylon.js with the 360 x 180 RawTexture (read at commit 0571ea8c); at commit \
+    48fd6640 LoadIESData returns a 180 x 1 texture (the theta = 0 plane) instead, which is not modelled";
 
 fn web_field(t: &IesTable, lookup: web::WebLookup, i_max: f64) -> Box<dyn IntensityField> {
     let half = matches!(
@@ -122,8 +146,17 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
             };
             out.push(Defect {
                 engine,
-                name: "squared candela".into(),
+                name: if three {
+                    "squared candela (three.js <= 0.186.1, before PR #34554)".into()
+                } else {
+                    "squared candela x file-generation type (Babylon.js < 9.23.0, before PR #18833)".into()
+                },
                 source: if three { THREE_SQUARE } else { BABYLON_SQUARE },
+                versions: if three {
+                    THREE_SQUARE_VERSIONS
+                } else {
+                    BABYLON_SQUARE_VERSIONS
+                },
                 with: web_field(&t.squared(), all, i_max),
                 without: web_field(&t, all, i_max),
             });
@@ -136,6 +169,11 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                 engine,
                 name: name.into(),
                 source,
+                versions: if three {
+                    THREE_ALL_VERSIONS
+                } else {
+                    BABYLON_ROW_VERSIONS
+                },
                 with: web_field(&t, lookup, i_max),
                 without: web_field(&t, all, i_max),
             });
@@ -144,6 +182,11 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     engine,
                     name: name.clone(),
                     source: if three { THREE_TYPE } else { BABYLON_TYPE },
+                    versions: if three {
+                        THREE_ALL_VERSIONS
+                    } else {
+                        BABYLON_ALL_VERSIONS
+                    },
                     with: web_field(tab, all, tab.max_cd()),
                     without: web_field(&t, all, i_max),
                 });
@@ -153,6 +196,11 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     engine,
                     name: tilt_name(*angle),
                     source: if three { THREE_TILT } else { BABYLON_TILT },
+                    versions: if three {
+                        THREE_ALL_VERSIONS
+                    } else {
+                        BABYLON_ALL_VERSIONS
+                    },
                     with: web_field(&t, all, i_max),
                     without: web_field(tt, all, tt.max_cd()),
                 });
@@ -164,6 +212,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     engine,
                     name: "90-270 file turned by 90 deg".into(),
                     source: BLENDER_ROTATE,
+                    versions: engine.version(),
                     with: Box::new(blender::BlenderField {
                         table: blender::process(&t, true)?,
                     }),
@@ -177,6 +226,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     engine,
                     name: tilt_name(*angle),
                     source: BLENDER_TILT,
+                    versions: engine.version(),
                     with: Box::new(blender::BlenderField {
                         table: blender::process(&t, false)?,
                     }),
@@ -204,6 +254,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                 engine,
                 name: "90-270 file clamped outside 90..270".into(),
                 source: UNITY_90_270,
+                versions: engine.version(),
                 with: field(false)?,
                 without: field(true)?,
             });
@@ -217,6 +268,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                         engine,
                         name: "swapped-angle integral".into(),
                         source: UE4_INTEGRAL,
+                        versions: engine.version(),
                         with: Box::new(ue::UeField {
                             image: strip.clone(),
                             i_max_cd: i_max * right / swapped,
@@ -240,6 +292,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     engine,
                     name: name.clone(),
                     source: UE_TYPE_B,
+                    versions: engine.version(),
                     with: Box::new(ue::UeField {
                         image: bake(tab)?,
                         i_max_cd: tab.max_cd(),
@@ -250,6 +303,21 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
                     }),
                 });
             }
+        }
+        Engine::Godot => {
+            // The naive export: linear I/I_max in the EXR, decoded as sRGB by the atlas view.
+            let texture = crate::reconstruct::LightTexture::new(dist)?;
+            let h = super::godot::DEFAULT_HEIGHT;
+            let linear = super::godot::bake_linear(&texture.sampler(crate::reconstruct::Filter::CatmullRom), h, i_max)?;
+            let encoded = super::godot::encode_for_godot(&linear)?;
+            out.push(Defect {
+                engine,
+                name: "linear texture read through the sRGB atlas view".into(),
+                source: GODOT_SRGB,
+                versions: engine.version(),
+                with: Box::new(super::godot::GodotField::new(&linear, i_max)),
+                without: Box::new(super::godot::GodotField::new(&encoded, i_max)),
+            });
         }
         _ => {}
     }

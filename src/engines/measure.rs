@@ -88,7 +88,11 @@ pub struct EngineRow {
     /// Steps of the emulation that follow no source photosolid could read
     /// (stand-ins, parts not modelled); empty when every step is from source.
     pub stand_ins: Vec<String>,
-    /// The metrics (lengths in cd).
+    /// What the row emulates: the engine release (npm for three.js and Babylon.js) or the
+    /// commit of the source read; for a defect row, the versions that have the defect.
+    pub engine_version: String,
+    /// The metrics (lengths in cd). `metrics.pareto` is computed over the layout rows only:
+    /// a defect row is measured against another baseline and is never on the front.
     pub metrics: ReconResult,
 }
 
@@ -285,6 +289,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
             against: "reference".into(),
             source: None,
             stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
+            engine_version: engine.version().into(),
             metrics: metrics(engine.name(), &*em.field, &reference, &setup)?,
         });
         fields.push((engine.name().into(), em.field));
@@ -300,17 +305,23 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
                 against: format!("{engine} without the defect"),
                 source: Some(d.source.to_string()),
                 stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
+                engine_version: d.versions.into(),
                 metrics: metrics(&name, &*d.with, &own, &setup)?,
             });
             fields.push((name, d.with));
         }
     }
-    rows.extend(defect_rows);
+    // The Pareto front is over the layout rows: a defect row measures the engine with the
+    // defect against the engine without it, not against the reference.
     let mut metrics_rows: Vec<ReconResult> = rows.iter().map(|r| r.metrics.clone()).collect();
     mark_pareto(&mut metrics_rows);
     for (r, m) in rows.iter_mut().zip(metrics_rows) {
         r.metrics.pareto = m.pareto;
     }
+    for r in &mut defect_rows {
+        r.metrics.pareto = false;
+    }
+    rows.extend(defect_rows);
     let resolutions = match opts.tolerance {
         Some(tol) => opts
             .engines

@@ -6,7 +6,8 @@
 //! [`pbrt`] (pbrt-v4 goniometric light), [`ue`] (Unreal Engine 5 and 4),
 //! [`unity`] (HDRP point and spot; [`unity_cube`] the point light's cube map
 //! and HDRP's octahedral atlas copy), [`web`] (three.js, Babylon.js),
-//! [`blender`] (Cycles), [`gltf`] (`KHR_lights_punctual` + `EXT_lights_ies`).
+//! [`blender`] (Cycles), [`gltf`] (`KHR_lights_punctual` + `EXT_lights_ies`), [`godot`]
+//! (no IES support: an `OmniLight3D` projector panorama).
 //! `docs/engines.md` describes every layout and its orientation.
 //!
 //! Every emulation reads the file as the engine would: the engines that read
@@ -19,6 +20,7 @@
 pub mod blender;
 pub mod defects;
 pub mod gltf;
+pub mod godot;
 pub mod measure;
 pub mod pbrt;
 pub mod table;
@@ -60,14 +62,16 @@ pub enum Engine {
     Blender,
     /// glTF 2.0 (`KHR_lights_punctual` + `EXT_lights_ies`).
     Gltf,
+    /// Godot 4 `OmniLight3D` projector (equirectangular panorama → dual-paraboloid decal atlas).
+    Godot,
 }
 
 /// The spellings of [`Engine`] on the command line.
-pub const ENGINE_NAMES: &str = "pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf";
+pub const ENGINE_NAMES: &str = "pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf, godot";
 
 impl Engine {
     /// Every engine, in report order.
-    pub const ALL: [Engine; 9] = [
+    pub const ALL: [Engine; 10] = [
         Engine::Pbrt,
         Engine::Ue5,
         Engine::Ue4,
@@ -77,6 +81,7 @@ impl Engine {
         Engine::Babylon,
         Engine::Blender,
         Engine::Gltf,
+        Engine::Godot,
     ];
 
     /// The command-line name.
@@ -91,6 +96,48 @@ impl Engine {
             Engine::Babylon => "babylon",
             Engine::Blender => "blender",
             Engine::Gltf => "gltf",
+            Engine::Godot => "godot",
+        }
+    }
+
+    /// What the emulation follows: the release (npm, for three.js and Babylon.js) or the
+    /// commit of the source photosolid read (`docs/engines.md`, "Sources"). The JSON rows
+    /// carry it as `engine_version`; a defect row names the versions that have the defect.
+    pub fn version(self) -> &'static str {
+        match self {
+            Engine::Pbrt => "pbrt-v4 commit 00aad0a6 (mmp/pbrt-v4; pbrt-v4 has no releases)",
+            Engine::Ue5 => {
+                "Unreal Engine 5 source as mirrored in chenyong2github/UnrealEngine \
+                 (IESLoader.cpp, PointLightComponentVisualizer.cpp; mirror commit not recorded)"
+            }
+            Engine::Ue4 => "Unreal Engine 4.19.2 (mirror Kryptexas/UE4-GameWorks-4.19.2, commit 324683ce)",
+            Engine::UnityPoint | Engine::UnitySpot => {
+                "Unity HDRP, Unity-Technologies/Graphics: IESReader.cs commit 20072799, IESEngine.cs \
+                 commit 0328a1b1, LightLoop/cookie code commits 85898ebe, cfc4b936, a1e46132 \
+                 (HDRP 10.x manual for the cube-map size)"
+            }
+            Engine::Threejs => {
+                "three 0.187.0 (npm, 2026-10-30: examples/jsm/loaders/IESLoader.js and \
+                 src/nodes/lighting/IESSpotLightNode.js read from the package; the first release with PR \
+                 #34554, candela linear, and every plane uploaded)"
+            }
+            Engine::Babylon => {
+                "@babylonjs/core 9.23.0 (the first release listing PR #18833, merged 2026-08-25: candela \
+                 linear, no file-generation factor); the 360 x 180 grid as read at commit 0571ea8c"
+            }
+            Engine::Blender => {
+                "Blender Cycles (blender/blender intern/cycles/util/ies.cpp, kernel/svm/ies.h; \
+                 cross-checked against Debian's Blender 3.4.1)"
+            }
+            Engine::Gltf => {
+                "glTF 2.0: EXT_lights_ies README at KhronosGroup/glTF commit 10301d57 (Status: Complete), \
+                 KHR_lights_punctual README"
+            }
+            Engine::Godot => {
+                "Godot 4 RD renderers (Forward+, Mobile), godotengine/godot as stored in the code index: \
+                 scene_forward_lights_inc.glsl commit 001d4b23, light_storage.cpp commit 006f0390, \
+                 texture_storage.cpp, copy_effects.cpp, copy_to_fb.glsl (not read at a release tag)"
+            }
         }
     }
 
@@ -101,6 +148,7 @@ impl Engine {
             Engine::Pbrt => Some((256, 4, 4096)),
             Engine::UnityPoint => Some((unity::DEFAULT_SIZE, 4, unity::MAX_SIDE / 2)),
             Engine::UnitySpot => Some((unity::DEFAULT_SIZE, 8, unity::MAX_SIDE)),
+            Engine::Godot => Some((godot::DEFAULT_HEIGHT, 8, 4096)),
             _ => None,
         }
     }
@@ -274,15 +322,19 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
         }
         Engine::Threejs | Engine::Babylon => {
             let three = engine == Engine::Threejs;
-            let data = web::bake_grid(&table, three);
+            let data = if three {
+                web::bake_grid_three(&table)
+            } else {
+                web::bake_grid(&table, false)
+            };
             let image = web::grid_image(&data, !three)?;
             let lookup = if three {
-                web::WebLookup::ThreeAllPlanes
+                web::WebLookup::Three
             } else {
                 web::WebLookup::BabylonAllPlanes
             };
             let layout = if three {
-                "1-degree grid data[phi + theta*180], half float, I/I_max, every plane, linear (gamma read 0.5 deg early)"
+                "180x360 grid data[phi + theta*180] (gamma = phi*180/179, theta 0..359 wrapping), half float, I/I_max, every plane, bilinear"
             } else {
                 "1-degree grid data[phi + theta*180] in a 360x180 R32F, I/I_max, every plane, bilinear on the knots"
             };
@@ -302,6 +354,20 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
             );
             (layout, Box::new(blender::BlenderField { table: t }), None)
         }
+        Engine::Godot => {
+            let h = n.unwrap_or(godot::DEFAULT_HEIGHT);
+            let linear = godot::bake_linear(&texture.sampler(opts.filter), h, i_max)?;
+            let image = godot::encode_for_godot(&linear)?;
+            let f = godot::GodotField::new(&image, i_max);
+            let layout = format!(
+                "{w}x{h} equirectangular panorama (row 0 = nadir, column u: C = 360u + 90 deg), sRGB-encoded \
+                 I/I_max, {} bake -> dual-paraboloid decal atlas rect {w}x{h} RGBA8 read through its sRGB \
+                 view, bilinear, mip 0",
+                opts.filter,
+                w = 2 * h
+            );
+            (layout, Box::new(f), Some(image))
+        }
         Engine::Gltf => {
             let fitted = crate::fit::fit(dist, &crate::fit::FitOptions::default())?;
             let lights = gltf::khr_lights(fitted.model());
@@ -315,6 +381,7 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
     let stand_ins = match engine {
         Engine::UnityPoint => unity::POINT_STAND_INS.to_vec(),
         Engine::UnitySpot => unity::SPOT_STAND_INS.to_vec(),
+        Engine::Godot => godot::STAND_INS.to_vec(),
         _ => Vec::new(),
     };
     Ok(Emulation {
@@ -398,6 +465,25 @@ pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions
                     lights.len()
                 ),
                 size: None,
+                pbrt_flux_lm: None,
+            })
+        }
+        Engine::Godot => {
+            let em = emulate(engine, dist, opts)?;
+            let image = em
+                .image
+                .ok_or(ModelError::Internal("the godot layout has an image".into()))?;
+            let attrs = exr_attrs(engine, lum, &em.layout, "sRGB-encoded I/I_max", i_max);
+            let half: Vec<exr::prelude::f16> = image.data.iter().map(|&v| exr::prelude::f16::from_f32(v)).collect();
+            let channels = ["R", "G", "B"]
+                .into_iter()
+                .map(|c| (c, exr::prelude::FlatSamples::F16(half.clone())))
+                .collect();
+            crate::reconstruct::exr_io::write_layer_channels(path, (image.width, image.height), attrs, channels)?;
+            Ok(Exported {
+                engine,
+                layout: em.layout,
+                size: Some((image.width, image.height)),
                 pbrt_flux_lm: None,
             })
         }

@@ -25,9 +25,21 @@
 //!   `texture(iesLightSampler, vec2(acos(cosAngle)/PI, 0.))`: row 0 of a
 //!   360-wide texture, whose texels 0..179 are θ = 0 and 180..359 are θ = 1.
 //!
-//! The layout rows emulate the 1° grid with every plane kept, bilinear in
-//! C and γ (three.js with its half-degree γ offset); the loaders' defects
-//! are separate rows ([`crate::engines::defects`]).
+//! - three.js 0.187.0 (npm package `three@0.187.0`, read from the published
+//!   tarball): `IESLamp` scales candela linearly (PR #34554), shifts the
+//!   horizontal angles to start at 0 and closes a range ending between 180°
+//!   and 360° with the first plane at 360°; `_getIESValues` samples row φ at
+//!   γ = φ·180/179 and folds θ only beyond the last horizontal angle; `parse`
+//!   uploads every plane (`DataTexture(data, 180, data.length / 180)`,
+//!   `RepeatWrapping` in θ); `IESSpotLightNode` reads it at
+//!   (γ/180 inset by half a texel, the twist angle + half a texel) with
+//!   linear filtering ([`bake_grid_three`], [`WebLookup::Three`]).
+//!
+//! The layout rows emulate the current releases: three.js 0.187.0 as just
+//! said, Babylon's 1° grid with every plane, bilinear on the knots; the
+//! loaders' old behaviours (three.js up to 0.186.1: squared candela, the
+//! 180 x 1 texture, the half-degree γ offset) are separate rows
+//! ([`crate::engines::defects`]).
 
 use super::table::{lerp, to_half, IesTable, Image};
 use crate::model::IntensityField;
@@ -88,9 +100,55 @@ pub fn bake_grid(t: &IesTable, half: bool) -> Vec<f32> {
     data
 }
 
+/// three.js 0.187.0's grid (`IESLoader._getIESValues` and `IESLamp` as
+/// published in the npm package `three@0.187.0`,
+/// `examples/jsm/loaders/IESLoader.js`): the horizontal angles shifted to
+/// start at 0; a range ending between 180° and 360° closed with a copy of
+/// the first plane at 360° (as Blender's Cycles does); θ = 0..359 folded
+/// (mirrored) only beyond the last horizontal angle; row φ = 0..179 sampled
+/// at γ = φ · 180/179, so the 180 texels span 0-180° inclusive. Half floats,
+/// I/I_max, `data[phi + theta * 180]`.
+pub fn bake_grid_three(t: &IesTable) -> Vec<f32> {
+    let base = t.h[0];
+    let mut table = IesTable {
+        h: t.h.iter().map(|h| h - base).collect(),
+        v: t.v.clone(),
+        cd: t.cd.clone(),
+    };
+    let end = table.h[table.h.len() - 1];
+    if end > 180.0 && end < 360.0 {
+        table.h.push(360.0);
+        let first: Vec<f64> = table.cd[..table.v.len()].to_vec();
+        table.cd.extend(first);
+    }
+    let end = table.h[table.h.len() - 1];
+    let max = t.max_cd();
+    let inv = if max > 0.0 { 1.0 / max } else { 0.0 };
+    let mut data = vec![0.0f32; THETA * PHI];
+    for i in 0..THETA * PHI {
+        let theta = (i % THETA) as f64;
+        let phi = (i / THETA) as f64;
+        let mut sample = theta;
+        if end != 0.0 && sample > end {
+            sample %= end * 2.0;
+            if sample > end {
+                sample = end * 2.0 - sample;
+            }
+        }
+        let v = inv * interpolate(&table, phi * 180.0 / (PHI - 1) as f64, sample);
+        data[phi as usize + theta as usize * PHI] = to_half(v);
+    }
+    data
+}
+
 /// How a web engine reads its 1° grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum WebLookup {
+    /// three.js 0.187.0 (`IESSpotLightNode.getSpotAttenuation` in the npm
+    /// package): the 180 x 360 texture of every plane, bilinear, C wrapping
+    /// (texel θ centred at C = θ), γ inset by half a texel at both ends so
+    /// texel φ sits at γ = φ · 180/179 ([`bake_grid_three`]).
+    Three,
     /// Every plane, bilinear in C (wrapping) and γ, γ read ½° early (three.js's texel centres).
     ThreeAllPlanes,
     /// Only θ = 0, as three.js's 180 x 1 texture (γ read ½° early).
@@ -138,6 +196,7 @@ impl IntensityField for WebField {
         }
         let g = gamma_deg.clamp(0.0, 180.0);
         let v = match self.lookup {
+            WebLookup::Three => self.across(c_deg, g * (PHI - 1) as f64 / 180.0),
             WebLookup::ThreeAllPlanes => self.across(c_deg, g - 0.5),
             WebLookup::ThreeSinglePlane => self.along(0, g - 0.5),
             WebLookup::BabylonAllPlanes => self.across(c_deg, g),
@@ -158,7 +217,7 @@ impl IntensityField for WebField {
     fn bytes(&self) -> usize {
         match self.lookup {
             WebLookup::ThreeSinglePlane => PHI * 2,
-            WebLookup::ThreeAllPlanes => THETA * PHI * 2,
+            WebLookup::ThreeAllPlanes | WebLookup::Three => THETA * PHI * 2,
             _ => THETA * PHI * 4,
         }
     }
@@ -202,5 +261,61 @@ mod tests {
         };
         // Half a degree early: at γ = 45 it reads 44.5°.
         assert!((three.intensity_cd(0.0, 45.0) - (100.0 - 50.0 * 44.5 / 90.0)).abs() < 1e-4);
+        // three.js 0.187.0: knots at φ · 180/179, read where they are: a
+        // profile linear in γ comes back exact (to half-float rounding).
+        let now = WebField {
+            data: bake_grid_three(&t),
+            lookup: WebLookup::Three,
+            i_max_cd: 100.0,
+        };
+        for g in [0.0, 45.0, 90.0, 137.3, 180.0] {
+            let want = (100.0 - 50.0 * g / 90.0f64).max(0.0);
+            assert!(
+                (now.intensity_cd(77.0, g) - want).abs() < 0.05,
+                "{g}: {}",
+                now.intensity_cd(77.0, g)
+            );
+        }
+    }
+
+    /// three.js 0.187.0 closes a 0-270° range with the first plane at 360°
+    /// (the old loaders extrapolated the last interval) and mirrors a
+    /// quadrant only beyond its last angle.
+    #[test]
+    fn three_r187_wraps_and_mirrors_the_horizontal_range() {
+        let v = vec![0.0, 90.0, 180.0];
+        let open = IesTable {
+            h: vec![0.0, 90.0, 180.0, 270.0],
+            v: v.clone(),
+            cd: vec![100.0, 0.0, 0.0, 50.0, 0.0, 0.0, 100.0, 0.0, 0.0, 50.0, 0.0, 0.0],
+        };
+        let f = WebField {
+            data: bake_grid_three(&open),
+            lookup: WebLookup::Three,
+            i_max_cd: 100.0,
+        };
+        // Halfway from C270 (50) to the copied C0 (100) at C315: 75, not the extrapolated 25.
+        assert!(
+            (f.intensity_cd(315.0, 0.0) - 75.0).abs() < 0.1,
+            "{}",
+            f.intensity_cd(315.0, 0.0)
+        );
+        let quadrant = IesTable {
+            h: vec![0.0, 90.0],
+            v,
+            cd: vec![100.0, 0.0, 0.0, 40.0, 0.0, 0.0],
+        };
+        let q = WebField {
+            data: bake_grid_three(&quadrant),
+            lookup: WebLookup::Three,
+            i_max_cd: 100.0,
+        };
+        for (c, want) in [(30.0, 80.0), (150.0, 80.0), (210.0, 80.0), (330.0, 80.0), (90.0, 40.0)] {
+            assert!(
+                (q.intensity_cd(c, 0.0) - want).abs() < 0.1,
+                "C{c}: {}",
+                q.intensity_cd(c, 0.0)
+            );
+        }
     }
 }

@@ -105,20 +105,36 @@ pub fn write_layer(
     channel: &str,
     samples: FlatSamples,
 ) -> Result<(), Error> {
-    if samples.len() != size.0 * size.1 {
-        return Err(crate::error::ModelError::Parameter {
-            name: "samples",
-            value: format!("{}: {} samples", path.display(), samples.len()),
-            reason: format!("a {} x {} image needs {}", size.0, size.1, size.0 * size.1),
+    write_layer_channels(path, size, attrs, vec![(channel, samples)])
+}
+
+/// [`write_layer`] with several channels (e.g. `R`, `G`, `B` for a renderer that reads colour).
+///
+/// # Errors
+/// As [`write_layer`]; every channel must hold width × height samples.
+pub fn write_layer_channels(
+    path: &Path,
+    size: (usize, usize),
+    attrs: LayerAttributes,
+    channels: Vec<(&str, FlatSamples)>,
+) -> Result<(), Error> {
+    let mut list = Vec::with_capacity(channels.len());
+    for (name, samples) in channels {
+        if samples.len() != size.0 * size.1 {
+            return Err(crate::error::ModelError::Parameter {
+                name: "samples",
+                value: format!("{}: {} samples in channel {name}", path.display(), samples.len()),
+                reason: format!("a {} x {} image needs {}", size.0, size.1, size.0 * size.1),
+            }
+            .into());
         }
-        .into());
+        list.push(AnyChannel::new(name, samples));
     }
-    let channel = AnyChannel::new(channel, samples);
     let layer = Layer::new(
         size,
         attrs,
         Encoding::SMALL_LOSSLESS,
-        AnyChannels::sort(SmallVec::from_vec(vec![channel])),
+        AnyChannels::sort(SmallVec::from_vec(list)),
     );
     let image = Image::from_layer(layer);
 

@@ -95,6 +95,9 @@ fn notes(r: &EnginesReport) -> Vec<String> {
     for sk in &r.skipped {
         lines.push(format!("{} skipped: {}", sk.engine, sk.reason));
     }
+    for row in &r.rows {
+        lines.push(format!("{} emulates: {}", row.name, row.engine_version));
+    }
     for row in r.rows.iter().filter(|x| x.kind == "layout") {
         lines.push(format!("{}: {}", row.name, row.layout));
         for step in &row.stand_ins {
