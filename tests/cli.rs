@@ -139,6 +139,37 @@ fn validate_exit_codes_and_json_lines_in_input_order() {
     );
 }
 
+/// Issue 26: `validate --json` leaves out the three costly tables unless
+/// `--derived` is given; every other `info --json` key is there either way,
+/// with the same values, and `info` keeps the tables.
+#[test]
+fn validate_computes_the_derived_tables_only_when_asked() {
+    let t = tempfile::tempdir().unwrap();
+    ok(&run(
+        &["synth", "spot", "--p", "8", "--cutoff", "40", "-o", "b.ies"],
+        t.path(),
+    ));
+    let line = |args: &[&str]| -> serde_json::Value { serde_json::from_str(ok(&run(args, t.path())).trim()).unwrap() };
+    let tables = ["ugr_table", "bug_rating", "luminance_table"];
+    let info = line(&["info", "--json", "b.ies"]);
+    let lean = line(&["validate", "--json", "b.ies"]);
+    let full = line(&["validate", "--json", "--derived", "b.ies"]);
+    let (lean, full) = (&lean["info"], &full["info"]);
+    for k in tables {
+        assert!(info.get(k).is_some(), "info lacks {k}");
+        assert!(lean.get(k).is_none(), "validate without --derived has {k}");
+        assert_eq!(full[k], info[k], "validate --derived: {k}");
+    }
+    let keys = |v: &serde_json::Value| v.as_object().unwrap().keys().cloned().collect::<Vec<_>>();
+    let mut want = keys(&info);
+    want.retain(|k| !tables.contains(&k.as_str()));
+    assert_eq!(keys(lean), want);
+    assert_eq!(keys(full), keys(&info));
+    for k in &want {
+        assert_eq!(lean[k], info[k], "{k}");
+    }
+}
+
 #[test]
 fn validate_whole_corpus_reports_every_file() {
     let Some(c) = corpus() else { return };

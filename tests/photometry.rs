@@ -138,7 +138,7 @@ fn corpus_derived_photometry_snapshot() {
             "{}\t{}\t{}\t{}\t{}\t{}\n",
             e.rel,
             code,
-            d.bug_rating.rating,
+            d.bug_rating.as_ref().map_or("-", |b| b.rating.as_str()),
             get("UGR 4Hx8H 70/50/20 crosswise"),
             get("UGR 4Hx8H 70/50/20 endwise"),
             get("luminance table max")

@@ -2,7 +2,7 @@
 //! table of `photosolid batch` and of the Python binding's `batch()`.
 //!
 //! Each file is loaded ([`crate::load_with`]), summarised with the numbers of
-//! `photosolid info` ([`InfoReport`]), checked by a hold-out of its own
+//! `photosolid info` that the columns hold ([`crate::photometry::summary`]), checked by a hold-out of its own
 //! measurements ([`crate::reconstruct::holdout()`], every filter, the best one
 //! kept) and fitted with OpenGL lights ([`crate::fit::fit`]). Files are
 //! processed in parallel (rayon); rows come back in input order. A file
@@ -26,7 +26,6 @@ use crate::error::{Error, ErrorRecord};
 use crate::fit::{fit, FitOptions};
 use crate::formats::ReadOptions;
 use crate::reconstruct::{holdout, Filter, HoldoutSpec};
-use crate::report::InfoReport;
 
 /// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
 /// row, reconstruct the others (`photosolid holdout`'s default).
@@ -201,31 +200,41 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
             return row;
         }
     };
-    let info = InfoReport::of_document(&lum);
+    // Only the numbers the columns hold (the photometric summary), not the
+    // whole `info` report: its UGR, BUG and luminance tables, flux code and
+    // zonal lumens would cost more than the parse (issue 26).
+    let l = &lum.luminaire;
+    let d = l.distribution();
+    let s = crate::photometry::summary(l);
     row.parse_ms = ms(t);
     row.ok = true;
-    row.warnings = info.warnings.iter().map(|w| w.code.as_str().to_string()).collect();
-    row.format = json_str(&info.format);
-    row.version = Some(info.version.clone());
-    row.photometric_type = json_str(&info.photometric_type);
-    row.symmetry = json_str(&info.symmetry);
-    row.n_c = u32::try_from(info.n_c).ok();
-    row.n_c_full = u32::try_from(info.n_c_full).ok();
-    row.n_gamma = u32::try_from(info.n_gamma).ok();
-    let g = lum.distribution().gamma_angles_deg();
+    row.warnings = l
+        .warnings()
+        .iter()
+        .chain(&s.warnings)
+        .map(|w| w.code.as_str().to_string())
+        .collect();
+    row.format = json_str(&l.format());
+    row.version = Some(l.version().to_string());
+    row.photometric_type = json_str(&l.photometric_type());
+    row.symmetry = json_str(&d.symmetry());
+    row.n_c = u32::try_from(d.n_c()).ok();
+    row.n_c_full = u32::try_from(d.full_planes().len()).ok();
+    row.n_gamma = u32::try_from(d.n_gamma()).ok();
+    let g = d.gamma_angles_deg();
     row.gamma_min_deg = g.first().copied();
     row.gamma_max_deg = g.last().copied();
-    row.max_cd = finite(Some(info.max_cd));
-    row.flux_lm = finite(Some(info.flux_lm));
-    row.declared_flux_lm = finite(info.declared_flux_lm);
-    row.flux_ratio = finite(info.flux_ratio);
-    row.lor = finite(info.lor);
-    row.dlor = finite(info.dlor);
-    row.ulor = finite(info.ulor);
-    row.beam_angle_deg = finite(info.beam_angles.ies_beam_deg[0]);
-    row.field_angle_deg = finite(info.beam_angles.ies_field_deg[0]);
-    row.beam_angle_c90_deg = finite(info.beam_angles.ies_beam_deg[1]);
-    row.field_angle_c90_deg = finite(info.beam_angles.ies_field_deg[1]);
+    row.max_cd = finite(Some(s.max_cd));
+    row.flux_lm = finite(Some(s.flux.total_lm));
+    row.declared_flux_lm = finite(s.declared_flux_lm);
+    row.flux_ratio = finite(s.flux_ratio);
+    row.lor = finite(s.lor);
+    row.dlor = finite(s.dlor);
+    row.ulor = finite(s.ulor);
+    row.beam_angle_deg = finite(s.beams.ies_beam_deg[0]);
+    row.field_angle_deg = finite(s.beams.ies_field_deg[0]);
+    row.beam_angle_c90_deg = finite(s.beams.ies_beam_deg[1]);
+    row.field_angle_c90_deg = finite(s.beams.ies_field_deg[1]);
 
     let t = Instant::now();
     match holdout(lum.distribution(), HOLDOUT, &Filter::ALL) {

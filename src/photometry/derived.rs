@@ -6,6 +6,11 @@
 //! `zonal_lumens`, `ugr_table`, `bug_rating`, `luminance_table`. A quantity
 //! that is undefined for a file (no downward light, no luminous area, all-zero
 //! data) is `{"undefined": "<reason>"}`, never NaN.
+//!
+//! The three tables (`ugr_table`, `bug_rating`, `luminance_table`) cost about
+//! 50 times the rest of a file's report (BENCHMARKS.md, issue 26), so they are
+//! optional: [`Derived::of`] computes everything (`info`), [`Derived::without_tables`]
+//! leaves them `None` and out of the JSON (`validate` without `--derived`).
 
 use std::fmt::Write;
 
@@ -53,12 +58,15 @@ pub struct Derived {
     pub cie_flux_code: Derivation<CieFluxCode>,
     /// Zonal lumen summary.
     pub zonal_lumens: ZonalLumens,
-    /// UGR table (CIE 117/190 tabular method).
-    pub ugr_table: Derivation<UgrTable>,
-    /// BUG rating (TM-15-11 Addendum A; meaningful for outdoor luminaires).
-    pub bug_rating: BugRating,
-    /// Luminance at γ 45-85° in C0 and C90, cd/m².
-    pub luminance_table: Derivation<LuminanceTable>,
+    /// UGR table (CIE 117/190 tabular method); `None` when not asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ugr_table: Option<Derivation<UgrTable>>,
+    /// BUG rating (TM-15-11 Addendum A; meaningful for outdoor luminaires); `None` when not asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bug_rating: Option<BugRating>,
+    /// Luminance at γ 45-85° in C0 and C90, cd/m²; `None` when not asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub luminance_table: Option<Derivation<LuminanceTable>>,
 }
 
 /// Index of the CIE reference room 4H x 8H in [`ROOMS_H`].
@@ -89,6 +97,14 @@ impl Derived {
 
     /// Compute everything for `lum` (its untilted distribution) as `options` say.
     pub fn with(lum: &Luminaire, options: &DerivedOptions) -> Self {
+        let mut d = Self::without_tables(lum);
+        d.add_tables(lum, options);
+        d
+    }
+
+    /// The flux code and the zonal lumens only: the UGR, BUG and luminance
+    /// tables are `None` (and absent from the JSON).
+    pub fn without_tables(lum: &Luminaire) -> Self {
         Derived {
             cie_flux_code: match cie_flux_code(lum) {
                 Some(c) => Derivation::Value(c),
@@ -97,10 +113,34 @@ impl Derived {
                 },
             },
             zonal_lumens: zonal_lumens(lum),
-            ugr_table: Derivation::from_result(ugr_table_at(lum, options.ugr_spacing_h)),
-            bug_rating: bug_rating(lum.distribution()),
-            luminance_table: Derivation::from_result(luminance_table(lum)),
+            ugr_table: None,
+            bug_rating: None,
+            luminance_table: None,
         }
+    }
+
+    /// Compute the UGR, BUG and luminance tables of `lum` (the same luminaire).
+    pub fn add_tables(&mut self, lum: &Luminaire, options: &DerivedOptions) {
+        self.ugr_table = Some(Derivation::from_result(ugr_table_at(lum, options.ugr_spacing_h)));
+        self.bug_rating = Some(bug_rating(lum.distribution()));
+        self.luminance_table = Some(Derivation::from_result(luminance_table(lum)));
+    }
+
+    /// Drop the UGR, BUG and luminance tables.
+    pub fn drop_tables(&mut self) {
+        self.ugr_table = None;
+        self.bug_rating = None;
+        self.luminance_table = None;
+    }
+
+    /// The UGR table, when computed and defined.
+    pub fn ugr(&self) -> Option<&UgrTable> {
+        self.ugr_table.as_ref().and_then(Derivation::value)
+    }
+
+    /// The luminance table, when computed and defined.
+    pub fn luminance(&self) -> Option<&LuminanceTable> {
+        self.luminance_table.as_ref().and_then(Derivation::value)
     }
 
     /// Text block for `info`.
@@ -125,17 +165,18 @@ impl Derived {
                 Derivation::Undefined { undefined } => format!("- ({undefined})"),
             },
         );
-        let b = &self.bug_rating;
-        row(
-            &mut o,
-            "BUG rating (TM-15-11, outdoor)",
-            format!(
-                "{} (BL {:.0} BM {:.0} BH {:.0} BVH {:.0} / FL {:.0} FM {:.0} FH {:.0} FVH {:.0} / UL {:.0} UH {:.0} lm)",
-                b.rating, b.zones.bl, b.zones.bm, b.zones.bh, b.zones.bvh, b.zones.fl, b.zones.fm, b.zones.fh, b.zones.fvh, b.zones.ul, b.zones.uh
-            ),
-        );
-        if let Some(caveat) = &b.glare_caveat {
-            row(&mut o, "  BUG glare", caveat.clone());
+        if let Some(b) = &self.bug_rating {
+            row(
+                &mut o,
+                "BUG rating (TM-15-11, outdoor)",
+                format!(
+                    "{} (BL {:.0} BM {:.0} BH {:.0} BVH {:.0} / FL {:.0} FM {:.0} FH {:.0} FVH {:.0} / UL {:.0} UH {:.0} lm)",
+                    b.rating, b.zones.bl, b.zones.bm, b.zones.bh, b.zones.bvh, b.zones.fl, b.zones.fm, b.zones.fh, b.zones.fvh, b.zones.ul, b.zones.uh
+                ),
+            );
+            if let Some(caveat) = &b.glare_caveat {
+                row(&mut o, "  BUG glare", caveat.clone());
+            }
         }
         let pct = |v: Option<f64>| v.map_or("-".to_string(), |p| format!("{p:.1} %"));
         let _ = writeln!(o, "zonal lumens (zone: lm, % lamp, % luminaire):");
@@ -158,7 +199,8 @@ impl Derived {
             .collect();
         let _ = writeln!(o, "  10° zones, lm: {}", tens.join(", "));
         match &self.ugr_table {
-            Derivation::Value(t) => {
+            None => {}
+            Some(Derivation::Value(t)) => {
                 let _ = writeln!(
                     o,
                     "UGR table (CIE 117/190 tabular, S = {}H, for {:.0} lm; crosswise | endwise):",
@@ -181,22 +223,24 @@ impl Derived {
                     );
                 }
             }
-            Derivation::Undefined { undefined } => row(&mut o, "UGR table", format!("- ({undefined})")),
+            Some(Derivation::Undefined { undefined }) => row(&mut o, "UGR table", format!("- ({undefined})")),
         }
         match &self.luminance_table {
-            Derivation::Value(t) => {
+            None => {}
+            Some(Derivation::Value(t)) => {
                 let _ = writeln!(o, "luminance, cd/m² (gamma: C0, C90):");
                 for (k, g) in t.gamma_deg.iter().enumerate() {
                     let f = |v: Option<f64>| v.map_or("-".to_string(), |x| crate::error::sig(x, 4));
                     let _ = writeln!(o, "  {:>4.0}°  {:>11}  {:>11}", g, f(t.c0_cd_m2[k]), f(t.c90_cd_m2[k]));
                 }
             }
-            Derivation::Undefined { undefined } => row(&mut o, "luminance table", format!("- ({undefined})")),
+            Some(Derivation::Undefined { undefined }) => row(&mut o, "luminance table", format!("- ({undefined})")),
         }
         o
     }
 
-    /// The scalars compared side by side: (name, unit, value).
+    /// The scalars compared side by side: (name, unit, value); the tables' are
+    /// `None` when they were not computed.
     pub fn scalars(&self) -> Vec<(String, &'static str, Option<f64>)> {
         let mut v: Vec<(String, &'static str, Option<f64>)> = Vec::new();
         let code = self.cie_flux_code.value();
@@ -211,15 +255,15 @@ impl Derived {
             ));
         }
         let r = reference_room();
-        let t = self.ugr_table.value();
+        let t = self.ugr();
         v.push(("UGR 4Hx8H 70/50/20 crosswise".into(), "", t.map(|t| t.crosswise[r][0])));
         v.push(("UGR 4Hx8H 70/50/20 endwise".into(), "", t.map(|t| t.endwise[r][0])));
         v.push(("UGR table max".into(), "", t.map(|t| t.max)));
-        let b = &self.bug_rating;
-        v.push(("BUG B".into(), "class", Some(f64::from(b.b))));
-        v.push(("BUG U".into(), "class", Some(f64::from(b.u))));
-        v.push(("BUG G".into(), "class", Some(f64::from(b.g))));
-        let l = self.luminance_table.value();
+        let b = self.bug_rating.as_ref();
+        v.push(("BUG B".into(), "class", b.map(|b| f64::from(b.b))));
+        v.push(("BUG U".into(), "class", b.map(|b| f64::from(b.u))));
+        v.push(("BUG G".into(), "class", b.map(|b| f64::from(b.g))));
+        let l = self.luminance();
         let at65 = |plane: u8| {
             l.and_then(|t| {
                 let k = t.gamma_deg.iter().position(|&g| g == 65.0)?;
@@ -399,12 +443,15 @@ mod tests {
                 for z in der.zonal_lumens.ten_degree.iter().chain(&der.zonal_lumens.summary) {
                     assert!(z.lm.is_finite());
                 }
-                if let Derivation::Value(t) = &der.ugr_table {
+                if let Some(t) = der.ugr() {
                     assert!(t.crosswise.iter().chain(&t.endwise).flatten().all(|u| u.is_finite()));
                 }
                 let down = crate::photometry::flux(lum.distribution()).downward_lm;
                 if down <= 0.0 || area == 0.0 {
-                    assert!(matches!(der.ugr_table, Derivation::Undefined { .. }), "{g:?} {cd:?}");
+                    assert!(
+                        matches!(der.ugr_table, Some(Derivation::Undefined { .. })),
+                        "{g:?} {cd:?}"
+                    );
                 }
             }
         }

@@ -48,33 +48,57 @@ fn segment_weights(a: f64, b: f64) -> (f64, f64) {
 /// a knot would leave a sliver whose weights are all rounding error.
 const SLIVER_RAD: f64 = 1e-9;
 
-/// ∫_lo^hi I(γ) sin γ dγ (sr·cd per radian of C; bounds in radians) of one
-/// plane's linear interpolant, exact; zero outside the measured γ range.
-/// A segment cut by a bound is integrated from the interpolated value there.
-pub(crate) fn band_integral(gamma_rad: &[f64], values: &[f64], lo: f64, hi: f64) -> f64 {
-    let mut sum = 0.0;
+/// One γ segment of a band: knots `i`, `i + 1` (radians `a`, `b`), the part
+/// `[x0, x1]` inside the band and its weights (see [`segment_weights`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BandSegment {
+    i: usize,
+    a: f64,
+    b: f64,
+    x0: f64,
+    x1: f64,
+    w0: f64,
+    w1: f64,
+}
+
+/// The segments of γ ∈ [lo, hi] (radians) on the knots `gamma_rad`, with
+/// their weights: these depend on the grid only, so they are computed once
+/// per band and applied to every plane ([`band_integral_with`]), not once per
+/// plane (two `sin_cos` per segment were most of a `validate`, issue 26).
+pub(crate) fn band_segments(gamma_rad: &[f64], lo: f64, hi: f64) -> Vec<BandSegment> {
+    let mut out = Vec::new();
     for i in 0..gamma_rad.len().saturating_sub(1) {
         let (a, b) = (gamma_rad[i], gamma_rad[i + 1]);
         let (x0, x1) = (a.max(lo), b.min(hi));
         if x1 - x0 <= SLIVER_RAD {
             continue;
         }
-        let (ia, ib) = (values[i], values[i + 1]);
-        let at = |x: f64| ia + (ib - ia) * (x - a) / (b - a);
         let (w0, w1) = segment_weights(x0, x1);
-        sum += w0 * at(x0) + w1 * at(x1);
+        out.push(BandSegment {
+            i,
+            a,
+            b,
+            x0,
+            x1,
+            w0,
+            w1,
+        });
     }
-    sum
+    out
 }
 
-/// ∫ I(γ) sin γ dγ (sr·cd per radian of C) of one plane's linear interpolant,
-/// split at γ = 90°: (downward, upward).
-fn plane_integral(gamma_rad: &[f64], values: &[f64]) -> (f64, f64) {
-    let half = std::f64::consts::FRAC_PI_2;
-    (
-        band_integral(gamma_rad, values, 0.0, half),
-        band_integral(gamma_rad, values, half, std::f64::consts::PI),
-    )
+/// ∫_lo^hi I(γ) sin γ dγ (sr·cd per radian of C) of one plane's linear
+/// interpolant over the band's `segments`, exact; zero outside the measured γ
+/// range. A segment cut by a bound is integrated from the interpolated value there.
+#[inline]
+pub(crate) fn band_integral_with(segments: &[BandSegment], values: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for s in segments {
+        let (ia, ib) = (values[s.i], values[s.i + 1]);
+        let at = |x: f64| ia + (ib - ia) * (x - s.a) / (s.b - s.a);
+        sum += s.w0 * at(s.x0) + s.w1 * at(s.x1);
+    }
+    sum
 }
 
 /// Weights (radians) of the full-circle planes `angles` (degrees, ascending in
@@ -109,6 +133,39 @@ pub(crate) fn c_weights(angles: &[f64], c_lo: f64, c_hi: f64) -> Vec<f64> {
     w
 }
 
+/// Flux (lm) in γ zones over the whole circle of C ([`zone_flux`] with C ∈
+/// [0, 360]), for many zones of one distribution: the radian γ knots, the
+/// full-circle planes and their C weights are found once, not once per zone
+/// (the same numbers, bit for bit).
+pub(crate) struct Rings<'d> {
+    d: &'d Distribution,
+    g: Vec<f64>,
+    planes: Vec<(f64, usize)>,
+    weights: Vec<f64>,
+}
+
+impl<'d> Rings<'d> {
+    pub(crate) fn new(d: &'d Distribution) -> Self {
+        let g: Vec<f64> = d.gamma_angles_deg().iter().map(|x| x.to_radians()).collect();
+        let planes = d.full_planes();
+        let angles: Vec<f64> = planes.iter().map(|p| p.0).collect();
+        let weights = c_weights(&angles, 0.0, 360.0);
+        Rings { d, g, planes, weights }
+    }
+
+    /// Flux (lm) in γ ∈ [γ_lo, γ_hi] (degrees) over the whole circle.
+    pub(crate) fn flux(&self, gamma_deg: (f64, f64)) -> f64 {
+        let (lo, hi) = (gamma_deg.0.to_radians(), gamma_deg.1.to_radians());
+        let band = band_segments(&self.g, lo, hi);
+        self.planes
+            .iter()
+            .zip(&self.weights)
+            .filter(|(_, &w)| w > 0.0)
+            .map(|(&(_, ic), w)| w * band_integral_with(&band, self.d.plane_cd(ic)))
+            .sum()
+    }
+}
+
 /// Flux (lm) in the zone γ ∈ [γ_lo, γ_hi], C ∈ [c_lo, c_hi] (degrees; the C
 /// range may start below 0 and spans at most 360), by the same rule as
 /// [`flux`]: exact in γ on the linear interpolant, linear in C between planes.
@@ -119,11 +176,12 @@ pub fn zone_flux(d: &Distribution, gamma_deg: (f64, f64), c_deg: (f64, f64)) -> 
     let angles: Vec<f64> = planes.iter().map(|p| p.0).collect();
     let weights = c_weights(&angles, c_deg.0, c_deg.1);
     let (lo, hi) = (gamma_deg.0.to_radians(), gamma_deg.1.to_radians());
+    let band = band_segments(&g, lo, hi);
     planes
         .iter()
         .zip(&weights)
         .filter(|(_, &w)| w > 0.0)
-        .map(|(&(_, ic), w)| w * band_integral(&g, d.plane_cd(ic), lo, hi))
+        .map(|(&(_, ic), w)| w * band_integral_with(&band, d.plane_cd(ic)))
         .sum()
 }
 
@@ -133,9 +191,16 @@ pub fn flux(d: &Distribution) -> Flux {
     let planes = d.full_planes();
     let angles: Vec<f64> = planes.iter().map(|p| p.0).collect();
     let widths = periodic_widths(&angles);
+    // ∫ I(γ) sin γ dγ of each plane's linear interpolant, split at γ = 90°.
+    let half = std::f64::consts::FRAC_PI_2;
+    let (lower, upper) = (
+        band_segments(&g, 0.0, half),
+        band_segments(&g, half, std::f64::consts::PI),
+    );
     let (mut down, mut up) = (0.0, 0.0);
     for (&(_, ic), w) in planes.iter().zip(&widths) {
-        let (pd, pu) = plane_integral(&g, d.plane_cd(ic));
+        let values = d.plane_cd(ic);
+        let (pd, pu) = (band_integral_with(&lower, values), band_integral_with(&upper, values));
         let w = w.to_radians();
         down += w * pd;
         up += w * pu;

@@ -1,7 +1,7 @@
 //! Zonal lumens and the CIE flux code.
 //!
 //! # Zonal lumens
-//! Flux in γ zones over the whole circle of C, by [`zone_flux`] (the rule of
+//! Flux in γ zones over the whole circle of C, by [`zone_flux`](super::zone_flux) (the rule of
 //! [`flux`](super::flux())): the eighteen 10° zones 0-10 … 170-180 and the
 //! cumulative IES zones 0-30, 0-40, 0-60, 0-90, 90-180 (IES LM-63 /
 //! Photometric Toolbox "zonal lumen summary"), each in lm, in % of the lamp
@@ -19,8 +19,8 @@
 
 use serde::Serialize;
 
-use super::flux::zone_flux;
-use crate::model::{Distribution, Luminaire};
+use super::flux::Rings;
+use crate::model::Luminaire;
 
 /// One γ zone over the whole circle of C.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -56,9 +56,9 @@ pub const IES_ZONES: [(f64, f64); 6] = [
     (0.0, 180.0),
 ];
 
-/// Flux (lm) in γ ∈ [a, b] (degrees) over the whole circle.
-fn ring(d: &Distribution, a: f64, b: f64) -> f64 {
-    zone_flux(d, (a, b), (0.0, 360.0))
+/// Flux (lm) in γ ∈ [a, b] (degrees) over the whole circle: `zone_flux(d, (a, b), (0.0, 360.0))`.
+fn ring(rings: &Rings<'_>, a: f64, b: f64) -> f64 {
+    rings.flux((a, b))
 }
 
 /// Percent `x / of`, or None when it is not a finite number.
@@ -77,7 +77,7 @@ pub(crate) fn lamp_flux(lum: &Luminaire) -> Option<f64> {
 
 /// Zonal lumens of `lum`.
 pub fn zonal_lumens(lum: &Luminaire) -> ZonalLumens {
-    let d = lum.distribution();
+    let d = &Rings::new(lum.distribution());
     let lamp = lamp_flux(lum);
     let total = ring(d, 0.0, 180.0);
     let zone = |a: f64, b: f64| {
@@ -115,7 +115,7 @@ pub fn cone_half_angle_deg(k: u8) -> f64 {
 /// The CIE flux code of `lum`; None when the luminaire emits nothing downward
 /// (N1..N3 are fractions of the downward flux) or the total flux is 0.
 pub fn cie_flux_code(lum: &Luminaire) -> Option<CieFluxCode> {
-    let d = lum.distribution();
+    let d = &Rings::new(lum.distribution());
     let down = ring(d, 0.0, 90.0);
     let total = ring(d, 0.0, 180.0);
     if !(down > 0.0 && total > 0.0) {
@@ -138,7 +138,7 @@ pub fn cie_flux_code(lum: &Luminaire) -> Option<CieFluxCode> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Symmetry;
+    use crate::model::{Distribution, Symmetry};
     use std::f64::consts::PI;
 
     fn lum(gamma: Vec<f64>, f: impl Fn(f64) -> f64, lamp: Option<f64>) -> Luminaire {

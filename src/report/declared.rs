@@ -59,7 +59,7 @@ fn flux_code_row(g: &GldfDeclared, report: &InfoReport) -> Option<DeclaredRow> {
 /// `UGR-4H8H-70-50-20-LQ` value), crosswise / endwise.
 fn ugr_row(g: &GldfDeclared, report: &InfoReport) -> Option<DeclaredRow> {
     let d = g.ugr_4h8h_70_50_20?;
-    let ours = report.derived.ugr_table.value().and_then(|t| {
+    let ours = report.derived.ugr().and_then(|t| {
         let room = t.rooms_h.iter().position(|r| *r == [4.0, 8.0])?;
         let refl = t.reflectances.iter().position(|r| *r == [0.7, 0.5, 0.2])?;
         Some((t.crosswise[room][refl], t.endwise[room][refl]))
@@ -91,13 +91,13 @@ pub fn declared_vs_computed(g: &GldfDeclared, report: &InfoReport, input_watts: 
         flux_code_row(g, report),
         ugr_row(g, report),
         g.bug_rating.clone().map(|d| {
-            let c = &report.derived.bug_rating.rating;
-            let same = d.split_whitespace().collect::<String>() == c.split_whitespace().collect::<String>();
+            let c = report.derived.bug_rating.as_ref().map(|b| &b.rating);
+            let same = c.map(|c| d.split_whitespace().collect::<String>() == c.split_whitespace().collect::<String>());
             DeclaredRow {
                 quantity: "BUG rating",
                 declared: d,
-                computed: Some(c.clone()),
-                difference: Some(if same { "same" } else { "differs" }.into()),
+                computed: c.cloned(),
+                difference: same.map(|same| if same { "same" } else { "differs" }.into()),
             }
         }),
         g.cut_off_angle_deg.map(|a| DeclaredRow {
@@ -188,7 +188,7 @@ mod tests {
             Some(format!("{:+.2} lm/W", eff - 10.0))
         );
         // The derived photometry fills the flux code, UGR and BUG rows.
-        let bug = &r.derived.bug_rating.rating;
+        let bug = &r.derived.bug_rating.as_ref().unwrap().rating;
         assert_eq!(row("BUG rating").computed.as_ref(), Some(bug));
         let code = r.derived.cie_flux_code.value().unwrap();
         assert_eq!(row("CIE flux code").computed.as_ref(), Some(&code.code));
@@ -200,7 +200,7 @@ mod tests {
             .collect();
         assert_eq!(row("CIE flux code").difference, Some(want.join(" ")));
         let ugr = row("UGR 4H8H 70/50/20 (crosswise / endwise)");
-        let t = r.derived.ugr_table.value().unwrap();
+        let t = r.derived.ugr().unwrap();
         let (i, j) = (
             t.rooms_h.iter().position(|x| *x == [4.0, 8.0]).unwrap(),
             t.reflectances.iter().position(|x| *x == [0.7, 0.5, 0.2]).unwrap(),

@@ -14,7 +14,8 @@
 //! consistency warnings). `lamp_color` (when the file states a colour
 //! temperature): `{cct_k, xy, srgb, srgb8}` (see `report::color`).
 //! Derived photometry (see `photometry::derived`): `cie_flux_code`,
-//! `zonal_lumens`, `ugr_table`, `bug_rating`, `luminance_table`.
+//! `zonal_lumens`, `ugr_table`, `bug_rating`, `luminance_table`; the last three
+//! only when asked for ([`Tables::Compute`]: `info`, `validate --derived`).
 //! `gldf_declared` (a photometry read from a GLDF container, `FILE.gldf#ID`;
 //! `null` otherwise): the container's `DescriptivePhotometry`
 //! ([`GldfDeclared`](crate::formats::gldf::GldfDeclared): `container`, `id`,
@@ -30,6 +31,17 @@ use serde::Serialize;
 use crate::error::Warning;
 use crate::model::{GammaRange, Luminaire, PhotometricType, Symmetry};
 use crate::photometry::{self, BeamAngles};
+
+/// Whether a report computes the UGR, BUG and luminance tables (the costly
+/// part of a report: `validate` leaves them out unless `--derived` is given).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Tables {
+    /// Compute them (`info`).
+    #[default]
+    Compute,
+    /// Leave them out (`None` in [`photometry::Derived`], absent from the JSON).
+    Skip,
+}
 
 /// Everything `info` reports about a luminaire.
 #[derive(Debug, Clone, Serialize)]
@@ -106,25 +118,34 @@ pub struct InfoReport {
 }
 
 impl InfoReport {
-    /// Build the report of `lum` (no container declarations).
+    /// Build the report of `lum` (no container declarations), every table included.
     pub fn of(lum: &Luminaire) -> Self {
-        Self::of_parts(lum, None, &photometry::derived::DerivedOptions::default())
+        Self::of_parts(lum, None, Tables::Compute, &photometry::derived::DerivedOptions::default())
     }
 
     /// Build the report of a read document: with a GLDF container's
-    /// declarations (`gldf_declared`) beside our values (`gldf_comparison`).
+    /// declarations (`gldf_declared`) beside our values (`gldf_comparison`),
+    /// every table included.
     pub fn of_document(doc: &crate::formats::Document) -> Self {
-        Self::of_document_with(doc, &photometry::derived::DerivedOptions::default())
+        Self::of_document_with(doc, Tables::Compute, &photometry::derived::DerivedOptions::default())
     }
 
-    /// [`InfoReport::of_document`] with the derived tables computed as `options` say.
-    pub fn of_document_with(doc: &crate::formats::Document, options: &photometry::derived::DerivedOptions) -> Self {
-        Self::of_parts(&doc.luminaire, doc.gldf.as_ref(), options)
+    /// [`InfoReport::of_document`], with or without the UGR, BUG and luminance
+    /// tables, computed as `options` say. A GLDF container's comparison rows
+    /// are the same either way (the tables they need are computed for them,
+    /// then dropped).
+    pub fn of_document_with(
+        doc: &crate::formats::Document,
+        tables: Tables,
+        options: &photometry::derived::DerivedOptions,
+    ) -> Self {
+        Self::of_parts(&doc.luminaire, doc.gldf.as_ref(), tables, options)
     }
 
     fn of_parts(
         lum: &Luminaire,
         gldf: Option<&crate::formats::gldf::GldfDeclared>,
+        tables: Tables,
         options: &photometry::derived::DerivedOptions,
     ) -> Self {
         let d = lum.distribution();
@@ -172,10 +193,17 @@ impl InfoReport {
             gldf_declared: gldf.cloned(),
             gldf_comparison: None,
             warnings,
-            derived: photometry::Derived::with(lum, options),
+            derived: photometry::Derived::without_tables(lum),
         };
+        let compare_tables = gldf.is_some_and(|g| g.ugr_4h8h_70_50_20.is_some() || g.bug_rating.is_some());
+        if tables == Tables::Compute || compare_tables {
+            report.derived.add_tables(lum, options);
+        }
         report.gldf_comparison =
             gldf.map(|g| crate::report::declared::declared_vs_computed(g, &report, lum.declared().input_watts));
+        if tables == Tables::Skip {
+            report.derived.drop_tables();
+        }
         report
     }
 
