@@ -410,7 +410,7 @@ fn all_zero_data_is_a_clear_error() {
     }
 }
 
-/// Distributions without spot character (seed §5: central obstruction, ring
+/// Distributions without spot character (Zotti et al. 2005, §5: central obstruction, ring
 /// maxima) are fitted and reported with their error, not hidden.
 #[test]
 fn batwing_and_ring_are_reported_honestly() {
