@@ -76,15 +76,21 @@ fn texture_encoder_follows_the_extension_or_refuses() {
 /// `gpu-check` that would check nothing fails, naming why, before looking for a GPU.
 #[test]
 fn gpu_check_that_checks_nothing_fails() {
+    // Work one level down in a temporary directory the test owns, so that the
+    // default corpus `../shared/corpus` is inside it and known to be absent,
+    // wherever the repository and the system's temporary directory are.
     let t = tempfile::tempdir().unwrap();
-    ok(&run(&["synth", "isotropic", "-o", "iso.ldt"], t.path()));
-    ok(&run(&["mesh", "iso.ldt", "--measured", "-o", "m.ply"], t.path()));
-    let e = fails(&run(&["gpu-check", "/nonexistent"], t.path()), 1);
+    let work = t.path().join("work");
+    std::fs::create_dir(&work).unwrap();
+    assert!(!t.path().join("shared").exists());
+    ok(&run(&["synth", "isotropic", "-o", "iso.ldt"], &work));
+    ok(&run(&["mesh", "iso.ldt", "--measured", "-o", "m.ply"], &work));
+    let e = fails(&run(&["gpu-check", "/nonexistent"], &work), 1);
     assert!(e.contains("/nonexistent") && e.contains("nothing to check"), "{e}");
-    let e = fails(&run(&["gpu-check", "m.ply"], t.path()), 1);
+    let e = fails(&run(&["gpu-check", "m.ply"], &work), 1);
     assert!(e.contains("checked nothing"), "{e}");
-    // No argument: the default ../shared/corpus does not exist next to a temporary directory.
-    let e = fails(&run(&["gpu-check"], t.path()), 1);
+    // No argument: the default ../shared/corpus, which does not exist.
+    let e = fails(&run(&["gpu-check"], &work), 1);
     assert!(e.contains("corpus") && e.contains("nothing to check"), "{e}");
 }
 

@@ -185,7 +185,12 @@ fn alignment_finds_the_testlamp_rotation() {
         "testlamp: {al:?}; H {:.4} -> {:.4}",
         plain.results[0].hausdorff_cd, aligned.results[0].hausdorff_cd
     );
-    assert!(!al.mirror || al.rotate_deg % 90.0 == 0.0);
+    // Both files hold the same lamp: once turned back, nothing but the
+    // rounding of the printed values remains (measured 4.6e-5 % of I_max),
+    // and the turn is a quarter turn either way (measured 270, no mirror; a
+    // mirror would also need 90 or 270, the lamp being symmetric about C90-C270).
+    assert!(al.rms_pct < 1e-3, "{al:?}");
+    assert!(al.rotate_deg == 90.0 || al.rotate_deg == 270.0, "{al:?}");
     assert!(al.rotate_deg % 90.0 == 0.0 && al.rotate_deg != 0.0, "{al:?}");
     assert!(al.rms_pct < 0.2 * al.rms_pct_unaligned, "{al:?}");
     assert!(aligned.results[0].hausdorff_cd < 0.5 * plain.results[0].hausdorff_cd);

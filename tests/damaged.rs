@@ -332,9 +332,10 @@ fn user_controlled_sizes_and_iterations_are_bounded() {
         let grid = SolidGrid::refined(&d, 3).unwrap();
         let a = photosolid::solid::grid_solid(&sampler, &grid, Units::Peak).unwrap();
         let b = measured_solid(load(y).distribution(), Units::Peak).unwrap();
-        let t0 = std::time::Instant::now();
+        // Bounded by MAX_REFINEMENT_QUERIES (checked below through
+        // `converged`), not by a wall-clock assertion; benches/metrics.rs
+        // times the mesh Hausdorff distance it refines.
         let h = photosolid::compare::solid_hausdorff(&a, &b, 0.0);
-        assert!(t0.elapsed().as_secs() < 120, "bounded time: {:?}", t0.elapsed());
         assert!(h.bound.is_finite() && h.value.is_finite());
         for side in [h.a_to_b, h.b_to_a] {
             if side.converged {

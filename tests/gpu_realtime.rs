@@ -161,7 +161,7 @@ fn realtime_texture_as_field() {
     assert!(t.sample_dirs_cd(&[]).unwrap().is_empty());
 }
 
-/// The shaded plane (the seed's Figure 5 setting): GPU and CPU images agree
+/// The shaded plane (Wallner's (2008) Figure 5 setting): GPU and CPU images agree
 /// within the lookup tolerance times the largest cos/d² (1/h²); bilinear and
 /// Catmull-Rom differ; the EXR reads back with the same values.
 #[test]

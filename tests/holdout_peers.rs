@@ -1,5 +1,5 @@
 #![allow(clippy::approx_constant)] // the peers' percentages (6.28 %) are measurements, not 2π
-//! Hold-out errors on real files against the reference numbers of PEERS.md:
+//! Hold-out errors on real files against the reference numbers of docs/domain.md §11:
 //! ours must be at least as good on the same files and settings. The peers'
 //! RMS is over every measured sample (kept ones included), our
 //! `rms_all_percent`; their figures are rounded, so each comparison allows

@@ -121,7 +121,7 @@ fn errors_against_truth_fall_at_the_filters_order() {
     }
 }
 
-/// The k-fold folds coincide with the PEERS protocol "keep every 4th γ row"
+/// The k-fold folds coincide with the reference protocol (docs/domain.md §11) "keep every 4th γ row"
 /// (ITALO, drop 1/4) in fold 0 of the γ axis with k = 4: its largest errors
 /// over the withheld samples reproduce the reference table's maxima.
 #[test]
@@ -145,7 +145,7 @@ fn kfold_reproduces_the_peers_maxima_where_protocols_coincide() {
             .map(|&(ic, ig)| (s.cd(d.c_angles_deg()[ic], d.gamma_angles_deg()[ig]) - d.value_cd(ic, ig)).abs())
             .fold(0.0, f64::max);
         let pct = 100.0 * max / i_max;
-        eprintln!("ITALO 1/4 {filter}: max {pct:.3} % (PEERS {peers_max} %)");
+        eprintln!("ITALO 1/4 {filter}: max {pct:.3} % (reference {peers_max} %)");
         assert!(pct <= peers_max + 0.005, "{filter}: {pct} > {peers_max}");
         assert!(
             pct >= peers_max - 0.05,

@@ -104,7 +104,7 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     Ok(0)
 }
 
-/// The seed's Figure 5 setting: a plane lit through the bilinear and the
+/// Wallner's (2008) Figure 5 setting: a plane lit through the bilinear and the
 /// Catmull-Rom lookups of the factor-5 texture, on the GPU when an adapter
 /// exists and always on the CPU (`photosolid::gpu::shading`); EXRs written
 /// into `dir`, PNGs returned as report figures.

@@ -14,7 +14,7 @@ pub struct FitArgs {
     /// At most this many OpenGL lights (1 or 2).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=2))]
     max_lights: u8,
-    /// Error minimised: the seed's relative error over the measured directions, or each weighted by its solid angle.
+    /// Error minimised: the relative error of Zotti et al. (2005) over the measured directions, or each weighted by its solid angle.
     #[arg(long, value_enum, default_value = "relative")]
     error: ErrorMetric,
     /// Pick the fewest lights whose error is within T of the best (0.01 = one percentage point).

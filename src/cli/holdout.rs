@@ -4,7 +4,7 @@
 //! drops the others; `--drop-gamma K` does the same with γ rows, never
 //! dropping the poles or the ends of the measured range. K = 1 drops
 //! nothing on that axis. This is the convention of the reference numbers in
-//! PEERS.md ("drop 4/8" has far larger errors than "drop 2/2").
+//! docs/domain.md §11 ("drop 4/8" has far larger errors than "drop 2/2").
 
 use std::io::Write;
 use std::path::PathBuf;

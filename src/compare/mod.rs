@@ -1,7 +1,7 @@
 //! Compare photometric solids: how wrong is each reconstruction, where, and what does it cost.
 //!
 //! Between any two of: the measured solid, each filter's reconstruction, the
-//! fitted OpenGL lights, another file's distribution (Ashdown 1999, DOMAIN §6):
+//! fitted OpenGL lights, another file's distribution (Ashdown 1999, docs/domain.md §6):
 //! - the **Hausdorff distance** of the photometric solids (symmetric and both
 //!   one-sided, with mean and RMS surface distance), certified to within a
 //!   tolerance ([`crate::metrics::hausdorff()`]): "H = 12.31 cd (+0.05)";

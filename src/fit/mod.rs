@@ -1,10 +1,10 @@
 //! Fitted OpenGL lights: approximate a luminaire by at most two fixed-function
-//! OpenGL lights (Zotti, Neumann, Purgathofer 2005; seed 002 §3–§5,
-//! DOMAIN §6–§7).
+//! OpenGL lights (Zotti, Neumann, Purgathofer 2005, §3–§5;
+//! docs/domain.md §6–§7).
 //!
 //! - [`model`]: the light model ([`FittedLights`], the `fitted-gl`
 //!   reconstruction) and its evaluation in any direction;
-//! - [`objective`]: the seed's relative error (and a solid-angle-weighted
+//! - [`objective`]: Zotti et al.'s relative error (and a solid-angle-weighted
 //!   variant) and the exact cut-off profile;
 //! - `optimize` (private): the search over exponents and axes;
 //! - [`report`]: serde output and a GLSL / JSON snippet for renderers.
@@ -12,7 +12,7 @@
 //! # What is tried ([`Combination`])
 //! One spot down, one spot up, one point light; with `max_lights = 2` also
 //! point + spot down, point + spot up, and two spots in opposite hemispheres
-//! (seed §3). A combination needing a spot in a hemisphere that holds no
+//! (Zotti et al. 2005, §3). A combination needing a spot in a hemisphere that holds no
 //! measured direction, or only dark ones, is skipped with the reason. The spot
 //! axes are vertical when the data is rotationally symmetric (the best
 //! rotational model of rotational data, and what a renderer expects), and
@@ -88,7 +88,7 @@ impl Default for FitOptions {
     }
 }
 
-/// A combination of lights tried by the fit (seed §3).
+/// A combination of lights tried by the fit (Zotti et al. 2005, §3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Combination {

@@ -6,7 +6,7 @@
 //! [0, 90] degrees gives, for a unit direction `d`,
 //! `w · max(d·a, 0)^p` when `d·a ≥ cos c` (inside the cut-off), `0` outside
 //! (OpenGL spec §2.14.1: the spotlight factor). A point light (GL cut-off
-//! 180) gives `w` everywhere. Zotti et al. 2005 (seed 002, §3) add at most two
+//! 180) gives `w` everywhere. Zotti et al. 2005 (§3) add at most two
 //! of: a spot into the lower hemisphere, a spot into the upper hemisphere, a
 //! point light.
 //!
@@ -14,14 +14,14 @@
 //! Only quadratic attenuation is used (`GL_CONSTANT_ATTENUATION` = 0,
 //! `GL_LINEAR_ATTENUATION` = 0, `GL_QUADRATIC_ATTENUATION` = 1): with the
 //! diffuse scale `w` in cd, the illuminance at distance `r` metres is
-//! `I/r²` lux, the inverse-square law of far-field photometry (seed §3). What
+//! `I/r²` lux, the inverse-square law of far-field photometry (Zotti et al. 2005, §3). What
 //! is fitted, and what [`FittedLights::intensity`] returns, is the far-field
 //! intensity `I(d)` in cd.
 //!
 //! # Frames
 //! Directions are in the luminaire frame of [`crate::model`]: z up, C0 = +x,
 //! C90 = +y, nadir = −z, `d = (sinγ cosC, sinγ sinC, −cosγ)`. OpenGL scenes
-//! (and the seed) are y-up; [`to_gl`] maps a luminaire-frame vector into the
+//! (and Zotti et al. 2005) are y-up; [`to_gl`] maps a luminaire-frame vector into the
 //! y-up frame `(x, z, −y)` (a proper rotation of −90° about x: C0 stays +x,
 //! zenith becomes +y, C90 becomes −z).
 
@@ -134,7 +134,7 @@ impl Spot {
         direction(self.azimuth_deg, self.hemisphere.gamma_of_tilt(self.tilt_deg))
     }
 
-    /// The unit axis in the y-up OpenGL frame of the seed (see [`to_gl`]).
+    /// The unit axis in the y-up OpenGL frame of Zotti et al. 2005 (see [`to_gl`]).
     pub fn axis_gl(&self) -> DVec3 {
         to_gl(self.axis())
     }

@@ -1,11 +1,11 @@
 //! The error functions of the fit and the exact cut-off profile.
 //!
-//! # Error (seed 002, §3 "The Error Function"; DOMAIN §6)
+//! # Error (Zotti, Neumann, Purgathofer 2005, §3 "The Error Function"; docs/domain.md §6)
 //! The data are scaled to magnitudes `m = I / I_max` (max 1); for the model
 //! `a` (same scale) the error is
 //! `err = sqrt(Σ_k w_k ((a_k − m_k) / (m_k + C))²)` over every measured
 //! direction `k` of the full circle of planes (symmetry expanded), with
-//! - [`ErrorMetric::Relative`]: `w_k = 1/N`, the seed's formula (every
+//! - [`ErrorMetric::Relative`]: `w_k = 1/N`, Zotti et al.'s formula (every
 //!   (θ, φ) pair counts once, so the poles, where every plane meets, count
 //!   once per plane);
 //! - [`ErrorMetric::SolidAngle`]: `w_k = ΔΩ_k / Σ ΔΩ` (= ΔΩ_k / 4π on
@@ -22,7 +22,7 @@
 //!
 //! Writing `ρ_k = w_k / (m_k + C)²`, `err² = Σ ρ_k (a_k − m_k)²` is a
 //! weighted least-squares problem that is linear in the light weights: for
-//! fixed shapes the weights come from the normal equations (DOMAIN §7.2).
+//! fixed shapes the weights come from the normal equations (docs/domain.md §7.2).
 //!
 //! # Cut-off profile
 //! For one spot of fixed axis and exponent, every cut-off is tried at once:
@@ -60,7 +60,7 @@ const N_BINS: usize = 900;
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum ErrorMetric {
-    /// The seed's relative radial error, every measured (C, γ) pair weighted 1/N.
+    /// Zotti et al.'s relative radial error (2005, §3), every measured (C, γ) pair weighted 1/N.
     #[default]
     Relative,
     /// The same, each direction weighted by its solid angle ΔΩ_k / Σ ΔΩ.

@@ -3,9 +3,9 @@
 //!
 //! # Design
 //! For fixed shapes the weights are a linear least-squares problem
-//! (DOMAIN §7.2), and for a fixed axis and exponent every cut-off is tried
+//! (docs/domain.md §7.2), and for a fixed axis and exponent every cut-off is tried
 //! at once ([`super::objective::Profiler`]). What is left to search is
-//! smooth almost everywhere (seed §4: "C2 almost everywhere"):
+//! smooth almost everywhere (Zotti et al. 2005, §4: "C2 almost everywhere"):
 //! - the exponent, as `u = ln(1 + p)` ∈ [0, ln 129] (equal steps in `u` are
 //!   equal relative steps for large p, and p = 0 stays reachable);
 //! - the axis (when the data is not rotationally symmetric), as tangent
@@ -19,9 +19,9 @@
 //! from other combinations, one seeded random axis), then Nelder–Mead in
 //! `(u, x, y)` from the two best starts, restarted with smaller simplices
 //! until it stops improving: a multi-start local search in the spirit of the
-//! seed's nested directional search (seed §4, Figure 1), with a fixed seed.
+//! Zotti et al.'s nested directional search (Zotti et al. 2005, §4, Figure 1), with a fixed seed.
 //! Two spots in opposite hemispheres are independent when their cones do
-//! not overlap (seed §4: "independent subsets"); otherwise they are refined
+//! not overlap (Zotti et al. 2005, §4: "independent subsets"); otherwise they are refined
 //! alternately, each with the other's shape fixed and both weights free.
 
 use glam::DVec3;

@@ -4,7 +4,7 @@
 //! # Frames
 //! Every direction is given twice: `direction_luminaire` in the luminaire
 //! frame of [`crate::model`] (z up, C0 = +x, C90 = +y) and `direction_gl` in
-//! the y-up OpenGL frame of the seed (`(x, z, −y)`: C0 = +x, zenith = +y,
+//! the y-up OpenGL frame of Zotti et al. 2005 (`(x, z, −y)`: C0 = +x, zenith = +y,
 //! C90 = −z). `GL_SPOT_DIRECTION` is transformed by the modelview matrix
 //! current at `glLight` time, so set it with the luminaire's model matrix
 //! loaded (OpenGL 1.x §2.14.1).

@@ -18,11 +18,11 @@
 //! - [`Backend`] / [`resolve`]: `--backend auto|gpu|cpu`;
 //! - [`RenderKernel`]: the two-pass kernel (`separable.wgsl`, γ pass then C
 //!   pass, the default) or the fused first kernel (`kernel.wgsl`);
-//! - [`realtime`]: the seed's real-time path, a stored texture sampled by the
+//! - [`realtime`]: Wallner's (2008) real-time path, a stored texture sampled by the
 //!   texture hardware (bilinear, Catmull–Rom from linear fetches) for
 //!   batches of directions; [`precision`]: what that costs per adapter
 //!   (sub-texel weight bits, difference from the exact lookup);
-//!   [`shading`]: a plane lit through those lookups (the seed's Figure 5 setting).
+//!   [`shading`]: a plane lit through those lookups (Wallner's (2008) Figure 5 setting).
 //!
 //! Output goes to a storage buffer rather than an `r32float` storage texture:
 //! it needs no 256-byte row padding on read-back, a whole batch fits in one

@@ -1,4 +1,4 @@
-//! The real-time path of the seed (Wallner 2008, §4–5): a light distribution
+//! The real-time path of Wallner 2008 (§4–5): a light distribution
 //! texture in a float texture, sampled by the hardware for a batch of
 //! directions, and the accuracy that costs.
 //!
@@ -7,7 +7,7 @@
 //! I / I_max, whole or only its symmetry's C sector) as an `R32Float`
 //! texture when the adapter can filter it (`FLOAT32_FILTERABLE`), else as
 //! `R16Float` (values rounded to f16), with a sampler, and evaluates a
-//! [`HardwareLookup`] in a compute shader (`realtime.wgsl`: the seed's
+//! [`HardwareLookup`] in a compute shader (`realtime.wgsl`: Wallner's (2008)
 //! texture-coordinate mapping, equations 1–3, `textureSampleLevel`).
 //!
 //! [`RealtimeTexture::exact`] is the CPU twin: the same texel data (after
@@ -87,7 +87,7 @@ impl HardwareLookup {
 pub(crate) const MODE_PROBE: u32 = 3;
 const WORKGROUP: usize = 64;
 
-/// The seed's texture coordinates (s, t) of direction `d` in the luminaire
+/// Wallner's (2008) texture coordinates (s, t) of direction `d` in the luminaire
 /// frame, literally as its equations 1–3 (f64): `s = arccos(n₀·d)/π`,
 /// `φ = arccos(r₀·p)` with p the unit projection of d onto the (r₀, u₀)
 /// plane, `t = φ/2π` when `u₀·d > 0`, else `1 − φ/2π`; n₀ = −z, r₀ = +x,

@@ -3,7 +3,7 @@
 // render of the LDT, I / I_max, whole or only its symmetry's C sector) in a
 // float texture, sampled by the hardware for a batch of directions.
 //
-// Texture coordinates (the seed's equations 1-3 and Listing 1, in the
+// Texture coordinates (Wallner's (2008) equations 1-3 and Listing 1, in the
 // crate's frame: n0 = -z (gamma 0), r0 = +x (C0), u0 = +y (C90)):
 //   s = arccos(n0 . d) / pi                                     (eq. 1)
 //   phi = arccos(r0 . proj(d)), proj onto the (r0, u0) plane     (eq. 3)
@@ -75,7 +75,7 @@ fn fold_c(c: f32, sym: u32) -> f32 {
     return c;
 }
 
-// The seed's (s, t) of direction d (luminaire frame), see the header.
+// Wallner's (2008) (s, t) of direction d (luminaire frame), see the header.
 fn seed_st(d: vec3<f32>) -> vec2<f32> {
     let s = atan2(length(d.xy), -d.z) / PI;
     var t = atan2(d.y, d.x) / (2.0 * PI);

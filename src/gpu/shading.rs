@@ -1,11 +1,11 @@
 //! A plane lit by the luminaire, shaded through the real-time lookups: the
-//! seed's Figure 5 setting (Wallner 2008, §5–6), headless.
+//! Figure 5 setting of Wallner 2008 (§5–6), headless.
 //!
 //! The luminaire hangs `height_m` above a horizontal plane, unrotated (its
 //! nadir, γ = 0, straight down). Pixel (row i, column j) of an `n` × `n`
 //! image is the plane point `P = (x, y, −height_m)` relative to the
 //! luminaire, x = (j + ½)·2a/n − a, y = a − (i + ½)·2a/n (row 0 at +y,
-//! a = `half_width_m`). Its value is the seed's equation 4 with the plane's
+//! a = `half_width_m`). Its value is Wallner's (2008) equation 4 with the plane's
 //! cosine, the illuminance in lux:
 //!
 //! ```text

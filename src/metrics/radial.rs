@@ -2,7 +2,7 @@
 //!
 //! All metrics are computed over a stated [`DirectionSet`] with solid-angle
 //! weights ΔΩ_k (sr): the measured directions of a reference grid (cells
-//! bounded by the γ midpoints and the periodic C midpoints, DOMAIN §5), or a
+//! bounded by the γ midpoints and the periodic C midpoints, docs/domain.md §5), or a
 //! dense, nearly uniform spherical Fibonacci sampling (equal weights 4π/N).
 //! With `m` the reference and `a` the approximation, in cd:
 //!

@@ -107,7 +107,7 @@ pub fn unit_angles_f32(u: glam::Vec3) -> (f32, f32) {
     (c, gamma)
 }
 
-/// A luminaire-frame vector (z up) in the y-up OpenGL frame of the seed: `(x, z, −y)`.
+/// A luminaire-frame vector (z up) in the y-up OpenGL frame of Zotti et al. 2005: `(x, z, −y)`.
 #[inline]
 pub fn to_gl(v: DVec3) -> DVec3 {
     DVec3::new(v.x, v.z, -v.y)

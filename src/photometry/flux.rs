@@ -2,7 +2,7 @@
 //!
 //! # Flux
 //! Φ = ∫₀^{2π} ∫₀^{π} I(C, γ) sin γ dγ dC, computed as the **exact integral of
-//! the piecewise-linear interpolant in γ** (DOMAIN §5: on [a, b],
+//! the piecewise-linear interpolant in γ** (docs/domain.md §5: on [a, b],
 //! `∫ I sinγ = I_a (cos a − cos b) + (I_b − I_a)[sin b − sin a − (b − a) cos b]/(b − a)`),
 //! with **trapezoid weights in C** over the full, periodic circle of planes
 //! (symmetry expanded, C = 0 and C = 360 the same plane). This is the integral

@@ -7,7 +7,7 @@
 //! Photometric Toolbox "zonal lumen summary"), each in lm, in % of the lamp
 //! flux (relative photometry only) and in % of the luminaire flux.
 //!
-//! # CIE flux code (CIE 52:1982; DOMAIN §5)
+//! # CIE flux code (CIE 52:1982; docs/domain.md §5)
 //! The cumulative downward cones of π/2, π, 3π/2 and 2π sr have half-angles
 //! arccos(3/4) = 41.41°, arccos(1/2) = 60°, arccos(1/4) = 75.52° and 90°:
 //! N1 = Φ(0-41.4)/Φ(0-90), N2 = Φ(0-60)/Φ(0-90), N3 = Φ(0-75.5)/Φ(0-90),

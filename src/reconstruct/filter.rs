@@ -8,7 +8,7 @@
 //!
 //! Sources:
 //! - Catmull–Rom on non-uniform knots: cubic Hermite with
-//!   `m_i = (p_{i+1} − p_{i−1}) / (t_{i+1} − t_{i−1})` (DOMAIN §4; on uniform
+//!   `m_i = (p_{i+1} − p_{i−1}) / (t_{i+1} − t_{i−1})` (docs/domain.md §4; on uniform
 //!   knots this is the classic Catmull–Rom, Mitchell–Netravali B = 0, C = ½).
 //! - Mitchell–Netravali (B, C): D. Mitchell, A. Netravali, "Reconstruction
 //!   filters in computer graphics", SIGGRAPH 1988; the cubic B-spline is B = 1, C = 0.

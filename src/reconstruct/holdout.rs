@@ -5,14 +5,14 @@
 //! range ends (poles and band ends in γ; the first and last stored plane in C
 //! unless the symmetry is none, where C is periodic) and drops the others.
 //! K = 2 drops every other angle; K ≤ 1 keeps the axis whole. This is the
-//! convention of the PEERS reference table ("drop C/γ 4/8" keeps one plane
+//! convention of the hold-out reference table (docs/domain.md §11) ("drop C/γ 4/8" keeps one plane
 //! in 4 and one row in 8).
 //!
 //! Errors are over the dropped samples (every (C, γ) whose plane or row was
 //! dropped), in percent of the original I_max. `rms_all_percent` is the RMS
 //! over every measured sample instead, the kept ones included (zero error
 //! for interpolating filters, the smoothing error for mitchell and bspline):
-//! the convention of the PEERS reference table, whose figures it reproduces
+//! the convention of the hold-out reference table (docs/domain.md §11), whose figures it reproduces
 //! (e.g. OutdoorRoadway 2/2 bilinear 0.53 %, Catmull-Rom 0.29 %). The flux
 //! error compares the flux of the original grid with that of the same grid
 //! holding the reconstructed values at the dropped samples, by the crate's

@@ -3,7 +3,7 @@
 //! Two area models, both in the luminaire frame of [`crate::model::frame`]
 //! (metres from the photometric centre):
 //! - [`lambert_polygon_lux`]: the exact unoccluded illuminance from a uniform
-//!   Lambertian polygon (Lambert's vector-irradiance formula, DOMAIN §8),
+//!   Lambertian polygon (Lambert's vector-irradiance formula, docs/domain.md §8),
 //!   clipped to the receiver's horizon, switching to the point form when the
 //!   polygon is small against its distance ([`POINT_FORM_RATIO`], measured:
 //!   see its docs);
@@ -31,7 +31,7 @@ pub const POINT_FORM_RATIO: f64 = 1e-5;
 
 /// Illuminance (lx) at `point` (receiver normal `normal`, unit) from a
 /// uniform Lambertian polygon of luminance `luminance` (cd/m²), exact and
-/// unoccluded (Lambert's formula, DOMAIN §8).
+/// unoccluded (Lambert's formula, docs/domain.md §8).
 ///
 /// The polygon is planar and emits on the side its vertex order makes
 /// counter-clockwise (the right-hand normal); a receiver behind or in its

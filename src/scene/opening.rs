@@ -84,7 +84,7 @@ pub struct CylinderShape {
 }
 
 impl Opening {
-    /// The opening `lum` declares: IES LM-63 signs (DOMAIN §1.3; the
+    /// The opening `lum` declares: IES LM-63 signs (docs/domain.md §1.3; the
     /// 1986/1991 and 1995 encodings by the file's version) or the EULUMDAT
     /// luminous area and heights.
     ///

@@ -14,7 +14,7 @@
 //!
 //! # Frame and units
 //! Coordinates are in the luminaire frame (z up, nadir −z, C0 = +x, C90 = +y;
-//! DOMAIN §3.1) and in [`Units`]: candela by default (1 unit of length = 1 cd),
+//! docs/domain.md §3.1) and in [`Units`]: candela by default (1 unit of length = 1 cd),
 //! or relative to the peak (I_max = 1), or cd/klm (1000 I / Φ). The units are
 //! written into every file's metadata.
 //!

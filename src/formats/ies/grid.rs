@@ -66,7 +66,7 @@ pub(super) fn check_or_repair(
     Ok(())
 }
 
-/// Type C grid → distribution: symmetry from the horizontal angle set (LM-63 / DOMAIN §1.4).
+/// Type C grid → distribution: symmetry from the horizontal angle set (LM-63; docs/domain.md §1.4).
 ///
 /// | H set | symmetry |
 /// |---|---|

@@ -1,6 +1,6 @@
 //! Type A and Type B grids → Type C, through direction vectors.
 //!
-//! # Frame (DOMAIN §1.5)
+//! # Frame (docs/domain.md §1.5)
 //! Right-handed, z up: x = C0 = H0 horizontal, y = C90, nadir = −z. With
 //! counter-clockwise handedness (the default) a positive H points towards +y:
 //! - Type B (planes share the y axis; V = plane angle about y, H = angle out of the plane):

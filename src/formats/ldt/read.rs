@@ -476,7 +476,7 @@ struct Head {
     n_line: usize,
 }
 
-/// Field-group or block layout of `n` lamp sets (DOMAIN §2.1): a layout
+/// Field-group or block layout of `n` lamp sets (docs/domain.md §2.1): a layout
 /// passes when every count, flux and wattage field (26a, 26c, 26f) holds a
 /// number. Field groups win whenever they pass; blocks are used only when
 /// field groups fail and blocks pass. The writer always writes field groups,

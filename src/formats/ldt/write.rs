@@ -310,7 +310,7 @@ fn derived_grid(dist: &Distribution) -> Grid {
     Grid { c, dc, dg, planes }
 }
 
-/// Flux (lm) of the distribution by the zonal midpoint rule (DOMAIN §5), and its part below γ = 90.
+/// Flux (lm) of the distribution by the zonal midpoint rule (docs/domain.md §5), and its part below γ = 90.
 fn zonal_flux(dist: &Distribution) -> (f64, f64) {
     let g = dist.gamma_angles_deg();
     let ng = g.len();
