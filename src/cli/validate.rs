@@ -70,7 +70,8 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
             }
             match r {
                 Ok(lum) => {
-                    let info = InfoReport::of_document(&lum);
+                    let mut info = InfoReport::of_document(&lum);
+                    info.path = f.display().to_string();
                     Line {
                         path: f.display().to_string(),
                         ok: true,
