@@ -115,20 +115,13 @@ fn extent(angles: &[f64], values: &[f64], peak: usize, threshold: f64) -> f64 {
         let (a0, a1, v0, v1) = (angles[from], angles[to], values[from], values[to]);
         a0 + (a1 - a0) * (v0 - threshold) / (v0 - v1)
     };
-    let mut hi = angles[angles.len() - 1];
-    for j in peak + 1..angles.len() {
-        if values[j] < threshold {
-            hi = crossing(j - 1, j);
-            break;
-        }
-    }
-    let mut lo = angles[0];
-    for j in (0..peak).rev() {
-        if values[j] < threshold {
-            lo = crossing(j + 1, j);
-            break;
-        }
-    }
+    let hi = (peak + 1..angles.len())
+        .find(|&j| values[j] < threshold)
+        .map_or(angles[angles.len() - 1], |j| crossing(j - 1, j));
+    let lo = (0..peak)
+        .rev()
+        .find(|&j| values[j] < threshold)
+        .map_or(angles[0], |j| crossing(j + 1, j));
     hi - lo
 }
 
