@@ -96,6 +96,16 @@ fn table_equals_the_per_file_commands() {
     ));
     assert!(out.contains("failed to load"), "{out}");
     let table = rows(&read(&d.join("t.parquet")));
+    // Schema 2 (issue 27: lamp flux, manufacturer, catalogue, input watts, efficacy).
+    let builder = ParquetRecordBatchReaderBuilder::try_new(std::fs::File::open(d.join("t.parquet")).unwrap()).unwrap();
+    let schema = builder
+        .metadata()
+        .file_metadata()
+        .key_value_metadata()
+        .and_then(|kv| kv.iter().find(|kv| kv.key == "photosolid.batch.schema"))
+        .and_then(|kv| kv.value.clone());
+    assert_eq!(schema.as_deref(), Some("2"));
+    assert_eq!(photosolid::batch::table::SCHEMA_VERSION, "2");
     let n_data = std::fs::read_dir(&data)
         .unwrap()
         .filter(|e| {
@@ -131,6 +141,12 @@ fn table_equals_the_per_file_commands() {
             "n_c",
             "n_c_full",
             "n_gamma",
+            // Schema 2 (issue 27).
+            "lamp_flux_lm",
+            "manufacturer",
+            "catalogue",
+            "input_watts",
+            "efficacy_lm_per_w",
         ] {
             close(&row[k], &info[k], &format!("{path} {k}"));
         }

@@ -191,12 +191,110 @@ fn info_on_missing_file_is_a_clear_error() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("nope.ldt"));
 }
 
+/// The README's demo paragraph ("Run the main job on a built-in example luminaire", README.md
+/// lines 17-33: "It prints its results and writes its files (the example `.ldt`, textures as EXR
+/// and PNG, the comparison report `index.html` with its plots ...) ... opens with an interactive
+/// 3D view ... It ends with the built-in scene: illuminance on a road and a sensor, and the plan")
+/// checked claim by claim against the files `demo --output d` writes. Each claim is a phrase that
+/// must still be in the README (whitespace folded) and a check of the output.
 #[test]
-fn demo_runs_without_files() {
+fn demo_writes_what_the_readme_says() {
+    let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let readme = readme.split_whitespace().collect::<Vec<_>>().join(" ");
     let t = tempfile::tempdir().unwrap();
     let out = ok(&run(&["demo", "--output", "d"], t.path()));
     assert!(out.contains("flux"), "{out}");
-    assert!(t.path().join("d/demo_roadway.ldt").exists());
+    let d = t.path().join("d");
+    let html = std::fs::read_to_string(d.join("index.html")).unwrap();
+    let files: Vec<String> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let with = |prefix: &str, ext: &str| -> Vec<String> {
+        files
+            .iter()
+            .filter(|f| f.starts_with(prefix) && f.ends_with(ext))
+            .cloned()
+            .collect()
+    };
+    let pos = |needle: &str| html.find(needle).unwrap_or_else(|| panic!("index.html lacks {needle}"));
+    let claims: Vec<(&str, Box<dyn Fn()>)> = vec![
+        (
+            "It prints its results",
+            Box::new(|| assert!(out.contains("== every reconstruction against the truth"), "{out}")),
+        ),
+        (
+            "the example `.ldt`",
+            Box::new(|| {
+                photosolid::load(d.join("demo_roadway.ldt")).unwrap();
+            }),
+        ),
+        (
+            "textures as EXR and PNG",
+            Box::new(|| {
+                let (exr, png) = (with("texture-", ".exr"), with("texture-", ".png"));
+                assert_eq!(exr.len(), 6, "one EXR per filter: {files:?}");
+                assert_eq!(png.len(), 6, "one PNG per filter: {files:?}");
+                let (tex, _) = photosolid::reconstruct::exr_io::read_exr(d.join("texture-catmull-rom.exr")).unwrap();
+                assert!(tex.data.iter().any(|&v| v > 0.0));
+                let bytes = std::fs::read(d.join("texture-catmull-rom.png")).unwrap();
+                assert_eq!(&bytes[..4], b"\x89PNG");
+            }),
+        ),
+        (
+            "the comparison report `index.html` with its plots",
+            Box::new(|| {
+                assert!(html.contains("<h2>Metrics</h2>") && html.contains("data:image/png;base64,"));
+                assert!(!with("", ".png").is_empty());
+            }),
+        ),
+        (
+            "every reconstruction measured against the example's closed form",
+            Box::new(|| assert!(html.contains("truth"))),
+        ),
+        (
+            "`--output DIR` writes them elsewhere",
+            Box::new(|| assert!(!t.path().join("out/demo").exists())),
+        ),
+        (
+            "opens with an interactive 3D view of the solids",
+            Box::new(|| {
+                let view = pos("<section class=\"psv\">");
+                assert!(view < pos("<h2>Metrics</h2>"), "the 3D view comes before the metrics");
+                assert!(
+                    html[..view].matches("<h2>").count() == 0,
+                    "nothing precedes the 3D view"
+                );
+            }),
+        ),
+        (
+            "It ends with the built-in scene: illuminance on a road and a sensor",
+            Box::new(|| {
+                let scene = pos("<h2>Built-in scene</h2>");
+                assert!(scene > pos("<h2>Figures</h2>"));
+                assert!(html[scene..].contains("road") && html[scene..].contains("sensor"));
+                assert!(html[scene..].contains(" lx"), "illuminance in lux");
+                assert!(html[scene..].contains("href=\"isolux_1_road.png\"") && d.join("isolux_1_road.png").exists());
+            }),
+        ),
+        (
+            "and the plan (the cheapest representation within 1 % on that scene)",
+            Box::new(|| {
+                let plan = pos("<h2>Plan</h2>");
+                assert!(plan > pos("<h2>Built-in scene</h2>"));
+                assert_eq!(html[plan..].matches("<h2>").count(), 1, "the plan is the last section");
+                assert!(
+                    html[plan..].contains("1%") || html[plan..].contains("1 %"),
+                    "{}",
+                    &html[plan..]
+                );
+            }),
+        ),
+    ];
+    for (phrase, check) in claims {
+        assert!(readme.contains(phrase), "README no longer says: {phrase}");
+        check();
+    }
 }
 
 #[test]
@@ -255,4 +353,118 @@ fn texture_counts_clamped_overshoot_unless_unclamped() {
         "unclamped texture keeps negative overshoot"
     );
     assert!(meta.source.unwrap().contains("spot.ldt"));
+}
+
+/// A Type B floodlight file written by hand: I = 1000 (1 - |H|/80)(1 - |V|/40) cd, piecewise
+/// linear on the 5° x 2.5° grid, so the spreads are exact: beam (50 %) 80° H x 40° V, field
+/// (10 %) 144° H x 72° V, NEMA 7H x 5V (NEMA FL 11: 130° and over 7, 70-100° 5). Input watts
+/// 50 -> efficacy = flux / 50; the declared 0.5 m wide, 0.3 m long, 0.1 m high box.
+#[test]
+fn info_type_b_floodlight_spreads_nema_type_watts_and_opening() {
+    let t = tempfile::tempdir().unwrap();
+    let steps = |from: f64, to: f64, step: f64| -> Vec<f64> {
+        let n = ((to - from) / step).round() as usize;
+        (0..=n).map(|i| from + step * i as f64).collect()
+    };
+    let (hs, vs) = (steps(-90.0, 90.0, 5.0), steps(-90.0, 90.0, 2.5));
+    let list = |v: &[f64]| v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(" ");
+    let mut text = format!(
+        "IESNA:LM-63-2002\n[MANUFAC] ACME\n[LUMCAT] FL-1\nTILT=NONE\n1 -1 1 {} {} 2 2 0.5 0.3 0.1\n1 1 50\n{}\n{}\n",
+        vs.len(),
+        hs.len(),
+        list(&vs),
+        list(&hs)
+    );
+    for h in &hs {
+        let row: Vec<f64> = vs
+            .iter()
+            .map(|v| 1000.0 * (1.0 - h.abs() / 80.0).max(0.0) * (1.0 - v.abs() / 40.0).max(0.0))
+            .collect();
+        text.push_str(&list(&row));
+        text.push('\n');
+    }
+    std::fs::write(t.path().join("flood.ies"), text).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "flood.ies", "--json"], t.path()))).unwrap();
+    assert_eq!(v["photometric_type"], "B");
+    assert_eq!(v["path"], "flood.ies");
+    for (key, h, vv) in [("beam_spread_deg", 80.0, 40.0), ("field_spread_deg", 144.0, 72.0)] {
+        assert_close!(v[key]["horizontal"].as_f64().unwrap(), h, abs = 1e-9, "{key}");
+        assert_close!(v[key]["vertical"].as_f64().unwrap(), vv, abs = 1e-9, "{key}");
+    }
+    assert_eq!(v["nema_type"], "7H x 5V");
+    assert_eq!(v["input_watts"], 50.0);
+    let flux = v["flux_lm"].as_f64().unwrap();
+    assert_close!(v["efficacy_lm_per_w"].as_f64().unwrap(), flux / 50.0, rel = 1e-12);
+    let dims = &v["luminous_dimensions_m"];
+    assert_eq!(
+        (dims["width_m"].as_f64(), dims["length_m"].as_f64()),
+        (Some(0.5), Some(0.3))
+    );
+    assert_close!(dims["height_m"].as_f64().unwrap(), 0.1, abs = 1e-12);
+    assert_eq!(dims["shape"], "box");
+    let text = ok(&run(&["info", "flood.ies"], t.path()));
+    for want in [
+        "80.0° H x 40.0° V",
+        "144.0° H x 72.0° V",
+        "7H x 5V",
+        "50.00 W",
+        "lm/W",
+        "box",
+    ] {
+        assert!(text.contains(want), "{want} missing in\n{text}");
+    }
+    // A Type C file has no floodlight keys (null), and no watts: no efficacy.
+    ok(&run(&["synth", "lambertian", "-o", "l.ldt"], t.path()));
+    let c: serde_json::Value = serde_json::from_str(&ok(&run(&["info", "l.ldt", "--json"], t.path()))).unwrap();
+    for key in ["beam_spread_deg", "field_spread_deg", "nema_type", "efficacy_lm_per_w"] {
+        assert!(c[key].is_null(), "{key}: {}", c[key]);
+    }
+}
+
+/// The three Type B files of the corpus: spreads equal those computed by an independent
+/// script reading the files' grids directly (linear crossings around the peak, the half grid
+/// H 0..90 mirrored), to 1e-6°; input watts and efficacy = flux / watts.
+#[test]
+fn info_type_b_corpus_spreads() {
+    let Some(root) = corpus() else { return };
+    for (file, beam, field, nema, watts) in [
+        (
+            "cu-ies/flood_2.2.ies",
+            (113.109632, 90.167505),
+            (154.303770, 122.343866),
+            "7H x 6V",
+            193.742,
+        ),
+        (
+            "lithonia-iesparser/ELM2_LED.ies",
+            (30.428571, 28.383901),
+            (65.323077, 63.786364),
+            "4H x 4V",
+            1.5,
+        ),
+        (
+            "appleseed/test_iesparser_2.ies",
+            (69.974551, 21.691001),
+            (108.602484, 106.462445),
+            "6H x 6V",
+            115.0,
+        ),
+    ] {
+        let path = root.join(file);
+        let v: serde_json::Value =
+            serde_json::from_str(&ok(&run(&["info", path.to_str().unwrap(), "--json"], &root))).unwrap();
+        for (key, (h, vv)) in [("beam_spread_deg", beam), ("field_spread_deg", field)] {
+            assert_close!(v[key]["horizontal"].as_f64().unwrap(), h, abs = 1e-6, "{file} {key}");
+            assert_close!(v[key]["vertical"].as_f64().unwrap(), vv, abs = 1e-6, "{file} {key}");
+        }
+        assert_eq!(v["nema_type"], nema, "{file}");
+        assert_eq!(v["input_watts"].as_f64(), Some(watts), "{file}");
+        let flux = v["flux_lm"].as_f64().unwrap();
+        assert_close!(
+            v["efficacy_lm_per_w"].as_f64().unwrap(),
+            flux / watts,
+            rel = 1e-12,
+            "{file}"
+        );
+    }
 }

@@ -3,11 +3,17 @@
 //! `DIR/index.html`: one table row per file, sortable by any column (click
 //! a header; a few lines of inline JavaScript, no network), with a polar
 //! thumbnail of the C0-C180 and C90-C270 planes (cd) per loaded file
-//! (`DIR/thumb-NNNNN.png`, 360 × 360 px, shown at 120 px). Outliers come first: files that
+//! (`DIR/thumb-NNNNN.png`, 360 × 360 px, shown at [`THUMB_SHOWN_PX`] px). Outliers come first: files that
 //! did not load, then hold-out/fit failures, flux mismatches (computed flux
 //! more than [`crate::photometry::FLUX_MISMATCH`] off the declared one) and
 //! files with warnings, each with the reason in the `outlier` column.
 //! `DIR/report.json` holds the rows, `DIR/report.md` the outliers.
+//!
+//! The page fits a 1280 px wide window ([`PAGE_WIDTH_PX`]): a fixed table
+//! layout ([`COLUMNS`]: the thumbnail, path and outlier columns have fixed
+//! widths, the numeric columns share the rest), the path shown as file name
+//! over its directory, each truncated with an ellipsis and the full path in
+//! the cell's `title`, the outlier reason wrapped.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -24,6 +30,37 @@ use crate::report::plot::{self, PolarSpec, Series, SeriesStyle};
 
 /// Thumbnail size, px.
 pub const THUMB_SIZE: (u32, u32) = (360, 360);
+
+/// Size a thumbnail is shown at on the page, px (click it for the full image).
+pub const THUMB_SHOWN_PX: u32 = 56;
+
+/// The window width the page is laid out for, px.
+pub const PAGE_WIDTH_PX: u32 = 1280;
+
+/// The page's columns: header (HTML) and width in px (`None`: an equal share of
+/// what the fixed columns leave, at least [`MIN_NUMERIC_PX`]).
+pub const COLUMNS: [(&str, Option<u32>); 17] = [
+    ("polar (cd)", Some(THUMB_SHOWN_PX + 8)),
+    ("path", Some(170)),
+    ("outlier", Some(140)),
+    ("format", Some(52)),
+    ("symmetry", Some(70)),
+    ("grid C x &gamma;", None),
+    ("max cd", None),
+    ("flux lm", None),
+    ("declared lm", None),
+    ("flux ratio", None),
+    ("LOR", None),
+    ("beam &deg;", None),
+    ("field &deg;", None),
+    ("best filter", Some(78)),
+    ("hold-out RMS % I_max", None),
+    ("fitted GL", Some(86)),
+    ("GL error", None),
+];
+
+/// The narrowest a numeric column may get, px: "1234567.8" at 12 px plus padding.
+pub const MIN_NUMERIC_PX: u32 = 60;
 
 /// Why `r` is an outlier (empty when it is not), and its rank: 0 not loaded,
 /// 1 a step failed, 2 a physically impossible declaration or a flux mismatch, 3 other warnings, 4 none.
@@ -126,10 +163,14 @@ pub fn to_html(rows: &[BatchRecord], thumbs: &[Option<String>]) -> String {
     let n_out = rows.iter().filter(|r| r.is_outlier()).count();
     let n_ok = rows.iter().filter(|r| r.ok).count();
     let mut h = String::from(
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>photosolid batch catalogue</title><style>\
-body{font-family:sans-serif;margin:1em}table{border-collapse:collapse;font-size:13px}\
-th,td{border:1px solid #ccc;padding:2px 6px;text-align:right}td.t{text-align:left}\
-th{cursor:pointer;background:#eee;position:sticky;top:0}tr.out td{background:#fff3e0}</style></head><body>\n",
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width\">\
+<title>photosolid batch catalogue</title><style>\
+body{font-family:sans-serif;margin:8px}table{border-collapse:collapse;font-size:12px;table-layout:fixed;width:100%}\
+th,td{border:1px solid #ccc;padding:2px 4px;text-align:right;overflow:hidden;overflow-wrap:anywhere}\
+td.t{text-align:left}td.p{text-align:left;white-space:nowrap}\
+td.p div{overflow:hidden;text-overflow:ellipsis}td.p .dir{color:#777;font-size:11px}\
+td img{display:block}\
+th{cursor:pointer;background:#eee;position:sticky;top:0;font-weight:600;overflow-wrap:normal}tr.out td{background:#fff3e0}</style></head><body>\n",
     );
     let _ = writeln!(
         h,
@@ -142,30 +183,40 @@ th{cursor:pointer;background:#eee;position:sticky;top:0}tr.out td{background:#ff
         n_out,
         100.0 * crate::photometry::FLUX_MISMATCH
     );
-    h.push_str(
-        "<table><thead><tr><th>polar (cd)</th><th>path</th><th>outlier</th><th>format</th><th>symmetry</th>\
-<th>grid C x &gamma;</th><th>max cd</th><th>flux lm</th><th>declared lm</th><th>flux ratio</th><th>LOR</th>\
-<th>beam &deg;</th><th>field &deg;</th><th>best filter</th><th>hold-out RMS % I_max</th><th>fitted GL</th>\
-<th>GL error</th></tr></thead><tbody>\n",
-    );
+    h.push_str("<table><colgroup>");
+    for (_, w) in COLUMNS {
+        match w {
+            Some(w) => {
+                let _ = write!(h, "<col style=\"width:{w}px\">");
+            }
+            None => h.push_str("<col>"),
+        }
+    }
+    h.push_str("</colgroup><thead><tr>");
+    for (name, _) in COLUMNS {
+        let _ = write!(h, "<th>{name}</th>");
+    }
+    h.push_str("</tr></thead><tbody>\n");
     for &i in &order {
         let r = &rows[i];
         let (rank, why) = outlier(r);
+        let path = esc(&r.path);
         let img = thumbs[i]
             .as_ref()
             .map(|f| {
                 format!(
-                    "<img src=\"{}\" width=\"120\" height=\"120\" loading=\"lazy\" alt=\"polar\">",
+                    "<a href=\"{0}\"><img src=\"{0}\" width=\"{THUMB_SHOWN_PX}\" height=\"{THUMB_SHOWN_PX}\" \
+                     loading=\"lazy\" alt=\"polar\"></a>",
                     esc(f)
                 )
             })
             .unwrap_or_default();
         let _ = write!(
             h,
-            "<tr{}><td data-v=\"{rank}\">{img}</td><td class=\"t\">{}</td><td class=\"t\" data-v=\"{rank} {}\">{}</td>\
-<td class=\"t\">{}</td><td class=\"t\">{}</td><td data-v=\"{}\">{}</td>",
+            "<tr{}><td data-v=\"{rank}\">{img}</td><td class=\"p\" title=\"{path}\" data-v=\"{path}\">{}</td>\
+<td class=\"t\" data-v=\"{rank} {}\">{}</td><td class=\"t\">{}</td><td class=\"t\">{}</td><td data-v=\"{}\">{}</td>",
             if rank < 4 { " class=\"out\"" } else { "" },
-            esc(&r.path),
+            path_cell(&r.path),
             esc(&why),
             esc(&why),
             esc(r.format.as_deref().unwrap_or("-")),
@@ -200,6 +251,16 @@ th{cursor:pointer;background:#eee;position:sticky;top:0}tr.out td{background:#ff
     }
     let _ = write!(h, "</tbody></table>\n<script>{SORT_JS}</script>\n</body></html>\n");
     h
+}
+
+/// The path cell's content: the file name over its directory, escaped.
+fn path_cell(path: &str) -> String {
+    let p = Path::new(path);
+    let name = p
+        .file_name()
+        .map_or_else(|| path.to_string(), |n| n.to_string_lossy().into_owned());
+    let dir = p.parent().map(|d| d.display().to_string()).unwrap_or_default();
+    format!("<div>{}</div><div class=\"dir\">{}</div>", esc(&name), esc(&dir))
 }
 
 /// A short Markdown list of the outliers.
@@ -283,6 +344,31 @@ mod tests {
         assert!(html.contains("<script>"));
         let png = std::fs::read(out.join("thumb-00000.png")).unwrap();
         assert_eq!(&png[..4], b"\x89PNG");
+    }
+
+    /// At 1280 px every column is on screen: a fixed layout whose fixed widths
+    /// leave each numeric column at least [`MIN_NUMERIC_PX`], small thumbnails,
+    /// the path truncated with its full text in `title`.
+    #[test]
+    fn page_fits_1280_px() {
+        let fixed: u32 = COLUMNS.iter().filter_map(|c| c.1).sum();
+        let flexible = COLUMNS.iter().filter(|c| c.1.is_none()).count() as u32;
+        // body margin 8 px each side.
+        let left = PAGE_WIDTH_PX - 16 - fixed;
+        assert!(left / flexible >= MIN_NUMERIC_PX, "{left} px for {flexible} columns");
+        let mut row = BatchRecord::empty(Path::new("/some/very/long/directory/name/of/a/catalogue/LUM-123.ies"));
+        row.ok = true;
+        row.max_cd = Some(1234567.8);
+        let html = to_html(&[row], &[Some("thumb-00000.png".into())]);
+        assert!(html.contains("table-layout:fixed") && html.contains("width:100%"));
+        assert!(html.contains("text-overflow:ellipsis"));
+        assert_eq!(
+            html.matches("<col").count() - html.matches("<colgroup").count(),
+            COLUMNS.len()
+        );
+        assert!(html.contains(&format!("width=\"{THUMB_SHOWN_PX}\"")) && THUMB_SHOWN_PX <= 64);
+        assert!(html.contains("title=\"/some/very/long/directory/name/of/a/catalogue/LUM-123.ies\""));
+        assert!(html.contains("<div>LUM-123.ies</div>"));
     }
 
     /// A file with a physically impossible declaration is an outlier of rank

@@ -91,6 +91,16 @@ pub struct BatchRecord {
     pub beam_angle_c90_deg: Option<f64>,
     /// IES field angle in the C90-C270 plane, degrees.
     pub field_angle_c90_deg: Option<f64>,
+    /// Bare-lamp flux the file declares, lm (`null` for absolute photometry; schema 2).
+    pub lamp_flux_lm: Option<f64>,
+    /// Manufacturer (IES `[MANUFAC]`, EULUMDAT line 1; schema 2).
+    pub manufacturer: Option<String>,
+    /// Catalogue number (IES `[LUMCAT]`, EULUMDAT line 10; schema 2).
+    pub catalogue: Option<String>,
+    /// Input power, W (IES input watts, EULUMDAT the sum over lamp sets; schema 2).
+    pub input_watts: Option<f64>,
+    /// `flux_lm / input_watts`, lm/W (schema 2).
+    pub efficacy_lm_per_w: Option<f64>,
     /// The filter with the smallest hold-out RMS error ([`HOLDOUT`]), e.g. `catmull-rom`.
     pub best_filter: Option<String>,
     /// Its RMS error over the withheld measured samples, % of I_max.
@@ -138,6 +148,11 @@ impl BatchRecord {
             field_angle_deg: None,
             beam_angle_c90_deg: None,
             field_angle_c90_deg: None,
+            lamp_flux_lm: None,
+            manufacturer: None,
+            catalogue: None,
+            input_watts: None,
+            efficacy_lm_per_w: None,
             best_filter: None,
             best_filter_rms_pct: None,
             best_filter_max_pct: None,
@@ -235,6 +250,12 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     row.field_angle_deg = finite(s.beams.ies_field_deg[0]);
     row.beam_angle_c90_deg = finite(s.beams.ies_beam_deg[1]);
     row.field_angle_c90_deg = finite(s.beams.ies_field_deg[1]);
+    let watts = crate::report::info::input_watts(l);
+    row.lamp_flux_lm = finite(l.declared().lamp_flux_lm);
+    row.manufacturer = Some(l.metadata().manufacturer.clone());
+    row.catalogue = Some(l.metadata().catalogue.clone());
+    row.input_watts = finite(watts);
+    row.efficacy_lm_per_w = finite(watts.map(|w| s.flux.total_lm / w));
 
     let t = Instant::now();
     match holdout(lum.distribution(), HOLDOUT, &Filter::ALL) {

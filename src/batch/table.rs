@@ -25,7 +25,10 @@ use super::{BatchRecord, HOLDOUT};
 use crate::error::{Error, ErrorKind, Location, ParseError, Result};
 
 /// Version of the column set; bumped when a column is added, renamed or retyped.
-pub const SCHEMA_VERSION: &str = "1";
+///
+/// 2 (issue 27): `lamp_flux_lm`, `manufacturer`, `catalogue`, `input_watts`, `efficacy_lm_per_w`
+/// after `field_angle_c90_deg`; a schema-1 table still reads (those columns null).
+pub const SCHEMA_VERSION: &str = "2";
 
 /// Rows per Parquet row group.
 pub const ROW_GROUP: usize = 65_536;
@@ -88,6 +91,11 @@ fn columns(rows: &[BatchRecord]) -> Vec<(&'static str, ArrayRef, bool)> {
         ("field_angle_deg", floats(rows, |r| r.field_angle_deg), true),
         ("beam_angle_c90_deg", floats(rows, |r| r.beam_angle_c90_deg), true),
         ("field_angle_c90_deg", floats(rows, |r| r.field_angle_c90_deg), true),
+        ("lamp_flux_lm", floats(rows, |r| r.lamp_flux_lm), true),
+        ("manufacturer", strings(rows, |r| r.manufacturer.as_deref()), true),
+        ("catalogue", strings(rows, |r| r.catalogue.as_deref()), true),
+        ("input_watts", floats(rows, |r| r.input_watts), true),
+        ("efficacy_lm_per_w", floats(rows, |r| r.efficacy_lm_per_w), true),
         ("best_filter", strings(rows, |r| r.best_filter.as_deref()), true),
         ("best_filter_rms_pct", floats(rows, |r| r.best_filter_rms_pct), true),
         ("best_filter_max_pct", floats(rows, |r| r.best_filter_max_pct), true),
@@ -268,6 +276,18 @@ pub fn rows_of(b: &RecordBatch) -> std::result::Result<Vec<BatchRecord>, String>
     ];
     let nums: Vec<Vec<Option<f64>>> = names.iter().map(|n| f(n)).collect::<std::result::Result<_, _>>()?;
     let (best, gl) = (s("best_filter")?, s("fitted_gl")?);
+    // Schema 2 columns: null when reading a schema-1 table (e.g. `batch --resume` on an older file).
+    let rows = b.num_rows();
+    let f2 = |name| match b.column_by_name(name) {
+        None => Ok(vec![None; rows]),
+        Some(_) => f(name),
+    };
+    let s2 = |name| match b.column_by_name(name) {
+        None => Ok(vec![None; rows]),
+        Some(_) => s(name),
+    };
+    let (lamp_flux, watts, efficacy) = (f2("lamp_flux_lm")?, f2("input_watts")?, f2("efficacy_lm_per_w")?);
+    let (manufacturer, catalogue) = (s2("manufacturer")?, s2("catalogue")?);
     Ok((0..b.num_rows())
         .map(|i| {
             let x = |k: usize| nums[k][i];
@@ -296,6 +316,11 @@ pub fn rows_of(b: &RecordBatch) -> std::result::Result<Vec<BatchRecord>, String>
                 field_angle_deg: x(10),
                 beam_angle_c90_deg: x(11),
                 field_angle_c90_deg: x(12),
+                lamp_flux_lm: lamp_flux[i],
+                manufacturer: manufacturer[i].clone(),
+                catalogue: catalogue[i].clone(),
+                input_watts: watts[i],
+                efficacy_lm_per_w: efficacy[i],
                 best_filter: best[i].clone(),
                 best_filter_rms_pct: x(13),
                 best_filter_max_pct: x(14),

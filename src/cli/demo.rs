@@ -10,13 +10,21 @@
 //! (`photosolid::scene::demo_scene`). The report also shows a plane lit by
 //! the luminaire through the bilinear and Catmull-Rom lookups (GPU texture
 //! hardware when an adapter exists, and the CPU reference), with EXRs.
+//!
+//! What the README's demo paragraph promises, file by file (checked by
+//! `tests/cli.rs` `demo_writes_what_the_readme_says`): `demo_roadway.ldt`; the
+//! factor-5 texture of every filter as `texture-FILTER.exr` and
+//! `texture-FILTER.png`; `index.html` opening with the 3D view, with its plots,
+//! ending with the built-in scene (illuminance on the road and the sensor,
+//! its isolux maps `isolux_*.png`) and the plan.
 
 use std::path::PathBuf;
 
 use clap::Args;
 use photosolid::compare::{compare, CompareOptions};
 use photosolid::fit::{fit, FitOptions, FitReport};
-use photosolid::reconstruct::{holdout, render, Filter, HoldoutSpec, LightTexture};
+use photosolid::reconstruct::{exr_io, holdout, render, Filter, HoldoutSpec, LightTexture};
+use photosolid::report::plot::{write_texture_preview, TexturePreview};
 use photosolid::report::{compare_report, InfoReport};
 use photosolid::synth::{GridSpec, Synth, Truth};
 
@@ -43,16 +51,30 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     outln!("{text}");
     let d = lum.distribution();
 
-    outln!("== textures (factor 5) ==");
+    outln!("== textures (factor 5; EXR and PNG in {}) ==", a.output.display());
     let tex = LightTexture::new(d)?;
     for f in Filter::ALL {
         let r = render(&tex, f, 5)?;
+        let (exr, png) = (
+            a.output.join(format!("texture-{f}.exr")),
+            a.output.join(format!("texture-{f}.png")),
+        );
+        exr_io::write_exr(
+            &exr,
+            &r,
+            &exr_io::ExrMeta {
+                source: Some("built-in synthetic road luminaire".into()),
+            },
+        )?;
+        write_texture_preview(&png, &TexturePreview::new(&r))?;
         outln!(
-            "{:<16} {} x {} texels ({} clamped)",
+            "{:<16} {} x {} texels ({} clamped): {}, {}",
             f.to_string(),
             r.mapping.width,
             r.mapping.height,
-            r.clamped
+            r.clamped,
+            exr.display(),
+            png.display()
         );
     }
 
@@ -86,21 +108,40 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     print!("{}", compare_report::to_text(&c));
     let mut figs = compare_report::figures(&c)?;
     figs.extend(shading_figures(&tex, &a.output)?);
-    let (md, html) = (
+
+    const SCENE_TITLE: &str = "built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it";
+    outln!("\n== {SCENE_TITLE} ==");
+    let scene = photosolid::scene::demo_scene()?;
+    let lit = photosolid::scene::illuminance::evaluate(&scene, None)?;
+    let scene_text = photosolid::report::scene_report::scene_text(&lit);
+    outln!("{scene_text}");
+    let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
+    let plan_text = photosolid::report::scene_report::plan_text(&plan);
+    outln!("{plan_text}");
+    let mut maps = Vec::new();
+    for path in photosolid::scene::isolux::write_maps(&scene, &lit, &a.output)? {
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        maps.push(name);
+    }
+
+    let (mut md, mut html) = (
         compare_report::to_markdown(&c, &figs),
         compare_report::to_html(&c, &figs),
     );
+    // The report ends with the scene and the plan (README, `demo`).
+    let tail = photosolid::report::scene_report::scene_and_plan_html(SCENE_TITLE, &scene_text, &maps, &plan_text);
+    match html.rfind("</body>") {
+        Some(i) => html.insert_str(i, &tail),
+        None => html.push_str(&tail),
+    }
+    md.push_str(&format!(
+        "\n## Built-in scene\n\n{SCENE_TITLE}\n\n```\n{scene_text}\n```\n\n## Plan\n\n```\n{plan_text}\n```\n"
+    ));
     compare_report::write_files(&a.output, &figs, &c, &md, &html)?;
     outln!("report written to {}", a.output.join("index.html").display());
-
-    outln!("\n== built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it ==");
-    let scene = photosolid::scene::demo_scene()?;
-    outln!(
-        "{}",
-        photosolid::report::scene_report::scene_text(&photosolid::scene::illuminance::evaluate(&scene, None)?)
-    );
-    let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
-    outln!("{}", photosolid::report::scene_report::plan_text(&plan));
     Ok(0)
 }
 

@@ -47,7 +47,9 @@ pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
         let options = DerivedOptions {
             ugr_spacing_h: a.ugr_spacing,
         };
-        reports.push(InfoReport::of_document_with(&doc, photosolid::report::info::Tables::Compute, &options));
+        let mut report = InfoReport::of_document_with(&doc, photosolid::report::info::Tables::Compute, &options);
+        report.path = f.display().to_string();
+        reports.push(report);
     }
     match reports.as_slice() {
         [one] => super::print_report(a.json, &files[0], one, &one.to_text())?,

@@ -78,7 +78,8 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
             }
             match r {
                 Ok(lum) => {
-                    let info = InfoReport::of_document_with(&lum, tables, &Default::default());
+                    let mut info = InfoReport::of_document_with(&lum, tables, &Default::default());
+                    info.path = f.display().to_string();
                     Line {
                         path: f.display().to_string(),
                         ok: true,

@@ -11,6 +11,7 @@
 pub mod beam;
 pub mod bug;
 pub mod derived;
+pub mod floodlight;
 pub mod flux;
 pub mod luminance;
 pub mod ugr;
@@ -35,6 +36,7 @@ mod test_support {
 
 pub use beam::{beam_angles, plane_profile, spread_angle, BeamAngles};
 pub use derived::Derived;
+pub use floodlight::{floodlight, Floodlight};
 pub use flux::{flux, zone_flux, Flux};
 
 use serde::Serialize;

@@ -454,6 +454,10 @@ img{max-width:100%;border:1px solid #ddd}\n\
         let _ = writeln!(s, "<li>{}</li>", esc(&l));
     }
     s.push_str("</ul>\n");
+    // The report opens with the 3D view (README: "Every HTML report ... opens with an interactive 3D view").
+    if let Some(v) = c.plots.as_ref().and_then(|p| p.viewer.as_ref()) {
+        s.push_str(&crate::report::viewer::html(v, "the static figures below"));
+    }
     if let Some(rows) = &c.photometry_side_by_side {
         s.push_str("<h2>Photometry side by side</h2>\n<p>Difference = OTHER &minus; FILE.</p>\n<table>\n<tr><th>quantity</th><th>unit</th><th>FILE</th><th>OTHER</th><th>difference</th></tr>\n");
         let f = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
@@ -488,9 +492,6 @@ img{max-width:100%;border:1px solid #ddd}\n\
         esc(&c.units),
         esc(&hausdorff_meaning(c))
     );
-    if let Some(v) = c.plots.as_ref().and_then(|p| p.viewer.as_ref()) {
-        s.push_str(&crate::report::viewer::html(v, "the static figures below"));
-    }
     if !figs.is_empty() {
         s.push_str("<h2>Figures</h2>\n");
         for f in figs {

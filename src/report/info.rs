@@ -25,6 +25,13 @@
 //! `bug_rating`, `cut_off_angle_deg`), and `gldf_comparison`, its rows
 //! `{quantity, declared, computed, difference}` as text
 //! ([`crate::report::declared`]).
+//! `path` (the file as given), `input_watts` (IES input watts, EULUMDAT the sum over lamp sets;
+//! `null` when unknown or 0), `efficacy_lm_per_w` (computed `flux_lm` / `input_watts`),
+//! `luminous_dimensions_m` `{length_m, width_m, height_m, shape}` (as declared; `shape` a word of
+//! [`crate::scene::opening::Opening`]), and for Type B files (`null` otherwise)
+//! `beam_spread_deg` / `field_spread_deg` `{horizontal, vertical}` (NEMA FL 11 spreads at 50 % /
+//! 10 % of I_max in the Type B planes through the peak, [`crate::photometry::floodlight`]) and
+//! `nema_type` (e.g. `"6H x 5V"`, of the field spreads).
 
 use serde::Serialize;
 
@@ -110,6 +117,22 @@ pub struct InfoReport {
     pub gldf_declared: Option<crate::formats::gldf::GldfDeclared>,
     /// The declared values next to the computed ones, one row per declared quantity.
     pub gldf_comparison: Option<Vec<crate::report::declared::DeclaredRow>>,
+    /// The file's path, as given (set by the caller; empty when not read from a file).
+    pub path: String,
+    /// Input power, W: IES the input watts field, EULUMDAT the sum over the lamp sets, TM-33
+    /// `InputWattage`; `None` when the file gives none (or 0).
+    pub input_watts: Option<f64>,
+    /// Luminous efficacy: computed luminaire flux / input watts, lm/W; `None` without input watts.
+    pub efficacy_lm_per_w: Option<f64>,
+    /// The luminous opening as the file declares it, m, with its shape.
+    pub luminous_dimensions_m: LuminousDimensions,
+    /// Type B (floodlight) files: full angles where I >= 50 % of I_max in the horizontal and
+    /// vertical planes through the peak, in the Type B frame (NEMA FL 11); `None` otherwise.
+    pub beam_spread_deg: Option<photometry::floodlight::Spread>,
+    /// Type B files: the same at 10 % of I_max.
+    pub field_spread_deg: Option<photometry::floodlight::Spread>,
+    /// Type B files: NEMA floodlight type of the field spreads, e.g. `6H x 5V` (NEMA FL 11-1982).
+    pub nema_type: Option<String>,
     /// Reader and consistency warnings.
     pub warnings: Vec<Warning>,
     /// Derived photometry: flux code, zonal lumens, UGR, BUG, luminance (flattened keys).
@@ -117,10 +140,63 @@ pub struct InfoReport {
     pub derived: photometry::Derived,
 }
 
+/// The luminous opening's size as the file declares it (absolute values, m) and its shape.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LuminousDimensions {
+    /// Along C0, m.
+    pub length_m: f64,
+    /// Along C90, m.
+    pub width_m: f64,
+    /// Height, m.
+    pub height_m: f64,
+    /// `point`, `rectangle`, `ellipse`, `vertical-ellipse`, `box`, `cylinder`, `ellipsoid` or
+    /// `ldt-area` ([`crate::scene::opening::Opening`]); `None` for a sign combination no LM-63
+    /// version defines.
+    pub shape: Option<&'static str>,
+}
+
+impl LuminousDimensions {
+    /// The opening `lum` declares.
+    pub fn of(lum: &Luminaire) -> Self {
+        use crate::scene::opening::Opening;
+        let o = lum.luminous_opening();
+        let shape = Opening::of_luminaire(lum).ok().map(|o| match o {
+            Opening::Point => "point",
+            Opening::Rectangle { .. } => "rectangle",
+            Opening::Ellipse { .. } => "ellipse",
+            Opening::VerticalEllipse { .. } => "vertical-ellipse",
+            Opening::Box(_) => "box",
+            Opening::Cylinder(_) => "cylinder",
+            Opening::Ellipsoid(_) => "ellipsoid",
+            Opening::LdtArea { .. } => "ldt-area",
+        });
+        LuminousDimensions {
+            length_m: o.length_m.abs(),
+            width_m: o.width_m.abs(),
+            height_m: o.height_m.abs(),
+            shape,
+        }
+    }
+}
+
+/// Input watts as `info` and `batch` report them, W: the sum over EULUMDAT lamp sets, else the declared value.
+pub fn input_watts(lum: &Luminaire) -> Option<f64> {
+    let w = match lum.format() {
+        crate::model::Format::Ldt => lum.lamp_sets().iter().map(|s| s.watts).sum(),
+        _ => lum.declared().input_watts?,
+    };
+    (w.is_finite() && w > 0.0).then_some(w)
+}
+
 impl InfoReport {
     /// Build the report of `lum` (no container declarations), every table included.
     pub fn of(lum: &Luminaire) -> Self {
-        Self::of_parts(lum, None, Tables::Compute, &photometry::derived::DerivedOptions::default())
+        Self::of_parts(
+            lum,
+            None,
+            Tables::Compute,
+            &photometry::derived::DerivedOptions::default(),
+        )
     }
 
     /// Build the report of a read document: with a GLDF container's
@@ -152,6 +228,7 @@ impl InfoReport {
         let s = photometry::summary(lum);
         let mut warnings = lum.warnings().to_vec();
         warnings.extend(s.warnings.iter().cloned());
+        let flood = lum.source_grid().and_then(photometry::floodlight);
         let mut report = InfoReport {
             format: lum.format(),
             version: lum.version().to_string(),
@@ -192,6 +269,13 @@ impl InfoReport {
                 .map(crate::report::color::lamp_color),
             gldf_declared: gldf.cloned(),
             gldf_comparison: None,
+            path: String::new(),
+            input_watts: input_watts(lum),
+            efficacy_lm_per_w: input_watts(lum).map(|w| s.flux.total_lm / w),
+            luminous_dimensions_m: LuminousDimensions::of(lum),
+            beam_spread_deg: flood.as_ref().map(|f| f.beam_spread_deg),
+            field_spread_deg: flood.as_ref().map(|f| f.field_spread_deg),
+            nema_type: flood.as_ref().and_then(|f| f.nema_type()),
             warnings,
             derived: photometry::Derived::without_tables(lum),
         };
@@ -300,9 +384,45 @@ impl InfoReport {
                 },
             ),
             ("absolute photometry", self.absolute.to_string()),
+            ("input watts", opt(self.input_watts, 1.0, " W")),
+            ("efficacy", opt(self.efficacy_lm_per_w, 1.0, " lm/W")),
+            (
+                "luminous opening",
+                format!(
+                    "{:.3} x {:.3} x {:.3} m (length x width x height), {}",
+                    self.luminous_dimensions_m.length_m,
+                    self.luminous_dimensions_m.width_m,
+                    self.luminous_dimensions_m.height_m,
+                    self.luminous_dimensions_m.shape.unwrap_or("shape undefined")
+                ),
+            ),
         ];
         for (k, v) in rows {
             let _ = writeln!(o, "{k:<34} {v}");
+        }
+        let spread = |s: &Option<photometry::floodlight::Spread>| match s {
+            Some(s) => format!("{:.1}° H x {:.1}° V", s.horizontal, s.vertical),
+            None => "-".into(),
+        };
+        if self.beam_spread_deg.is_some() {
+            let _ = writeln!(
+                o,
+                "{:<34} {}",
+                "beam spread (Type B, 50 %)",
+                spread(&self.beam_spread_deg)
+            );
+            let _ = writeln!(
+                o,
+                "{:<34} {}",
+                "field spread (Type B, 10 %)",
+                spread(&self.field_spread_deg)
+            );
+            let _ = writeln!(
+                o,
+                "{:<34} {}",
+                "NEMA type (of the 10 % spreads)",
+                self.nema_type.as_deref().unwrap_or("- (a spread under 10°)")
+            );
         }
         if let (Some(g), Some(rows)) = (&self.gldf_declared, &self.gldf_comparison) {
             o.push_str(&crate::report::declared::to_text(g, rows));

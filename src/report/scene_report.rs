@@ -92,6 +92,32 @@ img{{max-width:100%;border:1px solid #ddd}}\n\
     Ok(s)
 }
 
+/// HTML sections for the end of another report (`photosolid demo`): the
+/// scene (`title`, its text `scene_text`, links to its isolux `maps`, PNG
+/// files beside the page: inlined they would push the demo page past 1 MB)
+/// and the plan (`plan_text`).
+pub fn scene_and_plan_html(title: &str, scene_text: &str, maps: &[String], plan_text: &str) -> String {
+    let mut s = format!(
+        "<h2>Built-in scene</h2>\n<p>{}</p>\n<pre>{}</pre>\n",
+        esc(title),
+        esc(scene_text)
+    );
+    if !maps.is_empty() {
+        s.push_str("<p>Isolux maps:");
+        for m in maps {
+            let _ = write!(s, " <a href=\"{0}\">{0}</a>", esc(m));
+        }
+        s.push_str("</p>\n");
+    }
+    let _ = writeln!(
+        s,
+        "<h2>Plan</h2>\n<p>The cheapest representation of each luminaire within the plan's tolerance on that \
+         scene.</p>\n<pre>{}</pre>",
+        esc(plan_text)
+    );
+    s
+}
+
 /// Write `value` as pretty JSON to `dir/name`, atomically.
 fn write_json(dir: &Path, name: &str, value: &impl serde::Serialize) -> Result<PathBuf, SceneError> {
     let path = dir.join(name);
