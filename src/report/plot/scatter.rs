@@ -7,6 +7,9 @@ use super::axis::{nice_step, Axis};
 use super::canvas::{Align, Canvas};
 use super::{Plot, ScatterPoint, AXIS, GRID, INK, OTHER, PARETO, SCATTER_SIZE};
 
+/// A label's anchor (x, y), alignment and box.
+type Spot = (f32, f32, Align, [f32; 4]);
+
 /// Ratio of the largest to the smallest positive ordinate from which
 /// [`scatter()`] draws its y axis logarithmic.
 const LOG_Y_RATIO: f64 = 20.0;
@@ -283,7 +286,7 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         // Crowded: the free spot of the plot area nearest the point, with a
         // leader line; none at all: the name is left out and counted.
         let pick = near.or_else(|| {
-            let mut best: Option<((f32, f32, Align, [f32; 4]), f32)> = None;
+            let mut best: Option<(Spot, f32)> = None;
             let mut gy = top + 2.0 + th / 2.0;
             while gy + th / 2.0 <= bottom - 2.0 {
                 let mut gx = left + 2.0;
