@@ -515,18 +515,21 @@ fn the_cli_writes_the_contract_keys_and_isolux_maps() {
     assert_eq!(sensor["e_avg_lux"], sensor["e_min_lux"]);
     // The isolux maps: the size we draw; pole 1 (x = -15, y = -1) lies on the sidewalk's far edge
     // (s = 5/40, t = 1): a black dot there.
-    let map_w = photosolid::scene::isolux::MAP_PIXELS;
+    use photosolid::report::plot::isolux::{MAP_LEFT, MAP_PIXELS as map_w, MAP_TOP};
     let road = tiny_skia::Pixmap::decode_png(&std::fs::read(t.path().join("isolux_1_road.png")).unwrap()).unwrap();
-    assert_eq!((road.width(), road.height()), (map_w + 80, 140 + 120));
+    assert_eq!(
+        (road.width(), road.height()),
+        (MAP_LEFT + map_w + 150, MAP_TOP + 160 + 88)
+    );
     let walk = tiny_skia::Pixmap::decode_png(&std::fs::read(t.path().join("isolux_2_sidewalk.png")).unwrap()).unwrap();
-    let (x, y) = (40 + map_w / 8, 40);
+    let (x, y) = (MAP_LEFT + map_w / 8, MAP_TOP);
     let px = walk.pixel(x, y).unwrap();
     assert!(
         px.red() < 30 && px.green() < 30 && px.blue() < 30,
         "{px:?} at ({x}, {y})"
     );
     // Away from the marks the map is false colour (viridis has no grey).
-    let px = walk.pixel(40 + map_w / 2, 40 + 20).unwrap();
+    let px = walk.pixel(MAP_LEFT + map_w / 2, MAP_TOP + 20).unwrap();
     assert!(px.red() != px.green() || px.green() != px.blue(), "{px:?}");
     assert!(t.path().join("scene.json").is_file());
     // plan --tolerance 1% --json: the contract keys.

@@ -8,11 +8,106 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::report::compare_report::esc;
-use crate::report::plot::png_data_uri;
+use crate::report::plot::{isolux_plot, png_data_uri, IsoluxSpec, MapAxis, Plot};
 use crate::report::viewer::{self, SolidSet, ViewerData};
 use crate::scene::illuminance::SceneResult;
 use crate::scene::plan::{Models, PlanResult, Representation};
+use crate::scene::ReceiverShape;
 use crate::scene::{Scene, SceneError};
+use glam::DVec3;
+
+/// The (s, t) plane coordinates of world point `p` on the plane
+/// `origin + s·u + t·v` (least squares for points off the plane).
+fn plane_coords(origin: DVec3, u: DVec3, v: DVec3, p: DVec3) -> (f64, f64) {
+    let d = p - origin;
+    let (uu, uv, vv) = (u.dot(u), u.dot(v), v.dot(v));
+    let (du, dv) = (d.dot(u), d.dot(v));
+    let det = uu * vv - uv * uv;
+    if det == 0.0 {
+        return (f64::NAN, f64::NAN);
+    }
+    ((du * vv - dv * uv) / det, (dv * uu - du * uv) / det)
+}
+
+/// The map axis along `edge` from `origin`: the world coordinate when the
+/// edge runs along x, y or z ("x (m)"), else metres along the edge.
+fn map_axis(origin: DVec3, edge: DVec3, name: &str) -> MapAxis {
+    let len = edge.length();
+    for (a, axis) in ["x", "y", "z"].iter().enumerate() {
+        if len > 0.0 && (edge[a].abs() - len).abs() <= 1e-9 * len {
+            return MapAxis {
+                start: origin[a],
+                end: origin[a] + edge[a],
+                title: format!("{axis} (m)"),
+            };
+        }
+    }
+    MapAxis {
+        start: 0.0,
+        end: len,
+        title: format!("m along {name} from its origin"),
+    }
+}
+
+/// The isolux map of plane receiver `index` ([`isolux_plot`]); `None` for a point receiver.
+///
+/// # Errors
+/// [`SceneError::Io`] naming the map when it cannot be drawn.
+pub fn isolux_map(scene: &Scene, result: &SceneResult, index: usize) -> Result<Option<Plot>, SceneError> {
+    let (Some(rec), Some(res)) = (scene.receivers.get(index), result.receivers.get(index)) else {
+        return Ok(None);
+    };
+    let ReceiverShape::Plane { origin, u, v, nu, nv } = rec.shape else {
+        return Ok(None);
+    };
+    let values: Vec<f64> = res.points.iter().map(|p| p.e_lux).collect();
+    let marks: Vec<(f64, f64)> = scene
+        .luminaires
+        .iter()
+        .map(|l| plane_coords(origin, u, v, l.pose.position))
+        .collect();
+    isolux_plot(&IsoluxSpec {
+        name: &rec.name,
+        values: &values,
+        grid: (nu, nv),
+        size_m: (u.length(), v.length()),
+        e_avg_lux: res.e_avg_lux,
+        u_axis: map_axis(origin, u, "u"),
+        v_axis: map_axis(origin, v, "v"),
+        marks: &marks,
+    })
+    .map(Some)
+    .map_err(|e| SceneError::Io {
+        path: PathBuf::from(format!("isolux map of {}", rec.name)),
+        message: e.to_string(),
+    })
+}
+
+/// Write `isolux_<k>_<name>.png` for every plane receiver into `dir`; returns the paths.
+///
+/// # Errors
+/// [`SceneError::Io`] when a map cannot be drawn or written.
+pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
+    let io = |p: &Path, e: std::io::Error| SceneError::Io {
+        path: p.to_path_buf(),
+        message: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    let mut out = Vec::new();
+    for (k, r) in result.receivers.iter().enumerate() {
+        if let Some(plot) = isolux_map(scene, result, k)? {
+            let safe: String = r
+                .name
+                .chars()
+                .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+                .collect();
+            let path = dir.join(format!("isolux_{}_{safe}.png", k + 1));
+            std::fs::write(&path, plot.png).map_err(|e| io(&path, e))?;
+            out.push(path);
+        }
+    }
+    Ok(out)
+}
 
 /// One luminaire's packed solids: the reference and `shown` (when it is not the reference).
 pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Representation>) -> Result<ViewerData, SceneError> {
@@ -157,7 +252,7 @@ pub fn write_scene_report(
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     let mut written = vec![write_json(dir, "scene.json", result)?];
     let mut maps = Vec::new();
-    for path in crate::scene::isolux::write_maps(scene, result, dir)? {
+    for path in write_maps(scene, result, dir)? {
         let name = path
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())

@@ -23,7 +23,6 @@
 pub mod aim;
 pub mod file;
 pub mod illuminance;
-pub mod isolux;
 pub mod near_field;
 pub mod opening;
 pub mod plan;

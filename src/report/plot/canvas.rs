@@ -7,7 +7,7 @@ use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, PremultipliedColorU
 use crate::error::{Error, ModelError};
 use crate::report::font;
 
-use super::{Series, SeriesStyle, INK, WHITE};
+use super::{Plot, Series, SeriesStyle, TextBox, INK, WHITE};
 
 /// Horizontal anchoring of a text.
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -20,6 +20,8 @@ pub(super) enum Align {
 /// A plot being drawn.
 pub(super) struct Canvas {
     pub pm: Pixmap,
+    /// Every text drawn, with its box (what [`Plot::texts`] returns).
+    pub texts: Vec<TextBox>,
 }
 
 pub(super) fn paint(rgb: [u8; 3]) -> Paint<'static> {
@@ -50,7 +52,7 @@ impl Canvas {
             message: format!("cannot allocate a {what} plot of {w} x {h} px"),
         })?;
         pm.fill(Color::WHITE);
-        Ok(Self { pm })
+        Ok(Self { pm, texts: Vec::new() })
     }
 
     /// Width, px.
@@ -69,6 +71,12 @@ impl Canvas {
             format: "PNG",
             message: e.to_string(),
         })
+    }
+
+    /// The PNG bytes and the boxes of the texts drawn.
+    pub fn finish(self) -> Result<Plot, Error> {
+        let png = self.png()?;
+        Ok(Plot { png, texts: self.texts })
     }
 
     /// Stroke a polyline (at least two points).
@@ -180,7 +188,12 @@ impl Canvas {
             );
         }
         font::draw_text(&mut self.pm, x0 as i32, y0 as i32, s, scale, rgb);
-        [x0, y0, x0 + tw, y0 + th]
+        let b = [x0, y0, x0 + tw, y0 + th];
+        self.texts.push(TextBox {
+            text: s.to_string(),
+            rect: b,
+        });
+        b
     }
 
     /// Text rotated to read bottom to top, centred on (xc, yc).
@@ -190,6 +203,10 @@ impl Canvas {
         let x0 = (xc - th / 2.0).round() as i32;
         let y0 = (yc + tw / 2.0).round() as i32;
         font::draw_text_vertical(&mut self.pm, x0, y0, s, scale, rgb);
+        self.texts.push(TextBox {
+            text: s.to_string(),
+            rect: [x0 as f32, y0 as f32 - tw, x0 as f32 + th, y0 as f32],
+        });
     }
 
     /// The title, centred at the top (scale 2, shortened to fit).
@@ -201,9 +218,12 @@ impl Canvas {
             title.to_string()
         };
         let w = self.w();
-        // Bold: the same text twice, one pixel apart.
-        self.text(w / 2.0, 18.0, &t, 2, Align::Center, INK, false);
-        self.text(w / 2.0 + 1.0, 18.0, &t, 2, Align::Center, INK, false);
+        // Bold: the same text twice, one pixel apart (one box, one pixel wider).
+        let b = self.text(w / 2.0, 18.0, &t, 2, Align::Center, INK, false);
+        font::draw_text(&mut self.pm, b[0] as i32 + 1, b[1] as i32, &t, 2, INK);
+        if let Some(last) = self.texts.last_mut() {
+            last.rect[2] += 1.0;
+        }
     }
 }
 

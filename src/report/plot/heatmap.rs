@@ -7,7 +7,7 @@ use crate::solid::ColorMap;
 use super::axis::{degree_step, fmt_tick, nice_step, ticks_in};
 use super::canvas::{Align, Canvas};
 use super::texture::tone_map;
-use super::{AXIS, HEATMAP_SIZE, INK, NO_DATA};
+use super::{Plot, AXIS, HEATMAP_SIZE, INK, NO_DATA};
 
 /// Cell edges of sorted-or-not centres `c` over the axis [lo, hi]: cell k
 /// spans (edges[k].0, edges[k].1), between midpoints to its neighbours (by
@@ -59,7 +59,8 @@ pub enum ColorScale {
     Diverging,
     /// Viridis of Wallner's exposure curve [`tone_map`] with this k (> 0)
     /// on (value − lo) / (hi − lo): dim regions lifted, as a rendered light
-    /// looks; the colour bar keeps its ticks in the values' unit.
+    /// looks; the colour bar runs evenly through viridis with its ticks (in
+    /// the values' unit) where the curve puts them.
     Exposure(f64),
 }
 
@@ -124,6 +125,49 @@ impl Default for HeatmapSpec<'_> {
 /// with lo < hi, or for an exposure k that is not positive and finite;
 /// [`Error::Encode`] if encoding fails.
 pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
+    Ok(heatmap_plot(spec)?.png)
+}
+
+/// [`heatmap()`] with the boxes of its texts ([`Plot`]).
+///
+/// # Errors
+/// As [`heatmap()`].
+pub fn heatmap_plot(spec: &HeatmapSpec) -> Result<Plot, Error> {
+    heatmap_with(spec, "")
+}
+
+/// The exposure colour bar's ticks: (value, position 0..1 up the bar) for
+/// I_max-relative tone `k` over [lo, hi]: both ends and the 1–2–5 × 10^j
+/// values between them, kept where they stand at least `min_gap` (a
+/// fraction of the bar) from the ticks kept before them.
+pub(super) fn exposure_ticks(lo: f64, hi: f64, k: f64, min_gap: f64) -> Vec<(f64, f64)> {
+    let pos = |v: f64| tone_map((v - lo) / (hi - lo), k);
+    let mut cands = vec![hi, lo];
+    let span = hi - lo;
+    if span > 0.0 && span.is_finite() {
+        let top = span.log10().ceil() as i32;
+        for e in (top - 6..=top).rev() {
+            for m in [5.0, 2.0, 1.0] {
+                let v = lo + m * 10f64.powi(e);
+                if v > lo && v < hi {
+                    cands.push(v);
+                }
+            }
+        }
+    }
+    let mut kept: Vec<(f64, f64)> = Vec::new();
+    for v in cands {
+        let p = pos(v);
+        if kept.iter().all(|&(_, q)| (p - q).abs() >= min_gap) {
+            kept.push((v, p));
+        }
+    }
+    kept.sort_by(|a, b| a.1.total_cmp(&b.1));
+    kept
+}
+
+/// [`heatmap_plot`] with a second title line (`subtitle`, empty: none).
+pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, Error> {
     let HeatmapSpec {
         title,
         xs,
@@ -157,6 +201,9 @@ pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
     let (wf, hf) = (cv.w(), cv.h());
     cv.title(title);
     let (left, top, right, bottom) = (92.0f32, 56.0f32, wf - 150.0, hf - 62.0);
+    if !subtitle.is_empty() {
+        cv.text(left, top - 18.0, subtitle, 2, Align::Left, INK, false);
+    }
     let (pw, ph) = (right - left, bottom - top);
 
     let fin = |v: &&f64| v.is_finite();
@@ -255,23 +302,51 @@ pub fn heatmap(spec: &HeatmapSpec) -> Result<Vec<u8>, Error> {
     cv.text(left + pw / 2.0, hf - 16.0, "C (°)", 2, Align::Center, INK, false);
     cv.text_vertical(18.0, top + ph / 2.0, "gamma (°), 0 = nadir", 2, INK);
 
-    // Colour bar: top = hi, bottom = lo.
+    // Colour bar: top = hi, bottom = lo. With an exposure the bar runs
+    // evenly through the colours and its ticks sit where the tone curve puts
+    // their values, so that a colour in the map reads off the bar.
     let (bx0, bx1) = (right + 26.0, right + 48.0);
     for r in top as i32..bottom as i32 {
         let t = 1.0 - (f64::from(r) + 0.5 - f64::from(top)) / f64::from(ph);
-        cv.rect(bx0 as i32, r, bx1 as i32, r + 1, scale.color(t));
+        let c = match scale {
+            ColorScale::Exposure(_) => ColorMap::Viridis.rgb8(t),
+            _ => scale.color(t),
+        };
+        cv.rect(bx0 as i32, r, bx1 as i32, r + 1, c);
     }
     cv.frame(bx0 - 1.0, top - 1.0, bx1 + 1.0, bottom + 1.0, AXIS);
-    let sb = nice_step(hi - lo, 5);
-    for t in ticks_in(lo, hi, sb) {
-        let y = (top + ((hi - t) / (hi - lo)) as f32 * ph).round() + 0.5;
+    let bar_ticks: Vec<(f64, f64, String)> = match scale {
+        ColorScale::Exposure(k) => {
+            let th = font::text_height(2) as f64 + 4.0;
+            exposure_ticks(lo, hi, k, th / f64::from(ph))
+                .into_iter()
+                .map(|(v, p)| {
+                    let label = if v == hi || v == lo {
+                        crate::report::significant(v, 4)
+                    } else {
+                        fmt_tick(v, v)
+                    };
+                    (v, p, label)
+                })
+                .collect()
+        }
+        _ => {
+            let sb = nice_step(hi - lo, 5);
+            ticks_in(lo, hi, sb)
+                .into_iter()
+                .map(|t| (t, (t - lo) / (hi - lo), fmt_tick(t, sb)))
+                .collect()
+        }
+    };
+    for (_, p, label) in bar_ticks {
+        let y = (bottom - p as f32 * ph).round() + 0.5;
         cv.line(bx1 + 1.0, y, bx1 + 6.0, y, AXIS, 1.0);
-        cv.text(bx1 + 9.0, y, &fmt_tick(t, sb), 2, Align::Left, INK, false);
+        cv.text(bx1 + 9.0, y, &label, 2, Align::Left, INK, false);
     }
     let uw = font::text_width(unit, 2) as f32;
     let ux = ((bx0 + bx1) / 2.0).min(wf - 8.0 - uw / 2.0);
     cv.text(ux, top - 18.0, unit, 2, Align::Center, INK, false);
-    cv.png()
+    cv.finish()
 }
 
 #[cfg(test)]

@@ -25,14 +25,40 @@
 pub mod axis;
 pub mod canvas;
 pub mod heatmap;
+pub mod isolux;
 pub mod polar;
 pub mod scatter;
 pub mod texture;
 
-pub use heatmap::{heatmap, ColorScale, HeatmapSpec};
+pub use heatmap::{heatmap, heatmap_plot, ColorScale, HeatmapSpec};
+pub use isolux::{contour_levels, isolux_plot, IsoluxSpec, MapAxis};
 pub use polar::{polar_diagram, PolarSpec};
-pub use scatter::{scatter, ScatterSpec};
-pub use texture::{texture_preview, tone_map, write_texture_preview, TexturePreview, DEFAULT_EXPOSURE, TEXTURE_SIZE};
+pub use scatter::{scatter, scatter_plot, ScatterSpec};
+pub use texture::{
+    texture_preview, texture_preview_plot, tone_map, tone_map_inverse, write_texture_preview, TexturePreview,
+    DEFAULT_EXPOSURE, TEXTURE_SIZE,
+};
+
+/// One text a plot drew: what it says and its box in pixels
+/// `[x0, y0, x1, y1]` (x0, y0 inclusive at the top left; x1, y1 exclusive).
+/// Vertical texts give the box they cover once turned.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextBox {
+    /// The text.
+    pub text: String,
+    /// `[x0, y0, x1, y1]`, px.
+    pub rect: [f32; 4],
+}
+
+/// A drawn plot: its PNG and the boxes of every text on it, so that a test
+/// (or a caller laying out a page) can check that none overlap or leave the image.
+#[derive(Debug, Clone)]
+pub struct Plot {
+    /// PNG bytes.
+    pub png: Vec<u8>,
+    /// Every text drawn, in drawing order.
+    pub texts: Vec<TextBox>,
+}
 
 /// How a [`Series`] is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,7 +5,10 @@ use crate::report::font;
 
 use super::axis::{nice_step, Axis};
 use super::canvas::{Align, Canvas};
-use super::{ScatterPoint, AXIS, GRID, INK, OTHER, PARETO, SCATTER_SIZE};
+use super::{Plot, ScatterPoint, AXIS, GRID, INK, OTHER, PARETO, SCATTER_SIZE};
+
+/// A label's anchor (x, y), alignment and box.
+type Spot = (f32, f32, Align, [f32; 4]);
 
 /// Ratio of the largest to the smallest positive ordinate from which
 /// [`scatter()`] draws its y axis logarithmic.
@@ -53,6 +56,14 @@ impl Default for ScatterSpec<'_> {
 /// # Errors
 /// [`crate::ModelError::Parameter`] for a size outside 120..=8192 px, [`Error::Encode`] if encoding fails.
 pub fn scatter(spec: &ScatterSpec) -> Result<Vec<u8>, Error> {
+    Ok(scatter_plot(spec)?.png)
+}
+
+/// [`scatter()`] with the boxes of its texts ([`Plot`]).
+///
+/// # Errors
+/// As [`scatter()`].
+pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
     let ScatterSpec {
         title,
         x_label,
@@ -214,6 +225,7 @@ pub fn scatter(spec: &ScatterSpec) -> Result<Vec<u8>, Error> {
     }
     // Labels: first free spot among right, left, above, below.
     let th = font::text_height(scale) as f32;
+    let mut left_out = 0usize;
     for p in &order {
         let (x, y) = (px(p.x), py(p.y));
         let tw = font::text_width(&p.label, scale) as f32;
@@ -262,24 +274,45 @@ pub fn scatter(spec: &ScatterSpec) -> Result<Vec<u8>, Error> {
         }
         let inside =
             |b: &[f32; 4]| b[0] >= left + 2.0 && b[2] <= right - 2.0 && b[1] >= top + 2.0 && b[3] <= bottom - 2.0;
+        // Text boxes keep the white pad of their background (scale + 1 px)
+        // clear of every other box.
+        let gap = scale as f32 + 2.0;
         let free = |b: &[f32; 4]| {
             boxes
                 .iter()
-                .all(|o| b[2] + 2.0 <= o[0] || b[0] - 2.0 >= o[2] || b[3] + 1.0 <= o[1] || b[1] - 1.0 >= o[3])
+                .all(|o| b[2] + gap <= o[0] || b[0] - gap >= o[2] || b[3] + gap <= o[1] || b[1] - gap >= o[3])
         };
-        let pick = cands
-            .iter()
-            .find(|c| inside(&c.3) && free(&c.3))
-            .or_else(|| cands.iter().find(|c| inside(&c.3)))
-            .unwrap_or(&cands[0]);
-        // A name moved off its point's row gets a leader line to the point.
-        if (pick.1 - y).abs() > 1.0 && pick.2 != Align::Center {
-            let ex = if pick.2 == Align::Left {
-                pick.3[0] - 1.0
-            } else {
-                pick.3[2] + 1.0
-            };
-            cv.line(x, y, ex, pick.1, AXIS, 1.0);
+        let near = cands.iter().find(|c| inside(&c.3) && free(&c.3)).cloned();
+        // Crowded: the free spot of the plot area nearest the point, with a
+        // leader line; none at all: the name is left out and counted.
+        let pick = near.or_else(|| {
+            let mut best: Option<(Spot, f32)> = None;
+            let mut gy = top + 2.0 + th / 2.0;
+            while gy + th / 2.0 <= bottom - 2.0 {
+                let mut gx = left + 2.0;
+                while gx + tw <= right - 2.0 {
+                    let b = [gx, gy - th / 2.0, gx + tw, gy + th / 2.0];
+                    let dx = (b[0] - x).max(x - b[2]).max(0.0);
+                    let dy = (b[1] - y).max(y - b[3]).max(0.0);
+                    let d = dx * dx + dy * dy;
+                    if best.as_ref().is_none_or(|(_, bd)| d < *bd) && free(&b) {
+                        best = Some(((gx, gy, Align::Left, b), d));
+                    }
+                    gx += 6.0;
+                }
+                gy += 6.0;
+            }
+            best.map(|(c, _)| c)
+        });
+        let Some(pick) = pick else {
+            left_out += 1;
+            continue;
+        };
+        // A name moved off its point gets a leader line to the point.
+        let b = pick.3;
+        let (ex, ey) = (x.clamp(b[0] - 1.0, b[2] + 1.0), y.clamp(b[1] - 1.0, b[3] + 1.0));
+        if (ex - x).hypot(ey - y) > 10.0 {
+            cv.line(x, y, ex, ey, AXIS, 1.0);
         }
         let bx = cv.text(
             pick.0,
@@ -292,8 +325,15 @@ pub fn scatter(spec: &ScatterSpec) -> Result<Vec<u8>, Error> {
         );
         boxes.push(bx);
     }
+    if left_out > 0 {
+        let note = format!(
+            "{left_out} {} not shown (no room)",
+            if left_out == 1 { "name" } else { "names" }
+        );
+        cv.text(left, top - 16.0, &note, 2, Align::Left, INK, false);
+    }
     if pts.is_empty() {
         cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
     }
-    cv.png()
+    cv.finish()
 }

@@ -6,15 +6,19 @@
 //! Tone mapping: Wallner's exposure curve `y = 1 − exp(−k·x)` on
 //! `x = I / I_max`, divided by `1 − exp(−k)` so that I_max is full brightness
 //! (k > 0; larger k lifts dim regions), then viridis
-//! ([`ColorScale::Exposure`]). The colour bar shows the same curve, so its
-//! ticks stay at their candela values.
+//! ([`ColorScale::Exposure`]). Nothing saturates below I_max: the curve
+//! compresses the bright end (k = 4 reaches half the colour range at
+//! 0.17 I_max). The colour bar runs evenly through the colours and puts its
+//! candela ticks where the curve puts them, so a colour reads off the bar;
+//! the second title line says k and the value at mid-bar.
 
 use std::path::Path;
 
 use crate::error::{Error, ModelError};
 use crate::reconstruct::Rendered;
 
-use super::heatmap::{heatmap, ColorScale, HeatmapSpec};
+use super::heatmap::{heatmap_with, ColorScale, HeatmapSpec};
+use super::Plot;
 
 /// Default exposure k of the preview.
 pub const DEFAULT_EXPOSURE: f64 = 4.0;
@@ -62,6 +66,21 @@ impl<'a> TexturePreview<'a> {
 /// finite, a bad size, or a texture whose data does not match its mapping;
 /// [`Error::Encode`] if encoding fails.
 pub fn texture_preview(spec: &TexturePreview) -> Result<Vec<u8>, Error> {
+    Ok(texture_preview_plot(spec)?.png)
+}
+
+/// The value x in [0, 1] that the exposure curve [`tone_map`] brings to
+/// `y` in [0, 1] (its inverse).
+pub fn tone_map_inverse(y: f64, k: f64) -> f64 {
+    let y = y.clamp(0.0, 1.0);
+    (-(1.0 - y * (1.0 - (-k).exp())).ln() / k).clamp(0.0, 1.0)
+}
+
+/// [`texture_preview`] with the boxes of its texts ([`Plot`]).
+///
+/// # Errors
+/// As [`texture_preview`].
+pub fn texture_preview_plot(spec: &TexturePreview) -> Result<Plot, Error> {
     let k = spec.exposure;
     if !(k.is_finite() && k > 0.0) {
         return Err(ModelError::Parameter {
@@ -85,25 +104,37 @@ pub fn texture_preview(spec: &TexturePreview) -> Result<Vec<u8>, Error> {
     let values: Vec<f64> = tex.data.iter().map(|&v| f64::from(v) * scale).collect();
     let title = if spec.title.is_empty() {
         format!(
-            "Light texture: {}, factor {}, I_max {} cd, exposure k = {}",
+            "Light texture: {}, factor {}, I_max {} cd",
             tex.filter,
             tex.factor,
             crate::report::significant(tex.i_max_cd, 4),
-            k
         )
     } else {
         spec.title.to_string()
     };
-    heatmap(&HeatmapSpec {
-        title: &title,
-        xs: &xs,
-        ys: &ys,
-        values: &values,
-        unit,
-        scale: ColorScale::Exposure(k),
-        range: Some((0.0, scale)),
-        size: spec.size,
-    })
+    // What the exposure does, in the unit of the bar: the curve lifts dim
+    // values (nothing saturates below I_max) and half the colour range is
+    // reached at this value.
+    let half = tone_map_inverse(0.5, k);
+    let half_text = if scaled {
+        format!("{} cd", crate::report::significant(half * scale, 3))
+    } else {
+        crate::report::significant(half, 2)
+    };
+    let subtitle = format!("exposure k = {k}: colour 1-exp(-k I/I_max), mid-bar {half_text}");
+    heatmap_with(
+        &HeatmapSpec {
+            title: &title,
+            xs: &xs,
+            ys: &ys,
+            values: &values,
+            unit,
+            scale: ColorScale::Exposure(k),
+            range: Some((0.0, scale)),
+            size: spec.size,
+        },
+        &subtitle,
+    )
 }
 
 /// Write the preview PNG to `path` atomically (temporary file, then rename).
