@@ -53,12 +53,14 @@ def reports(tmp_path_factory):
     # (2,000 would miss the peak of the error between them).
     run("compare", str(d / "road.ldt"), "--vs", str(d / "dense.ldt"), "--report", str(d / "vs"))
     run("compare", str(d / "road.ldt"), "--report", str(d / "truth-dense"))
+    run("demo", "--output", str(d / "demo"))
     return {
         "truth": d / "truth" / "index.html",
         "withheld": d / "withheld" / "index.html",
         "scene": d / "scene" / "index.html",
         "vs": d / "vs" / "index.html",
         "truth-dense": d / "truth-dense" / "index.html",
+        "demo": d / "demo" / "index.html",
     }
 
 
@@ -228,9 +230,9 @@ def legend(page) -> dict:
     return out
 
 
-@pytest.mark.parametrize("kind", ["truth-dense", "vs"])
+@pytest.mark.parametrize("kind", ["truth-dense", "vs", "demo"])
 def test_legend_max_agrees_with_the_table(browser, reports, kind):
-    """Against the truth and against a denser file (`--vs`), the legend's max |err| of each
+    """Against the truth (a compare report and the demo's) and against a denser file (`--vs`), the legend's max |err| of each
     reconstruction agrees with the table's radial max within 10 %: the view samples the error between
     the measured directions, where it is (it showed 0.00 % for interpolating filters)."""
     ctx, page, errors, _ = open_page(browser, reports[kind])
