@@ -30,7 +30,7 @@
 //! `luminous_dimensions_m` `{length_m, width_m, height_m, shape}` (as declared; `shape` a word of
 //! [`crate::scene::opening::Opening`]), and for Type B files (`null` otherwise)
 //! `beam_spread_deg` / `field_spread_deg` `{horizontal, vertical}` (NEMA FL 11 spreads at 50 % /
-//! 10 % of I_max in the Type B planes through the peak, [`crate::photometry::floodlight`]) and
+//! 10 % of I_max in the Type B planes through the peak, [`crate::photometry::floodlight()`]) and
 //! `nema_type` (e.g. `"6H x 5V"`, of the field spreads).
 
 use serde::Serialize;

@@ -1,5 +1,5 @@
 //! PNG preview of a rendered light texture ([`Rendered`]): the texture as a
-//! [`heatmap()`] over C (0–360°, left to right) × γ (0–180°, nadir at the top),
+//! [`heatmap()`](super::heatmap()) over C (0–360°, left to right) × γ (0–180°, nadir at the top),
 //! one cell per texel, with axis titles in degrees and a colour bar in
 //! candela (I / I_max when the texture carries no I_max).
 //!
