@@ -119,7 +119,7 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let plan_text = photosolid::report::scene_report::plan_text(&plan);
     outln!("{plan_text}");
     let mut maps = Vec::new();
-    for path in photosolid::scene::isolux::write_maps(&scene, &lit, &a.output)? {
+    for path in photosolid::report::scene_report::write_maps(&scene, &lit, &a.output)? {
         let name = path
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())

@@ -236,7 +236,7 @@ fn write_index(dir: &Path, html: &str) -> Result<PathBuf, SceneError> {
 }
 
 /// The report of `scene --report DIR`: `scene.json`, one isolux map per
-/// plane receiver ([`crate::scene::isolux::write_maps`]) and `index.html`
+/// plane receiver ([`write_maps`]) and `index.html`
 /// (the `summary` text, the maps, a 3D view per luminaire). Returns the files
 /// written, in that order.
 pub fn write_scene_report(
