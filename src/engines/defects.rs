@@ -74,8 +74,9 @@ const THREE_ALL_VERSIONS: &str = "three.js <= 0.186.1 (IESLoader.js at commits 0
     packages 0.186.0/0.186.1): the 180 x 1 texture; 0.187.0 uploads every plane";
 const BABYLON_ALL_VERSIONS: &str = "Babylon.js: every iesLoader.ts read (commits 0571ea8c, 48fd6640) and 9.23.0 \
     (PR #18833 changes only the candela scaling)";
-const BABYLON_ROW_VERSIONS: &str = "Babylon.js with the 360 x 180 RawTexture (read at commit 0571ea8c); at commit \
-    48fd6640 LoadIESData returns a 180 x 1 texture (the theta = 0 plane) instead, which is not modelled";
+const BABYLON_ROW_VERSIONS: &str = "Babylon.js with the 360 x 180 RawTexture (read at commit 0571ea8c); the npm \
+    releases checked (@babylonjs/core 7.54.0, 8.0.0, 9.22.2, 9.23.0, 9.35.0) all return the 180 x 1 texture of the \
+    theta = 0 plane instead (the babylon layout row)";
 
 fn web_field(t: &IesTable, lookup: web::WebLookup, i_max: f64) -> Box<dyn IntensityField> {
     let half = matches!(
@@ -142,7 +143,7 @@ pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelErro
             let all = if three {
                 web::WebLookup::ThreeAllPlanes
             } else {
-                web::WebLookup::BabylonAllPlanes
+                web::WebLookup::Babylon
             };
             out.push(Defect {
                 engine,

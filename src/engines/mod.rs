@@ -122,8 +122,9 @@ impl Engine {
                  #34554, candela linear, and every plane uploaded)"
             }
             Engine::Babylon => {
-                "@babylonjs/core 9.23.0 (the first release listing PR #18833, merged 2026-08-25: candela \
-                 linear, no file-generation factor); the 360 x 180 grid as read at commit 0571ea8c"
+                "@babylonjs/core 9.35.0 (npm; Lights/IES/iesLoader.js and lightsFragmentFunctions read from \
+                 the package, the loader byte-identical to 9.23.0's, the first release with PR #18833: \
+                 candela linear, no file-generation factor, a 180 x 1 texture of the C0 plane)"
             }
             Engine::Blender => {
                 "Blender Cycles (blender/blender intern/cycles/util/ies.cpp, kernel/svm/ies.h; \
@@ -331,12 +332,12 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
             let lookup = if three {
                 web::WebLookup::Three
             } else {
-                web::WebLookup::BabylonAllPlanes
+                web::WebLookup::Babylon
             };
             let layout = if three {
                 "180x360 grid data[phi + theta*180] (gamma = phi*180/179, theta 0..359 wrapping), half float, I/I_max, every plane, bilinear"
             } else {
-                "1-degree grid data[phi + theta*180] in a 360x180 R32F, I/I_max, every plane, bilinear on the knots"
+                "180x1 R32F: the C0 plane of the 1-degree grid (LoadIESData returns width 180, height 1), I/I_max, linear, gamma read 0.5 deg early, every C alike"
             };
             let f = web::WebField {
                 data,

@@ -153,6 +153,11 @@ pub enum WebLookup {
     ThreeAllPlanes,
     /// Only θ = 0, as three.js's 180 x 1 texture (γ read ½° early).
     ThreeSinglePlane,
+    /// Babylon.js 9.23.0 … 9.35.0 (npm): `LoadIESData` returns `{ width: 180,
+    /// height: 1, data }`, the first 180 values of the grid (the θ = 0 plane,
+    /// float32), and `getIESAttenuation` samples it at u = γ/180 (texel
+    /// centres: γ read half a degree early), the same for every C.
+    Babylon,
     /// Every plane, bilinear in C and γ on the whole-degree knots (Babylon's grid read as intended).
     BabylonAllPlanes,
     /// Babylon's shader: row 0 of the 360-wide texture at u = γ/180.
@@ -198,7 +203,7 @@ impl IntensityField for WebField {
         let v = match self.lookup {
             WebLookup::Three => self.across(c_deg, g * (PHI - 1) as f64 / 180.0),
             WebLookup::ThreeAllPlanes => self.across(c_deg, g - 0.5),
-            WebLookup::ThreeSinglePlane => self.along(0, g - 0.5),
+            WebLookup::ThreeSinglePlane | WebLookup::Babylon => self.along(0, g - 0.5),
             WebLookup::BabylonAllPlanes => self.across(c_deg, g),
             WebLookup::BabylonRowZero => {
                 let t = (2.0 * g - 0.5).clamp(0.0, (THETA - 1) as f64);
@@ -217,6 +222,7 @@ impl IntensityField for WebField {
     fn bytes(&self) -> usize {
         match self.lookup {
             WebLookup::ThreeSinglePlane => PHI * 2,
+            WebLookup::Babylon => PHI * 4,
             WebLookup::ThreeAllPlanes | WebLookup::Three => THETA * PHI * 2,
             _ => THETA * PHI * 4,
         }
@@ -224,11 +230,11 @@ impl IntensityField for WebField {
 }
 
 /// The grid as an image in the loader's own memory order: three.js's array
-/// read as 180 columns (φ) by 360 rows (θ), whose first row is the 180 x 1
-/// texture it uploads; Babylon's as the 360 x 180 texture it declares.
+/// read as 180 columns (φ) by 360 rows (θ), the texture 0.187.0 uploads;
+/// Babylon's 180 x 1 texture (the first 180 values: the θ = 0 plane).
 pub fn grid_image(data: &[f32], babylon: bool) -> Result<Image, crate::error::ModelError> {
     if babylon {
-        Image::new(THETA, PHI, data.to_vec())
+        Image::new(PHI, 1, data[..PHI.min(data.len())].to_vec())
     } else {
         Image::new(PHI, THETA, data.to_vec())
     }
