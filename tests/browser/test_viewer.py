@@ -243,7 +243,14 @@ def test_legend_max_agrees_with_the_table(browser, reports, kind):
         quantity, value = shown[r["name"]]
         assert quantity == "max |err|", (r["name"], quantity)
         table = r["radial_max_pct"]
-        assert abs(value - table) <= 0.1 * table + 0.0015, (kind, r["name"], value, table)
+        # The table's radial max is the largest error over 20,000 Fibonacci directions (about 1.6 degrees
+        # apart), a lower bound of the true maximum; the view samples nine points around each vertex and can
+        # find a higher, sharper peak. On the demo's Mitchell row it does: 1.45 % against the table's
+        # 1.29 % (+12 %, issue 25 item 6 left open for it). The view may exceed the table by up to 25 % there;
+        # it may never fall more than 10 % below it (the old view showed 0.00 %).
+        high = 0.25 if kind == "demo" else 0.1
+        assert value >= 0.9 * table - 0.0015, (kind, r["name"], value, table)
+        assert value <= (1 + high) * table + 0.0015, (kind, r["name"], value, table)
     assert not errors, errors
     ctx.close()
 
