@@ -269,7 +269,7 @@ impl InfoReport {
                 .map(crate::report::color::lamp_color),
             gldf_declared: gldf.cloned(),
             gldf_comparison: None,
-            path: String::new(),
+            path: lum.path().map(|p| p.display().to_string()).unwrap_or_default(),
             input_watts: input_watts(lum),
             efficacy_lm_per_w: input_watts(lum).map(|w| s.flux.total_lm / w),
             luminous_dimensions_m: LuminousDimensions::of(lum),
