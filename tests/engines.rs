@@ -861,7 +861,11 @@ fn web_engines_are_linear_in_candela() {
             for (ig, &g) in gs.iter().enumerate() {
                 let want = dist.value_cd(ic, ig);
                 // Babylon uploads the C0 plane only (read half a degree early): every lit value there.
-                let range = if engine == Engine::Babylon { 0.001 * i_max..i_max } else { 0.2 * i_max..0.8 * i_max };
+                let range = if engine == Engine::Babylon {
+                    0.001 * i_max..i_max
+                } else {
+                    0.2 * i_max..0.8 * i_max
+                };
                 if c.fract() != 0.0 || g.fract() != 0.0 || g > 170.0 || !range.contains(&want) {
                     continue;
                 }

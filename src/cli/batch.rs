@@ -92,14 +92,7 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
     let files = walked.files;
     if files.is_empty() {
         // An empty table would look like a successful run.
-        eprintln!(
-            "photosolid: nothing photometric found in {}; no table written",
-            super::list_paths(&a.paths)
-        );
-        for n in &notes {
-            eprintln!("{n}");
-        }
-        return Ok(1);
+        return Ok(super::nothing_found(&a.paths, &notes, "; no table written"));
     }
     let mut rows = previous(&a)?;
     let resumed = rows.len();

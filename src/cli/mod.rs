@@ -204,6 +204,17 @@ fn check_output(flag: &str, path: &std::path::Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A walk that found nothing photometric (`validate`, `batch`): say so on
+/// stderr with the walk's notes (what was skipped and why), `suffix` after
+/// the first line; the exit code 1.
+fn nothing_found(paths: &[PathBuf], notes: &[String], suffix: &str) -> i32 {
+    eprintln!("photosolid: nothing photometric found in {}{suffix}", list_paths(paths));
+    for n in notes {
+        eprintln!("{n}");
+    }
+    1
+}
+
 /// Paths as a user typed them, comma-separated (for messages).
 fn list_paths(paths: &[PathBuf]) -> String {
     paths

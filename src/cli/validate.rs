@@ -50,14 +50,7 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     let files = walked.files;
     if files.is_empty() {
         // Nothing to check is a failure, not "0 files, 0 ok".
-        eprintln!(
-            "photosolid: nothing photometric found in {}",
-            super::list_paths(&a.paths)
-        );
-        for n in &notes {
-            eprintln!("{n}");
-        }
-        return Ok(1);
+        return Ok(super::nothing_found(&a.paths, &notes, ""));
     }
     let opts = a.read.options();
     let tables = if a.derived { Tables::Compute } else { Tables::Skip };
