@@ -6,7 +6,7 @@
 # RES: image side in pixels; HALF: the plane's half width (the image covers
 # x, y in [-HALF, HALF] at z = -1). Each pixel (row 0 at +y) holds the
 # radiance of the plane there, proportional to I(d) cos(theta) / r^2 with
-# d = (x, y, -1) / r: tests/engines.rs (blender_render_matches_the_emulation)
+# d = (x, y, -1) / r: tests/it/engines.rs (blender_render_matches_the_emulation)
 # turns it back into the intensity Cycles used and compares it with
 # photosolid's emulation (scripts/blender-cross-check.sh runs both).
 import sys

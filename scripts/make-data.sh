@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates data/: the project's own analytic distributions (closed-form answers in
-# src/synth.rs). tests/data.rs checks that data/ matches what this script writes.
+# src/synth.rs). tests/it/data.rs checks that data/ matches what this script writes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # PHOTOSOLID_BIN (set by scripts/test-all.sh) avoids a second, release build.

@@ -20,6 +20,8 @@ PROBE_ONLY=0
 [ "${1:-}" = "--probe" ] && PROBE_ONLY=1
 CI_MODE=0
 [ "${CI:-}" = "true" ] && CI_MODE=1
+# One clean build, not an edit loop: incremental state would add about 5 GB to target/ (issue 26).
+export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 # Mesa's drivers want a runtime directory; without one they print a harmless "error:" line.
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
   XDG_RUNTIME_DIR=$(mktemp -d)
@@ -79,7 +81,7 @@ probe() {
   if exe=$(chromium_exe); then
     echo "ok   HTML report rendering: $exe"
   else
-    need "HTML report rendering (tests/compare.rs)" "no chromium, chromium-browser or google-chrome on PATH"
+    need "HTML report rendering (tests/it/compare.rs)" "no chromium, chromium-browser or google-chrome on PATH"
   fi
   GPU_BACKENDS=()
   for backend in vulkan gl; do
@@ -88,7 +90,7 @@ probe() {
       echo "ok   GPU tests, WGPU_BACKEND=$backend"
       GPU_BACKENDS+=("$backend")
     else
-      need "GPU tests, WGPU_BACKEND=$backend (tests/gpu.rs)" "no GPU adapter: ${GPU_ERR:-unknown}"
+      need "GPU tests, WGPU_BACKEND=$backend (tests/gpu/textures.rs)" "no GPU adapter: ${GPU_ERR:-unknown}"
     fi
   done
   if [ -x .venv-notebooks/bin/python ] || python3 -c "import venv, ensurepip" >/dev/null 2>&1; then
@@ -127,7 +129,9 @@ cargo --version
 rustc --version
 
 echo "== build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
+build_start=$SECONDS
 cargo build --all-targets --locked 2>&1 | tail -n 3
+echo "build: $((SECONDS - build_start)) s, target/ $(du -sh target 2>/dev/null | cut -f1)"
 PHOTOSOLID_BIN="$(pwd)/target/debug/photosolid"
 export PHOTOSOLID_BIN
 
@@ -157,11 +161,11 @@ echo "== the library alone (--no-default-features: no GPU, no CLI) builds and pa
 cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1
 
-echo "== GPU: the wgpu render against the CPU render (tests/gpu.rs) and the real-time lookups (tests/gpu_realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
+echo "== GPU: the wgpu render against the CPU render (tests/gpu/textures.rs) and the real-time lookups (tests/gpu/realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
 gpu_start=$SECONDS
 for backend in "${GPU_BACKENDS[@]+"${GPU_BACKENDS[@]}"}"; do
   echo "-- WGPU_BACKEND=$backend PHOTOSOLID_REQUIRE_GPU=1"
-  PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND="$backend" cargo test --locked --test gpu --test gpu_realtime
+  PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND="$backend" cargo test --locked --test gpu
 done
 echo "GPU tests: $((SECONDS - gpu_start)) s"
 corpus_skips

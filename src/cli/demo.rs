@@ -12,7 +12,7 @@
 //! hardware when an adapter exists, and the CPU reference), with EXRs.
 //!
 //! What the README's demo paragraph promises, file by file (checked by
-//! `tests/cli.rs` `demo_writes_what_the_readme_says`): `demo_roadway.ldt`; the
+//! `tests/it/cli.rs` `demo_writes_what_the_readme_says`): `demo_roadway.ldt`; the
 //! factor-5 texture of every filter as `texture-FILTER.exr` and
 //! `texture-FILTER.png`; `index.html` opening with the 3D view, with its plots,
 //! ending with the built-in scene (illuminance on the road and the sensor,

@@ -21,7 +21,7 @@
 //! of the measured directions); the others are grid solids, by default
 //! adaptive ([`crate::solid::adaptive`]): each within
 //! [`CompareOptions::solid_tolerance`] of its field's solid at every tested
-//! point (a distance bound, checked independently in `tests/adaptive_solid.rs`),
+//! point (a distance bound, checked independently in `tests/it/adaptive_solid.rs`),
 //! so the Hausdorff distance of the *fields'* solids lies within about twice
 //! that tolerance of the meshes' figure
 //! (`|H(S_a, S_b) − H(M_a, M_b)| ≤ H(M_a, S_a) + H(M_b, S_b)`, the triangle

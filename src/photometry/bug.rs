@@ -13,7 +13,7 @@
 //! LM-63 roadway files (Type II, symmetric about the C0-C180 plane, throw
 //! toward C0) rate B2 U0 G2 and B2 U3 G2 as printed in their `[DISTRIBUTION]`
 //! keyword only under this convention; with forward = C 0-180 both come out
-//! B3 (tests/photometry.rs, `declared_bug_ratings_of_manufacturer_files`).
+//! B3 (tests/it/photometry.rs, `declared_bug_ratings_of_manufacturer_files`).
 //! A EULUMDAT road luminaire whose street side is C90 (CIE convention) must
 //! be turned by 90° before rating; we do not guess the orientation.
 //!
@@ -41,7 +41,7 @@
 //! - The whole chain (zones + all three tables) against the BUG ratings
 //!   that manufacturers print in their LM-63 files, `[DISTRIBUTION]` keyword,
 //!   computed by their photometric labs (test
-//!   `declared_bug_ratings_of_manufacturer_files` in tests/photometry.rs).
+//!   `declared_bug_ratings_of_manufacturer_files` in tests/it/photometry.rs).
 //! - The glare rows (FVH/BVH, FH, BH) have no second public source here.
 //!   These are the asymmetric-distribution (Type I-IV) glare limits; the
 //!   addendum's separate glare table for quadrilateral-symmetric (Type V)

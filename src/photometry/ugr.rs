@@ -43,7 +43,7 @@
 //! and H/R ≤ 1.9 (the table's axes as transcribed in 123VincentB/eulumdat-ugr,
 //! `guth.py`: the first row of the standard array, at R = H/2, is out), or
 //! γ > 85° (the eulumdat-ugr notes quoting CIE 117). With this field the CIE
-//! 190:2010 example table is met to ±0.22 in every cell (tests/photometry.rs). Not modelled: CIE 117's
+//! 190:2010 example table is met to ±0.22 in every cell (tests/it/photometry.rs). Not modelled: CIE 117's
 //! Table 4.1 (the closed form above stands in for it), CIE 190's preset
 //! F_GL / F_T background factors (the exact interreflection stands in), the
 //! 0.25 H array of catalogue tables, and the correction tables for other spacings.

@@ -43,7 +43,7 @@
 //! largest value on a triangle is at most 4/3 of the largest edge-midpoint
 //! value (the sum of the quadratic edge basis functions 4 λ_i λ_j peaks at
 //! 4/3, at the centroid), and the centroid itself is tested. The tests
-//! (`tests/adaptive_solid.rs`) measure the deviation independently, by ray
+//! (`tests/it/adaptive_solid.rs`) measure the deviation independently, by ray
 //! casting ([`super::RadialMesh`]) on dense random directions.
 //!
 //! Features narrower than the start grid's spacing that leave no trace at

@@ -105,7 +105,7 @@ pub fn corpus() -> Option<PathBuf> {
 
 /// [`corpus`] with explicit folders: `root` if it is a directory, else
 /// `None` after recording the skip of the current test in `skipped_dir`.
-/// `caller_file` (`tests/ies.rs`) names the test binary.
+/// `caller_file` (`tests/it/ies.rs`) names the test file.
 pub fn corpus_at(root: &Path, skipped_dir: &Path, caller_file: &str) -> Option<PathBuf> {
     if root.is_dir() {
         return Some(root.to_path_buf());
@@ -130,8 +130,14 @@ pub fn record_corpus_skip(skipped_dir: &Path, caller_file: &str) -> String {
         .filter(|n| *n != "main")
         .unwrap_or("unnamed-test")
         .to_string();
-    let check = format!("{binary}::{test}");
-    let file: String = format!("{binary}__{test}")
+    // In the one-binary layout (tests/it/main.rs) libtest names the thread
+    // `<module>::<test>` already, the module being the test file's stem.
+    let check = if test.starts_with(&format!("{binary}::")) {
+        test
+    } else {
+        format!("{binary}::{test}")
+    };
+    let file: String = check
         .chars()
         .map(|c| {
             if c.is_ascii_alphanumeric() || c == '_' || c == '-' {

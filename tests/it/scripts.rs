@@ -3,8 +3,7 @@
 
 use std::process::Command;
 
-#[macro_use]
-mod common;
+use crate::common;
 
 fn probe(ci: bool) -> (Option<i32>, String) {
     let mut c = Command::new("bash");
@@ -106,7 +105,7 @@ fn skipped_corpus_checks_are_counted_per_test() {
     assert_eq!(
         String::from_utf8_lossy(&o.stdout),
         format!(
-            "13 checks in 3 test binaries skipped: {} not found\n",
+            "13 checks in 3 test files skipped: {} not found\n",
             missing.display()
         )
     );

@@ -3,8 +3,6 @@
 //! serde_json for GLB), pbrt's flux convergence, the texel each layout puts
 //! the peak on, and the defect rows.
 
-#[macro_use]
-mod common;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! with a stable code in `ErrorRecord`; and the closed sets of CLI values
 //! are clap `ValueEnum`s listed by `--help`.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 

@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
-mod common;
+use crate::common;
 
 use photosolid::gpu::{self, Backend, GpuContext, GpuError, RenderJob, RenderKernel, Resolved};
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions, Rendered};

@@ -1,8 +1,7 @@
 //! Fitted OpenGL lights (Zotti et al. 2005): recovery of known lights from
 //! synthetic data, extremes, honest failures, and the corpus table.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use photosolid::fit::{error_of, fit, ErrorMetric, Fit, FitOptions, FittedLights, Hemisphere, Light, Spot};
 use photosolid::model::{Distribution, Symmetry};

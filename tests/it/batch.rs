@@ -4,8 +4,7 @@
 //! the JSON Lines and the catalogue page agree with the table; the corpus
 //! (when present) gives one row per file, failing exactly where the manifest says.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -4,7 +4,7 @@
 //! `convert` to TM-33-23 and back. Containers are written here around
 //! files of data/.
 
-mod common;
+use crate::common;
 
 use std::io::Write;
 use std::path::Path;

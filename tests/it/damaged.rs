@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
 
-mod common;
+use crate::common;
 
 use photosolid::formats::roundtrip::{check, non_finite_in_debug};
 use photosolid::model::Format;

@@ -1,8 +1,6 @@
 //! Photometric-solid meshes: closed forms, convergence rates, invariants over
 //! many synthetic distributions, and exports read back.
 
-#[macro_use]
-mod common;
 
 use std::f64::consts::PI;
 

@@ -8,8 +8,7 @@ use photosolid::formats::ldt::{self, LampSetLayout, SIGNIFICANT_DIGITS};
 use photosolid::formats::{LampSetFlux, ReadOptions};
 use photosolid::model::{Distribution, Luminaire, Symmetry};
 
-#[macro_use]
-mod common;
+use crate::common;
 
 /// (path, malformed) of every .ldt file of the corpus manifest (the shared
 /// manifest reader of `tests/common`); None when the corpus is missing.

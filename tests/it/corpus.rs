@@ -2,8 +2,7 @@
 //! fails exactly as the manifest says, with clear messages; photometry agrees
 //! with what the files declare; LDT/IES pairs of one luminaire agree.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use common::{corpus, manifest, snapshot};
 use photosolid::photometry;

@@ -2,8 +2,7 @@
 //! real files, against the peer eulumdat-rs where it is right, and through
 //! the CLI (`info --json` keys, `compare --vs` side by side).
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use std::path::Path;
 

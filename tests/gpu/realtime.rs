@@ -5,8 +5,7 @@
 //! and pass, unless `PHOTOSOLID_REQUIRE_GPU=1`.
 #![cfg(feature = "gpu")]
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -6,8 +6,7 @@
 //! encodings, bad angles). Each refusal is checked for the file, the line and
 //! the expected/found text.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

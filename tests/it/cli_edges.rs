@@ -1,8 +1,7 @@
 //! The CLI where a new user hit wrong outputs and rough edges (issue 12):
 //! the real binary, run in a temporary directory per test.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use common::cli::{bin, fails, ok, run, write_ies};
 use photosolid::solid::{export, topology};

@@ -1,8 +1,7 @@
 //! `compare`: closed forms on analytic solids, alignment, the CLI and its
 //! report, the corpus, and (when `chromium` is on PATH) the HTML rendering.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use photosolid::compare::{compare, sphere_sag, Against, CompareOptions, Directions, Normalize};
 use photosolid::model::{Distribution, Symmetry};

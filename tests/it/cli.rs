@@ -1,7 +1,6 @@
 //! The `photosolid` binary, run for real in a temporary directory per test.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use common::cli::{ok, run};
 use common::corpus;

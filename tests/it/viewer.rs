@@ -2,7 +2,7 @@
 //! data parses, states the reference, and a typical report stays under 1 MB.
 //! The browser checks (rendering, toggles, slider, offline) are in tests/browser/.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

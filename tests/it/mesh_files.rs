@@ -3,8 +3,7 @@
 //! and Blender do), must be a closed 2-manifold with the solid's components,
 //! also where several sheets of the solid meet at the origin.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use photosolid::solid::export::{self, MeshFormat};
 use photosolid::solid::{grid_solid, measured_solid, topology, Mesh, SolidGrid, Units, SHEET_SEPARATION};

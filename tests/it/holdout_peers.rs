@@ -5,7 +5,7 @@
 //! `rms_all_percent`; their figures are rounded, so each comparison allows
 //! half a unit of the last printed digit.
 
-mod common;
+use crate::common;
 
 use photosolid::reconstruct::{holdout, Filter, HoldoutSpec};
 

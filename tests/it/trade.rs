@@ -1,8 +1,7 @@
 //! The speed/accuracy trade measured against the truth: closed-form
 //! references, convergence orders, withheld measurements, extremes, the CLI.
 
-#[macro_use]
-mod common;
+use crate::common;
 
 use photosolid::compare::trade::{representations, trade_table, TradeOptions};
 use photosolid::compare::{compare, Against, CompareOptions, Directions};

@@ -1,8 +1,6 @@
 //! The project's own analytic files in data/ (written by scripts/make-data.sh):
 //! both formats load, agree with each other, and integrate to their closed forms.
 
-#[macro_use]
-mod common;
 
 use std::f64::consts::PI;
 use std::path::Path;

@@ -278,7 +278,7 @@ fn refinement_work_is_bounded_and_the_stop_is_reported() {
     assert!(a.tested_deviation_cd > a.tolerance_cd && a.tested_deviation_cd.is_finite());
 }
 
-mod common;
+use crate::common;
 
 /// Real files (the corpus, when present): the bilinear solid at the default
 /// 0.1 % tolerance, measured independently, beside the fixed x5 grid the

@@ -1,7 +1,5 @@
 //! Reconstruction on the sphere: filters, light distribution textures, render, files, hold-out.
 
-#[macro_use]
-mod common;
 
 use glam::DVec3;
 use photosolid::model::frame::{angles, direction};

@@ -8,8 +8,7 @@ use photosolid::formats::{Handedness, ReadOptions};
 use photosolid::model::{PhotometricType, Symmetry, Tilt};
 use photosolid::{Distribution, Luminaire};
 
-#[macro_use]
-mod common;
+use crate::common;
 
 /// (path, malformed) of every .ies file of the corpus manifest (the shared
 /// manifest reader of `tests/common`); None when the corpus is missing.

@@ -1,0 +1,11 @@
+//! The GPU integration tests, one binary: headless wgpu textures against the
+//! CPU reference (`textures`) and the real-time lookups (`realtime`).
+//! `scripts/test-all.sh` runs it once per backend with
+//! `PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND=<vulkan|gl>`.
+
+#[macro_use]
+#[path = "../common/mod.rs"]
+mod common;
+
+mod realtime;
+mod textures;

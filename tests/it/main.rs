@@ -1,0 +1,39 @@
+//! The CPU integration tests, one binary (issue 26: 32 binaries that each
+//! linked wgpu made target/ 18 GB and the CI build 12 minutes). Each module
+//! was its own test file; `cargo test --test it <module>::` runs one.
+//! The GPU tests are the other binary, `tests/gpu/`.
+
+#[macro_use]
+#[path = "../common/mod.rs"]
+mod common;
+
+mod adaptive_solid;
+mod angles_agree;
+mod atomic_writes;
+mod batch;
+mod cli;
+mod cli_edges;
+mod compare;
+mod corpus;
+mod damaged;
+mod data;
+mod engines;
+mod fit;
+mod fuzz_regressions;
+mod gldf_tm33;
+mod holdout_peers;
+mod ies;
+mod ldt;
+mod mesh_files;
+mod photometry;
+mod plots;
+mod plots_legible;
+mod reader_errors;
+mod reconstruct;
+mod roundtrip_props;
+mod scene;
+mod scripts;
+mod solid;
+mod trade;
+mod typed_errors;
+mod viewer;
