@@ -1,7 +1,6 @@
 //! The project's own analytic files in data/ (written by scripts/make-data.sh):
 //! both formats load, agree with each other, and integrate to their closed forms.
 
-
 use std::f64::consts::PI;
 use std::path::Path;
 

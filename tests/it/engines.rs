@@ -3,7 +3,6 @@
 //! serde_json for GLB), pbrt's flux convergence, the texel each layout puts
 //! the peak on, and the defect rows.
 
-
 use std::path::{Path, PathBuf};
 
 use exr::prelude::{read_first_flat_layer_from_file, AttributeValue, FlatSamples, Text};

@@ -1,6 +1,5 @@
 //! Reconstruction on the sphere: filters, light distribution textures, render, files, hold-out.
 
-
 use glam::DVec3;
 use photosolid::model::frame::{angles, direction};
 use photosolid::reconstruct::{exr_io, holdout, render, render_with, Filter, HoldoutSpec, LightTexture, RenderOptions};

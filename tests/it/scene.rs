@@ -1,6 +1,5 @@
 //! Scenes: illuminance against closed forms, near-field sources, plans, extremes, the CLI.
 
-
 use std::f64::consts::PI;
 use std::path::Path;
 

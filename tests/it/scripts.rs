@@ -104,10 +104,7 @@ fn skipped_corpus_checks_are_counted_per_test() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(
         String::from_utf8_lossy(&o.stdout),
-        format!(
-            "13 checks in 3 test files skipped: {} not found\n",
-            missing.display()
-        )
+        format!("13 checks in 3 test files skipped: {} not found\n", missing.display())
     );
     // No skips: no line.
     let none = Command::new("bash")

@@ -1,7 +1,6 @@
 //! Photometric-solid meshes: closed forms, convergence rates, invariants over
 //! many synthetic distributions, and exports read back.
 
-
 use std::f64::consts::PI;
 
 use photosolid::model::{Distribution, Symmetry};
