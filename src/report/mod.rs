@@ -7,6 +7,7 @@ pub mod engines_report;
 pub mod font;
 pub mod info;
 pub mod plot;
+pub mod road_report;
 pub mod scene_report;
 pub mod viewer;
 

@@ -32,6 +32,10 @@ pub struct SceneSpec {
     /// `[[occluder]]` tables.
     #[serde(default, rename = "occluder")]
     pub occluders: Vec<OccluderSpec>,
+    /// A `[road]` table: the road generates its luminaires and its field
+    /// receiver ([`super::road`], `docs/road.md`).
+    #[serde(default)]
+    pub road: Option<super::road::layout::RoadSpec>,
 }
 
 /// One `[[luminaire]]`.
@@ -214,6 +218,26 @@ impl Scene {
         };
         let finite3 = |a: &[f64; 3]| a.iter().all(|v| v.is_finite());
         let mut luminaires = Vec::new();
+        let mut receivers = Vec::new();
+        if let Some(road) = &spec.road {
+            let fail = |message: String| SceneError::Invalid {
+                path: path.to_path_buf(),
+                line: text
+                    .lines()
+                    .position(|l| l.trim_start().starts_with("[road]"))
+                    .map_or(0, |i| i + 1),
+                message,
+            };
+            if !spec.luminaires.is_empty() {
+                return Err(fail(
+                    "a scene with [road] holds no [[luminaire]] tables: the road generates its luminaires".into(),
+                ));
+            }
+            let road = super::road::layout::Road::from_spec(road, path).map_err(|e| fail(e.to_string()))?;
+            let (lums, field) = road.scene_parts();
+            luminaires.extend(lums);
+            receivers.push(field);
+        }
         for (k, l) in spec.luminaires.iter().enumerate() {
             let bad = |m: String| err("luminaire", k, m);
             let bad_key = |key: &str, m: String| err_key("luminaire", k, key, m);
@@ -316,8 +340,7 @@ impl Scene {
                 source,
             });
         }
-        let mut receivers = Vec::new();
-        let mut total = 0usize;
+        let mut total = receivers.iter().map(|r: &Receiver| r.points.len()).sum::<usize>();
         for (k, r) in spec.receivers.iter().enumerate() {
             let bad = |m: String| err("receiver", k, m);
             let bad_key = |key: &str, m: String| err_key("receiver", k, key, m);

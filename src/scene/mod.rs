@@ -7,6 +7,7 @@
 //!   directional area source;
 //! - [`illuminance`]: E = Σ MF · I(d) cos(incidence) / r² at every receiver
 //!   point, with any [`crate::model::IntensityField`];
+//! - [`road`]: road lighting (EN 13201-3): luminance, uniformities, TI;
 //! - [`plan`]: per luminaire, the cheapest representation within a
 //!   tolerance of the reference, measured on the scene.
 //!
@@ -26,6 +27,7 @@ pub mod illuminance;
 pub mod near_field;
 pub mod opening;
 pub mod plan;
+pub mod road;
 
 use std::path::PathBuf;
 

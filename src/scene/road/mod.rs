@@ -1,0 +1,113 @@
+//! Road lighting: a straight road lit by rows of one luminaire at a regular
+//! spacing, computed the EN 13201-3 / CIE 140 way (sources and what was and
+//! was not verified: `docs/road.md`).
+//!
+//! - [`surface`]: road-surface r-tables (CIE R1–R4, C1, C2 or a user table)
+//!   and their interpolation, Q0 / S1 / S2;
+//! - [`layout`]: the `[road]` table of the scene file, the luminaires it
+//!   generates, the calculation field, its grids and the observers;
+//! - [`quantities`]: luminance, illuminance, hemispherical illuminance,
+//!   U_o, U_l, TI, R_EI per observer lane and overall.
+//!
+//! World frame as in [`crate::scene`]: the road runs along +x (the traffic
+//! direction of every observer), the carriageway spans 0 ≤ y ≤ width,
+//! z is up and the road surface is z = 0. The calculation field is
+//! 0 ≤ x ≤ spacing: between two consecutive luminaires of the first row.
+//!
+//! ```no_run
+//! use photosolid::scene::road::{layout::Road, quantities::{evaluate, RoadOptions}};
+//! let road = Road::load(std::path::Path::new("data/road_en13201.toml")).unwrap();
+//! let result = evaluate(&road, &RoadOptions::default()).unwrap();
+//! println!("L_av {} cd/m², TI {} %", result.overall.l_av_cd_m2, result.overall.ti_pct);
+//! ```
+
+pub mod layout;
+pub mod quantities;
+pub mod surface;
+pub mod tables;
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong with a road; each variant has a stable
+/// [`RoadError::code`].
+#[derive(Debug, thiserror::Error)]
+pub enum RoadError {
+    /// The scene file could not be read or parsed, or its `[road]` table is
+    /// missing or mixed with `[[luminaire]]` tables.
+    #[error("{path}: {message}", path = .path.display())]
+    File {
+        /// The scene file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A `[road]` value is outside its domain.
+    #[error("[road] {key}: {reason}")]
+    Invalid {
+        /// The key.
+        key: &'static str,
+        /// What was expected and what was found.
+        reason: String,
+    },
+    /// `surface` names no standard class and no readable table file.
+    #[error("[road] surface = {surface:?}: not a standard class (R1, R2, R3, R4, C1, C2) and no such table file")]
+    UnknownSurface {
+        /// What was given.
+        surface: String,
+    },
+    /// A user r-table is malformed.
+    #[error("road-surface table {table}: {reason}")]
+    BadTable {
+        /// The table (file name or class).
+        table: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The luminaires hang at or below the road surface.
+    #[error("[road] mounting_height_m = {height_m} m: the luminaires must hang above the road (> 0 m)")]
+    LuminaireBelowRoad {
+        /// The mounting height given.
+        height_m: f64,
+    },
+    /// An observer stands inside the calculation field.
+    #[error(
+        "the luminance observer at x = {x_m} m stands inside the calculation field (0 to {length_m} m); \
+         it must be before it (negative x)"
+    )]
+    ObserverInField {
+        /// Observer x, m.
+        x_m: f64,
+        /// Field length, m.
+        length_m: f64,
+    },
+    /// No luminaire puts light on the field: the uniformities and TI are undefined.
+    #[error(
+        "no luminaire puts light on the calculation field (L_av = 0 cd/m² and E_av = 0 lx): check the luminaire's \
+         file, its aiming (tilt_deg) and that it emits downwards"
+    )]
+    NothingInView,
+    /// The luminaire file could not be read or its representation built.
+    #[error("luminaire {file}: {message}", file = .file.display())]
+    Luminaire {
+        /// The photometric file.
+        file: PathBuf,
+        /// The reader's or model's message.
+        message: String,
+    },
+}
+
+impl RoadError {
+    /// Stable machine-readable code (kebab-case).
+    pub fn code(&self) -> &'static str {
+        match self {
+            RoadError::File { .. } => "road-file",
+            RoadError::Invalid { .. } => "road-invalid",
+            RoadError::UnknownSurface { .. } => "road-unknown-surface",
+            RoadError::BadTable { .. } => "road-bad-table",
+            RoadError::LuminaireBelowRoad { .. } => "road-luminaire-below-road",
+            RoadError::ObserverInField { .. } => "road-observer-in-field",
+            RoadError::NothingInView => "road-nothing-in-view",
+            RoadError::Luminaire { .. } => "road-luminaire",
+        }
+    }
+}
