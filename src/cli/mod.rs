@@ -23,6 +23,7 @@ mod hausdorff;
 mod holdout;
 mod info;
 mod mesh;
+mod road;
 mod scene;
 mod synth;
 mod texture;
@@ -87,6 +88,8 @@ enum Command {
     Scene(scene::SceneArgs),
     /// Per luminaire of a scene, the cheapest representation within a tolerance, measured on the scene.
     Plan(scene::PlanArgs),
+    /// Road lighting of a scene's [road] table (EN 13201-3): luminance, U_o, U_l, TI, R_EI, illuminance per lane.
+    Road(road::RoadArgs),
     /// Write one renderer's light-profile layout (pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf).
     Export(export::ExportArgs),
     /// How far each renderer's lookup is from the file: trade-table metrics per engine, defect rows.
@@ -173,6 +176,7 @@ pub fn run(cli: Cli) -> anyhow::Result<i32> {
         Command::Compare(a) => compare::run(a),
         Command::Scene(a) => scene::run_scene(a),
         Command::Plan(a) => scene::run_plan(a),
+        Command::Road(a) => road::run_road(a),
         Command::Export(a) => export::run(a),
         Command::Engines(a) => engines::run(a),
     }

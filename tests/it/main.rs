@@ -30,6 +30,7 @@ mod plots;
 mod plots_legible;
 mod reader_errors;
 mod reconstruct;
+mod road;
 mod roundtrip_props;
 mod scene;
 mod scripts;
