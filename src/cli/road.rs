@@ -31,8 +31,11 @@ pub fn run_road(a: RoadArgs) -> anyhow::Result<i32> {
         }
     }
     super::emit(a.json, &result, &road_text(&result))?;
-    for w in &result.warnings {
-        eprintln!("warning: {w}");
+    if a.json {
+        // the text summary already lists them
+        for w in &result.warnings {
+            eprintln!("warning: {w}");
+        }
     }
     Ok(0)
 }
