@@ -16,7 +16,8 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArra
 use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
 use photosolid::error::{Error, ErrorRecord};
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
-use photosolid::reconstruct::{render_with, Filter, LightTexture, Recon, Reconstructions, RenderOptions};
+use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
+use photosolid::registry::{Recon, Reconstructions};
 use photosolid::report::InfoReport;
 use photosolid::solid::Units;
 use pyo3::exceptions::{PyException, PyValueError};
@@ -89,7 +90,9 @@ struct Luminaire {
 /// Load an .ies or .ldt file. Raises `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
-    let lum = py.detach(|| photosolid::formats::load_document(&path)).map_err(py_err)?;
+    let lum = py
+        .detach(|| photosolid::formats::load_document(&path))
+        .map_err(py_err)?;
     Ok(Luminaire {
         path: path.display().to_string(),
         lum,
@@ -267,12 +270,7 @@ impl Luminaire {
     /// and int64 (F, 3) vertex indices, counter-clockwise seen from outside:
     /// `trimesh.Trimesh(vertices, faces)` takes them as they are.
     #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn mesh<'py>(
-        &self,
-        py: Python<'py>,
-        filter: &str,
-        factor: usize,
-    ) -> PyResult<MeshArrays<'py>> {
+    fn mesh<'py>(&self, py: Python<'py>, filter: &str, factor: usize) -> PyResult<MeshArrays<'py>> {
         let recon: Recon = arg("filter", filter)?;
         if factor == 0 {
             return Err(PyValueError::new_err("factor must be at least 1"));
@@ -330,7 +328,11 @@ impl Luminaire {
             tolerance,
             // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
             factor: factor.unwrap_or(defaults.factor),
-            solid_tolerance: if factor.is_some() { None } else { defaults.solid_tolerance },
+            solid_tolerance: if factor.is_some() {
+                None
+            } else {
+                defaults.solid_tolerance
+            },
             ..defaults
         };
         let other = vs.as_ref().map(|o| o.lum.distribution());
