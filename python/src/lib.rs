@@ -90,9 +90,7 @@ struct Luminaire {
 /// Load an .ies or .ldt file. Raises `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
-    let lum = py
-        .detach(|| photosolid::formats::load_document(&path))
-        .map_err(py_err)?;
+    let lum = py.detach(|| photosolid::formats::load_document(&path)).map_err(py_err)?;
     Ok(Luminaire {
         path: path.display().to_string(),
         lum,
@@ -270,7 +268,12 @@ impl Luminaire {
     /// and int64 (F, 3) vertex indices, counter-clockwise seen from outside:
     /// `trimesh.Trimesh(vertices, faces)` takes them as they are.
     #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn mesh<'py>(&self, py: Python<'py>, filter: &str, factor: usize) -> PyResult<MeshArrays<'py>> {
+    fn mesh<'py>(
+        &self,
+        py: Python<'py>,
+        filter: &str,
+        factor: usize,
+    ) -> PyResult<MeshArrays<'py>> {
         let recon: Recon = arg("filter", filter)?;
         if factor == 0 {
             return Err(PyValueError::new_err("factor must be at least 1"));
@@ -328,11 +331,7 @@ impl Luminaire {
             tolerance,
             // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
             factor: factor.unwrap_or(defaults.factor),
-            solid_tolerance: if factor.is_some() {
-                None
-            } else {
-                defaults.solid_tolerance
-            },
+            solid_tolerance: if factor.is_some() { None } else { defaults.solid_tolerance },
             ..defaults
         };
         let other = vs.as_ref().map(|o| o.lum.distribution());
