@@ -16,7 +16,8 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArra
 use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
 use photosolid::error::{Error, ErrorRecord};
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
-use photosolid::reconstruct::{render_with, Filter, LightTexture, Recon, Reconstructions, RenderOptions};
+use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
+use photosolid::registry::{Recon, Reconstructions};
 use photosolid::report::InfoReport;
 use photosolid::solid::Units;
 use pyo3::exceptions::{PyException, PyValueError};

@@ -65,6 +65,7 @@ pub mod align;
 mod measure;
 mod plot_data;
 pub mod trade;
+pub mod view;
 mod withheld;
 
 use std::str::FromStr;
@@ -77,6 +78,7 @@ pub use measure::SOLID_MAX_POINTS;
 pub(crate) use measure::{measure_field, own_or_grid_solid, FieldTarget};
 pub(crate) use plot_data::plot_data;
 pub use plot_data::{ErrorMap, PlotData, PolarPlane};
+pub use view::{SampledSolid, SampledSolids, SolidSet};
 
 use crate::error::ModelError;
 use crate::metrics::profile::{self, Profile};
@@ -84,8 +86,10 @@ use crate::metrics::{
     hausdorff_bvh, pareto_front, radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, Hausdorff,
     OneSided, ZOTTI_C,
 };
+pub use crate::model::Progress;
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{eval_all, Recon, Reconstructions, DEFAULT_RECONS};
+use crate::reconstruct::eval_all;
+use crate::registry::{Recon, Reconstructions, DEFAULT_RECONS};
 use crate::solid::{AdaptiveOptions, Mesh, RadialMesh, Refinement, SolidGrid, Tolerance, Units};
 use crate::synth::Truth;
 
@@ -547,9 +551,6 @@ pub fn compare(
 ) -> Result<Comparison, ModelError> {
     compare_with_progress(file, vs, opts, &|_, _, _| {})
 }
-
-/// A progress report: `(done, total, what is being measured now)`.
-pub type Progress<'a> = dyn Fn(usize, usize, &str) + Sync + 'a;
 
 /// [`compare`], calling `progress` before each reconstruction is measured.
 pub fn compare_with_progress(

@@ -27,7 +27,8 @@ use serde::Serialize;
 use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress};
 use crate::error::ModelError;
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{Filter, Lookup, Precision, Recon, TextureSpec};
+use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
+use crate::registry::Recon;
 
 /// The representations of the trade table for data with `symmetry`:
 /// textures at each of `factors` (see the module docs).

@@ -22,7 +22,8 @@ use crate::compare::{
 use crate::error::ModelError;
 use crate::metrics::{random_directions, DirectionSet, ZOTTI_C};
 use crate::model::{IntensityField, Luminaire};
-use crate::reconstruct::{eval_all, Filter, Recon, Reconstructions};
+use crate::reconstruct::{eval_all, Filter};
+use crate::registry::{Recon, Reconstructions};
 use crate::solid::{grid_solid, Mesh, RadialMesh, SolidGrid, Units};
 use crate::synth::Truth;
 

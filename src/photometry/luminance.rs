@@ -21,8 +21,8 @@ use glam::DVec3;
 use serde::Serialize;
 
 use crate::model::frame::direction;
+use crate::model::opening::Opening;
 use crate::model::{Distribution, Luminaire};
-use crate::scene::opening::Opening;
 
 /// Projected area (m²) of `opening` seen from emission direction `d` (unit vector, luminaire frame).
 pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
@@ -198,8 +198,8 @@ pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::opening::{CylinderShape, Extent3};
     use crate::model::Symmetry;
-    use crate::scene::opening::{CylinderShape, Extent3};
 
     /// A Lambertian emitter of uniform luminance L over a flat area A has
     /// I(γ) = L·A·cos γ, so the table must read L at every angle (the

@@ -53,8 +53,8 @@ use serde::Serialize;
 
 use super::luminance::{projected_area_m2, GridLookup};
 use crate::model::frame::unit_angles;
+use crate::model::opening::Opening;
 use crate::model::Luminaire;
-use crate::scene::opening::Opening;
 
 /// Standard rooms (X, Y) in units of H (CIE 190 / CIE 117 table rows).
 pub const ROOMS_H: [(f64, f64); 19] = [

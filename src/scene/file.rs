@@ -12,7 +12,7 @@ use serde::Deserialize;
 
 use super::aim::{Aim, Pose};
 use super::opening::Opening;
-use super::plan::Representation;
+use super::representation::Representation;
 use super::{Occluder, Receiver, Scene, SceneError, SceneLuminaire, SourceKind};
 
 /// Most receiver points a scene may ask for (a typo in a spacing must not

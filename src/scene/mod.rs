@@ -7,8 +7,14 @@
 //!   directional area source;
 //! - [`illuminance`]: E = Σ MF · I(d) cos(incidence) / r² at every receiver
 //!   point, with any [`crate::model::IntensityField`];
+//! - [`representation`]: the representations of a distribution a scene can
+//!   hold ([`representation::Representation`]), each built as a field
+//!   ([`representation::Models`]);
 //! - [`plan`]: per luminaire, the cheapest representation within a
 //!   tolerance of the reference, measured on the scene.
+//!
+//! Inside the module, too, the files point one way: `representation` below
+//! `illuminance` below `plan`.
 //!
 //! World frame: right-handed, z up, metres. A luminaire's frame is that of
 //! [`crate::model::frame`], turned by its [`aim::Pose`].
@@ -24,8 +30,9 @@ pub mod aim;
 pub mod file;
 pub mod illuminance;
 pub mod near_field;
-pub mod opening;
+pub use crate::model::opening;
 pub mod plan;
+pub mod representation;
 
 use std::path::PathBuf;
 
@@ -36,7 +43,7 @@ use crate::model::{IntensityField, Luminaire};
 use crate::reconstruct::LightTexture;
 use aim::Pose;
 use opening::Opening;
-use plan::Representation;
+use representation::Representation;
 
 /// Everything that can go wrong with a scene.
 #[derive(Debug, thiserror::Error)]

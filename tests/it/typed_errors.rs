@@ -38,9 +38,9 @@ fn unknown_extensions_are_typed() {
     assert!(msg.contains("lum.txt") && msg.contains(".ies, .ldt or .xml"), "{msg}");
     assert_eq!(ErrorRecord::from(&e).code, "unknown-extension");
 
-    let mesh = photosolid::reconstruct::Reconstructions::new(lum.distribution().clone(), &[])
+    let mesh = photosolid::registry::Reconstructions::new(lum.distribution().clone(), &[])
         .unwrap()
-        .solid(photosolid::reconstruct::Recon::Measured, 1)
+        .solid(photosolid::registry::Recon::Measured, 1)
         .unwrap();
     let e = photosolid::solid::export::write(&mesh, &t.path().join("m.txt")).unwrap_err();
     assert!(
