@@ -29,7 +29,7 @@ pyo3::create_exception!(
     PhotosolidError,
     PyException,
     "A photosolid error: `path`, `line` and `column` (None when unknown), `code` (`invalid`, `unsupported`, \
-     `io`, `model`, `unsupported-operation`) and `message` (the full text)."
+     `io`, `model`, ...: the stable codes of `photosolid::error::ERROR_CODES`) and `message` (the full text)."
 );
 
 /// The Python exception of a library error, with its location as attributes.
@@ -37,7 +37,9 @@ fn py_err(e: Error) -> PyErr {
     let rec = ErrorRecord::from(&e);
     let path: Option<String> = match &e {
         Error::Parse(p) => Some(p.path.display().to_string()),
-        Error::Io { path, .. } => Some(path.display().to_string()),
+        Error::Io { path, .. } | Error::MeshFile { path, .. } | Error::EmptyMesh { path } => {
+            Some(path.display().to_string())
+        }
         _ => None,
     };
     Python::attach(|py| {

@@ -113,7 +113,7 @@ pub struct TradeTable {
     /// What the errors are measured against, in words.
     pub reference: String,
     /// `truth`, `withheld`, `dense` or `reconstruction`.
-    pub reference_kind: String,
+    pub reference_kind: super::ReferenceKind,
     /// Direction set of the radial metrics.
     pub directions: String,
     /// One per representation.
@@ -223,7 +223,7 @@ pub fn trade_table(
     Ok(TradeTable {
         file: String::new(),
         reference: c.reference.clone(),
-        reference_kind: c.reference_kind.clone(),
+        reference_kind: c.reference_kind,
         directions: c.directions.clone(),
         rows,
         comparison: c,
@@ -269,10 +269,9 @@ fn gpu_columns(
     opts: &CompareOptions,
 ) -> Result<(), ModelError> {
     use crate::gpu::{precision::hardware_row, GpuContext};
-    let fail = |e: crate::gpu::GpuError| ModelError::Parameter {
-        name: "recon",
-        value: row.representation.clone(),
-        reason: format!("the GPU lookup is not available: {e}"),
+    let fail = |source: crate::gpu::GpuError| ModelError::Gpu {
+        recon: row.representation.clone(),
+        source,
     };
     let ctx = GpuContext::global().map_err(fail)?;
     let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
@@ -288,9 +287,8 @@ fn gpu_columns(
 /// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).
 #[cfg(not(feature = "gpu"))]
 fn gpu_columns(row: &mut TradeRow, _: &Distribution, _: TextureSpec, _: &CompareOptions) -> Result<(), ModelError> {
-    Err(ModelError::Parameter {
-        name: "recon",
-        value: row.representation.clone(),
-        reason: "this build has no GPU support (feature `gpu`)".into(),
+    Err(ModelError::Gpu {
+        recon: row.representation.clone(),
+        source: crate::error::GpuError::NotBuilt,
     })
 }

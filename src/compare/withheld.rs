@@ -189,7 +189,7 @@ pub(super) fn compare_withheld(
             "withheld ({}-fold hold-out of the measured C-planes and gamma rows; each reconstruction rebuilt without them)",
             opts.folds
         ),
-        reference_kind: "withheld".into(),
+        reference_kind: super::ReferenceKind::Withheld,
         normalize: opts.normalize,
         units: opts.normalize.unit().into(),
         directions: pooled.label.clone(),

@@ -20,6 +20,7 @@
 use glam::DVec3;
 use serde::Serialize;
 
+use crate::error::{ModelError, Undefined};
 use crate::model::frame::direction;
 use crate::model::opening::Opening;
 use crate::model::{Distribution, Luminaire};
@@ -174,10 +175,17 @@ pub fn intensity_at(d: &Distribution, c_deg: f64, gamma_deg: f64) -> f64 {
 }
 
 /// The luminance table of `lum`, or the reason there is none.
-pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, String> {
-    let opening = Opening::of_luminaire(lum)?;
+///
+/// # Errors
+/// [`ModelError::Undefined`] for a point source; [`ModelError::Opening`]
+/// when the declared opening is not one this crate models.
+pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, ModelError> {
+    let opening = Opening::of_luminaire(lum).map_err(ModelError::Opening)?;
     if opening.is_point() {
-        return Err("the file declares no luminous area (point source): luminance undefined".into());
+        return Err(ModelError::Undefined {
+            quantity: "luminance",
+            why: Undefined::NoLuminousArea,
+        });
     }
     let d = lum.distribution();
     let at = |c: f64, g: f64| {
@@ -223,7 +231,12 @@ mod tests {
         }
         // No luminous area: no table, a reason instead.
         lum.set_luminous_opening(crate::model::Dimensions::default());
-        assert!(luminance_table(&lum).unwrap_err().contains("no luminous area"));
+        let e = luminance_table(&lum).unwrap_err();
+        assert!(matches!(e, ModelError::Undefined { .. }), "{e:?}");
+        assert_eq!(
+            e.to_string(),
+            "the file declares no luminous area (point source): luminance undefined"
+        );
     }
 
     /// Projected areas of closed shapes: a sphere of diameter D shows π D²/4

@@ -154,10 +154,9 @@ impl Reconstructions {
     #[cfg(feature = "gpu")]
     fn gpu_field(&self, r: Recon, t: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
         use crate::gpu::realtime::{HardwareLookup, RealtimeTexture};
-        let unavailable = |e: crate::gpu::GpuError| ModelError::Parameter {
-            name: "recon",
-            value: r.to_string(),
-            reason: format!("the GPU lookup is not available: {e}"),
+        let unavailable = |source: crate::gpu::GpuError| ModelError::Gpu {
+            recon: r.to_string(),
+            source,
         };
         let ctx = crate::gpu::GpuContext::global().map_err(unavailable)?;
         let rendered = render(&self.texture, t.filter, t.factor)?;
@@ -170,10 +169,9 @@ impl Reconstructions {
 
     #[cfg(not(feature = "gpu"))]
     fn gpu_field(&self, r: Recon, _: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        Err(ModelError::Parameter {
-            name: "recon",
-            value: r.to_string(),
-            reason: "this build has no GPU support (feature `gpu`)".into(),
+        Err(ModelError::Gpu {
+            recon: r.to_string(),
+            source: crate::error::GpuError::NotBuilt,
         })
     }
 

@@ -272,13 +272,19 @@ fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> 
 
 /// Plan every luminaire of `scene` (see the module docs). `progress` gets a
 /// line per luminaire and candidate.
-pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)>) -> Result<PlanResult, SceneError> {
+///
+/// # Errors
+/// [`ModelError::Parameter`] for a tolerance that is not a finite fraction
+/// ≥ 0; [`SceneError`] when a point lies in an opening or a luminaire's
+/// model cannot be built.
+pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)>) -> crate::Result<PlanResult> {
     if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
-        return Err(SceneError::Parameter(ModelError::Parameter {
+        return Err(ModelError::Parameter {
             name: "tolerance",
             value: options.tolerance.to_string(),
             reason: "expected a finite fraction >= 0".into(),
-        }));
+        }
+        .into());
     }
     scene.check_points()?;
     let points = scene.points();
@@ -403,7 +409,8 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
             return Err(SceneError::Model {
                 luminaire: lum.name.clone(),
                 source: ModelError::Internal("the reference itself is not within the tolerance".into()),
-            });
+            }
+            .into());
         };
         let (chosen, values) = measured[chosen_at].clone();
         for (t, v) in total_chosen.iter_mut().zip(&values) {
