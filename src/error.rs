@@ -230,7 +230,7 @@ pub enum ModelError {
     },
     /// The luminous opening the luminaire declares is not one this crate
     /// models (a sign combination no LM-63 version defines, a non-finite
-    /// size). The reason is text while `scene::opening` returns text (issue 28).
+    /// size), the reason naming the values (`model::opening`).
     #[error("{0}")]
     Opening(String),
     /// A GPU representation was asked for and the GPU path failed: the GPU

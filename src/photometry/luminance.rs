@@ -180,7 +180,7 @@ pub fn intensity_at(d: &Distribution, c_deg: f64, gamma_deg: f64) -> f64 {
 /// [`ModelError::Undefined`] for a point source; [`ModelError::Opening`]
 /// when the declared opening is not one this crate models.
 pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, ModelError> {
-    let opening = Opening::of_luminaire(lum).map_err(ModelError::Opening)?;
+    let opening = Opening::of_luminaire(lum)?;
     if opening.is_point() {
         return Err(ModelError::Undefined {
             quantity: "luminance",

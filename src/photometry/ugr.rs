@@ -392,7 +392,7 @@ pub fn ugr_room(
     h_m: f64,
     spacing_h: f64,
 ) -> Result<Option<f64>, ModelError> {
-    let opening = Opening::of_luminaire(lum).map_err(ModelError::Opening)?;
+    let opening = Opening::of_luminaire(lum)?;
     let layout = Layout::new(spacing_h)?;
     let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
     let f = super::flux::flux(lum.distribution());
@@ -429,7 +429,7 @@ pub fn background(
     h_m: f64,
     spacing_h: f64,
 ) -> Result<Background, ModelError> {
-    let opening = Opening::of_luminaire(lum).map_err(ModelError::Opening)?;
+    let opening = Opening::of_luminaire(lum)?;
     let layout = Layout::new(spacing_h)?;
     let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
     let f = super::flux::flux(lum.distribution());
@@ -497,7 +497,7 @@ pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, ModelError> {
 /// one this crate models; [`ModelError::Parameter`] for a spacing that is not 1/n of H.
 pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, ModelError> {
     let layout = Layout::new(spacing_h)?;
-    let opening = Opening::of_luminaire(lum).map_err(ModelError::Opening)?;
+    let opening = Opening::of_luminaire(lum)?;
     let undefined = |why| ModelError::Undefined { quantity: "UGR", why };
     if opening.is_point() {
         return Err(undefined(Undefined::NoLuminousArea));

@@ -94,7 +94,7 @@ impl SceneLuminaire {
     /// # Errors
     /// [`crate::ModelError::Opening`] when the declared opening is not one this crate models.
     pub fn new(name: &str, luminaire: Luminaire, pose: Pose) -> Result<Self, crate::ModelError> {
-        let opening = Opening::of_luminaire(&luminaire).map_err(crate::ModelError::Opening)?;
+        let opening = Opening::of_luminaire(&luminaire)?;
         Ok(Self {
             name: name.into(),
             luminaire,

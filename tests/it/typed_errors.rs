@@ -371,9 +371,7 @@ fn string_results(text: &str) -> Vec<(usize, String)> {
 
 /// Issue 28 item 3: no library function returns `Result<_, String>`; every
 /// error is a typed [`Error`] variant with a code. The CLI (`src/cli`, clap
-/// value parsers) may keep strings. `src/scene/opening.rs` is exempt only
-/// until the branch that moves it into the model layer is merged (issue 28
-/// item 1): that merge types its errors and removes the exemption.
+/// value parsers) may keep strings.
 #[test]
 fn no_string_errors_in_the_library() {
     // The finder itself.
@@ -383,7 +381,6 @@ fn no_string_errors_in_the_library() {
     let lines: Vec<usize> = string_results(sample).iter().map(|(l, _)| *l).collect();
     assert_eq!(lines, vec![1, 2, 5, 6], "{:?}", string_results(sample));
 
-    const TEMPORARILY_EXEMPT: &[&str] = &["src/scene/opening.rs"];
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut stack = vec![root.join("src")];
     let mut offenders = Vec::new();
@@ -395,7 +392,7 @@ fn no_string_errors_in_the_library() {
                 if rel != "src/cli" {
                     stack.push(path);
                 }
-            } else if rel.ends_with(".rs") && !TEMPORARILY_EXEMPT.contains(&rel.as_str()) {
+            } else if rel.ends_with(".rs") {
                 let text = std::fs::read_to_string(&path).unwrap();
                 for (line, what) in string_results(&text) {
                     offenders.push(format!("{rel}:{line}: {what}"));
@@ -449,7 +446,7 @@ fn scene_errors_have_codes_and_io_sources() {
 /// (it was flattened into a `Parameter` message); the code stays `model`.
 #[test]
 fn gpu_representation_errors_keep_the_gpu_error() {
-    use photosolid::reconstruct::{Recon, Reconstructions};
+    use photosolid::registry::{Recon, Reconstructions};
     use std::error::Error as _;
     let lum = lambertian();
     let r: Recon = "catmull-rom@x5/bilinear+gpu".parse().unwrap();
