@@ -1,4 +1,6 @@
 //! What every reader target checks on one input (shared by the targets).
+// Each target includes this module and calls one of its checks.
+#![allow(dead_code)]
 
 use std::path::Path;
 
@@ -7,24 +9,29 @@ use photosolid::model::distribution::MAX_CD;
 use photosolid::model::Format;
 use photosolid::ReadOptions;
 
+/// The path every target reads its input as: a directory that does not
+/// exist, so `TILT=<file>` cannot reach real files.
+fn fuzz_path(format: Format) -> std::path::PathBuf {
+    let name = match format {
+        Format::Ies => "fuzz.ies",
+        Format::Ldt => "fuzz.ldt",
+        Format::Tm33 => "fuzz.xml",
+    };
+    Path::new("/nonexistent-fuzz-dir").join(name)
+}
+
 /// Parse `data` as `format`, both leniently and with the repair option. On
 /// success: the photometric summary holds only finite numbers, and writing
 /// both formats and reading them back gives the same distribution
 /// ([`photosolid::formats::roundtrip::check`]). Any failure panics, which
 /// libFuzzer records as a crash with the input.
 pub fn reader(data: &[u8], format: Format) {
-    let name = match format {
-        Format::Ies => "fuzz.ies",
-        Format::Ldt => "fuzz.ldt",
-        Format::Tm33 => "fuzz.xml",
-    };
+    let path = fuzz_path(format);
     for repair in [false, true] {
         let opts = ReadOptions {
             repair,
             ..ReadOptions::default()
         };
-        // A path in a directory that does not exist: TILT=<file> cannot reach real files.
-        let path = Path::new("/nonexistent-fuzz-dir").join(name);
         let Ok(lum) = photosolid::formats::parse(data, &path, format, &opts) else {
             continue;
         };
@@ -46,12 +53,7 @@ pub fn reader(data: &[u8], format: Format) {
 /// every intensity finite within [`photosolid::model::distribution::MAX_CD`];
 /// a reader failing must be an `Err`, never a panic.
 pub fn parse_only(data: &[u8], format: Format) {
-    let name = match format {
-        Format::Ies => "fuzz.ies",
-        Format::Ldt => "fuzz.ldt",
-        Format::Tm33 => "fuzz.xml",
-    };
-    let path = Path::new("/nonexistent-fuzz-dir").join(name);
+    let path = fuzz_path(format);
     for repair in [false, true] {
         let opts = ReadOptions {
             repair,
