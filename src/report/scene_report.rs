@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::report::compare_report::esc;
-use crate::report::plot::{isolux_plot, png_data_uri, IsoluxSpec, MapAxis, Plot};
+use crate::report::plot::{isolux_plot, png_data_uri, IsoluxSpec, MapAxis, MapQuantity, Plot};
 use crate::report::viewer::{self, SolidSet, ViewerData};
 use crate::scene::illuminance::SceneResult;
 use crate::scene::plan::{Models, PlanResult, Representation};
@@ -67,6 +67,7 @@ pub fn isolux_map(scene: &Scene, result: &SceneResult, index: usize) -> crate::R
         .map(|l| plane_coords(origin, u, v, l.pose.position))
         .collect();
     isolux_plot(&IsoluxSpec {
+        quantity: MapQuantity::ILLUMINANCE,
         name: &rec.name,
         values: &values,
         grid: (nu, nv),

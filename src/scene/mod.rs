@@ -33,8 +33,8 @@ pub mod illuminance;
 pub mod near_field;
 pub use crate::model::opening;
 pub mod plan;
-pub mod road;
 pub mod representation;
+pub mod road;
 
 use std::path::PathBuf;
 

@@ -213,7 +213,7 @@ impl Default for PlanOptions {
 }
 
 /// Every candidate representation of `lum` for this scene.
-fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Representation> {
+pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Representation> {
     let mut reps: Vec<Representation> = Filter::ALL.into_iter().map(Representation::Filter).collect();
     // The trade table's rows: every filter rendered at each factor, read with
     // the hardware's bilinear lookup; the Catmull-Rom render also with the others.

@@ -155,7 +155,8 @@ fn errors_spanning_decades_are_spread_out() {
 // Issue 27 item 6: maps and plots that can be read.
 
 use photosolid::report::plot::{
-    contour_levels, isolux_plot, scatter_plot, texture_preview_plot, IsoluxSpec, MapAxis, Plot, TexturePreview,
+    contour_levels, isolux_plot, scatter_plot, texture_preview_plot, IsoluxSpec, MapAxis, MapQuantity, Plot,
+    TexturePreview,
 };
 
 /// Every text box inside the image and clear of every other one.
@@ -203,6 +204,7 @@ fn isolux_maps_are_legible() {
     let emin = values.iter().copied().fold(f64::INFINITY, f64::min);
     let marks = [(0.25, 0.9), (0.25, 0.9), (0.75, 0.9), (0.751, 0.9), (2.0, 0.5)];
     let wall = isolux_plot(&IsoluxSpec {
+        quantity: MapQuantity::ILLUMINANCE,
         name: "a wall with a long name, facing the four wall washers of the test",
         values: &values,
         grid: (nu, nv),
@@ -239,6 +241,7 @@ fn isolux_maps_are_legible() {
     // A road, as in data/road_scene.toml: 40 x 7 m, 16 x 3 points.
     let road: Vec<f64> = (0..48).map(|k| 1.0 + f64::from(k % 16) * 1.7).collect();
     let plot = isolux_plot(&IsoluxSpec {
+        quantity: MapQuantity::ILLUMINANCE,
         name: "road",
         values: &road,
         grid: (16, 3),

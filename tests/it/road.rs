@@ -415,3 +415,144 @@ fn the_cli_writes_the_contract_keys_and_scene_computes_the_field() {
     );
     assert!((a / b - 1.0).abs() < 0.02, "scene {a} vs road {b}");
 }
+
+#[test]
+fn plan_on_a_road_keeps_every_quantity_within_its_limit() {
+    use photosolid::scene::road::plan::{plan_road, TI_LIMIT_PP, UNIFORMITY_LIMIT};
+    let road = Road::load(&root().join("data/road_en13201.toml")).unwrap();
+    let plan = plan_road(&road, 0.01, None).unwrap();
+    assert!(plan.candidates.len() >= 10, "{} candidates", plan.candidates.len());
+    // cheapest first; the chosen one is the first within
+    assert!(plan.candidates.windows(2).all(|w| w[0].bytes <= w[1].bytes));
+    let first = plan.candidates.iter().find(|c| c.within).unwrap();
+    assert_eq!(
+        (first.representation.as_str(), first.bytes),
+        (plan.chosen.as_str(), plan.bytes)
+    );
+    // the reference is a candidate and moves nothing
+    let reference = plan
+        .candidates
+        .iter()
+        .find(|c| c.representation == "catmull-rom")
+        .unwrap();
+    assert!(reference.within);
+    assert_eq!(reference.l_av_change_pct, 0.0);
+    assert_eq!(reference.ti_change_pp, 0.0);
+    // `within` is what the limits say, recomputed from the rows
+    for c in &plan.candidates {
+        let within = c.l_av_change_pct.abs() <= 1.0
+            && c.e_av_change_pct.abs() <= 1.0
+            && c.u_o_change.abs() <= UNIFORMITY_LIMIT
+            && c.u_l_change.abs() <= UNIFORMITY_LIMIT
+            && c.ti_change_pp.abs() <= TI_LIMIT_PP;
+        assert_eq!(c.within, within, "{}", c.representation);
+        assert!([
+            c.l_av_change_pct,
+            c.e_av_change_pct,
+            c.u_o_change,
+            c.u_l_change,
+            c.ti_change_pp
+        ]
+        .iter()
+        .all(|v| v.is_finite()));
+    }
+    // the 128-byte fit moves the road's L_av or TI beyond the limits (it is a poor road model)
+    let fitted = plan
+        .candidates
+        .iter()
+        .find(|c| c.representation == "fitted-gl")
+        .unwrap();
+    assert!(!fitted.within);
+    // a looser tolerance never chooses something bigger
+    let loose = plan_road(&road, 0.05, None).unwrap();
+    assert!(loose.bytes <= plan.bytes);
+    assert!(matches!(
+        plan_road(&road, f64::NAN, None),
+        Err(RoadError::Invalid { .. })
+    ));
+}
+
+#[test]
+fn plan_and_road_reports_on_the_cli() {
+    let scene = root().join("data/road_en13201.toml");
+    let t = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+        .args(["plan", scene.to_str().unwrap(), "--json", "--report"])
+        .arg(t.path().join("plan"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["chosen"].is_string() && v["bytes"].is_u64());
+    for c in v["candidates"].as_array().unwrap() {
+        for key in [
+            "l_av_change_pct",
+            "e_av_change_pct",
+            "u_o_change",
+            "u_l_change",
+            "ti_change_pp",
+        ] {
+            assert!(c[key].as_f64().unwrap().is_finite(), "{key}");
+        }
+    }
+    assert!(t.path().join("plan/plan.json").is_file() && t.path().join("plan/index.html").is_file());
+    // the road report: a luminance map per observer lane beside the illuminance map
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
+        .args(["road", scene.to_str().unwrap(), "--report"])
+        .arg(t.path().join("road"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in ["luminance_lane1.png", "luminance_lane2.png", "illuminance.png"] {
+        let bytes = std::fs::read(t.path().join("road").join(name)).unwrap();
+        assert!(bytes.starts_with(b"\x89PNG"), "{name}");
+    }
+    let html = std::fs::read_to_string(t.path().join("road/index.html")).unwrap();
+    assert!(
+        html.contains("<table") && html.contains("observer in lane 2") && html.contains("Illuminance of the field")
+    );
+}
+
+/// The corpus's road luminaires in the example road: how far each filter on
+/// the native grid moves L_av and TI from Catmull-Rom (printed; the table in
+/// docs/road.md is this test's output with `--nocapture`).
+#[test]
+fn corpus_road_luminaires_filter_changes() {
+    use photosolid::scene::road::plan::plan_road;
+    let Some(corpus) = crate::common::corpus() else { return };
+    let files = [
+        "eulumdat-rs/ITALO 1 5P5 S05 3.140-3M.IES",
+        "eulumdat-rs/OutdoorRoadway IES OS 8988-2022 03 AM01 60W 4000K.ies",
+        "eulumdat-rs/road_luminaire.ldt",
+    ];
+    let example = Road::load(&root().join("data/road_en13201.toml")).unwrap();
+    for file in files {
+        let mut road = example.clone();
+        road.file = corpus.join(file);
+        road.luminaire = photosolid::formats::load(&road.file).unwrap();
+        let plan = plan_road(&road, 0.01, None).unwrap();
+        let o = &plan.reference_overall;
+        println!(
+            "{file}: reference L_av {:.3} cd/m2, TI {:.2} %, chosen {} ({} bytes)",
+            o.l_av_cd_m2, o.ti_pct, plan.chosen, plan.bytes
+        );
+        assert!(o.l_av_cd_m2 > 0.0 && o.ti_pct.is_finite(), "{file}");
+        let mut filters = 0;
+        for c in plan.candidates.iter().filter(|c| !c.representation.contains(' ')) {
+            filters += 1;
+            let flag = c.l_av_change_pct.abs() > 1.0 || c.ti_change_pp.abs() > 0.01 * o.ti_pct;
+            println!(
+                "  {:<12} L_av {:+.2} %  TI {:+.3} pp ({:+.2} % of TI)  U_o {:+.4}  U_l {:+.4}{}",
+                c.representation,
+                c.l_av_change_pct,
+                c.ti_change_pp,
+                100.0 * c.ti_change_pp / o.ti_pct.max(1e-12),
+                c.u_o_change,
+                c.u_l_change,
+                if flag { "  > 1 %" } else { "" }
+            );
+            assert!(c.l_av_change_pct.is_finite() && c.ti_change_pp.is_finite());
+        }
+        assert!(filters >= 6, "{file}: {filters} filter rows");
+    }
+}

@@ -40,18 +40,46 @@ pub struct MapAxis {
     pub title: String,
 }
 
+/// The quantity a map shows: its symbol, its unit and the map's name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MapQuantity {
+    /// Symbol in the statistics line (`E`, `L`).
+    pub symbol: &'static str,
+    /// Unit (ASCII: the plot font has no superscripts).
+    pub unit: &'static str,
+    /// The title's first word (`Isolux`, `Isoluminance`).
+    pub title: &'static str,
+}
+
+impl MapQuantity {
+    /// Illuminance, lx.
+    pub const ILLUMINANCE: MapQuantity = MapQuantity {
+        symbol: "E",
+        unit: "lx",
+        title: "Isolux",
+    };
+    /// Luminance, cd/m².
+    pub const LUMINANCE: MapQuantity = MapQuantity {
+        symbol: "L",
+        unit: "cd/m2",
+        title: "Isoluminance",
+    };
+}
+
 /// What [`isolux_plot`] draws.
 #[derive(Debug, Clone)]
 pub struct IsoluxSpec<'a> {
+    /// What the values are (illuminance in lx, or luminance in cd/m²).
+    pub quantity: MapQuantity,
     /// Receiver name (title).
     pub name: &'a str,
-    /// Illuminance at the cell centres, lx, u fastest (`nu * nv` values).
+    /// Values at the cell centres in `quantity`'s unit, u fastest (`nu * nv` values).
     pub values: &'a [f64],
     /// Points along u and v.
     pub grid: (usize, usize),
     /// Lengths of the u and v edges, m.
     pub size_m: (f64, f64),
-    /// Average illuminance, lx (as the scene result states it).
+    /// Average value in `quantity`'s unit (as the result states it).
     pub e_avg_lux: f64,
     /// The horizontal (u) axis.
     pub u_axis: MapAxis,
@@ -139,8 +167,9 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     } else {
         String::new()
     };
+    let (sym, unit) = (spec.quantity.symbol, spec.quantity.unit);
     let stats = format!(
-        "E_avg {} lx, E_min {} lx, E_max {} lx{u0}; {nu} x {nv} points",
+        "{sym}_avg {} {unit}, {sym}_min {} {unit}, {sym}_max {} {unit}{u0}; {nu} x {nv} points",
         lux(spec.e_avg_lux),
         lux(emin),
         lux(emax)
@@ -172,14 +201,14 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
         "no contour lines (uniform or dark)".to_string()
     } else {
         format!(
-            "contours (white): {} lx",
+            "contours (white): {} {unit}",
             levels.iter().map(|v| fmt_tick(*v, *v)).collect::<Vec<_>>().join(", ")
         )
     };
     if !off.is_empty() {
         footer.push_str(&format!("; beyond the map: {}", off.join(", ")));
     }
-    let title = format!("Isolux: {}", spec.name);
+    let title = format!("{}: {}", spec.quantity.title, spec.name);
     let text_w = [&stats, &footer]
         .iter()
         .map(|s| font::text_width(s, 2))
@@ -307,7 +336,15 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
         cv.line(bx1 + 1.0, y, bx1 + 6.0, y, AXIS, 1.0);
         cv.text(bx1 + 9.0, y, &fmt_tick(v, sb), 2, Align::Left, INK, false);
     }
-    cv.text((bx0 + bx1) / 2.0, t - 12.0, "lx", 2, Align::Center, INK, false);
+    cv.text(
+        (bx0 + bx1) / 2.0,
+        t - 12.0,
+        spec.quantity.unit,
+        2,
+        Align::Center,
+        INK,
+        false,
+    );
 
     // Luminaires: a white-ringed black dot, the label on a free side.
     let dots: Vec<[f32; 4]> = groups

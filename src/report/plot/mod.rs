@@ -31,7 +31,7 @@ pub mod scatter;
 pub mod texture;
 
 pub use heatmap::{heatmap, heatmap_plot, ColorScale, HeatmapSpec};
-pub use isolux::{contour_levels, isolux_plot, IsoluxSpec, MapAxis};
+pub use isolux::{contour_levels, isolux_plot, IsoluxSpec, MapAxis, MapQuantity};
 pub use polar::{polar_diagram, PolarSpec};
 pub use scatter::{scatter, scatter_plot, ScatterSpec};
 pub use texture::{

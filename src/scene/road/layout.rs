@@ -172,6 +172,24 @@ fn finite_key(key: &'static str, v: f64, unit: &str) -> Result<f64, RoadError> {
 }
 
 impl Road {
+    /// Read the `[road]` table of a scene file when it has one (`None`: a
+    /// scene file without `[road]`).
+    ///
+    /// # Errors
+    /// As [`Road::load`], except that a missing `[road]` table is `Ok(None)`.
+    pub fn load_if_road(path: &Path) -> Result<Option<Road>, RoadError> {
+        let text = std::fs::read_to_string(path).map_err(|e| RoadError::File {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        let has_road = toml::from_str::<crate::scene::file::SceneSpec>(&text).is_ok_and(|spec| spec.road.is_some());
+        if has_road {
+            Road::load(path).map(Some)
+        } else {
+            Ok(None)
+        }
+    }
+
     /// Read the `[road]` table of a scene file.
     pub fn load(path: &Path) -> Result<Road, RoadError> {
         let text = std::fs::read_to_string(path).map_err(|e| RoadError::File {

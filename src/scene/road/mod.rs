@@ -7,7 +7,9 @@
 //! - [`layout`]: the `[road]` table of the scene file, the luminaires it
 //!   generates, the calculation field, its grids and the observers;
 //! - [`quantities`]: luminance, illuminance, hemispherical illuminance,
-//!   U_o, U_l, TI, R_EI per observer lane and overall.
+//!   U_o, U_l, TI, R_EI per observer lane and overall;
+//! - [`plan`]: the cheapest representation that keeps those quantities
+//!   within their limits of the reference.
 //!
 //! World frame as in [`crate::scene`]: the road runs along +x (the traffic
 //! direction of every observer), the carriageway spans 0 ≤ y ≤ width,
@@ -22,6 +24,7 @@
 //! ```
 
 pub mod layout;
+pub mod plan;
 pub mod quantities;
 pub mod surface;
 pub mod tables;

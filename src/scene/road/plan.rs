@@ -1,0 +1,233 @@
+//! `plan` on a road: the cheapest representation of the road's luminaire
+//! that keeps every road quantity within its limit of the reference.
+//!
+//! A road has one luminaire file, so the plan has one choice. Every candidate
+//! of [`crate::scene::plan`] (filters on the native grid, the trade table's
+//! textures, the fitted lights, a re-stored symmetry) is put into the road
+//! and the whole road is computed again ([`evaluate`]); a candidate is within
+//! when, against the reference (Catmull-Rom on the native grid):
+//! - L_av of every observer lane and E_av of the field change by at most the
+//!   relative tolerance,
+//! - U_o and U_l of every lane by at most [`UNIFORMITY_LIMIT`] (absolute),
+//! - TI of every lane by at most [`TI_LIMIT_PP`] percentage points.
+//!
+//! The cheapest is the fewest bytes, then the fewest ns per evaluation.
+
+use serde::Serialize;
+
+use super::layout::Road;
+use super::quantities::{evaluate, Overall, RoadOptions, RoadResult};
+use super::RoadError;
+use crate::metrics::{random_directions, time_per_sample_ns};
+use crate::scene::plan::{candidate_representations, Models, Representation};
+
+/// Largest change of U_o or U_l a candidate may make (absolute).
+pub const UNIFORMITY_LIMIT: f64 = 0.01;
+/// Largest change of TI a candidate may make, percentage points.
+pub const TI_LIMIT_PP: f64 = 0.5;
+
+/// How far one candidate moves each road quantity from the reference: the
+/// largest change over the observer lanes (signed: the candidate's value
+/// minus the reference's, at the lane where the magnitude is largest).
+#[derive(Debug, Clone, Serialize)]
+pub struct RoadCandidate {
+    /// The representation (as `scene` and `road` accept it).
+    pub representation: String,
+    /// Bytes held by its field.
+    pub bytes: usize,
+    /// Time per intensity evaluation on one thread, ns.
+    pub ns_per_eval: f64,
+    /// L_av change, % of the reference's L_av of that lane.
+    pub l_av_change_pct: f64,
+    /// E_av change, % of the reference's E_av.
+    pub e_av_change_pct: f64,
+    /// U_o change (absolute).
+    pub u_o_change: f64,
+    /// U_l change (absolute).
+    pub u_l_change: f64,
+    /// TI change, percentage points.
+    pub ti_change_pp: f64,
+    /// Whether every change is within its limit.
+    pub within: bool,
+    /// The candidate's installation values.
+    pub overall: Overall,
+}
+
+/// The plan of a road (JSON of `photosolid plan` on a `[road]` file).
+#[derive(Debug, Clone, Serialize)]
+pub struct RoadPlan {
+    /// The scene file.
+    pub scene: String,
+    /// The photometric file.
+    pub luminaire: String,
+    /// The reference every candidate is measured against.
+    pub reference: String,
+    /// Relative tolerance on L_av and E_av, %.
+    pub tolerance_pct: f64,
+    /// Absolute tolerance on U_o and U_l.
+    pub uniformity_limit: f64,
+    /// Tolerance on TI, percentage points.
+    pub ti_limit_pp: f64,
+    /// The chosen (cheapest within) representation.
+    pub chosen: String,
+    /// Its bytes.
+    pub bytes: usize,
+    /// The reference's installation values.
+    pub reference_overall: Overall,
+    /// Every candidate, cheapest first.
+    pub candidates: Vec<RoadCandidate>,
+    /// Candidates that could not be built, and why.
+    pub unavailable: Vec<crate::scene::plan::Unavailable>,
+}
+
+/// Signed change of largest magnitude over the lanes.
+fn largest(changes: impl Iterator<Item = f64>) -> f64 {
+    changes.fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a })
+}
+
+fn relative_pct(value: f64, reference: f64) -> f64 {
+    if reference > 0.0 {
+        100.0 * (value - reference) / reference
+    } else if value > 0.0 {
+        100.0
+    } else {
+        0.0
+    }
+}
+
+fn compare(candidate: &RoadResult, reference: &RoadResult) -> [f64; 5] {
+    let pairs = || candidate.lanes.iter().zip(&reference.lanes);
+    [
+        largest(pairs().map(|(c, r)| relative_pct(c.l_av_cd_m2, r.l_av_cd_m2))),
+        relative_pct(candidate.overall.e_av_lux, reference.overall.e_av_lux),
+        largest(pairs().map(|(c, r)| c.u_o - r.u_o)),
+        largest(pairs().map(|(c, r)| c.u_l - r.u_l)),
+        largest(pairs().map(|(c, r)| c.ti_pct - r.ti_pct)),
+    ]
+}
+
+/// Plan `road` with the relative `tolerance` (a fraction: 0.01 = 1 %) on
+/// L_av and E_av. `progress` gets a line per candidate.
+///
+/// # Errors
+/// [`RoadError::Invalid`] for a tolerance that is not a finite fraction
+/// ≥ 0; any error of [`evaluate`] on the reference.
+pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -> Result<RoadPlan, RoadError> {
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(RoadError::Invalid {
+            key: "tolerance",
+            reason: format!("expected a finite fraction >= 0, found {tolerance}"),
+        });
+    }
+    let options = RoadOptions::default();
+    let mut base = road.clone();
+    base.representation = None;
+    let reference = evaluate(&base, &options)?;
+    let template = road.scene_luminaire("road luminaire", road.luminaires(0.0, 0.0)[0].pose);
+    let texture = template.texture().map_err(|e| RoadError::Luminaire {
+        file: road.file.clone(),
+        message: e.to_string(),
+    })?;
+    let models = Models::new(&template, texture.as_ref());
+    let reps = if texture.is_some() {
+        candidate_representations(&template, None)
+    } else {
+        vec![Representation::default()]
+    };
+    let dirs = random_directions(4096, 0x20AD);
+    let mut candidates = Vec::new();
+    let mut unavailable = Vec::new();
+    for rep in reps {
+        if let Some(say) = progress {
+            say(&format!("road: {rep}"));
+        }
+        let field = match models.field(&rep) {
+            Ok(f) => f,
+            Err(e) => {
+                unavailable.push(crate::scene::plan::Unavailable {
+                    representation: rep.to_string(),
+                    reason: e.to_string(),
+                });
+                continue;
+            }
+        };
+        let mut with = road.clone();
+        with.representation = Some(rep.clone());
+        let result = evaluate(&with, &options)?;
+        let [l, e, uo, ul, ti] = compare(&result, &reference);
+        let within = l.abs() <= 100.0 * tolerance
+            && e.abs() <= 100.0 * tolerance
+            && uo.abs() <= UNIFORMITY_LIMIT
+            && ul.abs() <= UNIFORMITY_LIMIT
+            && ti.abs() <= TI_LIMIT_PP;
+        candidates.push(RoadCandidate {
+            representation: rep.to_string(),
+            bytes: field.bytes(),
+            ns_per_eval: time_per_sample_ns(&*field, &dirs, 3),
+            l_av_change_pct: l,
+            e_av_change_pct: e,
+            u_o_change: uo,
+            u_l_change: ul,
+            ti_change_pp: ti,
+            within,
+            overall: result.overall,
+        });
+    }
+    candidates.sort_by(|a, b| a.bytes.cmp(&b.bytes).then(a.ns_per_eval.total_cmp(&b.ns_per_eval)));
+    // The reference is always a candidate and always within (all changes 0).
+    let chosen = candidates
+        .iter()
+        .find(|c| c.within)
+        .map_or((reference.representation.clone(), 0), |c| {
+            (c.representation.clone(), c.bytes)
+        });
+    Ok(RoadPlan {
+        scene: reference.scene.clone(),
+        luminaire: reference.luminaire.clone(),
+        reference: Representation::default().to_string(),
+        tolerance_pct: 100.0 * tolerance,
+        uniformity_limit: UNIFORMITY_LIMIT,
+        ti_limit_pp: TI_LIMIT_PP,
+        chosen: chosen.0,
+        bytes: chosen.1,
+        reference_overall: reference.overall,
+        candidates,
+        unavailable,
+    })
+}
+
+/// The text summary of a road plan.
+pub fn road_plan_text(p: &RoadPlan) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "road plan: {} ({}), reference {}; limits: L_av and E_av {} %, U_o and U_l {}, TI {} pp",
+        p.scene, p.luminaire, p.reference, p.tolerance_pct, p.uniformity_limit, p.ti_limit_pp
+    );
+    let _ = writeln!(s, "chosen: {} ({} bytes)", p.chosen, p.bytes);
+    let _ = writeln!(
+        s,
+        "{:<44} {:>9} {:>8} {:>9} {:>9} {:>8} {:>8} {:>8}  within",
+        "representation", "bytes", "ns", "L_av %", "E_av %", "U_o", "U_l", "TI pp"
+    );
+    for c in &p.candidates {
+        let _ = writeln!(
+            s,
+            "{:<44} {:>9} {:>8.1} {:>+9.3} {:>+9.3} {:>+8.4} {:>+8.4} {:>+8.3}  {}",
+            c.representation,
+            c.bytes,
+            c.ns_per_eval,
+            c.l_av_change_pct,
+            c.e_av_change_pct,
+            c.u_o_change,
+            c.u_l_change,
+            c.ti_change_pp,
+            if c.within { "yes" } else { "no" }
+        );
+    }
+    for u in &p.unavailable {
+        let _ = writeln!(s, "unavailable: {}: {}", u.representation, u.reason);
+    }
+    s
+}
