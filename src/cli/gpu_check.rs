@@ -26,7 +26,7 @@ pub struct GpuCheckArgs {
     #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor, allow_negative_numbers = true)]
     factor: u32,
     /// Filters to check (repeatable). Default: every filter (nearest, bilinear,
-    /// catmull-rom, mitchell, bspline, pchip) and mitchell:0,0.75.
+    /// catmull-rom, mitchell, bspline, pchip) and mitchell:0:0.75.
     #[arg(long)]
     filter: Vec<Filter>,
     /// Largest allowed |gpu - cpu| per texel, a percent of I_max with its sign (a bare number is refused).

@@ -28,7 +28,9 @@ use crate::error::ModelError;
 ///
 /// Spelled on the command line (and by [`Display`](fmt::Display) /
 /// [`FromStr`]) as `nearest`, `bilinear`, `catmull-rom`, `mitchell`
-/// (B = C = 1/3), `mitchell:B,C`, `bspline`, `pchip`.
+/// (B = C = 1/3), `mitchell:B:C`, `bspline`, `pchip`. `mitchell:B,C` is still
+/// read, but written `mitchell:B:C` so that a comma-separated list
+/// (`--recon bilinear,mitchell:0:0.5`) keeps it whole.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Filter {
     /// Nearest knot (ties go to the upper knot). Interpolating, piecewise constant.
@@ -53,7 +55,7 @@ pub enum Filter {
 }
 
 /// The spellings [`Filter::from_str`] accepts, for error messages and help.
-pub const FILTER_NAMES: &str = "nearest, bilinear, catmull-rom, mitchell, mitchell:B,C, bspline, pchip";
+pub const FILTER_NAMES: &str = "nearest, bilinear, catmull-rom, mitchell, mitchell:B:C, bspline, pchip";
 
 const THIRD: f64 = 1.0 / 3.0;
 
@@ -254,7 +256,7 @@ impl fmt::Display for Filter {
             Filter::CatmullRom => f.write_str("catmull-rom"),
             Filter::Mitchell { b, c } if b == THIRD && c == THIRD => f.write_str("mitchell"),
             // `{}` of an f64 is the shortest text that parses back to the same value.
-            Filter::Mitchell { b, c } => write!(f, "mitchell:{b},{c}"),
+            Filter::Mitchell { b, c } => write!(f, "mitchell:{b}:{c}"),
             Filter::BSpline => f.write_str("bspline"),
             Filter::Pchip => f.write_str("pchip"),
         }
@@ -282,13 +284,13 @@ impl FromStr for Filter {
                 let Some(params) = t.strip_prefix("mitchell:") else {
                     return Err(bad(format!("unknown filter; valid: {FILTER_NAMES}")));
                 };
-                let parts: Vec<&str> = params.split(',').map(str::trim).collect();
+                let parts: Vec<&str> = params.split([':', ',']).map(str::trim).collect();
                 let nums: Vec<Option<f64>> = parts.iter().map(|p| p.parse::<f64>().ok()).collect();
                 match nums.as_slice() {
                     [Some(b), Some(c)] if b.is_finite() && c.is_finite() => Filter::Mitchell { b: *b, c: *c },
                     _ => {
                         return Err(bad(
-                            "expected mitchell:B,C with two finite numbers, e.g. mitchell:0.333,0.333".into(),
+                            "expected mitchell:B:C with two finite numbers, e.g. mitchell:0.333:0.333".into(),
                         ))
                     }
                 }
@@ -316,7 +318,16 @@ mod tests {
             let s = f.to_string();
             assert_eq!(s.parse::<Filter>().unwrap(), f, "{s}");
         }
-        assert_eq!("mitchell:1,0".parse::<Filter>().unwrap().to_string(), "mitchell:1,0");
+        // the old spelling is read; the written one has no comma
+        assert_eq!("mitchell:1,0".parse::<Filter>().unwrap().to_string(), "mitchell:1:0");
+        assert_eq!(
+            "mitchell:1:0".parse::<Filter>().unwrap(),
+            Filter::Mitchell { b: 1.0, c: 0.0 }
+        );
+        // a comma-separated list (`--recon`, `--filters`) keeps a written Mitchell whole
+        let list = format!("bilinear,{},pchip", Filter::Mitchell { b: 0.0, c: 0.75 });
+        let parsed: Vec<Filter> = list.split(',').map(|t| t.parse().unwrap()).collect();
+        assert_eq!(parsed[1], Filter::Mitchell { b: 0.0, c: 0.75 });
         let e = "lanczos".parse::<Filter>().unwrap_err().to_string();
         assert!(e.contains("catmull-rom") && e.contains("pchip"), "{e}");
         assert!("mitchell:1".parse::<Filter>().is_err());

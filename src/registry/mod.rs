@@ -4,15 +4,18 @@
 //! [`IntensityField`](crate::model::IntensityField): filters and stored
 //! textures from [`crate::reconstruct`], the fitted lights from
 //! [`crate::fit`], the measured solid from [`crate::solid`], the GPU's
-//! texture hardware from `crate::gpu` (feature `gpu`). [`render_on`]
+//! texture hardware from `crate::gpu` (feature `gpu`), the cropped and
+//! re-stored grids a scene's plan offers ([`owned`]). [`render_on`]
 //! renders a texture on the [`Backend`](crate::reconstruct::Backend) chosen
 //! with `--backend`.
 //!
 //! It sits above everything it chooses among, so that those never import
 //! each other to offer a choice (ARCHITECTURE.md, "Layers").
 
+pub mod owned;
 pub mod recon;
 mod render;
 
+pub use owned::{crop, OwnedSampler};
 pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX};
 pub use render::{render_on, RenderedOn};

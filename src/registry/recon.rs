@@ -5,9 +5,10 @@ use std::str::FromStr;
 
 use serde::{Serialize, Serializer};
 
+use super::owned::{crop, OwnedSampler};
 use crate::error::ModelError;
 use crate::fit::{fit, FitOptions, PreparedLights};
-use crate::model::{Borrowed, Distribution, IntensityField};
+use crate::model::{Borrowed, Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{render, Filter, LightTexture, StoredTexture, TextureSpec};
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
@@ -31,6 +32,29 @@ pub enum Recon {
     /// adapter; `R16Float` where `R32Float` is not filterable). Written
     /// `FILTER@xK/LOOKUP[+f16][+reduced]+gpu`.
     Gpu(TextureSpec),
+    /// A filter on the measured grid cropped to the γ rows between
+    /// `gamma_from` and `gamma_to` and, when given, to the C planes from
+    /// `c.0` counter-clockwise to `c.1` (degrees; the sector may wrap
+    /// through C = 0): what a scene sees of the luminaire ([`crop`]).
+    /// Written `FILTER+gamma:FROM-TO[+c:FROM-TO]`.
+    Cropped {
+        /// The filter.
+        filter: Filter,
+        /// First kept γ row, degrees.
+        gamma_from: f64,
+        /// Last kept γ row, degrees.
+        gamma_to: f64,
+        /// First and last kept C plane, degrees.
+        c: Option<(f64, f64)>,
+    },
+    /// A filter on the measured grid re-stored with a smaller symmetry the
+    /// data has. Written `FILTER+isym:N` (N the EULUMDAT code, 0-4).
+    Symmetric {
+        /// The filter.
+        filter: Filter,
+        /// The symmetry it is stored with.
+        symmetry: Symmetry,
+    },
 }
 
 /// The suffix naming a [`Recon::Gpu`] texture.
@@ -57,6 +81,19 @@ impl fmt::Display for Recon {
             Recon::FittedGl => f.write_str(crate::fit::RECONSTRUCTION_NAME),
             Recon::Texture(t) => write!(f, "{t}"),
             Recon::Gpu(t) => write!(f, "{t}{GPU_SUFFIX}"),
+            Recon::Cropped {
+                filter,
+                gamma_from,
+                gamma_to,
+                c,
+            } => {
+                write!(f, "{filter}+gamma:{gamma_from}-{gamma_to}")?;
+                if let Some((a, b)) = c {
+                    write!(f, "+c:{a}-{b}")?;
+                }
+                Ok(())
+            }
+            Recon::Symmetric { filter, symmetry } => write!(f, "{filter}+isym:{}", symmetry.isym()),
         }
     }
 }
@@ -66,6 +103,7 @@ impl FromStr for Recon {
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s.trim() {
             "measured" => Ok(Recon::Measured),
+            x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
             x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
                 Some(t) => t.parse().map(Recon::Gpu),
@@ -78,12 +116,50 @@ impl FromStr for Recon {
                     name: "recon",
                     value: x.to_string(),
                     reason: format!(
-                        "expected measured, {}, a texture FILTER@xK/LOOKUP, or a filter ({})",
+                        "expected measured, {}, a texture FILTER@xK/LOOKUP, FILTER+gamma:A-B[+c:A-B], FILTER+isym:N, or a filter ({})",
                         crate::fit::RECONSTRUCTION_NAME,
                         crate::reconstruct::FILTER_NAMES
                     ),
                 }),
         }
+    }
+}
+
+/// `FILTER+gamma:A-B[+c:A-B]` or `FILTER+isym:N`.
+fn parse_regridded(s: &str) -> Result<Recon, ModelError> {
+    let bad = || ModelError::Parameter {
+        name: "recon",
+        value: s.to_string(),
+        reason: "expected FILTER+gamma:FROM-TO[+c:FROM-TO] or FILTER+isym:N (N 0-4)".into(),
+    };
+    // `A-B` with finite A, B (a leading minus sign belongs to A).
+    let range = |t: &str| -> Option<(f64, f64)> {
+        let at = t.char_indices().skip(1).find(|&(_, ch)| ch == '-')?.0;
+        let (a, b) = (t[..at].parse::<f64>().ok()?, t[at + 1..].parse::<f64>().ok()?);
+        (a.is_finite() && b.is_finite()).then_some((a, b))
+    };
+    let mut parts = s.split('+');
+    let filter: Filter = parts.next().ok_or_else(bad)?.parse()?;
+    let (mut gamma, mut c, mut isym) = (None, None, None);
+    for part in parts {
+        match part.split_once(':') {
+            Some(("gamma", v)) if gamma.is_none() => gamma = Some(range(v).ok_or_else(bad)?),
+            Some(("c", v)) if c.is_none() => c = Some(range(v).ok_or_else(bad)?),
+            Some(("isym", v)) if isym.is_none() => {
+                isym = Some(v.parse::<i64>().ok().and_then(Symmetry::from_isym).ok_or_else(bad)?)
+            }
+            _ => return Err(bad()),
+        }
+    }
+    match (gamma, c, isym) {
+        (Some((gamma_from, gamma_to)), c, None) => Ok(Recon::Cropped {
+            filter,
+            gamma_from,
+            gamma_to,
+            c,
+        }),
+        (None, None, Some(symmetry)) => Ok(Recon::Symmetric { filter, symmetry }),
+        _ => Err(bad()),
     }
 }
 
@@ -148,7 +224,23 @@ impl Reconstructions {
                 Box::new(StoredTexture::new(&rendered, reduced, t.precision, t.lookup))
             }
             Recon::Gpu(t) => self.gpu_field(r, t)?,
+            Recon::Cropped {
+                filter,
+                gamma_from,
+                gamma_to,
+                c,
+            } => self.owned(r, crop(&self.dist, gamma_from, gamma_to, c)?, filter)?,
+            Recon::Symmetric { filter, symmetry } => self.owned(r, self.dist.with_symmetry(symmetry)?, filter)?,
         })
+    }
+
+    /// A filter on a re-stored grid, sampled through the texture it owns.
+    fn owned(&self, r: Recon, d: Distribution, filter: Filter) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+        Ok(Box::new(OwnedSampler {
+            texture: LightTexture::new(&d)?,
+            filter,
+            name: r.to_string(),
+        }))
     }
 
     #[cfg(feature = "gpu")]
@@ -208,5 +300,41 @@ mod tests {
             Recon::Texture(_)
         ));
         assert!("catmull-rom@x5/bilinear+gpu+f16".parse::<Recon>().is_err());
+    }
+
+    /// The re-gridded reconstructions round-trip through their names, which
+    /// hold no comma (a `--recon a,b` list keeps them whole).
+    #[test]
+    fn regridded_names_round_trip() {
+        for r in [
+            Recon::Cropped {
+                filter: Filter::CatmullRom,
+                gamma_from: 0.0,
+                gamma_to: 87.5,
+                c: None,
+            },
+            Recon::Cropped {
+                filter: Filter::Mitchell { b: 0.0, c: 0.5 },
+                gamma_from: -5.0,
+                gamma_to: 90.0,
+                c: Some((270.0, 90.0)),
+            },
+            Recon::Symmetric {
+                filter: Filter::Pchip,
+                symmetry: Symmetry::C90C270,
+            },
+        ] {
+            let s = r.to_string();
+            assert!(!s.contains(','), "{s}");
+            assert_eq!(s.parse::<Recon>().unwrap(), r, "{s}");
+        }
+        for bad in [
+            "catmull-rom+isym:7",
+            "catmull-rom+gamma:0",
+            "catmull-rom+gamma:0-90+isym:2",
+            "bilinear+c:0-90",
+        ] {
+            assert!(bad.parse::<Recon>().is_err(), "{bad}");
+        }
     }
 }

@@ -11,7 +11,7 @@ use crate::report::compare_report::esc;
 use crate::report::plot::{isolux_plot, png_data_uri, IsoluxSpec, MapAxis, MapQuantity, Plot};
 use crate::report::viewer::{self, SolidSet, ViewerData};
 use crate::scene::illuminance::SceneResult;
-use crate::scene::plan::{Models, PlanResult, Representation};
+use crate::scene::plan::{Models, PlanResult, Recon, REFERENCE};
 use crate::scene::ReceiverShape;
 use crate::scene::{Scene, SceneError};
 use glam::DVec3;
@@ -108,15 +108,15 @@ pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> crate::Res
 ///
 /// # Errors
 /// [`SceneError::Model`] when a representation cannot be built.
-pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Representation>) -> Result<ViewerData, SceneError> {
+pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Recon>) -> Result<ViewerData, SceneError> {
     let lum = &scene.luminaires[index];
     let model = |e| SceneError::Model {
         luminaire: lum.name.clone(),
         source: e,
     };
-    let texture = lum.texture()?;
-    let models = Models::new(lum, texture.as_ref());
-    let reference_rep = Representation::default();
+    let reference_rep = REFERENCE;
+    let wanted: Vec<Recon> = std::iter::once(reference_rep).chain(shown.copied()).collect();
+    let models = Models::new(lum, &wanted).map_err(model)?;
     let reference = models.field(&reference_rep).map_err(model)?;
     let mut fields = Vec::new();
     if let Some(r) = shown.filter(|r| **r != reference_rep) {
@@ -147,7 +147,7 @@ pub fn to_html(
     scene: &Scene,
     summary: &str,
     maps: &[(String, Vec<u8>)],
-    shown: &[Option<Representation>],
+    shown: &[Option<Recon>],
 ) -> Result<String, SceneError> {
     let mut s = format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{t}</title>\n<style>\n\
@@ -262,7 +262,7 @@ pub fn write_scene_report(
 pub fn write_plan_report(dir: &Path, scene: &Scene, result: &PlanResult, summary: &str) -> crate::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(|e| crate::Error::io(dir, e))?;
     let mut written = vec![write_json(dir, "plan.json", result)?];
-    let chosen: Vec<Option<Representation>> = scene
+    let chosen: Vec<Option<Recon>> = scene
         .luminaires
         .iter()
         .map(|l| {
@@ -270,7 +270,7 @@ pub fn write_plan_report(dir: &Path, scene: &Scene, result: &PlanResult, summary
                 .luminaires
                 .iter()
                 .find(|p| p.name == l.name)
-                .map(|p| p.chosen_spec.clone())
+                .map(|p| p.chosen_spec)
         })
         .collect();
     let html = to_html("Scene: plan", scene, summary, &[], &chosen)?;

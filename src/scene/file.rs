@@ -12,7 +12,7 @@ use serde::Deserialize;
 
 use super::aim::{Aim, Pose};
 use super::opening::Opening;
-use super::representation::Representation;
+use super::representation::parse_representation;
 use super::{Occluder, Receiver, Scene, SceneError, SceneLuminaire, SourceKind};
 use crate::error::Location;
 
@@ -219,6 +219,7 @@ impl Scene {
             message: format!("{table} #{}: {message}", k + 1),
         };
         let finite3 = |a: &[f64; 3]| a.iter().all(|v| v.is_finite());
+        let mut warnings = Vec::new();
         let mut luminaires = Vec::new();
         let mut receivers = Vec::new();
         if let Some(road) = &spec.road {
@@ -286,10 +287,12 @@ impl Scene {
             }
             let representation = match &l.representation {
                 None => None,
-                Some(r) => Some(
-                    r.parse::<Representation>()
-                        .map_err(|e| bad_key("representation", format!("representation = {r:?}: {e}")))?,
-                ),
+                Some(r) => {
+                    let (rep, deprecated) = parse_representation(r)
+                        .map_err(|e| bad_key("representation", format!("representation = {r:?}: {e}")))?;
+                    warnings.extend(deprecated.map(|w| format!("[[luminaire]] #{}: {w}", k + 1)));
+                    Some(rep)
+                }
             };
             let source = match l.source.as_deref() {
                 None => None,
@@ -429,6 +432,7 @@ impl Scene {
             luminaires,
             receivers,
             occluders,
+            warnings,
         })
     }
 }

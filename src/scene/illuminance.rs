@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::aim::Pose;
-use super::representation::Representation;
+use super::representation::{Models, REFERENCE};
 use super::{Occluder, ReceiverShape, Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::model::IntensityField;
 
@@ -327,9 +327,11 @@ pub(crate) fn luminaire_lux(
     points: &[ScenePoint],
     progress: Option<&(dyn Fn(u64) + Sync)>,
 ) -> Result<(Vec<f64>, Vec<f64>, LuminaireResult), SceneError> {
-    let texture = lum.texture()?;
-    let rep = lum.representation.clone().unwrap_or_default();
-    let models = super::representation::Models::new(lum, texture.as_ref());
+    let rep = lum.representation.unwrap_or(REFERENCE);
+    let models = Models::new(lum, &[rep]).map_err(|e| SceneError::Model {
+        luminaire: lum.name.clone(),
+        source: e,
+    })?;
     let field = models.field(&rep).map_err(|e| SceneError::Model {
         luminaire: lum.name.clone(),
         source: e,
@@ -434,7 +436,7 @@ pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Resul
             points: pts,
         });
     }
-    let mut warnings = Vec::new();
+    let mut warnings = scene.warnings.clone();
     for (k, r) in receivers.iter().enumerate() {
         if r.e_max_lux <= 0.0 && !r.points.is_empty() {
             let these: Vec<&ScenePoint> = points.iter().filter(|p| p.receiver == k).collect();
@@ -486,9 +488,11 @@ fn why_unlit(scene: &Scene, receiver: &super::Receiver, points: &[&ScenePoint]) 
     }
     // Lit when the occluders are taken away: their shadow.
     for lum in &scene.luminaires {
-        let texture = lum.texture()?;
-        let models = super::representation::Models::new(lum, texture.as_ref());
-        let rep = lum.representation.clone().unwrap_or_default();
+        let rep = lum.representation.unwrap_or(REFERENCE);
+        let models = Models::new(lum, &[rep]).map_err(|e| SceneError::Model {
+            luminaire: lum.name.clone(),
+            source: e,
+        })?;
         let field = models.field(&rep).map_err(|e| SceneError::Model {
             luminaire: lum.name.clone(),
             source: e,
@@ -535,11 +539,4 @@ pub(crate) fn receiver_floors(points: &[ScenePoint], reference: &[f64]) -> Vec<f
         floor[p.receiver] = f64::max(floor[p.receiver], e * DARK_FLOOR);
     }
     floor
-}
-
-impl Default for Representation {
-    /// The reference: Catmull-Rom on the native grid.
-    fn default() -> Self {
-        Representation::Filter(crate::reconstruct::Filter::CatmullRom)
-    }
 }

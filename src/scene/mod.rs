@@ -8,9 +8,8 @@
 //! - [`illuminance`]: E = Σ MF · I(d) cos(incidence) / r² at every receiver
 //!   point, with any [`crate::model::IntensityField`];
 //! - [`road`]: road lighting (EN 13201-3): luminance, uniformities, TI;
-//! - [`representation`]: the representations of a distribution a scene can
-//!   hold ([`representation::Representation`]), each built as a field
-//!   ([`representation::Models`]);
+//! - [`representation`]: each luminaire's representation, named by the one
+//!   registry's [`Recon`] and built as a field ([`representation::Models`]);
 //! - [`plan`]: per luminaire, the cheapest representation within a
 //!   tolerance of the reference, measured on the scene.
 //!
@@ -43,9 +42,9 @@ use serde::Serialize;
 
 use crate::model::{IntensityField, Luminaire};
 use crate::reconstruct::LightTexture;
+use crate::registry::Recon;
 use aim::Pose;
 use opening::Opening;
-use representation::Representation;
 
 /// Everything that can go wrong with a scene: now a part of the crate's
 /// error ([`crate::Error::Scene`]), with stable codes.
@@ -84,8 +83,9 @@ pub struct SceneLuminaire {
     pub maintenance_factor: f64,
     /// Its luminous opening (declared or given in the scene).
     pub opening: Opening,
-    /// The representation asked for; `None`: the reference.
-    pub representation: Option<Representation>,
+    /// The representation asked for; `None`: the reference
+    /// ([`representation::REFERENCE`]).
+    pub representation: Option<Recon>,
     /// The source model asked for; `None`: area when the opening has a size.
     pub source: Option<SourceKind>,
 }
@@ -272,6 +272,9 @@ pub struct Scene {
     pub receivers: Vec<Receiver>,
     /// Opaque polygons.
     pub occluders: Vec<Occluder>,
+    /// What the scene file says that still works but should change (an old
+    /// representation spelling); reported with every result.
+    pub warnings: Vec<String>,
 }
 
 /// One calculation point: where, which way it faces, whose it is.
@@ -364,6 +367,7 @@ pub fn demo_scene() -> Result<Scene, crate::ModelError> {
         luminaires: vec![luminaire],
         receivers: vec![road, Receiver::point("sensor", DVec3::new(0.0, 0.0, 7.0), DVec3::Z)],
         occluders: Vec::new(),
+        warnings: Vec::new(),
     };
     Ok(scene)
 }

@@ -5,7 +5,7 @@
 //! directional area source refined to convergence when the file (or the
 //! scene) declares an opening with a size, as a point source otherwise.
 //!
-//! **Candidates** ([`Representation`]): every filter on the native grid,
+//! **Candidates** ([`Recon`], the one registry's names): every filter on the native grid,
 //! every filter rendered at factors 1, 2 and 5 read bilinearly (the trade
 //! table's rows) and the Catmull-Rom renders also with the nearest and
 //! Catmull-Rom lookups,
@@ -27,12 +27,13 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::illuminance::{area_source, relative_difference, AreaRefinement, FarField, Source};
-pub use super::representation::{Models, OwnedSampler, Representation};
+pub use super::representation::{Models, REFERENCE};
 use super::{Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::error::ModelError;
 use crate::metrics::{random_directions, time_per_sample_ns};
 use crate::model::{Distribution, Symmetry};
-use crate::reconstruct::{Filter, LightTexture, Lookup, Precision, TextureSpec};
+use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
+pub use crate::registry::{OwnedSampler, Recon};
 
 /// Render factors of the texture candidates.
 pub const TEXTURE_FACTORS: [u32; 3] = [1, 2, 5];
@@ -109,7 +110,7 @@ pub struct Candidate {
     pub representation: String,
     /// The same as a value (to rebuild its field, e.g. for the report's 3D view), not in the JSON.
     #[serde(skip)]
-    pub spec: Representation,
+    pub spec: Recon,
     /// Point or area source.
     pub source: SourceKind,
     /// Bytes held (field + 32 per area patch).
@@ -142,7 +143,7 @@ pub struct LuminairePlan {
     pub representation: String,
     /// The same as a value (to rebuild its field, e.g. for the report's 3D view), not in the JSON.
     #[serde(skip)]
-    pub chosen_spec: Representation,
+    pub chosen_spec: Recon,
     /// Its source model.
     pub source: SourceKind,
     /// Its bytes.
@@ -213,15 +214,15 @@ impl Default for PlanOptions {
 }
 
 /// Every candidate representation of `lum` for this scene.
-pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Representation> {
-    let mut reps: Vec<Representation> = Filter::ALL.into_iter().map(Representation::Filter).collect();
+pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Recon> {
+    let mut reps: Vec<Recon> = Filter::ALL.into_iter().map(Recon::Filter).collect();
     // The trade table's rows: every filter rendered at each factor, read with
     // the hardware's bilinear lookup; the Catmull-Rom render also with the others.
     for factor in TEXTURE_FACTORS {
         for filter in Filter::ALL {
             for lookup in Lookup::ALL {
                 if lookup == Lookup::Bilinear || filter == Filter::CatmullRom {
-                    reps.push(Representation::Texture(TextureSpec {
+                    reps.push(Recon::Texture(TextureSpec {
                         filter,
                         factor,
                         lookup,
@@ -238,7 +239,7 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
         if reduced && sym == crate::model::Symmetry::None {
             continue;
         }
-        reps.push(Representation::Texture(TextureSpec {
+        reps.push(Recon::Texture(TextureSpec {
             filter: Filter::CatmullRom,
             factor: 5,
             lookup: Lookup::Bilinear,
@@ -246,9 +247,9 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
             reduced,
         }));
     }
-    reps.push(Representation::Fitted);
+    reps.push(Recon::FittedGl);
     if let Some((gamma_from, gamma_to, c)) = visible {
-        reps.push(Representation::Cropped {
+        reps.push(Recon::Cropped {
             filter: Filter::CatmullRom,
             gamma_from,
             gamma_to,
@@ -260,7 +261,7 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
     if found != d.symmetry() {
         if let Ok(s) = d.with_symmetry(found) {
             if s.n_c() < d.n_c() {
-                reps.push(Representation::Symmetric {
+                reps.push(Recon::Symmetric {
                     filter: Filter::CatmullRom,
                     symmetry: found,
                 });
@@ -300,17 +301,17 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
             source: e,
         }
     };
-    // References, one luminaire at a time (they borrow their textures).
-    let textures: Vec<Option<LightTexture>> = scene
+    // Whether each luminaire has light at all (an all-zero one has one candidate).
+    let lit: Vec<bool> = scene
         .luminaires
         .iter()
-        .map(SceneLuminaire::texture)
+        .map(|l| l.texture().map(|t| t.is_some()))
         .collect::<Result<_, _>>()?;
     let mut references = Vec::new();
-    for (lum, tex) in scene.luminaires.iter().zip(&textures) {
+    for lum in &scene.luminaires {
         say(&format!("{}: reference", lum.name));
-        let models = Models::new(lum, tex.as_ref());
-        let field = models.field(&Representation::default()).map_err(model_err(lum))?;
+        let models = Models::new(lum, &[REFERENCE]).map_err(model_err(lum))?;
+        let field = models.field(&REFERENCE).map_err(model_err(lum))?;
         let point = Source {
             field: &*field,
             pose: lum.pose,
@@ -337,17 +338,17 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
     let dirs = random_directions(options.timing_directions.max(1), 0x5CE7E);
     let mut plans = Vec::new();
     let mut total_chosen = vec![0.0; points.len()];
-    for (li, (lum, tex)) in scene.luminaires.iter().zip(&textures).enumerate() {
+    for (li, (lum, &lit)) in scene.luminaires.iter().zip(&lit).enumerate() {
         let (ref_lux, point_ref_lux, patches, refinement, far_field, ref_name, _) = &references[li];
-        let models = Models::new(lum, tex.as_ref());
         let visible = visible_grid(lum, patches, &points);
         let mut measured: Vec<(Candidate, Vec<f64>)> = Vec::new();
         let mut unavailable = Vec::new();
-        let reps = if tex.is_some() {
+        let reps = if lit {
             candidate_representations(lum, visible)
         } else {
-            vec![Representation::default()] // all-zero: every representation is the same dark field
+            vec![REFERENCE] // all-zero: every representation is the same dark field
         };
+        let models = Models::new(lum, &reps).map_err(model_err(lum))?;
         for rep in reps {
             say(&format!("{}: {rep}", lum.name));
             let field = match models.field(&rep) {
@@ -387,7 +388,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
                 measured.push((
                     Candidate {
                         representation: field.name(),
-                        spec: rep.clone(),
+                        spec: rep,
                         source: kind,
                         bytes: field.bytes() + if kind == SourceKind::Area { n * 32 } else { 0 },
                         ns_per_eval: ns * n as f64,
@@ -465,20 +466,24 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
 
 #[cfg(test)]
 mod spelling_tests {
+    use super::super::representation::parse_representation;
     use super::*;
 
+    /// A scene file's old texture spelling is read, with a deprecation
+    /// warning naming the one spelling ([`Recon`]'s, the trade table's).
     #[test]
     fn texture_representations_parse_both_spellings() {
-        for text in [
-            "texture catmull-rom x5 / bilinear +f16 +reduced",
-            "catmull-rom@x5/bilinear+f16+reduced",
-        ] {
-            let r: Representation = text.parse().unwrap();
-            assert_eq!(r.to_string(), "texture catmull-rom x5 / bilinear +f16 +reduced");
-            assert_eq!(r.to_string().parse::<Representation>().unwrap(), r);
-        }
-        assert!("texture catmull-rom x5 / bilinear +f32"
-            .parse::<Representation>()
-            .is_err());
+        let (old, warning) = parse_representation("texture catmull-rom x5 / bilinear +f16 +reduced").unwrap();
+        let (new, none) = parse_representation("catmull-rom@x5/bilinear+f16+reduced").unwrap();
+        assert_eq!(old, new);
+        assert!(none.is_none());
+        let warning = warning.unwrap();
+        assert!(
+            warning.contains("deprecated") && warning.contains("catmull-rom@x5/bilinear+f16+reduced"),
+            "{warning}"
+        );
+        assert_eq!(new.to_string(), "catmull-rom@x5/bilinear+f16+reduced");
+        assert!(parse_representation("texture catmull-rom x5 / bilinear +f32").is_err());
+        assert_eq!(parse_representation("fitted").unwrap().0, Recon::FittedGl);
     }
 }

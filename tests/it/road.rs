@@ -220,6 +220,7 @@ fn the_layout_repeats_every_spacing() {
                 5,
             );
             let scene = Scene {
+                warnings: Vec::new(),
                 path: None,
                 luminaires: lums,
                 receivers: vec![plane],

@@ -28,7 +28,8 @@ use super::RoadError;
 use crate::model::Luminaire;
 use crate::scene::aim::{Aim, Pose};
 use crate::scene::opening::Opening;
-use crate::scene::plan::Representation;
+use crate::scene::plan::Recon;
+use crate::scene::representation::parse_representation;
 use crate::scene::{Receiver, SceneLuminaire, SourceKind};
 
 /// The `[road]` table (keys are a contract: `docs/road.md`).
@@ -137,7 +138,7 @@ pub struct Road {
     /// The loaded luminaire.
     pub luminaire: Luminaire,
     /// Representation asked for (`None`: the reference).
-    pub representation: Option<Representation>,
+    pub representation: Option<Recon>,
     /// Maintenance factor.
     pub maintenance_factor: f64,
     /// Number of lanes.
@@ -278,8 +279,9 @@ impl Road {
         let representation = match &spec.representation {
             None => None,
             Some(r) => Some(
-                r.parse::<Representation>()
-                    .map_err(|e| invalid("representation", e.to_string()))?,
+                parse_representation(r)
+                    .map_err(|e| invalid("representation", e.to_string()))?
+                    .0,
             ),
         };
         let file = base.join(&spec.file);
@@ -391,7 +393,7 @@ impl Road {
             pose,
             maintenance_factor: self.maintenance_factor,
             opening: Opening::Point,
-            representation: self.representation.clone(),
+            representation: self.representation,
             source: Some(SourceKind::Point),
         }
     }

@@ -19,7 +19,7 @@ use super::layout::Road;
 use super::quantities::{evaluate, Overall, RoadOptions, RoadResult};
 use super::RoadError;
 use crate::metrics::{random_directions, time_per_sample_ns};
-use crate::scene::plan::{candidate_representations, Models, Representation};
+use crate::scene::plan::{candidate_representations, Models, REFERENCE};
 
 /// Largest change of U_o or U_l a candidate may make (absolute).
 pub const UNIFORMITY_LIMIT: f64 = 0.01;
@@ -128,12 +128,15 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
         file: road.file.clone(),
         message: e.to_string(),
     })?;
-    let models = Models::new(&template, texture.as_ref());
     let reps = if texture.is_some() {
         candidate_representations(&template, None)
     } else {
-        vec![Representation::default()]
+        vec![REFERENCE]
     };
+    let models = Models::new(&template, &reps).map_err(|e| RoadError::Luminaire {
+        file: road.file.clone(),
+        message: e.to_string(),
+    })?;
     let dirs = random_directions(4096, 0x20AD);
     let mut candidates = Vec::new();
     let mut unavailable = Vec::new();
@@ -152,7 +155,7 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
             }
         };
         let mut with = road.clone();
-        with.representation = Some(rep.clone());
+        with.representation = Some(rep);
         let result = evaluate(&with, &options)?;
         let [l, e, uo, ul, ti] = compare(&result, &reference);
         let within = l.abs() <= 100.0 * tolerance
@@ -184,7 +187,7 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
     Ok(RoadPlan {
         scene: reference.scene.clone(),
         luminaire: reference.luminaire.clone(),
-        reference: Representation::default().to_string(),
+        reference: REFERENCE.to_string(),
         tolerance_pct: 100.0 * tolerance,
         uniformity_limit: UNIFORMITY_LIMIT,
         ti_limit_pp: TI_LIMIT_PP,

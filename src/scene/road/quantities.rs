@@ -30,7 +30,7 @@ use serde::Serialize;
 use super::layout::{Placed, Road};
 use super::RoadError;
 use crate::model::IntensityField;
-use crate::scene::plan::Models;
+use crate::scene::plan::{Models, REFERENCE};
 
 /// Observer eye height, m.
 pub const EYE_HEIGHT_M: f64 = 1.5;
@@ -322,17 +322,13 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
     }
     let refine = options.refine.max(1);
     let template = road.scene_luminaire("road luminaire", road.luminaires(0.0, 0.0)[0].pose);
-    let texture = template.texture().map_err(|e| RoadError::Luminaire {
+    let luminaire_err = |e: crate::ModelError| RoadError::Luminaire {
         file: road.file.clone(),
         message: e.to_string(),
-    })?;
-    let rep = road.representation.clone().unwrap_or_default();
-    let field = Models::new(&template, texture.as_ref())
-        .field(&rep)
-        .map_err(|e| RoadError::Luminaire {
-            file: road.file.clone(),
-            message: e.to_string(),
-        })?;
+    };
+    let rep = road.representation.unwrap_or(REFERENCE);
+    let models = Models::new(&template, &[rep]).map_err(luminaire_err)?;
+    let field = models.field(&rep).map_err(luminaire_err)?;
     let n_along = road.n_along() * refine;
     let d_along = s / n_along as f64;
     let ti_start = -2.75 * (h - EYE_HEIGHT_M).max(0.0);
