@@ -115,6 +115,8 @@ pub struct TradeTable {
     pub reference_kind: String,
     /// Direction set of the radial metrics.
     pub directions: String,
+    /// What each row's `radial_max_pct` is, in words (the comparison's `radial_max_method`).
+    pub radial_max_method: String,
     /// One per representation.
     pub rows: Vec<TradeRow>,
     /// The comparison the rows come from (plots, full metrics), not in the JSON.
@@ -224,6 +226,7 @@ pub fn trade_table(
         reference: c.reference.clone(),
         reference_kind: c.reference_kind.clone(),
         directions: c.directions.clone(),
+        radial_max_method: c.radial_max_method.clone(),
         rows,
         comparison: c,
     })
