@@ -8,7 +8,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use photosolid::compare::solid_hausdorff;
-use photosolid::reconstruct::{Filter, Recon, Reconstructions};
+use photosolid::reconstruct::Filter;
+use photosolid::registry::{Recon, Reconstructions};
 
 fn input() -> (String, photosolid::Distribution, usize) {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))

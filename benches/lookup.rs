@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Through
 use photosolid::compare::trade::representations;
 use photosolid::metrics::random_directions;
 use photosolid::model::frame;
-use photosolid::reconstruct::Reconstructions;
+use photosolid::registry::Reconstructions;
 use photosolid::synth::{GridSpec, Synth};
 
 fn bench(c: &mut Criterion) {

@@ -8,7 +8,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_PER_TARGET="${FUZZ_SECONDS:-60}"
-TARGETS="${FUZZ_TARGETS:-ies_reader ldt_reader pipeline}"
+TARGETS="${FUZZ_TARGETS:-ies_parse ldt_parse ies_reader ldt_reader pipeline}"
 
 skip() {
     echo "SKIP fuzz smoke: $*"
@@ -52,8 +52,8 @@ seed() { # seed TARGET MAX_SIZE EXTENSIONS...
 status=0
 for t in $TARGETS; do
     case "$t" in
-        ies_reader) seed "$t" 256k ies ;;
-        ldt_reader) seed "$t" 256k ldt ;;
+        ies_reader | ies_parse) seed "$t" 256k ies ;;
+        ldt_reader | ldt_parse) seed "$t" 256k ldt ;;
         # One pipeline execution runs the whole pipeline: small seeds only.
         *) seed "$t" 16k ies ldt ;;
     esac

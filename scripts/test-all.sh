@@ -128,6 +128,9 @@ echo "== toolchain"
 cargo --version
 rustc --version
 
+echo "== layers: imports only point down (scripts/check_layers.py, the order in ARCHITECTURE.md)"
+python3 scripts/check_layers.py
+
 echo "== build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
 build_start=$SECONDS
 cargo build --all-targets --locked 2>&1 | tail -n 3

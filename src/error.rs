@@ -13,6 +13,14 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+mod mesh;
+mod roundtrip;
+mod scene;
+
+pub use mesh::MeshFileError;
+pub use roundtrip::Difference;
+pub use scene::SceneError;
+
 /// Result alias of the library.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
@@ -182,7 +190,7 @@ pub enum ModelError {
     /// An angle list is empty, unsorted, has duplicates, or leaves its range.
     #[error("{axis} angles: {reason}")]
     Angles {
-        /// "C" or "gamma".
+        /// "C" or "gamma" (or "horizontal"/"vertical" for a Type A/B source grid).
         axis: &'static str,
         /// What is wrong, with the offending values.
         reason: String,
@@ -190,6 +198,10 @@ pub enum ModelError {
     /// The intensity table does not match the grid, or holds NaN/infinity.
     #[error("intensities: {0}")]
     Intensities(String),
+    /// A mesh's parts do not make a mesh: an index past the vertices, an
+    /// origin vertex that is not at the origin (a reader's file, or a bug).
+    #[error("mesh: {0}")]
+    Mesh(String),
     /// A computation needs a non-zero distribution (normalisation, fitting).
     #[error("the distribution is zero everywhere: {0}")]
     AllZero(&'static str),
@@ -207,6 +219,80 @@ pub enum ModelError {
         /// Allowed domain.
         reason: String,
     },
+    /// A derived quantity (UGR, luminance) is not defined for this
+    /// luminaire; the text is what `info --json` writes as `{"undefined": ...}`.
+    #[error("{}", undefined_text(.quantity, *.why))]
+    Undefined {
+        /// The quantity, as the sentence names it: "UGR", "luminance".
+        quantity: &'static str,
+        /// Why it is undefined.
+        why: Undefined,
+    },
+    /// The luminous opening the luminaire declares is not one this crate
+    /// models (a sign combination no LM-63 version defines, a non-finite
+    /// size), the reason naming the values (`model::opening`).
+    #[error("{0}")]
+    Opening(String),
+    /// A GPU representation was asked for and the GPU path failed: the GPU
+    /// error is kept as the source ([`ModelError::code`] stays `model`).
+    #[error("recon = {recon}: the GPU lookup is not available: {source}")]
+    Gpu {
+        /// The representation, as the CLI spells it (`catmull-rom@x5+gpu`).
+        recon: String,
+        /// What the GPU path reported.
+        source: GpuError,
+    },
+}
+
+/// Why a derived quantity is undefined ([`ModelError::Undefined`]).
+#[non_exhaustive]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Undefined {
+    /// The file declares no luminous area (a point source).
+    NoLuminousArea,
+    /// The luminaire sends no light downward (no glare).
+    NoDownwardLight,
+    /// No luminaire of a standard room sends light toward the observer.
+    NoLightTowardObserver {
+        /// The room, X × Y in H.
+        room_h: (f64, f64),
+    },
+}
+
+/// The sentence of [`ModelError::Undefined`] (the texts `info --json` has
+/// written since the tables exist: a JSON contract).
+fn undefined_text(quantity: &str, why: Undefined) -> String {
+    match why {
+        Undefined::NoLuminousArea => {
+            format!("the file declares no luminous area (point source): {quantity} undefined")
+        }
+        Undefined::NoDownwardLight => {
+            format!("no downward light: {quantity} undefined (no glare from the luminaires)")
+        }
+        Undefined::NoLightTowardObserver { room_h: (x, y) } => {
+            format!("no light toward the observer in the {x}H x {y}H room: {quantity} undefined")
+        }
+    }
+}
+
+impl ModelError {
+    /// The stable code of this error in [`ErrorRecord::code`]: `model` for
+    /// every invariant and parameter error (and a GPU representation that
+    /// failed, as before), `undefined` and `opening` for the two kinds a
+    /// caller may want to tell apart.
+    pub fn code(&self) -> &'static str {
+        match self {
+            ModelError::Angles { .. }
+            | ModelError::Intensities(_)
+            | ModelError::Mesh(_)
+            | ModelError::AllZero(_)
+            | ModelError::Internal(_)
+            | ModelError::Parameter { .. }
+            | ModelError::Gpu { .. } => "model",
+            ModelError::Undefined { .. } => "undefined",
+            ModelError::Opening(_) => "opening",
+        }
+    }
 }
 
 /// Every error of the library.
@@ -228,13 +314,13 @@ pub enum Error {
     #[error(transparent)]
     Model(#[from] ModelError),
     /// A mesh file (OBJ, PLY, STL or GLB) whose content is not a mesh this
-    /// crate reads.
+    /// crate reads: the file, the line (or byte), what was expected.
     #[error("{path}: cannot read the mesh: {source}", path = .path.display())]
     MeshFile {
         /// The file.
         path: PathBuf,
-        /// What the mesh reader found wrong.
-        source: ModelError,
+        /// What the mesh reader found wrong, and where.
+        source: MeshFileError,
     },
     /// A mesh with no triangles where one with triangles is needed (a solid
     /// is never empty, and glTF cannot hold an empty mesh).
@@ -273,6 +359,35 @@ pub enum Error {
     /// a check that checked nothing fails.
     #[error("checked nothing: {0}")]
     NothingChecked(String),
+    /// A scene (file, receivers, luminaires) that cannot be evaluated.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A luminaire written in a format did not read back as it was (the
+    /// writers' round-trip property, [`crate::formats::roundtrip`]).
+    #[error("{format}: {difference}")]
+    RoundTrip {
+        /// The format written, e.g. "IES LM-63-2002".
+        format: &'static str,
+        /// The first difference.
+        difference: Difference,
+    },
+    /// A luminaire written in a format gave text that does not read back.
+    #[error("{format}: the written text does not read back: {source}")]
+    RoundTripRead {
+        /// The format written, e.g. "EULUMDAT".
+        format: &'static str,
+        /// The reader's error.
+        source: Box<Error>,
+    },
+}
+
+/// `:line` for a location with a line, else nothing.
+pub(crate) fn line_suffix(l: Location) -> String {
+    if l.line > 0 {
+        format!(":{}", l.line)
+    } else {
+        String::new()
+    }
 }
 
 /// `a`, `a or b`, `a, b or c`.
@@ -288,7 +403,7 @@ fn join_or(items: &[&str]) -> String {
 /// feature so that [`Error`] has one shape; [`GpuError::NotBuilt`] is then
 /// what asking for the GPU gives.
 #[non_exhaustive]
-#[derive(Clone, Debug, thiserror::Error)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum GpuError {
     /// No adapter on any of the tried backends.
     #[error(
@@ -355,7 +470,110 @@ impl Error {
             source,
         }
     }
+
+    /// The stable code of this error ([`ErrorRecord::code`]; every code is in [`ERROR_CODES`]).
+    pub fn code(&self) -> &'static str {
+        match self {
+            Error::Parse(p) => match p.kind {
+                ErrorKind::Invalid => "invalid",
+                ErrorKind::Unsupported => "unsupported",
+            },
+            Error::Io { .. } => "io",
+            // Every model error was `model` before ModelError had codes; the
+            // new kinds have their own.
+            Error::Model(m) => m.code(),
+            Error::MeshFile { .. } => "mesh-file",
+            Error::EmptyMesh { .. } => "empty-mesh",
+            Error::Gpu(g) => g.code(),
+            Error::Encode { .. } => "encode",
+            Error::UnknownExtension { .. } => "unknown-extension",
+            Error::NothingChecked(_) => "nothing-checked",
+            Error::Scene(s) => s.code(),
+            Error::RoundTrip { .. } | Error::RoundTripRead { .. } => "round-trip",
+        }
+    }
+
+    /// Where in its file the error is, when it has a line.
+    pub fn location(&self) -> Option<Location> {
+        let l = match self {
+            Error::Parse(p) => p.location,
+            Error::MeshFile { source, .. } => source.location(),
+            Error::Scene(SceneError::Invalid { location, .. }) => *location,
+            _ => return None,
+        };
+        (l.line > 0).then_some(l)
+    }
 }
+
+/// Every stable code an [`ErrorRecord`] (and the CLI's JSON, and the Python
+/// exception's `code`) can carry, with its meaning. The documentation of
+/// [`ErrorRecord::code`] lists the same codes; a unit test checks that each
+/// is produced by some error and that the two lists agree.
+pub const ERROR_CODES: &[(&str, &str)] = &[
+    (
+        "invalid",
+        "a file's content is malformed (ParseError, ErrorKind::Invalid)",
+    ),
+    (
+        "unsupported",
+        "a file uses a feature this crate does not read (ErrorKind::Unsupported)",
+    ),
+    ("io", "reading or writing a file failed (Error::Io)"),
+    (
+        "model",
+        "a model invariant or parameter domain was violated (ModelError)",
+    ),
+    (
+        "undefined",
+        "a derived quantity is undefined for the luminaire (ModelError::Undefined)",
+    ),
+    (
+        "opening",
+        "the declared luminous opening is not one this crate models (ModelError::Opening)",
+    ),
+    (
+        "mesh-file",
+        "a mesh file is not a mesh this crate reads (Error::MeshFile)",
+    ),
+    (
+        "empty-mesh",
+        "a mesh without triangles where one is needed (Error::EmptyMesh)",
+    ),
+    ("encode", "an output could not be encoded (Error::Encode)"),
+    (
+        "unknown-extension",
+        "a path whose extension names no format (Error::UnknownExtension)",
+    ),
+    (
+        "nothing-checked",
+        "a check that found nothing to check (Error::NothingChecked)",
+    ),
+    (
+        "scene-invalid",
+        "a value of a scene file is malformed (SceneError::Invalid)",
+    ),
+    (
+        "inside-opening",
+        "a receiver point inside a luminous opening (SceneError::InsideOpening)",
+    ),
+    (
+        "round-trip",
+        "a written luminaire does not read back as it was (Error::RoundTrip, Error::RoundTripRead)",
+    ),
+    ("gpu-no-adapter", "no GPU adapter (GpuError::NoAdapter)"),
+    ("gpu-device", "GPU device, submission or wait failed (GpuError::Device)"),
+    (
+        "gpu-pipeline",
+        "a GPU shader or pipeline could not be created (GpuError::Pipeline)",
+    ),
+    ("gpu-buffer-map", "a GPU read-back failed (GpuError::BufferMap)"),
+    ("gpu-invalid-job", "a malformed GPU render job (GpuError::InvalidJob)"),
+    (
+        "gpu-too-large",
+        "a GPU render job past the device's limits (GpuError::TooLarge)",
+    ),
+    ("gpu-not-built", "GPU asked of a build without it (GpuError::NotBuilt)"),
+];
 
 /// An error as a machine-readable record, the shape of a [`Warning`]:
 /// serialised as `{"line": 12, "column": 5, "code": "invalid", "message": "..."}`
@@ -367,9 +585,14 @@ pub struct ErrorRecord {
     pub line: Option<usize>,
     /// 1-based column, when the error has one.
     pub column: Option<usize>,
-    /// Stable code: `invalid` or `unsupported` (file content), `io`, `model`,
-    /// `unsupported-operation`, `encode`, `unknown-extension`, `nothing-checked`,
-    /// or a GPU code ([`GpuError::code`]: `gpu-no-adapter`, `gpu-device`, ...).
+    /// Stable code ([`ERROR_CODES`]):
+    /// file content: `invalid`, `unsupported`;
+    /// files: `io`, `mesh-file`, `empty-mesh`, `encode`, `unknown-extension`, `round-trip`;
+    /// models: `model`, `undefined`, `opening`;
+    /// checks: `nothing-checked`;
+    /// scenes: `scene-invalid`, `inside-opening`;
+    /// GPU ([`GpuError::code`]): `gpu-no-adapter`, `gpu-device`, `gpu-pipeline`,
+    /// `gpu-buffer-map`, `gpu-invalid-job`, `gpu-too-large`, `gpu-not-built`.
     pub code: &'static str,
     /// The full message (as [`std::fmt::Display`] prints it).
     pub message: String,
@@ -377,28 +600,11 @@ pub struct ErrorRecord {
 
 impl From<&Error> for ErrorRecord {
     fn from(e: &Error) -> Self {
-        let (line, column, code) = match e {
-            Error::Parse(p) => (
-                (p.location.line > 0).then_some(p.location.line),
-                p.location.column,
-                match p.kind {
-                    ErrorKind::Invalid => "invalid",
-                    ErrorKind::Unsupported => "unsupported",
-                },
-            ),
-            Error::Io { .. } => (None, None, "io"),
-            Error::Model(_) => (None, None, "model"),
-            Error::MeshFile { .. } => (None, None, "mesh-file"),
-            Error::EmptyMesh { .. } => (None, None, "empty-mesh"),
-            Error::Gpu(g) => (None, None, g.code()),
-            Error::Encode { .. } => (None, None, "encode"),
-            Error::UnknownExtension { .. } => (None, None, "unknown-extension"),
-            Error::NothingChecked(_) => (None, None, "nothing-checked"),
-        };
+        let location = e.location();
         Self {
-            line,
-            column,
-            code,
+            line: location.map(|l| l.line),
+            column: location.and_then(|l| l.column),
+            code: e.code(),
             message: e.to_string(),
         }
     }
@@ -610,33 +816,4 @@ impl fmt::Display for Warning {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{Num, Nums};
-
-    #[test]
-    fn numbers_print_short_and_read_back() {
-        let cases = [
-            (1e-200, "1e-200"),
-            (-1e-200, "-1e-200"),
-            (1e300, "1e300"),
-            (4e-320, "4e-320"),
-            (1.2345678901234568e29, "1.2345678901234568e29"),
-            (0.0001, "0.0001"),
-            (0.00009, "9e-5"),
-            (123.25, "123.25"),
-            (1e15, "1000000000000000"),
-            (1e16, "1e16"),
-            (0.0, "0"),
-            (f64::NAN, "NaN"),
-            (f64::NEG_INFINITY, "-inf"),
-        ];
-        for (x, want) in cases {
-            let s = Num(x).to_string();
-            assert_eq!(s, want);
-            if x.is_finite() {
-                assert_eq!(s.parse::<f64>().unwrap(), x, "{s} reads back");
-            }
-        }
-        assert_eq!(Nums(&[0.0, 1e-300, 90.0]).to_string(), "[0, 1e-300, 90]");
-    }
-}
+mod tests;

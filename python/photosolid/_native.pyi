@@ -18,7 +18,7 @@ class PhotosolidError(Exception):
     column: Optional[int]
     """1-based column, when known."""
     code: str
-    """``invalid``, ``unsupported``, ``io``, ``model`` or ``unsupported-operation``."""
+    """A stable code: ``invalid``, ``unsupported``, ``io``, ``model``, ... (``photosolid::error::ERROR_CODES``)."""
     message: str
     """The full message (also ``str(error)``)."""
 

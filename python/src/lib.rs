@@ -16,7 +16,8 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArra
 use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
 use photosolid::error::{Error, ErrorRecord};
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
-use photosolid::reconstruct::{render_with, Filter, LightTexture, Recon, Reconstructions, RenderOptions};
+use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
+use photosolid::registry::{Recon, Reconstructions};
 use photosolid::report::InfoReport;
 use photosolid::solid::Units;
 use pyo3::exceptions::{PyException, PyValueError};
@@ -28,7 +29,7 @@ pyo3::create_exception!(
     PhotosolidError,
     PyException,
     "A photosolid error: `path`, `line` and `column` (None when unknown), `code` (`invalid`, `unsupported`, \
-     `io`, `model`, `unsupported-operation`) and `message` (the full text)."
+     `io`, `model`, ...: the stable codes of `photosolid::error::ERROR_CODES`) and `message` (the full text)."
 );
 
 /// The Python exception of a library error, with its location as attributes.
@@ -36,7 +37,9 @@ fn py_err(e: Error) -> PyErr {
     let rec = ErrorRecord::from(&e);
     let path: Option<String> = match &e {
         Error::Parse(p) => Some(p.path.display().to_string()),
-        Error::Io { path, .. } => Some(path.display().to_string()),
+        Error::Io { path, .. } | Error::MeshFile { path, .. } | Error::EmptyMesh { path } => {
+            Some(path.display().to_string())
+        }
         _ => None,
     };
     Python::attach(|py| {

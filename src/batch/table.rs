@@ -198,50 +198,68 @@ pub fn read_parquet(path: &Path) -> Result<Vec<BatchRecord>> {
     let mut rows = Vec::new();
     for batch in reader {
         let batch = batch.map_err(|e| bad(path, e.to_string()))?;
-        rows.extend(rows_of(&batch).map_err(|what| bad(path, what))?);
+        rows.extend(rows_in(&batch, path)?);
     }
     Ok(rows)
 }
 
-fn column<'a, T: 'static>(b: &'a RecordBatch, name: &str) -> std::result::Result<&'a T, String> {
-    b.column_by_name(name)
-        .ok_or_else(|| format!("no column `{name}`"))?
-        .as_any()
-        .downcast_ref::<T>()
-        .ok_or_else(|| {
-            format!(
-                "column `{name}` has type {}",
-                b.column_by_name(name)
-                    .map_or_else(String::new, |c| c.data_type().to_string())
-            )
+/// Column `name` of `b` as an array of type `T` (`kind` names it, e.g. "Utf8").
+fn column_of<'a, T: 'static>(b: &'a RecordBatch, path: &Path, name: &str, kind: &str) -> Result<&'a T> {
+    let wrong = |found: String| {
+        Error::Parse(ParseError {
+            path: path.to_path_buf(),
+            location: Location::default(),
+            kind: ErrorKind::Invalid,
+            expected: format!("a column `{name}` of type {kind} (a photosolid batch table, docs/batch.md)"),
+            found,
         })
+    };
+    let c = b.column_by_name(name).ok_or_else(|| wrong("no such column".into()))?;
+    c.as_any()
+        .downcast_ref::<T>()
+        .ok_or_else(|| wrong(format!("type {}", c.data_type())))
 }
 
 /// The rows of one record batch with the batch columns.
-pub fn rows_of(b: &RecordBatch) -> std::result::Result<Vec<BatchRecord>, String> {
-    let s = |name| -> std::result::Result<Vec<Option<String>>, String> {
-        let a = column::<StringArray>(b, name)?;
+///
+/// # Errors
+/// [`Error::Parse`] (path `<memory>`) naming a column that is missing or of another type.
+pub fn rows_of(b: &RecordBatch) -> Result<Vec<BatchRecord>> {
+    rows_in(b, Path::new("<memory>"))
+}
+
+/// [`rows_of`], the errors naming `path`.
+fn rows_in(b: &RecordBatch, path: &Path) -> Result<Vec<BatchRecord>> {
+    let s = |name| -> Result<Vec<Option<String>>> {
+        let a = column_of::<StringArray>(b, path, name, "Utf8")?;
         Ok((0..a.len())
             .map(|i| a.is_valid(i).then(|| a.value(i).to_string()))
             .collect())
     };
-    let f = |name| -> std::result::Result<Vec<Option<f64>>, String> {
-        let a = column::<Float64Array>(b, name)?;
+    let f = |name| -> Result<Vec<Option<f64>>> {
+        let a = column_of::<Float64Array>(b, path, name, "Float64")?;
         Ok((0..a.len()).map(|i| a.is_valid(i).then(|| a.value(i))).collect())
     };
-    let u = |name| -> std::result::Result<Vec<Option<u32>>, String> {
-        let a = column::<UInt32Array>(b, name)?;
+    let u = |name| -> Result<Vec<Option<u32>>> {
+        let a = column_of::<UInt32Array>(b, path, name, "UInt32")?;
         Ok((0..a.len()).map(|i| a.is_valid(i).then(|| a.value(i))).collect())
     };
-    let l = |name| -> std::result::Result<Vec<Vec<String>>, String> {
-        let a = column::<ListArray>(b, name)?;
+    let l = |name| -> Result<Vec<Vec<String>>> {
+        let a = column_of::<ListArray>(b, path, name, "List(Utf8)")?;
         (0..a.len())
             .map(|i| {
                 let v = a.value(i);
-                let v = v
-                    .as_any()
-                    .downcast_ref::<StringArray>()
-                    .ok_or_else(|| format!("column `{name}` is not a list of strings"))?;
+                let v = v.as_any().downcast_ref::<StringArray>().ok_or_else(|| {
+                    Error::Parse(ParseError {
+                        path: path.to_path_buf(),
+                        location: Location::default(),
+                        kind: ErrorKind::Invalid,
+                        expected: format!(
+                            "a column `{name}` of type List(Utf8) (a photosolid batch table, docs/batch.md)"
+                        ),
+                        found: format!("a list of {}", v.data_type()),
+                    })
+                })?;
                 Ok((0..v.len())
                     .filter(|&j| v.is_valid(j))
                     .map(|j| v.value(j).to_string())
@@ -249,7 +267,7 @@ pub fn rows_of(b: &RecordBatch) -> std::result::Result<Vec<BatchRecord>, String>
             })
             .collect()
     };
-    let ok = column::<BooleanArray>(b, "ok")?;
+    let ok = column_of::<BooleanArray>(b, path, "ok", "Boolean")?;
     let (path, errors, warnings) = (s("path")?, l("errors")?, l("warnings")?);
     let (format, version, ptype, symmetry) = (s("format")?, s("version")?, s("photometric_type")?, s("symmetry")?);
     let (n_c, n_c_full, n_gamma) = (u("n_c")?, u("n_c_full")?, u("n_gamma")?);
@@ -274,7 +292,7 @@ pub fn rows_of(b: &RecordBatch) -> std::result::Result<Vec<BatchRecord>, String>
         "holdout_ms",
         "fit_ms",
     ];
-    let nums: Vec<Vec<Option<f64>>> = names.iter().map(|n| f(n)).collect::<std::result::Result<_, _>>()?;
+    let nums: Vec<Vec<Option<f64>>> = names.iter().map(|n| f(n)).collect::<Result<_>>()?;
     let (best, gl) = (s("best_filter")?, s("fitted_gl")?);
     // Schema 2 columns: null when reading a schema-1 table (e.g. `batch --resume` on an older file).
     let rows = b.num_rows();

@@ -17,7 +17,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use photosolid::compare::{compare_with_progress, Against, CompareOptions, Directions, Normalize};
-use photosolid::reconstruct::Recon;
+use photosolid::registry::Recon;
 use photosolid::report::compare_report;
 use photosolid::synth::Truth;
 

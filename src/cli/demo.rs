@@ -147,11 +147,12 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
 
 /// Wallner's (2008) Figure 5 setting: a plane lit through the bilinear and the
 /// Catmull-Rom lookups of the factor-5 texture, on the GPU when an adapter
-/// exists and always on the CPU (`photosolid::gpu::shading`); EXRs written
+/// exists and always on the CPU (`photosolid::report::shading`); EXRs written
 /// into `dir`, PNGs returned as report figures.
 #[cfg(feature = "gpu")]
 fn shading_figures(tex: &LightTexture, dir: &std::path::Path) -> anyhow::Result<Vec<compare_report::Figure>> {
-    use photosolid::gpu::{resolve, shading, Backend};
+    use photosolid::gpu::{resolve, Backend};
+    use photosolid::report::shading;
     let resolved = resolve(Backend::Auto)?;
     if let photosolid::gpu::Resolved::Cpu { notice: Some(n) } = resolved {
         outln!("{n}: the shaded plane is rendered with the CPU lookups only");

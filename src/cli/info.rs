@@ -66,6 +66,6 @@ pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
 /// `--ugr-spacing`: a finite number that [`photosolid::photometry::ugr::check_spacing_h`] accepts.
 fn ugr_spacing(s: &str) -> Result<f64, String> {
     let v = super::parse::finite(s)?;
-    photosolid::photometry::ugr::check_spacing_h(v)?;
+    photosolid::photometry::ugr::check_spacing_h(v).map_err(|e| e.to_string())?;
     Ok(v)
 }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::reconstruct::{Recon, Reconstructions};
+use photosolid::registry::{Recon, Reconstructions};
 use photosolid::solid::adaptive::DEFAULT_TOLERANCE_PCT;
 use photosolid::solid::{
     export, texture_solid, topology, AdaptiveOptions, ColorMap, Refinement, Tolerance, Units, UnitsName,

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::reconstruct::{exr_io, render_on, Backend, Filter, LightTexture, RenderOptions};
+use photosolid::reconstruct::{exr_io, Backend, Filter, LightTexture, RenderOptions};
+use photosolid::registry::render_on;
 use photosolid::report::plot::{write_texture_preview, TexturePreview, DEFAULT_EXPOSURE};
 
 use super::ReadArgs;

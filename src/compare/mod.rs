@@ -69,6 +69,7 @@ pub mod align;
 mod measure;
 mod plot_data;
 pub mod trade;
+pub mod view;
 mod withheld;
 
 use std::str::FromStr;
@@ -81,6 +82,7 @@ pub use measure::SOLID_MAX_POINTS;
 pub(crate) use measure::{measure_field, own_or_grid_solid, FieldTarget};
 pub(crate) use plot_data::plot_data;
 pub use plot_data::{ErrorMap, PlotData, PolarPlane};
+pub use view::{SampledSolid, SampledSolids, SolidSet};
 
 use crate::error::ModelError;
 use crate::metrics::profile::{self, Profile};
@@ -88,8 +90,10 @@ use crate::metrics::{
     field_radial_errors, hausdorff_bvh, pareto_front, random_directions, time_per_sample_ns, Bvh, DirectionSet,
     Hausdorff, OneSided, MAX_REFINEMENT, ZOTTI_C,
 };
+pub use crate::model::Progress;
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{eval_all, Recon, Reconstructions, DEFAULT_RECONS};
+use crate::reconstruct::eval_all;
+use crate::registry::{Recon, Reconstructions, DEFAULT_RECONS};
 use crate::solid::{AdaptiveOptions, Mesh, RadialMesh, Refinement, SolidGrid, Tolerance, Units};
 use crate::synth::Truth;
 
@@ -443,6 +447,47 @@ impl ReconResult {
     }
 }
 
+/// What a comparison's errors are measured against: its JSON value
+/// (`reference_kind`) is the lowercase name, `truth`, `withheld`, `dense`
+/// or `reconstruction` (a contract of `compare --json`, `tradeoff --json`
+/// and `engines --json`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ReferenceKind {
+    /// The closed-form truth of a synthetic file.
+    Truth,
+    /// Measured planes and rows withheld from the reconstructions.
+    Withheld,
+    /// A reconstruction of a denser measurement (`--vs OTHER`).
+    Dense,
+    /// A reconstruction of FILE itself (not the truth).
+    Reconstruction,
+}
+
+impl ReferenceKind {
+    /// The name, as the JSON writes it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ReferenceKind::Truth => "truth",
+            ReferenceKind::Withheld => "withheld",
+            ReferenceKind::Dense => "dense",
+            ReferenceKind::Reconstruction => "reconstruction",
+        }
+    }
+}
+
+impl std::fmt::Display for ReferenceKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl PartialEq<&str> for ReferenceKind {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
 /// The result of [`compare`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Comparison {
@@ -456,7 +501,7 @@ pub struct Comparison {
     /// `catmull-rom of FILE (a reconstruction, not the truth)`.
     pub reference: String,
     /// `truth`, `withheld`, `dense` or `reconstruction`.
-    pub reference_kind: String,
+    pub reference_kind: ReferenceKind,
     /// Normalisation.
     pub normalize: Normalize,
     /// Unit of every `*_cd` value.
@@ -514,7 +559,7 @@ impl Comparison {
     /// measurements, where H is the exact one-sided distance from the
     /// withheld points and no solid of the reference exists.
     pub fn hausdorff_certified(&self) -> bool {
-        self.reference_kind != "withheld"
+        self.reference_kind != ReferenceKind::Withheld
     }
 }
 
@@ -566,9 +611,6 @@ pub fn compare(
 ) -> Result<Comparison, ModelError> {
     compare_with_progress(file, vs, opts, &|_, _, _| {})
 }
-
-/// A progress report: `(done, total, what is being measured now)`.
-pub type Progress<'a> = dyn Fn(usize, usize, &str) + Sync + 'a;
 
 /// [`compare`], calling `progress` before each reconstruction is measured.
 pub fn compare_with_progress(
@@ -630,7 +672,7 @@ pub fn compare_with_progress(
             })?;
             let reference = FieldReference {
                 label: format!("truth ({})", truth),
-                kind: "truth",
+                kind: ReferenceKind::Truth,
                 field: &truth,
                 dist: &a,
                 solid,
@@ -644,10 +686,10 @@ pub fn compare_with_progress(
             let refs = Reconstructions::new(ref_dist.clone(), &[r])?;
             let field = refs.field(r)?;
             let (label, kind) = match other {
-                Some(_) => (format!("dense: {r} of OTHER"), "dense"),
+                Some(_) => (format!("dense: {r} of OTHER"), ReferenceKind::Dense),
                 None => (
                     format!("{r} of FILE (a reconstruction, not the truth)"),
-                    "reconstruction",
+                    ReferenceKind::Reconstruction,
                 ),
             };
             let recons: Vec<Recon> = if other.is_some() {
@@ -678,7 +720,7 @@ pub fn compare_with_progress(
 /// A field reference and what its metrics need.
 struct FieldReference<'a> {
     label: String,
-    kind: &'static str,
+    kind: ReferenceKind,
     field: &'a dyn IntensityField,
     /// The reference's own data (I_max, measured direction set, plots).
     dist: &'a Distribution,
@@ -790,7 +832,7 @@ fn compare_fields(
         file: String::new(),
         vs: None,
         reference: reference.label.clone(),
-        reference_kind: reference.kind.into(),
+        reference_kind: reference.kind,
         normalize: opts.normalize,
         units: opts.normalize.unit().into(),
         directions: set.label.clone(),

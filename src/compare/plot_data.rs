@@ -2,9 +2,9 @@
 
 use serde::Serialize;
 
+use super::view::{SampledSolids, SolidSet};
 use crate::model::{Distribution, IntensityField};
 use crate::reconstruct::eval_all;
-use crate::report::viewer::{SolidSet, ViewerData};
 
 /// Curves of one pair of half-planes for a polar diagram: points are (signed γ, value).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -39,9 +39,9 @@ pub struct PlotData {
     pub planes: Vec<PolarPlane>,
     /// One per reconstruction.
     pub error_maps: Vec<ErrorMap>,
-    /// The interactive 3D view's packed solids (with a field reference), not in the JSON.
+    /// The interactive 3D view's sampled solids (with a field reference), not in the JSON.
     #[serde(skip)]
-    pub viewer: Option<ViewerData>,
+    pub viewer: Option<SampledSolids>,
 }
 
 /// The plot data of a comparison: polar curves of every field in three
@@ -141,7 +141,7 @@ pub(crate) fn plot_data(
             }
         })
         .collect();
-    let viewer = Some(ViewerData::new(&SolidSet {
+    let viewer = Some(SampledSolids::new(&SolidSet {
         reference_label: reference_name,
         reference,
         recons,

@@ -27,7 +27,8 @@ use serde::Serialize;
 use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress};
 use crate::error::ModelError;
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{Filter, Lookup, Precision, Recon, TextureSpec};
+use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
+use crate::registry::Recon;
 
 /// The representations of the trade table for data with `symmetry`:
 /// textures at each of `factors` (see the module docs).
@@ -112,7 +113,7 @@ pub struct TradeTable {
     /// What the errors are measured against, in words.
     pub reference: String,
     /// `truth`, `withheld`, `dense` or `reconstruction`.
-    pub reference_kind: String,
+    pub reference_kind: super::ReferenceKind,
     /// Direction set of the radial metrics.
     pub directions: String,
     /// What each row's `radial_max_pct` is, in words (the comparison's `radial_max_method`).
@@ -224,7 +225,7 @@ pub fn trade_table(
     Ok(TradeTable {
         file: String::new(),
         reference: c.reference.clone(),
-        reference_kind: c.reference_kind.clone(),
+        reference_kind: c.reference_kind,
         directions: c.directions.clone(),
         radial_max_method: c.radial_max_method.clone(),
         rows,
@@ -271,10 +272,9 @@ fn gpu_columns(
     opts: &CompareOptions,
 ) -> Result<(), ModelError> {
     use crate::gpu::{precision::hardware_row, GpuContext};
-    let fail = |e: crate::gpu::GpuError| ModelError::Parameter {
-        name: "recon",
-        value: row.representation.clone(),
-        reason: format!("the GPU lookup is not available: {e}"),
+    let fail = |source: crate::gpu::GpuError| ModelError::Gpu {
+        recon: row.representation.clone(),
+        source,
     };
     let ctx = GpuContext::global().map_err(fail)?;
     let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
@@ -290,9 +290,8 @@ fn gpu_columns(
 /// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).
 #[cfg(not(feature = "gpu"))]
 fn gpu_columns(row: &mut TradeRow, _: &Distribution, _: TextureSpec, _: &CompareOptions) -> Result<(), ModelError> {
-    Err(ModelError::Parameter {
-        name: "recon",
-        value: row.representation.clone(),
-        reason: "this build has no GPU support (feature `gpu`)".into(),
+    Err(ModelError::Gpu {
+        recon: row.representation.clone(),
+        source: crate::error::GpuError::NotBuilt,
     })
 }

@@ -17,7 +17,8 @@ use crate::metrics::profile::{self, Profile};
 use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, OneSided};
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField};
-use crate::reconstruct::{eval_all, kfold, Recon, Reconstructions};
+use crate::reconstruct::{eval_all, kfold};
+use crate::registry::{Recon, Reconstructions};
 
 /// Every reconstruction of `a` against its own withheld measurements.
 pub(super) fn compare_withheld(
@@ -188,7 +189,7 @@ pub(super) fn compare_withheld(
             "withheld ({}-fold hold-out of the measured C-planes and gamma rows; each reconstruction rebuilt without them)",
             opts.folds
         ),
-        reference_kind: "withheld".into(),
+        reference_kind: super::ReferenceKind::Withheld,
         normalize: opts.normalize,
         units: opts.normalize.unit().into(),
         directions: pooled.label.clone(),
@@ -221,7 +222,7 @@ fn measured_viewer(
     a: &Distribution,
     named: &[(String, &dyn IntensityField)],
     i_max: f64,
-) -> Option<crate::report::viewer::ViewerData> {
+) -> Option<super::SampledSolids> {
     let measured = Reconstructions::new(a.clone(), &[Recon::Measured]).ok()?;
     let field = measured.field(Recon::Measured).ok()?;
     let others: Vec<(String, &dyn IntensityField)> = named
@@ -229,17 +230,15 @@ fn measured_viewer(
         .filter(|(n, _)| *n != Recon::Measured.to_string())
         .map(|(n, f)| (n.clone(), *f))
         .collect();
-    Some(crate::report::viewer::ViewerData::new(
-        &crate::report::viewer::SolidSet {
-            reference_label: "the measured solid (through every measured point)",
-            reference: &*field,
-            recons: &others,
-            i_max,
-            note: Some(
-                "The table measures against the withheld measurements; a surface cannot be withheld, \
+    Some(super::SampledSolids::new(&super::SolidSet {
+        reference_label: "the measured solid (through every measured point)",
+        reference: &*field,
+        recons: &others,
+        i_max,
+        note: Some(
+            "The table measures against the withheld measurements; a surface cannot be withheld, \
              so the colours show the difference from the measured solid."
-                    .into(),
-            ),
-        },
-    ))
+                .into(),
+        ),
+    }))
 }

@@ -69,14 +69,7 @@ pub const STAND_INS: &[&str] = &[
 ];
 
 /// sRGB encoding of a linear value in [0, 1] (the transfer function of `*_SRGB` formats).
-pub fn linear_to_srgb(v: f64) -> f64 {
-    let v = v.clamp(0.0, 1.0);
-    if v <= 0.003_130_8 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    }
-}
+pub use crate::solid::colormap::srgb_encode as linear_to_srgb;
 
 /// sRGB decoding of an encoded value in [0, 1] (what sampling an `*_SRGB` view does per texel).
 pub fn srgb_to_linear(c: f64) -> f64 {

@@ -16,13 +16,15 @@
 use serde::Serialize;
 
 use super::{defects, emulate, Engine, EngineOptions};
+use crate::compare::ReferenceKind;
 use crate::compare::{
     mark_pareto, measure_field, solid_hausdorff, Against, ErrorMap, FieldTarget, PlotData, ReconResult,
 };
 use crate::error::ModelError;
 use crate::metrics::{random_directions, DirectionSet, ZOTTI_C};
 use crate::model::{IntensityField, Luminaire};
-use crate::reconstruct::{eval_all, Filter, Recon, Reconstructions};
+use crate::reconstruct::{eval_all, Filter};
+use crate::registry::{Recon, Reconstructions};
 use crate::solid::{grid_solid, Mesh, RadialMesh, SolidGrid, Units};
 use crate::synth::Truth;
 
@@ -139,7 +141,7 @@ pub struct EnginesReport {
     /// The reference in words.
     pub reference: String,
     /// `truth` or `reconstruction`.
-    pub reference_kind: String,
+    pub reference_kind: ReferenceKind,
     /// Unit of every `*_cd` value.
     pub units: String,
     /// The reference's maximum, cd.
@@ -238,14 +240,14 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
     let recon_holder: Reconstructions;
     let recon_field: Box<dyn IntensityField + '_>;
     let truth_holder: Truth;
-    let (ref_field, label, kind): (&dyn IntensityField, String, &str) = match opts.reference {
+    let (ref_field, label, kind): (&dyn IntensityField, String, ReferenceKind) = match opts.reference {
         Against::Truth => {
             truth_holder = opts.truth.ok_or_else(|| ModelError::Parameter {
                 name: "reference",
                 value: "truth".into(),
                 reason: "this file records no closed-form truth (only files written by `photosolid synth` do)".into(),
             })?;
-            (&truth_holder, format!("truth ({truth_holder})"), "truth")
+            (&truth_holder, format!("truth ({truth_holder})"), ReferenceKind::Truth)
         }
         Against::Withheld => {
             return Err(ModelError::Parameter {
@@ -260,7 +262,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
             (
                 &*recon_field,
                 format!("{r} of FILE on its native grid (a reconstruction, not the truth)"),
-                "reconstruction",
+                ReferenceKind::Reconstruction,
             )
         }
     };
@@ -358,7 +360,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
     Ok(EnginesReport {
         file: String::new(),
         reference: label,
-        reference_kind: kind.into(),
+        reference_kind: kind,
         units: "cd".into(),
         i_max_cd: i_max,
         directions: set.label.clone(),

@@ -40,6 +40,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 use super::table::{to_byte, to_f11, IesTable, Image};
 use super::ue::{bilinear_index, filter_pos};
+pub use super::unity_cube::cylindrical_coords;
 use super::unity_cube::{self, CubeMap};
 use crate::model::IntensityField;
 
@@ -100,17 +101,6 @@ pub fn cylindrical_angles(x: usize, y: usize, w: usize, h: usize) -> (f64, f64) 
     let c = ((u.sin() * v.cos()).atan2(v.sin()) + TAU) % TAU;
     let g = (-u.cos() * v.cos()).clamp(-1.0, 1.0).asin() + FRAC_PI_2;
     (c.to_degrees(), g.to_degrees())
-}
-
-/// Continuous texel coordinates (x, y) of direction (C, γ) in the cylindrical buffer.
-pub fn cylindrical_coords(c_deg: f64, gamma_deg: f64, w: usize, h: usize) -> (f64, f64) {
-    let (sg, cg) = crate::model::frame::sin_cos_deg(gamma_deg);
-    let (sc, cc) = crate::model::frame::sin_cos_deg(c_deg);
-    // Components: +X = C90, +Y = C0, +Z = nadir.
-    let (dx, dy, dz) = (sg * sc, sg * cc, cg);
-    let v = dy.clamp(-1.0, 1.0).asin();
-    let u = dx.atan2(dz);
-    ((PI - u) / TAU * (w - 1) as f64, (v + FRAC_PI_2) / PI * (h - 1) as f64)
 }
 
 /// The point-light buffer (`BuildTypeCCylindricalTexture`): `2n x 2n` bytes of I / MaxCandelas.

@@ -12,7 +12,7 @@
 //!    Unity's native editor code, which is not public: **stand-in** — each
 //!    face texel takes the bilinear value of the buffer at its centre's
 //!    direction, the buffer's angles read as the inverse of
-//!    `BuildTypeCCylindricalTexture` ([`super::unity::cylindrical_coords`]),
+//!    `BuildTypeCCylindricalTexture` ([`cylindrical_coords`]),
 //!    rounded to 8 bits (uncompressed RGBA32; the importer's default BC7
 //!    compression is not modelled).
 //! 2. Face layout: the cube-map face selection and face coordinates of the
@@ -39,9 +39,22 @@
 //! Directions are in the buffer's cube space: +X = C90, +Y = C0, +Z = nadir
 //! (`BuildTypeCCylindricalTexture` "orient it toward +Z at the center").
 
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
 use glam::DVec3;
 
 use super::table::{to_f11, Image};
+
+/// Continuous texel coordinates (x, y) of direction (C, γ) in the cylindrical buffer.
+pub fn cylindrical_coords(c_deg: f64, gamma_deg: f64, w: usize, h: usize) -> (f64, f64) {
+    let (sg, cg) = crate::model::frame::sin_cos_deg(gamma_deg);
+    let (sc, cc) = crate::model::frame::sin_cos_deg(c_deg);
+    // Components: +X = C90, +Y = C0, +Z = nadir.
+    let (dx, dy, dz) = (sg * sc, sg * cc, cg);
+    let v = dy.clamp(-1.0, 1.0).asin();
+    let u = dx.atan2(dz);
+    ((PI - u) / TAU * (w - 1) as f64, (v + FRAC_PI_2) / PI * (h - 1) as f64)
+}
 
 /// `(major axis, s axis, t axis)` of each face, in the order +X, −X, +Y,
 /// −Y, +Z, −Z: a direction on face f is `major + sc·s + tc·t` with
@@ -117,7 +130,7 @@ impl CubeMap {
         Self::from_fn(size, |face, i, j| {
             let d = texel_direction(face, i, j, size);
             let (c, g) = crate::model::frame::unit_angles(cube_to_frame(d));
-            let (x, y) = super::unity::cylindrical_coords(c, g, buffer.width, buffer.height);
+            let (x, y) = cylindrical_coords(c, g, buffer.width, buffer.height);
             // Rounded to the nearest 8-bit step (a resampler's output; IESEngine's own
             // truncation is in the buffer already, and truncating twice would halve the
             // flux of dim regions by another half step).

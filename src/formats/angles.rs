@@ -94,7 +94,7 @@ pub fn drop_360_plane(hs: &mut Vec<f64>, cd: &mut Vec<f64>, nv: usize, warnings:
                 WarningCode::SeamMismatch,
                 format!(
                     "the 360-degree plane differs from the 0-degree plane by up to {} cd; the 0-degree plane is kept",
-                    crate::report::significant(diff, 6)
+                    crate::numfmt::significant(diff, 6)
                 ),
             ));
         }

@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use crate::error::{Difference, Error};
 use crate::formats::{ies, ldt, tm33, Document, ReadOptions};
 use crate::model::{Distribution, Format, ANGLE_EPS};
 
@@ -30,8 +31,9 @@ pub const TM33_TOLERANCE: f64 = 0.0;
 /// every value within the writer's tolerance × the peak.
 ///
 /// # Errors
-/// A message naming the format and the first difference.
-pub fn check(doc: &Document) -> Result<(), String> {
+/// [`Error::RoundTripRead`] naming the format when the written text does not
+/// read back; [`Error::RoundTrip`] with the first [`Difference`] otherwise.
+pub fn check(doc: &Document) -> Result<(), Error> {
     let lum = &doc.luminaire;
     let opts = ReadOptions::default();
     let cases = [
@@ -56,10 +58,16 @@ pub fn check(doc: &Document) -> Result<(), String> {
             Format::Ldt => "<round-trip>.ldt",
             Format::Tm33 => "<round-trip>.xml",
         });
-        let back = crate::formats::parse(text.as_bytes(), path, format, &opts)
-            .map_err(|e| format!("{name}: the written text does not read back: {e}"))?;
-        same_distribution(lum.distribution(), back.luminaire.distribution(), tol)
-            .map_err(|e| format!("{name}: {e}"))?;
+        let back = crate::formats::parse(text.as_bytes(), path, format, &opts).map_err(|e| Error::RoundTripRead {
+            format: name,
+            source: Box::new(e.into()),
+        })?;
+        same_distribution(lum.distribution(), back.luminaire.distribution(), tol).map_err(|difference| {
+            Error::RoundTrip {
+                format: name,
+                difference,
+            }
+        })?;
     }
     Ok(())
 }
@@ -68,11 +76,14 @@ pub fn check(doc: &Document) -> Result<(), String> {
 /// γ angles, and every full-circle plane of `orig` a plane of `back`.
 ///
 /// # Errors
-/// The first difference found.
-pub fn same_distribution(orig: &Distribution, back: &Distribution, tol: f64) -> Result<(), String> {
+/// The first [`Difference`] found.
+pub fn same_distribution(orig: &Distribution, back: &Distribution, tol: f64) -> Result<(), Difference> {
     let (g0, g1) = (orig.gamma_angles_deg(), back.gamma_angles_deg());
     if g0.len() != g1.len() || g0.iter().zip(g1).any(|(a, b)| (a - b).abs() > ANGLE_EPS) {
-        return Err(format!("gamma angles {g0:?} came back as {g1:?}"));
+        return Err(Difference::GammaAngles {
+            orig: g0.to_vec(),
+            back: g1.to_vec(),
+        });
     }
     let peak = orig.intensities_cd().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let allowed = tol * peak;
@@ -91,15 +102,19 @@ pub fn same_distribution(orig: &Distribution, back: &Distribution, tol: f64) -> 
             };
             match got {
                 None => {
-                    return Err(format!(
-                        "plane C = {c} is missing (planes back: {:?})",
-                        back.c_angles_deg()
-                    ))
+                    return Err(Difference::MissingPlane {
+                        c,
+                        back: back.c_angles_deg().to_vec(),
+                    })
                 }
                 Some(v) if (v - want).abs() > allowed || !v.is_finite() => {
-                    return Err(format!(
-                        "I(C = {c}, gamma = {g}) = {want} cd came back as {v} cd (allowed difference {allowed:e} cd)"
-                    ))
+                    return Err(Difference::Value {
+                        c,
+                        gamma: g,
+                        want,
+                        got: v,
+                        allowed,
+                    })
                 }
                 _ => {}
             }

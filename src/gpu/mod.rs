@@ -21,8 +21,9 @@
 //! - [`realtime`]: Wallner's (2008) real-time path, a stored texture sampled by the
 //!   texture hardware (bilinear, Catmull–Rom from linear fetches) for
 //!   batches of directions; [`precision`]: what that costs per adapter
-//!   (sub-texel weight bits, difference from the exact lookup);
-//!   [`shading`]: a plane lit through those lookups (Wallner's (2008) Figure 5 setting).
+//!   (sub-texel weight bits, difference from the exact lookup); a plane
+//!   lit through those lookups (Wallner's (2008) Figure 5 setting) is a
+//!   report figure, `crate::report::shading`.
 //!
 //! Output goes to a storage buffer rather than an `r32float` storage texture:
 //! it needs no 256-byte row padding on read-back, a whole batch fits in one
@@ -38,7 +39,6 @@ pub use backend::{resolve, Backend, Resolved};
 pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
 pub mod precision;
 pub mod realtime;
-pub mod shading;
 pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings};
 
 pub use crate::error::GpuError;

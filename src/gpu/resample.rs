@@ -56,35 +56,39 @@ impl RenderJob<'_> {
     }
 
     /// Check that the plan belongs to the texture (layout, table sizes, index ranges).
-    pub fn validate(&self) -> Result<(), String> {
+    ///
+    /// # Errors
+    /// [`GpuError::InvalidJob`] naming `index`, the job's place in its batch, and what is wrong.
+    pub fn validate(&self, index: usize) -> Result<(), GpuError> {
+        let invalid = |reason: String| GpuError::InvalidJob { index, reason };
         let (p, t) = (self.plan, self.texture);
         let rows = t.rows_per_column();
         let cols = t.columns().len();
         if p.rows_per_column != rows || p.columns != cols {
-            return Err(format!(
+            return Err(invalid(format!(
                 "plan for a {} x {} texture (padded rows x columns), texture is {rows} x {cols}",
                 p.rows_per_column, p.columns
-            ));
+            )));
         }
         if t.normalized().len() != rows * cols {
-            return Err("texture storage does not match its size".into());
+            return Err(invalid("texture storage does not match its size".into()));
         }
         for (name, taps, n_out, n_src) in [
             ("gamma", &p.gamma, p.mapping.height, rows),
             ("C", &p.c, p.mapping.width, cols),
         ] {
             if taps.index.len() != n_out || taps.weight.len() != n_out {
-                return Err(format!(
+                return Err(invalid(format!(
                     "{name} table has {} index / {} weight entries for {n_out} output samples",
                     taps.index.len(),
                     taps.weight.len()
-                ));
+                )));
             }
             if taps.filter != p.filter {
-                return Err(format!(
+                return Err(invalid(format!(
                     "{name} table is for filter {}, plan for {}",
                     taps.filter, p.filter
-                ));
+                )));
             }
             if let Some((k, bad)) = taps
                 .index
@@ -92,9 +96,9 @@ impl RenderJob<'_> {
                 .enumerate()
                 .find(|(_, t)| t.iter().any(|&i| i as usize >= n_src))
             {
-                return Err(format!(
+                return Err(invalid(format!(
                     "{name} table entry {k} has indices {bad:?} out of range 0..{n_src}"
-                ));
+                )));
             }
         }
         Ok(())
@@ -449,8 +453,7 @@ impl GpuContext {
         let two_pass = kernel == RenderKernel::TwoPass;
         let t0 = Instant::now();
         for (k, job) in jobs.iter().enumerate() {
-            job.validate()
-                .map_err(|reason| GpuError::InvalidJob { index: k, reason })?;
+            job.validate(k)?;
         }
         let max_words = (max_bytes / 4) as usize;
         let max_dim = self.max_workgroups_per_dim().max(1) as usize;

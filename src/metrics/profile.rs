@@ -51,7 +51,7 @@ impl Profile {
         // Below 1e-9 of the peak a value is round-off of a zero (I0 cos 90° = 6e-17 I0): the
         // origin, as in the grid solids (crate::solid::ZERO_FRACTION).
         let peak = values.iter().copied().fold(0.0, f64::max);
-        let zero = crate::solid::ZERO_FRACTION * peak;
+        let zero = crate::model::ZERO_FRACTION * peak;
         let points = gamma_deg
             .iter()
             .zip(values)
@@ -65,6 +65,11 @@ impl Profile {
             gamma: gamma_deg.to_vec(),
             points,
         }
+    }
+
+    /// The polyline's points (ρ, z), cd, at ascending γ.
+    pub fn points(&self) -> &[DVec2] {
+        &self.points
     }
 
     /// Segments of the polyline.
@@ -122,78 +127,6 @@ pub fn is_c_independent(field: &dyn IntensityField, gamma_deg: &[f64]) -> bool {
     }
     let n = gamma_deg.len();
     (1..C.len()).all(|ic| (0..n).all(|ig| (s[ic * n + ig] - s[ig]).abs() <= 1e-9 * peak))
-}
-
-/// γ angles (degrees) for the profile of a C-independent `field`: `start`
-/// (ascending, from 0 to 180) with intervals halved, down to
-/// `opts.min_step_deg`, until the midpoint of every profile segment lies
-/// within the tolerance of the field's profile (the smaller of `| |p| − I(γ(p)) |`,
-/// the distance to the profile's point at the interval's middle γ, and |p|
-/// when the profile touches the origin: each an upper bound of the distance). Returns the
-/// angles and the largest deviation tested on them (cd).
-pub fn adaptive_gammas(
-    field: &dyn IntensityField,
-    start: &[f64],
-    opts: &crate::solid::AdaptiveOptions,
-) -> (Vec<f64>, f64) {
-    let mut g = start.to_vec();
-    loop {
-        let p = Profile::of_field(field, &g);
-        let peak = p.points.iter().map(|x| x.length()).fold(0.0, f64::max);
-        let tol = opts.tolerance.candela(peak).max(0.0);
-        let mids: Vec<DVec2> = p.points.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
-        let dirs: Vec<(f64, f64)> = mids
-            .iter()
-            .zip(g.windows(2))
-            .map(|(m, w)| {
-                // γ of the point (ρ, z) = r (sin γ, −cos γ); the interval's middle at the origin.
-                let gm = if m.length() > 0.0 {
-                    m.x.atan2(-m.y).to_degrees()
-                } else {
-                    0.5 * (w[0] + w[1])
-                };
-                (0.0, gm)
-            })
-            .collect();
-        let values = crate::reconstruct::eval_all(field, &dirs);
-        let params: Vec<(f64, f64)> = g.windows(2).map(|w| (0.0, 0.5 * (w[0] + w[1]))).collect();
-        let at_params = crate::reconstruct::eval_all(field, &params);
-        // With a zero on the profile the origin is a point of the solid: |m| bounds too
-        // (the same rule as the grid solids', crate::solid::adaptive).
-        let any_zero = p.points.contains(&DVec2::ZERO);
-        let dev: Vec<f64> = mids
-            .iter()
-            .zip(values)
-            .zip(&at_params)
-            .zip(g.windows(2))
-            .map(|(((m, v), &vm), w)| {
-                // Also the distance to the profile's point at the interval's middle γ.
-                let (sm, cm) = sin_cos_deg(0.5 * (w[0] + w[1]));
-                let beside = m.distance(if vm > 0.0 { vm } else { 0.0 } * DVec2::new(sm, -cm));
-                let d = (m.length() - if v > 0.0 { v } else { 0.0 }).abs().min(beside);
-                if any_zero {
-                    d.min(m.length())
-                } else {
-                    d
-                }
-            })
-            .collect();
-        let worst = dev.iter().copied().fold(0.0, f64::max);
-        let mut next = Vec::with_capacity(2 * g.len());
-        let mut cut = false;
-        for (j, w) in g.windows(2).enumerate() {
-            next.push(w[0]);
-            if dev[j] > tol && w[1] - w[0] >= 2.0 * opts.min_step_deg.max(1e-6) {
-                next.push(0.5 * (w[0] + w[1]));
-                cut = true;
-            }
-        }
-        next.push(*g.last().expect("at least the poles"));
-        if !cut || next.len() > opts.max_points {
-            return (g, worst);
-        }
-        g = next;
-    }
 }
 
 /// Distance from `x` to the segment a–b, squared.

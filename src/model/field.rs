@@ -11,6 +11,10 @@ use rayon::prelude::*;
 
 use super::frame;
 
+/// Intensities below this fraction of the peak are zero in a solid (round-off
+/// of a zero: I0 cos 90° = 6e-17 I0), in the grid solids and the profiles alike.
+pub const ZERO_FRACTION: f64 = 1e-9;
+
 /// An intensity distribution on the whole sphere, in candela.
 ///
 /// Implemented by every reconstruction in the crate and by every

@@ -4,12 +4,16 @@ pub mod distribution;
 pub mod field;
 pub mod frame;
 pub mod luminaire;
+pub mod opening;
 
 pub use distribution::{
     check_intensities, flush_round_off, periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS,
     MAX_CD, MIN_PEAK_CD,
 };
-pub use field::{Borrowed, IntensityField};
+pub use field::{Borrowed, IntensityField, ZERO_FRACTION};
+/// A progress report: `(done, total, what is being measured now)`.
+pub type Progress<'a> = dyn Fn(usize, usize, &str) + Sync + 'a;
+
 pub use luminaire::{
     Declared, Dimensions, Format, LampSet, Luminaire, LuminaireParts, Metadata, PhotometricType, SourceGrid, Tilt,
     TiltTable,

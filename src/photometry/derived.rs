@@ -36,10 +36,12 @@ pub enum Derivation<T> {
 }
 
 impl<T> Derivation<T> {
-    fn from_result(r: Result<T, String>) -> Self {
+    fn from_result(r: Result<T, crate::ModelError>) -> Self {
         match r {
             Ok(v) => Derivation::Value(v),
-            Err(e) => Derivation::Undefined { undefined: e },
+            Err(e) => Derivation::Undefined {
+                undefined: e.to_string(),
+            },
         }
     }
     /// The value, if defined.

@@ -20,9 +20,10 @@
 use glam::DVec3;
 use serde::Serialize;
 
+use crate::error::{ModelError, Undefined};
 use crate::model::frame::direction;
+use crate::model::opening::Opening;
 use crate::model::{Distribution, Luminaire};
-use crate::scene::opening::Opening;
 
 /// Projected area (m²) of `opening` seen from emission direction `d` (unit vector, luminaire frame).
 pub fn projected_area_m2(opening: &Opening, d: DVec3) -> f64 {
@@ -174,10 +175,17 @@ pub fn intensity_at(d: &Distribution, c_deg: f64, gamma_deg: f64) -> f64 {
 }
 
 /// The luminance table of `lum`, or the reason there is none.
-pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, String> {
+///
+/// # Errors
+/// [`ModelError::Undefined`] for a point source; [`ModelError::Opening`]
+/// when the declared opening is not one this crate models.
+pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, ModelError> {
     let opening = Opening::of_luminaire(lum)?;
     if opening.is_point() {
-        return Err("the file declares no luminous area (point source): luminance undefined".into());
+        return Err(ModelError::Undefined {
+            quantity: "luminance",
+            why: Undefined::NoLuminousArea,
+        });
     }
     let d = lum.distribution();
     let at = |c: f64, g: f64| {
@@ -198,8 +206,8 @@ pub fn luminance_table(lum: &Luminaire) -> Result<LuminanceTable, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::opening::{CylinderShape, Extent3};
     use crate::model::Symmetry;
-    use crate::scene::opening::{CylinderShape, Extent3};
 
     /// A Lambertian emitter of uniform luminance L over a flat area A has
     /// I(γ) = L·A·cos γ, so the table must read L at every angle (the
@@ -223,7 +231,12 @@ mod tests {
         }
         // No luminous area: no table, a reason instead.
         lum.set_luminous_opening(crate::model::Dimensions::default());
-        assert!(luminance_table(&lum).unwrap_err().contains("no luminous area"));
+        let e = luminance_table(&lum).unwrap_err();
+        assert!(matches!(e, ModelError::Undefined { .. }), "{e:?}");
+        assert_eq!(
+            e.to_string(),
+            "the file declares no luminous area (point source): luminance undefined"
+        );
     }
 
     /// Projected areas of closed shapes: a sphere of diameter D shows π D²/4

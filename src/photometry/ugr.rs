@@ -52,9 +52,10 @@ use glam::DVec3;
 use serde::Serialize;
 
 use super::luminance::{projected_area_m2, GridLookup};
+use crate::error::{ModelError, Undefined};
 use crate::model::frame::unit_angles;
+use crate::model::opening::Opening;
 use crate::model::Luminaire;
-use crate::scene::opening::Opening;
 
 /// Standard rooms (X, Y) in units of H (CIE 190 / CIE 117 table rows).
 pub const ROOMS_H: [(f64, f64); 19] = [
@@ -238,17 +239,20 @@ fn field_cut(x: f64, y: f64) -> bool {
 /// directions) between [`MIN_SPACING_H`] and 1.
 ///
 /// # Errors
-/// The reason it is not, naming the accepted values.
-pub fn check_spacing_h(spacing_h: f64) -> Result<(), String> {
+/// [`ModelError::Parameter`] `ugr-spacing`, naming the accepted values.
+pub fn check_spacing_h(spacing_h: f64) -> Result<(), ModelError> {
     let per_h = 1.0 / spacing_h;
     let whole = (per_h - per_h.round()).abs() <= 1e-9 * per_h;
     if spacing_h.is_finite() && (MIN_SPACING_H - 1e-12..=1.0 + 1e-12).contains(&spacing_h) && whole {
         return Ok(());
     }
-    Err(format!(
-        "UGR spacing {} H: expected 1/n of H from {MIN_SPACING_H} to 1 (0.25 the catalogue spacing, 0.5, 1.0 as CIE 190's example table), so that every standard room holds a whole array",
-        crate::error::Num(spacing_h)
-    ))
+    Err(ModelError::Parameter {
+        name: "ugr-spacing",
+        value: format!("{} H", crate::error::Num(spacing_h)),
+        reason: format!(
+            "expected 1/n of H from {MIN_SPACING_H} to 1 (0.25 the catalogue spacing, 0.5, 1.0 as CIE 190's example table), so that every standard room holds a whole array"
+        ),
+    })
 }
 
 /// The regular array of a standard room: `spacing_h` between luminaires (in
@@ -265,7 +269,7 @@ impl Layout {
     /// The layout at `spacing_h`, which must divide H (every standard room
     /// is a whole number of spacings in both directions) and be at least
     /// [`MIN_SPACING_H`].
-    fn new(spacing_h: f64) -> Result<Self, String> {
+    fn new(spacing_h: f64) -> Result<Self, ModelError> {
         check_spacing_h(spacing_h)?;
         let cells = 2 * ((spacing_h * CELLS_PER_H / 2.0).ceil() as i64).max(1);
         Ok(Layout {
@@ -387,7 +391,7 @@ pub fn ugr_room(
     rho: (f64, f64, f64),
     h_m: f64,
     spacing_h: f64,
-) -> Result<Option<f64>, String> {
+) -> Result<Option<f64>, ModelError> {
     let opening = Opening::of_luminaire(lum)?;
     let layout = Layout::new(spacing_h)?;
     let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
@@ -415,7 +419,8 @@ pub struct Background {
 /// above the eye, luminaires `spacing_h` (in H) apart.
 ///
 /// # Errors
-/// The luminous opening cannot be built from the file's dimensions, or the spacing is not 1/n of H.
+/// [`ModelError::Opening`] when the luminous opening cannot be built from
+/// the file's dimensions; [`ModelError::Parameter`] when the spacing is not 1/n of H.
 pub fn background(
     lum: &Luminaire,
     view: View,
@@ -423,7 +428,7 @@ pub fn background(
     rho: (f64, f64, f64),
     h_m: f64,
     spacing_h: f64,
-) -> Result<Background, String> {
+) -> Result<Background, ModelError> {
     let opening = Opening::of_luminaire(lum)?;
     let layout = Layout::new(spacing_h)?;
     let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
@@ -477,20 +482,29 @@ fn ugr_of(
 
 /// The catalogue table of `lum` (luminaires [`CATALOGUE_SPACING_H`] apart),
 /// or the reason it is undefined (no luminous area, no downward light).
-pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, String> {
+///
+/// # Errors
+/// As [`ugr_table_at`].
+pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, ModelError> {
     ugr_table_at(lum, CATALOGUE_SPACING_H)
 }
 
 /// The table of `lum` with luminaires `spacing_h` (in H, 1/n of H) apart.
-pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, String> {
+///
+/// # Errors
+/// [`ModelError::Undefined`] for a point source, a luminaire without
+/// downward light or one that sends none toward the observer of a room; [`ModelError::Opening`] when the declared opening is not
+/// one this crate models; [`ModelError::Parameter`] for a spacing that is not 1/n of H.
+pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, ModelError> {
     let layout = Layout::new(spacing_h)?;
     let opening = Opening::of_luminaire(lum)?;
+    let undefined = |why| ModelError::Undefined { quantity: "UGR", why };
     if opening.is_point() {
-        return Err("the file declares no luminous area (point source): UGR undefined".into());
+        return Err(undefined(Undefined::NoLuminousArea));
     }
     let f = super::flux::flux(lum.distribution());
     if f.downward_lm.is_nan() || f.downward_lm <= 0.0 {
-        return Err("no downward light: UGR undefined (no glare from the luminaires)".into());
+        return Err(undefined(Undefined::NoDownwardLight));
     }
     let mut tables = Vec::new();
     for view in [View::Crosswise, View::Endwise] {
@@ -503,12 +517,7 @@ pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, String>
             for &rho in &REFLECTANCES {
                 match ugr_of(layout, &f, room, sums, rho, 1.0) {
                     Some(u) => row.push(u),
-                    None => {
-                        return Err(format!(
-                            "no light toward the observer in the {}H x {}H room: UGR undefined",
-                            room.0, room.1
-                        ))
-                    }
+                    None => return Err(undefined(Undefined::NoLightTowardObserver { room_h: room })),
                 }
             }
             rows.push(row);

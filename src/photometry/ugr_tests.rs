@@ -129,11 +129,27 @@ fn floor_flux_is_bounded_by_the_downward_flux() {
 #[test]
 fn undefined_cases_are_errors() {
     let up = luminaire(|g| if g > PI / 2.0 { 100.0 } else { 0.0 }, 0.3);
-    assert!(ugr_table(&up).unwrap_err().contains("no downward light"));
+    let e = ugr_table(&up).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "no downward light: UGR undefined (no glare from the luminaires)"
+    );
+    assert_eq!(crate::Error::from(e).code(), "undefined");
     let zero = luminaire(|_| 0.0, 0.3);
-    assert!(ugr_table(&zero).unwrap_err().contains("undefined"));
+    assert!(ugr_table(&zero).unwrap_err().to_string().contains("undefined"));
     let point = luminaire(lambertian(1000.0), 0.0);
-    assert!(ugr_table(&point).unwrap_err().contains("no luminous area"));
+    let e = ugr_table(&point).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            crate::ModelError::Undefined {
+                quantity: "UGR",
+                why: crate::error::Undefined::NoLuminousArea
+            }
+        ),
+        "{e:?}"
+    );
+    assert!(e.to_string().contains("no luminous area"));
     let dim = ugr_table(&luminaire(lambertian(1e-6), 0.3)).unwrap();
     assert!(dim.max.is_finite());
     let bright = ugr_table(&luminaire(lambertian(1e6), 0.3)).unwrap();

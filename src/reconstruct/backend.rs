@@ -1,15 +1,13 @@
-//! `--backend auto|gpu|cpu`: where a texture is rendered, and [`render_on`],
-//! the one function that renders on the chosen backend.
+//! `--backend auto|gpu|cpu`: where a texture is rendered
+//! ([`crate::registry::render_on`] is the one function that renders on the
+//! chosen backend).
 //!
-//! The selection lives here, not in [`crate::gpu`], so that a build without
+//! The selection lives here, not in `crate::gpu`, so that a build without
 //! the `gpu` feature still knows what `gpu` means (an error saying the
 //! feature is off) and `auto` (the CPU).
 
 use std::fmt;
 use std::str::FromStr;
-
-use super::{render_with, LightTexture, RenderOptions, Rendered};
-use crate::error::Error;
 
 /// Renderer selection, as given on the command line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -47,86 +45,17 @@ impl fmt::Display for Backend {
     }
 }
 
-/// A texture rendered by [`render_on`], and where.
-#[derive(Debug, Clone)]
-pub struct RenderedOn {
-    /// The texture (the same texels on every backend, up to f32 rounding).
-    pub rendered: Rendered,
-    /// Where it was rendered, for the user: `gpu: ADAPTER` or `cpu`.
-    pub on: String,
-    /// Set when `auto` fell back to the CPU: one line saying why.
-    pub notice: Option<&'static str>,
-}
-
-/// Render `tex` on `backend`.
-///
-/// `Auto` uses a GPU adapter when one exists (honouring `WGPU_BACKEND`) and
-/// otherwise the CPU, with a [`RenderedOn::notice`]; `Gpu` without an
-/// adapter is an error naming the drivers tried. Built without the `gpu`
-/// feature, `Auto` is the CPU and `Gpu` is [`crate::error::GpuError::NotBuilt`].
-///
-/// # Errors
-/// [`Error::Gpu`] as above; the render's own errors (an invalid factor).
-pub fn render_on(backend: Backend, tex: &LightTexture, options: &RenderOptions) -> Result<RenderedOn, Error> {
-    #[cfg(feature = "gpu")]
-    let notice = {
-        use crate::gpu::{self, Resolved};
-        match gpu::resolve(backend)? {
-            Resolved::Gpu(ctx) => {
-                return Ok(RenderedOn {
-                    rendered: gpu::render_gpu(ctx, tex, options)?,
-                    on: format!("gpu: {}", ctx.adapter()),
-                    notice: None,
-                })
-            }
-            Resolved::Cpu { notice } => notice,
-        }
-    };
-    #[cfg(not(feature = "gpu"))]
-    let notice = match backend {
-        Backend::Gpu => return Err(crate::error::GpuError::NotBuilt.into()),
-        _ => None,
-    };
-    Ok(RenderedOn {
-        rendered: render_with(tex, options)?,
-        on: "cpu".to_string(),
-        notice,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::synth::{GridSpec, Synth};
 
-    /// The spellings of `--backend`, and `cpu` renders exactly what `render_with` does.
+    /// The spellings of `--backend`.
     #[test]
-    fn backends_parse_and_cpu_renders_as_render_with() {
+    fn backends_parse() {
         assert_eq!("auto".parse::<Backend>().unwrap(), Backend::Auto);
         assert_eq!("GPU".parse::<Backend>().unwrap(), Backend::Gpu);
         assert_eq!(" cpu ".parse::<Backend>().unwrap(), Backend::Cpu);
         assert!("cuda".parse::<Backend>().unwrap_err().contains("auto, gpu or cpu"));
         assert_eq!(Backend::default().to_string(), "auto");
-        let lum = Synth::Lambertian
-            .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
-            .unwrap();
-        let tex = LightTexture::new(lum.distribution()).unwrap();
-        let options = RenderOptions::default();
-        let r = render_on(Backend::Cpu, &tex, &options).unwrap();
-        assert_eq!((r.on.as_str(), r.notice), ("cpu", None));
-        assert_eq!(r.rendered.data, render_with(&tex, &options).unwrap().data);
-    }
-
-    /// Without the `gpu` feature, asking for the GPU is the typed `NotBuilt` error.
-    #[cfg(not(feature = "gpu"))]
-    #[test]
-    fn gpu_without_the_feature_is_not_built() {
-        let lum = Synth::Lambertian
-            .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
-            .unwrap();
-        let tex = LightTexture::new(lum.distribution()).unwrap();
-        let e = render_on(Backend::Gpu, &tex, &RenderOptions::default()).unwrap_err();
-        assert!(matches!(e, Error::Gpu(crate::error::GpuError::NotBuilt)), "{e}");
-        assert_eq!(crate::error::ErrorRecord::from(&e).code, "gpu-not-built");
     }
 }

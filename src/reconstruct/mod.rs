@@ -26,18 +26,26 @@ pub mod exr_io;
 mod filter;
 pub mod holdout;
 mod lookup;
-pub mod recon;
 mod sampler;
+mod spec;
 pub mod texture;
 
 pub use axis::AxisTaps;
-pub use backend::{render_on, Backend, RenderedOn};
+pub use backend::Backend;
 pub use filter::{combine, Filter, Real, FILTER_NAMES};
 pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
 pub use lookup::{Lookup, Precision, StoredTexture};
-pub use recon::{eval_all, Recon, Reconstructions, TextureSpec, DEFAULT_RECONS};
 pub use sampler::Sampler;
+pub use spec::TextureSpec;
 pub use texture::{
     render, render_planned, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping,
     DEFAULT_FACTOR, MAX_RENDER_TEXELS,
 };
+
+use crate::model::IntensityField;
+
+/// Evaluate `field` at every (C, γ) of `dirs` (degrees): in parallel, or as
+/// one batch for a field that answers batches ([`IntensityField::intensity_batch_cd`]).
+pub fn eval_all(field: &dyn IntensityField, dirs: &[(f64, f64)]) -> Vec<f64> {
+    field.intensity_batch_cd(dirs)
+}

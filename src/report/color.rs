@@ -10,6 +10,8 @@
 
 use serde::Serialize;
 
+pub use crate::solid::colormap::srgb_encode;
+
 /// Chromaticity (x, y) of a blackbody at `cct_k` kelvin (Kang et al. 2002).
 pub fn cct_to_xy(cct_k: f64) -> (f64, f64) {
     let t = cct_k.clamp(1667.0, 25000.0);
@@ -38,16 +40,6 @@ pub fn xy_to_linear_srgb(x: f64, y: f64) -> [f64; 3] {
         -0.9692660 * cx + 1.8760108 * cy + 0.0415560 * cz,
         0.0556434 * cx - 0.2040259 * cy + 1.0572252 * cz,
     ]
-}
-
-/// The sRGB transfer function (linear → encoded), for values in [0, 1].
-pub fn srgb_encode(v: f64) -> f64 {
-    let v = v.clamp(0.0, 1.0);
-    if v <= 0.0031308 {
-        12.92 * v
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    }
 }
 
 /// A display colour for a lamp: 8-bit sRGB, brightest channel at full scale.

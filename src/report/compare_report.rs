@@ -456,7 +456,10 @@ img{max-width:100%;border:1px solid #ddd}\n\
     s.push_str("</ul>\n");
     // The report opens with the 3D view (README: "Every HTML report ... opens with an interactive 3D view").
     if let Some(v) = c.plots.as_ref().and_then(|p| p.viewer.as_ref()) {
-        s.push_str(&crate::report::viewer::html(v, "the static figures below"));
+        s.push_str(&crate::report::viewer::html(
+            &crate::report::viewer::ViewerData::from_samples(v),
+            "the static figures below",
+        ));
     }
     if let Some(rows) = &c.photometry_side_by_side {
         s.push_str("<h2>Photometry side by side</h2>\n<p>Difference = OTHER &minus; FILE.</p>\n<table>\n<tr><th>quantity</th><th>unit</th><th>FILE</th><th>OTHER</th><th>difference</th></tr>\n");

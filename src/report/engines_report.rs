@@ -19,7 +19,7 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         file: r.file.clone(),
         vs: None,
         reference: r.reference.clone(),
-        reference_kind: r.reference_kind.clone(),
+        reference_kind: r.reference_kind,
         normalize: Normalize::Cd,
         units: r.units.clone(),
         directions: r.directions.clone(),

@@ -52,8 +52,8 @@ fn map_axis(origin: DVec3, edge: DVec3, name: &str) -> MapAxis {
 /// The isolux map of plane receiver `index` ([`isolux_plot`]); `None` for a point receiver.
 ///
 /// # Errors
-/// [`SceneError::Io`] naming the map when it cannot be drawn.
-pub fn isolux_map(scene: &Scene, result: &SceneResult, index: usize) -> Result<Option<Plot>, SceneError> {
+/// The plot's error ([`crate::Error::Encode`]) when the map cannot be drawn.
+pub fn isolux_map(scene: &Scene, result: &SceneResult, index: usize) -> crate::Result<Option<Plot>> {
     let (Some(rec), Some(res)) = (scene.receivers.get(index), result.receivers.get(index)) else {
         return Ok(None);
     };
@@ -77,21 +77,15 @@ pub fn isolux_map(scene: &Scene, result: &SceneResult, index: usize) -> Result<O
         marks: &marks,
     })
     .map(Some)
-    .map_err(|e| SceneError::Io {
-        path: PathBuf::from(format!("isolux map of {}", rec.name)),
-        message: e.to_string(),
-    })
 }
 
 /// Write `isolux_<k>_<name>.png` for every plane receiver into `dir`; returns the paths.
 ///
 /// # Errors
-/// [`SceneError::Io`] when a map cannot be drawn or written.
-pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> Result<Vec<PathBuf>, SceneError> {
-    let io = |p: &Path, e: std::io::Error| SceneError::Io {
-        path: p.to_path_buf(),
-        message: e.to_string(),
-    };
+/// [`crate::Error::Io`] (the path, the I/O error) when a map cannot be
+/// written; the plot's error when one cannot be drawn.
+pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> crate::Result<Vec<PathBuf>> {
+    let io = |p: &Path, e: std::io::Error| crate::Error::io(p, e);
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     let mut out = Vec::new();
     for (k, r) in result.receivers.iter().enumerate() {
@@ -110,6 +104,9 @@ pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> Result<Vec
 }
 
 /// One luminaire's packed solids: the reference and `shown` (when it is not the reference).
+///
+/// # Errors
+/// [`SceneError::Model`] when a representation cannot be built.
 pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Representation>) -> Result<ViewerData, SceneError> {
     let lum = &scene.luminaires[index];
     let model = |e| SceneError::Model {
@@ -214,24 +211,20 @@ pub fn scene_and_plan_html(title: &str, scene_text: &str, maps: &[String], plan_
 }
 
 /// Write `value` as pretty JSON to `dir/name`, atomically.
-fn write_json(dir: &Path, name: &str, value: &impl serde::Serialize) -> Result<PathBuf, SceneError> {
+fn write_json(dir: &Path, name: &str, value: &impl serde::Serialize) -> crate::Result<PathBuf> {
     let path = dir.join(name);
-    let fail = |message: String| SceneError::Io {
-        path: path.clone(),
-        message,
-    };
-    let json = serde_json::to_string_pretty(value).map_err(|e| fail(format!("cannot encode JSON: {e}")))?;
-    crate::formats::write_atomic(&path, format!("{json}\n").as_bytes()).map_err(|e| fail(e.to_string()))?;
+    let json = serde_json::to_string_pretty(value).map_err(|e| crate::Error::Encode {
+        format: "JSON",
+        message: format!("{}: {e}", path.display()),
+    })?;
+    crate::formats::write_atomic(&path, format!("{json}\n").as_bytes())?;
     Ok(path)
 }
 
 /// Write `index.html` into `dir`, atomically.
-fn write_index(dir: &Path, html: &str) -> Result<PathBuf, SceneError> {
+fn write_index(dir: &Path, html: &str) -> crate::Result<PathBuf> {
     let path = dir.join("index.html");
-    crate::formats::write_atomic(&path, html.as_bytes()).map_err(|e| SceneError::Io {
-        path: path.clone(),
-        message: e.to_string(),
-    })?;
+    crate::formats::write_atomic(&path, html.as_bytes())?;
     Ok(path)
 }
 
@@ -244,11 +237,8 @@ pub fn write_scene_report(
     scene: &Scene,
     result: &SceneResult,
     summary: &str,
-) -> Result<Vec<PathBuf>, SceneError> {
-    let io = |p: &Path, e: std::io::Error| SceneError::Io {
-        path: p.to_path_buf(),
-        message: e.to_string(),
-    };
+) -> crate::Result<Vec<PathBuf>> {
+    let io = |p: &Path, e: std::io::Error| crate::Error::io(p, e);
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     let mut written = vec![write_json(dir, "scene.json", result)?];
     let mut maps = Vec::new();
@@ -268,16 +258,8 @@ pub fn write_scene_report(
 /// The report of `plan --report DIR`: `plan.json` and `index.html` (the
 /// `summary` text and a 3D view of each luminaire's chosen representation;
 /// plan rows are named as the scene's luminaires). Returns the files written.
-pub fn write_plan_report(
-    dir: &Path,
-    scene: &Scene,
-    result: &PlanResult,
-    summary: &str,
-) -> Result<Vec<PathBuf>, SceneError> {
-    std::fs::create_dir_all(dir).map_err(|e| SceneError::Io {
-        path: dir.to_path_buf(),
-        message: e.to_string(),
-    })?;
+pub fn write_plan_report(dir: &Path, scene: &Scene, result: &PlanResult, summary: &str) -> crate::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(|e| crate::Error::io(dir, e))?;
     let mut written = vec![write_json(dir, "plan.json", result)?];
     let chosen: Vec<Option<Representation>> = scene
         .luminaires

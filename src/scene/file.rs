@@ -12,8 +12,9 @@ use serde::Deserialize;
 
 use super::aim::{Aim, Pose};
 use super::opening::Opening;
-use super::plan::Representation;
+use super::representation::Representation;
 use super::{Occluder, Receiver, Scene, SceneError, SceneLuminaire, SourceKind};
+use crate::error::Location;
 
 /// Most receiver points a scene may ask for (a typo in a spacing must not
 /// allocate gigabytes).
@@ -164,12 +165,13 @@ fn vec3(a: [f64; 3]) -> DVec3 {
 
 impl Scene {
     /// Read and check a scene file.
-    pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-        Scene::from_toml(&text, path)
+    ///
+    /// # Errors
+    /// [`crate::Error::Io`] (the path and the I/O error) when it cannot be
+    /// read; [`crate::Error::Scene`] when its content is not a scene.
+    pub fn load(path: &Path) -> crate::Result<Scene> {
+        let text = std::fs::read_to_string(path).map_err(|e| crate::Error::io(path, e))?;
+        Ok(Scene::from_toml(&text, path)?)
     }
 
     /// Parse scene text; files are resolved relative to `path`'s directory
@@ -186,7 +188,7 @@ impl Scene {
                 .trim();
             SceneError::Invalid {
                 path: path.to_path_buf(),
-                line,
+                location: Location::line(line),
                 message: if shown.is_empty() {
                     e.message().to_string()
                 } else {
@@ -203,13 +205,13 @@ impl Scene {
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let err = |table: &str, k: usize, message: String| SceneError::Invalid {
             path: path.to_path_buf(),
-            line: table_line(text, table, k),
+            location: Location::line(table_line(text, table, k)),
             message: format!("{table} #{}: {message}", k + 1),
         };
         // An error in one key's value: at that key's line.
         let err_key = |table: &str, k: usize, key: &str, message: String| SceneError::Invalid {
             path: path.to_path_buf(),
-            line: key_line(text, table, k, key),
+            location: Location::line(key_line(text, table, k, key)),
             message: format!("{table} #{}: {message}", k + 1),
         };
         let finite3 = |a: &[f64; 3]| a.iter().all(|v| v.is_finite());
@@ -384,12 +386,12 @@ impl Scene {
         let mut occluders = Vec::new();
         for (k, o) in spec.occluders.iter().enumerate() {
             let verts: Vec<DVec3> = o.vertices.iter().map(|v| vec3(*v)).collect();
-            occluders.push(Occluder::new(verts).map_err(|m| err("occluder", k, m))?);
+            occluders.push(Occluder::new(verts).map_err(|e| err("occluder", k, e.to_string()))?);
         }
         // A scene that cannot light anything is a mistake, not 0 lx.
         let none = |what: &str, table: &str| SceneError::Invalid {
             path: path.to_path_buf(),
-            line: 0,
+            location: Location::default(),
             message: format!("the scene has no {what}: add at least one [[{table}]] table (docs/scene.md)"),
         };
         if luminaires.is_empty() {

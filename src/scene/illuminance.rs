@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::aim::Pose;
-use super::plan::Representation;
+use super::representation::Representation;
 use super::{Occluder, ReceiverShape, Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::model::IntensityField;
 
@@ -329,7 +329,7 @@ pub(crate) fn luminaire_lux(
 ) -> Result<(Vec<f64>, Vec<f64>, LuminaireResult), SceneError> {
     let texture = lum.texture()?;
     let rep = lum.representation.clone().unwrap_or_default();
-    let models = super::plan::Models::new(lum, texture.as_ref());
+    let models = super::representation::Models::new(lum, texture.as_ref());
     let field = models.field(&rep).map_err(|e| SceneError::Model {
         luminaire: lum.name.clone(),
         source: e,
@@ -487,7 +487,7 @@ fn why_unlit(scene: &Scene, receiver: &super::Receiver, points: &[&ScenePoint]) 
     // Lit when the occluders are taken away: their shadow.
     for lum in &scene.luminaires {
         let texture = lum.texture()?;
-        let models = super::plan::Models::new(lum, texture.as_ref());
+        let models = super::representation::Models::new(lum, texture.as_ref());
         let rep = lum.representation.clone().unwrap_or_default();
         let field = models.field(&rep).map_err(|e| SceneError::Model {
             luminaire: lum.name.clone(),

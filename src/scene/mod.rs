@@ -7,8 +7,14 @@
 //!   directional area source;
 //! - [`illuminance`]: E = Σ MF · I(d) cos(incidence) / r² at every receiver
 //!   point, with any [`crate::model::IntensityField`];
+//! - [`representation`]: the representations of a distribution a scene can
+//!   hold ([`representation::Representation`]), each built as a field
+//!   ([`representation::Models`]);
 //! - [`plan`]: per luminaire, the cheapest representation within a
 //!   tolerance of the reference, measured on the scene.
+//!
+//! Inside the module, too, the files point one way: `representation` below
+//! `illuminance` below `plan`.
 //!
 //! World frame: right-handed, z up, metres. A luminaire's frame is that of
 //! [`crate::model::frame`], turned by its [`aim::Pose`].
@@ -24,8 +30,9 @@ pub mod aim;
 pub mod file;
 pub mod illuminance;
 pub mod near_field;
-pub mod opening;
+pub use crate::model::opening;
 pub mod plan;
+pub mod representation;
 
 use std::path::PathBuf;
 
@@ -36,60 +43,11 @@ use crate::model::{IntensityField, Luminaire};
 use crate::reconstruct::LightTexture;
 use aim::Pose;
 use opening::Opening;
-use plan::Representation;
+use representation::Representation;
 
-/// Everything that can go wrong with a scene.
-#[derive(Debug, thiserror::Error)]
-pub enum SceneError {
-    /// The scene file could not be read.
-    #[error("{path}: {message}", path = .path.display())]
-    Io {
-        /// The scene file.
-        path: PathBuf,
-        /// The I/O error.
-        message: String,
-    },
-    /// A value in the scene file is malformed or outside its domain.
-    #[error("{path}:{line}: {message}", path = .path.display())]
-    Invalid {
-        /// The scene file.
-        path: PathBuf,
-        /// 1-based line of the offending table or value (0: the whole file).
-        line: usize,
-        /// What was expected and what was found.
-        message: String,
-    },
-    /// A receiver point lies on or inside a luminaire's luminous opening:
-    /// the illuminance there is not defined.
-    #[error(
-        "receiver {receiver:?} point #{index} at ({x}, {y}, {z}) m lies inside the luminous opening of luminaire \
-         {luminaire:?} ({opening}); move the point or the luminaire",
-        x = .position[0], y = .position[1], z = .position[2]
-    )]
-    InsideOpening {
-        /// Receiver name.
-        receiver: String,
-        /// 1-based point number within the receiver.
-        index: usize,
-        /// The point, world metres.
-        position: [f64; 3],
-        /// Luminaire name.
-        luminaire: String,
-        /// The opening, in words.
-        opening: String,
-    },
-    /// An option is outside its domain (e.g. a negative tolerance).
-    #[error(transparent)]
-    Parameter(crate::ModelError),
-    /// A model could not be built (e.g. a render past its size limit).
-    #[error("luminaire {luminaire:?}: {source}")]
-    Model {
-        /// Luminaire name.
-        luminaire: String,
-        /// The model error.
-        source: crate::ModelError,
-    },
-}
+/// Everything that can go wrong with a scene: now a part of the crate's
+/// error ([`crate::Error::Scene`]), with stable codes.
+pub use crate::error::SceneError;
 
 /// How a luminaire's light leaves it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
@@ -132,7 +90,10 @@ pub struct SceneLuminaire {
 
 impl SceneLuminaire {
     /// A luminaire at `pose` with the declared opening, MF 1, the reference representation.
-    pub fn new(name: &str, luminaire: Luminaire, pose: Pose) -> Result<Self, String> {
+    ///
+    /// # Errors
+    /// [`crate::ModelError::Opening`] when the declared opening is not one this crate models.
+    pub fn new(name: &str, luminaire: Luminaire, pose: Pose) -> Result<Self, crate::ModelError> {
         let opening = Opening::of_luminaire(&luminaire)?;
         Ok(Self {
             name: name.into(),
@@ -230,24 +191,35 @@ pub struct Occluder {
 
 impl Occluder {
     /// A polygon of at least 3 finite, coplanar vertices (within 1e-9 of its size).
-    pub fn new(vertices: Vec<DVec3>) -> Result<Self, String> {
+    ///
+    /// # Errors
+    /// [`crate::ModelError::Parameter`] `vertices` naming what is wrong.
+    pub fn new(vertices: Vec<DVec3>) -> Result<Self, crate::ModelError> {
+        let bad = |value: String, reason: &str| crate::ModelError::Parameter {
+            name: "vertices",
+            value,
+            reason: reason.into(),
+        };
         if vertices.len() < 3 || !vertices.iter().all(|v| v.is_finite()) {
-            return Err(format!(
-                "vertices: expected at least 3 points of 3 finite numbers, got {}",
-                vertices.len()
+            return Err(bad(
+                crate::error::count(vertices.len(), "point", "points"),
+                "expected at least 3 points of 3 finite numbers",
             ));
         }
         let mut n = DVec3::ZERO;
         for (i, &a) in vertices.iter().enumerate() {
             n += a.cross(vertices[(i + 1) % vertices.len()]);
         }
-        let normal = n.try_normalize().ok_or("vertices: the polygon has no area")?;
+        let points = || crate::error::count(vertices.len(), "point", "points");
+        let normal = n
+            .try_normalize()
+            .ok_or_else(|| bad(points(), "the polygon has no area; expected a polygon with area"))?;
         let size = vertices.iter().map(|v| (*v - vertices[0]).length()).fold(0.0, f64::max);
         if vertices
             .iter()
             .any(|v| normal.dot(*v - vertices[0]).abs() > 1e-9 * size)
         {
-            return Err("vertices: not coplanar".into());
+            return Err(bad(points(), "not coplanar; expected the points in one plane"));
         }
         let a = normal.abs();
         let axes = if a.x >= a.y && a.x >= a.z {

@@ -75,10 +75,9 @@ use rayon::prelude::*;
 use super::grid::{grid_radii, quad_split, vertex, GridRadii, MAX_GRID_POINTS};
 use super::mesh::p64;
 use super::{SolidGrid, Units, ZERO_FRACTION};
-use crate::compare::Progress;
 use crate::error::ModelError;
 use crate::model::frame::unit_angles;
-use crate::model::{Distribution, IntensityField, ANGLE_EPS};
+use crate::model::{Distribution, IntensityField, Progress, ANGLE_EPS};
 use crate::reconstruct::eval_all;
 
 /// How far a grid solid may lie from its field, measured along the radius.
@@ -285,7 +284,7 @@ impl Refinement {
         match self {
             Refinement::Factor(f) => Ok((SolidGrid::refined(d, *f)?.gamma_angles_deg().to_vec(), None)),
             Refinement::Adaptive(o) => {
-                let (g, dev) = crate::metrics::profile::adaptive_gammas(field, start.gamma_angles_deg(), o);
+                let (g, dev) = super::gammas::adaptive_gammas(field, start.gamma_angles_deg(), o);
                 Ok((g, Some(dev)))
             }
         }

@@ -1,6 +1,17 @@
 //! The crate's one colour map module: perceptual colour maps from [0, 1] to
 //! sRGB, used for per-vertex mesh colours and every plot
-//! ([`crate::report::plot`]).
+//! ([`crate::report::plot`]); and the sRGB transfer function ([`srgb_encode`],
+//! the one copy: lamp colours in the reports, Godot's `*_SRGB` textures).
+
+/// The sRGB transfer function (linear → encoded), for values in [0, 1].
+pub fn srgb_encode(v: f64) -> f64 {
+    let v = v.clamp(0.0, 1.0);
+    if v <= 0.0031308 {
+        12.92 * v
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    }
+}
 
 /// A colour map from [0, 1] to sRGB.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -82,21 +82,17 @@ impl Mesh {
     ) -> Result<Self, ModelError> {
         let n = positions.len();
         if n > u32::MAX as usize {
-            return Err(ModelError::Intensities(format!(
-                "{n} vertices do not fit 32-bit indices"
-            )));
+            return Err(ModelError::Mesh(format!("{n} vertices do not fit 32-bit indices")));
         }
         if let Some(t) = triangles.iter().position(|t| t.iter().any(|&i| i as usize >= n)) {
-            return Err(ModelError::Intensities(format!(
+            return Err(ModelError::Mesh(format!(
                 "triangle #{t} {:?} indexes past the {n} vertices",
                 triangles[t]
             )));
         }
         if let Some(o) = origin {
             if o as usize >= n || positions[o as usize] != [0.0; 3] {
-                return Err(ModelError::Intensities(format!(
-                    "origin vertex #{o} is not at (0, 0, 0)"
-                )));
+                return Err(ModelError::Mesh(format!("origin vertex #{o} is not at (0, 0, 0)")));
             }
         }
         Ok(Self {

@@ -64,6 +64,7 @@
 pub mod adaptive;
 pub mod colormap;
 pub mod export;
+mod gammas;
 pub mod grid;
 pub mod measured;
 pub mod mesh;
@@ -210,8 +211,7 @@ pub fn check_measured(d: &Distribution) -> Result<SanityReport, CheckError> {
     Ok(mesh.sanity_check()?)
 }
 
-/// Intensities below this fraction of the peak are zero in a solid.
-pub const ZERO_FRACTION: f64 = 1e-9;
+pub use crate::model::ZERO_FRACTION;
 
 /// Scaled intensity → the radius stored: NaN and too-large values are
 /// refused; negative values, values below the smallest normal f32 (they

@@ -12,10 +12,10 @@ use std::path::Path;
 use glam::DVec3;
 use photosolid::gpu::precision::subtexel_precision;
 use photosolid::gpu::realtime::{HardwareLookup, RealtimeTexture};
-use photosolid::gpu::shading::{self, PlaneView};
 use photosolid::metrics::random_directions;
 use photosolid::model::IntensityField;
 use photosolid::reconstruct::{render, Filter, LightTexture, Precision, Rendered};
+use photosolid::report::shading::{self, PlaneView};
 
 use common::gpu::ctx;
 

@@ -4,7 +4,8 @@
 //! give no NaN; and the profile Hausdorff of rotational compares.
 
 use photosolid::model::{Distribution, IntensityField, Symmetry};
-use photosolid::reconstruct::{Filter, Recon, Reconstructions};
+use photosolid::reconstruct::Filter;
+use photosolid::registry::{Recon, Reconstructions};
 use photosolid::solid::{
     adaptive_grid, grid_solid, radial_deviation, surface_distance, topology, AdaptiveOptions, Mesh, Refinement,
     SolidGrid, Tolerance, Units,

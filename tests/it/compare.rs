@@ -5,7 +5,8 @@ use crate::common;
 
 use photosolid::compare::{compare, sphere_sag, Against, CompareOptions, Directions, Normalize};
 use photosolid::model::{Distribution, Symmetry};
-use photosolid::reconstruct::{Filter, Recon, Reconstructions};
+use photosolid::reconstruct::Filter;
+use photosolid::registry::{Recon, Reconstructions};
 use photosolid::solid::Mesh;
 use photosolid::synth::{GridSpec, Synth};
 
@@ -528,7 +529,9 @@ fn viewer_legend_max_agrees_with_the_radial_max() {
         ..Default::default()
     };
     let c = compare(lum.distribution(), None, &opts).unwrap();
-    let viewer = c.plots.as_ref().and_then(|p| p.viewer.as_ref()).expect("viewer data");
+    let viewer = photosolid::report::viewer::ViewerData::from_samples(
+        c.plots.as_ref().and_then(|p| p.viewer.as_ref()).expect("viewer data"),
+    );
     for r in &c.results {
         let legend = viewer
             .solids

@@ -28,6 +28,7 @@ mod mesh_files;
 mod photometry;
 mod plots;
 mod plots_legible;
+mod public_api;
 mod reader_errors;
 mod reconstruct;
 mod roundtrip_props;

@@ -110,7 +110,7 @@ proptest! {
     #[test]
     fn written_files_read_back_the_same(lum in luminaire()) {
         let lum = photosolid::formats::Document::bare(lum);
-        check(&lum).map_err(TestCaseError::fail)?;
+        check(&lum).map_err(|e| TestCaseError::fail(e.to_string()))?;
         // Lamp sets come back in their own layout, whatever their text fields hold.
         let text = photosolid::formats::ldt::write(&lum);
         let back = photosolid::formats::ldt::read(text.as_bytes(), Path::new("p.ldt"), &ReadOptions::default()).unwrap();

@@ -145,3 +145,98 @@ fn assert_close_passes_within_and_fails_outside_its_tolerance() {
     panic_message(|| assert_close!(f64::NAN, 1.0, abs = f64::INFINITY));
     panic_message(|| assert_close!(f64::NAN, f64::NAN, rel = 1.0));
 }
+
+/// Runs scripts/check_layers.py on the tree at `root`: (exit code, stdout).
+fn check_layers(root: &std::path::Path) -> (Option<i32>, String) {
+    let o = Command::new("python3")
+        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/check_layers.py"))
+        .arg("--root")
+        .arg(root)
+        .output()
+        .expect("python3 (the layer check of scripts/test-all.sh needs it) is not on PATH");
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    (o.status.code(), text)
+}
+
+fn copy_tree(from: &std::path::Path, to: &std::path::Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        if e.file_type().unwrap().is_dir() {
+            copy_tree(&e.path(), &to.join(e.file_name()));
+        } else {
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
+        }
+    }
+}
+
+/// The layer check (ARCHITECTURE.md, "Layers") passes on the crate and fails,
+/// naming file, line and edge, on upward paths planted in a copy of it: a
+/// `use` line, a grouped import, an inline path, a root re-export and a
+/// `super::` chain that climbs out of its module; test code stays exempt.
+#[test]
+fn layer_check_passes_here_and_catches_planted_upward_paths() {
+    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (code, out) = check_layers(here);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("layers only point down"), "{out}");
+
+    let t = tempfile::tempdir().unwrap();
+    std::fs::copy(here.join("ARCHITECTURE.md"), t.path().join("ARCHITECTURE.md")).unwrap();
+    copy_tree(&here.join("src"), &t.path().join("src"));
+    let plant = |file: &str, text: &str| -> usize {
+        let p = t.path().join("src").join(file);
+        let mut s = std::fs::read_to_string(&p).unwrap();
+        let line = s.lines().count() + 1;
+        s.push_str(text);
+        std::fs::write(&p, s).unwrap();
+        line
+    };
+    let (code, out) = check_layers(t.path());
+    assert_eq!(code, Some(0), "an unchanged copy passes:\n{out}");
+    // Exempt: test code (inline, and a file a `#[cfg(test)]` module names), comments, strings.
+    plant(
+        "model/mod.rs",
+        "#[cfg(test)]\nmod planted_tests {\n    use crate::report::significant;\n}\n\
+         #[cfg(test)]\n#[path = \"planted_t.rs\"]\nmod planted_t;\n\
+         // crate::cli::x in a comment\nconst _S: &str = \"crate::report::x\";\n",
+    );
+    std::fs::write(
+        t.path().join("src/model/planted_t.rs"),
+        "use crate::report::significant;\n",
+    )
+    .unwrap();
+    let (code, out) = check_layers(t.path());
+    assert_eq!(code, Some(0), "test code, comments and strings are exempt:\n{out}");
+    let use_line = plant("model/mod.rs", "use crate::report::significant;\n");
+    let group_line = plant(
+        "photometry/flux.rs",
+        "use crate::{error::Error, compare::Progress as P};\n",
+    );
+    let inline_line = plant(
+        "formats/angles.rs",
+        "fn planted() -> String { crate::report::significant(1.0, 2) }\n",
+    );
+    let root_line = plant("error.rs", "type Planted = crate::Luminaire;\n");
+    let allowed_line = plant("synth.rs", "type Planted = crate::Error;\n");
+    let super_line = plant("reconstruct/filter.rs", "use super::super::solid::Mesh;\n");
+    let (code, out) = check_layers(t.path());
+    assert_eq!(code, Some(1), "{out}");
+    for want in [
+        format!("src/model/mod.rs:{use_line}: model -> report (crate::report::significant)"),
+        format!("src/photometry/flux.rs:{group_line}: photometry -> compare"),
+        format!("src/formats/angles.rs:{inline_line}: formats -> report (crate::report::significant)"),
+        format!("src/reconstruct/filter.rs:{super_line}: reconstruct -> solid (super::super::solid::Mesh)"),
+        // The root's re-export counts as the module it re-exports.
+        format!("src/error.rs:{root_line}: error -> model (crate::Luminaire)"),
+    ] {
+        assert!(out.contains(&want), "{want} not in:\n{out}");
+    }
+    // `crate::Error` is the root's re-export of error, the lowest layer: allowed.
+    assert!(!out.contains(&format!("src/synth.rs:{allowed_line}")), "{out}");
+    assert!(out.contains("5 path(s) point up the layer order"), "{out}");
+}

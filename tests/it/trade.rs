@@ -7,7 +7,8 @@ use photosolid::compare::trade::{representations, trade_table, TradeOptions};
 use photosolid::compare::{compare, Against, CompareOptions, Directions};
 use photosolid::metrics::{radial_errors, DirectionSet};
 use photosolid::model::{Distribution, IntensityField, Symmetry};
-use photosolid::reconstruct::{eval_all, kfold, Filter, LightTexture, Recon};
+use photosolid::reconstruct::{eval_all, kfold, Filter, LightTexture};
+use photosolid::registry::Recon;
 use photosolid::synth::{GridSpec, Synth, Truth};
 
 fn quick_trade() -> TradeOptions {
@@ -241,7 +242,7 @@ fn extremes_give_finite_rows() {
         // No representation answers a negative or NaN intensity anywhere.
         let dirs = DirectionSet::fibonacci(3000);
         for r in representations(d.symmetry(), &o.factors) {
-            let recs = photosolid::reconstruct::Reconstructions::new(d.clone(), &[r]).unwrap();
+            let recs = photosolid::registry::Reconstructions::new(d.clone(), &[r]).unwrap();
             let v = eval_all(&*recs.field(r).unwrap(), &dirs.directions);
             assert!(v.iter().all(|x| x.is_finite() && *x >= 0.0), "{name} {r}");
             let e = radial_errors(&dirs, &v, &v, d.max_cd(), 0.02);

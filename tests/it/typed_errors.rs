@@ -38,9 +38,9 @@ fn unknown_extensions_are_typed() {
     assert!(msg.contains("lum.txt") && msg.contains(".ies, .ldt or .xml"), "{msg}");
     assert_eq!(ErrorRecord::from(&e).code, "unknown-extension");
 
-    let mesh = photosolid::reconstruct::Reconstructions::new(lum.distribution().clone(), &[])
+    let mesh = photosolid::registry::Reconstructions::new(lum.distribution().clone(), &[])
         .unwrap()
-        .solid(photosolid::reconstruct::Recon::Measured, 1)
+        .solid(photosolid::registry::Recon::Measured, 1)
         .unwrap();
     let e = photosolid::solid::export::write(&mesh, &t.path().join("m.txt")).unwrap_err();
     assert!(
@@ -259,6 +259,59 @@ fn mesh_file_failures_are_typed() {
         "{e}"
     );
     assert_eq!(ErrorRecord::from(&e).code, "mesh-file");
+    // Issue 28: the mesh error names the format, the line and what was
+    // expected (it was "intensities: PLY: ..." in a ModelError).
+    let rec = ErrorRecord::from(&e);
+    assert_eq!(rec.line, Some(3), "{e}");
+    assert!(
+        e.to_string().ends_with(
+            "cannot read the mesh: PLY line 3: expected at least one `property` per element, found element vertex \
+             has no properties"
+        ),
+        "{e}"
+    );
+    assert!(!e.to_string().contains("intensities"), "{e}");
+    let obj = t.path().join("bad.obj");
+    std::fs::write(&obj, b"# a mesh\nv 0 0 0\nv 1 0\n").unwrap();
+    let e = export::read(&obj).unwrap_err();
+    match &e {
+        Error::MeshFile {
+            source:
+                photosolid::error::MeshFileError::Syntax {
+                    format,
+                    location,
+                    expected,
+                    found,
+                    ..
+                },
+            ..
+        } => {
+            assert_eq!((*format, location.line), ("OBJ", 3));
+            assert_eq!((expected.as_str(), found.as_str()), ("3 numbers after `v`", "`v 1 0`"));
+        }
+        other => panic!("expected a MeshFile syntax error, got {other:?}"),
+    }
+    // A binary file cut short names the byte where data was expected.
+    let stl = t.path().join("short.stl");
+    std::fs::write(&stl, [0u8; 40]).unwrap();
+    let e = export::read(&stl).unwrap_err().to_string();
+    assert!(
+        e.contains("STL byte 40: expected an 84-byte header") && e.contains("end of file"),
+        "{e}"
+    );
+    // A face that indexes no vertex: the mesh invariant, with the format.
+    std::fs::write(&obj, b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+    let e = export::read(&obj).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            Error::MeshFile {
+                source: photosolid::error::MeshFileError::Mesh { format: "OBJ", .. },
+                ..
+            }
+        ),
+        "{e:?}"
+    );
 
     let empty = Mesh::from_parts(vec![[0.0; 3]], vec![], None, Default::default()).unwrap();
     let out = t.path().join("empty.stl");
@@ -270,4 +323,192 @@ fn mesh_file_failures_are_typed() {
     assert!(e.to_string().contains("no triangles; expected at least one"), "{e}");
     assert_eq!(ErrorRecord::from(&e).code, "empty-mesh");
     assert!(!out.exists(), "nothing is written for a refused mesh");
+}
+
+/// `Result<T, String>` (or `&str`) anywhere in `text`: 1-based lines of every
+/// `Result<...>` whose last generic argument is `String` or a `&str`, outside
+/// `//` comments.
+fn string_results(text: &str) -> Vec<(usize, String)> {
+    let code: String = text
+        .lines()
+        .map(|l| if l.trim_start().starts_with("//") { "" } else { l })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let b = code.as_bytes();
+    let mut found = Vec::new();
+    let mut from = 0;
+    while let Some(k) = code[from..].find("Result<") {
+        let start = from + k;
+        from = start + "Result<".len();
+        if start > 0 && (b[start - 1].is_ascii_alphanumeric() || b[start - 1] == b'_') {
+            continue; // e.g. `MyResult<`
+        }
+        // The top-level generic arguments up to the matching `>` (a `->` inside is an arrow).
+        let (mut depth, mut i, mut args, mut arg_start) = (1, from, Vec::new(), from);
+        while i < b.len() && depth > 0 {
+            match b[i] {
+                b'<' | b'(' | b'[' => depth += 1,
+                b'>' if b[i - 1] == b'-' => {}
+                b'>' | b')' | b']' => depth -= 1,
+                b',' if depth == 1 => {
+                    args.push(code[arg_start..i].trim());
+                    arg_start = i + 1;
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+        args.push(code[arg_start..i.saturating_sub(1)].trim());
+        args.retain(|a| !a.is_empty());
+        let arg = args.last().copied().unwrap_or("");
+        if args.len() >= 2 && (arg == "String" || (arg.starts_with('&') && arg.ends_with("str"))) {
+            let line = code[..start].matches('\n').count() + 1;
+            found.push((line, code[start..i].split_whitespace().collect::<Vec<_>>().join(" ")));
+        }
+    }
+    found
+}
+
+/// Issue 28 item 3: no library function returns `Result<_, String>`; every
+/// error is a typed [`Error`] variant with a code. The CLI (`src/cli`, clap
+/// value parsers) may keep strings.
+#[test]
+fn no_string_errors_in_the_library() {
+    // The finder itself.
+    let sample = "fn a() -> Result<(), String> {}\nfn b() -> std::result::Result<Vec<Option<String>>, String>\n\
+                  fn c() -> Result<Option<String>, ParseError>\n// fn d() -> Result<(), String>\n\
+                  fn e(f: impl Fn(u8) -> u8) -> Result<u8, &'static str>\nfn g() -> Result<\n    u8,\n    String,\n>";
+    let lines: Vec<usize> = string_results(sample).iter().map(|(l, _)| *l).collect();
+    assert_eq!(lines, vec![1, 2, 5, 6], "{:?}", string_results(sample));
+
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut stack = vec![root.join("src")];
+    let mut offenders = Vec::new();
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let rel = path.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+            if path.is_dir() {
+                if rel != "src/cli" {
+                    stack.push(path);
+                }
+            } else if rel.ends_with(".rs") {
+                let text = std::fs::read_to_string(&path).unwrap();
+                for (line, what) in string_results(&text) {
+                    offenders.push(format!("{rel}:{line}: {what}"));
+                }
+            }
+        }
+    }
+    offenders.sort();
+    assert!(
+        offenders.is_empty(),
+        "library functions returning string errors (use a typed `Error`/`ModelError` variant with a code):\n{}",
+        offenders.join("\n")
+    );
+}
+
+/// Scene errors are part of the crate error with stable codes, and a scene
+/// file that cannot be read is `Error::Io` with the path and the I/O error
+/// as its source (it was `SceneError::Io { message }`).
+#[test]
+fn scene_errors_have_codes_and_io_sources() {
+    use photosolid::scene::Scene;
+    use std::error::Error as _;
+    let t = tempfile::tempdir().unwrap();
+    let missing = t.path().join("missing.toml");
+    let e = Scene::load(&missing).unwrap_err();
+    match &e {
+        Error::Io { path, source } => {
+            assert_eq!(path, &missing);
+            assert_eq!(source.kind(), std::io::ErrorKind::NotFound);
+        }
+        other => panic!("expected Io, got {other:?}"),
+    }
+    assert!(e.source().is_some(), "the io::Error is the source");
+    assert_eq!(ErrorRecord::from(&e).code, "io");
+    let bad = t.path().join("bad.toml");
+    std::fs::write(&bad, "[[luminaire]]\nfile = \"x.ldt\"\nposition = [0, 0]\n").unwrap();
+    let e = Scene::load(&bad).unwrap_err();
+    let rec = ErrorRecord::from(&e);
+    assert_eq!((rec.code, rec.line), ("scene-invalid", Some(3)), "{e}");
+    assert!(rec.message.starts_with(&format!("{}:3: ", bad.display())), "{e}");
+    // An occluder without area is the caller's parameter, named.
+    let flat = photosolid::scene::Occluder::new(vec![glam::DVec3::ZERO; 3]).unwrap_err();
+    assert!(
+        flat.to_string()
+            .starts_with("vertices = 3 points: the polygon has no area"),
+        "{flat}"
+    );
+}
+
+/// A representation that needs the GPU keeps the GPU error as its source
+/// (it was flattened into a `Parameter` message); the code stays `model`.
+#[test]
+fn gpu_representation_errors_keep_the_gpu_error() {
+    use photosolid::registry::{Recon, Reconstructions};
+    use std::error::Error as _;
+    let lum = lambertian();
+    let r: Recon = "catmull-rom@x5/bilinear+gpu".parse().unwrap();
+    let recs = Reconstructions::new(lum.distribution().clone(), &[r]).unwrap();
+    let Err(e) = recs.field(r) else {
+        eprintln!("skipped: a GPU adapter is present, the GPU field was built");
+        return;
+    };
+    match &e {
+        ModelError::Gpu { recon, source } => {
+            assert_eq!(recon, &r.to_string());
+            assert!(e.to_string().contains(&source.to_string()), "{e}");
+        }
+        other => panic!("expected ModelError::Gpu, got {other:?}"),
+    }
+    assert!(
+        e.source().is_some_and(|s| s.downcast_ref::<GpuError>().is_some()),
+        "{e:?}"
+    );
+    assert_eq!(ErrorRecord::from(&Error::from(e)).code, "model");
+}
+
+/// The writers' round-trip check gives a typed difference, with its own code.
+#[test]
+fn round_trip_differences_are_typed() {
+    use photosolid::error::Difference;
+    use photosolid::formats::roundtrip::same_distribution;
+    use photosolid::{Distribution, Symmetry};
+    let g: Vec<f64> = (0..=18).map(|k| 10.0 * k as f64).collect();
+    let a = Distribution::new(vec![0.0], g.clone(), vec![100.0; 19], Symmetry::Rotational).unwrap();
+    let mut cd = vec![100.0; 19];
+    cd[3] = 101.0;
+    let b = Distribution::new(vec![0.0], g, cd, Symmetry::Rotational).unwrap();
+    let d = same_distribution(&a, &b, 1e-6).unwrap_err();
+    assert!(
+        matches!(d, Difference::Value { gamma, want, got, .. } if gamma == 30.0 && want == 100.0 && got == 101.0),
+        "{d:?}"
+    );
+    let e = Error::RoundTrip {
+        format: "EULUMDAT",
+        difference: d,
+    };
+    assert_eq!(ErrorRecord::from(&e).code, "round-trip");
+    assert!(
+        e.to_string()
+            .starts_with("EULUMDAT: I(C = 0, gamma = 30) = 100 cd came back as 101 cd"),
+        "{e}"
+    );
+}
+
+/// `reference_kind` is an enum and serialises to the strings of before.
+#[test]
+fn reference_kinds_serialise_as_before() {
+    use photosolid::compare::ReferenceKind;
+    for (k, s) in [
+        (ReferenceKind::Truth, "truth"),
+        (ReferenceKind::Withheld, "withheld"),
+        (ReferenceKind::Dense, "dense"),
+        (ReferenceKind::Reconstruction, "reconstruction"),
+    ] {
+        assert_eq!(serde_json::to_value(k).unwrap(), serde_json::json!(s));
+        assert_eq!(k.to_string(), s);
+        assert_eq!(k, s);
+    }
 }

@@ -185,7 +185,7 @@ pub(super) fn warn_pole_spread(distribution: &Distribution, warnings: &mut Vec<W
                 WarningCode::PoleMismatch,
                 format!(
                     "the {name} value differs between planes by {} cd; kept as measured",
-                    crate::report::significant(spread, 6)
+                    crate::numfmt::significant(spread, 6)
                 ),
             ));
         }

@@ -465,11 +465,11 @@ impl<'s, 'a> Reader<'s, 'a> {
             horizontal,
             cd,
         };
-        let d = type_ab::to_type_c(&sg, self.opts.handedness).map_err(|msg| {
+        let d = type_ab::to_type_c(&sg, self.opts.handedness).map_err(|e| {
             self.src.unsupported(
                 h_start.nth(0).0,
                 format!("a Type {:?} grid that converts to Type C", kind),
-                msg,
+                e.to_string(),
             )
         })?;
         Ok((kind, d, Some(sg)))

@@ -36,6 +36,7 @@ use std::sync::{Arc, Mutex};
 
 use rayon::prelude::*;
 
+use crate::error::ModelError;
 use crate::formats::Handedness;
 use crate::model::{Distribution, PhotometricType, SourceGrid, Symmetry};
 
@@ -412,17 +413,23 @@ fn geometry(kind: PhotometricType, c: &[f64], gamma: &[f64], step: f64, mirror: 
 
 /// Convert a Type A/B grid to a Type C distribution (see the module docs).
 ///
-/// Fails (with a message) when the horizontal angles start above 0: then
-/// neither the lateral-symmetry layout (0 … 90) nor a full one (−90 … 90) applies.
-pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distribution, String> {
+/// # Errors
+/// [`ModelError::Angles`] (`horizontal`) when the horizontal angles start
+/// above 0: then neither the lateral-symmetry layout (0 … 90) nor a full one
+/// (−90 … 90) applies; the model's error when the converted grid is not a
+/// distribution.
+pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distribution, ModelError> {
     let hs = &grid.horizontal;
     let h0 = hs[0];
     if h0 > 1e-9 {
-        return Err(format!(
-            "horizontal angles start at {}: Type {:?} data starts at 0 (laterally symmetric) or below 0",
-            crate::error::Num(h0),
-            grid.kind
-        ));
+        return Err(ModelError::Angles {
+            axis: "horizontal",
+            reason: format!(
+                "start at {}: Type {:?} data starts at 0 (laterally symmetric) or below 0",
+                crate::error::Num(h0),
+                grid.kind
+            ),
+        });
     }
     let mirror = h0.abs() <= 1e-9;
     let step = target_step(grid);
@@ -451,7 +458,7 @@ pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distributi
     };
     let taps = taps(key, grid, mirror, &hv);
     let cd: Vec<f64> = taps.iter().map(|t| t.apply(&grid.cd)).collect();
-    Distribution::new(c, gamma, cd, symmetry).map_err(|e| e.to_string())
+    Distribution::new(c, gamma, cd, symmetry)
 }
 
 #[cfg(test)]

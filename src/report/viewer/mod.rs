@@ -29,45 +29,17 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::model::{frame, IntensityField};
+use crate::model::frame;
 use crate::report::compare_report::esc;
 use crate::report::plot::{base64, palette};
 use crate::solid::ColorMap;
 
-/// Candidate grid steps (C, γ) in degrees, finest first: each divides 360 and 180.
-const STEPS_DEG: [(f64, f64); 7] = [
-    (2.0, 2.0),
-    (3.0, 2.0),
-    (4.0, 2.0),
-    (5.0, 2.5),
-    (5.0, 3.0),
-    (6.0, 3.0),
-    (5.0, 5.0),
-];
-
-/// Binary bytes of mesh data (before base64, which adds a third) that the
-/// grid is decimated to fit when it can: with the PNGs (about 600 kB in
-/// base64 for the default seven solids) a typical report stays under 1 MB. At the coarsest step (5° × 5°) the size grows with the number of solids.
-pub const MESH_BUDGET_BYTES: usize = 200_000;
+#[cfg(test)]
+use crate::compare::view::STEPS_DEG;
+pub use crate::compare::view::{grid_step, SampledSolids, SolidSet, MESH_BUDGET_BYTES};
 
 /// Entries of the diverging colour table handed to the page (RdBu, blue = negative).
 const LUT_ENTRIES: usize = 33;
-
-/// The solids one viewer shows: a reference and reconstructions, all in the same unit.
-pub struct SolidSet<'a> {
-    /// What the reference is, in words (e.g. `truth (roadway peak=9000cd)`,
-    /// `the measured solid`): printed in the viewer's caption.
-    pub reference_label: &'a str,
-    /// The reference field (intensity in the report's unit, e.g. cd).
-    pub reference: &'a dyn IntensityField,
-    /// `(name, field)` of each reconstruction, same unit.
-    pub recons: &'a [(String, &'a dyn IntensityField)],
-    /// The reference's I_max (same unit), the 100 % of the error scale.
-    pub i_max: f64,
-    /// A note on what the colours mean when that differs from the report's
-    /// reference (e.g. a withheld-measurement report colours by the measured solid).
-    pub note: Option<String>,
-}
 
 /// One solid of the viewer, packed.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -123,55 +95,6 @@ pub struct ViewerData {
     pub solids: Vec<PackedSolid>,
 }
 
-/// The finest step of `STEPS_DEG` ((C, γ) steps from 2° × 2° to 5° × 5°) whose mesh data for `n_recons`
-/// reconstructions and one reference fits [`MESH_BUDGET_BYTES`] (else the coarsest).
-pub fn grid_step(n_recons: usize) -> (f64, f64) {
-    let fits = |&&(dc, dg): &&(f64, f64)| {
-        let verts = (360.0 / dc) as usize * (180.0 / dg + 1.0) as usize;
-        verts * (6 + 2 * (n_recons + 1) + 2 * n_recons) <= MESH_BUDGET_BYTES
-    };
-    *STEPS_DEG.iter().find(fits).unwrap_or(&STEPS_DEG[STEPS_DEG.len() - 1])
-}
-
-/// Where the errors are sampled around each vertex, in grid steps: −φ, 0
-/// and +φ in C and in γ. A filter that interpolates the measurements is
-/// exact at the measured directions, and the view's grid (2–5° steps from
-/// 0°) falls on them for most files; φ = 0.37 keeps the other eight points
-/// off every grid of whole or half degrees, so the colours and the legend
-/// show the error between the measurements, where it is.
-const ERR_OFFSET: f64 = 0.37;
-
-/// Per vertex of the grid `cs` × `gs` (steps `(dc, dg)`), the signed error of
-/// `recon` against `reference` (% of `i_max`) of largest magnitude among the
-/// nine points at offsets {−φ, 0, +φ} × {−φ, 0, +φ} steps around it
-/// ([`ERR_OFFSET`]; γ clamped to 0–180°).
-fn vertex_errors(
-    reference: &dyn IntensityField,
-    recon: &dyn IntensityField,
-    cs: &[f64],
-    gs: &[f64],
-    (dc, dg): (f64, f64),
-    i_max: f64,
-) -> Vec<f64> {
-    let mut worst = vec![0.0f64; cs.len() * gs.len()];
-    let (mut a, mut b) = (vec![0.0; worst.len()], vec![0.0; worst.len()]);
-    for oc in [-ERR_OFFSET, 0.0, ERR_OFFSET] {
-        let c: Vec<f64> = cs.iter().map(|&c| (c + oc * dc).rem_euclid(360.0)).collect();
-        for og in [-ERR_OFFSET, 0.0, ERR_OFFSET] {
-            let g: Vec<f64> = gs.iter().map(|&g| (g + og * dg).clamp(0.0, 180.0)).collect();
-            reference.sample_grid(&c, &g, &mut a);
-            recon.sample_grid(&c, &g, &mut b);
-            for ((w, x), y) in worst.iter_mut().zip(&b).zip(&a) {
-                let e = 100.0 * (x - y) / i_max;
-                if e.is_finite() && e.abs() > w.abs() {
-                    *w = e;
-                }
-            }
-        }
-    }
-    worst
-}
-
 /// The smallest of 1, 2, 5 × 10^k at or above `x` (> 0); 1 for 0 or non-finite.
 fn nice_ceiling(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
@@ -207,34 +130,30 @@ pub fn dequantise_u16(q: u16, r: f64) -> f64 {
 impl ViewerData {
     /// Sample and pack `set` (see the module docs).
     pub fn new(set: &SolidSet<'_>) -> ViewerData {
-        let (dc, dg) = grid_step(set.recons.len());
-        let nc = (360.0 / dc).round() as usize;
-        let ng = (180.0 / dg).round() as usize + 1;
+        ViewerData::from_samples(&SampledSolids::new(set))
+    }
+
+    /// Pack solids sampled by [`SampledSolids::new`] (see the module docs).
+    pub fn from_samples(samples: &SampledSolids) -> ViewerData {
+        let SampledSolids {
+            c_step_deg: dc,
+            gamma_step_deg: dg,
+            nc,
+            ng,
+            i_max,
+            ..
+        } = *samples;
         let cs: Vec<f64> = (0..nc).map(|k| k as f64 * dc).collect();
         let gs: Vec<f64> = (0..ng).map(|k| k as f64 * dg).collect();
         let dirs: Vec<glam::DVec3> = cs
             .iter()
             .flat_map(|&c| gs.iter().map(move |&g| frame::direction(c, g)))
             .collect();
-        let sample = |f: &dyn IntensityField| -> Vec<f64> {
-            let mut out = vec![0.0; nc * ng];
-            f.sample_grid(&cs, &gs, &mut out);
-            out
-        };
-        let i_max = if set.i_max.is_finite() && set.i_max > 0.0 {
-            set.i_max
-        } else {
-            1.0
-        };
-        let reference = sample(set.reference);
-        let recons: Vec<Vec<f64>> = set.recons.iter().map(|(_, f)| sample(*f)).collect();
-        let errors: Vec<Vec<f64>> = set
-            .recons
-            .iter()
-            .map(|(_, f)| vertex_errors(set.reference, *f, &cs, &gs, (dc, dg), i_max))
-            .collect();
-        let radius = std::iter::once(&reference)
-            .chain(&recons)
+        let reference = &samples.reference;
+        let recons: Vec<&Vec<f64>> = samples.recons.iter().map(|r| &r.values).collect();
+        let errors: Vec<&Vec<f64>> = samples.recons.iter().map(|r| &r.errors_pct).collect();
+        let radius = std::iter::once(reference)
+            .chain(recons.iter().copied())
             .flat_map(|v| v.iter().map(|&x| radius_of(x)))
             .fold(0.0, f64::max);
         let radius = if radius > 0.0 { radius } else { 1.0 };
@@ -265,12 +184,18 @@ impl ViewerData {
             name: "reference".into(),
             role: "reference",
             color: "#000000".into(),
-            radius: pack_radius(&reference),
+            radius: pack_radius(reference),
             err: String::new(),
             max_abs_err_pct: 0.0,
             scale_pct: 0.0,
         }];
-        for (k, ((name, _), (v, e))) in set.recons.iter().zip(recons.iter().zip(&errors)).enumerate() {
+        for (k, ((name, v), e)) in samples
+            .recons
+            .iter()
+            .map(|r| (&r.name, &r.values))
+            .zip(&errors)
+            .enumerate()
+        {
             solids.push(PackedSolid {
                 name: name.clone(),
                 role: "reconstruction",
@@ -282,13 +207,17 @@ impl ViewerData {
             });
         }
         ViewerData {
-            reference: set.reference_label.to_string(),
-            note: set.note.clone(),
-            legend_quantity: match set.note {
+            reference: samples.reference_label.clone(),
+            note: samples.note.clone(),
+            legend_quantity: match samples.note {
                 None => "max |err|".into(),
                 Some(_) => format!(
                     "max |diff from {}|",
-                    set.reference_label.split(" (").next().unwrap_or(set.reference_label)
+                    samples
+                        .reference_label
+                        .split(" (")
+                        .next()
+                        .unwrap_or(&samples.reference_label)
                 ),
             },
             i_max,

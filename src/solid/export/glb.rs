@@ -8,7 +8,7 @@
 
 use serde_json::json;
 
-use crate::error::ModelError;
+use crate::error::MeshFileError;
 use crate::solid::{Mesh, SolidInfo};
 
 const ARRAY_BUFFER: u32 = 34962;
@@ -139,61 +139,97 @@ pub fn pack(doc: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
 /// byte, short or int (or none: consecutive triples). The node transform is
 /// not applied: the coordinates are the buffer's, the luminaire frame.
 /// The vertex at exactly (0, 0, 0), if any, is taken as the origin vertex.
-pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
-    let err = |m: &str| ModelError::Intensities(format!("glTF: {m}"));
-    let u32_at = |o: usize| -> Result<usize, ModelError> {
-        let b = bytes.get(o..o + 4).ok_or_else(|| err("truncated"))?;
+pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
+    let at =
+        |offset: usize, expected: &str, found: String| MeshFileError::at_byte("glTF", Some(offset), expected, found);
+    let err = |expected: &str, found: String| MeshFileError::at_byte("glTF", None, expected, found);
+    let u32_at = |o: usize| -> Result<usize, MeshFileError> {
+        let b = bytes
+            .get(o..o + 4)
+            .ok_or_else(|| at(o, "a 4-byte integer", "end of file".into()))?;
         Ok(u32::from_le_bytes(b.try_into().expect("4 bytes")) as usize)
     };
     if bytes.get(..4) != Some(b"glTF".as_slice()) || u32_at(4)? != 2 {
-        return Err(err("not a glTF 2.0 binary (.glb) file"));
+        return Err(at(
+            0,
+            "a glTF 2.0 binary (.glb) header (`glTF`, version 2)",
+            "other bytes".into(),
+        ));
     }
     let json_len = u32_at(12)?;
     let json_bytes = bytes
         .get(20..20 + json_len)
-        .ok_or_else(|| err("truncated JSON chunk"))?;
-    let doc: serde_json::Value = serde_json::from_slice(json_bytes).map_err(|e| err(&format!("JSON chunk: {e}")))?;
+        .ok_or_else(|| at(20, &format!("a JSON chunk of {json_len} bytes"), "end of file".into()))?;
+    let doc: serde_json::Value = serde_json::from_slice(json_bytes)
+        .map_err(|e| at(20, "a JSON chunk", format!("JSON that does not parse: {e}")))?;
     let bin_at = 20 + json_len;
     let bin_len = u32_at(bin_at)?;
-    let bin = bytes
-        .get(bin_at + 8..bin_at + 8 + bin_len)
-        .ok_or_else(|| err("truncated BIN chunk"))?;
+    let bin = bytes.get(bin_at + 8..bin_at + 8 + bin_len).ok_or_else(|| {
+        at(
+            bin_at + 8,
+            &format!("a BIN chunk of {bin_len} bytes"),
+            "end of file".into(),
+        )
+    })?;
     let prim = &doc["meshes"][0]["primitives"][0];
-    if prim.get("mode").and_then(|m| m.as_u64()).unwrap_or(4) != 4 {
-        return Err(err("the first primitive is not a triangle list (mode 4)"));
+    let mode = prim.get("mode").and_then(|m| m.as_u64()).unwrap_or(4);
+    if mode != 4 {
+        return Err(err(
+            "a triangle list (mode 4) as the first primitive",
+            format!("mode {mode}"),
+        ));
     }
     // (data of an accessor, its count, component type)
-    let accessor = |a: &serde_json::Value| -> Result<(&[u8], usize, u64), ModelError> {
-        let i = a.as_u64().ok_or_else(|| err("missing accessor"))? as usize;
+    let accessor = |a: &serde_json::Value| -> Result<(&[u8], usize, u64), MeshFileError> {
+        let i = a.as_u64().ok_or_else(|| err("an accessor index", "none".into()))? as usize;
         let acc = &doc["accessors"][i];
         let view = &doc["bufferViews"][acc["bufferView"]
             .as_u64()
-            .ok_or_else(|| err("accessor without bufferView"))? as usize];
+            .ok_or_else(|| err("a bufferView in the accessor", "an accessor without bufferView".into()))?
+            as usize];
         if view.get("byteStride").is_some() {
-            return Err(err("interleaved buffer views (byteStride) are not read"));
+            return Err(err(
+                "tightly packed buffer views",
+                "an interleaved one (byteStride), which is not read".into(),
+            ));
         }
         // Offsets and lengths come from the file: added with overflow checks,
         // so a damaged document is refused rather than wrapping or panicking.
         let offset = |v: &serde_json::Value| v["byteOffset"].as_u64().unwrap_or(0);
-        let len = view["byteLength"]
-            .as_u64()
-            .ok_or_else(|| err("bufferView without byteLength"))?;
+        let len = view["byteLength"].as_u64().ok_or_else(|| {
+            err(
+                "a byteLength in the bufferView",
+                "a bufferView without byteLength".into(),
+            )
+        })?;
         let range = offset(view).checked_add(offset(acc)).and_then(|start| {
             Some((
                 usize::try_from(start).ok()?,
                 usize::try_from(start.checked_add(len)?).ok()?,
             ))
         });
-        let data = range
-            .and_then(|(start, end)| bin.get(start..end))
-            .ok_or_else(|| err("bufferView past the BIN chunk"))?;
-        let count = acc["count"].as_u64().ok_or_else(|| err("accessor without count"))? as usize;
+        let data = range.and_then(|(start, end)| bin.get(start..end)).ok_or_else(|| {
+            err(
+                "a bufferView within the BIN chunk",
+                "a bufferView past the BIN chunk".into(),
+            )
+        })?;
+        let count = acc["count"]
+            .as_u64()
+            .ok_or_else(|| err("a count in the accessor", "an accessor without count".into()))?
+            as usize;
         Ok((data, count, acc["componentType"].as_u64().unwrap_or(0)))
     };
     let (pdata, nv, ptype) = accessor(&prim["attributes"]["POSITION"])?;
     let position_bytes = nv.checked_mul(12).filter(|&b| b <= pdata.len());
     let (Some(position_bytes), true) = (position_bytes, ptype == u64::from(FLOAT)) else {
-        return Err(err("POSITION is not float VEC3 within its bufferView"));
+        return Err(err(
+            "POSITION as float VEC3 within its bufferView",
+            format!(
+                "POSITION is not float VEC3 within its bufferView (component type {ptype}, {nv} vertices, {} bytes)",
+                pdata.len()
+            ),
+        ));
     };
     let positions: Vec<[f32; 3]> = pdata[..position_bytes]
         .chunks_exact(12)
@@ -207,12 +243,19 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
                 5121 => 1,
                 5123 => 2,
                 5125 => 4,
-                _ => return Err(err("indices are not unsigned byte, short or int")),
+                _ => {
+                    return Err(err(
+                        "indices as unsigned byte, short or int",
+                        format!("component type {t}"),
+                    ))
+                }
             };
-            let data = n
-                .checked_mul(size)
-                .and_then(|bytes| data.get(..bytes))
-                .ok_or_else(|| err("index accessor past its bufferView"))?;
+            let data = n.checked_mul(size).and_then(|bytes| data.get(..bytes)).ok_or_else(|| {
+                err(
+                    "an index accessor within its bufferView",
+                    format!("{n} indices of {size} bytes in {} bytes", data.len()),
+                )
+            })?;
             data.chunks_exact(size)
                 .map(|c| match size {
                     1 => u32::from(c[0]),
@@ -223,9 +266,13 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
         }
     };
     if !indices.len().is_multiple_of(3) {
-        return Err(err("index count is not a multiple of 3"));
+        return Err(err(
+            "a multiple of 3 indices (triangles)",
+            format!("{} indices", indices.len()),
+        ));
     }
     let triangles = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
     Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
+        .map_err(|source| MeshFileError::Mesh { format: "glTF", source })
 }

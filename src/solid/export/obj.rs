@@ -3,7 +3,7 @@
 use std::io::Write;
 
 use super::ascii_lines;
-use crate::error::ModelError;
+use crate::error::MeshFileError;
 use crate::solid::{Mesh, SolidInfo};
 
 /// The OBJ file's bytes. Floats are written in their shortest round-trip form.
@@ -43,13 +43,17 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
 /// entries may carry `/vt/vn`, negative indices count from the end;
 /// polygons are fanned). The vertex at exactly (0, 0, 0), if any, is taken
 /// as the origin vertex. Metadata is not restored.
-pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
-    let err = |line: usize, m: &str| ModelError::Intensities(format!("OBJ line {line}: {m}"));
-    let text = std::str::from_utf8(bytes).map_err(|_| err(0, "not UTF-8"))?;
+pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
+    let err = |line: usize, expected: &str, found: String| MeshFileError::at_line("OBJ", line, expected, found);
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1;
+        err(line, "UTF-8 text", "bytes that are not UTF-8".into())
+    })?;
     let mut positions: Vec<[f32; 3]> = Vec::new();
     let mut triangles = Vec::new();
     for (ln, line) in text.lines().enumerate() {
         let mut w = line.split_whitespace();
+        let shown = || format!("`{}`", line.trim());
         match w.next() {
             Some("v") => {
                 let mut p = [0.0f32; 3];
@@ -57,21 +61,28 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
                     *x = w
                         .next()
                         .and_then(|s| s.parse().ok())
-                        .ok_or_else(|| err(ln + 1, "bad vertex"))?;
+                        .ok_or_else(|| err(ln + 1, "3 numbers after `v`", shown()))?;
                 }
                 positions.push(p);
             }
             Some("f") => {
                 let idx: Vec<u32> = w
                     .map(|s| {
-                        let i: i64 = s
-                            .split('/')
-                            .next()
-                            .unwrap_or("")
-                            .parse()
-                            .map_err(|_| err(ln + 1, "bad face"))?;
-                        let i = if i < 0 { positions.len() as i64 + i } else { i - 1 };
-                        u32::try_from(i).map_err(|_| err(ln + 1, "face index out of range"))
+                        let i: i64 = s.split('/').next().unwrap_or("").parse().map_err(|_| {
+                            err(
+                                ln + 1,
+                                "vertex indices after `f` (integers, 1-based or negative from the end)",
+                                format!("`{s}` in {}", shown()),
+                            )
+                        })?;
+                        let at = if i < 0 { positions.len() as i64 + i } else { i - 1 };
+                        u32::try_from(at).map_err(|_| {
+                            err(
+                                ln + 1,
+                                "a face index within the vertices read so far",
+                                format!("index {i} with {} vertices", positions.len()),
+                            )
+                        })
                     })
                     .collect::<Result<_, _>>()?;
                 for k in 1..idx.len().saturating_sub(1) {
@@ -83,4 +94,5 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
     }
     let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
     Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
+        .map_err(|source| MeshFileError::Mesh { format: "OBJ", source })
 }

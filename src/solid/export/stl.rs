@@ -8,7 +8,7 @@ use super::ascii_lines;
 use crate::solid::mesh::p64;
 use std::collections::HashMap;
 
-use crate::error::ModelError;
+use crate::error::MeshFileError;
 use crate::solid::{Mesh, SolidInfo};
 
 /// The STL file's bytes.
@@ -49,18 +49,24 @@ pub fn encode(mesh: &Mesh) -> Vec<u8> {
 /// 0.0 being one position), so the mesh has the topology the triangles
 /// describe; the facet normals are ignored. The vertex at exactly (0, 0, 0),
 /// if any, is taken as the origin vertex. Metadata is not restored.
-pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
-    let err = |m: String| ModelError::Intensities(format!("STL: {m}"));
+pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
     if bytes.len() < 84 {
-        return Err(err(format!("{} bytes, shorter than the 84-byte header", bytes.len())));
+        return Err(MeshFileError::at_byte(
+            "STL",
+            Some(bytes.len()),
+            "an 84-byte header (80 bytes, then the triangle count)",
+            format!("end of file after {} bytes", bytes.len()),
+        ));
     }
     let n = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes")) as usize;
     let want = 84 + 50 * n;
     if bytes.len() != want {
-        return Err(err(format!(
-            "{n} triangles need {want} bytes, the file has {} (ASCII STL is not read)",
-            bytes.len()
-        )));
+        return Err(MeshFileError::at_byte(
+            "STL",
+            None,
+            format!("{want} bytes for the {n} triangles the header declares (binary STL; ASCII STL is not read)"),
+            format!("{} bytes", bytes.len()),
+        ));
     }
     let mut index: HashMap<[u32; 3], u32> = HashMap::with_capacity(n / 2 + 3);
     let mut positions: Vec<[f32; 3]> = Vec::new();
@@ -80,4 +86,5 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, ModelError> {
     }
     let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
     Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
+        .map_err(|source| MeshFileError::Mesh { format: "STL", source })
 }

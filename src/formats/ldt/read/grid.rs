@@ -8,7 +8,7 @@ use crate::formats::scan::Scanner;
 use crate::formats::text::Source;
 use crate::formats::{angles, LampSetFlux, ReadOptions};
 use crate::model::{Distribution, LampSet, Symmetry, ANGLE_EPS};
-use crate::report::significant;
+use crate::numfmt::significant;
 
 impl<'s, 'a> Reader<'s, 'a> {
     /// Lines 27-29: direct ratios, C-angles, γ angles.
@@ -304,7 +304,7 @@ impl<'s, 'a> Reader<'s, 'a> {
                 WarningCode::C360Plane,
                 format!(
                     "C = 360 duplicates C = 0 and was dropped (largest difference {} cd)",
-                    crate::report::significant(diff, 6)
+                    crate::numfmt::significant(diff, 6)
                 ),
             );
             c_model.pop();

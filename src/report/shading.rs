@@ -24,9 +24,9 @@ use std::path::Path;
 use exr::prelude::{AttributeValue, FlatSamples, LayerAttributes, Text};
 use glam::DVec3;
 
-use super::realtime::RealtimeTexture;
-use super::GpuError;
 use crate::error::{Error, ModelError};
+use crate::gpu::realtime::RealtimeTexture;
+use crate::gpu::GpuError;
 use crate::model::IntensityField;
 use crate::reconstruct::exr_io;
 use crate::scene::aim::{Aim, Pose};
@@ -208,12 +208,12 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
 /// # Errors
 /// Writing the EXRs, encoding the PNGs ([`Error::Encode`]), device errors ([`Error::Gpu`]).
 pub fn report_figures(
-    ctx: Option<&super::GpuContext>,
+    ctx: Option<&crate::gpu::GpuContext>,
     rendered: &crate::reconstruct::Rendered,
     view: &PlaneView,
     dir: &Path,
 ) -> Result<(Vec<crate::report::compare_report::Figure>, Vec<String>), Error> {
-    use super::realtime::HardwareLookup;
+    use crate::gpu::realtime::HardwareLookup;
     use crate::report::compare_report::Figure;
     let gpu_err = Error::Gpu;
     let formula = format!(

@@ -1,11 +1,12 @@
 //! Luminous openings as files declare them, and their directional area
-//! source (equal-share patches; see [`super::near_field`] for the models).
+//! source (equal-share patches; see [`crate::scene::near_field`] for the models).
 
 use std::f64::consts::PI;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use crate::error::ModelError;
 use crate::model::{Format, Luminaire};
 
 /// A luminous opening, in metres, in the luminaire frame (centred on the
@@ -90,7 +91,7 @@ impl Opening {
     ///
     /// # Errors
     /// A sign combination no LM-63 version defines, as a sentence naming the values.
-    pub fn of_luminaire(lum: &Luminaire) -> Result<Opening, String> {
+    pub fn of_luminaire(lum: &Luminaire) -> Result<Opening, ModelError> {
         let o = lum.luminous_opening();
         // EULUMDAT dimensions, read from the file or kept in a TM-33 document
         // we wrote (which then carries the four heights too).
@@ -103,7 +104,7 @@ impl Opening {
     }
 
     /// An EULUMDAT luminous area (metres; width 0 = circular).
-    pub fn ldt(length_m: f64, width_m: f64, heights_m: [f64; 4]) -> Result<Opening, String> {
+    pub fn ldt(length_m: f64, width_m: f64, heights_m: [f64; 4]) -> Result<Opening, ModelError> {
         let all = [
             length_m,
             width_m,
@@ -113,9 +114,9 @@ impl Opening {
             heights_m[3],
         ];
         if all.iter().any(|v| !v.is_finite() || *v < 0.0) {
-            return Err(format!(
+            return Err(ModelError::Opening(format!(
                 "luminous area {length_m} x {width_m} m, heights {heights_m:?} m: expected finite values >= 0"
-            ));
+            )));
         }
         Ok(match (length_m > 0.0, heights_m.iter().any(|&h| h > 0.0)) {
             (false, _) => Opening::Point,
@@ -134,14 +135,14 @@ impl Opening {
 
     /// An IES opening from the signed width, length and height (metres).
     /// `old`: LM-63-1986/1991 rules (width first); `v1995`: the 1995 sphere.
-    pub fn ies(w: f64, l: f64, h: f64, old: bool, v1995: bool) -> Result<Opening, String> {
+    pub fn ies(w: f64, l: f64, h: f64, old: bool, v1995: bool) -> Result<Opening, ModelError> {
         if ![w, l, h].iter().all(|v| v.is_finite()) {
-            return Err(format!(
+            return Err(ModelError::Opening(format!(
                 "luminous opening W {}, L {}, H {} m: expected finite numbers",
                 crate::error::sig(w, 6),
                 crate::error::sig(l, 6),
                 crate::error::sig(h, 6)
-            ));
+            )));
         }
         let s = |v: f64| {
             if v > 0.0 {
@@ -215,19 +216,19 @@ impl Opening {
                 height_m: ah,
             },
             _ => {
-                return Err(format!(
+                return Err(ModelError::Opening(format!(
                     "luminous opening signs W {}, L {}, H {} m match no LM-63 shape (point, rectangle, box, disk or \
                      ellipse, cylinder, sphere or ellipsoid, vertical disk)",
                     crate::error::sig(w, 6),
                     crate::error::sig(l, 6),
                     crate::error::sig(h, 6)
-                ))
+                )))
             }
         })
     }
 
     /// Check an opening given in a scene: every size finite and ≥ 0, a cylinder axis 0, 1 or 2.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), ModelError> {
         let sizes: Vec<f64> = match *self {
             Opening::Point => vec![],
             Opening::Rectangle { length_m, width_m } | Opening::Ellipse { length_m, width_m } => {
@@ -237,7 +238,10 @@ impl Opening {
             Opening::Box(e) | Opening::Ellipsoid(e) => vec![e.length_m, e.width_m, e.height_m],
             Opening::Cylinder(cyl) => {
                 if cyl.axis > 2 {
-                    return Err(format!("cylinder axis {}: expected 0 (x), 1 (y) or 2 (z)", cyl.axis));
+                    return Err(ModelError::Opening(format!(
+                        "cylinder axis {}: expected 0 (x), 1 (y) or 2 (z)",
+                        cyl.axis
+                    )));
                 }
                 vec![cyl.length_m, cyl.diameter_a_m, cyl.diameter_b_m]
             }
@@ -248,7 +252,7 @@ impl Opening {
             } => [length_m, width_m].into_iter().chain(heights_m).collect(),
         };
         match sizes.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
-            Some(v) => Err(format!("size {v}: expected finite metres >= 0")),
+            Some(v) => Err(ModelError::Opening(format!("size {v}: expected finite metres >= 0"))),
             None => Ok(()),
         }
     }

@@ -5,12 +5,10 @@ use std::str::FromStr;
 
 use serde::{Serialize, Serializer};
 
-use super::filter::Filter;
-use super::lookup::{Lookup, Precision, StoredTexture};
-use super::texture::{render, LightTexture};
 use crate::error::ModelError;
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField};
+use crate::reconstruct::{render, Filter, LightTexture, StoredTexture, TextureSpec};
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
 /// A reconstruction: the measured solid, a filter on the measured grid, the
@@ -37,72 +35,6 @@ pub enum Recon {
 
 /// The suffix naming a [`Recon::Gpu`] texture.
 pub const GPU_SUFFIX: &str = "+gpu";
-
-/// A rendered texture as a renderer stores and reads it. Written
-/// `FILTER@xK/LOOKUP[+f16][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TextureSpec {
-    /// The filter the texture is rendered with.
-    pub filter: Filter,
-    /// Oversampling factor of the render (1–32).
-    pub factor: u32,
-    /// How it is read back.
-    pub lookup: Lookup,
-    /// Storage precision.
-    pub precision: Precision,
-    /// Only the C sector the data's symmetry needs is stored.
-    pub reduced: bool,
-}
-
-impl fmt::Display for TextureSpec {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}@x{}/{}", self.filter, self.factor, self.lookup)?;
-        if self.precision == Precision::F16 {
-            f.write_str("+f16")?;
-        }
-        if self.reduced {
-            f.write_str("+reduced")?;
-        }
-        Ok(())
-    }
-}
-
-impl FromStr for TextureSpec {
-    type Err = ModelError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let bad = |why: &str| ModelError::Parameter {
-            name: "texture",
-            value: s.to_string(),
-            reason: format!("{why}; expected FILTER@xK/LOOKUP[+f16][+reduced], e.g. catmull-rom@x5/bilinear"),
-        };
-        let (filter, rest) = s.trim().split_once('@').ok_or_else(|| bad("no @"))?;
-        let mut parts = rest.split('+');
-        let (factor, lookup) = parts
-            .next()
-            .and_then(|p| p.split_once('/'))
-            .ok_or_else(|| bad("no /LOOKUP"))?;
-        let factor: u32 = factor
-            .strip_prefix('x')
-            .and_then(|k| k.parse().ok())
-            .filter(|k| (1..=32).contains(k))
-            .ok_or_else(|| bad("the factor is xK with K from 1 to 32"))?;
-        let mut spec = TextureSpec {
-            filter: filter.parse().map_err(|_| bad("unknown filter"))?,
-            factor,
-            lookup: lookup.parse().map_err(|_| bad("unknown lookup"))?,
-            precision: Precision::F32,
-            reduced: false,
-        };
-        for p in parts {
-            match p {
-                "f16" => spec.precision = Precision::F16,
-                "reduced" => spec.reduced = true,
-                _ => return Err(bad("unknown option")),
-            }
-        }
-        Ok(spec)
-    }
-}
 
 /// The default reconstructions of `photosolid compare`.
 pub const DEFAULT_RECONS: [Recon; 6] = [
@@ -148,7 +80,7 @@ impl FromStr for Recon {
                     reason: format!(
                         "expected measured, {}, a texture FILTER@xK/LOOKUP, or a filter ({})",
                         crate::fit::RECONSTRUCTION_NAME,
-                        super::filter::FILTER_NAMES
+                        crate::reconstruct::FILTER_NAMES
                     ),
                 }),
         }
@@ -222,10 +154,9 @@ impl Reconstructions {
     #[cfg(feature = "gpu")]
     fn gpu_field(&self, r: Recon, t: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
         use crate::gpu::realtime::{HardwareLookup, RealtimeTexture};
-        let unavailable = |e: crate::gpu::GpuError| ModelError::Parameter {
-            name: "recon",
-            value: r.to_string(),
-            reason: format!("the GPU lookup is not available: {e}"),
+        let unavailable = |source: crate::gpu::GpuError| ModelError::Gpu {
+            recon: r.to_string(),
+            source,
         };
         let ctx = crate::gpu::GpuContext::global().map_err(unavailable)?;
         let rendered = render(&self.texture, t.filter, t.factor)?;
@@ -238,10 +169,9 @@ impl Reconstructions {
 
     #[cfg(not(feature = "gpu"))]
     fn gpu_field(&self, r: Recon, _: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        Err(ModelError::Parameter {
-            name: "recon",
-            value: r.to_string(),
-            reason: "this build has no GPU support (feature `gpu`)".into(),
+        Err(ModelError::Gpu {
+            recon: r.to_string(),
+            source: crate::error::GpuError::NotBuilt,
         })
     }
 
@@ -261,15 +191,10 @@ impl Reconstructions {
     }
 }
 
-/// Evaluate `field` at every (C, γ) of `dirs` (degrees): in parallel, or as
-/// one batch for a field that answers batches ([`IntensityField::intensity_batch_cd`]).
-pub fn eval_all(field: &dyn IntensityField, dirs: &[(f64, f64)]) -> Vec<f64> {
-    field.intensity_batch_cd(dirs)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::reconstruct::{Lookup, Precision};
 
     /// `+gpu` names a GPU-sampled texture and round-trips; a plain spec stays a CPU texture.
     #[test]

@@ -1,0 +1,184 @@
+//! Tests of the error types: codes, their documentation, messages.
+
+use super::*;
+
+/// One error of every variant (the match below fails to compile when a
+/// variant is added without a sample here).
+fn every_error() -> Vec<Error> {
+    let parse = |kind| ParseError {
+        path: "f.ies".into(),
+        location: Location::at(3, 4),
+        kind,
+        expected: "a number".into(),
+        found: "`x`".into(),
+    };
+    let model = |m: ModelError| Error::Model(m);
+    let gpu = [
+        GpuError::NoAdapter {
+            tried: "vulkan".into(),
+            detail: "none".into(),
+        },
+        GpuError::Device("lost".into()),
+        GpuError::Pipeline("bad".into()),
+        GpuError::BufferMap("unmapped".into()),
+        GpuError::InvalidJob {
+            index: 0,
+            reason: "factor 0".into(),
+        },
+        GpuError::TooLarge {
+            index: 0,
+            reason: "too big".into(),
+        },
+        GpuError::NotBuilt,
+    ];
+    let mut all = vec![
+        Error::Parse(parse(ErrorKind::Invalid)),
+        Error::Parse(parse(ErrorKind::Unsupported)),
+        Error::io("f.ies", std::io::Error::other("gone")),
+        model(ModelError::Angles {
+            axis: "C",
+            reason: "unsorted".into(),
+        }),
+        model(ModelError::Intensities("NaN".into())),
+        model(ModelError::Mesh("index past the vertices".into())),
+        model(ModelError::AllZero("normalising")),
+        model(ModelError::Internal("bug".into())),
+        model(ModelError::Parameter {
+            name: "factor",
+            value: "0".into(),
+            reason: "expected >= 1".into(),
+        }),
+        model(ModelError::Undefined {
+            quantity: "UGR",
+            why: Undefined::NoLuminousArea,
+        }),
+        model(ModelError::Opening("signs".into())),
+        model(ModelError::Gpu {
+            recon: "bilinear@x2+gpu".into(),
+            source: GpuError::NotBuilt,
+        }),
+        Error::MeshFile {
+            path: "m.obj".into(),
+            source: MeshFileError::at_line("OBJ", 2, "3 numbers", "`v 1`"),
+        },
+        Error::EmptyMesh { path: "m.stl".into() },
+        Error::Encode {
+            format: "PNG",
+            message: "full".into(),
+        },
+        Error::UnknownExtension {
+            path: "x.txt".into(),
+            what: "output format",
+            accepted: &[".ies"],
+        },
+        Error::NothingChecked("no files".into()),
+        Error::Scene(SceneError::Invalid {
+            path: "s.toml".into(),
+            location: Location::line(2),
+            message: "bad".into(),
+        }),
+        Error::Scene(SceneError::InsideOpening {
+            receiver: "r".into(),
+            index: 1,
+            position: [0.0; 3],
+            luminaire: "l".into(),
+            opening: "point".into(),
+        }),
+        Error::RoundTrip {
+            format: "EULUMDAT",
+            difference: Difference::MissingPlane {
+                c: 90.0,
+                back: vec![0.0],
+            },
+        },
+    ];
+    all.extend(gpu.into_iter().map(Error::Gpu));
+    for e in &all {
+        // Exhaustive on purpose: a new variant must get a sample above.
+        match e {
+            Error::Parse(_)
+            | Error::Io { .. }
+            | Error::Model(_)
+            | Error::MeshFile { .. }
+            | Error::EmptyMesh { .. }
+            | Error::Gpu(_)
+            | Error::Encode { .. }
+            | Error::UnknownExtension { .. }
+            | Error::NothingChecked(_)
+            | Error::Scene(_)
+            | Error::RoundTrip { .. }
+            | Error::RoundTripRead { .. } => {}
+        }
+    }
+    all
+}
+
+/// Every code an error gives is in [`ERROR_CODES`], every code there is
+/// given by some error, and the documentation of [`ErrorRecord::code`]
+/// lists exactly these codes (it once listed `unsupported-operation`,
+/// which no error had).
+#[test]
+fn error_codes_are_documented_and_exist() {
+    use std::collections::BTreeSet;
+    let table: BTreeSet<&str> = ERROR_CODES.iter().map(|(c, _)| *c).collect();
+    assert_eq!(table.len(), ERROR_CODES.len(), "a code is listed twice");
+    let given: BTreeSet<&str> = every_error().iter().map(Error::code).collect();
+    assert_eq!(given, table, "codes given by errors vs ERROR_CODES");
+    // The doc comment of `ErrorRecord::code`: every `code` in backticks.
+    let src = include_str!("../error.rs");
+    let start = src
+        .find("    /// Stable code ([`ERROR_CODES`]):")
+        .expect("the doc of ErrorRecord::code");
+    let doc: String = src[start..]
+        .lines()
+        .take_while(|l| l.trim_start().starts_with("///"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let documented: BTreeSet<&str> = doc
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|w| w.chars().all(|c| c.is_ascii_lowercase() || c == '-'))
+        .collect();
+    assert_eq!(
+        documented, table,
+        "codes documented on ErrorRecord::code vs ERROR_CODES"
+    );
+    // The record carries the error's code and location.
+    let rec = ErrorRecord::from(&every_error()[0]);
+    assert_eq!((rec.line, rec.column, rec.code), (Some(3), Some(4), "invalid"));
+    let mesh = every_error().into_iter().find(|e| e.code() == "mesh-file").unwrap();
+    assert_eq!(ErrorRecord::from(&mesh).line, Some(2));
+    assert!(
+        mesh.to_string()
+            .starts_with("m.obj: cannot read the mesh: OBJ line 2: expected 3 numbers"),
+        "{mesh}"
+    );
+}
+
+#[test]
+fn numbers_print_short_and_read_back() {
+    let cases = [
+        (1e-200, "1e-200"),
+        (-1e-200, "-1e-200"),
+        (1e300, "1e300"),
+        (4e-320, "4e-320"),
+        (1.2345678901234568e29, "1.2345678901234568e29"),
+        (0.0001, "0.0001"),
+        (0.00009, "9e-5"),
+        (123.25, "123.25"),
+        (1e15, "1000000000000000"),
+        (1e16, "1e16"),
+        (0.0, "0"),
+        (f64::NAN, "NaN"),
+        (f64::NEG_INFINITY, "-inf"),
+    ];
+    for (x, want) in cases {
+        let s = Num(x).to_string();
+        assert_eq!(s, want);
+        if x.is_finite() {
+            assert_eq!(s.parse::<f64>().unwrap(), x, "{s} reads back");
+        }
+    }
+    assert_eq!(Nums(&[0.0, 1e-300, 90.0]).to_string(), "[0, 1e-300, 90]");
+}

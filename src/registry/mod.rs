@@ -1,0 +1,18 @@
+//! The registry: every choice a user makes by name, built from the layers
+//! below. [`Recon`] names a reconstruction (`--recon`, the trade table's
+//! rows) and [`Reconstructions`] builds each as an
+//! [`IntensityField`](crate::model::IntensityField): filters and stored
+//! textures from [`crate::reconstruct`], the fitted lights from
+//! [`crate::fit`], the measured solid from [`crate::solid`], the GPU's
+//! texture hardware from `crate::gpu` (feature `gpu`). [`render_on`]
+//! renders a texture on the [`Backend`](crate::reconstruct::Backend) chosen
+//! with `--backend`.
+//!
+//! It sits above everything it chooses among, so that those never import
+//! each other to offer a choice (ARCHITECTURE.md, "Layers").
+
+pub mod recon;
+mod render;
+
+pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX};
+pub use render::{render_on, RenderedOn};

@@ -1,0 +1,84 @@
+//! [`render_on`]: render a texture on the backend chosen with `--backend`
+//! ([`Backend`]: a GPU adapter through `crate::gpu`, or the CPU).
+
+use crate::error::Error;
+use crate::reconstruct::{render_with, Backend, LightTexture, RenderOptions, Rendered};
+
+/// A texture rendered by [`render_on`], and where.
+#[derive(Debug, Clone)]
+pub struct RenderedOn {
+    /// The texture (the same texels on every backend, up to f32 rounding).
+    pub rendered: Rendered,
+    /// Where it was rendered, for the user: `gpu: ADAPTER` or `cpu`.
+    pub on: String,
+    /// Set when `auto` fell back to the CPU: one line saying why.
+    pub notice: Option<&'static str>,
+}
+
+/// Render `tex` on `backend`.
+///
+/// `Auto` uses a GPU adapter when one exists (honouring `WGPU_BACKEND`) and
+/// otherwise the CPU, with a [`RenderedOn::notice`]; `Gpu` without an
+/// adapter is an error naming the drivers tried. Built without the `gpu`
+/// feature, `Auto` is the CPU and `Gpu` is [`crate::error::GpuError::NotBuilt`].
+///
+/// # Errors
+/// [`Error::Gpu`] as above; the render's own errors (an invalid factor).
+pub fn render_on(backend: Backend, tex: &LightTexture, options: &RenderOptions) -> Result<RenderedOn, Error> {
+    #[cfg(feature = "gpu")]
+    let notice = {
+        use crate::gpu::{self, Resolved};
+        match gpu::resolve(backend)? {
+            Resolved::Gpu(ctx) => {
+                return Ok(RenderedOn {
+                    rendered: gpu::render_gpu(ctx, tex, options)?,
+                    on: format!("gpu: {}", ctx.adapter()),
+                    notice: None,
+                })
+            }
+            Resolved::Cpu { notice } => notice,
+        }
+    };
+    #[cfg(not(feature = "gpu"))]
+    let notice = match backend {
+        Backend::Gpu => return Err(crate::error::GpuError::NotBuilt.into()),
+        _ => None,
+    };
+    Ok(RenderedOn {
+        rendered: render_with(tex, options)?,
+        on: "cpu".to_string(),
+        notice,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::synth::{GridSpec, Synth};
+
+    /// `cpu` renders exactly what `render_with` does.
+    #[test]
+    fn cpu_renders_as_render_with() {
+        let lum = Synth::Lambertian
+            .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
+            .unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
+        let options = RenderOptions::default();
+        let r = render_on(Backend::Cpu, &tex, &options).unwrap();
+        assert_eq!((r.on.as_str(), r.notice), ("cpu", None));
+        assert_eq!(r.rendered.data, render_with(&tex, &options).unwrap().data);
+    }
+
+    /// Without the `gpu` feature, asking for the GPU is the typed `NotBuilt` error.
+    #[cfg(not(feature = "gpu"))]
+    #[test]
+    fn gpu_without_the_feature_is_not_built() {
+        let lum = Synth::Lambertian
+            .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
+            .unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
+        let e = render_on(Backend::Gpu, &tex, &RenderOptions::default()).unwrap_err();
+        assert!(matches!(e, Error::Gpu(crate::error::GpuError::NotBuilt)), "{e}");
+        assert_eq!(crate::error::ErrorRecord::from(&e).code, "gpu-not-built");
+    }
+}
