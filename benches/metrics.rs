@@ -103,7 +103,8 @@ fn ugr(c: &mut Criterion) {
 fn radial(c: &mut Criterion) {
     use photosolid::metrics::{field_radial_errors, DirectionSet, MAX_REFINEMENT, ZOTTI_C};
     use photosolid::model::IntensityField;
-    use photosolid::reconstruct::{Filter, Recon, Reconstructions};
+    use photosolid::reconstruct::Filter;
+    use photosolid::registry::{Recon, Reconstructions};
     use photosolid::synth::{GridSpec, Synth, Truth};
     let lum = Synth::Roadway
         .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 12_000.0)

@@ -505,12 +505,16 @@ mod tests {
 
     /// Mitchell on the synthetic road luminaire (10° x 5° grid) against its
     /// closed form: the refined max over 20,000 directions is at least the
-    /// sampled one and within 0.5 % of a brute-force maximum over 200,000
-    /// directions (itself a lower bound: the refined max may exceed it, by
-    /// little), and the maximum is attained where it says.
+    /// sampled one and at least a brute-force maximum over 200,000 directions
+    /// (to 0.5 %), is attained where it says, and no point of a 0.01° grid
+    /// within 1° of it is larger (a local maximum). The brute force is itself
+    /// a lower bound, not a check from above: here its largest sample (259.43
+    /// cd at C 90.0, γ 67.4) lies on the slope of the peak the refinement finds
+    /// (260.998 cd at C 90.0, γ 66.3), 0.6 % higher.
     #[test]
     fn refined_max_matches_a_dense_brute_force_max() {
-        use crate::reconstruct::{Filter, Recon, Reconstructions};
+        use crate::reconstruct::Filter;
+        use crate::registry::{Recon, Reconstructions};
         use crate::synth::{GridSpec, Synth};
         let lum = Synth::Roadway
             .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
@@ -542,16 +546,28 @@ mod tests {
             "{} < {dense}",
             refined.max_abs_cd
         );
-        assert!(
-            refined.max_abs_cd <= dense * (1.0 + 5e-3),
-            "{} > {dense}",
-            refined.max_abs_cd
-        );
         let (c, g) = refined.max_at_deg;
         let at = (field.intensity_cd(c, g) - truth.intensity_cd(c, g)).abs();
         assert!(
             (at - refined.max_abs_cd).abs() <= 1e-9 * i_max,
             "{at} vs {}",
+            refined.max_abs_cd
+        );
+        // A local maximum: nothing larger on a 0.01° grid within 1° of it.
+        let w = frame::direction(c, g);
+        let (e1, e2) = w.any_orthonormal_pair();
+        let cap: Vec<(f64, f64)> = (-100..=100)
+            .flat_map(|i| (-100..=100).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let (x, y) = ((0.01 * i as f64).to_radians(), (0.01 * j as f64).to_radians());
+                frame::unit_angles((w + e1 * x + e2 * y).normalize())
+            })
+            .collect();
+        let (a, t) = (field.intensity_batch_cd(&cap), truth.intensity_batch_cd(&cap));
+        let local = a.iter().zip(&t).map(|(a, m)| (a - m).abs()).fold(0.0, f64::max);
+        assert!(
+            local <= refined.max_abs_cd * (1.0 + 1e-9),
+            "{local} > {}",
             refined.max_abs_cd
         );
         // Integrals stay over the set.
@@ -592,6 +608,19 @@ mod tests {
         let m = f.intensity_batch_cd(&set.directions);
         let e = field_radial_errors(&set, &m, &f, &f, 11.0, ZOTTI_C, Some(&MAX_REFINEMENT));
         assert_eq!((e.max_abs_cd, e.max_pct, e.refined_seeds), (0.0, 0.0, 0));
+        // All zero, I_max 0 included: zeros, no NaN.
+        let zero = |_: f64, _: f64| 0.0;
+        let z = field_radial_errors(
+            &set,
+            &vec![0.0; set.len()],
+            &zero,
+            &zero,
+            0.0,
+            ZOTTI_C,
+            Some(&MAX_REFINEMENT),
+        );
+        assert_eq!((z.max_abs_cd, z.max_pct, z.sampled_max_pct), (0.0, 0.0, 0.0));
+        assert!(z.rms_pct.is_finite() && z.zotti_err.is_finite());
         let nan_near = |c: f64, g: f64| {
             if (g - 90.0).abs() < 1.0 {
                 f64::NAN
@@ -602,5 +631,32 @@ mod tests {
         let e = field_radial_errors(&set, &m, &f, &nan_near, 11.0, ZOTTI_C, Some(&MAX_REFINEMENT));
         assert!(e.max_abs_cd.is_finite() && e.max_pct.is_finite(), "{e:?}");
         assert!((e.max_abs_cd - 1.0).abs() < 1e-9, "{}", e.max_abs_cd);
+    }
+
+    /// A spot (1000 cos^20 γ inside a 25° cut-off, 0 outside: a step of 140
+    /// cd, 14 % of I_max, along the cut-off circle) against the same without
+    /// the cut-off and with a 1 % C ripple: the refined max is finite, never
+    /// below the sampled one, bounded, and attained where it says.
+    #[test]
+    fn refinement_across_a_spot_cutoff() {
+        let spot = |_: f64, g: f64| {
+            if g <= 25.0 {
+                1000.0 * g.to_radians().cos().powi(20)
+            } else {
+                0.0
+            }
+        };
+        let smooth =
+            |c: f64, g: f64| 1000.0 * g.to_radians().cos().max(0.0).powi(20) * (1.0 + 0.01 * c.to_radians().sin());
+        for n in [500, 5000] {
+            let set = DirectionSet::fibonacci(n);
+            let m = spot.intensity_batch_cd(&set.directions);
+            let e = field_radial_errors(&set, &m, &spot, &smooth, 1000.0, ZOTTI_C, Some(&MAX_REFINEMENT));
+            assert!(e.max_abs_cd.is_finite() && e.max_pct.is_finite(), "{e:?}");
+            assert!(e.max_abs_cd >= e.sampled_max_abs_cd && e.max_pct >= e.sampled_max_pct);
+            assert!(e.max_abs_cd <= 1000.0 * 1.02);
+            let (c, g) = e.max_at_deg;
+            assert!(((smooth(c, g) - spot(c, g)).abs() - e.max_abs_cd).abs() <= 1e-9);
+        }
     }
 }

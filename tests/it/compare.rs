@@ -573,7 +573,9 @@ fn demo_viewer_legend_agrees_with_the_refined_radial_max() {
     assert_eq!(opts.directions, Directions::Dense(20_000));
     let c = compare(lum.distribution(), None, &opts).unwrap();
     assert_eq!(c.reference_kind, "truth");
-    let viewer = c.plots.as_ref().and_then(|p| p.viewer.as_ref()).expect("viewer data");
+    let viewer = photosolid::report::viewer::ViewerData::from_samples(
+        c.plots.as_ref().and_then(|p| p.viewer.as_ref()).expect("viewer data"),
+    );
     assert!(c.results.len() >= 6);
     for r in &c.results {
         let legend = viewer
@@ -594,4 +596,57 @@ fn demo_viewer_legend_agrees_with_the_refined_radial_max() {
             r.radial_max_pct
         );
     }
+}
+
+/// The refined radial max is never below the sampled one and is finite, for
+/// every synthetic luminaire (a spot with its cut-off step included) and every
+/// default reconstruction against the closed form; an all-zero distribution
+/// is refused (I_max 0: nothing to be a percentage of) rather than giving NaN.
+#[test]
+fn refined_radial_max_is_at_least_the_sampled_one() {
+    for s in [
+        Synth::Isotropic,
+        Synth::Lambertian,
+        Synth::CosinePower { p: 8.0 },
+        Synth::Spot {
+            p: 8.0,
+            cutoff_deg: 30.0,
+        },
+        Synth::Batwing,
+        Synth::Roadway,
+    ] {
+        let opts = CompareOptions {
+            against: Some(Against::Truth),
+            truth: Some(s.truth(1000.0)),
+            directions: Directions::Dense(2000),
+            factor: 1,
+            solid_tolerance: None,
+            timing_samples: 200,
+            timing_repeats: 1,
+            ..Default::default()
+        };
+        let c = compare(&synth(s, 1000.0), None, &opts).unwrap();
+        assert!(
+            c.radial_max_method.contains("refined locally"),
+            "{}",
+            c.radial_max_method
+        );
+        for r in &c.results {
+            assert!(
+                r.radial_max_cd.is_finite() && r.radial_max_pct.is_finite() && r.radial_max_sampled_pct.is_finite(),
+                "{s:?}: {}",
+                r.name
+            );
+            assert!(
+                r.radial_max_cd >= r.radial_max_sampled_cd && r.radial_max_pct >= r.radial_max_sampled_pct,
+                "{s:?}: {}: {} < {}",
+                r.name,
+                r.radial_max_pct,
+                r.radial_max_sampled_pct
+            );
+        }
+    }
+    let zero = Distribution::new(vec![0.0], vec![0.0, 90.0, 180.0], vec![0.0; 3], Symmetry::Rotational).unwrap();
+    let e = compare(&zero, None, &quick(vec![Recon::Filter(Filter::Bilinear)])).unwrap_err();
+    assert!(matches!(e, photosolid::error::ModelError::AllZero(_)), "{e}");
 }
