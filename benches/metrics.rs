@@ -95,5 +95,65 @@ fn ugr(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, ugr);
+/// The radial metrics of one comparison row on the demo (`photosolid demo`:
+/// the synthetic road luminaire, 5° x 2.5° grid, peak 12,000 cd; Mitchell
+/// against the closed form, the truth's values on the 20,000 directions
+/// evaluated once as in `compare`): over the set only, and with the maximum
+/// refined between the directions (`MAX_REFINEMENT`): what the refinement costs.
+fn radial(c: &mut Criterion) {
+    use photosolid::metrics::{field_radial_errors, DirectionSet, MAX_REFINEMENT, ZOTTI_C};
+    use photosolid::model::IntensityField;
+    use photosolid::reconstruct::Filter;
+    use photosolid::registry::{Recon, Reconstructions};
+    use photosolid::synth::{GridSpec, Synth, Truth};
+    let lum = Synth::Roadway
+        .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 12_000.0)
+        .unwrap();
+    let truth = Truth::of_luminaire(&lum).unwrap();
+    let r = Recon::Filter(Filter::Mitchell {
+        b: 1.0 / 3.0,
+        c: 1.0 / 3.0,
+    });
+    let recs = Reconstructions::new(lum.distribution().clone(), &[r]).unwrap();
+    let field = recs.field(r).unwrap();
+    let set = DirectionSet::fibonacci(20_000);
+    let m = truth.intensity_batch_cd(&set.directions);
+    let i_max = lum.distribution().max_cd();
+    let run = |refine: bool| {
+        field_radial_errors(
+            &set,
+            &m,
+            &truth,
+            &*field,
+            i_max,
+            ZOTTI_C,
+            refine.then_some(&MAX_REFINEMENT),
+        )
+    };
+    let e = run(true);
+    eprintln!(
+        "demo mitchell: sampled max {:.4} %, refined max {:.4} % at C {:.3} gamma {:.3}",
+        e.sampled_max_pct, e.max_pct, e.max_at_deg.0, e.max_at_deg.1
+    );
+    let a = field.intensity_batch_cd(&set.directions);
+    let diffs: Vec<f64> = a.iter().zip(&m).map(|(a, m)| (a - m).abs()).collect();
+    let eval = |d: &[(f64, f64)]| -> Vec<f64> {
+        let (a, m) = (field.intensity_batch_cd(d), truth.intensity_batch_cd(d));
+        a.iter().zip(&m).map(|(a, m)| (a - m).abs()).collect()
+    };
+    let rm = photosolid::metrics::refine_max(&set, &diffs, &eval, &MAX_REFINEMENT);
+    eprintln!(
+        "refinement: {} seeds, {} directions evaluated (the set: {})",
+        rm.seeds,
+        rm.evaluations,
+        set.len()
+    );
+    let mut g = c.benchmark_group("radial-demo-mitchell-20000");
+    g.sample_size(30);
+    g.bench_function("sampled", |b| b.iter(|| black_box(run(false).max_pct)));
+    g.bench_function("refined", |b| b.iter(|| black_box(run(true).max_pct)));
+    g.finish();
+}
+
+criterion_group!(benches, bench, ugr, radial);
 criterion_main!(benches);

@@ -51,7 +51,8 @@ pub struct CompareArgs {
     /// Search the best C rotation and mirror of FILE onto OTHER (with --vs).
     #[arg(long)]
     align: bool,
-    /// Direction set of the radial metrics: measured, dense, dense:N.
+    /// Direction set of the radial metrics: measured, dense, dense:N (the radial max is then refined
+    /// locally around the set's 32 largest errors).
     #[arg(long, default_value = "dense:20000")]
     directions: Directions,
     /// Hausdorff tolerance, a percent of I_max with its sign (a bare number is refused).

@@ -70,8 +70,8 @@ pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
 /// The table as text.
 fn text(r: &EnginesReport) -> String {
     let mut s = format!(
-        "{}\nreference: {} (I_max {:.4} cd); {} directions; solids refined x{}\n",
-        r.file, r.reference, r.i_max_cd, r.directions, r.factor
+        "{}\nreference: {} (I_max {:.4} cd); {} directions; radial max: {}; solids refined x{}\n",
+        r.file, r.reference, r.i_max_cd, r.directions, r.radial_max_method, r.factor
     );
     let _ = writeln!(
         s,

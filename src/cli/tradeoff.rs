@@ -118,10 +118,11 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
 fn to_text(t: &TradeTable) -> String {
     use std::fmt::Write;
     let mut s = format!(
-        "{}\nreference: {}\ndirections: {}\n{:<36} {:>10} {:>9} {:>10} {:>9} {:>9} {:>9} {:>9}  pareto\n",
+        "{}\nreference: {}\ndirections: {}; radial max: {}\n{:<36} {:>10} {:>9} {:>10} {:>9} {:>9} {:>9} {:>9}  pareto\n",
         t.file,
         t.reference,
         t.directions,
+        t.radial_max_method,
         "representation",
         "bytes",
         "ns/sample",

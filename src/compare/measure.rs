@@ -6,6 +6,8 @@ use super::*;
 /// What a field is measured against: the reference's solid, its radial
 /// function, its values on the direction set, and the measurement settings.
 pub(crate) struct FieldTarget<'a> {
+    /// The reference field (its radial maximum is refined between the set's directions).
+    pub field: &'a dyn IntensityField,
     pub solid: &'a Mesh,
     pub radial: &'a RadialMesh,
     pub set: &'a DirectionSet,
@@ -61,7 +63,8 @@ pub(super) fn measure_profile(
 }
 
 /// The row of `field` from its Hausdorff distance and radial bound to the
-/// target, the radial errors from `surface`'s values.
+/// target, the radial errors from `surface`'s values (the maximum refined
+/// between the set's directions, [`MAX_REFINEMENT`]).
 fn measured_row(
     name: &str,
     field: &dyn IntensityField,
@@ -71,8 +74,15 @@ fn measured_row(
     target: &FieldTarget<'_>,
     triangles: usize,
 ) -> ReconResult {
-    let av = eval_all(surface, &target.set.directions);
-    let rad = radial_errors(target.set, target.values, &av, target.i_max, target.zotti_c);
+    let rad = field_radial_errors(
+        target.set,
+        target.values,
+        target.field,
+        surface,
+        target.i_max,
+        target.zotti_c,
+        Some(&MAX_REFINEMENT),
+    );
     let (ab, ba) = (h.a_to_b, h.b_to_a);
     ReconResult::new(
         name.to_string(),

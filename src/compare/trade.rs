@@ -116,6 +116,8 @@ pub struct TradeTable {
     pub reference_kind: super::ReferenceKind,
     /// Direction set of the radial metrics.
     pub directions: String,
+    /// What each row's `radial_max_pct` is, in words (the comparison's `radial_max_method`).
+    pub radial_max_method: String,
     /// One per representation.
     pub rows: Vec<TradeRow>,
     /// The comparison the rows come from (plots, full metrics), not in the JSON.
@@ -225,6 +227,7 @@ pub fn trade_table(
         reference: c.reference.clone(),
         reference_kind: c.reference_kind,
         directions: c.directions.clone(),
+        radial_max_method: c.radial_max_method.clone(),
         rows,
         comparison: c,
     })

@@ -194,6 +194,7 @@ pub(super) fn compare_withheld(
         units: opts.normalize.unit().into(),
         directions: pooled.label.clone(),
         n_directions: pooled.len(),
+        radial_max_method: format!("max over the {} withheld measured directions", pooled.len()),
         tolerance: opts.tolerance,
         tolerance_pct: crate::error::percent_of(opts.tolerance),
         // Printed in the file's unit; the withheld H is exact and uses no tolerance.

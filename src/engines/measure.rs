@@ -150,6 +150,9 @@ pub struct EnginesReport {
     pub directions: String,
     /// Its size.
     pub n_directions: usize,
+    /// What each row's `radial_max_cd` is, in words (as in `compare`: the
+    /// max over the set, refined locally around its largest samples).
+    pub radial_max_method: String,
     /// Grid refinement factor of the solids.
     pub factor: usize,
     /// Hausdorff certification tolerance, fraction of I_max.
@@ -169,7 +172,8 @@ pub struct EnginesReport {
 }
 
 /// A field reference with what every row's metrics need.
-struct Reference {
+struct Reference<'f> {
+    field: &'f dyn IntensityField,
     solid: Mesh,
     radial: RadialMesh,
     values: Vec<f64>,
@@ -183,10 +187,11 @@ struct Setup<'a> {
     tol_cd: f64,
 }
 
-impl Reference {
-    fn new(field: &dyn IntensityField, s: &Setup<'_>, i_max: f64) -> Result<Self, ModelError> {
+impl<'f> Reference<'f> {
+    fn new(field: &'f dyn IntensityField, s: &Setup<'_>, i_max: f64) -> Result<Self, ModelError> {
         let solid = grid_solid(field, s.grid, Units::Candela)?;
         Ok(Self {
+            field,
             radial: RadialMesh::new(&solid),
             values: eval_all(field, &s.set.directions),
             solid,
@@ -196,13 +201,19 @@ impl Reference {
 }
 
 /// The metrics of `field` against `r` (lengths in cd, percentages of `r.i_max`).
-fn metrics(name: &str, field: &dyn IntensityField, r: &Reference, s: &Setup<'_>) -> Result<ReconResult, ModelError> {
+fn metrics(
+    name: &str,
+    field: &dyn IntensityField,
+    r: &Reference<'_>,
+    s: &Setup<'_>,
+) -> Result<ReconResult, ModelError> {
     let solid = grid_solid(field, s.grid, Units::Candela)?;
     Ok(measure_field(
         name,
         field,
         &solid,
         &FieldTarget {
+            field: r.field,
             solid: &r.solid,
             radial: &r.radial,
             set: s.set,
@@ -354,6 +365,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
         i_max_cd: i_max,
         directions: set.label.clone(),
         n_directions: set.len(),
+        radial_max_method: crate::metrics::MAX_REFINEMENT.describe(&set),
         factor: opts.factor,
         hausdorff_tolerance: opts.hausdorff_tolerance,
         rows,
@@ -369,7 +381,7 @@ fn search(
     engine: Engine,
     lum: &Luminaire,
     tol: f64,
-    reference: &Reference,
+    reference: &Reference<'_>,
     setup: &Setup<'_>,
     layout: &EngineOptions,
 ) -> Result<ResolutionSearch, ModelError> {

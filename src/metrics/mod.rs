@@ -9,4 +9,7 @@ pub mod radial;
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
 pub use hausdorff::{hausdorff, hausdorff_bvh, one_sided, Hausdorff, MeshRef, OneSided};
-pub use radial::{radial_errors, DirectionSet, RadialErrors, ZOTTI_C};
+pub use radial::{
+    field_radial_errors, radial_errors, refine_max, DirectionSet, MaxRefinement, RadialErrors, RefinedMax,
+    MAX_REFINEMENT, ZOTTI_C,
+};

@@ -125,8 +125,8 @@ fn header(c: &Comparison) -> Vec<String> {
         }
     ));
     l.push(format!(
-        "radial metrics over {} directions ({}), Zotti C = {} of I_max",
-        c.n_directions, c.directions, c.zotti_c
+        "radial metrics over {} directions ({}), Zotti C = {} of I_max; radial max: {}",
+        c.n_directions, c.directions, c.zotti_c, c.radial_max_method
     ));
     if let Some(a) = &c.alignment {
         l.push(format!(

@@ -24,6 +24,7 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         units: r.units.clone(),
         directions: r.directions.clone(),
         n_directions: r.n_directions,
+        radial_max_method: r.radial_max_method.clone(),
         tolerance: r.hausdorff_tolerance,
         tolerance_pct: crate::error::percent_of(r.hausdorff_tolerance),
         tolerance_cd: r.hausdorff_tolerance * r.i_max_cd,
