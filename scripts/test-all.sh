@@ -130,6 +130,8 @@ rustc --version
 
 echo "== layers: imports only point down (scripts/check_layers.py, the order in ARCHITECTURE.md)"
 python3 scripts/check_layers.py
+echo "== functions a reader can hold: none over 80 lines in src/ beyond the shrinking allow list (scripts/check_fn_length.py)"
+python3 scripts/check_fn_length.py
 
 echo "== build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
 build_start=$SECONDS

@@ -19,7 +19,8 @@ use super::layout::Road;
 use super::quantities::{evaluate, Overall, RoadOptions, RoadResult};
 use super::RoadError;
 use crate::metrics::{random_directions, time_per_sample_ns};
-use crate::scene::plan::{candidate_representations, Models, REFERENCE};
+use crate::model::IntensityField;
+use crate::scene::plan::{candidate_representations, Models, Recon, REFERENCE};
 
 /// Largest change of U_o or U_l a candidate may make (absolute).
 pub const UNIFORMITY_LIMIT: f64 = 0.01;
@@ -106,6 +107,38 @@ fn compare(candidate: &RoadResult, reference: &RoadResult) -> [f64; 5] {
     ]
 }
 
+/// The road computed again with `rep` (whose field is `field`), compared with `reference`.
+fn measure(
+    road: &Road,
+    rep: Recon,
+    field: &dyn IntensityField,
+    dirs: &[glam::DVec3],
+    reference: &RoadResult,
+    tolerance: f64,
+) -> Result<RoadCandidate, RoadError> {
+    let mut with = road.clone();
+    with.representation = Some(rep);
+    let result = evaluate(&with, &RoadOptions::default())?;
+    let [l, e, uo, ul, ti] = compare(&result, reference);
+    let within = l.abs() <= 100.0 * tolerance
+        && e.abs() <= 100.0 * tolerance
+        && uo.abs() <= UNIFORMITY_LIMIT
+        && ul.abs() <= UNIFORMITY_LIMIT
+        && ti.abs() <= TI_LIMIT_PP;
+    Ok(RoadCandidate {
+        representation: rep.to_string(),
+        bytes: field.bytes(),
+        ns_per_eval: time_per_sample_ns(field, dirs, 3),
+        l_av_change_pct: l,
+        e_av_change_pct: e,
+        u_o_change: uo,
+        u_l_change: ul,
+        ti_change_pp: ti,
+        within,
+        overall: result.overall,
+    })
+}
+
 /// Plan `road` with the relative `tolerance` (a fraction: 0.01 = 1 %) on
 /// L_av and E_av. `progress` gets a line per candidate.
 ///
@@ -119,10 +152,9 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
             reason: format!("expected a finite fraction >= 0, found {tolerance}"),
         });
     }
-    let options = RoadOptions::default();
     let mut base = road.clone();
     base.representation = None;
-    let reference = evaluate(&base, &options)?;
+    let reference = evaluate(&base, &RoadOptions::default())?;
     let template = road.scene_luminaire("road luminaire", road.luminaires(0.0, 0.0)[0].pose);
     let texture = template.texture().map_err(|e| RoadError::Luminaire {
         file: road.file.clone(),
@@ -144,37 +176,13 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
         if let Some(say) = progress {
             say(&format!("road: {rep}"));
         }
-        let field = match models.field(&rep) {
-            Ok(f) => f,
-            Err(e) => {
-                unavailable.push(crate::scene::plan::Unavailable {
-                    representation: rep.to_string(),
-                    reason: e.to_string(),
-                });
-                continue;
-            }
-        };
-        let mut with = road.clone();
-        with.representation = Some(rep);
-        let result = evaluate(&with, &options)?;
-        let [l, e, uo, ul, ti] = compare(&result, &reference);
-        let within = l.abs() <= 100.0 * tolerance
-            && e.abs() <= 100.0 * tolerance
-            && uo.abs() <= UNIFORMITY_LIMIT
-            && ul.abs() <= UNIFORMITY_LIMIT
-            && ti.abs() <= TI_LIMIT_PP;
-        candidates.push(RoadCandidate {
-            representation: rep.to_string(),
-            bytes: field.bytes(),
-            ns_per_eval: time_per_sample_ns(&*field, &dirs, 3),
-            l_av_change_pct: l,
-            e_av_change_pct: e,
-            u_o_change: uo,
-            u_l_change: ul,
-            ti_change_pp: ti,
-            within,
-            overall: result.overall,
-        });
+        match models.field(&rep) {
+            Ok(field) => candidates.push(measure(road, rep, &*field, &dirs, &reference, tolerance)?),
+            Err(e) => unavailable.push(crate::scene::plan::Unavailable {
+                representation: rep.to_string(),
+                reason: e.to_string(),
+            }),
+        }
     }
     candidates.sort_by(|a, b| a.bytes.cmp(&b.bytes).then(a.ns_per_eval.total_cmp(&b.ns_per_eval)));
     // The reference is always a candidate and always within (all changes 0).
