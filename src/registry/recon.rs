@@ -8,7 +8,9 @@ use serde::{Serialize, Serializer};
 use crate::error::ModelError;
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField};
-use crate::reconstruct::{render, Filter, LightTexture, StoredTexture, TextureSpec};
+use crate::reconstruct::{
+    render, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec, MAX_SH_DEGREE,
+};
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
 /// A reconstruction: the measured solid, a filter on the measured grid, the
@@ -31,7 +33,19 @@ pub enum Recon {
     /// adapter; `R16Float` where `R32Float` is not filterable). Written
     /// `FILTER@xK/LOOKUP[+f16][+reduced]+gpu`.
     Gpu(TextureSpec),
+    /// Spherical harmonics of degree `degree` of the Catmull–Rom
+    /// reconstruction, Lanczos-windowed, clamped at 0
+    /// ([`ShField`]); written `sh:L`, `sh:L+f16` for half-float coefficients.
+    Sh {
+        /// The degree L (0 to [`MAX_SH_DEGREE`]).
+        degree: usize,
+        /// Coefficients stored as f16 (2 bytes) instead of f32 (4 bytes).
+        f16: bool,
+    },
 }
+
+/// The prefix naming a [`Recon::Sh`] series.
+pub const SH_PREFIX: &str = "sh:";
 
 /// The suffix naming a [`Recon::Gpu`] texture.
 pub const GPU_SUFFIX: &str = "+gpu";
@@ -57,6 +71,7 @@ impl fmt::Display for Recon {
             Recon::FittedGl => f.write_str(crate::fit::RECONSTRUCTION_NAME),
             Recon::Texture(t) => write!(f, "{t}"),
             Recon::Gpu(t) => write!(f, "{t}{GPU_SUFFIX}"),
+            Recon::Sh { degree, f16 } => write!(f, "{SH_PREFIX}{degree}{}", if *f16 { "+f16" } else { "" }),
         }
     }
 }
@@ -67,6 +82,7 @@ impl FromStr for Recon {
         match s.trim() {
             "measured" => Ok(Recon::Measured),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
+            x if x.starts_with(SH_PREFIX) => parse_sh(x),
             x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
                 Some(t) => t.parse().map(Recon::Gpu),
                 None => x.parse().map(Recon::Texture),
@@ -78,12 +94,29 @@ impl FromStr for Recon {
                     name: "recon",
                     value: x.to_string(),
                     reason: format!(
-                        "expected measured, {}, a texture FILTER@xK/LOOKUP, or a filter ({})",
+                        "expected measured, {}, a texture FILTER@xK/LOOKUP, sh:L[+f16], or a filter ({})",
                         crate::fit::RECONSTRUCTION_NAME,
                         crate::reconstruct::FILTER_NAMES
                     ),
                 }),
         }
+    }
+}
+
+/// `sh:L` or `sh:L+f16`, L in 0..=[`MAX_SH_DEGREE`].
+fn parse_sh(x: &str) -> Result<Recon, ModelError> {
+    let body = x.strip_prefix(SH_PREFIX).unwrap_or(x);
+    let (digits, f16) = match body.strip_suffix("+f16") {
+        Some(d) => (d, true),
+        None => (body, false),
+    };
+    match digits.parse::<usize>() {
+        Ok(degree) if degree <= MAX_SH_DEGREE => Ok(Recon::Sh { degree, f16 }),
+        _ => Err(ModelError::Parameter {
+            name: "recon",
+            value: x.to_string(),
+            reason: format!("expected sh:L or sh:L+f16 with the degree L from 0 to {MAX_SH_DEGREE}"),
+        }),
     }
 }
 
@@ -148,6 +181,11 @@ impl Reconstructions {
                 Box::new(StoredTexture::new(&rendered, reduced, t.precision, t.lookup))
             }
             Recon::Gpu(t) => self.gpu_field(r, t)?,
+            Recon::Sh { degree, f16 } => {
+                let precision = if f16 { Precision::F16 } else { Precision::F32 };
+                let source = self.texture.sampler(Filter::CatmullRom);
+                Box::new(ShField::new(&source, degree, ShWindow::Lanczos, precision)?)
+            }
         })
     }
 
@@ -194,7 +232,7 @@ impl Reconstructions {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reconstruct::{Lookup, Precision};
+    use crate::reconstruct::Lookup;
 
     /// `+gpu` names a GPU-sampled texture and round-trips; a plain spec stays a CPU texture.
     #[test]
