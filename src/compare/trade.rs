@@ -9,7 +9,9 @@
 //! f16 and/or only in the symmetry's C sector; the fitted OpenGL lights with
 //! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
 //! Catmull–Rom reconstruction for L in [`SH_DEGREES`]
-//! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`).
+//! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`);
+//! mixtures of K cosine-power lobes `lobes:K` for K in [`LOBE_COUNTS`]
+//! ([`crate::fit::lobes`]).
 //! Errors come from [`compare`](super::compare())
 //! (same metrics, same reference rules); a row is on the Pareto front
 //! (`pareto`) when no other row is at most as costly in time, bytes and
@@ -62,8 +64,12 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
     }
     out.push(Recon::FittedGl);
     out.extend(SH_DEGREES.map(|degree| Recon::Sh { degree, f16: false }));
+    out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count }));
     out
 }
+
+/// The lobe counts K of the default `lobes:K` rows.
+pub const LOBE_COUNTS: [usize; 4] = [1, 2, 3, 4];
 
 /// The degrees L of the default `sh:L` rows.
 pub const SH_DEGREES: [usize; 4] = [2, 4, 8, 16];

@@ -14,5 +14,5 @@
 pub mod recon;
 mod render;
 
-pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX, SH_PREFIX};
+pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX, LOBES_PREFIX, SH_PREFIX};
 pub use render::{render_on, RenderedOn};

@@ -6,6 +6,7 @@ use std::str::FromStr;
 use serde::{Serialize, Serializer};
 
 use crate::error::ModelError;
+use crate::fit::lobes::{fit_lobes, Lobes, MAX_LOBES};
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField};
 use crate::reconstruct::{
@@ -42,7 +43,16 @@ pub enum Recon {
         /// Coefficients stored as f16 (2 bytes) instead of f32 (4 bytes).
         f16: bool,
     },
+    /// A mixture of `count` cosine-power lobes fitted to the measured data
+    /// ([`crate::fit::lobes`]); written `lobes:K`.
+    Lobes {
+        /// The number of lobes K (1 to [`MAX_LOBES`]).
+        count: usize,
+    },
 }
+
+/// The prefix naming a [`Recon::Lobes`] mixture.
+pub const LOBES_PREFIX: &str = "lobes:";
 
 /// The prefix naming a [`Recon::Sh`] series.
 pub const SH_PREFIX: &str = "sh:";
@@ -72,6 +82,7 @@ impl fmt::Display for Recon {
             Recon::Texture(t) => write!(f, "{t}"),
             Recon::Gpu(t) => write!(f, "{t}{GPU_SUFFIX}"),
             Recon::Sh { degree, f16 } => write!(f, "{SH_PREFIX}{degree}{}", if *f16 { "+f16" } else { "" }),
+            Recon::Lobes { count } => write!(f, "{LOBES_PREFIX}{count}"),
         }
     }
 }
@@ -83,6 +94,14 @@ impl FromStr for Recon {
             "measured" => Ok(Recon::Measured),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
             x if x.starts_with(SH_PREFIX) => parse_sh(x),
+            x if x.starts_with(LOBES_PREFIX) => match x[LOBES_PREFIX.len()..].parse::<usize>() {
+                Ok(count) if (1..=MAX_LOBES).contains(&count) => Ok(Recon::Lobes { count }),
+                _ => Err(ModelError::Parameter {
+                    name: "recon",
+                    value: x.to_string(),
+                    reason: format!("expected lobes:K with the lobe count K from 1 to {MAX_LOBES}"),
+                }),
+            },
             x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
                 Some(t) => t.parse().map(Recon::Gpu),
                 None => x.parse().map(Recon::Texture),
@@ -94,7 +113,7 @@ impl FromStr for Recon {
                     name: "recon",
                     value: x.to_string(),
                     reason: format!(
-                        "expected measured, {}, a texture FILTER@xK/LOOKUP, sh:L[+f16], or a filter ({})",
+                        "expected measured, {}, a texture FILTER@xK/LOOKUP, sh:L[+f16], lobes:K, or a filter ({})",
                         crate::fit::RECONSTRUCTION_NAME,
                         crate::reconstruct::FILTER_NAMES
                     ),
@@ -138,11 +157,14 @@ pub struct Reconstructions {
     pub fitted: Option<PreparedLights>,
     /// The measured solid and its radial function, when asked for.
     pub measured: Option<(Mesh, RadialMesh)>,
+    /// The fitted lobe mixtures of 1, 2, … lobes, up to the largest count asked for.
+    pub lobes: Vec<Lobes>,
 }
 
 impl Reconstructions {
     /// Build what the reconstructions in `recons` need: the texture always,
-    /// the fit for `fitted-gl`, the measured solid for `measured`.
+    /// the fit for `fitted-gl`, the lobe fits for `lobes:K` (one search up to
+    /// the largest K), the measured solid for `measured`.
     pub fn new(dist: Distribution, recons: &[Recon]) -> Result<Self, ModelError> {
         let texture = LightTexture::new(&dist)?;
         let fitted = if recons.contains(&Recon::FittedGl) {
@@ -157,11 +179,23 @@ impl Reconstructions {
         } else {
             None
         };
+        let max_lobes = recons
+            .iter()
+            .filter_map(|r| match r {
+                Recon::Lobes { count } => Some(*count),
+                _ => None,
+            })
+            .max();
+        let lobes = match max_lobes {
+            Some(k) => fit_lobes(&dist, k)?,
+            None => Vec::new(),
+        };
         Ok(Self {
             dist,
             texture,
             fitted,
             measured,
+            lobes,
         })
     }
 
@@ -181,6 +215,7 @@ impl Reconstructions {
                 Box::new(StoredTexture::new(&rendered, reduced, t.precision, t.lookup))
             }
             Recon::Gpu(t) => self.gpu_field(r, t)?,
+            Recon::Lobes { count } => Box::new(Borrowed(self.lobes.get(count - 1).ok_or_else(missing)?)),
             Recon::Sh { degree, f16 } => {
                 let precision = if f16 { Precision::F16 } else { Precision::F32 };
                 let source = self.texture.sampler(Filter::CatmullRom);

@@ -34,6 +34,7 @@ mod reconstruct;
 mod roundtrip_props;
 mod scene;
 mod scripts;
+mod sh;
 mod solid;
 mod trade;
 mod typed_errors;
