@@ -282,10 +282,11 @@ fn solve(g: &[Vec<f64>], r: &[f64], idx: &[usize]) -> Vec<f64> {
         if d.abs() < 1e-300 {
             continue;
         }
-        for rr in c + 1..n {
-            let f = a[rr][c] / d;
-            for k in c..=n {
-                a[rr][k] -= f * a[c][k];
+        let pivot = a[c].clone();
+        for row in a.iter_mut().skip(c + 1) {
+            let f = row[c] / d;
+            for (x, p) in row[c..].iter_mut().zip(&pivot[c..]) {
+                *x -= f * p;
             }
         }
     }
@@ -311,6 +312,7 @@ struct Search<'a> {
 
 impl Search<'_> {
     /// err² and weights with lobe `j`'s column replaced by `col` (or appended when j = len).
+    #[allow(clippy::needless_range_loop)] // the Gram matrix is filled symmetrically
     fn error_with(&self, j: usize, col: &[f64]) -> (f64, Vec<f64>) {
         let n = self.cols.len().max(j + 1);
         let column = |k: usize| if k == j { col } else { &self.cols[k][..] };
@@ -330,10 +332,8 @@ impl Search<'_> {
         let wts = nnls(&g, &r);
         let mut e = d.mm;
         for a in 0..n {
-            e -= 2.0 * wts[a] * r[a];
-            for b in 0..n {
-                e += wts[a] * g[a][b] * wts[b];
-            }
+            let ga: f64 = g[a].iter().zip(&wts).map(|(x, w)| x * w).sum();
+            e += wts[a] * (ga - 2.0 * r[a]);
         }
         (e.max(0.0), wts)
     }
