@@ -1,8 +1,8 @@
 //! `photosolid tradeoff FILE [--reference truth|withheld|FILE] [--gpu] [--json] [--report DIR]`:
 //! every representation a renderer could hold (filters on the native grid,
 //! rendered textures at several factors with each lookup, f16 and
-//! symmetry-reduced storage, the fitted lights, the measured solid), its
-//! bytes and time per lookup, and its error against the reference
+//! symmetry-reduced storage, the fitted lights, spherical harmonics `sh:L`,
+//! the measured solid), its bytes and time per lookup, and its error against the reference
 //! (`photosolid::compare::trade`). JSON keys: `photosolid::compare::trade::TradeTable`.
 
 use std::path::PathBuf;
@@ -118,7 +118,7 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
 fn to_text(t: &TradeTable) -> String {
     use std::fmt::Write;
     let mut s = format!(
-        "{}\nreference: {}\ndirections: {}; radial max: {}\n{:<36} {:>10} {:>9} {:>10} {:>9} {:>9} {:>9} {:>9}  pareto\n",
+        "{}\nreference: {}\ndirections: {}; radial max: {}\n{:<36} {:>10} {:>9} {:>10} {:>9} {:>9} {:>9} {:>9}  pareto bytes-front\n",
         t.file,
         t.reference,
         t.directions,
@@ -135,7 +135,7 @@ fn to_text(t: &TradeTable) -> String {
     for r in &t.rows {
         let _ = writeln!(
             s,
-            "{:<36} {:>10} {:>9.1} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>+9.4}  {}",
+            "{:<36} {:>10} {:>9.1} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>+9.4}  {:<6} {}",
             r.representation,
             r.bytes,
             r.ns_per_sample,
@@ -144,7 +144,19 @@ fn to_text(t: &TradeTable) -> String {
             r.radial_max_pct,
             r.radial_rms_pct,
             r.flux_error_pct,
-            if r.pareto { "*" } else { "" }
+            if r.pareto { "*" } else { "" },
+            if r.pareto_bytes { "*" } else { "" }
+        );
+    }
+    let _ = writeln!(
+        s,
+        "smallest within 1 % radial max: {}",
+        t.smallest_within_1pct.as_deref().unwrap_or("none")
+    );
+    if let Some(w) = t.rows.iter().find_map(|r| r.window.as_deref()) {
+        let _ = writeln!(
+            s,
+            "sh:L rows: spherical harmonics of catmull-rom, {w} window, clamped at 0"
         );
     }
     let f32_rows: Vec<_> = t.rows.iter().filter(|r| r.ns_per_sample_f32.is_some()).collect();

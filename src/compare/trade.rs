@@ -7,10 +7,18 @@
 //! Catmull–Rom textures rendered at factors k read back with nearest,
 //! bilinear and Catmull–Rom lookups; the k = 5 bilinear texture stored in
 //! f16 and/or only in the symmetry's C sector; the fitted OpenGL lights with
-//! precomputed axes and cut-off cosines. Errors come from [`compare`](super::compare())
-//! (same metrics, same reference rules); a row is on the Pareto front when
-//! no other row is at most as costly in time, bytes and Hausdorff error and
-//! cheaper in one.
+//! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
+//! Catmull–Rom reconstruction for L in [`SH_DEGREES`]
+//! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`);
+//! mixtures of K cosine-power lobes `lobes:K` for K in [`LOBE_COUNTS`]
+//! ([`crate::fit::lobes`]).
+//! Errors come from [`compare`](super::compare())
+//! (same metrics, same reference rules); a row is on the Pareto front
+//! (`pareto`) when no other row is at most as costly in time, bytes and
+//! Hausdorff error and cheaper in one, and on the bytes front
+//! (`pareto_bytes`) when no other row is at most as large and as far off in
+//! radial max error and better in one. `smallest_within_1pct` names the
+//! smallest row whose radial max error is within 1 % of I_max.
 //!
 //! With [`TradeOptions::gpu`] (feature `gpu`), the k = 5 Catmull–Rom texture
 //! is also read by the GPU's texture hardware, bilinear and Catmull–Rom from
@@ -27,7 +35,7 @@ use serde::Serialize;
 use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress};
 use crate::error::ModelError;
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
+use crate::reconstruct::{Filter, Lookup, Precision, ShWindow, TextureSpec};
 use crate::registry::Recon;
 
 /// The representations of the trade table for data with `symmetry`:
@@ -55,8 +63,19 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
         out.push(tex(5, Lookup::Bilinear, Precision::F16, true));
     }
     out.push(Recon::FittedGl);
+    out.extend(SH_DEGREES.map(|degree| Recon::Sh { degree, f16: false }));
+    out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count }));
     out
 }
+
+/// The lobe counts K of the default `lobes:K` rows.
+pub const LOBE_COUNTS: [usize; 4] = [1, 2, 3, 4];
+
+/// The degrees L of the default `sh:L` rows.
+pub const SH_DEGREES: [usize; 4] = [2, 4, 8, 16];
+
+/// Largest radial error (% of I_max) of [`TradeTable::smallest_within_1pct`].
+pub const WITHIN_PCT: f64 = 1.0;
 
 /// One representation's costs and errors.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -101,8 +120,13 @@ pub struct TradeRow {
     pub radial_rms_pct: f64,
     /// Flux error over the direction set, % of the reference flux.
     pub flux_error_pct: f64,
+    /// `sh:L` rows: the window applied to the bands (`lanczos`); null for other rows.
+    pub window: Option<String>,
     /// On the Pareto front of (ns_per_sample, bytes, hausdorff_pct).
     pub pareto: bool,
+    /// On the Pareto front of (bytes, radial_max_pct): no other row at most
+    /// as large and as far off, and smaller or nearer in one.
+    pub pareto_bytes: bool,
 }
 
 /// The trade table of one file.
@@ -120,6 +144,10 @@ pub struct TradeTable {
     pub radial_max_method: String,
     /// One per representation.
     pub rows: Vec<TradeRow>,
+    /// The representation with the fewest bytes whose radial max error is
+    /// within 1 % of the reference I_max ([`WITHIN_PCT`]; ties: the smaller
+    /// error), or null when none is.
+    pub smallest_within_1pct: Option<String>,
     /// The comparison the rows come from (plots, full metrics), not in the JSON.
     #[serde(skip)]
     pub comparison: Comparison,
@@ -212,16 +240,21 @@ pub fn trade_table(
             radial_max_pct: r.radial_max_pct,
             radial_rms_pct: r.radial_rms_pct,
             flux_error_pct: r.flux_error_pct,
+            window: None,
             pareto: r.pareto,
+            pareto_bytes: false,
         })
         .collect();
     for row in &mut rows {
         match recons.iter().find(|r| r.to_string() == row.representation) {
             Some(Recon::Gpu(spec)) => gpu_columns(row, file, *spec, &opts.compare)?,
             Some(Recon::Texture(spec)) => f32_columns(row, file, *spec, &opts.compare)?,
+            Some(Recon::Sh { .. }) => row.window = Some(ShWindow::Lanczos.name().into()),
             _ => {}
         }
     }
+    mark_pareto_bytes(&mut rows);
+    let smallest_within_1pct = smallest_within(&rows, WITHIN_PCT);
     Ok(TradeTable {
         file: String::new(),
         reference: c.reference.clone(),
@@ -229,8 +262,30 @@ pub fn trade_table(
         directions: c.directions.clone(),
         radial_max_method: c.radial_max_method.clone(),
         rows,
+        smallest_within_1pct,
         comparison: c,
     })
+}
+
+/// Mark the rows on the Pareto front of (bytes, radial max error).
+pub fn mark_pareto_bytes(rows: &mut [TradeRow]) {
+    let costs: Vec<Vec<f64>> = rows.iter().map(|r| vec![r.bytes as f64, r.radial_max_pct]).collect();
+    for (r, p) in rows.iter_mut().zip(crate::metrics::pareto_front(&costs)) {
+        r.pareto_bytes = p;
+    }
+}
+
+/// The row with the fewest bytes whose radial max error is at most `pct`
+/// (% of I_max); ties go to the smaller error. `None` when no row is.
+pub fn smallest_within(rows: &[TradeRow], pct: f64) -> Option<String> {
+    rows.iter()
+        .filter(|r| r.radial_max_pct <= pct)
+        .min_by(|a, b| {
+            a.bytes
+                .cmp(&b.bytes)
+                .then(a.radial_max_pct.total_cmp(&b.radial_max_pct))
+        })
+        .map(|r| r.representation.clone())
 }
 
 /// Fill the f32 columns of a stored-texture row: the same texels read with

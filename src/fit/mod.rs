@@ -7,7 +7,8 @@
 //! - [`objective`]: Zotti et al.'s relative error (and a solid-angle-weighted
 //!   variant) and the exact cut-off profile;
 //! - `optimize` (private): the search over exponents and axes;
-//! - [`report`]: serde output and a GLSL / JSON snippet for renderers.
+//! - [`report`]: serde output and a GLSL / JSON snippet for renderers;
+//! - [`lobes`]: mixtures of K cosine-power lobes (`lobes:K`), fitted by the same search.
 //!
 //! # What is tried ([`Combination`])
 //! One spot down, one spot up, one point light; with `max_lights = 2` also
@@ -35,6 +36,7 @@
 //! assert!((s.exponent - 6.0).abs() < 0.01 && (s.cutoff_deg - 40.0).abs() <= 0.5);
 //! ```
 
+pub mod lobes;
 pub mod model;
 pub mod objective;
 mod optimize;

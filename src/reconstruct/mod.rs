@@ -27,6 +27,7 @@ mod filter;
 pub mod holdout;
 mod lookup;
 mod sampler;
+pub mod sh;
 mod spec;
 pub mod texture;
 
@@ -36,6 +37,7 @@ pub use filter::{combine, Filter, Real, FILTER_NAMES};
 pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
 pub use lookup::{Lookup, Precision, StoredTexture};
 pub use sampler::Sampler;
+pub use sh::{ShField, ShWindow, MAX_SH_DEGREE};
 pub use spec::TextureSpec;
 pub use texture::{
     render, render_planned, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping,

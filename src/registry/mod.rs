@@ -17,5 +17,5 @@ pub mod recon;
 mod render;
 
 pub use owned::{crop, OwnedSampler};
-pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX};
+pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX, LOBES_PREFIX, SH_PREFIX};
 pub use render::{render_on, RenderedOn};

@@ -7,9 +7,12 @@ use serde::{Serialize, Serializer};
 
 use super::owned::{crop, OwnedSampler};
 use crate::error::ModelError;
+use crate::fit::lobes::{fit_lobes, Lobes, MAX_LOBES};
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{render, Filter, LightTexture, StoredTexture, TextureSpec};
+use crate::reconstruct::{
+    render, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec, MAX_SH_DEGREE,
+};
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
 /// A reconstruction: the measured solid, a filter on the measured grid, the
@@ -55,7 +58,28 @@ pub enum Recon {
         /// The symmetry it is stored with.
         symmetry: Symmetry,
     },
+    /// Spherical harmonics of degree `degree` of the Catmull–Rom
+    /// reconstruction, Lanczos-windowed, clamped at 0
+    /// ([`ShField`]); written `sh:L`, `sh:L+f16` for half-float coefficients.
+    Sh {
+        /// The degree L (0 to [`MAX_SH_DEGREE`]).
+        degree: usize,
+        /// Coefficients stored as f16 (2 bytes) instead of f32 (4 bytes).
+        f16: bool,
+    },
+    /// A mixture of `count` cosine-power lobes fitted to the measured data
+    /// ([`crate::fit::lobes`]); written `lobes:K`.
+    Lobes {
+        /// The number of lobes K (1 to [`MAX_LOBES`]).
+        count: usize,
+    },
 }
+
+/// The prefix naming a [`Recon::Lobes`] mixture.
+pub const LOBES_PREFIX: &str = "lobes:";
+
+/// The prefix naming a [`Recon::Sh`] series.
+pub const SH_PREFIX: &str = "sh:";
 
 /// The suffix naming a [`Recon::Gpu`] texture.
 pub const GPU_SUFFIX: &str = "+gpu";
@@ -94,6 +118,8 @@ impl fmt::Display for Recon {
                 Ok(())
             }
             Recon::Symmetric { filter, symmetry } => write!(f, "{filter}+isym:{}", symmetry.isym()),
+            Recon::Sh { degree, f16 } => write!(f, "{SH_PREFIX}{degree}{}", if *f16 { "+f16" } else { "" }),
+            Recon::Lobes { count } => write!(f, "{LOBES_PREFIX}{count}"),
         }
     }
 }
@@ -105,6 +131,15 @@ impl FromStr for Recon {
             "measured" => Ok(Recon::Measured),
             x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
+            x if x.starts_with(SH_PREFIX) => parse_sh(x),
+            x if x.starts_with(LOBES_PREFIX) => match x[LOBES_PREFIX.len()..].parse::<usize>() {
+                Ok(count) if (1..=MAX_LOBES).contains(&count) => Ok(Recon::Lobes { count }),
+                _ => Err(ModelError::Parameter {
+                    name: "recon",
+                    value: x.to_string(),
+                    reason: format!("expected lobes:K with the lobe count K from 1 to {MAX_LOBES}"),
+                }),
+            },
             x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
                 Some(t) => t.parse().map(Recon::Gpu),
                 None => x.parse().map(Recon::Texture),
@@ -116,7 +151,7 @@ impl FromStr for Recon {
                     name: "recon",
                     value: x.to_string(),
                     reason: format!(
-                        "expected measured, {}, a texture FILTER@xK/LOOKUP, FILTER+gamma:A-B[+c:A-B], FILTER+isym:N, or a filter ({})",
+                        "expected measured, {}, a texture FILTER@xK/LOOKUP, FILTER+gamma:A-B[+c:A-B], FILTER+isym:N, sh:L[+f16], lobes:K, or a filter ({})",
                         crate::fit::RECONSTRUCTION_NAME,
                         crate::reconstruct::FILTER_NAMES
                     ),
@@ -163,6 +198,23 @@ fn parse_regridded(s: &str) -> Result<Recon, ModelError> {
     }
 }
 
+/// `sh:L` or `sh:L+f16`, L in 0..=[`MAX_SH_DEGREE`].
+fn parse_sh(x: &str) -> Result<Recon, ModelError> {
+    let body = x.strip_prefix(SH_PREFIX).unwrap_or(x);
+    let (digits, f16) = match body.strip_suffix("+f16") {
+        Some(d) => (d, true),
+        None => (body, false),
+    };
+    match digits.parse::<usize>() {
+        Ok(degree) if degree <= MAX_SH_DEGREE => Ok(Recon::Sh { degree, f16 }),
+        _ => Err(ModelError::Parameter {
+            name: "recon",
+            value: x.to_string(),
+            reason: format!("expected sh:L or sh:L+f16 with the degree L from 0 to {MAX_SH_DEGREE}"),
+        }),
+    }
+}
+
 impl Serialize for Recon {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.collect_str(self)
@@ -181,11 +233,14 @@ pub struct Reconstructions {
     pub fitted: Option<PreparedLights>,
     /// The measured solid and its radial function, when asked for.
     pub measured: Option<(Mesh, RadialMesh)>,
+    /// The fitted lobe mixtures of 1, 2, … lobes, up to the largest count asked for.
+    pub lobes: Vec<Lobes>,
 }
 
 impl Reconstructions {
     /// Build what the reconstructions in `recons` need: the texture always,
-    /// the fit for `fitted-gl`, the measured solid for `measured`.
+    /// the fit for `fitted-gl`, the lobe fits for `lobes:K` (one search up to
+    /// the largest K), the measured solid for `measured`.
     pub fn new(dist: Distribution, recons: &[Recon]) -> Result<Self, ModelError> {
         let texture = LightTexture::new(&dist)?;
         let fitted = if recons.contains(&Recon::FittedGl) {
@@ -200,11 +255,23 @@ impl Reconstructions {
         } else {
             None
         };
+        let max_lobes = recons
+            .iter()
+            .filter_map(|r| match r {
+                Recon::Lobes { count } => Some(*count),
+                _ => None,
+            })
+            .max();
+        let lobes = match max_lobes {
+            Some(k) => fit_lobes(&dist, k)?,
+            None => Vec::new(),
+        };
         Ok(Self {
             dist,
             texture,
             fitted,
             measured,
+            lobes,
         })
     }
 
@@ -231,6 +298,12 @@ impl Reconstructions {
                 c,
             } => self.owned(r, crop(&self.dist, gamma_from, gamma_to, c)?, filter)?,
             Recon::Symmetric { filter, symmetry } => self.owned(r, self.dist.with_symmetry(symmetry)?, filter)?,
+            Recon::Lobes { count } => Box::new(Borrowed(self.lobes.get(count - 1).ok_or_else(missing)?)),
+            Recon::Sh { degree, f16 } => {
+                let precision = if f16 { Precision::F16 } else { Precision::F32 };
+                let source = self.texture.sampler(Filter::CatmullRom);
+                Box::new(ShField::new(&source, degree, ShWindow::Lanczos, precision)?)
+            }
         })
     }
 
@@ -286,7 +359,7 @@ impl Reconstructions {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reconstruct::{Lookup, Precision};
+    use crate::reconstruct::Lookup;
 
     /// `+gpu` names a GPU-sampled texture and round-trips; a plain spec stays a CPU texture.
     #[test]

@@ -9,7 +9,8 @@
 //! every filter rendered at factors 1, 2 and 5 read bilinearly (the trade
 //! table's rows) and the Catmull-Rom renders also with the nearest and
 //! Catmull-Rom lookups,
-//! the fitted OpenGL lights (≤ 2), the native grid cropped to the γ rows and
+//! the fitted OpenGL lights (≤ 2), spherical harmonics `sh:{2,4,8,16}` and
+//! lobe mixtures `lobes:{1,2,3,4}`, the native grid cropped to the γ rows and
 //! the C sector the scene's receivers can see, and the grid re-stored with the symmetry the
 //! data has; each as a point source and, where the opening has a size, as
 //! the area source.
@@ -248,6 +249,9 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
         }));
     }
     reps.push(Recon::FittedGl);
+    // The compact representations between the fitted lights and the textures (issue 30).
+    reps.extend([2, 4, 8, 16].map(|degree| Recon::Sh { degree, f16: false }));
+    reps.extend((1..=4).map(|count| Recon::Lobes { count }));
     if let Some((gamma_from, gamma_to, c)) = visible {
         reps.push(Recon::Cropped {
             filter: Filter::CatmullRom,

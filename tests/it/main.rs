@@ -35,6 +35,7 @@ mod road;
 mod roundtrip_props;
 mod scene;
 mod scripts;
+mod sh;
 mod solid;
 mod trade;
 mod typed_errors;

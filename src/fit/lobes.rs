@@ -1,0 +1,493 @@
+//! Lobe mixtures (`lobes:K`): K cosine-power lobes
+//! `I(d) = Σ_k w_k · max(0, d · a_k)^{p_k}`, free axes `a_k`, exponents
+//! `p_k` ∈ [0, [`MAX_LOBE_EXPONENT`]] and weights `w_k ≥ 0`.
+//!
+//! LED and reflector distributions are fitted well by a few such lobes
+//! (Moreno and Sun 2008, Opt. Express 16(3): sums of 2–3 Gaussian or cosine
+//! lobes); Zotti, Neumann and Purgathofer's OpenGL model (2005) is two.
+//!
+//! # Fit
+//! The same family of search as the OpenGL-light fit ([`super::optimize`]):
+//! the weights are profiled out exactly (for fixed shapes, non-negative
+//! linear least squares on the normal equations), the shapes are searched
+//! as `u = ln(1 + p)` and tangent coordinates of the axis (a chart centred
+//! on the start axis: no singularity at a pole) by a coarse exponent grid
+//! and Nelder–Mead. Lobes are added one at a time, each started from the
+//! peak of what the lobes so far leave unexplained (the first from the
+//! distribution's peak, the next from its next peak), then every lobe is
+//! refined in turn with the others fixed (Zotti et al. 2005, §4: alternating
+//! refinement). The fit of K lobes is therefore a by-product of the fit of
+//! K + 1: [`fit_lobes`] returns every stage.
+//!
+//! The error minimised is the solid-angle-weighted squared radial error
+//! `Σ ΔΩ_k (I_model − I_k)²` over the measured directions (relative to
+//! I_max): the quantity the trade table's radial RMS reports. Rotationally
+//! symmetric data keeps vertical axes (a tilted lobe is not rotational).
+//! Large grids are searched on a thinned copy (at most [`SEARCH_DIRECTIONS`]
+//! directions); the final weights come from all of them.
+//!
+//! # Storage
+//! A lobe is 5 f32 (axis x, y, z, exponent, weight): 20 bytes; the
+//! parameters are rounded to f32 as a shader's uniforms hold them.
+
+use glam::DVec3;
+
+use super::objective::{ErrorMetric, Samples, DEFAULT_GUARD};
+use super::optimize::nelder_mead;
+use crate::error::ModelError;
+use crate::model::{Distribution, IntensityField};
+
+/// Largest lobe count accepted.
+pub const MAX_LOBES: usize = 16;
+/// Largest exponent of a lobe (a beam of about 3° half width at half maximum).
+pub const MAX_LOBE_EXPONENT: f64 = 1024.0;
+/// Largest weight of a lobe, relative to I_max (as the OpenGL fit's spots).
+pub const MAX_LOBE_WEIGHT: f64 = 10.0;
+/// Directions the shape search runs on at most (thinned planes and rows).
+pub const SEARCH_DIRECTIONS: usize = 2000;
+/// Bytes a lobe holds: axis (3), exponent, weight, each an f32.
+pub const LOBE_BYTES: usize = 20;
+
+/// Rounds of alternating refinement at most.
+const ROUNDS: usize = 2;
+/// Exponents on the coarse grid of a new lobe.
+const U_GRID: usize = 17;
+
+/// One cosine-power lobe.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lobe {
+    /// Unit axis in the luminaire frame ([`crate::model::frame`]).
+    pub axis: DVec3,
+    /// Exponent p (dimensionless), in [0, [`MAX_LOBE_EXPONENT`]].
+    pub exponent: f64,
+    /// On-axis intensity, cd.
+    pub weight_cd: f64,
+}
+
+impl Lobe {
+    /// Intensity (cd) in unit direction `u`.
+    #[inline]
+    pub fn intensity_unit(&self, u: DVec3) -> f64 {
+        lobe_factor(u.dot(self.axis), self.exponent) * self.weight_cd
+    }
+}
+
+/// `max(0, t)^p`, 1 at t > 0 for p = 0, finite for every input.
+#[inline]
+fn lobe_factor(t: f64, p: f64) -> f64 {
+    if t > 0.0 {
+        let v = t.min(1.0).powf(p);
+        if v.is_finite() {
+            v
+        } else {
+            0.0
+        }
+    } else {
+        0.0
+    }
+}
+
+/// A mixture of lobes, an [`IntensityField`] named `lobes:K`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lobes {
+    /// The lobes, parameters rounded to f32.
+    pub lobes: Vec<Lobe>,
+}
+
+impl Lobes {
+    /// The mixture of `lobes`, parameters rounded to f32 (axes renormalised,
+    /// exponents and weights clamped to their ranges, non-finite ones 0).
+    pub fn new(lobes: Vec<Lobe>) -> Self {
+        let f = |x: f64| if x.is_finite() { x as f32 as f64 } else { 0.0 };
+        let lobes = lobes
+            .into_iter()
+            .map(|l| {
+                let a = l.axis.try_normalize().unwrap_or(DVec3::NEG_Z);
+                Lobe {
+                    axis: DVec3::new(f(a.x), f(a.y), f(a.z)),
+                    exponent: f(l.exponent).clamp(0.0, MAX_LOBE_EXPONENT),
+                    weight_cd: f(l.weight_cd).max(0.0),
+                }
+            })
+            .collect();
+        Self { lobes }
+    }
+
+    /// Intensity (cd) in unit direction `u`.
+    #[inline]
+    pub fn intensity_unit(&self, u: DVec3) -> f64 {
+        self.lobes.iter().map(|l| l.intensity_unit(u)).sum()
+    }
+}
+
+impl IntensityField for Lobes {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.intensity_unit(crate::model::frame::direction(c_deg, gamma_deg))
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        d.try_normalize().map_or(0.0, |u| self.intensity_unit(u))
+    }
+    fn name(&self) -> String {
+        format!("lobes:{}", self.lobes.len())
+    }
+    /// [`LOBE_BYTES`] per lobe.
+    fn bytes(&self) -> usize {
+        self.lobes.len() * LOBE_BYTES
+    }
+}
+
+/// The data of a lobe fit: unit directions, magnitudes `I / I_max` and
+/// solid-angle weights (summing to 1).
+struct Data {
+    dir: Vec<DVec3>,
+    m: Vec<f64>,
+    w: Vec<f64>,
+    mm: f64,
+}
+
+impl Data {
+    fn of(s: &Samples) -> Self {
+        Self::new(s.dir.clone(), s.m.clone(), s.omega.clone())
+    }
+    fn new(dir: Vec<DVec3>, m: Vec<f64>, w: Vec<f64>) -> Self {
+        let mm = w.iter().zip(&m).map(|(w, m)| w * m * m).sum();
+        Self { dir, m, w, mm }
+    }
+    /// Every `k`-th direction (weights scaled by k), or `None` when small enough.
+    fn thinned(&self, max: usize) -> Option<Self> {
+        let k = self.dir.len().div_ceil(max.max(1));
+        if k <= 1 {
+            return None;
+        }
+        // A prime stride does not alias onto the plane-major grid's rows.
+        let k = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47]
+            .into_iter()
+            .find(|&p| p >= k)
+            .unwrap_or(k);
+        let idx: Vec<usize> = (0..self.dir.len()).step_by(k).collect();
+        Some(Self::new(
+            idx.iter().map(|&i| self.dir[i]).collect(),
+            idx.iter().map(|&i| self.m[i]).collect(),
+            idx.iter().map(|&i| self.w[i] * k as f64).collect(),
+        ))
+    }
+    fn column(&self, axis: DVec3, p: f64) -> Vec<f64> {
+        self.dir.iter().map(|d| lobe_factor(d.dot(axis), p)).collect()
+    }
+}
+
+/// One lobe's shape in search coordinates: a chart centred on `centre`.
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    centre: DVec3,
+    u: f64,
+    x: f64,
+    y: f64,
+}
+
+impl Shape {
+    fn at(axis: DVec3, u: f64) -> Self {
+        Self {
+            centre: axis,
+            u,
+            x: 0.0,
+            y: 0.0,
+        }
+    }
+    fn axis(&self) -> DVec3 {
+        let (t1, t2) = self.centre.any_orthonormal_pair();
+        (self.centre + self.x * t1 + self.y * t2)
+            .try_normalize()
+            .unwrap_or(self.centre)
+    }
+    fn exponent(&self) -> f64 {
+        (self.u.exp() - 1.0).clamp(0.0, MAX_LOBE_EXPONENT)
+    }
+    /// The same shape in a chart centred on its own axis.
+    fn recentred(&self) -> Self {
+        Self::at(self.axis(), self.u)
+    }
+}
+
+/// Non-negative least squares `min aᵀGa − 2aᵀr`, a ≥ 0, by an active set
+/// (Lawson and Hanson 1974) on the small normal equations; each weight
+/// capped at [`MAX_LOBE_WEIGHT`].
+fn nnls(g: &[Vec<f64>], r: &[f64]) -> Vec<f64> {
+    let n = r.len();
+    let mut free = vec![true; n];
+    let mut a = vec![0.0; n];
+    for _ in 0..3 * n + 3 {
+        let idx: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
+        let sol = solve(g, r, &idx);
+        match idx
+            .iter()
+            .zip(&sol)
+            .filter(|(_, v)| **v < 0.0)
+            .min_by(|x, y| x.1.total_cmp(y.1))
+        {
+            Some((&i, _)) => free[i] = false,
+            None => {
+                a.iter_mut().for_each(|x| *x = 0.0);
+                for (&i, &v) in idx.iter().zip(&sol) {
+                    a[i] = v;
+                }
+                // A fixed weight whose gradient asks to grow rejoins the free set.
+                let grad = |j: usize| r[j] - (0..n).map(|k| g[j][k] * a[k]).sum::<f64>();
+                match (0..n)
+                    .filter(|&j| !free[j] && grad(j) > 1e-14)
+                    .max_by(|&x, &y| grad(x).total_cmp(&grad(y)))
+                {
+                    Some(j) => free[j] = true,
+                    None => break,
+                }
+            }
+        }
+    }
+    a.iter()
+        .map(|&x| {
+            if x.is_finite() {
+                x.clamp(0.0, MAX_LOBE_WEIGHT)
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// Solve `G[idx, idx] x = r[idx]` by Gaussian elimination with partial
+/// pivoting and a tiny ridge (a lobe that misses every direction has a zero column).
+fn solve(g: &[Vec<f64>], r: &[f64], idx: &[usize]) -> Vec<f64> {
+    let n = idx.len();
+    let scale = idx.iter().map(|&i| g[i][i]).fold(0.0, f64::max);
+    let ridge = 1e-12 * scale + 1e-300;
+    let mut a: Vec<Vec<f64>> = idx
+        .iter()
+        .enumerate()
+        .map(|(p, &i)| {
+            let mut row: Vec<f64> = idx.iter().map(|&j| g[i][j]).collect();
+            row[p] += ridge;
+            row.push(r[i]);
+            row
+        })
+        .collect();
+    for c in 0..n {
+        let piv = (c..n)
+            .max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs()))
+            .unwrap_or(c);
+        a.swap(c, piv);
+        let d = a[c][c];
+        if d.abs() < 1e-300 {
+            continue;
+        }
+        let pivot = a[c].clone();
+        for row in a.iter_mut().skip(c + 1) {
+            let f = row[c] / d;
+            for (x, p) in row[c..].iter_mut().zip(&pivot[c..]) {
+                *x -= f * p;
+            }
+        }
+    }
+    let mut x = vec![0.0; n];
+    for c in (0..n).rev() {
+        let s: f64 = (c + 1..n).map(|k| a[c][k] * x[k]).sum();
+        x[c] = if a[c][c].abs() < 1e-300 {
+            0.0
+        } else {
+            (a[c][n] - s) / a[c][c]
+        };
+    }
+    x
+}
+
+/// The search state: the data, the lobes' shapes and their columns.
+struct Search<'a> {
+    data: &'a Data,
+    shapes: Vec<Shape>,
+    cols: Vec<Vec<f64>>,
+    vertical: bool,
+}
+
+impl Search<'_> {
+    /// err² and weights with lobe `j`'s column replaced by `col` (or appended when j = len).
+    #[allow(clippy::needless_range_loop)] // the Gram matrix is filled symmetrically
+    fn error_with(&self, j: usize, col: &[f64]) -> (f64, Vec<f64>) {
+        let n = self.cols.len().max(j + 1);
+        let column = |k: usize| if k == j { col } else { &self.cols[k][..] };
+        let d = self.data;
+        let mut g = vec![vec![0.0; n]; n];
+        let mut r = vec![0.0; n];
+        for a in 0..n {
+            let ca = column(a);
+            r[a] = ca.iter().zip(&d.m).zip(&d.w).map(|((s, m), w)| w * s * m).sum();
+            for b in a..n {
+                let cb = column(b);
+                let v: f64 = ca.iter().zip(cb).zip(&d.w).map(|((x, y), w)| w * x * y).sum();
+                g[a][b] = v;
+                g[b][a] = v;
+            }
+        }
+        let wts = nnls(&g, &r);
+        let mut e = d.mm;
+        for a in 0..n {
+            let ga: f64 = g[a].iter().zip(&wts).map(|(x, w)| x * w).sum();
+            e += wts[a] * (ga - 2.0 * r[a]);
+        }
+        (e.max(0.0), wts)
+    }
+
+    fn eval(&self, j: usize, s: &Shape) -> f64 {
+        self.error_with(j, &self.data.column(s.axis(), s.exponent())).0
+    }
+
+    /// Coarse exponent grid, then Nelder–Mead in (u, x, y), for lobe `j` from `start`.
+    fn shape_search(&self, j: usize, start: Shape, coarse: bool, scale: f64, max_evals: usize) -> Shape {
+        let mut best = start;
+        let mut best_e = self.eval(j, &best);
+        if coarse {
+            let um = (1.0 + MAX_LOBE_EXPONENT).ln();
+            for i in 0..U_GRID {
+                let s = Shape {
+                    u: um * i as f64 / (U_GRID - 1) as f64,
+                    ..start
+                };
+                let e = self.eval(j, &s);
+                if e < best_e {
+                    (best, best_e) = (s, e);
+                }
+            }
+        }
+        let mut f = |v: &[f64]| {
+            let s = Shape {
+                u: v[0].clamp(0.0, (1.0 + MAX_LOBE_EXPONENT).ln()),
+                x: if self.vertical { 0.0 } else { v[1] },
+                y: if self.vertical { 0.0 } else { v[2] },
+                ..best
+            };
+            self.eval(j, &s)
+        };
+        let steps = [0.3 * scale, 0.1 * scale, 0.1 * scale];
+        let ftol = 1e-15 + 1e-10 * best_e;
+        let (x, e, _) = nelder_mead(&mut f, &[best.u, best.x, best.y], &steps, max_evals, ftol, 1e-6);
+        if e < best_e {
+            let s = Shape {
+                u: x[0].clamp(0.0, (1.0 + MAX_LOBE_EXPONENT).ln()),
+                x: if self.vertical { 0.0 } else { x[1] },
+                y: if self.vertical { 0.0 } else { x[2] },
+                ..best
+            };
+            return s.recentred();
+        }
+        best.recentred()
+    }
+
+    fn set(&mut self, j: usize, s: Shape) {
+        let col = self.data.column(s.axis(), s.exponent());
+        if j == self.shapes.len() {
+            self.shapes.push(s);
+            self.cols.push(col);
+        } else {
+            self.shapes[j] = s;
+            self.cols[j] = col;
+        }
+    }
+}
+
+/// Fit mixtures of 1 to `max_count` lobes to `d` (see the module docs).
+/// Element `k − 1` is the mixture of k lobes.
+///
+/// # Errors
+/// [`ModelError::Parameter`] (`lobes`) for a count of 0 or above
+/// [`MAX_LOBES`]; [`ModelError::AllZero`] for data without light.
+pub fn fit_lobes(d: &Distribution, max_count: usize) -> Result<Vec<Lobes>, ModelError> {
+    if max_count == 0 || max_count > MAX_LOBES {
+        return Err(ModelError::Parameter {
+            name: "lobes",
+            value: max_count.to_string(),
+            reason: format!("the lobe count K must be 1 to {MAX_LOBES}"),
+        });
+    }
+    let s = Samples::new(d, ErrorMetric::SolidAngle, DEFAULT_GUARD)?;
+    let full = Data::of(&s);
+    let thin = full.thinned(SEARCH_DIRECTIONS);
+    let data = thin.as_ref().unwrap_or(&full);
+    let mut search = Search {
+        data,
+        shapes: Vec::new(),
+        cols: Vec::new(),
+        vertical: s.rotational,
+    };
+    let mut stages = Vec::with_capacity(max_count);
+    for k in 0..max_count {
+        let start = Shape::at(start_axis(&search, s.rotational), 1.0);
+        let new = search.shape_search(k, start, true, 1.0, 150);
+        search.set(k, new);
+        // Alternating refinement: every lobe with the others fixed, while it gains.
+        let mut e = search.error_with(k, &search.cols[k]).0;
+        for _round in 0..ROUNDS {
+            for j in 0..=k {
+                let r = search.shape_search(j, search.shapes[j], false, 0.3, 60);
+                search.set(j, r);
+            }
+            let now = search.error_with(k, &search.cols[k]).0;
+            let gain = e - now;
+            e = now;
+            if gain <= 1e-6 * e + 1e-15 {
+                break;
+            }
+        }
+        stages.push(weighted(&full, &search.shapes, s.i_max));
+    }
+    Ok(stages)
+}
+
+/// The start axis of the next lobe: the direction of the largest residual
+/// (measured minus the lobes so far), the data's peak for the first lobe;
+/// vertical (towards the residual's hemisphere) for rotational data.
+fn start_axis(search: &Search<'_>, rotational: bool) -> DVec3 {
+    let d = search.data;
+    let wts = if search.cols.is_empty() {
+        Vec::new()
+    } else {
+        let last = search.cols.len() - 1;
+        search.error_with(last, &search.cols[last]).1
+    };
+    let model = |i: usize| -> f64 { search.cols.iter().zip(&wts).map(|(c, w)| c[i] * w).sum() };
+    let best = (0..d.dir.len())
+        .max_by(|&a, &b| (d.m[a] - model(a)).total_cmp(&(d.m[b] - model(b))))
+        .map_or(DVec3::NEG_Z, |i| d.dir[i]);
+    if rotational {
+        if best.z > 0.0 {
+            DVec3::Z
+        } else {
+            DVec3::NEG_Z
+        }
+    } else {
+        best
+    }
+}
+
+/// The mixture of `shapes` with weights solved on all of `full`, in cd.
+fn weighted(full: &Data, shapes: &[Shape], i_max: f64) -> Lobes {
+    let search = Search {
+        data: full,
+        shapes: shapes.to_vec(),
+        cols: shapes.iter().map(|s| full.column(s.axis(), s.exponent())).collect(),
+        vertical: false,
+    };
+    let last = shapes.len() - 1;
+    let (_, wts) = search.error_with(last, &search.cols[last]);
+    Lobes::new(
+        shapes
+            .iter()
+            .zip(&wts)
+            .map(|(s, w)| Lobe {
+                axis: s.axis(),
+                exponent: s.exponent(),
+                weight_cd: w * i_max,
+            })
+            .collect(),
+    )
+}
