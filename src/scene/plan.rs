@@ -342,6 +342,8 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
     let dirs = random_directions(options.timing_directions.max(1), 0x5CE7E);
     let mut plans = Vec::new();
     let mut total_chosen = vec![0.0; points.len()];
+    let mut models_cache: Vec<Models> = Vec::new();
+    let mut models_of: Vec<Option<usize>> = Vec::new();
     for (li, (lum, &lit)) in scene.luminaires.iter().zip(&lit).enumerate() {
         let (ref_lux, point_ref_lux, patches, refinement, far_field, ref_name, _) = &references[li];
         let visible = visible_grid(lum, patches, &points);
@@ -352,7 +354,19 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
         } else {
             vec![REFERENCE] // all-zero: every representation is the same dark field
         };
-        let models = Models::new(lum, &reps).map_err(model_err(lum))?;
+        // Luminaires of one file share their models (the fit, the lobes, the texture).
+        let shared = scene.luminaires[..li]
+            .iter()
+            .position(|o| o.luminaire.distribution() == lum.luminaire.distribution());
+        let slot = match shared.and_then(|k| models_of[k]) {
+            Some(slot) => slot,
+            None => {
+                models_cache.push(Models::new(lum, &reps).map_err(model_err(lum))?);
+                models_cache.len() - 1
+            }
+        };
+        models_of.push(Some(slot));
+        let models = &models_cache[slot];
         for rep in reps {
             say(&format!("{}: {rep}", lum.name));
             let field = match models.field(&rep) {
