@@ -275,6 +275,27 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
     reps
 }
 
+/// The slot in `cache` of the models of luminaire `li`: luminaires of one
+/// distribution share them (the fit, the lobes, the texture), so a plan of
+/// four copies of one file prepares them once. `cache` holds (first
+/// luminaire, its models).
+fn shared_models(
+    cache: &mut Vec<(usize, Models)>,
+    luminaires: &[SceneLuminaire],
+    li: usize,
+    reps: &[Recon],
+) -> Result<usize, ModelError> {
+    let dist = luminaires[li].luminaire.distribution();
+    if let Some(slot) = cache
+        .iter()
+        .position(|(first, _)| luminaires[*first].luminaire.distribution() == dist)
+    {
+        return Ok(slot);
+    }
+    cache.push((li, Models::new(&luminaires[li], reps)?));
+    Ok(cache.len() - 1)
+}
+
 /// Plan every luminaire of `scene` (see the module docs). `progress` gets a
 /// line per luminaire and candidate.
 ///
@@ -305,12 +326,6 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
             source: e,
         }
     };
-    // Whether each luminaire has light at all (an all-zero one has one candidate).
-    let lit: Vec<bool> = scene
-        .luminaires
-        .iter()
-        .map(|l| l.texture().map(|t| t.is_some()))
-        .collect::<Result<_, _>>()?;
     let mut references = Vec::new();
     for lum in &scene.luminaires {
         say(&format!("{}: reference", lum.name));
@@ -342,9 +357,9 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
     let dirs = random_directions(options.timing_directions.max(1), 0x5CE7E);
     let mut plans = Vec::new();
     let mut total_chosen = vec![0.0; points.len()];
-    let mut models_cache: Vec<Models> = Vec::new();
-    let mut models_of: Vec<Option<usize>> = Vec::new();
-    for (li, (lum, &lit)) in scene.luminaires.iter().zip(&lit).enumerate() {
+    let mut models_cache: Vec<(usize, Models)> = Vec::new();
+    for (li, lum) in scene.luminaires.iter().enumerate() {
+        let lit = lum.texture()?.is_some(); // an all-zero luminaire has one candidate
         let (ref_lux, point_ref_lux, patches, refinement, far_field, ref_name, _) = &references[li];
         let visible = visible_grid(lum, patches, &points);
         let mut measured: Vec<(Candidate, Vec<f64>)> = Vec::new();
@@ -354,19 +369,8 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
         } else {
             vec![REFERENCE] // all-zero: every representation is the same dark field
         };
-        // Luminaires of one file share their models (the fit, the lobes, the texture).
-        let shared = scene.luminaires[..li]
-            .iter()
-            .position(|o| o.luminaire.distribution() == lum.luminaire.distribution());
-        let slot = match shared.and_then(|k| models_of[k]) {
-            Some(slot) => slot,
-            None => {
-                models_cache.push(Models::new(lum, &reps).map_err(model_err(lum))?);
-                models_cache.len() - 1
-            }
-        };
-        models_of.push(Some(slot));
-        let models = &models_cache[slot];
+        let slot = shared_models(&mut models_cache, &scene.luminaires, li, &reps).map_err(model_err(lum))?;
+        let models = &models_cache[slot].1;
         for rep in reps {
             say(&format!("{}: {rep}", lum.name));
             let field = match models.field(&rep) {
