@@ -7,7 +7,7 @@
 //! lobes); Zotti, Neumann and Purgathofer's OpenGL model (2005) is two.
 //!
 //! # Fit
-//! The same family of search as the OpenGL-light fit ([`super::optimize`]):
+//! The same family of search as the OpenGL-light fit (`fit::optimize`):
 //! the weights are profiled out exactly (for fixed shapes, non-negative
 //! linear least squares on the normal equations), the shapes are searched
 //! as `u = ln(1 + p)` and tangent coordinates of the axis (a chart centred
