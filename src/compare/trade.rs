@@ -82,6 +82,10 @@ pub const WITHIN_PCT: f64 = 1.0;
 pub struct TradeRow {
     /// The representation (`catmull-rom`, `catmull-rom@x5/bilinear+f16`, `fitted-gl`, `measured`).
     pub representation: String,
+    /// The same as a value of the registry (`None` for a row built by hand),
+    /// so that nothing finds a row's reconstruction by its name; not in the JSON.
+    #[serde(skip)]
+    pub recon: Option<Recon>,
     /// Bytes it holds to answer lookups.
     pub bytes: usize,
     /// Median ns per lookup from a unit direction vector, one thread, f64.
@@ -224,8 +228,10 @@ pub fn trade_table(
     let mut rows: Vec<TradeRow> = c
         .results
         .iter()
-        .map(|r| TradeRow {
+        .zip(&recons) // one result per reconstruction, in order
+        .map(|(r, &recon)| TradeRow {
             representation: r.name.clone(),
+            recon: Some(recon),
             bytes: r.bytes,
             ns_per_sample: r.time_per_sample_ns.unwrap_or_default(),
             ns_per_sample_f32: None,
@@ -246,9 +252,9 @@ pub fn trade_table(
         })
         .collect();
     for row in &mut rows {
-        match recons.iter().find(|r| r.to_string() == row.representation) {
-            Some(Recon::Gpu(spec)) => gpu_columns(row, file, *spec, &opts.compare)?,
-            Some(Recon::Texture(spec)) => f32_columns(row, file, *spec, &opts.compare)?,
+        match row.recon {
+            Some(Recon::Gpu(spec)) => gpu_columns(row, file, spec, &opts.compare)?,
+            Some(Recon::Texture(spec)) => f32_columns(row, file, spec, &opts.compare)?,
             Some(Recon::Sh { .. }) => row.window = Some(ShWindow::Lanczos.name().into()),
             _ => {}
         }

@@ -325,6 +325,7 @@ fn lobes_up_to_eight_are_finite() {
 fn row(name: &str, bytes: usize, max: f64) -> TradeRow {
     TradeRow {
         representation: name.into(),
+        recon: None,
         bytes,
         ns_per_sample: 1.0,
         ns_per_sample_f32: None,
