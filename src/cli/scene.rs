@@ -12,7 +12,7 @@ use photosolid::report::scene_report::{plan_text, scene_text, write_plan_report,
 use photosolid::scene::illuminance::evaluate;
 use photosolid::scene::plan::{plan, PlanOptions};
 use photosolid::scene::road::layout::Road;
-use photosolid::scene::road::plan::{plan_road, road_plan_text};
+use photosolid::scene::road::plan::{plan_road, road_plan_text, RoadPlan};
 use photosolid::scene::Scene;
 
 #[derive(Args, Debug)]
@@ -73,10 +73,6 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
 }
 
 pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
-    if let Some(road) = Road::load_if_road(&a.scene)? {
-        return run_road_plan(&a, &road);
-    }
-    let scene = Scene::load(&a.scene)?;
     let bar = std::io::stderr()
         .is_terminal()
         .then(indicatif::ProgressBar::new_spinner);
@@ -86,6 +82,14 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
             b.tick();
         }
     };
+    if let Some(road) = Road::load_if_road(&a.scene)? {
+        let result = plan_road(&road, a.tolerance.fraction(), Some(&say));
+        if let Some(b) = &bar {
+            b.finish_and_clear();
+        }
+        return write_road_plan(&a, &result?);
+    }
+    let scene = Scene::load(&a.scene)?;
     let options = PlanOptions {
         tolerance: a.tolerance.fraction(),
         ..PlanOptions::default()
@@ -106,27 +110,14 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
     Ok(0)
 }
 
-/// `plan` on a `[road]` file: the road quantities decide (docs/road.md).
-fn run_road_plan(a: &PlanArgs, road: &Road) -> anyhow::Result<i32> {
-    let bar = std::io::stderr()
-        .is_terminal()
-        .then(indicatif::ProgressBar::new_spinner);
-    let say = |m: &str| {
-        if let Some(b) = &bar {
-            b.set_message(m.to_string());
-            b.tick();
-        }
-    };
-    let result = plan_road(road, a.tolerance.fraction(), Some(&say))?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
-    let text = road_plan_text(&result);
+/// The output of `plan` on a `[road]` file (the road quantities decide; docs/road.md).
+fn write_road_plan(a: &PlanArgs, result: &RoadPlan) -> anyhow::Result<i32> {
+    let text = road_plan_text(result);
     if let Some(dir) = &a.report {
-        for path in write_road_plan_report(dir, &result, &text)? {
+        for path in write_road_plan_report(dir, result, &text)? {
             eprintln!("wrote {}", path.display());
         }
     }
-    super::emit(a.json, &result, &text)?;
+    super::emit(a.json, result, &text)?;
     Ok(0)
 }

@@ -181,32 +181,6 @@ mod tests {
         assert!(side > 0.0 && side.is_finite());
     }
 
-    /// 8-point Gauss–Legendre nodes and weights on [−1, 1] (Newton on P8).
-    fn gauss_legendre_8() -> Vec<(f64, f64)> {
-        let n = 8;
-        (0..n)
-            .map(|i| {
-                let mut x = (PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-                let mut dp = 0.0;
-                for _ in 0..100 {
-                    let (mut p0, mut p1) = (1.0, x);
-                    for k in 2..=n {
-                        let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                        p0 = p1;
-                        p1 = p2;
-                    }
-                    dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                    let dx = p1 / dp;
-                    x -= dx;
-                    if dx.abs() < 1e-16 {
-                        break;
-                    }
-                }
-                (x, 2.0 / ((1.0 - x * x) * dp * dp))
-            })
-            .collect()
-    }
-
     /// A square of side `s` at distance 1, seen `angle` degrees off the
     /// receiver's normal (+z, at the receiver): its vertices, the receiver
     /// point, and the exact illuminance for L = 1 by 8 x 8 Gauss–Legendre
@@ -226,7 +200,7 @@ mod tests {
         let (lo, hi) = (verts[0], verts[2]);
         let (a, b) = (hi.x - lo.x, hi.y - lo.y);
         let mid = (lo + hi) / 2.0;
-        let gl = gauss_legendre_8();
+        let gl = crate::reconstruct::sh::gauss_legendre(8);
         let mut exact = 0.0;
         for &(u, wu) in &gl {
             for &(v, wv) in &gl {

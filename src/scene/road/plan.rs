@@ -185,13 +185,23 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
         }
     }
     candidates.sort_by(|a, b| a.bytes.cmp(&b.bytes).then(a.ns_per_eval.total_cmp(&b.ns_per_eval)));
-    // The reference is always a candidate and always within (all changes 0).
+    // The reference is always a candidate and always within (all changes 0);
+    // no candidate within would mean it failed to build: say so, invent nothing.
     let chosen = candidates
         .iter()
         .find(|c| c.within)
-        .map_or((reference.representation.clone(), 0), |c| {
-            (c.representation.clone(), c.bytes)
-        });
+        .map(|c| (c.representation.clone(), c.bytes))
+        .ok_or_else(|| RoadError::Luminaire {
+            file: road.file.clone(),
+            message: format!(
+                "no representation is within the limits, not even the reference ({})",
+                unavailable
+                    .iter()
+                    .map(|u| format!("{}: {}", u.representation, u.reason))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ),
+        })?;
     Ok(RoadPlan {
         scene: reference.scene.clone(),
         luminaire: reference.luminaire.clone(),
