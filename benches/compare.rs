@@ -5,6 +5,11 @@
 //! factor 2 (~207 k triangles each); two synthetic roadway solids
 //! (5° x 2.5° grid, factor 5) when the corpus is absent. Measured here:
 //! ~0.81 s median, bound 3.2 cd against a tolerance of 5.9 cd.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use photosolid::compare::solid_hausdorff;

@@ -6,6 +6,11 @@
 //! 5° × 2.5°), fitted in parallel (rayon over combinations) and serially;
 //! then every loadable file of `../shared/corpus` (when it exists and the
 //! readers load it). A median over the set is printed once per set.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;

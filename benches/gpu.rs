@@ -14,6 +14,11 @@
 //!
 //! `cargo bench --bench gpu` (honours `WGPU_BACKEND=vulkan|gl`). Without an
 //! adapter only the CPU benchmarks run.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use std::path::Path;
 use std::time::Duration;

@@ -3,6 +3,11 @@
 //! synthetic roadway (5° x 2.5°). Baseline in the same run: the direction →
 //! (C, γ) conversion alone (an `acos` and an `atan2`), the floor of every
 //! angle-indexed lookup.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use photosolid::compare::trade::representations;

@@ -6,6 +6,11 @@
 //! supremum lies inside faces. Baseline in the same run: vertex-only
 //! sampling (one exact BVH query per vertex of each mesh, no certificate),
 //! the method of gpytoolbox's approximate_hausdorff_distance.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use glam::DVec3;

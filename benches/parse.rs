@@ -6,6 +6,11 @@
 //! per file set. The baseline in the same run is `std::fs::read` plus
 //! `str::split_ascii_whitespace` + `str::parse::<f64>` over the same bytes:
 //! the cost of merely tokenising every number with the standard library.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use std::path::{Path, PathBuf};
 

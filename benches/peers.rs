@@ -18,6 +18,11 @@
 //! angles as they are, so its Type B "parse" is less work than ours.
 //!
 //! Run: `cargo bench --bench peers -- --warm-up-time 1 --measurement-time 3`.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;

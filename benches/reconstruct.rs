@@ -5,6 +5,11 @@
 //! implementation would.
 //!
 //! Run briefly: `cargo bench --bench reconstruct -- --warm-up-time 1 --measurement-time 2`.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};

@@ -8,6 +8,11 @@
 //! normals); `write_ply` measures encoding plus the atomic write (with its
 //! fsync) to a temporary file; `measured` the spade triangulation of the
 //! 73 x 361 file's own directions.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a benchmark a panic is the failure report"
+)]
 
 use std::time::Instant;
 

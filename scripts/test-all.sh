@@ -162,6 +162,18 @@ cargo test --doc --locked
 echo "== rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --locked 2>&1 | tail -n 3
 
+echo "== clippy: the [lints] of Cargo.toml hold on every target (-D warnings; no unwrap/expect in the library)"
+if ! cargo clippy --version >/dev/null 2>&1; then
+  rustup component add clippy >/dev/null 2>&1 || true
+fi
+if cargo clippy --version >/dev/null 2>&1; then
+  clippy_start=$SECONDS
+  cargo clippy --all-targets --locked -- -D warnings 2>&1 | tail -n 5
+  echo "clippy: $((SECONDS - clippy_start)) s"
+else
+  need "clippy" "cargo clippy is not installed and rustup cannot add it"
+fi
+
 echo "== the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
 cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1

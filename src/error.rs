@@ -319,8 +319,9 @@ pub enum Error {
     MeshFile {
         /// The file.
         path: PathBuf,
-        /// What the mesh reader found wrong, and where.
-        source: MeshFileError,
+        /// What the mesh reader found wrong, and where (boxed: it is the
+        /// largest variant, and every `Result<_, Error>` would carry its size).
+        source: Box<MeshFileError>,
     },
     /// A mesh with no triangles where one with triangles is needed (a solid
     /// is never empty, and glTF cannot hold an empty mesh).

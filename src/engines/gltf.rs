@@ -166,6 +166,10 @@ pub fn encode(solid: &Mesh, ies: &[u8], lights: &[KhrLight]) -> Vec<u8> {
     }
     let offset = bin.len();
     bin.extend_from_slice(ies);
+    #[allow(
+        clippy::expect_used,
+        reason = "`glb::document` always writes the solid's bufferViews array"
+    )]
     let views = doc["bufferViews"].as_array_mut().expect("the solid's buffer views");
     views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": ies.len()}));
     let ies_view = views.len() - 1;
@@ -199,6 +203,10 @@ pub fn encode(solid: &Mesh, ies: &[u8], lights: &[KhrLight]) -> Vec<u8> {
             }
         }
     }
+    #[allow(
+        clippy::expect_used,
+        reason = "`glb::document` always writes the nodes array with the solid's node"
+    )]
     let all = doc["nodes"].as_array_mut().expect("the solid's node");
     let first_child = all.len();
     let children: Vec<usize> = (first_child..first_child + nodes.len()).collect();

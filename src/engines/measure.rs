@@ -385,7 +385,13 @@ fn search(
     setup: &Setup<'_>,
     layout: &EngineOptions,
 ) -> Result<ResolutionSearch, ModelError> {
-    let (_, lo, hi) = engine.resolution_range().expect("engines with a resolution choice");
+    let Some((_, lo, hi)) = engine.resolution_range() else {
+        return Err(ModelError::Parameter {
+            name: "resolution",
+            value: "search".into(),
+            reason: format!("{engine}'s layout has a fixed size"),
+        });
+    };
     let mut tried = Vec::new();
     let mut found = None;
     let mut n = lo.next_power_of_two();

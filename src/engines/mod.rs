@@ -490,7 +490,9 @@ pub fn export(engine: Engine, lum: &Luminaire, path: &Path, opts: &EngineOptions
         }
         _ => {
             let em = emulate(engine, dist, opts)?;
-            let image = em.image.expect("image layouts have an image");
+            let image = em
+                .image
+                .ok_or_else(|| ModelError::Internal(format!("the {engine} layout has an image")))?;
             let unit = if engine == Engine::Pbrt { "cd" } else { "I/I_max" };
             let attrs = exr_attrs(engine, lum, &em.layout, unit, i_max);
             let half = matches!(engine, Engine::Ue5 | Engine::Ue4 | Engine::Threejs);

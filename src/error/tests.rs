@@ -59,7 +59,7 @@ fn every_error() -> Vec<Error> {
         }),
         Error::MeshFile {
             path: "m.obj".into(),
-            source: MeshFileError::at_line("OBJ", 2, "3 numbers", "`v 1`"),
+            source: Box::new(MeshFileError::at_line("OBJ", 2, "3 numbers", "`v 1`")),
         },
         Error::EmptyMesh { path: "m.stl".into() },
         Error::Encode {

@@ -200,10 +200,18 @@ impl Fit {
         &self.trials[self.chosen]
     }
     /// The chosen model (weights in cd).
+    #[allow(
+        clippy::expect_used,
+        reason = "`fit` chooses only among fitted trials (`select` skips those without a model)"
+    )]
     pub fn model(&self) -> &FittedLights {
         self.chosen().model.as_ref().expect("the chosen trial is fitted")
     }
     /// The chosen model's error.
+    #[allow(
+        clippy::expect_used,
+        reason = "`fit` chooses only among fitted trials, and a fitted trial has its error"
+    )]
     pub fn error(&self) -> f64 {
         self.chosen().error.expect("the chosen trial is fitted")
     }

@@ -194,7 +194,7 @@ pub(crate) fn nelder_mead<F: FnMut(&[f64]) -> f64>(
             }
         }
     }
-    let b = (0..=n).min_by(|&a, &b| vals[a].total_cmp(&vals[b])).unwrap();
+    let b = (1..=n).fold(0, |b, a| if vals[a].total_cmp(&vals[b]).is_lt() { a } else { b });
     (pts[b].clone(), vals[b], evals)
 }
 
@@ -302,10 +302,7 @@ impl<'a> SpotSearch<'a> {
             }
         }
         // The ends matter when the optimum is on the bound (p = 0 or 128).
-        [fc, fd, ea, eb]
-            .into_iter()
-            .min_by(|p, q| p.prof.e.total_cmp(&q.prof.e))
-            .unwrap()
+        [fd, ea, eb].into_iter().fold(fc, lower_error)
     }
 
     /// Polish the exponent at fixed axis around the best local minima of a coarse grid.
@@ -391,7 +388,9 @@ impl<'a> SpotSearch<'a> {
         let hemi = self.hemi;
         for &(x, y) in &starts {
             let grid = self.coarse(x, y);
-            let mut best = *grid.iter().min_by(|p, q| p.prof.e.total_cmp(&q.prof.e)).unwrap();
+            let Some(mut best) = grid.iter().copied().reduce(lower_error) else {
+                continue;
+            };
             for w in warm.iter().filter(|w| w.hemi == hemi) {
                 let c = self.eval(w.u, x, y);
                 if c.prof.e < best.prof.e {
@@ -478,6 +477,15 @@ impl<'a> SpotSearch<'a> {
         if r.prof.e < best.prof.e {
             best = r;
         }
+        best
+    }
+}
+
+/// The fit with the lower error; the first on a tie (as `min_by` picks).
+fn lower_error(best: SpotFit, next: SpotFit) -> SpotFit {
+    if next.prof.e.total_cmp(&best.prof.e).is_lt() {
+        next
+    } else {
         best
     }
 }

@@ -124,9 +124,9 @@ impl RenderJob<'_> {
 /// [`GpuError::InvalidJob`] for an invalid factor (as [`LightTexture::render_plan`]),
 /// [`GpuError::TooLarge`] / [`GpuError::Device`] from the device.
 pub fn render_gpu(ctx: &GpuContext, texture: &LightTexture, options: &RenderOptions) -> Result<Rendered, GpuError> {
-    Ok(render_batch(ctx, &[(texture, *options)])?
+    render_batch(ctx, &[(texture, *options)])?
         .pop()
-        .expect("one job, one result"))
+        .ok_or_else(|| GpuError::BufferMap("one job gave no result".into()))
 }
 
 /// Render many textures in one submission (one upload, one dispatch per
@@ -367,10 +367,9 @@ fn pack_chunk(jobs: &[RenderJob<'_>], dispatch_x: u32, kernel: RenderKernel) -> 
 impl GpuContext {
     /// Render one job on the GPU.
     pub fn render_job(&self, job: &RenderJob<'_>) -> Result<Rendered, GpuError> {
-        Ok(self
-            .render_jobs(std::slice::from_ref(job))?
+        self.render_jobs(std::slice::from_ref(job))?
             .pop()
-            .expect("one job, one result"))
+            .ok_or_else(|| GpuError::BufferMap("one job gave no result".into()))
     }
 
     /// Render many jobs with one upload, one command submission (one

@@ -302,39 +302,30 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
             converged = false;
             break top.max(lb);
         }
-        let c = if heap.peek().is_some_and(|c| c.ub >= top) {
-            heap.pop().expect("peeked")
+        // Refine the cell whose bound is `top`: a split cell or a whole triangle.
+        let split = if heap.peek().is_some_and(|c| c.ub >= top) {
+            heap.pop()
         } else {
-            let TriCell { ub, t } = tri_heap.pop().expect("peeked");
-            let t = &a.triangles[t as usize];
-            Cell {
-                ub,
-                v: vertices(t),
-                f: t.map(|i| near[i as usize].0),
-                k: t.map(|i| near[i as usize].1),
+            None
+        };
+        let c = match split {
+            Some(c) => c,
+            None => {
+                // `top` came from one of the heaps, so this pops.
+                let Some(TriCell { ub, t }) = tri_heap.pop() else {
+                    break top.max(lb);
+                };
+                let t = &a.triangles[t as usize];
+                Cell {
+                    ub,
+                    v: vertices(t),
+                    f: t.map(|i| near[i as usize].0),
+                    k: t.map(|i| near[i as usize].1),
+                }
             }
         };
-        let mid = |i: usize, j: usize| 0.5 * (c.v[i] + c.v[j]);
-        let m = [mid(0, 1), mid(1, 2), mid(2, 0)];
-        let mut fm = [0.0; 3];
-        let mut km = [u32::MAX; 3];
-        for j in 0..3 {
-            // Lipschitz warm start from the parent's vertices.
-            let hint = (0..3)
-                .map(|i| c.f[i] + m[j].distance(c.v[i]))
-                .fold(f64::INFINITY, f64::min);
-            let (d2, t) = b.nearest_below(m[j], (hint * (1.0 + 1e-12) + 1e-300).powi(2));
-            fm[j] = d2.sqrt();
-            km[j] = t;
-            lb = lb.max(fm[j]);
-        }
+        let children = split_cell(&c, b, &mut lb);
         extra += 3;
-        let children = [
-            ([c.v[0], m[0], m[2]], [c.f[0], fm[0], fm[2]], [c.k[0], km[0], km[2]]),
-            ([m[0], c.v[1], m[1]], [fm[0], c.f[1], fm[1]], [km[0], c.k[1], km[1]]),
-            ([m[2], m[1], c.v[2]], [fm[2], fm[1], c.f[2]], [km[2], km[1], c.k[2]]),
-            ([m[0], m[1], m[2]], [fm[0], fm[1], fm[2]], km),
-        ];
         for (v, f, k) in children {
             let ub = upper_bound(&v, &f, &k, b);
             if ub > lb + tol {
@@ -358,6 +349,31 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
         queries,
         converged,
     }
+}
+
+/// The four children of `c` (its edge midpoints queried against `b`, each
+/// warm-started from the parent's vertices by the Lipschitz bound); raises
+/// `lb` to the largest midpoint distance.
+fn split_cell(c: &Cell, b: &Bvh, lb: &mut f64) -> [([DVec3; 3], [f64; 3], [u32; 3]); 4] {
+    let mid = |i: usize, j: usize| 0.5 * (c.v[i] + c.v[j]);
+    let m = [mid(0, 1), mid(1, 2), mid(2, 0)];
+    let mut fm = [0.0; 3];
+    let mut km = [u32::MAX; 3];
+    for j in 0..3 {
+        let hint = (0..3)
+            .map(|i| c.f[i] + m[j].distance(c.v[i]))
+            .fold(f64::INFINITY, f64::min);
+        let (d2, t) = b.nearest_below(m[j], (hint * (1.0 + 1e-12) + 1e-300).powi(2));
+        fm[j] = d2.sqrt();
+        km[j] = t;
+        *lb = lb.max(fm[j]);
+    }
+    [
+        ([c.v[0], m[0], m[2]], [c.f[0], fm[0], fm[2]], [c.k[0], km[0], km[2]]),
+        ([m[0], c.v[1], m[1]], [fm[0], c.f[1], fm[1]], [km[0], c.k[1], km[1]]),
+        ([m[2], m[1], c.v[2]], [fm[2], fm[1], c.f[2]], [km[2], km[1], c.k[2]]),
+        ([m[0], m[1], m[2]], [fm[0], fm[1], fm[2]], km),
+    ]
 }
 
 /// Symmetric Hausdorff distance between `a` and `b` to within `tolerance`.

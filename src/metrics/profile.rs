@@ -264,7 +264,7 @@ pub fn one_sided(a: &Profile, b: &Profile, tolerance: f64) -> OneSided {
             converged = false;
             break top;
         }
-        let s = heap.pop().expect("peeked");
+        let Some(s) = heap.pop() else { break top };
         let m = 0.5 * (s.v[0] + s.v[1]);
         let (fm, km) = nearest(m, b);
         extra += 1;

@@ -253,9 +253,12 @@ fn tangents(w: DVec3) -> (DVec3, DVec3) {
     (DVec3::new(-sc, cc, 0.0), DVec3::new(-w.z * cc, -w.z * sc, rho))
 }
 
+/// Values at a batch of directions `(C, gamma)` in radians, one per direction.
+pub type EvalDirections<'a> = dyn Fn(&[(f64, f64)]) -> Vec<f64> + 'a;
+
 /// Run the searches of `climbs` whose step is at least `stop_rad` until
 /// every step is below it (or `max_rounds` rounds); returns the evaluations made.
-fn climb(climbs: &mut [Climb], eval: &dyn Fn(&[(f64, f64)]) -> Vec<f64>, stop_rad: f64, max_rounds: usize) -> usize {
+fn climb(climbs: &mut [Climb], eval: &EvalDirections<'_>, stop_rad: f64, max_rounds: usize) -> usize {
     let mut evaluations = 0;
     for _ in 0..max_rounds {
         let active: Vec<usize> = (0..climbs.len()).filter(|&i| climbs[i].step_rad >= stop_rad).collect();
@@ -302,12 +305,7 @@ fn climb(climbs: &mut [Climb], eval: &dyn Fn(&[(f64, f64)]) -> Vec<f64>, stop_ra
 /// largest value evaluated (the sampled maximum when nothing larger is
 /// found, 0 for an empty set), where it is, and the cost. Non-finite
 /// values are never taken.
-pub fn refine_max(
-    set: &DirectionSet,
-    abs_diff: &[f64],
-    eval: &dyn Fn(&[(f64, f64)]) -> Vec<f64>,
-    r: &MaxRefinement,
-) -> RefinedMax {
+pub fn refine_max(set: &DirectionSet, abs_diff: &[f64], eval: &EvalDirections<'_>, r: &MaxRefinement) -> RefinedMax {
     assert_eq!(abs_diff.len(), set.len());
     let mut order: Vec<usize> = (0..set.len())
         .filter(|&k| abs_diff[k].is_finite() && abs_diff[k] > 0.0)

@@ -277,7 +277,7 @@ impl Distribution {
                     reason: format!("rotational symmetry stores one plane, got {}", c.len()),
                 })
             }
-            Symmetry::None if *c.last().unwrap() >= 360.0 - ANGLE_EPS => {
+            Symmetry::None if c.last().is_some_and(|&l| l >= 360.0 - ANGLE_EPS) => {
                 return Err(ModelError::Angles {
                     axis: "C",
                     reason: "C = 360 duplicates C = 0; drop it".into(),

@@ -94,15 +94,6 @@ impl Filter {
         matches!(self, Filter::Pchip)
     }
 
-    /// Mitchell–Netravali parameters (B, C) of the kernels that are members of the family.
-    fn mitchell_bc(self) -> Option<(f64, f64)> {
-        match self {
-            Filter::Mitchell { b, c } => Some((b, c)),
-            Filter::BSpline => Some((1.0, 0.0)),
-            _ => None,
-        }
-    }
-
     /// The four linear weights of taps `i-1, i, i+1, i+2` for a query at fraction `s`
     /// in `[t_i, t_{i+1}]` on the knots `t = [t_{i-1}, t_i, t_{i+1}, t_{i+2}]` (degrees).
     /// `None` for PCHIP (data dependent).
@@ -130,7 +121,10 @@ impl Filter {
                 [-a, h00 - b, h01 + a, b]
             }
             Filter::Mitchell { .. } | Filter::BSpline => {
-                let (b, c) = self.mitchell_bc().expect("member of the family");
+                let (b, c) = match self {
+                    Filter::Mitchell { b, c } => (b, c),
+                    _ => (1.0, 0.0), // the B-spline is Mitchell-Netravali (1, 0)
+                };
                 [
                     mitchell_kernel(b, c, s + 1.0),
                     mitchell_kernel(b, c, s),

@@ -137,10 +137,10 @@ impl LightTexture {
         let g = d.gamma_angles_deg();
         let ng = g.len();
         let nonzero = |ig: usize| (0..d.n_c()).any(|ic| d.value_cd(ic, ig) != 0.0);
-        let first = (0..ng).find(|&ig| nonzero(ig)).expect("I_max > 0");
-        let last = (0..ng).rev().find(|&ig| nonzero(ig)).expect("I_max > 0");
-        let lo = first.saturating_sub(2);
-        let hi = (last + 2).min(ng - 1);
+        // I_max > 0, so some row is non-zero (the defaults are never taken).
+        let first = (0..ng).find(|&ig| nonzero(ig)).unwrap_or(0);
+        let last = (0..ng).rev().find(|&ig| nonzero(ig)).unwrap_or(ng - 1);
+        let (lo, hi) = (first.saturating_sub(2), (last + 2).min(ng - 1));
         let gamma = g[lo..=hi].to_vec();
         let rows = gamma.len() + 2;
         let full = d.full_planes();

@@ -163,7 +163,7 @@ img{{max-width:100%;border:1px solid #ddd}}\n\
             .get(k)
             .cloned()
             .flatten()
-            .or_else(|| scene.luminaires[k].representation.clone());
+            .or_else(|| scene.luminaires[k].representation);
         let _ = writeln!(s, "<h2>Luminaire {}</h2>", esc(&scene.luminaires[k].name));
         s.push_str(&viewer::html(
             &luminaire_viewer(scene, k, rep.as_ref())?,

@@ -190,7 +190,8 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
             }
             Tone::Diverging => ColorMap::RdBu.rgb8(0.5 + 0.5 * t),
         };
-        *px = tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255).expect("opaque");
+        *px = tiny_skia::PremultipliedColorU8::from_rgba(r, g, b, 255)
+            .unwrap_or(tiny_skia::PremultipliedColorU8::TRANSPARENT);
     }
     pm.encode_png().map_err(|e| Error::Encode {
         format: "PNG",

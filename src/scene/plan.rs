@@ -453,7 +453,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
             name: lum.name.clone(),
             chosen: format!("{}, {} source", chosen.representation, chosen.source),
             representation: chosen.representation.clone(),
-            chosen_spec: chosen.spec.clone(),
+            chosen_spec: chosen.spec,
             source: chosen.source,
             bytes: chosen.bytes,
             ns_per_eval: chosen.ns_per_eval,

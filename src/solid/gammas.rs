@@ -69,7 +69,7 @@ pub fn adaptive_gammas(field: &dyn IntensityField, start: &[f64], opts: &super::
                 cut = true;
             }
         }
-        next.push(*g.last().expect("at least the poles"));
+        next.extend(g.last().copied());
         if !cut || next.len() > opts.max_points {
             return (g, worst);
         }

@@ -119,7 +119,7 @@ impl SolidGrid {
         }
         let mut g_count = d.gamma_angles_deg().len() + 1;
         g_count += usize::from(d.gamma_angles_deg()[0] > ANGLE_EPS)
-            + usize::from(*d.gamma_angles_deg().last().unwrap() < 180.0 - ANGLE_EPS);
+            + usize::from(d.gamma_angles_deg().last().is_some_and(|&l| l < 180.0 - ANGLE_EPS));
         let points = (knots.len() as u128) * (factor as u128) * (g_count as u128) * (factor as u128);
         if points > MAX_GRID_POINTS as u128 {
             return Err(ModelError::Parameter {

@@ -23,7 +23,7 @@ pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u3
             let mut s = *t;
             s.sort_unstable();
             // Even permutation of the sorted order = same winding as sorted.
-            let k = t.iter().position(|&v| v == s[0]).unwrap();
+            let k = t.iter().position(|&v| v == s[0]).unwrap_or(0); // s is a permutation of t
             let even = t[(k + 1) % 3] == s[1];
             (s, even, i)
         })
@@ -177,7 +177,8 @@ fn link_cycles(group: &[(u32, u32, u32, usize)]) -> Vec<usize> {
             } else {
                 path_v.push(y);
             }
-            let from = *path_v.last().expect("non-empty path");
+            // The walk started with one vertex and truncation keeps `pos + 1 >= 1`.
+            let Some(&from) = path_v.last() else { break };
             let lo = group.partition_point(|l| l.1 < from);
             match (lo..n).take_while(|&k| group[k].1 == from).find(|&k| !used[k]) {
                 Some(next) => e = next,

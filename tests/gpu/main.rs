@@ -2,6 +2,11 @@
 //! CPU reference (`textures`) and the real-time lookups (`realtime`).
 //! `scripts/test-all.sh` runs it once per backend with
 //! `PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND=<vulkan|gl>`.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a test a panic is the failure report"
+)]
 
 #[macro_use]
 #[path = "../common/mod.rs"]

@@ -217,7 +217,8 @@ fn demo_writes_what_the_readme_says() {
             .collect()
     };
     let pos = |needle: &str| html.find(needle).unwrap_or_else(|| panic!("index.html lacks {needle}"));
-    let claims: Vec<(&str, Box<dyn Fn()>)> = vec![
+    type Claim<'a> = (&'static str, Box<dyn Fn() + 'a>);
+    let claims: Vec<Claim<'_>> = vec![
         (
             "It prints its results",
             Box::new(|| assert!(out.contains("== every reconstruction against the truth"), "{out}")),

@@ -481,7 +481,8 @@ fn tilt_and_type_b_rows_appear_for_such_files() {
     // (Babylon's current texture holds the C0 plane only, which this file's Type B layout barely
     // changes: the row is checked on UE5, which reads every plane.)
     let r = measure(&flood, &quick(vec![Engine::Babylon, Engine::Ue5, Engine::Blender])).unwrap();
-    for name in ["ue5: Type B read as Type C"] {
+    {
+        let name = "ue5: Type B read as Type C";
         let row = r
             .rows
             .iter()

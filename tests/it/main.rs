@@ -2,6 +2,11 @@
 //! linked wgpu made target/ 18 GB and the CI build 12 minutes). Each module
 //! was its own test file; `cargo test --test it <module>::` runs one.
 //! The GPU tests are the other binary, `tests/gpu/`.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a test a panic is the failure report"
+)]
 
 #[macro_use]
 #[path = "../common/mod.rs"]

@@ -173,9 +173,9 @@ fn an_opposite_layout_is_mirror_symmetric() {
     assert!(all_finite(&res));
     let e = &res.illuminance.values;
     let n = e.len();
-    for j in 0..n {
-        for k in 0..e[j].len() {
-            let (a, b) = (e[j][k], e[n - 1 - j][k]);
+    for (j, row) in e.iter().enumerate() {
+        for (k, &a) in row.iter().enumerate() {
+            let b = e[n - 1 - j][k];
             assert!((a - b).abs() <= 1e-9 * a.max(b), "E row {j} col {k}: {a} vs {b}");
         }
     }

@@ -274,16 +274,15 @@ fn mesh_file_failures_are_typed() {
     let obj = t.path().join("bad.obj");
     std::fs::write(&obj, b"# a mesh\nv 0 0 0\nv 1 0\n").unwrap();
     let e = export::read(&obj).unwrap_err();
-    match &e {
-        Error::MeshFile {
-            source:
-                photosolid::error::MeshFileError::Syntax {
-                    format,
-                    location,
-                    expected,
-                    found,
-                    ..
-                },
+    let Error::MeshFile { source, .. } = &e else {
+        panic!("expected a MeshFile error, got {e:?}");
+    };
+    match source.as_ref() {
+        photosolid::error::MeshFileError::Syntax {
+            format,
+            location,
+            expected,
+            found,
             ..
         } => {
             assert_eq!((*format, location.line), ("OBJ", 3));
@@ -305,10 +304,8 @@ fn mesh_file_failures_are_typed() {
     assert!(
         matches!(
             &e,
-            Error::MeshFile {
-                source: photosolid::error::MeshFileError::Mesh { format: "OBJ", .. },
-                ..
-            }
+            Error::MeshFile { source, .. }
+                if matches!(**source, photosolid::error::MeshFileError::Mesh { format: "OBJ", .. })
         ),
         "{e:?}"
     );

@@ -63,7 +63,7 @@ pub fn read_emitter(
     };
     let mut warnings = Vec::new();
     let emitter = super::emitters::choose(path, root, emitter)?;
-    let block = block_of(emitter).expect("filtered above");
+    let block = intensity_block(path, emitter)?;
     check_type_and_metric(path, block)?;
     let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
     if multiplier <= 0.0 {
@@ -260,6 +260,20 @@ pub(super) fn block_of<'a, 'i>(emitter: Node<'a, 'i>) -> Option<Node<'a, 'i>> {
         .children()
         .filter(|c| c.is_element() && INTENSITY_BLOCKS.contains(&c.tag_name().name()))
         .find(|b| children(*b, "IntensityData").next().is_some())
+}
+
+/// The emitter's intensity block (`choose` picks only emitters that have one;
+/// the error is for a caller that does not).
+fn intensity_block<'a, 'i>(path: &Path, emitter: Node<'a, 'i>) -> Result<Node<'a, 'i>, ParseError> {
+    block_of(emitter).ok_or_else(|| {
+        error_at(
+            path,
+            emitter,
+            ErrorKind::Invalid,
+            "an intensity block with <IntensityData>",
+            "none",
+        )
+    })
 }
 
 /// Refuse Type A/B grids and radiant, photon or spectral data: the model holds Type C luminous intensity.

@@ -250,7 +250,7 @@ impl Road {
             ));
         }
         let arrangement = Arrangement::parse(&spec.arrangement)?;
-        if arrangement == Arrangement::TwinCentral && spec.lanes % 2 != 0 {
+        if arrangement == Arrangement::TwinCentral && !spec.lanes.is_multiple_of(2) {
             return Err(invalid(
                 "lanes",
                 format!(

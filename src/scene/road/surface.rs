@@ -118,7 +118,7 @@ impl RTable {
         if let Some(v) = rows.iter().flatten().find(|v| !(v.is_finite() && **v >= 0.0)) {
             return Err(bad(format!("r × 10⁴ = {v}: expected finite values ≥ 0")));
         }
-        if rows[0].iter().any(|&v| v == 0.0) {
+        if rows[0].contains(&0.0) {
             return Err(bad("the row tan ε = 0 must be complete (no blank or 0)".into()));
         }
         let tabulated: Vec<Vec<bool>> = rows.iter().map(|r| r.iter().map(|&v| v > 0.0).collect()).collect();

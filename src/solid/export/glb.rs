@@ -113,7 +113,7 @@ pub fn document(mesh: &Mesh) -> (serde_json::Value, Vec<u8>) {
 pub fn pack(doc: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
     let mut doc = doc.clone();
     doc["buffers"] = json!([{"byteLength": bin.len()}]);
-    let mut json_bytes = serde_json::to_vec(&doc).expect("serialisable JSON");
+    let mut json_bytes = doc.to_string().into_bytes();
     while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
     }
@@ -147,7 +147,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
         let b = bytes
             .get(o..o + 4)
             .ok_or_else(|| at(o, "a 4-byte integer", "end of file".into()))?;
-        Ok(u32::from_le_bytes(b.try_into().expect("4 bytes")) as usize)
+        Ok(super::le_u32(b, 0) as usize)
     };
     if bytes.get(..4) != Some(b"glTF".as_slice()) || u32_at(4)? != 2 {
         return Err(at(
@@ -233,7 +233,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
     };
     let positions: Vec<[f32; 3]> = pdata[..position_bytes]
         .chunks_exact(12)
-        .map(|c| [0, 1, 2].map(|k| f32::from_le_bytes(c[4 * k..4 * k + 4].try_into().expect("4 bytes"))))
+        .map(|c| [0, 1, 2].map(|k| super::le_f32(c, 4 * k)))
         .collect();
     let indices: Vec<u32> = match prim.get("indices") {
         None => (0..nv as u32).collect(),
@@ -260,7 +260,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
                 .map(|c| match size {
                     1 => u32::from(c[0]),
                     2 => u32::from(u16::from_le_bytes([c[0], c[1]])),
-                    _ => u32::from_le_bytes(c.try_into().expect("4 bytes")),
+                    _ => super::le_u32(c, 0),
                 })
                 .collect()
         }

@@ -116,8 +116,18 @@ pub fn read(path: &Path) -> Result<Mesh> {
     };
     mesh.map_err(|source| Error::MeshFile {
         path: path.into(),
-        source,
+        source: Box::new(source),
     })
+}
+
+/// The little-endian `u32` at byte `at` of `b` (the caller has checked the length).
+pub(crate) fn le_u32(b: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]])
+}
+
+/// The little-endian `f32` at byte `at` of `b` (the caller has checked the length).
+pub(crate) fn le_f32(b: &[u8], at: usize) -> f32 {
+    f32::from_bits(le_u32(b, at))
 }
 
 /// The units a mesh file records in its header (photosolid writes them in

@@ -58,7 +58,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
             format!("end of file after {} bytes", bytes.len()),
         ));
     }
-    let n = u32::from_le_bytes(bytes[80..84].try_into().expect("4 bytes")) as usize;
+    let n = super::le_u32(bytes, 80) as usize;
     let want = 84 + 50 * n;
     if bytes.len() != want {
         return Err(MeshFileError::at_byte(
@@ -75,8 +75,7 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
         let mut t = [0u32; 3];
         for (k, v) in t.iter_mut().enumerate() {
             let o = 12 + 12 * k;
-            let p: [f32; 3] =
-                [0, 1, 2].map(|j| f32::from_le_bytes(rec[o + 4 * j..o + 4 * j + 4].try_into().expect("4 bytes")) + 0.0);
+            let p: [f32; 3] = [0, 1, 2].map(|j| super::le_f32(rec, o + 4 * j) + 0.0);
             *v = *index.entry(p.map(f32::to_bits)).or_insert_with(|| {
                 positions.push(p);
                 positions.len() as u32 - 1
