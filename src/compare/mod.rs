@@ -326,7 +326,8 @@ pub struct ReconResult {
     pub bytes: usize,
     /// Hausdorff distance (attained), in `units`: symmetric between the
     /// solids for a field reference; for `withheld`, the largest distance
-    /// from a withheld measured point to the solid rebuilt without it.
+    /// from a withheld measured point to the solid rebuilt without it
+    /// (how: `withheld_distance`).
     pub hausdorff_cd: f64,
     /// Certified gap: H ≤ hausdorff_cd + hausdorff_bound_cd (0 for `withheld`: exact point distances).
     pub hausdorff_bound_cd: f64,
@@ -378,6 +379,14 @@ pub struct ReconResult {
     /// profiles of two solids of revolution (see the module docs); absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub profile_segments: Option<usize>,
+    /// `withheld` reference only: how the distance from a withheld point to
+    /// the rebuilt solid was measured: `surface` (searched on the solid of a
+    /// continuous field, [`crate::metrics::nearest`]), `mesh` (exact to the
+    /// adaptive mesh of a field that may jump, whose solid has walls, or to
+    /// the measured solid), `profile` (a solid of revolution's meridian), or
+    /// `origin` (kept data all zero); several joined by `+` when folds differ.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub withheld_distance: Option<String>,
     /// The largest deviation of this row's adaptive solid (or profile) from
     /// its field at the tested points, in `units`; absent for a fixed grid
     /// or the measured solid. Above `solid_tolerance_cd` where the field
@@ -440,6 +449,7 @@ impl ReconResult {
             time_per_sample_ns: time_ns,
             triangles,
             profile_segments: None,
+            withheld_distance: None,
             solid_deviation_cd: None,
             solid_tolerance_reached: None,
             pareto: false,

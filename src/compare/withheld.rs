@@ -14,7 +14,10 @@ use super::{mark_pareto, own_or_grid_solid, CompareOptions, Comparison, Distance
 use crate::error::ModelError;
 use crate::metrics::hausdorff::distances;
 use crate::metrics::profile::{self, Profile};
-use crate::metrics::{radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, OneSided};
+use crate::metrics::{
+    distances_to_solid, radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, NearestSearch,
+    OneSided,
+};
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField};
 use crate::reconstruct::{eval_all, kfold};
@@ -78,6 +81,12 @@ pub(super) fn compare_withheld(
         let mut triangles = 0;
         let mut deviation: Option<f64> = None;
         let mut segments: Option<usize> = None;
+        let mut methods: Vec<&str> = Vec::new();
+        let mut method = |m: &'static str| {
+            if !methods.contains(&m) {
+                methods.push(m);
+            }
+        };
         for (fold, (set, m)) in folds.iter().zip(&sets) {
             let points: Vec<DVec3> = set
                 .directions
@@ -95,6 +104,7 @@ pub(super) fn compare_withheld(
             };
             match &recs {
                 None => {
+                    method("origin");
                     recon_all.extend(std::iter::repeat_n(0.0, set.len()));
                     dist_all.extend(m.iter().map(|v| v.abs()));
                 }
@@ -112,11 +122,20 @@ pub(super) fn compare_withheld(
                         if let Some(d) = dev {
                             deviation = Some(deviation.map_or(d, |x| x.max(d)));
                         }
+                        method("profile");
                         let own = Profile::of_field(&*field, &g);
                         segments = segments.max(Some(own.n_segments()));
                         dist_all.extend(profile::distances_3d(&points, &own));
                         continue;
                     }
+                    // Any other field: the distance to its solid, searched on the
+                    // solid itself (metrics::nearest); only the measured solid is a mesh.
+                    if r != Recon::Measured && field.is_continuous() {
+                        method("surface");
+                        dist_all.extend(distances_to_solid(&*field, &points, &NearestSearch::default()));
+                        continue;
+                    }
+                    method("mesh");
                     match own_or_grid_solid(recs, r, &*field, &fold.kept, &refinement, &row_progress) {
                         Ok((solid, dev)) => {
                             if let Some(d) = dev {
@@ -167,6 +186,7 @@ pub(super) fn compare_withheld(
         row.solid_deviation_cd = deviation;
         row.solid_tolerance_reached = deviation.zip(solid_tol_cd).map(|(d, t)| d <= t);
         row.profile_segments = segments;
+        row.withheld_distance = Some(methods.join("+"));
         results.push(row);
     }
     progress(opts.recons.len(), opts.recons.len(), "done");

@@ -137,6 +137,10 @@ impl IntensityField for Lobes {
     fn bytes(&self) -> usize {
         self.lobes.len() * LOBE_BYTES
     }
+    /// `max(0, t)^p` is continuous for p > 0; p = 0 is a hemisphere's step.
+    fn is_continuous(&self) -> bool {
+        self.lobes.iter().all(|l| l.exponent > 0.0 || l.weight_cd == 0.0)
+    }
 }
 
 /// The data of a lobe fit: unit directions, magnitudes `I / I_max` and

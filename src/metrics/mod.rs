@@ -3,12 +3,14 @@
 pub mod bvh;
 pub mod cost;
 pub mod hausdorff;
+pub mod nearest;
 pub mod profile;
 pub mod radial;
 
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
 pub use hausdorff::{hausdorff, hausdorff_bvh, one_sided, Hausdorff, MeshRef, OneSided};
+pub use nearest::{distance_to_solid, distances_to_solid, NearestSearch};
 pub use radial::{
     field_radial_errors, radial_errors, refine_max, DirectionSet, MaxRefinement, RadialErrors, RefinedMax,
     MAX_REFINEMENT, ZOTTI_C,

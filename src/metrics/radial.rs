@@ -243,7 +243,7 @@ struct Climb {
 
 /// Unit tangents along +C and +γ at the unit direction `w` (any orthonormal
 /// pair at a pole, where C is undefined).
-fn tangents(w: DVec3) -> (DVec3, DVec3) {
+pub(super) fn tangents(w: DVec3) -> (DVec3, DVec3) {
     let rho = (w.x * w.x + w.y * w.y).sqrt();
     if rho < 1e-9 {
         return w.any_orthonormal_pair();

@@ -84,6 +84,15 @@ pub trait IntensityField: Sync {
     /// light parameters), not counting what it borrows from its source data
     /// when that data is needed anyway (documented per implementation).
     fn bytes(&self) -> usize;
+
+    /// Whether the field is known to be continuous on the sphere. A field
+    /// that may jump (a nearest lookup, a spot's cut-off, a crop's edge: the
+    /// default, `false`) has a solid with walls at its jumps, which a search
+    /// on the surface ([`crate::metrics::nearest`]) does not see: distances
+    /// to it are measured on a mesh of the solid instead.
+    fn is_continuous(&self) -> bool {
+        false
+    }
 }
 
 impl<F: Fn(f64, f64) -> f64 + Sync> IntensityField for F {
@@ -125,6 +134,9 @@ impl IntensityField for Borrowed<'_> {
     }
     fn bytes(&self) -> usize {
         self.0.bytes()
+    }
+    fn is_continuous(&self) -> bool {
+        self.0.is_continuous()
     }
 }
 

@@ -410,6 +410,9 @@ impl IntensityField for StoredTexture {
     fn bytes(&self) -> usize {
         self.texel_bytes()
     }
+    fn is_continuous(&self) -> bool {
+        !matches!(self.lookup, Lookup::Nearest) && !matches!(self.filter, Filter::Nearest)
+    }
 }
 
 impl Rendered {
@@ -440,6 +443,9 @@ impl IntensityField for Rendered {
     }
     fn bytes(&self) -> usize {
         self.data.len() * std::mem::size_of::<f32>()
+    }
+    fn is_continuous(&self) -> bool {
+        !matches!(self.filter, Filter::Nearest)
     }
 }
 

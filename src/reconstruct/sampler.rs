@@ -110,4 +110,7 @@ impl IntensityField for Sampler<'_> {
     fn bytes(&self) -> usize {
         self.texture.bytes()
     }
+    fn is_continuous(&self) -> bool {
+        !matches!(self.filter, Filter::Nearest)
+    }
 }

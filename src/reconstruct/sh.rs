@@ -407,4 +407,8 @@ impl IntensityField for ShField {
         };
         (self.degree + 1) * (self.degree + 1) * per
     }
+    /// A finite sum of harmonics, clamped at 0: continuous.
+    fn is_continuous(&self) -> bool {
+        true
+    }
 }

@@ -33,7 +33,8 @@ fn hausdorff_meaning(c: &Comparison) -> String {
     } else {
         format!(
             "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
-             (no bound to certify); radial max over the same points",
+             (no bound to certify; searched on the solid itself for continuous reconstructions, to the mesh for the \
+             measured solid and those that jump); radial max over the same points",
             c.n_directions
         )
     }

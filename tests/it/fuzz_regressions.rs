@@ -94,8 +94,16 @@ fn compare_with_defaults_does_bounded_work_and_says_what_it_reached() {
             row.name,
             row.triangles
         );
+        // Continuous fields are measured on their surface: no solid, no deviation.
+        let method = row.withheld_distance.as_deref();
+        assert_eq!(
+            method == Some("surface"),
+            !["measured", "nearest", "fitted-gl"].contains(&row.name.as_str()),
+            "{}: {method:?}",
+            row.name
+        );
         match row.solid_deviation_cd {
-            None => assert_eq!(row.name, "measured"),
+            None => assert!(row.name == "measured" || method == Some("surface"), "{}", row.name),
             // Honest: reached exactly when the deviation reached is within the tolerance.
             Some(dev) => {
                 assert_eq!(row.solid_tolerance_reached, Some(dev <= tol), "{}", row.name);

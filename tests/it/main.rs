@@ -30,6 +30,7 @@ mod holdout_peers;
 mod ies;
 mod ldt;
 mod mesh_files;
+mod nearest;
 mod photometry;
 mod plots;
 mod plots_legible;
