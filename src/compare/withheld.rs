@@ -20,8 +20,108 @@ use crate::metrics::{
 };
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField};
-use crate::reconstruct::{eval_all, kfold};
+use crate::reconstruct::{eval_all, kfold, Fold};
 use crate::registry::{Recon, Reconstructions};
+use crate::solid::Refinement;
+
+/// What one row gathers over the folds: each withheld point's
+/// reconstructed value and distance (cd), and how the distances were measured.
+#[derive(Default)]
+struct RowDistances {
+    /// The rebuilt field at each withheld direction, cd.
+    recon: Vec<f64>,
+    /// Each withheld point's distance to the rebuilt solid, cd.
+    dist: Vec<f64>,
+    /// The most triangles of a rebuilt solid (0 when none was meshed).
+    triangles: usize,
+    /// The largest deviation of a meshed solid or profile from its field, cd.
+    deviation: Option<f64>,
+    /// The most segments of a meridian profile.
+    segments: Option<usize>,
+    /// How the distances were measured (`ReconResult::withheld_distance`), in order of first use.
+    methods: Vec<&'static str>,
+}
+
+impl RowDistances {
+    fn method(&mut self, m: &'static str) {
+        if !self.methods.contains(&m) {
+            self.methods.push(m);
+        }
+    }
+
+    fn deviate(&mut self, dev: Option<f64>) {
+        if let Some(d) = dev {
+            self.deviation = Some(self.deviation.map_or(d, |x| x.max(d)));
+        }
+    }
+
+    /// Rebuild `r` from `fold`'s kept data and measure the withheld points
+    /// of `set` (measured values `m`, cd) against it.
+    #[allow(clippy::too_many_arguments)]
+    fn add_fold(
+        &mut self,
+        r: Recon,
+        fold: &Fold,
+        set: &DirectionSet,
+        m: &[f64],
+        rotational: bool,
+        refinement: &Refinement,
+        progress: &Progress<'_>,
+    ) -> Result<(), ModelError> {
+        let points: Vec<DVec3> = set
+            .directions
+            .iter()
+            .zip(m)
+            .map(|(&(c, g), &v)| v * direction(c, g))
+            .collect();
+        // Kept data that is zero everywhere reconstructs to nothing: the
+        // solid is the origin, every withheld point is |p| away from it.
+        if fold.kept.max_cd() <= 0.0 {
+            self.method("origin");
+            self.recon.extend(std::iter::repeat_n(0.0, set.len()));
+            self.dist.extend(m.iter().map(|v| v.abs()));
+            return Ok(());
+        }
+        let recs = Reconstructions::new(fold.kept.clone(), &[r])?;
+        let field = recs.field(r)?;
+        self.recon.extend(eval_all(&*field, &set.directions));
+        // Rotational data and a C-independent reconstruction: a solid of
+        // revolution, the distances from its profile (metrics::profile).
+        let start = crate::solid::SolidGrid::knots(&fold.kept)?;
+        if rotational && r != Recon::Measured && profile::is_c_independent(&*field, start.gamma_angles_deg()) {
+            let (g, dev) = refinement.profile_gammas(&*field, &fold.kept)?;
+            self.deviate(dev);
+            self.method("profile");
+            let own = Profile::of_field(&*field, &g);
+            self.segments = self.segments.max(Some(own.n_segments()));
+            self.dist.extend(profile::distances_3d(&points, &own));
+            return Ok(());
+        }
+        // Any other continuous field: the distance to its solid, searched on
+        // the solid itself (metrics::nearest). The measured solid is a mesh,
+        // and a field that may jump has walls only a mesh holds.
+        if r != Recon::Measured && field.is_continuous() {
+            self.method("surface");
+            self.dist
+                .extend(distances_to_solid(&*field, &points, &NearestSearch::default()));
+            return Ok(());
+        }
+        self.method("mesh");
+        match own_or_grid_solid(&recs, r, &*field, &fold.kept, refinement, progress) {
+            Ok((solid, dev)) => {
+                self.deviate(dev);
+                self.triangles = self.triangles.max(solid.n_triangles());
+                let pos = solid.positions_f64();
+                self.dist
+                    .extend(distances(&points, &Bvh::build(&pos, solid.triangles())));
+            }
+            // A reconstruction that is zero everywhere (a fit to dark data) has no solid either.
+            Err(ModelError::AllZero(_)) => self.dist.extend(m.iter().map(|v| v.abs())),
+            Err(e) => return Err(e),
+        }
+        Ok(())
+    }
+}
 
 /// Every reconstruction of `a` against its own withheld measurements.
 pub(super) fn compare_withheld(
@@ -76,82 +176,18 @@ pub(super) fn compare_withheld(
     for (i, &r) in opts.recons.iter().enumerate() {
         progress(i, opts.recons.len(), &r.to_string());
         let row_progress = |_: usize, _: usize, what: &str| progress(i, opts.recons.len(), &format!("{r}: {what}"));
-        let mut recon_all = Vec::with_capacity(m_all.len());
-        let mut dist_all = Vec::with_capacity(m_all.len());
-        let mut triangles = 0;
-        let mut deviation: Option<f64> = None;
-        let mut segments: Option<usize> = None;
-        let mut methods: Vec<&str> = Vec::new();
-        let mut method = |m: &'static str| {
-            if !methods.contains(&m) {
-                methods.push(m);
-            }
-        };
+        let mut row_acc = RowDistances::default();
         for (fold, (set, m)) in folds.iter().zip(&sets) {
-            let points: Vec<DVec3> = set
-                .directions
-                .iter()
-                .zip(m)
-                .map(|(&(c, g), &v)| v * direction(c, g))
-                .collect();
-            // Kept data that is zero everywhere reconstructs to nothing: the
-            // solid is the origin, every withheld point is |p| away from it.
-            let kept_zero = fold.kept.max_cd() <= 0.0;
-            let recs = if kept_zero {
-                None
-            } else {
-                Some(Reconstructions::new(fold.kept.clone(), &[r])?)
-            };
-            match &recs {
-                None => {
-                    method("origin");
-                    recon_all.extend(std::iter::repeat_n(0.0, set.len()));
-                    dist_all.extend(m.iter().map(|v| v.abs()));
-                }
-                Some(recs) => {
-                    let field = recs.field(r)?;
-                    recon_all.extend(eval_all(&*field, &set.directions));
-                    // Rotational data and a C-independent reconstruction: a solid of
-                    // revolution, the distances from its profile (metrics::profile).
-                    let start = crate::solid::SolidGrid::knots(&fold.kept)?;
-                    if rotational
-                        && r != Recon::Measured
-                        && profile::is_c_independent(&*field, start.gamma_angles_deg())
-                    {
-                        let (g, dev) = refinement.profile_gammas(&*field, &fold.kept)?;
-                        if let Some(d) = dev {
-                            deviation = Some(deviation.map_or(d, |x| x.max(d)));
-                        }
-                        method("profile");
-                        let own = Profile::of_field(&*field, &g);
-                        segments = segments.max(Some(own.n_segments()));
-                        dist_all.extend(profile::distances_3d(&points, &own));
-                        continue;
-                    }
-                    // Any other field: the distance to its solid, searched on the
-                    // solid itself (metrics::nearest); only the measured solid is a mesh.
-                    if r != Recon::Measured && field.is_continuous() {
-                        method("surface");
-                        dist_all.extend(distances_to_solid(&*field, &points, &NearestSearch::default()));
-                        continue;
-                    }
-                    method("mesh");
-                    match own_or_grid_solid(recs, r, &*field, &fold.kept, &refinement, &row_progress) {
-                        Ok((solid, dev)) => {
-                            if let Some(d) = dev {
-                                deviation = Some(deviation.map_or(d, |x| x.max(d)));
-                            }
-                            triangles = triangles.max(solid.n_triangles());
-                            let pos = solid.positions_f64();
-                            dist_all.extend(distances(&points, &Bvh::build(&pos, solid.triangles())));
-                        }
-                        // A reconstruction that is zero everywhere (a fit to dark data) has no solid either.
-                        Err(ModelError::AllZero(_)) => dist_all.extend(m.iter().map(|v| v.abs())),
-                        Err(e) => return Err(e),
-                    }
-                }
-            }
+            row_acc.add_fold(r, fold, set, m, rotational, &refinement, &row_progress)?;
         }
+        let RowDistances {
+            recon: recon_all,
+            dist: dist_all,
+            triangles,
+            deviation,
+            segments,
+            methods,
+        } = row_acc;
         let rad = radial_errors(&pooled, &m_all, &recon_all, i_max, opts.zotti_c);
         let n = dist_all.len().max(1) as f64;
         let h = dist_all.iter().copied().fold(0.0, f64::max);
