@@ -5,6 +5,7 @@ pub mod cost;
 pub mod hausdorff;
 pub mod profile;
 pub mod radial;
+mod refine;
 
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
