@@ -279,11 +279,7 @@ impl<'a, I: Iterator<Item = (usize, &'a str)>> Scalars for AsciiBody<I> {
 /// The vertex positions and the faces (fanned into triangles) of the body
 /// (`body_len` bytes), element by element; other elements and properties
 /// are read past.
-fn read_elements(
-    elements: &[Element],
-    body_len: usize,
-    scalars: &mut impl Scalars,
-) -> Result<Geometry, MeshFileError> {
+fn read_elements(elements: &[Element], body_len: usize, scalars: &mut impl Scalars) -> Result<Geometry, MeshFileError> {
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
     for (name, count, props) in elements {
