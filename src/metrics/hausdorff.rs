@@ -407,6 +407,13 @@ mod tests {
     }
 
     #[test]
+    fn queued_triangles_stay_small() {
+        // Issue 15: a mesh's own triangles wait as 16-byte seeds, not 120-byte cells.
+        assert_eq!(std::mem::size_of::<ByUpper<u32>>(), 16);
+        assert_eq!(std::mem::size_of::<ByUpper<Cell>>(), 120);
+    }
+
+    #[test]
     fn concentric_spheres_give_the_radius_difference() {
         let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
         let (p2, t2) = sphere(12.0, [0.0; 3], 50, 100);
