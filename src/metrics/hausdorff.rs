@@ -25,13 +25,12 @@
 //! vertex values (weight 1/4) and centroid value (weight 3/4); they are
 //! estimates, not certified.
 
-use std::collections::BinaryHeap;
-
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
 
 use super::bvh::Bvh;
+use super::refine::{ByUpper, Refine, Refinement};
 
 /// A borrowed triangle mesh.
 #[derive(Debug, Clone, Copy)]
@@ -80,29 +79,13 @@ pub struct Hausdorff {
 /// must not run on for minutes.
 pub const MAX_REFINEMENT_QUERIES: usize = 2_000_000;
 
+/// A triangle of A, or a piece of one, under refinement: its vertices, their
+/// distances to B and their nearest triangles of B (`u32::MAX`: none).
 #[derive(Debug, Clone, Copy)]
 struct Cell {
-    ub: f64,
     v: [DVec3; 3],
     f: [f64; 3],
     k: [u32; 3],
-}
-
-impl PartialEq for Cell {
-    fn eq(&self, o: &Self) -> bool {
-        self.ub == o.ub
-    }
-}
-impl Eq for Cell {}
-impl PartialOrd for Cell {
-    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Cell {
-    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
-        self.ub.total_cmp(&o.ub)
-    }
 }
 
 /// The smaller of the Lipschitz bound and the convexity bound over each
@@ -168,32 +151,6 @@ pub fn nearest(points: &[DVec3], b: &Bvh) -> Vec<(f64, u32)> {
     out
 }
 
-/// A triangle of A waiting in the refinement queue, by index: 16 bytes where
-/// a [`Cell`] holds 120, so the queue of a mesh's own triangles stays small
-/// (issue 15: peak memory of `compare`).
-#[derive(Debug, Clone, Copy)]
-struct TriCell {
-    ub: f64,
-    t: u32,
-}
-
-impl PartialEq for TriCell {
-    fn eq(&self, o: &Self) -> bool {
-        self.ub == o.ub
-    }
-}
-impl Eq for TriCell {}
-impl PartialOrd for TriCell {
-    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for TriCell {
-    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
-        self.ub.total_cmp(&o.ub)
-    }
-}
-
 /// Triangles per parallel chunk of the first passes; fixed so that the sums
 /// are added in the same order on every run and machine.
 const CHUNK: usize = 4096;
@@ -208,146 +165,150 @@ struct Moments {
     max: f64,
 }
 
+/// A's triangles against B's BVH, as the cells of a [`Refinement`]. A seed is
+/// a whole triangle of A by index: 16 bytes queued where a [`Cell`] takes 120,
+/// so the queue of a mesh's own triangles stays small (issue 15: peak memory
+/// of `compare`); only the triangles refined first become cells.
+struct MeshCells<'a> {
+    a: MeshRef<'a>,
+    /// Distance to B and nearest triangle of B of each vertex of A.
+    near: &'a [(f64, u32)],
+    b: &'a Bvh,
+}
+
+impl MeshCells<'_> {
+    /// The positions of triangle `t`'s vertices.
+    fn vertices(&self, t: &[u32; 3]) -> [DVec3; 3] {
+        t.map(|i| self.a.positions[i as usize])
+    }
+
+    /// The distances to B of triangle `t`'s vertices.
+    fn distances(&self, t: &[u32; 3]) -> [f64; 3] {
+        t.map(|i| self.near[i as usize].0)
+    }
+
+    /// Each chunk's [`Moments`] and the nearest B triangle of each of its
+    /// triangles' centroids.
+    ///
+    /// Mean and RMS: vertex values alone can all be 0 when A's vertices lie on
+    /// B (an interpolating reconstruction against the measured points), so
+    /// each triangle's centroid is queried too (warm-started from its
+    /// vertices) and weighted 3/4 against the vertices' 1/4. This pass comes
+    /// before any triangle is queued: the centroids raise the lower bound, so
+    /// fewer triangles need to wait for refinement.
+    fn centroid_pass(&self) -> Vec<(Moments, Vec<u32>)> {
+        self.a
+            .triangles
+            .par_chunks(CHUNK)
+            .map(|chunk| {
+                let mut m = Moments::default();
+                let mut centroid_nearest = Vec::with_capacity(chunk.len());
+                for t in chunk {
+                    let (v, f) = (self.vertices(t), self.distances(t));
+                    let c = (v[0] + v[1] + v[2]) / 3.0;
+                    let hint = (0..3).map(|i| f[i] + c.distance(v[i])).fold(f64::INFINITY, f64::min);
+                    let (d2, kc) = self.b.nearest_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2));
+                    let d = d2.sqrt();
+                    centroid_nearest.push(kc);
+                    let ar = area(&v);
+                    m.area += ar;
+                    m.sum += 0.25 * ar * (f[0] + f[1] + f[2]) / 3.0 + 0.75 * ar * d;
+                    m.sum2 += 0.25 * ar * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 3.0 + 0.75 * ar * d * d;
+                    m.max = m.max.max(d);
+                }
+                (m, centroid_nearest)
+            })
+            .collect()
+    }
+
+    /// Queues as seeds the triangles of A whose upper bound needs refining
+    /// (bounded over their vertices' and centroid's nearest B triangles),
+    /// in parallel chunks; the rest are pruned.
+    fn queue_triangles(&self, moments: &[(Moments, Vec<u32>)], refinement: &mut Refinement<Cell, u32>) {
+        let r = &*refinement;
+        let queued: Vec<(Vec<ByUpper<u32>>, f64)> = self
+            .a
+            .triangles
+            .par_chunks(CHUNK)
+            .zip(moments.par_iter())
+            .enumerate()
+            .map(|(ci, (chunk, (_, centroid_nearest)))| {
+                let mut keep = Vec::new();
+                let mut pruned = 0.0f64;
+                for (j, t) in chunk.iter().enumerate() {
+                    let k = t.map(|i| self.near[i as usize].1);
+                    let candidates = [k[0], k[1], k[2], centroid_nearest[j]];
+                    let ub = upper_bound(&self.vertices(t), &self.distances(t), &candidates, self.b);
+                    if r.needs_refining(ub) {
+                        keep.push(ByUpper {
+                            ub,
+                            item: (ci * CHUNK + j) as u32,
+                        });
+                    } else {
+                        pruned = pruned.max(ub);
+                    }
+                }
+                (keep, pruned)
+            })
+            .collect();
+        refinement.reserve_seeds(queued.iter().map(|q| q.0.len()).sum());
+        for (keep, pruned) in queued {
+            refinement.add_seeds(keep, pruned);
+        }
+    }
+}
+
+impl Refine for MeshCells<'_> {
+    type Cell = Cell;
+    type Seed = u32;
+    type Children = [ByUpper<Cell>; 4];
+    const QUERIES_PER_SPLIT: usize = 3;
+
+    fn expand(&self, t: u32) -> Cell {
+        let t = &self.a.triangles[t as usize];
+        Cell {
+            v: self.vertices(t),
+            f: self.distances(t),
+            k: t.map(|i| self.near[i as usize].1),
+        }
+    }
+
+    fn split(&self, c: &Cell, lb: &mut f64) -> Self::Children {
+        split_cell(c, self.b, lb).map(|(v, f, k)| ByUpper {
+            ub: upper_bound(&v, &f, &k, self.b),
+            item: Cell { v, f, k },
+        })
+    }
+}
+
 /// One-sided Hausdorff distance h(A, B) to within `tolerance` (same unit as positions).
 pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
     let near = nearest(a.positions, b);
-    let tol = tolerance.max(0.0);
-    let vertices = |t: &[u32; 3]| t.map(|i| a.positions[i as usize]);
-    // Mean and RMS: vertex values alone can all be 0 when A's vertices lie on
-    // B (an interpolating reconstruction against the measured points), so
-    // each triangle's centroid is queried too (warm-started from its
-    // vertices) and weighted 3/4 against the vertices' 1/4. This pass comes
-    // before any triangle is queued: the centroids raise the lower bound, so
-    // fewer triangles need to wait for refinement.
-    let moments: Vec<(Moments, Vec<u32>)> = a
-        .triangles
-        .par_chunks(CHUNK)
-        .map(|chunk| {
-            let mut m = Moments::default();
-            let mut centroid_nearest = Vec::with_capacity(chunk.len());
-            for t in chunk {
-                let v = vertices(t);
-                let f = t.map(|i| near[i as usize].0);
-                let c = (v[0] + v[1] + v[2]) / 3.0;
-                let hint = (0..3).map(|i| f[i] + c.distance(v[i])).fold(f64::INFINITY, f64::min);
-                let (d2, kc) = b.nearest_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2));
-                let d = d2.sqrt();
-                centroid_nearest.push(kc);
-                let ar = area(&v);
-                m.area += ar;
-                m.sum += 0.25 * ar * (f[0] + f[1] + f[2]) / 3.0 + 0.75 * ar * d;
-                m.sum2 += 0.25 * ar * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / 3.0 + 0.75 * ar * d * d;
-                m.max = m.max.max(d);
-            }
-            (m, centroid_nearest)
-        })
-        .collect();
-    let mut lb = near.iter().map(|x| x.0).fold(0.0, f64::max);
-    let (mut sum, mut sum2, mut total_area) = (0.0, 0.0, 0.0);
+    let cells = MeshCells { a, near: &near, b };
+    let moments = cells.centroid_pass();
+    let mut total = Moments::default();
     for (m, _) in &moments {
-        total_area += m.area;
-        sum += m.sum;
-        sum2 += m.sum2;
-        lb = lb.max(m.max);
+        total.area += m.area;
+        total.sum += m.sum;
+        total.sum2 += m.sum2;
+        total.max = total.max.max(m.max);
     }
-    let mut queries = near.len() + a.triangles.len();
-    // The largest upper bound of every cell dropped without refinement: the
-    // certificate must cover them too (each is within the tolerance of the
-    // lower bound at the time it was dropped).
-    let mut pruned_ub = 0.0f64;
-    let queued: Vec<(Vec<TriCell>, f64)> = a
-        .triangles
-        .par_chunks(CHUNK)
-        .zip(moments.par_iter())
-        .enumerate()
-        .map(|(ci, (chunk, (_, centroid_nearest)))| {
-            let mut keep = Vec::new();
-            let mut pruned = 0.0f64;
-            for (j, t) in chunk.iter().enumerate() {
-                let f = t.map(|i| near[i as usize].0);
-                let k = t.map(|i| near[i as usize].1);
-                let candidates = [k[0], k[1], k[2], centroid_nearest[j]];
-                let ub = upper_bound(&vertices(t), &f, &candidates, b);
-                if ub > lb + tol {
-                    keep.push(TriCell {
-                        ub,
-                        t: (ci * CHUNK + j) as u32,
-                    });
-                } else {
-                    pruned = pruned.max(ub);
-                }
-            }
-            (keep, pruned)
-        })
-        .collect();
-    let mut tri_heap = BinaryHeap::with_capacity(queued.iter().map(|q| q.0.len()).sum());
-    for (keep, pruned) in queued {
-        tri_heap.extend(keep);
-        pruned_ub = pruned_ub.max(pruned);
-    }
-    let mut heap: BinaryHeap<Cell> = BinaryHeap::new();
-    let mut extra = 0usize;
-    let mut converged = true;
-    let ub_final = loop {
-        let top = match (tri_heap.peek(), heap.peek()) {
-            (None, None) => break lb,
-            (Some(t), None) => t.ub,
-            (None, Some(c)) => c.ub,
-            (Some(t), Some(c)) => t.ub.max(c.ub),
-        };
-        if top <= lb + tol {
-            break top.max(lb);
-        }
-        if extra >= MAX_REFINEMENT_QUERIES {
-            converged = false;
-            break top.max(lb);
-        }
-        // Refine the cell whose bound is `top`: a split cell or a whole triangle.
-        let split = if heap.peek().is_some_and(|c| c.ub >= top) {
-            heap.pop()
-        } else {
-            None
-        };
-        let c = match split {
-            Some(c) => c,
-            None => {
-                // `top` came from one of the heaps, so this pops.
-                let Some(TriCell { ub, t }) = tri_heap.pop() else {
-                    break top.max(lb);
-                };
-                let t = &a.triangles[t as usize];
-                Cell {
-                    ub,
-                    v: vertices(t),
-                    f: t.map(|i| near[i as usize].0),
-                    k: t.map(|i| near[i as usize].1),
-                }
-            }
-        };
-        let children = split_cell(&c, b, &mut lb);
-        extra += 3;
-        for (v, f, k) in children {
-            let ub = upper_bound(&v, &f, &k, b);
-            if ub > lb + tol {
-                heap.push(Cell { ub, v, f, k });
-            } else {
-                pruned_ub = pruned_ub.max(ub);
-            }
-        }
-    };
-    queries += extra;
-    let (mean, rms) = if total_area > 0.0 {
-        (sum / total_area, (sum2 / total_area).sqrt())
+    let lb = near.iter().map(|x| x.0).fold(0.0, f64::max).max(total.max);
+    let mut refinement = Refinement::new(lb, tolerance);
+    cells.queue_triangles(&moments, &mut refinement);
+    let refined = refinement.run(&cells, MAX_REFINEMENT_QUERIES);
+    let (mean, rms) = if total.area > 0.0 {
+        (total.sum / total.area, (total.sum2 / total.area).sqrt())
     } else {
         (0.0, 0.0)
     };
     OneSided {
-        value: lb,
-        bound: (ub_final.max(pruned_ub) - lb).max(0.0),
+        value: refined.lb,
+        bound: (refined.ub - refined.lb).max(0.0),
         mean,
         rms,
-        queries,
-        converged,
+        queries: near.len() + a.triangles.len() + refined.queries,
+        converged: refined.converged,
     }
 }
 
@@ -443,6 +404,13 @@ mod tests {
             }
         }
         (pos, t)
+    }
+
+    #[test]
+    fn queued_triangles_stay_small() {
+        // Issue 15: a mesh's own triangles wait as 16-byte seeds, not 120-byte cells.
+        assert_eq!(std::mem::size_of::<ByUpper<u32>>(), 16);
+        assert_eq!(std::mem::size_of::<ByUpper<Cell>>(), 120);
     }
 
     #[test]

@@ -6,6 +6,7 @@ pub mod hausdorff;
 pub mod nearest;
 pub mod profile;
 pub mod radial;
+mod refine;
 
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};

@@ -24,12 +24,13 @@
 //! are halved, largest upper bound first, until it is within the tolerance
 //! of the largest value found.
 
-use std::collections::BinaryHeap;
+use std::convert::Infallible;
 
 use glam::DVec2;
 use rayon::prelude::*;
 
 use super::hausdorff::{Hausdorff, OneSided, MAX_REFINEMENT_QUERIES};
+use super::refine::{ByUpper, Refine, Refinement};
 use crate::model::frame::sin_cos_deg;
 use crate::model::IntensityField;
 
@@ -164,30 +165,50 @@ fn nearest(x: DVec2, b: &Profile) -> (f64, u32) {
     (best.0.sqrt(), best.1)
 }
 
+/// A segment of A, or a piece of one, under refinement: its ends, their
+/// distances to B and their nearest segments of B (`u32::MAX`: none).
 #[derive(Debug, Clone, Copy)]
 struct Seg {
-    ub: f64,
     v: [DVec2; 2],
     f: [f64; 2],
     k: [u32; 2],
 }
-impl PartialEq for Seg {
-    fn eq(&self, o: &Self) -> bool {
-        self.ub == o.ub
-    }
+
+/// B's segments, against which A's segments are refined (no seeds: a
+/// profile's segments are few and queued as cells at once).
+struct ProfileCells<'a> {
+    b: &'a Profile,
 }
-impl Eq for Seg {}
-impl PartialOrd for Seg {
-    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
-        Some(self.cmp(o))
+
+impl Refine for ProfileCells<'_> {
+    type Cell = Seg;
+    type Seed = Infallible;
+    type Children = [ByUpper<Seg>; 2];
+    const QUERIES_PER_SPLIT: usize = 1;
+
+    fn expand(&self, seed: Infallible) -> Seg {
+        match seed {}
     }
-}
-impl Ord for Seg {
-    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
-        self.ub.total_cmp(&o.ub)
+
+    /// The two halves of `s`, its midpoint queried.
+    fn split(&self, s: &Seg, lb: &mut f64) -> Self::Children {
+        let m = 0.5 * (s.v[0] + s.v[1]);
+        let (fm, km) = nearest(m, self.b);
+        *lb = lb.max(fm);
+        [
+            ([s.v[0], m], [s.f[0], fm], [s.k[0], km]),
+            ([m, s.v[1]], [fm, s.f[1]], [km, s.k[1]]),
+        ]
+        .map(|(v, f, k)| ByUpper {
+            ub: upper_bound(&v, &f, &k, self.b),
+            item: Seg { v, f, k },
+        })
     }
 }
 
+/// Upper bound of the distance to B over the segment `v` (ends' distances
+/// `f`, nearest segments `k`): the Lipschitz bound or the convexity bound over
+/// either nearest segment, whichever is smaller.
 fn upper_bound(v: &[DVec2; 2], f: &[f64; 2], k: &[u32; 2], b: &Profile) -> f64 {
     let mut best = 0.5 * (f[0] + f[1] + v[0].distance(v[1]));
     for &kk in k {
@@ -205,7 +226,6 @@ fn upper_bound(v: &[DVec2; 2], f: &[f64; 2], k: &[u32; 2], b: &Profile) -> f64 {
 /// within `tolerance` (cd). Mean and RMS are weighted by the surface of
 /// revolution's area (2π ρ ds), from each segment's ends and midpoint.
 pub fn one_sided(a: &Profile, b: &Profile, tolerance: f64) -> OneSided {
-    let tol = tolerance.max(0.0);
     if a.n_segments() == 0 || b.n_segments() == 0 {
         let inf = f64::INFINITY;
         return OneSided {
@@ -223,11 +243,48 @@ pub fn one_sided(a: &Profile, b: &Profile, tolerance: f64) -> OneSided {
         .par_windows(2)
         .map(|w| nearest(0.5 * (w[0] + w[1]), b))
         .collect();
-    let mut lb = near.iter().chain(&mids).map(|x| x.0).fold(0.0, f64::max);
+    let lb = near.iter().chain(&mids).map(|x| x.0).fold(0.0, f64::max);
+    let mut refinement = Refinement::new(lb, tolerance);
+    queue_halves(a, b, &near, &mids, &mut refinement);
+    let refined = refinement.run(&ProfileCells { b }, MAX_REFINEMENT_QUERIES);
+    let (mean, rms) = mean_rms(a, &near, &mids);
+    OneSided {
+        value: refined.lb,
+        bound: (refined.ub - refined.lb).max(0.0),
+        mean,
+        rms,
+        queries: near.len() + mids.len() + refined.queries,
+        converged: refined.converged,
+    }
+}
+
+/// Queues both halves of each segment of A (the midpoint is known: `mids`),
+/// given its ends' and midpoint's distances and nearest segments of B.
+fn queue_halves(
+    a: &Profile,
+    b: &Profile,
+    near: &[(f64, u32)],
+    mids: &[(f64, u32)],
+    refinement: &mut Refinement<Seg, Infallible>,
+) {
+    for j in 0..a.n_segments() {
+        let (v0, v1) = (a.points[j], a.points[j + 1]);
+        let (f0, f1, fm) = (near[j].0, near[j + 1].0, mids[j].0);
+        let mid = 0.5 * (v0 + v1);
+        for (v, f, k) in [
+            ([v0, mid], [f0, fm], [near[j].1, mids[j].1]),
+            ([mid, v1], [fm, f1], [mids[j].1, near[j + 1].1]),
+        ] {
+            refinement.offer(upper_bound(&v, &f, &k, b), Seg { v, f, k });
+        }
+    }
+}
+
+/// Mean and RMS distance (cd) over the surface of revolution of A, weighted
+/// by its area 2π ρ ds: Simpson's rule on each segment from its ends' and
+/// midpoint's distances.
+fn mean_rms(a: &Profile, near: &[(f64, u32)], mids: &[(f64, u32)]) -> (f64, f64) {
     let (mut area, mut sum, mut sum2) = (0.0, 0.0, 0.0);
-    let mut heap = BinaryHeap::new();
-    let mut pruned = 0.0f64;
-    let mut queries = near.len() + mids.len();
     for j in 0..a.n_segments() {
         let (v0, v1) = (a.points[j], a.points[j + 1]);
         let (f0, f1, fm) = (near[j].0, near[j + 1].0, mids[j].0);
@@ -237,63 +294,11 @@ pub fn one_sided(a: &Profile, b: &Profile, tolerance: f64) -> OneSided {
         area += rm * len;
         sum += (f0 * r0 + 4.0 * fm * rm + f1 * r1) / 6.0 * len;
         sum2 += (f0 * f0 * r0 + 4.0 * fm * fm * rm + f1 * f1 * r1) / 6.0 * len;
-        // Each half separately: the midpoint is known.
-        let mid = 0.5 * (v0 + v1);
-        for (v, f, k) in [
-            ([v0, mid], [f0, fm], [near[j].1, mids[j].1]),
-            ([mid, v1], [fm, f1], [mids[j].1, near[j + 1].1]),
-        ] {
-            let ub = upper_bound(&v, &f, &k, b);
-            if ub > lb + tol {
-                heap.push(Seg { ub, v, f, k });
-            } else {
-                pruned = pruned.max(ub);
-            }
-        }
     }
-    let mut converged = true;
-    let mut extra = 0usize;
-    let top = loop {
-        let Some(top) = heap.peek().map(|s| s.ub) else {
-            break lb;
-        };
-        if top <= lb + tol {
-            break top.max(lb);
-        }
-        if extra >= MAX_REFINEMENT_QUERIES {
-            converged = false;
-            break top;
-        }
-        let Some(s) = heap.pop() else { break top };
-        let m = 0.5 * (s.v[0] + s.v[1]);
-        let (fm, km) = nearest(m, b);
-        extra += 1;
-        lb = lb.max(fm);
-        for (v, f, k) in [
-            ([s.v[0], m], [s.f[0], fm], [s.k[0], km]),
-            ([m, s.v[1]], [fm, s.f[1]], [km, s.k[1]]),
-        ] {
-            let ub = upper_bound(&v, &f, &k, b);
-            if ub > lb + tol {
-                heap.push(Seg { ub, v, f, k });
-            } else {
-                pruned = pruned.max(ub);
-            }
-        }
-    };
-    queries += extra;
-    let (mean, rms) = if area > 0.0 {
+    if area > 0.0 {
         (sum / area, (sum2 / area).sqrt())
     } else {
         (0.0, 0.0)
-    };
-    OneSided {
-        value: lb,
-        bound: (top.max(pruned) - lb).max(0.0),
-        mean,
-        rms,
-        queries,
-        converged,
     }
 }
 

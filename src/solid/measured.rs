@@ -121,9 +121,57 @@ pub fn measured_solid(d: &Distribution, units: Units) -> Result<Mesh, ModelError
 /// directions span no solid angle (a single γ angle, or only the poles) or
 /// the C-planes leave a gap of 180° or more (the rings cannot enclose the axis).
 pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOptions) -> Result<Mesh, ModelError> {
-    let bad = |axis: &'static str, reason: String| ModelError::Angles { axis, reason };
     let d = close_c_gaps(&d.with_averaged_poles())?;
-    // Full-circle planes (angle in degrees, stored plane index).
+    let planes = full_circle_planes(&d, opts)?;
+    if d.n_gamma() < 2 {
+        return Err(angles_error(
+            "gamma",
+            "a single γ angle spans no solid angle: there is no solid".into(),
+        ));
+    }
+    let peak = d.max_cd();
+    if peak.is_nan() || peak <= 0.0 {
+        return Err(ModelError::AllZero("photometric solid"));
+    }
+    let scale = units.units_per_cd(peak)?;
+    let rows = gamma_rows(d.gamma_angles_deg());
+    let split = cut_ring(&rows)?;
+    let dirs = Directions::new(planes, rows);
+    let (radius, unit_dir) = dirs.radii(&d, scale, peak)?;
+    let (positions, origin, vertex_of) = vertices(&radius, &unit_dir);
+    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(2 * dirs.n_dirs);
+    for lower in [true, false] {
+        dirs.triangulate_part(lower, split, &vertex_of, &mut triangles)?;
+    }
+    let info = SolidInfo {
+        kind: format!(
+            "measured solid: Delaunay triangulation of {} measured directions ({} C-planes x {} gamma rows, poles once), stereographic per part, stitched at gamma = {}",
+            dirs.n_dirs,
+            dirs.planes.len(),
+            dirs.rows.len(),
+            dirs.rows[split].0
+        ),
+        source: String::new(),
+        units,
+        units_per_cd: scale,
+    };
+    Mesh::finish(positions, triangles, origin, info)
+}
+
+/// A [`ModelError::Angles`] on `axis`.
+fn angles_error(axis: &'static str, reason: String) -> ModelError {
+    ModelError::Angles { axis, reason }
+}
+
+/// Whether γ `a` (degrees) is a pole.
+fn is_pole(a: f64) -> bool {
+    a <= ANGLE_EPS || a >= 180.0 - ANGLE_EPS
+}
+
+/// `d`'s full-circle planes (angle in degrees, stored plane index); a single
+/// plane expanded to [`MeasuredOptions::rotational_planes`]. Refused when two
+/// neighbours are 180° or more apart (they cannot enclose the axis).
+fn full_circle_planes(d: &Distribution, opts: &MeasuredOptions) -> Result<Vec<(f64, usize)>, ModelError> {
     let mut planes = d.full_planes();
     if planes.len() == 1 {
         let n = opts.rotational_planes.max(3);
@@ -141,25 +189,17 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
         })
         .fold(0.0, f64::max);
     if widest >= 180.0 - ANGLE_EPS {
-        return Err(bad(
+        return Err(angles_error(
             "C",
             format!("the C-planes leave a gap of {widest}°: the measured directions cannot enclose the axis"),
         ));
     }
-    if d.n_gamma() < 2 {
-        return Err(bad(
-            "gamma",
-            "a single γ angle spans no solid angle: there is no solid".into(),
-        ));
-    }
-    let peak = d.max_cd();
-    if peak.is_nan() || peak <= 0.0 {
-        return Err(ModelError::AllZero("photometric solid"));
-    }
-    let scale = units.units_per_cd(peak)?;
+    Ok(planes)
+}
 
-    // γ rows: (angle, Some(measured index) | None for an unmeasured, zero pole).
-    let g = d.gamma_angles_deg();
+/// γ rows from the measured angles `g` (degrees, ascending): (angle,
+/// Some(measured index) | None for an unmeasured, zero pole).
+fn gamma_rows(g: &[f64]) -> Vec<(f64, Option<usize>)> {
     let mut rows: Vec<(f64, Option<usize>)> = g.iter().copied().zip((0..g.len()).map(Some)).collect();
     if g[0] > ANGLE_EPS {
         rows.insert(0, (0.0, None));
@@ -167,103 +207,96 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
     if g[g.len() - 1] < 180.0 - ANGLE_EPS {
         rows.push((180.0, None));
     }
-    let nr = rows.len();
-    let is_pole = |a: f64| a <= ANGLE_EPS || a >= 180.0 - ANGLE_EPS;
-    // The cut ring: the inner row nearest the horizontal.
-    let split = (0..nr)
+    rows
+}
+
+/// The cut ring: the index of the inner row nearest the horizontal.
+fn cut_ring(rows: &[(f64, Option<usize>)]) -> Result<usize, ModelError> {
+    (0..rows.len())
         .filter(|&j| !is_pole(rows[j].0))
         .min_by(|&a, &b| (rows[a].0 - 90.0).abs().total_cmp(&(rows[b].0 - 90.0).abs()))
         .ok_or_else(|| {
-            bad(
+            angles_error(
                 "gamma",
                 "only the poles are measured: the directions span no solid angle".into(),
             )
-        })?;
+        })
+}
 
-    // Directions: row-major (all planes of a ring together), poles once.
-    // dir_row[j] = first direction index of row j.
-    let mut dir_row = Vec::with_capacity(nr);
-    let mut n_dirs = 0usize;
-    for &(a, _) in &rows {
-        dir_row.push(n_dirs);
-        n_dirs += if is_pole(a) { 1 } else { np };
-    }
-    let mut radius = vec![0.0f64; n_dirs];
-    let mut unit_dir = vec![[0.0f64; 3]; n_dirs];
-    let (sin_c, cos_c): (Vec<f64>, Vec<f64>) = planes.iter().map(|p| p.0.to_radians().sin_cos()).unzip();
-    for (j, &(a, ig)) in rows.iter().enumerate() {
-        let (sg, cg) = a.to_radians().sin_cos();
-        let value = |ic: usize| ig.map_or(0.0, |ig| d.value_cd(ic, ig));
-        if is_pole(a) {
-            radius[dir_row[j]] = stored_radius(value(planes[0].1) * scale, peak * scale)?;
-            unit_dir[dir_row[j]] = [0.0, 0.0, if a < 90.0 { -1.0 } else { 1.0 }];
-        } else {
-            for (k, &(_, ic)) in planes.iter().enumerate() {
-                radius[dir_row[j] + k] = stored_radius(value(ic) * scale, peak * scale)?;
-                unit_dir[dir_row[j] + k] = [sg * cos_c[k], sg * sin_c[k], -cg];
-            }
+/// The directions of the solid: row-major (all planes of a ring together),
+/// poles once.
+struct Directions {
+    /// Full-circle planes (angle in degrees, stored plane index).
+    planes: Vec<(f64, usize)>,
+    /// γ rows (see [`gamma_rows`]).
+    rows: Vec<(f64, Option<usize>)>,
+    /// First direction index of each row.
+    dir_row: Vec<usize>,
+    /// Number of directions.
+    n_dirs: usize,
+    /// sin C of each plane.
+    sin_c: Vec<f64>,
+    /// cos C of each plane.
+    cos_c: Vec<f64>,
+}
+
+impl Directions {
+    /// The directions of `planes` x `rows`.
+    fn new(planes: Vec<(f64, usize)>, rows: Vec<(f64, Option<usize>)>) -> Self {
+        let mut dir_row = Vec::with_capacity(rows.len());
+        let mut n_dirs = 0usize;
+        for &(a, _) in &rows {
+            dir_row.push(n_dirs);
+            n_dirs += if is_pole(a) { 1 } else { planes.len() };
+        }
+        let (sin_c, cos_c) = planes.iter().map(|p| p.0.to_radians().sin_cos()).unzip();
+        Self {
+            planes,
+            rows,
+            dir_row,
+            n_dirs,
+            sin_c,
+            cos_c,
         }
     }
 
-    // Mesh vertices: the origin first (if any zero), then every non-zero direction.
-    let any_zero = radius.contains(&0.0);
-    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(n_dirs + 1);
-    let origin = any_zero.then(|| {
-        positions.push([0.0; 3]);
-        0u32
-    });
-    let vertex_of: Vec<u32> = radius
-        .iter()
-        .zip(&unit_dir)
-        .map(|(&r, u)| {
-            if r == 0.0 {
-                0
-            } else {
-                positions.push([(r * u[0]) as f32, (r * u[1]) as f32, (r * u[2]) as f32]);
-                (positions.len() - 1) as u32
-            }
-        })
-        .collect();
-
-    let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(2 * n_dirs);
-    for lower in [true, false] {
-        let rows_in: Vec<usize> = if lower {
-            (0..=split).collect()
-        } else {
-            (split..nr).collect()
-        };
-        let mut sites = Vec::with_capacity(rows_in.len() * np);
-        for &j in &rows_in {
-            let a = rows[j].0;
-            // Stereographic projection from the opposite pole.
-            let r = if lower {
-                (a / 2.0).to_radians().tan()
-            } else {
-                ((180.0 - a) / 2.0).to_radians().tan()
-            };
+    /// Each direction's stored radius (`scale` units per cd; `peak` cd) and unit vector.
+    fn radii(&self, d: &Distribution, scale: f64, peak: f64) -> Result<(Vec<f64>, Vec<[f64; 3]>), ModelError> {
+        let mut radius = vec![0.0f64; self.n_dirs];
+        let mut unit_dir = vec![[0.0f64; 3]; self.n_dirs];
+        for (j, &(a, ig)) in self.rows.iter().enumerate() {
+            let (sg, cg) = a.to_radians().sin_cos();
+            let value = |ic: usize| ig.map_or(0.0, |ig| d.value_cd(ic, ig));
+            let first = self.dir_row[j];
             if is_pole(a) {
-                sites.push(Site {
-                    x: 0.0,
-                    y: 0.0,
-                    id: dir_row[j] as u32,
-                });
+                radius[first] = stored_radius(value(self.planes[0].1) * scale, peak * scale)?;
+                unit_dir[first] = [0.0, 0.0, if a < 90.0 { -1.0 } else { 1.0 }];
             } else {
-                for k in 0..np {
-                    // Below spade's smallest coordinate (2^-142) a value is refused; it is 0 here.
-                    let snap = |v: f64| if v.abs() < 1e-30 { 0.0 } else { v };
-                    sites.push(Site {
-                        x: snap(r * cos_c[k]),
-                        y: snap(r * sin_c[k]),
-                        id: (dir_row[j] + k) as u32,
-                    });
+                for (k, &(_, ic)) in self.planes.iter().enumerate() {
+                    radius[first + k] = stored_radius(value(ic) * scale, peak * scale)?;
+                    unit_dir[first + k] = [sg * self.cos_c[k], sg * self.sin_c[k], -cg];
                 }
             }
         }
+        Ok((radius, unit_dir))
+    }
+
+    /// Appends to `triangles` the Delaunay triangles of the lower part (rows
+    /// up to the cut ring `split`) or the upper part (from it on), each
+    /// direction as its vertex in `vertex_of`, wound outward.
+    fn triangulate_part(
+        &self,
+        lower: bool,
+        split: usize,
+        vertex_of: &[u32],
+        triangles: &mut Vec<[u32; 3]>,
+    ) -> Result<(), ModelError> {
+        let sites = self.projected_sites(lower, split);
         let n_sites = sites.len();
         let dt = DelaunayTriangulation::<Site>::bulk_load(sites)
-            .map_err(|e| bad("direction", format!("Delaunay triangulation failed: {e:?}")))?;
+            .map_err(|e| angles_error("direction", format!("Delaunay triangulation failed: {e:?}")))?;
         if dt.num_vertices() != n_sites {
-            return Err(bad("direction", "two measured directions coincide".into()));
+            return Err(angles_error("direction", "two measured directions coincide".into()));
         }
         for f in dt.inner_faces() {
             let [a, b, c] = f.vertices().map(|v| vertex_of[v.data().id as usize]);
@@ -275,16 +308,68 @@ pub fn measured_solid_with(d: &Distribution, units: Units, opts: &MeasuredOption
                 triangles.push(t);
             }
         }
+        Ok(())
     }
-    let info = SolidInfo {
-        kind: format!(
-            "measured solid: Delaunay triangulation of {n_dirs} measured directions ({np} C-planes x {} gamma rows, poles once), stereographic per part, stitched at gamma = {}",
-            nr,
-            rows[split].0
-        ),
-        source: String::new(),
-        units,
-        units_per_cd: scale,
-    };
-    Mesh::finish(positions, triangles, origin, info)
+
+    /// The directions of the lower or upper part in the plane, by the
+    /// stereographic projection from the opposite pole.
+    fn projected_sites(&self, lower: bool, split: usize) -> Vec<Site> {
+        let rows_in: Vec<usize> = if lower {
+            (0..=split).collect()
+        } else {
+            (split..self.rows.len()).collect()
+        };
+        let np = self.planes.len();
+        let mut sites = Vec::with_capacity(rows_in.len() * np);
+        for &j in &rows_in {
+            let a = self.rows[j].0;
+            let r = if lower {
+                (a / 2.0).to_radians().tan()
+            } else {
+                ((180.0 - a) / 2.0).to_radians().tan()
+            };
+            if is_pole(a) {
+                sites.push(Site {
+                    x: 0.0,
+                    y: 0.0,
+                    id: self.dir_row[j] as u32,
+                });
+            } else {
+                for k in 0..np {
+                    // Below spade's smallest coordinate (2^-142) a value is refused; it is 0 here.
+                    let snap = |v: f64| if v.abs() < 1e-30 { 0.0 } else { v };
+                    sites.push(Site {
+                        x: snap(r * self.cos_c[k]),
+                        y: snap(r * self.sin_c[k]),
+                        id: (self.dir_row[j] + k) as u32,
+                    });
+                }
+            }
+        }
+        sites
+    }
+}
+
+/// Mesh vertices: the origin first (if any direction has radius 0), then
+/// every non-zero direction. Returns (positions, origin, vertex of each direction).
+fn vertices(radius: &[f64], unit_dir: &[[f64; 3]]) -> (Vec<[f32; 3]>, Option<u32>, Vec<u32>) {
+    let any_zero = radius.contains(&0.0);
+    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(radius.len() + 1);
+    let origin = any_zero.then(|| {
+        positions.push([0.0; 3]);
+        0u32
+    });
+    let vertex_of: Vec<u32> = radius
+        .iter()
+        .zip(unit_dir)
+        .map(|(&r, u)| {
+            if r == 0.0 {
+                0
+            } else {
+                positions.push([(r * u[0]) as f32, (r * u[1]) as f32, (r * u[2]) as f32]);
+                (positions.len() - 1) as u32
+            }
+        })
+        .collect();
+    (positions, origin, vertex_of)
 }

@@ -293,7 +293,41 @@ impl Mesh {
     pub fn sanity_check(&self) -> Result<SanityReport, SanityError> {
         let nv = self.positions.len();
         let nf = self.triangles.len();
-        if nf == 0 {
+        self.check_attributes()?;
+        self.check_triangles()?;
+        self.check_directed_edges()?;
+        // Split the origin vertex into one copy per simple cycle of its link.
+        let (tris, sheets, pinch_vertices, nv_split) = self.split_pinches();
+        let n_edges = count_manifold_edges(&tris)?;
+        let components = count_components(&tris, nv_split);
+        let euler = nv_split as i64 - n_edges as i64 + nf as i64;
+        // χ ≤ 2 for every connected closed surface, so the sum equals 2 per
+        // component only when each component is a sphere.
+        if euler != 2 * components as i64 {
+            return Err(SanityError::Topology { euler, components });
+        }
+        let volume = self.volume();
+        if volume.is_nan() || volume < 0.0 {
+            return Err(SanityError::InwardFacing { volume });
+        }
+        Ok(SanityReport {
+            vertices: nv,
+            triangles: nf,
+            edges: n_edges,
+            euler_characteristic: euler,
+            components,
+            origin_sheets: sheets,
+            pinch_vertices,
+            volume,
+            area: self.area(),
+        })
+    }
+
+    /// The first checks of [`Mesh::sanity_check`]: triangles present, finite
+    /// positions, one unit normal and one colour per vertex where present.
+    fn check_attributes(&self) -> Result<(), SanityError> {
+        let nv = self.positions.len();
+        if self.triangles.is_empty() {
             return Err(SanityError::Empty);
         }
         if let Some(v) = self.positions.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
@@ -320,6 +354,12 @@ impl Mesh {
                 return Err(SanityError::Attribute(format!("{} colours for {nv} vertices", c.len())));
             }
         }
+        Ok(())
+    }
+
+    /// Every triangle indexes existing vertices and has area; every vertex is used.
+    fn check_triangles(&self) -> Result<(), SanityError> {
+        let nv = self.positions.len();
         let mut used = vec![false; nv];
         for (i, t) in self.triangles.iter().enumerate() {
             if t.iter().any(|&v| v as usize >= nv) {
@@ -339,14 +379,18 @@ impl Mesh {
         if let Some(v) = used.iter().position(|u| !u) {
             return Err(SanityError::UnusedVertex { vertex: v });
         }
+        Ok(())
+    }
 
-        // Directed edges, sorted: (a, b) must be matched by (b, a).
-        let key = |a: u32, b: u32| ((a as u64) << 32) | b as u64;
-        let mut directed: Vec<u64> = Vec::with_capacity(3 * nf);
+    /// Directed edges, sorted: each (a, b) must be matched by as many (b, a)
+    /// (no hole, consistent winding), and used once unless it touches the
+    /// origin vertex (where several sheets may meet).
+    fn check_directed_edges(&self) -> Result<(), SanityError> {
+        let mut directed: Vec<u64> = Vec::with_capacity(3 * self.triangles.len());
         for t in &self.triangles {
-            directed.push(key(t[0], t[1]));
-            directed.push(key(t[1], t[2]));
-            directed.push(key(t[2], t[0]));
+            directed.push(edge_key(t[0], t[1]));
+            directed.push(edge_key(t[1], t[2]));
+            directed.push(edge_key(t[2], t[0]));
         }
         directed.sort_unstable();
         let count = |k: u64| -> usize {
@@ -364,7 +408,7 @@ impl Mesh {
             }
             let n_ab = j - i;
             let (a, b) = ((k >> 32) as u32, k as u32);
-            let n_ba = count(key(b, a));
+            let n_ba = count(edge_key(b, a));
             let at_origin = origin.is_some_and(|o| a == o || b == o);
             if n_ab != n_ba {
                 // One triangle on one side only is a hole; anything else
@@ -384,75 +428,7 @@ impl Mesh {
             }
             i = j;
         }
-
-        // Split the origin vertex into one copy per simple cycle of its link.
-        let (tris, sheets, pinch_vertices, nv_split) = self.split_pinches();
-        // After the split, every undirected edge must be shared by exactly two triangles.
-        let mut undirected: Vec<u64> = Vec::with_capacity(3 * nf);
-        for t in &tris {
-            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-                undirected.push(key(a.min(b), a.max(b)));
-            }
-        }
-        undirected.sort_unstable();
-        let mut n_edges = 0usize;
-        let mut i = 0;
-        while i < undirected.len() {
-            let mut j = i + 1;
-            while j < undirected.len() && undirected[j] == undirected[i] {
-                j += 1;
-            }
-            if j - i != 2 {
-                let k = undirected[i];
-                return Err(SanityError::NonManifoldEdge {
-                    a: (k >> 32) as u32,
-                    b: k as u32,
-                    triangles: j - i,
-                });
-            }
-            n_edges += 1;
-            i = j;
-        }
-        // Connected components by union-find over the split vertices.
-        let mut parent: Vec<u32> = (0..nv_split as u32).collect();
-        fn find(p: &mut [u32], mut x: u32) -> u32 {
-            while p[x as usize] != x {
-                p[x as usize] = p[p[x as usize] as usize];
-                x = p[x as usize];
-            }
-            x
-        }
-        for t in &tris {
-            let r0 = find(&mut parent, t[0]);
-            for &v in &t[1..] {
-                let r = find(&mut parent, v);
-                if r != r0 {
-                    parent[r as usize] = r0;
-                }
-            }
-        }
-        let components = (0..nv_split as u32).filter(|&x| find(&mut parent, x) == x).count();
-        let euler = nv_split as i64 - n_edges as i64 + nf as i64;
-        // χ ≤ 2 for every connected closed surface, so the sum equals 2 per
-        // component only when each component is a sphere.
-        if euler != 2 * components as i64 {
-            return Err(SanityError::Topology { euler, components });
-        }
-        let volume = self.volume();
-        if volume.is_nan() || volume < 0.0 {
-            return Err(SanityError::InwardFacing { volume });
-        }
-        Ok(SanityReport {
-            vertices: nv,
-            triangles: nf,
-            edges: n_edges,
-            euler_characteristic: euler,
-            components,
-            origin_sheets: sheets,
-            pinch_vertices,
-            volume,
-            area: self.area(),
-        })
+        Ok(())
     }
 
     /// This mesh as it is written to files: every pinch vertex (the merged
@@ -471,70 +447,10 @@ impl Mesh {
         if nv_split == nv {
             return Cow::Borrowed(self);
         }
-        let mut source: Vec<u32> = (0..nv_split as u32).collect();
-        let mut moved = vec![false; nv_split];
-        for (t0, t1) in self.triangles.iter().zip(&tris) {
-            for k in 0..3 {
-                if t1[k] as usize >= nv {
-                    source[t1[k] as usize] = t0[k];
-                    moved[t1[k] as usize] = true;
-                    moved[t0[k] as usize] = true;
-                }
-            }
-        }
+        let (source, moved) = self.copy_sources(&tris, nv_split);
         let mut positions: Vec<[f32; 3]> = source.iter().map(|&s| self.positions[s as usize]).collect();
-        // Per moved vertex: mean unit direction to its sheet's neighbours, and the fan's normal.
-        let mut mean_dir = vec![DVec3::ZERO; nv_split];
-        let mut count = vec![0u32; nv_split];
-        let mut fan_normal = vec![DVec3::ZERO; nv_split];
-        for t in &tris {
-            let [a, b, c] = t.map(|i| p64(&positions[i as usize]));
-            let n = (b - a).cross(c - a);
-            for k in 0..3 {
-                let v = t[k] as usize;
-                if !moved[v] {
-                    continue;
-                }
-                let p = p64(&positions[v]);
-                for q in [t[(k + 1) % 3], t[(k + 2) % 3]].map(|i| p64(&positions[i as usize])) {
-                    if let Some(u) = (q - p).try_normalize() {
-                        mean_dir[v] += u;
-                        count[v] += 1;
-                    }
-                }
-                fan_normal[v] += n;
-            }
-        }
-        for v in 0..nv_split {
-            let n = f64::from(count[v].max(1));
-            mean_dir[v] /= n;
-        }
-        // The mean direction lies inside the cone the sheet's link spans, and
-        // its length (the cosine of a circular cone's half-angle) orders
-        // nested coaxial cones: apexes moved by it keep the sheets apart. A
-        // flat sheet (link on a great circle, mean ~ 0) moves a little along
-        // its normal, away from the other sheets at the point.
-        let mut others = vec![DVec3::ZERO; nv];
-        for v in (0..nv_split).filter(|&v| moved[v]) {
-            others[source[v] as usize] += mean_dir[v];
-        }
-        let step = SHEET_SEPARATION * self.max_radius();
-        for v in (0..nv_split).filter(|&v| moved[v] && count[v] > 0) {
-            let m = mean_dir[v];
-            let offset = if m.length() > 1e-3 {
-                Some(m)
-            } else {
-                fan_normal[v].try_normalize().map(|n| {
-                    let o = others[source[v] as usize] - m;
-                    let sign = if n.dot(o) > 0.0 { -1e-3 } else { 1e-3 };
-                    sign * n
-                })
-            };
-            if let Some(d) = offset {
-                let p = p64(&positions[v]);
-                positions[v] = (p + step * d).as_vec3().to_array();
-            }
-        }
+        let fans = Fans::of(&tris, &positions, &moved);
+        self.move_copies_apart(&mut positions, &source, &moved, &fans);
         let mut out = Mesh {
             positions,
             triangles: tris,
@@ -550,6 +466,57 @@ impl Mesh {
             out.compute_normals();
         }
         Cow::Owned(out)
+    }
+
+    /// For each vertex of the split triangles `tris` (`nv_split` vertices):
+    /// the vertex of this mesh it copies, and whether it is one of a pinch
+    /// vertex's copies (or the pinch vertex itself), which move apart.
+    fn copy_sources(&self, tris: &[[u32; 3]], nv_split: usize) -> (Vec<u32>, Vec<bool>) {
+        let nv = self.positions.len();
+        let mut source: Vec<u32> = (0..nv_split as u32).collect();
+        let mut moved = vec![false; nv_split];
+        for (t0, t1) in self.triangles.iter().zip(tris) {
+            for k in 0..3 {
+                if t1[k] as usize >= nv {
+                    source[t1[k] as usize] = t0[k];
+                    moved[t1[k] as usize] = true;
+                    moved[t0[k] as usize] = true;
+                }
+            }
+        }
+        (source, moved)
+    }
+
+    /// Moves each copy of a pinch vertex by up to [`SHEET_SEPARATION`] x
+    /// [`Mesh::max_radius`] into its sheet (see [`Mesh::separate_sheets`]).
+    ///
+    /// The mean direction lies inside the cone the sheet's link spans, and
+    /// its length (the cosine of a circular cone's half-angle) orders
+    /// nested coaxial cones: apexes moved by it keep the sheets apart. A
+    /// flat sheet (link on a great circle, mean ~ 0) moves a little along
+    /// its normal, away from the other sheets at the point.
+    fn move_copies_apart(&self, positions: &mut [[f32; 3]], source: &[u32], moved: &[bool], fans: &Fans) {
+        let mut others = vec![DVec3::ZERO; self.positions.len()];
+        for v in (0..moved.len()).filter(|&v| moved[v]) {
+            others[source[v] as usize] += fans.mean_dir[v];
+        }
+        let step = SHEET_SEPARATION * self.max_radius();
+        for v in (0..moved.len()).filter(|&v| moved[v] && fans.count[v] > 0) {
+            let m = fans.mean_dir[v];
+            let offset = if m.length() > 1e-3 {
+                Some(m)
+            } else {
+                fans.normal[v].try_normalize().map(|n| {
+                    let o = others[source[v] as usize] - m;
+                    let sign = if n.dot(o) > 0.0 { -1e-3 } else { 1e-3 };
+                    sign * n
+                })
+            };
+            if let Some(d) = offset {
+                let p = p64(&positions[v]);
+                positions[v] = (p + step * d).as_vec3().to_array();
+            }
+        }
     }
 
     /// Triangles with every pinch vertex (a vertex whose link has several
@@ -577,6 +544,54 @@ impl Mesh {
             0
         };
         (tris, origin_sheets, pinched, next_id as usize)
+    }
+}
+
+/// Per vertex to be moved apart by [`Mesh::separate_sheets`], its sheet's
+/// fan of triangles around it (other vertices: zero).
+struct Fans {
+    /// Mean unit direction from the vertex to its fan's other vertices.
+    mean_dir: Vec<DVec3>,
+    /// How many directions the mean is over (0: none has a length).
+    count: Vec<u32>,
+    /// Sum of the fan's area-weighted normals.
+    normal: Vec<DVec3>,
+}
+
+impl Fans {
+    /// The fans of the `moved` vertices in `tris` over `positions`.
+    fn of(tris: &[[u32; 3]], positions: &[[f32; 3]], moved: &[bool]) -> Self {
+        let n_vertices = moved.len();
+        let mut mean_dir = vec![DVec3::ZERO; n_vertices];
+        let mut count = vec![0u32; n_vertices];
+        let mut normal = vec![DVec3::ZERO; n_vertices];
+        for t in tris {
+            let [a, b, c] = t.map(|i| p64(&positions[i as usize]));
+            let n = (b - a).cross(c - a);
+            for k in 0..3 {
+                let v = t[k] as usize;
+                if !moved[v] {
+                    continue;
+                }
+                let p = p64(&positions[v]);
+                for q in [t[(k + 1) % 3], t[(k + 2) % 3]].map(|i| p64(&positions[i as usize])) {
+                    if let Some(u) = (q - p).try_normalize() {
+                        mean_dir[v] += u;
+                        count[v] += 1;
+                    }
+                }
+                normal[v] += n;
+            }
+        }
+        for v in 0..n_vertices {
+            let n = f64::from(count[v].max(1));
+            mean_dir[v] /= n;
+        }
+        Self {
+            mean_dir,
+            count,
+            normal,
+        }
     }
 }
 
@@ -682,6 +697,65 @@ pub enum SanityError {
         /// The signed volume.
         volume: f64,
     },
+}
+
+/// An edge (a, b) as one sortable key: a in the high 32 bits.
+fn edge_key(a: u32, b: u32) -> u64 {
+    ((a as u64) << 32) | b as u64
+}
+
+/// The undirected edges of `tris` (pinches already split), each of which
+/// must be shared by exactly two triangles: their count, or the first that is not.
+fn count_manifold_edges(tris: &[[u32; 3]]) -> Result<usize, SanityError> {
+    let mut undirected: Vec<u64> = Vec::with_capacity(3 * tris.len());
+    for t in tris {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            undirected.push(edge_key(a.min(b), a.max(b)));
+        }
+    }
+    undirected.sort_unstable();
+    let mut n_edges = 0usize;
+    let mut i = 0;
+    while i < undirected.len() {
+        let mut j = i + 1;
+        while j < undirected.len() && undirected[j] == undirected[i] {
+            j += 1;
+        }
+        if j - i != 2 {
+            let k = undirected[i];
+            return Err(SanityError::NonManifoldEdge {
+                a: (k >> 32) as u32,
+                b: k as u32,
+                triangles: j - i,
+            });
+        }
+        n_edges += 1;
+        i = j;
+    }
+    Ok(n_edges)
+}
+
+/// Connected components of `tris` over `n_vertices` vertices, by union-find
+/// (an unused vertex is a component of its own).
+fn count_components(tris: &[[u32; 3]], n_vertices: usize) -> usize {
+    let mut parent: Vec<u32> = (0..n_vertices as u32).collect();
+    fn find(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            p[x as usize] = p[p[x as usize] as usize];
+            x = p[x as usize];
+        }
+        x
+    }
+    for t in tris {
+        let r0 = find(&mut parent, t[0]);
+        for &v in &t[1..] {
+            let r = find(&mut parent, v);
+            if r != r0 {
+                parent[r as usize] = r0;
+            }
+        }
+    }
+    (0..n_vertices as u32).filter(|&x| find(&mut parent, x) == x).count()
 }
 
 impl fmt::Display for SanityReport {

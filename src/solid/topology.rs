@@ -14,6 +14,25 @@
 /// vertices), so only triangles at the origin are examined.
 pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u32; 3]>, origin: &mut Option<u32>) {
     let Some(o) = *origin else { return };
+    let dead = fin_triangles(triangles, o);
+    // Even without fins, triangles dropped for touching the origin twice can
+    // leave a vertex unused: the compaction below runs in every case.
+    let mut k = 0;
+    let mut idx = 0;
+    triangles.retain(|_| {
+        let keep = !(k < dead.len() && dead[k] == idx);
+        if !keep {
+            k += 1;
+        }
+        idx += 1;
+        keep
+    });
+    drop_unused_vertices(positions, triangles, origin);
+}
+
+/// Indices (ascending) of the triangles at the origin `o` that pair off with
+/// a mirror image: same vertex set, opposite winding.
+fn fin_triangles(triangles: &[[u32; 3]], o: u32) -> Vec<usize> {
     // (canonical vertex set, +1/-1 parity of the winding, triangle index)
     let mut at_o: Vec<([u32; 3], bool, usize)> = triangles
         .iter()
@@ -50,19 +69,13 @@ pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u3
         dead.extend_from_slice(&od[..n]);
         i = j;
     }
-    // Even without fins, triangles dropped for touching the origin twice can
-    // leave a vertex unused: the compaction below runs in every case.
     dead.sort_unstable();
-    let mut k = 0;
-    let mut idx = 0;
-    triangles.retain(|_| {
-        let keep = !(k < dead.len() && dead[k] == idx);
-        if !keep {
-            k += 1;
-        }
-        idx += 1;
-        keep
-    });
+    dead
+}
+
+/// Drops the vertices no triangle uses (indices renumbered, order kept);
+/// `origin` follows its vertex, or is `None` once unused.
+fn drop_unused_vertices(positions: &mut Vec<[f32; 3]>, triangles: &mut [[u32; 3]], origin: &mut Option<u32>) {
     let mut used = vec![false; positions.len()];
     for t in triangles.iter() {
         for &v in t {
@@ -88,11 +101,7 @@ pub(crate) fn remove_fins(positions: &mut Vec<[f32; 3]>, triangles: &mut Vec<[u3
             *v = remap[*v as usize];
         }
     }
-    *origin = if used[o as usize] {
-        Some(remap[o as usize])
-    } else {
-        None
-    };
+    *origin = origin.filter(|&o| used[o as usize]).map(|o| remap[o as usize]);
 }
 
 /// Split every vertex selected by `select` whose link has several cycles

@@ -140,9 +140,58 @@ pub fn pack(doc: &serde_json::Value, mut bin: Vec<u8>) -> Vec<u8> {
 /// not applied: the coordinates are the buffer's, the luminaire frame.
 /// The vertex at exactly (0, 0, 0), if any, is taken as the origin vertex.
 pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
-    let at =
-        |offset: usize, expected: &str, found: String| MeshFileError::at_byte("glTF", Some(offset), expected, found);
-    let err = |expected: &str, found: String| MeshFileError::at_byte("glTF", None, expected, found);
+    let (doc, bin) = chunks(bytes)?;
+    let prim = &doc["meshes"][0]["primitives"][0];
+    let mode = prim.get("mode").and_then(|m| m.as_u64()).unwrap_or(4);
+    if mode != 4 {
+        return Err(doc_error(
+            "a triangle list (mode 4) as the first primitive",
+            format!("mode {mode}"),
+        ));
+    }
+    let (pdata, nv, ptype) = accessor(&doc, bin, &prim["attributes"]["POSITION"])?;
+    let position_bytes = nv.checked_mul(12).filter(|&b| b <= pdata.len());
+    let (Some(position_bytes), true) = (position_bytes, ptype == u64::from(FLOAT)) else {
+        return Err(doc_error(
+            "POSITION as float VEC3 within its bufferView",
+            format!(
+                "POSITION is not float VEC3 within its bufferView (component type {ptype}, {nv} vertices, {} bytes)",
+                pdata.len()
+            ),
+        ));
+    };
+    let positions: Vec<[f32; 3]> = pdata[..position_bytes]
+        .chunks_exact(12)
+        .map(|c| [0, 1, 2].map(|k| super::le_f32(c, 4 * k)))
+        .collect();
+    let indices: Vec<u32> = match prim.get("indices") {
+        None => (0..nv as u32).collect(),
+        Some(a) => indices(&doc, bin, a)?,
+    };
+    if !indices.len().is_multiple_of(3) {
+        return Err(doc_error(
+            "a multiple of 3 indices (triangles)",
+            format!("{} indices", indices.len()),
+        ));
+    }
+    let triangles = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
+    Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
+        .map_err(|source| MeshFileError::Mesh { format: "glTF", source })
+}
+
+/// An error at byte `offset` of a .glb file.
+fn at(offset: usize, expected: &str, found: String) -> MeshFileError {
+    MeshFileError::at_byte("glTF", Some(offset), expected, found)
+}
+
+/// An error in the glTF document (no byte offset to point at).
+fn doc_error(expected: &str, found: String) -> MeshFileError {
+    MeshFileError::at_byte("glTF", None, expected, found)
+}
+
+/// The JSON document and the BIN chunk of a .glb file (header checked).
+fn chunks(bytes: &[u8]) -> Result<(serde_json::Value, &[u8]), MeshFileError> {
     let u32_at = |o: usize| -> Result<usize, MeshFileError> {
         let b = bytes
             .get(o..o + 4)
@@ -171,108 +220,84 @@ pub fn read(bytes: &[u8]) -> Result<Mesh, MeshFileError> {
             "end of file".into(),
         )
     })?;
-    let prim = &doc["meshes"][0]["primitives"][0];
-    let mode = prim.get("mode").and_then(|m| m.as_u64()).unwrap_or(4);
-    if mode != 4 {
-        return Err(err(
-            "a triangle list (mode 4) as the first primitive",
-            format!("mode {mode}"),
+    Ok((doc, bin))
+}
+
+/// The data in `bin` of the accessor `a` indexes in `doc`, its count and
+/// its component type (0 when absent).
+fn accessor<'b>(
+    doc: &serde_json::Value,
+    bin: &'b [u8],
+    a: &serde_json::Value,
+) -> Result<(&'b [u8], usize, u64), MeshFileError> {
+    let i = a
+        .as_u64()
+        .ok_or_else(|| doc_error("an accessor index", "none".into()))? as usize;
+    let acc = &doc["accessors"][i];
+    let view = &doc["bufferViews"][acc["bufferView"]
+        .as_u64()
+        .ok_or_else(|| doc_error("a bufferView in the accessor", "an accessor without bufferView".into()))?
+        as usize];
+    if view.get("byteStride").is_some() {
+        return Err(doc_error(
+            "tightly packed buffer views",
+            "an interleaved one (byteStride), which is not read".into(),
         ));
     }
-    // (data of an accessor, its count, component type)
-    let accessor = |a: &serde_json::Value| -> Result<(&[u8], usize, u64), MeshFileError> {
-        let i = a.as_u64().ok_or_else(|| err("an accessor index", "none".into()))? as usize;
-        let acc = &doc["accessors"][i];
-        let view = &doc["bufferViews"][acc["bufferView"]
-            .as_u64()
-            .ok_or_else(|| err("a bufferView in the accessor", "an accessor without bufferView".into()))?
-            as usize];
-        if view.get("byteStride").is_some() {
-            return Err(err(
-                "tightly packed buffer views",
-                "an interleaved one (byteStride), which is not read".into(),
-            ));
-        }
-        // Offsets and lengths come from the file: added with overflow checks,
-        // so a damaged document is refused rather than wrapping or panicking.
-        let offset = |v: &serde_json::Value| v["byteOffset"].as_u64().unwrap_or(0);
-        let len = view["byteLength"].as_u64().ok_or_else(|| {
-            err(
-                "a byteLength in the bufferView",
-                "a bufferView without byteLength".into(),
-            )
-        })?;
-        let range = offset(view).checked_add(offset(acc)).and_then(|start| {
-            Some((
-                usize::try_from(start).ok()?,
-                usize::try_from(start.checked_add(len)?).ok()?,
+    // Offsets and lengths come from the file: added with overflow checks,
+    // so a damaged document is refused rather than wrapping or panicking.
+    let offset = |v: &serde_json::Value| v["byteOffset"].as_u64().unwrap_or(0);
+    let len = view["byteLength"].as_u64().ok_or_else(|| {
+        doc_error(
+            "a byteLength in the bufferView",
+            "a bufferView without byteLength".into(),
+        )
+    })?;
+    let range = offset(view).checked_add(offset(acc)).and_then(|start| {
+        Some((
+            usize::try_from(start).ok()?,
+            usize::try_from(start.checked_add(len)?).ok()?,
+        ))
+    });
+    let data = range.and_then(|(start, end)| bin.get(start..end)).ok_or_else(|| {
+        doc_error(
+            "a bufferView within the BIN chunk",
+            "a bufferView past the BIN chunk".into(),
+        )
+    })?;
+    let count = acc["count"]
+        .as_u64()
+        .ok_or_else(|| doc_error("a count in the accessor", "an accessor without count".into()))?
+        as usize;
+    Ok((data, count, acc["componentType"].as_u64().unwrap_or(0)))
+}
+
+/// The vertex indices of the index accessor `a` (unsigned byte, short or int).
+fn indices(doc: &serde_json::Value, bin: &[u8], a: &serde_json::Value) -> Result<Vec<u32>, MeshFileError> {
+    let (data, n, t) = accessor(doc, bin, a)?;
+    let size = match t {
+        5121 => 1,
+        5123 => 2,
+        5125 => 4,
+        _ => {
+            return Err(doc_error(
+                "indices as unsigned byte, short or int",
+                format!("component type {t}"),
             ))
-        });
-        let data = range.and_then(|(start, end)| bin.get(start..end)).ok_or_else(|| {
-            err(
-                "a bufferView within the BIN chunk",
-                "a bufferView past the BIN chunk".into(),
-            )
-        })?;
-        let count = acc["count"]
-            .as_u64()
-            .ok_or_else(|| err("a count in the accessor", "an accessor without count".into()))?
-            as usize;
-        Ok((data, count, acc["componentType"].as_u64().unwrap_or(0)))
-    };
-    let (pdata, nv, ptype) = accessor(&prim["attributes"]["POSITION"])?;
-    let position_bytes = nv.checked_mul(12).filter(|&b| b <= pdata.len());
-    let (Some(position_bytes), true) = (position_bytes, ptype == u64::from(FLOAT)) else {
-        return Err(err(
-            "POSITION as float VEC3 within its bufferView",
-            format!(
-                "POSITION is not float VEC3 within its bufferView (component type {ptype}, {nv} vertices, {} bytes)",
-                pdata.len()
-            ),
-        ));
-    };
-    let positions: Vec<[f32; 3]> = pdata[..position_bytes]
-        .chunks_exact(12)
-        .map(|c| [0, 1, 2].map(|k| super::le_f32(c, 4 * k)))
-        .collect();
-    let indices: Vec<u32> = match prim.get("indices") {
-        None => (0..nv as u32).collect(),
-        Some(a) => {
-            let (data, n, t) = accessor(a)?;
-            let size = match t {
-                5121 => 1,
-                5123 => 2,
-                5125 => 4,
-                _ => {
-                    return Err(err(
-                        "indices as unsigned byte, short or int",
-                        format!("component type {t}"),
-                    ))
-                }
-            };
-            let data = n.checked_mul(size).and_then(|bytes| data.get(..bytes)).ok_or_else(|| {
-                err(
-                    "an index accessor within its bufferView",
-                    format!("{n} indices of {size} bytes in {} bytes", data.len()),
-                )
-            })?;
-            data.chunks_exact(size)
-                .map(|c| match size {
-                    1 => u32::from(c[0]),
-                    2 => u32::from(u16::from_le_bytes([c[0], c[1]])),
-                    _ => super::le_u32(c, 0),
-                })
-                .collect()
         }
     };
-    if !indices.len().is_multiple_of(3) {
-        return Err(err(
-            "a multiple of 3 indices (triangles)",
-            format!("{} indices", indices.len()),
-        ));
-    }
-    let triangles = indices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    let origin = positions.iter().position(|p| *p == [0.0; 3]).map(|i| i as u32);
-    Mesh::from_parts(positions, triangles, origin, SolidInfo::default())
-        .map_err(|source| MeshFileError::Mesh { format: "glTF", source })
+    let data = n.checked_mul(size).and_then(|bytes| data.get(..bytes)).ok_or_else(|| {
+        doc_error(
+            "an index accessor within its bufferView",
+            format!("{n} indices of {size} bytes in {} bytes", data.len()),
+        )
+    })?;
+    Ok(data
+        .chunks_exact(size)
+        .map(|c| match size {
+            1 => u32::from(c[0]),
+            2 => u32::from(u16::from_le_bytes([c[0], c[1]])),
+            _ => super::le_u32(c, 0),
+        })
+        .collect())
 }
