@@ -183,6 +183,16 @@ th{cursor:pointer;background:#eee;position:sticky;top:0;font-weight:600;overflow
         n_out,
         100.0 * crate::photometry::FLUX_MISMATCH
     );
+    write_table_head(&mut h);
+    for &i in &order {
+        write_row(&mut h, &rows[i], thumbs[i].as_deref());
+    }
+    let _ = write!(h, "</tbody></table>\n<script>{SORT_JS}</script>\n</body></html>\n");
+    h
+}
+
+/// The table's column widths and sortable header, up to the body's opening tag.
+fn write_table_head(h: &mut String) {
     h.push_str("<table><colgroup>");
     for (_, w) in COLUMNS {
         match w {
@@ -197,60 +207,59 @@ th{cursor:pointer;background:#eee;position:sticky;top:0;font-weight:600;overflow
         let _ = write!(h, "<th>{name}</th>");
     }
     h.push_str("</tr></thead><tbody>\n");
-    for &i in &order {
-        let r = &rows[i];
-        let (rank, why) = outlier(r);
-        let path = esc(&r.path);
-        let img = thumbs[i]
-            .as_ref()
-            .map(|f| {
-                format!(
-                    "<a href=\"{0}\"><img src=\"{0}\" width=\"{THUMB_SHOWN_PX}\" height=\"{THUMB_SHOWN_PX}\" \
-                     loading=\"lazy\" alt=\"polar\"></a>",
-                    esc(f)
-                )
-            })
-            .unwrap_or_default();
-        let _ = write!(
-            h,
-            "<tr{}><td data-v=\"{rank}\">{img}</td><td class=\"p\" title=\"{path}\" data-v=\"{path}\">{}</td>\
+}
+
+/// One file's row: its thumbnail (`thumb`), path, outlier reason, grid,
+/// photometry, hold-out and fit; the sort key of each cell in `data-v`.
+fn write_row(h: &mut String, r: &BatchRecord, thumb: Option<&str>) {
+    let (rank, why) = outlier(r);
+    let path = esc(&r.path);
+    let img = thumb
+        .map(|f| {
+            format!(
+                "<a href=\"{0}\"><img src=\"{0}\" width=\"{THUMB_SHOWN_PX}\" height=\"{THUMB_SHOWN_PX}\" \
+                 loading=\"lazy\" alt=\"polar\"></a>",
+                esc(f)
+            )
+        })
+        .unwrap_or_default();
+    let _ = write!(
+        h,
+        "<tr{}><td data-v=\"{rank}\">{img}</td><td class=\"p\" title=\"{path}\" data-v=\"{path}\">{}</td>\
 <td class=\"t\" data-v=\"{rank} {}\">{}</td><td class=\"t\">{}</td><td class=\"t\">{}</td><td data-v=\"{}\">{}</td>",
-            if rank < 4 { " class=\"out\"" } else { "" },
-            path_cell(&r.path),
-            esc(&why),
-            esc(&why),
-            esc(r.format.as_deref().unwrap_or("-")),
-            esc(r.symmetry.as_deref().unwrap_or("-")),
-            r.n_c_full.unwrap_or(0) as u64 * r.n_gamma.unwrap_or(0) as u64,
-            match (r.n_c_full, r.n_gamma) {
-                (Some(c), Some(g)) => format!("{c} x {g}"),
-                _ => "-".into(),
-            },
-        );
-        for (x, d) in [
-            (r.max_cd, 1),
-            (r.flux_lm, 1),
-            (r.declared_flux_lm, 1),
-            (r.flux_ratio, 3),
-            (r.lor, 3),
-            (r.beam_angle_deg, 1),
-            (r.field_angle_deg, 1),
-        ] {
-            let (v, text) = num(x, d);
-            let _ = write!(h, "<td data-v=\"{v}\">{text}</td>");
-        }
-        let (v, text) = num(r.best_filter_rms_pct, 3);
-        let _ = write!(
-            h,
-            "<td class=\"t\">{}</td><td data-v=\"{v}\">{text}</td><td class=\"t\">{}</td>",
-            esc(r.best_filter.as_deref().unwrap_or("-")),
-            esc(r.fitted_gl.as_deref().unwrap_or("-"))
-        );
-        let (v, text) = num(r.fitted_gl_error, 4);
-        let _ = writeln!(h, "<td data-v=\"{v}\">{text}</td></tr>");
+        if rank < 4 { " class=\"out\"" } else { "" },
+        path_cell(&r.path),
+        esc(&why),
+        esc(&why),
+        esc(r.format.as_deref().unwrap_or("-")),
+        esc(r.symmetry.as_deref().unwrap_or("-")),
+        r.n_c_full.unwrap_or(0) as u64 * r.n_gamma.unwrap_or(0) as u64,
+        match (r.n_c_full, r.n_gamma) {
+            (Some(c), Some(g)) => format!("{c} x {g}"),
+            _ => "-".into(),
+        },
+    );
+    for (x, d) in [
+        (r.max_cd, 1),
+        (r.flux_lm, 1),
+        (r.declared_flux_lm, 1),
+        (r.flux_ratio, 3),
+        (r.lor, 3),
+        (r.beam_angle_deg, 1),
+        (r.field_angle_deg, 1),
+    ] {
+        let (v, text) = num(x, d);
+        let _ = write!(h, "<td data-v=\"{v}\">{text}</td>");
     }
-    let _ = write!(h, "</tbody></table>\n<script>{SORT_JS}</script>\n</body></html>\n");
-    h
+    let (v, text) = num(r.best_filter_rms_pct, 3);
+    let _ = write!(
+        h,
+        "<td class=\"t\">{}</td><td data-v=\"{v}\">{text}</td><td class=\"t\">{}</td>",
+        esc(r.best_filter.as_deref().unwrap_or("-")),
+        esc(r.fitted_gl.as_deref().unwrap_or("-"))
+    );
+    let (v, text) = num(r.fitted_gl_error, 4);
+    let _ = writeln!(h, "<td data-v=\"{v}\">{text}</td></tr>");
 }
 
 /// The path cell's content: the file name over its directory, escaped.

@@ -91,6 +91,11 @@ impl Default for DerivedOptions {
     }
 }
 
+/// One `key value` row of [`Derived::to_text`], the key padded to 34 columns.
+fn text_row(o: &mut String, k: &str, v: String) {
+    let _ = writeln!(o, "{k:<34} {v}");
+}
+
 impl Derived {
     /// Compute everything for `lum` (its untilted distribution) with the default options.
     pub fn of(lum: &Luminaire) -> Self {
@@ -148,11 +153,17 @@ impl Derived {
     /// Text block for `info`.
     pub fn to_text(&self) -> String {
         let mut o = String::new();
-        let row = |o: &mut String, k: &str, v: String| {
-            let _ = writeln!(o, "{k:<34} {v}");
-        };
-        row(
-            &mut o,
+        self.write_flux_code_and_bug(&mut o);
+        self.write_zonal_lumens(&mut o);
+        self.write_ugr_table(&mut o);
+        self.write_luminance_table(&mut o);
+        o
+    }
+
+    /// The text's CIE flux code row and, for outdoor luminaires, the BUG rating.
+    fn write_flux_code_and_bug(&self, o: &mut String) {
+        text_row(
+            o,
             "CIE flux code (N1..N5)",
             match &self.cie_flux_code {
                 Derivation::Value(c) => format!(
@@ -168,8 +179,8 @@ impl Derived {
             },
         );
         if let Some(b) = &self.bug_rating {
-            row(
-                &mut o,
+            text_row(
+                o,
                 "BUG rating (TM-15-11, outdoor)",
                 format!(
                     "{} (BL {:.0} BM {:.0} BH {:.0} BVH {:.0} / FL {:.0} FM {:.0} FH {:.0} FVH {:.0} / UL {:.0} UH {:.0} lm)",
@@ -177,9 +188,13 @@ impl Derived {
                 ),
             );
             if let Some(caveat) = &b.glare_caveat {
-                row(&mut o, "  BUG glare", caveat.clone());
+                text_row(o, "  BUG glare", caveat.clone());
             }
         }
+    }
+
+    /// The text's zonal lumens: the summary zones, then the 10° zones on one line.
+    fn write_zonal_lumens(&self, o: &mut String) {
         let pct = |v: Option<f64>| v.map_or("-".to_string(), |p| format!("{p:.1} %"));
         let _ = writeln!(o, "zonal lumens (zone: lm, % lamp, % luminaire):");
         for z in &self.zonal_lumens.summary {
@@ -200,6 +215,10 @@ impl Derived {
             .map(|z| format!("{:.0}-{:.0}: {:.1}", z.from_deg, z.to_deg, z.lm))
             .collect();
         let _ = writeln!(o, "  10° zones, lm: {}", tens.join(", "));
+    }
+
+    /// The text's UGR table (crosswise | endwise per room), when computed.
+    fn write_ugr_table(&self, o: &mut String) {
         match &self.ugr_table {
             None => {}
             Some(Derivation::Value(t)) => {
@@ -225,8 +244,12 @@ impl Derived {
                     );
                 }
             }
-            Some(Derivation::Undefined { undefined }) => row(&mut o, "UGR table", format!("- ({undefined})")),
+            Some(Derivation::Undefined { undefined }) => text_row(o, "UGR table", format!("- ({undefined})")),
         }
+    }
+
+    /// The text's luminance table (C0 and C90 per γ), when computed.
+    fn write_luminance_table(&self, o: &mut String) {
         match &self.luminance_table {
             None => {}
             Some(Derivation::Value(t)) => {
@@ -236,9 +259,8 @@ impl Derived {
                     let _ = writeln!(o, "  {:>4.0}°  {:>11}  {:>11}", g, f(t.c0_cd_m2[k]), f(t.c90_cd_m2[k]));
                 }
             }
-            Some(Derivation::Undefined { undefined }) => row(&mut o, "luminance table", format!("- ({undefined})")),
+            Some(Derivation::Undefined { undefined }) => text_row(o, "luminance table", format!("- ({undefined})")),
         }
-        o
     }
 
     /// The scalars compared side by side: (name, unit, value); the tables' are

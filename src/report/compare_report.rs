@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::compare::{Comparison, ReconResult};
+use crate::compare::{Comparison, ErrorMap, PolarPlane, ReconResult};
 use crate::error::Error;
 use crate::formats::write_atomic;
 use crate::photometry::derived::{side_by_side_markdown, side_by_side_text};
@@ -40,82 +40,19 @@ fn hausdorff_meaning(c: &Comparison) -> String {
     }
 }
 
+/// The lines above the table: the files, the reference, the solids and
+/// tolerances, the direction set and the alignment.
 fn header(c: &Comparison) -> Vec<String> {
     let mut l = vec![format!("file: {}", c.file)];
     if let Some(v) = &c.vs {
         l.push(format!("vs: {v}"));
     }
-    l.push(if c.hausdorff_certified() {
-        format!(
-            "reference: {} (I_max {} {}, {} triangles)",
-            c.reference,
-            num(c.i_max_cd),
-            c.units,
-            c.reference_triangles
-        )
-    } else {
-        format!(
-            "reference: {} (I_max {} {}, {} withheld measured directions)",
-            c.reference,
-            num(c.i_max_cd),
-            c.units,
-            c.n_directions
-        )
-    });
-    let solids = match (c.solid_tolerance_cd, c.solid_deviation_cd) {
-        (Some(t), Some(d)) => format!(
-            "adaptive grid solids within {}{} {} of their fields at the tested points (the reference's: {} {})",
-            pct_note(c.solid_tolerance_pct),
-            num(t),
-            c.units,
-            num(d),
-            c.units
-        ),
-        (Some(t), None) => format!(
-            "adaptive grid solids within {}{} {} of their fields at the tested points",
-            pct_note(c.solid_tolerance_pct),
-            num(t),
-            c.units
-        ),
-        _ => format!("grid solids refined x{}", c.factor),
-    };
-    // Say which solids did not get there (a jump in the field, the point budget).
-    let short: Vec<String> = c
-        .solid_tolerance_reached
-        .filter(|r| !r)
-        .map(|_| {
-            format!(
-                "the reference ({} {})",
-                num(c.solid_deviation_cd.unwrap_or(f64::NAN)),
-                c.units
-            )
-        })
-        .into_iter()
-        .chain(
-            c.results
-                .iter()
-                .filter(|r| r.solid_tolerance_reached == Some(false))
-                .map(|r| {
-                    format!(
-                        "{} ({} {})",
-                        r.name,
-                        num(r.solid_deviation_cd.unwrap_or(f64::NAN)),
-                        c.units
-                    )
-                }),
-        )
-        .collect();
-    let solids = match short.is_empty() {
-        true => solids,
-        false => format!(
-            "{solids}, NOT reached by {} (a jump in the field, the minimum step or the point budget stopped the refinement)",
-            short.join(", ")
-        ),
-    };
+    l.push(reference_line(c));
     l.push(format!(
-        "normalisation: {:?} (unit {}); {solids}; Hausdorff tolerance {}% of I_max = {} {}{}",
+        "normalisation: {:?} (unit {}); {}; Hausdorff tolerance {}% of I_max = {} {}{}",
         c.normalize,
         c.units,
+        solids_text(c),
         c.tolerance_pct,
         num(c.tolerance_cd),
         c.units,
@@ -141,6 +78,86 @@ fn header(c: &Comparison) -> Vec<String> {
         ));
     }
     l
+}
+
+/// The header's reference line: its I_max, and its triangles or withheld directions.
+fn reference_line(c: &Comparison) -> String {
+    if c.hausdorff_certified() {
+        format!(
+            "reference: {} (I_max {} {}, {} triangles)",
+            c.reference,
+            num(c.i_max_cd),
+            c.units,
+            c.reference_triangles
+        )
+    } else {
+        format!(
+            "reference: {} (I_max {} {}, {} withheld measured directions)",
+            c.reference,
+            num(c.i_max_cd),
+            c.units,
+            c.n_directions
+        )
+    }
+}
+
+/// How the solids were built (adaptive within a tolerance, or a fixed
+/// factor), and which of them did not reach the tolerance.
+fn solids_text(c: &Comparison) -> String {
+    let solids = match (c.solid_tolerance_cd, c.solid_deviation_cd) {
+        (Some(t), Some(d)) => format!(
+            "adaptive grid solids within {}{} {} of their fields at the tested points (the reference's: {} {})",
+            pct_note(c.solid_tolerance_pct),
+            num(t),
+            c.units,
+            num(d),
+            c.units
+        ),
+        (Some(t), None) => format!(
+            "adaptive grid solids within {}{} {} of their fields at the tested points",
+            pct_note(c.solid_tolerance_pct),
+            num(t),
+            c.units
+        ),
+        _ => format!("grid solids refined x{}", c.factor),
+    };
+    let short = solids_short(c);
+    match short.is_empty() {
+        true => solids,
+        false => format!(
+            "{solids}, NOT reached by {} (a jump in the field, the minimum step or the point budget stopped the refinement)",
+            short.join(", ")
+        ),
+    }
+}
+
+/// The solids that did not get within their tolerance (a jump in the
+/// field, the point budget), each with its deviation: the reference first.
+fn solids_short(c: &Comparison) -> Vec<String> {
+    c.solid_tolerance_reached
+        .filter(|r| !r)
+        .map(|_| {
+            format!(
+                "the reference ({} {})",
+                num(c.solid_deviation_cd.unwrap_or(f64::NAN)),
+                c.units
+            )
+        })
+        .into_iter()
+        .chain(
+            c.results
+                .iter()
+                .filter(|r| r.solid_tolerance_reached == Some(false))
+                .map(|r| {
+                    format!(
+                        "{} ({} {})",
+                        r.name,
+                        num(r.solid_deviation_cd.unwrap_or(f64::NAN)),
+                        c.units
+                    )
+                }),
+        )
+        .collect()
 }
 
 const COLS: [&str; 14] = [
@@ -273,81 +290,100 @@ pub struct Figure {
 pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
     let Some(p) = &c.plots else { return Ok(Vec::new()) };
     let mut out = Vec::new();
-    let names = ["polar_c0_c180.png", "polar_c90_c270.png", "polar_cmax.png"];
     for (k, plane) in p.planes.iter().enumerate() {
-        let mut series: Vec<Series> = plane
-            .curves
-            .iter()
-            .enumerate()
-            .map(|(i, (name, pts))| Series {
-                label: name.clone(),
-                points: pts.clone(),
-                color: plot::palette(i),
-                style: if name.ends_with("(reference)") {
-                    SeriesStyle::Dashed
-                } else {
-                    SeriesStyle::Line
-                },
-            })
-            .collect();
-        for (j, (label, pts)) in plane.measured.iter().enumerate() {
-            series.push(Series {
-                label: label.clone(),
-                points: pts.clone(),
-                color: if j == 0 { [0, 0, 0] } else { [110, 110, 110] },
-                style: SeriesStyle::Markers,
-            });
-        }
-        let title = if k == 2 {
-            format!(
-                "Plane of maximum intensity: C{:.1} - C{:.1}",
-                plane.right_c, plane.left_c
-            )
-        } else {
-            format!("C{:.0} - C{:.0}", plane.right_c, plane.left_c)
-        };
-        let c_name = |c: f64| {
-            if c.fract() == 0.0 {
-                format!("C{c:.0}")
-            } else {
-                format!("C{c:.1}")
-            }
-        };
-        let (l, r) = (c_name(plane.left_c), c_name(plane.right_c));
-        let png = plot::polar_diagram(&PolarSpec {
-            title: &title,
-            left: &l,
-            right: &r,
-            unit: &c.units,
-            series: &series,
-            ..PolarSpec::default()
-        })?;
-        out.push(Figure {
-            file: names[k.min(2)].into(),
-            caption: format!("{title}: every reconstruction over the measured points ({})", c.units),
-            png,
-        });
+        out.push(polar_figure(c, k, plane)?);
     }
     for m in &p.error_maps {
-        let title = format!("{} - {}: signed error, % of I_max", m.name, c.reference);
-        let png = plot::heatmap(&HeatmapSpec {
-            title: &title,
-            xs: &m.xs,
-            ys: &m.ys,
-            values: &m.values,
-            unit: "% of I_max",
-            scale: ColorScale::Diverging,
-            ..HeatmapSpec::default()
-        })?;
-        out.push(Figure {
-            file: format!("error_{}.png", slug(&m.name)),
-            caption: format!(
-                "Signed error of {} against {} over C x gamma (degrees), % of I_max",
-                m.name, c.reference
-            ),
-            png,
+        out.push(error_figure(c, m)?);
+    }
+    out.extend(scatter_figures(c)?);
+    Ok(out)
+}
+
+/// The polar diagram of plane pair `k` (the third: the plane of maximum
+/// intensity): every reconstruction's curve over the measured points.
+fn polar_figure(c: &Comparison, k: usize, plane: &PolarPlane) -> Result<Figure, Error> {
+    let names = ["polar_c0_c180.png", "polar_c90_c270.png", "polar_cmax.png"];
+    let mut series: Vec<Series> = plane
+        .curves
+        .iter()
+        .enumerate()
+        .map(|(i, (name, pts))| Series {
+            label: name.clone(),
+            points: pts.clone(),
+            color: plot::palette(i),
+            style: if name.ends_with("(reference)") {
+                SeriesStyle::Dashed
+            } else {
+                SeriesStyle::Line
+            },
+        })
+        .collect();
+    for (j, (label, pts)) in plane.measured.iter().enumerate() {
+        series.push(Series {
+            label: label.clone(),
+            points: pts.clone(),
+            color: if j == 0 { [0, 0, 0] } else { [110, 110, 110] },
+            style: SeriesStyle::Markers,
         });
     }
+    let title = if k == 2 {
+        format!(
+            "Plane of maximum intensity: C{:.1} - C{:.1}",
+            plane.right_c, plane.left_c
+        )
+    } else {
+        format!("C{:.0} - C{:.0}", plane.right_c, plane.left_c)
+    };
+    let c_name = |c: f64| {
+        if c.fract() == 0.0 {
+            format!("C{c:.0}")
+        } else {
+            format!("C{c:.1}")
+        }
+    };
+    let (l, r) = (c_name(plane.left_c), c_name(plane.right_c));
+    let png = plot::polar_diagram(&PolarSpec {
+        title: &title,
+        left: &l,
+        right: &r,
+        unit: &c.units,
+        series: &series,
+        ..PolarSpec::default()
+    })?;
+    Ok(Figure {
+        file: names[k.min(2)].into(),
+        caption: format!("{title}: every reconstruction over the measured points ({})", c.units),
+        png,
+    })
+}
+
+/// The heat map of one reconstruction's signed error over C × γ.
+fn error_figure(c: &Comparison, m: &ErrorMap) -> Result<Figure, Error> {
+    let title = format!("{} - {}: signed error, % of I_max", m.name, c.reference);
+    let png = plot::heatmap(&HeatmapSpec {
+        title: &title,
+        xs: &m.xs,
+        ys: &m.ys,
+        values: &m.values,
+        unit: "% of I_max",
+        scale: ColorScale::Diverging,
+        ..HeatmapSpec::default()
+    })?;
+    Ok(Figure {
+        file: format!("error_{}.png", slug(&m.name)),
+        caption: format!(
+            "Signed error of {} against {} over C x gamma (degrees), % of I_max",
+            m.name, c.reference
+        ),
+        png,
+    })
+}
+
+/// The speed and the memory scatters against the Hausdorff distance, each
+/// when some row has its cost.
+fn scatter_figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
+    let mut out = Vec::new();
     let pts: Vec<ScatterPoint> = c
         .results
         .iter()

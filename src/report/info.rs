@@ -295,24 +295,33 @@ impl InfoReport {
     pub fn to_text(&self) -> String {
         use std::fmt::Write;
         let mut o = String::new();
-        let opt = |v: Option<f64>, scale: f64, unit: &str| match v {
-            Some(x) => format!("{:.2}{unit}", x * scale),
-            None => "-".to_string(),
-        };
-        let pair = |a: [Option<f64>; 2]| {
-            format!(
-                "{} in C0-C180, {} in C90-C270",
-                opt(a[0], 1.0, "°"),
-                opt(a[1], 1.0, "°")
-            )
-        };
+        let rows = [self.file_rows(), self.flux_rows(), self.beam_rows(), self.lamp_rows()];
+        for (k, v) in rows.into_iter().flatten() {
+            let _ = writeln!(o, "{k:<34} {v}");
+        }
+        self.write_spreads(&mut o);
+        if let (Some(g), Some(rows)) = (&self.gldf_declared, &self.gldf_comparison) {
+            o.push_str(&crate::report::declared::to_text(g, rows));
+        }
+        if !self.warnings.is_empty() {
+            let _ = writeln!(o, "warnings:");
+            for w in &self.warnings {
+                let _ = writeln!(o, "  {w}");
+            }
+        }
+        o.push_str(&self.derived.to_text());
+        o
+    }
+
+    /// The text table's rows on the file and its grid.
+    fn file_rows(&self) -> Vec<(&'static str, String)> {
         let range = match self.gamma_range {
             GammaRange::Full => "0-180 (full sphere)".to_string(),
             GammaRange::Lower => "0-90 (lower hemisphere)".to_string(),
             GammaRange::Upper => "90-180 (upper hemisphere)".to_string(),
             GammaRange::Partial { from, to } => format!("{from}-{to} (partial)"),
         };
-        let rows: Vec<(&str, String)> = vec![
+        vec![
             ("format", format!("{:?} {}", self.format, self.version).to_uppercase()),
             ("manufacturer", self.manufacturer.clone()),
             ("catalogue", self.catalogue.clone()),
@@ -326,6 +335,12 @@ impl InfoReport {
                 ),
             ),
             ("gamma range", range),
+        ]
+    }
+
+    /// The text table's rows on intensity, flux and light output ratios.
+    fn flux_rows(&self) -> Vec<(&'static str, String)> {
+        vec![
             (
                 "max intensity",
                 format!(
@@ -358,13 +373,26 @@ impl InfoReport {
                 "LOR / DLOR / ULOR",
                 format!(
                     "{} / {} / {}",
-                    opt(self.lor, 100.0, " %"),
-                    opt(self.dlor, 100.0, " %"),
-                    opt(self.ulor, 100.0, " %")
+                    opt_text(self.lor, 100.0, " %"),
+                    opt_text(self.dlor, 100.0, " %"),
+                    opt_text(self.ulor, 100.0, " %")
                 ),
             ),
-            ("declared LOR", opt(self.declared_lor, 100.0, " %")),
-            ("DFF", opt(self.dff, 100.0, " %")),
+            ("declared LOR", opt_text(self.declared_lor, 100.0, " %")),
+            ("DFF", opt_text(self.dff, 100.0, " %")),
+        ]
+    }
+
+    /// The text table's rows on the beam and field angles of both plane pairs.
+    fn beam_rows(&self) -> Vec<(&'static str, String)> {
+        let pair = |a: [Option<f64>; 2]| {
+            format!(
+                "{} in C0-C180, {} in C90-C270",
+                opt_text(a[0], 1.0, "°"),
+                opt_text(a[1], 1.0, "°")
+            )
+        };
+        vec![
             ("beam angle IES, 50 % of I_max", pair(self.beam_angles.ies_beam_deg)),
             ("field angle IES, 10 % of I_max", pair(self.beam_angles.ies_field_deg)),
             ("beam angle CIE, 50 % of centre I", pair(self.beam_angles.cie_beam_deg)),
@@ -372,6 +400,12 @@ impl InfoReport {
                 "field angle CIE, 10 % of centre I",
                 pair(self.beam_angles.cie_field_deg),
             ),
+        ]
+    }
+
+    /// The text table's rows on the lamp, the power and the luminous opening.
+    fn lamp_rows(&self) -> Vec<(&'static str, String)> {
+        vec![
             ("tilt", self.tilt.to_string()),
             (
                 "lamp colour",
@@ -384,8 +418,8 @@ impl InfoReport {
                 },
             ),
             ("absolute photometry", self.absolute.to_string()),
-            ("input watts", opt(self.input_watts, 1.0, " W")),
-            ("efficacy", opt(self.efficacy_lm_per_w, 1.0, " lm/W")),
+            ("input watts", opt_text(self.input_watts, 1.0, " W")),
+            ("efficacy", opt_text(self.efficacy_lm_per_w, 1.0, " lm/W")),
             (
                 "luminous opening",
                 format!(
@@ -396,10 +430,12 @@ impl InfoReport {
                     self.luminous_dimensions_m.shape.unwrap_or("shape undefined")
                 ),
             ),
-        ];
-        for (k, v) in rows {
-            let _ = writeln!(o, "{k:<34} {v}");
-        }
+        ]
+    }
+
+    /// The floodlight lines (Type B spreads and NEMA type), when there are spreads.
+    fn write_spreads(&self, o: &mut String) {
+        use std::fmt::Write;
         let spread = |s: &Option<photometry::floodlight::Spread>| match s {
             Some(s) => format!("{:.1}° H x {:.1}° V", s.horizontal, s.vertical),
             None => "-".into(),
@@ -424,16 +460,13 @@ impl InfoReport {
                 self.nema_type.as_deref().unwrap_or("- (a spread under 10°)")
             );
         }
-        if let (Some(g), Some(rows)) = (&self.gldf_declared, &self.gldf_comparison) {
-            o.push_str(&crate::report::declared::to_text(g, rows));
-        }
-        if !self.warnings.is_empty() {
-            let _ = writeln!(o, "warnings:");
-            for w in &self.warnings {
-                let _ = writeln!(o, "  {w}");
-            }
-        }
-        o.push_str(&self.derived.to_text());
-        o
+    }
+}
+
+/// `v` × `scale` with two decimals and `unit`, or "-" when absent.
+fn opt_text(v: Option<f64>, scale: f64, unit: &str) -> String {
+    match v {
+        Some(x) => format!("{:.2}{unit}", x * scale),
+        None => "-".to_string(),
     }
 }

@@ -215,23 +215,11 @@ pub fn report_figures(
     dir: &Path,
 ) -> Result<(Vec<crate::report::compare_report::Figure>, Vec<String>), Error> {
     use crate::gpu::realtime::HardwareLookup;
-    use crate::report::compare_report::Figure;
-    let gpu_err = Error::Gpu;
     let formula = format!(
         "E = I cos(i) / d^2 on a plane {} m under the luminaire, ±{} m shown",
         view.height_m, view.half_width_m
     );
     let (mut figs, mut notes) = (Vec::new(), vec![formula.clone()]);
-    let mut image = |name: &str, caption: String, values: &[f64], tone: Tone| -> Result<(), Error> {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        write_exr(&dir.join(format!("{name}.exr")), view, values, &caption)?;
-        figs.push(Figure {
-            file: format!("{name}.png"),
-            caption,
-            png: png(view, values, tone)?,
-        });
-        Ok(())
-    };
     for (device, tag) in [(ctx, "gpu"), (None, "cpu")] {
         if tag == "gpu" && ctx.is_none() {
             continue;
@@ -239,53 +227,90 @@ pub fn report_figures(
         let mut lit = Vec::new();
         for lookup in [HardwareLookup::Linear, HardwareLookup::CatmullRomLinearFetch] {
             let name = lookup.exact().name().replace('-', "_");
-            let values = match device {
-                Some(c) => {
-                    let t = RealtimeTexture::new(c, rendered, None, crate::reconstruct::Precision::F32, lookup)
-                        .map_err(gpu_err)?;
-                    let v = shade_gpu(&t, view).map_err(gpu_err)?;
-                    let cpu = shade_cpu(t.exact(), view).map_err(gpu_err)?;
-                    let d = v.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    notes.push(format!(
-                        "{} on {} ({:?}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
-                        lookup.exact(),
-                        c.adapter(),
-                        t.format(),
-                        cpu.iter().copied().fold(0.0, f64::max)
-                    ));
-                    v
-                }
-                None => {
-                    let exact = crate::reconstruct::StoredTexture::new(
-                        rendered,
-                        None,
-                        crate::reconstruct::Precision::F32,
-                        lookup.exact(),
-                    );
-                    shade_cpu(&exact, view).map_err(gpu_err)?
-                }
-            };
+            let values = lit_plane(device, rendered, view, lookup, &mut notes)?;
             let who = if tag == "gpu" {
                 "GPU texture hardware"
             } else {
                 "CPU exact lookup"
             };
-            image(
+            figs.push(plane_image(
+                dir,
+                view,
                 &format!("plane_{name}_{tag}"),
                 format!("Plane lit through the {} lookup ({who}); {formula}", lookup.exact()),
                 &values,
                 Tone::Exposure,
-            )?;
+            )?);
             lit.push(values);
         }
         let diff: Vec<f64> = lit[0].iter().zip(&lit[1]).map(|(a, b)| a - b).collect();
         let m = diff.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        image(
+        figs.push(plane_image(
+            dir,
+            view,
             &format!("plane_difference_{tag}"),
             format!("Bilinear minus Catmull-Rom ({tag}), blue < 0 < red, ±{m:.2} lx; {formula}"),
             &diff,
             Tone::Diverging,
-        )?;
+        )?);
     }
     Ok((figs, notes))
+}
+
+/// The plane lit through `lookup` of `rendered`: on `device`'s texture
+/// hardware (with a note on how far it is from the CPU lookup of the same
+/// texels), or with the exact CPU lookup when there is no device.
+fn lit_plane(
+    device: Option<&crate::gpu::GpuContext>,
+    rendered: &crate::reconstruct::Rendered,
+    view: &PlaneView,
+    lookup: crate::gpu::realtime::HardwareLookup,
+    notes: &mut Vec<String>,
+) -> Result<Vec<f64>, Error> {
+    let gpu_err = Error::Gpu;
+    Ok(match device {
+        Some(c) => {
+            let t =
+                RealtimeTexture::new(c, rendered, None, crate::reconstruct::Precision::F32, lookup).map_err(gpu_err)?;
+            let v = shade_gpu(&t, view).map_err(gpu_err)?;
+            let cpu = shade_cpu(t.exact(), view).map_err(gpu_err)?;
+            let d = v.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+            notes.push(format!(
+                "{} on {} ({:?}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
+                lookup.exact(),
+                c.adapter(),
+                t.format(),
+                cpu.iter().copied().fold(0.0, f64::max)
+            ));
+            v
+        }
+        None => {
+            let exact = crate::reconstruct::StoredTexture::new(
+                rendered,
+                None,
+                crate::reconstruct::Precision::F32,
+                lookup.exact(),
+            );
+            shade_cpu(&exact, view).map_err(gpu_err)?
+        }
+    })
+}
+
+/// One image of the plane: its EXR `name`.exr written into `dir` (created
+/// if missing), its PNG in `tone` returned as a report figure.
+fn plane_image(
+    dir: &Path,
+    view: &PlaneView,
+    name: &str,
+    caption: String,
+    values: &[f64],
+    tone: Tone,
+) -> Result<crate::report::compare_report::Figure, Error> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    write_exr(&dir.join(format!("{name}.exr")), view, values, &caption)?;
+    Ok(crate::report::compare_report::Figure {
+        file: format!("{name}.png"),
+        caption,
+        png: png(view, values, tone)?,
+    })
 }

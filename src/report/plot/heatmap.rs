@@ -178,8 +178,85 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
         range,
         size: (w, h),
     } = *spec;
-    let diverging = scale == ColorScale::Diverging;
-    if let ColorScale::Exposure(k) = scale {
+    check_grid(spec)?;
+    let mut cv = Canvas::new(w, h, "heat map")?;
+    let (wf, hf) = (cv.w(), cv.h());
+    cv.title(title);
+    let (left, top, right, bottom) = (92.0f32, 56.0f32, wf - 150.0, hf - 62.0);
+    if !subtitle.is_empty() {
+        cv.text(left, top - 18.0, subtitle, 2, Align::Left, INK, false);
+    }
+    let (pw, ph) = (right - left, bottom - top);
+
+    let fin = |v: &&f64| v.is_finite();
+    let area = CellArea {
+        left,
+        top,
+        right,
+        bottom,
+        x0: xs.iter().filter(fin).fold(0.0f64, |a, &b| a.min(b)),
+        x1: xs.iter().filter(fin).fold(360.0f64, |a, &b| a.max(b)),
+        y0: ys.iter().filter(fin).fold(0.0f64, |a, &b| a.min(b)),
+        y1: ys.iter().filter(fin).fold(180.0f64, |a, &b| a.max(b)),
+    };
+    let (any, (lo, hi)) = colour_range(values, range, scale == ColorScale::Diverging)?;
+    let color_of = |v: f64| {
+        if v.is_finite() {
+            scale.color((v - lo) / (hi - lo))
+        } else {
+            NO_DATA
+        }
+    };
+
+    draw_cells(&mut cv, &area, spec, &color_of);
+    if !any {
+        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+    }
+    cv.frame(left - 1.0, top - 1.0, right + 1.0, bottom + 1.0, AXIS);
+    draw_degree_axes(&mut cv, &area);
+    cv.text(left + pw / 2.0, hf - 16.0, "C (°)", 2, Align::Center, INK, false);
+    cv.text_vertical(18.0, top + ph / 2.0, "gamma (°), 0 = nadir", 2, INK);
+    draw_colour_bar(&mut cv, &area, scale, (lo, hi), unit);
+    cv.finish()
+}
+
+/// The plot area in pixels and the C (x) and γ (y) ranges, degrees, it spans.
+struct CellArea {
+    /// Left edge, px.
+    left: f32,
+    /// Top edge, px.
+    top: f32,
+    /// Right edge, px.
+    right: f32,
+    /// Bottom edge, px.
+    bottom: f32,
+    /// C at the left edge.
+    x0: f64,
+    /// C at the right edge.
+    x1: f64,
+    /// γ at the top edge.
+    y0: f64,
+    /// γ at the bottom edge.
+    y1: f64,
+}
+
+impl CellArea {
+    /// Pixel column of C = `x`.
+    fn px(&self, x: f64) -> f32 {
+        self.left + ((x - self.x0) / (self.x1 - self.x0)) as f32 * (self.right - self.left)
+    }
+
+    /// Pixel row of γ = `y`.
+    fn py(&self, y: f64) -> f32 {
+        self.top + ((y - self.y0) / (self.y1 - self.y0)) as f32 * (self.bottom - self.top)
+    }
+}
+
+/// Refuse an exposure k that is not positive and finite, and values that do
+/// not fill the grid.
+fn check_grid(spec: &HeatmapSpec) -> Result<(), Error> {
+    let HeatmapSpec { xs, ys, values, .. } = *spec;
+    if let ColorScale::Exposure(k) = spec.scale {
         if !(k.is_finite() && k > 0.0) {
             return Err(ModelError::Parameter {
                 name: "exposure",
@@ -197,24 +274,13 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
         }
         .into());
     }
-    let mut cv = Canvas::new(w, h, "heat map")?;
-    let (wf, hf) = (cv.w(), cv.h());
-    cv.title(title);
-    let (left, top, right, bottom) = (92.0f32, 56.0f32, wf - 150.0, hf - 62.0);
-    if !subtitle.is_empty() {
-        cv.text(left, top - 18.0, subtitle, 2, Align::Left, INK, false);
-    }
-    let (pw, ph) = (right - left, bottom - top);
+    Ok(())
+}
 
-    let fin = |v: &&f64| v.is_finite();
-    let x0 = xs.iter().filter(fin).fold(0.0f64, |a, &b| a.min(b));
-    let x1 = xs.iter().filter(fin).fold(360.0f64, |a, &b| a.max(b));
-    let y0 = ys.iter().filter(fin).fold(0.0f64, |a, &b| a.min(b));
-    let y1 = ys.iter().filter(fin).fold(180.0f64, |a, &b| a.max(b));
-    let px = |x: f64| left + ((x - x0) / (x1 - x0)) as f32 * pw;
-    let py = |y: f64| top + ((y - y0) / (y1 - y0)) as f32 * ph;
-
-    // Colour range.
+/// Whether any value is finite, and the colour range (lo, hi): `range` when
+/// given (refused unless finite with lo < hi), else from the finite values
+/// (±max |value| when `diverging`), widened when they are all one.
+fn colour_range(values: &[f64], range: Option<(f64, f64)>, diverging: bool) -> Result<(bool, (f64, f64)), Error> {
     let (mut lo, mut hi) = values
         .iter()
         .filter(|v| v.is_finite())
@@ -240,40 +306,42 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
         let d = if lo == 0.0 { 1.0 } else { lo.abs() * 0.1 };
         (lo, hi) = if lo == 0.0 { (0.0, 1.0) } else { (lo - d, hi + d) };
     }
-    let color_of = |v: f64| {
-        if v.is_finite() {
-            scale.color((v - lo) / (hi - lo))
-        } else {
-            NO_DATA
-        }
-    };
+    Ok((any, (lo, hi)))
+}
 
-    // Cells.
-    cv.rect(left as i32, top as i32, right as i32, bottom as i32, NO_DATA);
-    let ex = cell_edges(xs, x0, x1);
-    let ey = cell_edges(ys, y0, y1);
+/// The cells of `spec`'s grid in their colours (`color_of`), on grey.
+fn draw_cells(cv: &mut Canvas, area: &CellArea, spec: &HeatmapSpec, color_of: &dyn Fn(f64) -> [u8; 3]) {
+    let (xs, ys, values) = (spec.xs, spec.ys, spec.values);
+    cv.rect(
+        area.left as i32,
+        area.top as i32,
+        area.right as i32,
+        area.bottom as i32,
+        NO_DATA,
+    );
+    let ex = cell_edges(xs, area.x0, area.x1);
+    let ey = cell_edges(ys, area.y0, area.y1);
     for (iy, &(ya, yb)) in ey.iter().enumerate() {
         if !(ya.is_finite() && yb.is_finite()) {
             continue;
         }
-        let (r0, r1) = (py(ya).round() as i32, py(yb).round() as i32);
+        let (r0, r1) = (area.py(ya).round() as i32, area.py(yb).round() as i32);
         for (ix, &(xa, xb)) in ex.iter().enumerate() {
             if !(xa.is_finite() && xb.is_finite()) {
                 continue;
             }
             let c = color_of(values[iy * xs.len() + ix]);
-            cv.rect(px(xa).round() as i32, r0, px(xb).round() as i32, r1, c);
+            cv.rect(area.px(xa).round() as i32, r0, area.px(xb).round() as i32, r1, c);
         }
     }
-    if !any {
-        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
-    }
-    cv.frame(left - 1.0, top - 1.0, right + 1.0, bottom + 1.0, AXIS);
+}
 
-    // Axes: ticks in degrees.
-    let sx = degree_step(x1 - x0, 8);
-    for t in ticks_in(x0, x1, sx) {
-        let x = px(t).round() + 0.5;
+/// Tick marks and labels of the C and γ axes, in degrees.
+fn draw_degree_axes(cv: &mut Canvas, area: &CellArea) {
+    let (left, bottom) = (area.left, area.bottom);
+    let sx = degree_step(area.x1 - area.x0, 8);
+    for t in ticks_in(area.x0, area.x1, sx) {
+        let x = area.px(t).round() + 0.5;
         cv.line(x, bottom + 1.0, x, bottom + 6.0, AXIS, 1.0);
         cv.text(
             x,
@@ -285,9 +353,9 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
             false,
         );
     }
-    let sy = degree_step(y1 - y0, 6);
-    for t in ticks_in(y0, y1, sy) {
-        let y = py(t).round() + 0.5;
+    let sy = degree_step(area.y1 - area.y0, 6);
+    for t in ticks_in(area.y0, area.y1, sy) {
+        let y = area.py(t).round() + 0.5;
         cv.line(left - 6.0, y, left - 1.0, y, AXIS, 1.0);
         cv.text(
             left - 10.0,
@@ -299,12 +367,15 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
             false,
         );
     }
-    cv.text(left + pw / 2.0, hf - 16.0, "C (°)", 2, Align::Center, INK, false);
-    cv.text_vertical(18.0, top + ph / 2.0, "gamma (°), 0 = nadir", 2, INK);
+}
 
-    // Colour bar: top = hi, bottom = lo. With an exposure the bar runs
-    // evenly through the colours and its ticks sit where the tone curve puts
-    // their values, so that a colour in the map reads off the bar.
+/// Colour bar right of the plot area: top = hi, bottom = lo, with `unit`
+/// over it. With an exposure the bar runs evenly through the colours and its
+/// ticks sit where the tone curve puts their values, so that a colour in the
+/// map reads off the bar.
+fn draw_colour_bar(cv: &mut Canvas, area: &CellArea, scale: ColorScale, (lo, hi): (f64, f64), unit: &str) {
+    let (top, right, bottom) = (area.top, area.right, area.bottom);
+    let ph = bottom - top;
     let (bx0, bx1) = (right + 26.0, right + 48.0);
     for r in top as i32..bottom as i32 {
         let t = 1.0 - (f64::from(r) + 0.5 - f64::from(top)) / f64::from(ph);
@@ -315,7 +386,20 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
         cv.rect(bx0 as i32, r, bx1 as i32, r + 1, c);
     }
     cv.frame(bx0 - 1.0, top - 1.0, bx1 + 1.0, bottom + 1.0, AXIS);
-    let bar_ticks: Vec<(f64, f64, String)> = match scale {
+    for (_, p, label) in bar_ticks(scale, (lo, hi), ph) {
+        let y = (bottom - p as f32 * ph).round() + 0.5;
+        cv.line(bx1 + 1.0, y, bx1 + 6.0, y, AXIS, 1.0);
+        cv.text(bx1 + 9.0, y, &label, 2, Align::Left, INK, false);
+    }
+    let uw = font::text_width(unit, 2) as f32;
+    let ux = ((bx0 + bx1) / 2.0).min(cv.w() - 8.0 - uw / 2.0);
+    cv.text(ux, top - 18.0, unit, 2, Align::Center, INK, false);
+}
+
+/// The colour bar's ticks for a bar `ph` px high: (value, position 0..1 up
+/// the bar, label); with an exposure, spaced a text height apart at least.
+fn bar_ticks(scale: ColorScale, (lo, hi): (f64, f64), ph: f32) -> Vec<(f64, f64, String)> {
+    match scale {
         ColorScale::Exposure(k) => {
             let th = font::text_height(2) as f64 + 4.0;
             exposure_ticks(lo, hi, k, th / f64::from(ph))
@@ -337,16 +421,7 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
                 .map(|t| (t, (t - lo) / (hi - lo), fmt_tick(t, sb)))
                 .collect()
         }
-    };
-    for (_, p, label) in bar_ticks {
-        let y = (bottom - p as f32 * ph).round() + 0.5;
-        cv.line(bx1 + 1.0, y, bx1 + 6.0, y, AXIS, 1.0);
-        cv.text(bx1 + 9.0, y, &label, 2, Align::Left, INK, false);
     }
-    let uw = font::text_width(unit, 2) as f32;
-    let ux = ((bx0 + bx1) / 2.0).min(wf - 8.0 - uw / 2.0);
-    cv.text(ux, top - 18.0, unit, 2, Align::Center, INK, false);
-    cv.finish()
 }
 
 #[cfg(test)]

@@ -162,52 +162,15 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     let levels = contour_levels(emin, emax);
 
     // The texts under the title and under the map, to size the image.
-    let u0 = if spec.e_avg_lux > 0.0 {
-        format!(", U0 {}", crate::report::significant(emin / spec.e_avg_lux, 2))
-    } else {
-        String::new()
+    let stats = stats_line(spec, emin, emax);
+    let map = MapArea {
+        l: MAP_LEFT as f32,
+        t: MAP_TOP as f32,
+        w,
+        h,
     };
-    let (sym, unit) = (spec.quantity.symbol, spec.quantity.unit);
-    let stats = format!(
-        "{sym}_avg {} {unit}, {sym}_min {} {unit}, {sym}_max {} {unit}{u0}; {nu} x {nv} points",
-        lux(spec.e_avg_lux),
-        lux(emin),
-        lux(emax)
-    );
-    let (l, t) = (MAP_LEFT as f32, MAP_TOP as f32);
-    let to_px = |s: f64, tt: f64| (l + (s * f64::from(w)) as f32, t + ((1.0 - tt) * f64::from(h)) as f32);
-    // Marks: group the ones within 10 px of each other; those off the map are named in the footer.
-    let mut groups: Vec<((f32, f32), Vec<usize>)> = Vec::new();
-    let mut off = Vec::new();
-    for (k, &(s, tt)) in spec.marks.iter().enumerate() {
-        if !(s.is_finite() && tt.is_finite()) {
-            continue;
-        }
-        let (x, y) = to_px(s, tt);
-        if x < l - 2.0 || x > l + w as f32 + 2.0 || y < t - 2.0 || y > t + h as f32 + 2.0 {
-            off.push(format!("L{}", k + 1));
-            continue;
-        }
-        let (x, y) = (x.clamp(l, l + w as f32), y.clamp(t, t + h as f32));
-        match groups
-            .iter_mut()
-            .find(|(p, _)| (p.0 - x).abs() < 10.0 && (p.1 - y).abs() < 10.0)
-        {
-            Some(g) => g.1.push(k),
-            None => groups.push(((x, y), vec![k])),
-        }
-    }
-    let mut footer = if levels.is_empty() {
-        "no contour lines (uniform or dark)".to_string()
-    } else {
-        format!(
-            "contours (white): {} {unit}",
-            levels.iter().map(|v| fmt_tick(*v, *v)).collect::<Vec<_>>().join(", ")
-        )
-    };
-    if !off.is_empty() {
-        footer.push_str(&format!("; beyond the map: {}", off.join(", ")));
-    }
+    let (groups, off) = group_marks(spec.marks, &map);
+    let footer = footer_line(&levels, spec.quantity.unit, &off);
     let title = format!("{}: {}", spec.quantity.title, spec.name);
     let text_w = [&stats, &footer]
         .iter()
@@ -221,8 +184,56 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     cv.title(&title);
     cv.text(12.0, 42.0, &stats, 2, Align::Left, INK, false);
 
-    // False colour.
-    let at = |s: f64, tt: f64| {
+    let field = Field { e, nu, nv };
+    draw_false_colour(&mut cv, &map, &field, emax);
+    draw_contours(&mut cv, &map, &field, &levels);
+    let (l, t) = (map.l, map.t);
+    cv.frame(l - 1.0, t - 1.0, l + w as f32 + 1.0, t + h as f32 + 1.0, AXIS);
+    draw_map_axes(&mut cv, &map, &spec.u_axis, &spec.v_axis);
+    cv.text(12.0, t + h as f32 + 64.0, &footer, 2, Align::Left, INK, false);
+    draw_colour_bar(&mut cv, &map, emax, &levels, spec.quantity.unit);
+    draw_luminaires(&mut cv, &groups);
+    cv.finish()
+}
+
+/// The map area of the image: its top-left corner (`l`, `t`) and size
+/// (`w` × `h`), px.
+struct MapArea {
+    /// Left edge, px.
+    l: f32,
+    /// Top edge, px.
+    t: f32,
+    /// Width, px.
+    w: u32,
+    /// Height, px.
+    h: u32,
+}
+
+impl MapArea {
+    /// Pixel position of plane coordinates (s, t), each 0 to 1 (t upwards).
+    fn to_px(&self, s: f64, tt: f64) -> (f32, f32) {
+        (
+            self.l + (s * f64::from(self.w)) as f32,
+            self.t + ((1.0 - tt) * f64::from(self.h)) as f32,
+        )
+    }
+}
+
+/// The values at the calculation points: `e[j * nu + i]`, u fastest.
+struct Field<'a> {
+    /// The values.
+    e: &'a [f64],
+    /// Points along u.
+    nu: usize,
+    /// Points along v.
+    nv: usize,
+}
+
+impl Field<'_> {
+    /// The value at plane coordinates (s, t): bilinear between the cell
+    /// centres, held at the edges.
+    fn at(&self, s: f64, tt: f64) -> f64 {
+        let (nu, nv, e) = (self.nu, self.nv, self.e);
         let x = (s * nu as f64 - 0.5).clamp(0.0, (nu - 1) as f64);
         let y = (tt * nv as f64 - 0.5).clamp(0.0, (nv - 1) as f64);
         let (i0, j0) = (x.floor() as usize, y.floor() as usize);
@@ -230,22 +241,98 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
         let (fx, fy) = (x - i0 as f64, y - j0 as f64);
         let g = |i: usize, j: usize| e[j * nu + i];
         (g(i0, j0) * (1.0 - fx) + g(i1, j0) * fx) * (1.0 - fy) + (g(i0, j1) * (1.0 - fx) + g(i1, j1) * fx) * fy
+    }
+
+    /// Plane coordinates (s, t) of point (i, j).
+    fn centre(&self, i: usize, j: usize) -> (f64, f64) {
+        ((i as f64 + 0.5) / self.nu as f64, (j as f64 + 0.5) / self.nv as f64)
+    }
+}
+
+/// Luminaire marks that share one spot: the spot, px, and the marks' indices.
+type MarkGroup = ((f32, f32), Vec<usize>);
+
+/// The statistics under the title: average, minimum, maximum, U0 and the grid.
+fn stats_line(spec: &IsoluxSpec, emin: f64, emax: f64) -> String {
+    let (nu, nv) = spec.grid;
+    let u0 = if spec.e_avg_lux > 0.0 {
+        format!(", U0 {}", crate::report::significant(emin / spec.e_avg_lux, 2))
+    } else {
+        String::new()
     };
+    let (sym, unit) = (spec.quantity.symbol, spec.quantity.unit);
+    format!(
+        "{sym}_avg {} {unit}, {sym}_min {} {unit}, {sym}_max {} {unit}{u0}; {nu} x {nv} points",
+        lux(spec.e_avg_lux),
+        lux(emin),
+        lux(emax)
+    )
+}
+
+/// The marks on the map, those within 10 px of each other in one group,
+/// and the names (`L3`) of those off the map, which the footer lists.
+fn group_marks(marks: &[(f64, f64)], map: &MapArea) -> (Vec<MarkGroup>, Vec<String>) {
+    let (l, t, w, h) = (map.l, map.t, map.w, map.h);
+    let mut groups: Vec<MarkGroup> = Vec::new();
+    let mut off = Vec::new();
+    for (k, &(s, tt)) in marks.iter().enumerate() {
+        if !(s.is_finite() && tt.is_finite()) {
+            continue;
+        }
+        let (x, y) = map.to_px(s, tt);
+        if x < l - 2.0 || x > l + w as f32 + 2.0 || y < t - 2.0 || y > t + h as f32 + 2.0 {
+            off.push(format!("L{}", k + 1));
+            continue;
+        }
+        let (x, y) = (x.clamp(l, l + w as f32), y.clamp(t, t + h as f32));
+        match groups
+            .iter_mut()
+            .find(|(p, _)| (p.0 - x).abs() < 10.0 && (p.1 - y).abs() < 10.0)
+        {
+            Some(g) => g.1.push(k),
+            None => groups.push(((x, y), vec![k])),
+        }
+    }
+    (groups, off)
+}
+
+/// The line under the map: the contour levels, and the marks `off` the map.
+fn footer_line(levels: &[f64], unit: &str, off: &[String]) -> String {
+    let mut footer = if levels.is_empty() {
+        "no contour lines (uniform or dark)".to_string()
+    } else {
+        format!(
+            "contours (white): {} {unit}",
+            levels.iter().map(|v| fmt_tick(*v, *v)).collect::<Vec<_>>().join(", ")
+        )
+    };
+    if !off.is_empty() {
+        footer.push_str(&format!("; beyond the map: {}", off.join(", ")));
+    }
+    footer
+}
+
+/// False colour, one pixel at a time: viridis from 0 to `emax`.
+fn draw_false_colour(cv: &mut Canvas, map: &MapArea, field: &Field, emax: f64) {
+    let (w, h) = (map.w, map.h);
     for py in 0..h {
         for px in 0..w {
             let (s, tt) = (
                 (f64::from(px) + 0.5) / f64::from(w),
                 1.0 - (f64::from(py) + 0.5) / f64::from(h),
             );
-            let val = at(s, tt);
+            let val = field.at(s, tt);
             let c = ColorMap::Viridis.rgb8(if emax > 0.0 && val.is_finite() { val / emax } else { 0.0 });
             let (x, y) = ((MAP_LEFT + px) as i32, (MAP_TOP + py) as i32);
             cv.rect(x, y, x + 1, y + 1, c);
         }
     }
-    // Contours: marching squares between the cell centres.
-    let centre = |i: usize, j: usize| ((i as f64 + 0.5) / nu as f64, (j as f64 + 0.5) / nv as f64);
-    for &level in &levels {
+}
+
+/// Contours at `levels`: marching squares between the cell centres.
+fn draw_contours(cv: &mut Canvas, map: &MapArea, field: &Field, levels: &[f64]) {
+    let (nu, nv, e) = (field.nu, field.nv, field.e);
+    for &level in levels {
         for j in 0..nv.saturating_sub(1) {
             for i in 0..nu.saturating_sub(1) {
                 let corners = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
@@ -255,38 +342,38 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
                     let (ea, eb) = (e[a.1 * nu + a.0], e[b.1 * nu + b.0]);
                     if (ea < level) != (eb < level) {
                         let f = (level - ea) / (eb - ea);
-                        let (pa, pb) = (centre(a.0, a.1), centre(b.0, b.1));
+                        let (pa, pb) = (field.centre(a.0, a.1), field.centre(b.0, b.1));
                         crossings.push((pa.0 + f * (pb.0 - pa.0), pa.1 + f * (pb.1 - pa.1)));
                     }
                 }
                 for pair in crossings.chunks_exact(2) {
-                    cv.line(
-                        to_px(pair[0].0, pair[0].1).0,
-                        to_px(pair[0].0, pair[0].1).1,
-                        to_px(pair[1].0, pair[1].1).0,
-                        to_px(pair[1].0, pair[1].1).1,
-                        [255, 255, 255],
-                        1.5,
-                    );
+                    let (p0, p1) = (map.to_px(pair[0].0, pair[0].1), map.to_px(pair[1].0, pair[1].1));
+                    cv.line(p0.0, p0.1, p1.0, p1.1, [255, 255, 255], 1.5);
                 }
             }
         }
     }
-    cv.frame(l - 1.0, t - 1.0, l + w as f32 + 1.0, t + h as f32 + 1.0, AXIS);
+}
 
-    // Axes in metres.
-    let axis = |a: &MapAxis, px_len: u32| {
-        let (lo, hi) = (a.start.min(a.end), a.start.max(a.end));
-        let step = nice_step(hi - lo, (px_len / 90).clamp(2, 10) as usize);
-        ticks_in(lo, hi, step)
-            .into_iter()
-            .map(|v| ((v - a.start) / (a.end - a.start), fmt_tick(v, step)))
-            .filter(|(f, _)| f.is_finite())
-            .collect::<Vec<_>>()
-    };
+/// Ticks of a map axis `px_len` px long: (position 0 to 1 along the plane
+/// edge, label), in metres.
+fn map_axis_ticks(a: &MapAxis, px_len: u32) -> Vec<(f64, String)> {
+    let (lo, hi) = (a.start.min(a.end), a.start.max(a.end));
+    let step = nice_step(hi - lo, (px_len / 90).clamp(2, 10) as usize);
+    ticks_in(lo, hi, step)
+        .into_iter()
+        .map(|v| ((v - a.start) / (a.end - a.start), fmt_tick(v, step)))
+        .filter(|(f, _)| f.is_finite())
+        .collect::<Vec<_>>()
+}
+
+/// The u axis under the map and the v axis left of it, in metres, with
+/// their titles; tick labels that would crowd the previous one are skipped.
+fn draw_map_axes(cv: &mut Canvas, map: &MapArea, u_axis: &MapAxis, v_axis: &MapAxis) {
+    let (l, t, w, h) = (map.l, map.t, map.w, map.h);
     let bottom = t + h as f32;
     let mut last_right = f32::NEG_INFINITY;
-    for (f, lab) in axis(&spec.u_axis, w) {
+    for (f, lab) in map_axis_ticks(u_axis, w) {
         let x = (l + f as f32 * w as f32).round() + 0.5;
         cv.line(x, bottom + 1.0, x, bottom + 6.0, AXIS, 1.0);
         let tw = font::text_width(&lab, 2) as f32;
@@ -298,14 +385,14 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     cv.text(
         l + w as f32 / 2.0,
         bottom + 40.0,
-        &spec.u_axis.title,
+        &u_axis.title,
         2,
         Align::Center,
         INK,
         false,
     );
     let mut last_top = f32::INFINITY;
-    for (f, lab) in axis(&spec.v_axis, h) {
+    for (f, lab) in map_axis_ticks(v_axis, h) {
         let y = (bottom - f as f32 * h as f32).round() + 0.5;
         cv.line(l - 6.0, y, l - 1.0, y, AXIS, 1.0);
         if y + 9.0 < last_top - 4.0 {
@@ -313,10 +400,13 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
             last_top = b[1];
         }
     }
-    cv.text_vertical(16.0, t + h as f32 / 2.0, &spec.v_axis.title, 2, INK);
-    cv.text(12.0, bottom + 64.0, &footer, 2, Align::Left, INK, false);
+    cv.text_vertical(16.0, t + h as f32 / 2.0, &v_axis.title, 2, INK);
+}
 
-    // Colour bar, 0 to Emax, with the contour levels on it.
+/// Colour bar right of the map, 0 to `emax`, with the contour `levels` on
+/// it and `unit` over it.
+fn draw_colour_bar(cv: &mut Canvas, map: &MapArea, emax: f64, levels: &[f64], unit: &str) {
+    let (l, t, w, h) = (map.l, map.t, map.w, map.h);
     let bar_h = h.max(MIN_BAR) as f32;
     let (bx0, bx1) = (l + w as f32 + 30.0, l + w as f32 + 52.0);
     for r in 0..bar_h as i32 {
@@ -327,7 +417,7 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     cv.frame(bx0 - 1.0, t - 1.0, bx1 + 1.0, t + bar_h + 1.0, AXIS);
     let top_lux = if emax > 0.0 { emax } else { 1.0 };
     let yb = |v: f64| (t + bar_h - (v / top_lux) as f32 * bar_h).round() + 0.5;
-    for &v in &levels {
+    for &v in levels {
         cv.line(bx0, yb(v), bx1, yb(v), [255, 255, 255], 1.0);
     }
     let sb = nice_step(top_lux, ((bar_h / 40.0) as usize).clamp(2, 8));
@@ -336,29 +426,24 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
         cv.line(bx1 + 1.0, y, bx1 + 6.0, y, AXIS, 1.0);
         cv.text(bx1 + 9.0, y, &fmt_tick(v, sb), 2, Align::Left, INK, false);
     }
-    cv.text(
-        (bx0 + bx1) / 2.0,
-        t - 12.0,
-        spec.quantity.unit,
-        2,
-        Align::Center,
-        INK,
-        false,
-    );
+    cv.text((bx0 + bx1) / 2.0, t - 12.0, unit, 2, Align::Center, INK, false);
+}
 
-    // Luminaires: a white-ringed black dot, the label on a free side.
+/// Luminaires: a white-ringed black dot per group, its label (`L1/L2`) on a
+/// side where it overlaps no text and no dot, else where it overlaps no text.
+fn draw_luminaires(cv: &mut Canvas, groups: &[MarkGroup]) {
     let dots: Vec<[f32; 4]> = groups
         .iter()
         .map(|((x, y), _)| [x - 7.0, y - 7.0, x + 7.0, y + 7.0])
         .collect();
-    for ((x, y), _) in &groups {
+    for ((x, y), _) in groups {
         cv.circle(*x, *y, 7.0, [255, 255, 255], None);
         cv.circle(*x, *y, 5.0, [0, 0, 0], None);
     }
     let mut placed: Vec<[f32; 4]> = cv.texts.iter().map(|tb| tb.rect).collect();
     let th = font::text_height(2) as f32;
     let (wf, hf) = (cv.w(), cv.h());
-    for ((x, y), ks) in &groups {
+    for ((x, y), ks) in groups {
         let label = ks.iter().map(|k| format!("L{}", k + 1)).collect::<Vec<_>>().join("/");
         let tw = font::text_width(&label, 2) as f32;
         let cands = [
@@ -395,7 +480,6 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
             placed.push(b);
         }
     }
-    cv.finish()
 }
 
 #[cfg(test)]

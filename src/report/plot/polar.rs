@@ -74,10 +74,95 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
     // Dense measured points (e.g. 361 gamma angles) would hide every curve:
     // markers are thinned to one per MARKER_GAP px of the diagram and drawn
     // under the curves; the legend says how many are shown.
-    let mut shown_markers: Vec<Vec<(f64, f64)>> = Vec::with_capacity(series.len());
     let mut labels: Vec<Series> = series.to_vec();
     // Measure the legend with the longest marker labels it may get.
-    let widest: Vec<Series> = series
+    let legend_h = legend(&mut cv, &widest_labels(series), 20.0, 0.0, wf - 20.0, true);
+    let top = 40.0;
+    let bottom = hf - legend_h - 14.0;
+    let side = 20.0 + font::text_width(left, 2).max(font::text_width(right, 2)).max(48) as f32;
+    let radius = ((wf - 2.0 * side) / 2.0).min((bottom - top) / 2.0 - 26.0).max(20.0);
+    let (cx, cy) = (wf / 2.0, top + (bottom - top) / 2.0);
+    let any = series.iter().any(|s| s.points.iter().any(finite2));
+    let p = Disc::new(series, (cx, cy), radius);
+
+    draw_grid(&mut cv, &p);
+    // Half-plane names at the sides, above the 90° labels.
+    cv.text(12.0, cy - 40.0, left, 2, Align::Left, INK, false);
+    cv.text(wf - 12.0, cy - 40.0, right, 2, Align::Right, INK, false);
+    // Unit in the top-left corner.
+    cv.text(12.0, top + 4.0, unit, 2, Align::Left, INK, false);
+    draw_ring_labels_and_cross(&mut cv, &p);
+
+    let shown_markers = thin_markers(series, &mut labels, &p);
+    for (s, kept) in series.iter().zip(&shown_markers) {
+        if s.style == SeriesStyle::Markers {
+            for &(g, v) in kept {
+                let (x, y) = p.to_xy(g, v);
+                cv.circle(x, y, 3.0, s.color, None);
+            }
+        }
+    }
+    draw_curves(&mut cv, series, &p);
+    if !any {
+        cv.text(cx, cy, "no data", 3, Align::Center, INK, true);
+    }
+    legend(&mut cv, &labels, 20.0, hf - legend_h - 8.0, wf - 20.0, false);
+    cv.png()
+}
+
+/// The diagram's disc: centre and radius, px, and its value scale.
+struct Disc {
+    /// Centre, px.
+    cx: f32,
+    /// Centre, px.
+    cy: f32,
+    /// Radius of the outer ring, px.
+    radius: f32,
+    /// Value step between rings.
+    step: f64,
+    /// Number of rings.
+    n_rings: usize,
+    /// Value at the outer ring.
+    rmax: f64,
+}
+
+impl Disc {
+    /// The disc at `(cx, cy)` of `radius` px, scaled to the largest finite
+    /// value of `series` rounded up to a ring.
+    fn new(series: &[Series], (cx, cy): (f32, f32), radius: f32) -> Self {
+        let vmax = series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .filter(|p| finite2(p))
+            .map(|p| p.1)
+            .fold(0.0f64, f64::max);
+        let top_v = if vmax > 0.0 { vmax } else { 1.0 };
+        let step = ring_step(top_v);
+        let n_rings = ((top_v / step) - 1e-9).ceil().max(1.0) as usize;
+        let rmax = step * n_rings as f64;
+        Self {
+            cx,
+            cy,
+            radius,
+            step,
+            n_rings,
+            rmax,
+        }
+    }
+
+    /// Pixel position of value `v` at signed γ = `g` degrees (negative
+    /// values at the centre).
+    fn to_xy(&self, g: f64, v: f64) -> (f32, f32) {
+        let r = (v.max(0.0) / self.rmax) * f64::from(self.radius);
+        let a = g.to_radians();
+        (self.cx + (r * a.sin()) as f32, self.cy + (r * a.cos()) as f32)
+    }
+}
+
+/// The series with each marker label as long as it may get ("(n of n
+/// shown)"), to measure the legend.
+fn widest_labels(series: &[Series]) -> Vec<Series> {
+    series
         .iter()
         .map(|s| {
             let mut s = s.clone();
@@ -87,42 +172,21 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
             }
             s
         })
-        .collect();
-    let legend_h = legend(&mut cv, &widest, 20.0, 0.0, wf - 20.0, true);
-    let top = 40.0;
-    let bottom = hf - legend_h - 14.0;
-    let side = 20.0 + font::text_width(left, 2).max(font::text_width(right, 2)).max(48) as f32;
-    let radius = ((wf - 2.0 * side) / 2.0).min((bottom - top) / 2.0 - 26.0).max(20.0);
-    let (cx, cy) = (wf / 2.0, top + (bottom - top) / 2.0);
+        .collect()
+}
 
-    // Scale: the largest finite value, rounded up to a ring.
-    let vmax = series
-        .iter()
-        .flat_map(|s| s.points.iter())
-        .filter(|p| finite2(p))
-        .map(|p| p.1)
-        .fold(0.0f64, f64::max);
-    let any = series.iter().any(|s| s.points.iter().any(finite2));
-    let top_v = if vmax > 0.0 { vmax } else { 1.0 };
-    let step = ring_step(top_v);
-    let n_rings = ((top_v / step) - 1e-9).ceil().max(1.0) as usize;
-    let rmax = step * n_rings as f64;
-    let to_xy = |g: f64, v: f64| -> (f32, f32) {
-        let r = (v.max(0.0) / rmax) * f64::from(radius);
-        let a = g.to_radians();
-        (cx + (r * a.sin()) as f32, cy + (r * a.cos()) as f32)
-    };
-
-    // Grid: radial lines every 30°, rings at each step.
+/// Grid: radial lines every 30°, rings at each step, and the angle labels
+/// outside the circle, 0..180 on both halves.
+fn draw_grid(cv: &mut Canvas, p: &Disc) {
+    let (cx, cy, radius) = (p.cx, p.cy, p.radius);
     for k in 0..12 {
-        let (x, y) = to_xy(k as f64 * 30.0, rmax);
+        let (x, y) = p.to_xy(k as f64 * 30.0, p.rmax);
         cv.line(cx, cy, x, y, GRID, 1.0);
     }
-    for k in 1..=n_rings {
-        let r = radius * k as f32 / n_rings as f32;
-        cv.ring(cx, cy, r, if k == n_rings { AXIS } else { GRID }, 1.0);
+    for k in 1..=p.n_rings {
+        let r = radius * k as f32 / p.n_rings as f32;
+        cv.ring(cx, cy, r, if k == p.n_rings { AXIS } else { GRID }, 1.0);
     }
-    // Angle labels outside the circle, 0..180 on both halves.
     for k in -5..=6 {
         let g = k as f64 * 30.0;
         let a = g.to_radians();
@@ -134,21 +198,26 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
         let x = x + (a.sin() as f32) * (ww / 2.0 - 4.0).max(0.0);
         cv.text(x, y, &s, 2, Align::Center, INK, false);
     }
-    // Half-plane names at the sides, above the 90° labels.
-    cv.text(12.0, cy - 40.0, left, 2, Align::Left, INK, false);
-    cv.text(wf - 12.0, cy - 40.0, right, 2, Align::Right, INK, false);
-    // Unit in the top-left corner.
-    cv.text(12.0, top + 4.0, unit, 2, Align::Left, INK, false);
-    // Ring labels along the zenith ray, on white.
-    for k in 1..=n_rings {
-        let v = step * k as f64;
-        let (_, y) = to_xy(180.0, v);
-        cv.text(cx + 5.0, y + 11.0, &fmt_tick(v, step), 2, Align::Left, AXIS, true);
+}
+
+/// Ring labels along the zenith ray, on white, and the axis cross through
+/// the centre, a little darker than the grid.
+fn draw_ring_labels_and_cross(cv: &mut Canvas, p: &Disc) {
+    let (cx, cy, radius) = (p.cx, p.cy, p.radius);
+    for k in 1..=p.n_rings {
+        let v = p.step * k as f64;
+        let (_, y) = p.to_xy(180.0, v);
+        cv.text(cx + 5.0, y + 11.0, &fmt_tick(v, p.step), 2, Align::Left, AXIS, true);
     }
-    // Axis cross through the centre, a little darker.
     cv.line(cx - radius, cy, cx + radius, cy, AXIS, 1.0);
     cv.line(cx, cy - radius, cx, cy + radius, AXIS, 1.0);
+}
 
+/// The finite points of each series sorted by γ, marker series thinned to
+/// one point per [`MARKER_GAP`] px (their legend `labels` then say how many
+/// are shown); empty for the other series.
+fn thin_markers(series: &[Series], labels: &mut [Series], p: &Disc) -> Vec<Vec<(f64, f64)>> {
+    let mut shown_markers: Vec<Vec<(f64, f64)>> = Vec::with_capacity(series.len());
     for (s, lab) in series.iter().zip(labels.iter_mut()) {
         let mut pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite2).collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -156,7 +225,7 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
         if s.style == SeriesStyle::Markers {
             let mut last: Option<(f32, f32)> = None;
             for &(g, v) in &pts {
-                let (x, y) = to_xy(g, v);
+                let (x, y) = p.to_xy(g, v);
                 if last.is_none_or(|(lx, ly)| (x - lx).hypot(y - ly) >= MARKER_GAP) {
                     kept.push((g, v));
                     last = Some((x, y));
@@ -168,14 +237,12 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
         }
         shown_markers.push(kept);
     }
-    for (s, kept) in series.iter().zip(&shown_markers) {
-        if s.style == SeriesStyle::Markers {
-            for &(g, v) in kept {
-                let (x, y) = to_xy(g, v);
-                cv.circle(x, y, 3.0, s.color, None);
-            }
-        }
-    }
+    shown_markers
+}
+
+/// The line and dashed series, sorted by γ and interpolated in polar
+/// coordinates (1° steps); a single point is drawn as a dot.
+fn draw_curves(cv: &mut Canvas, series: &[Series], p: &Disc) {
     for s in series {
         let mut pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite2).collect();
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -183,7 +250,7 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
             SeriesStyle::Markers => {}
             SeriesStyle::Line | SeriesStyle::Dashed => {
                 if pts.len() == 1 {
-                    let (x, y) = to_xy(pts[0].0, pts[0].1);
+                    let (x, y) = p.to_xy(pts[0].0, pts[0].1);
                     cv.circle(x, y, 3.0, s.color, None);
                     continue;
                 }
@@ -194,20 +261,15 @@ pub fn polar_diagram(spec: &PolarSpec) -> Result<Vec<u8>, Error> {
                         let n = ((g - g0).abs().ceil() as usize).clamp(1, 720);
                         for j in 1..n {
                             let f = j as f64 / n as f64;
-                            line.push(to_xy(g0 + f * (g - g0), v0 + f * (v - v0)));
+                            line.push(p.to_xy(g0 + f * (g - g0), v0 + f * (v - v0)));
                         }
                     }
-                    line.push(to_xy(g, v));
+                    line.push(p.to_xy(g, v));
                 }
                 cv.polyline(&line, s.color, 2.0, s.style == SeriesStyle::Dashed);
             }
         }
     }
-    if !any {
-        cv.text(cx, cy, "no data", 3, Align::Center, INK, true);
-    }
-    legend(&mut cv, &labels, 20.0, hf - legend_h - 8.0, wf - 20.0, false);
-    cv.png()
 }
 
 /// Smallest distance (px) between two measured markers drawn on a polar diagram.

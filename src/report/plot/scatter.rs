@@ -81,8 +81,86 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         .iter()
         .filter(|p| p.x.is_finite() && p.y.is_finite() && (!log_x || p.x > 0.0))
         .collect();
+    let x_axis = x_axis_of(&pts, log_x);
+    let y_axis = y_axis_of(&pts);
+    // Left margin: the y label, then the widest tick label.
+    let y_ticks = y_axis.ticks();
+    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
+    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
+    let area = Area {
+        left,
+        top,
+        right,
+        bottom,
+        x_axis,
+        y_axis,
+    };
+    let (pw, ph) = (right - left, bottom - top);
 
-    // Ranges, padded so that no point sits on the frame.
+    draw_grid(&mut cv, &area, y_ticks);
+    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
+    cv.text(left + pw / 2.0, hf - 16.0, x_label, 2, Align::Center, INK, false);
+    cv.text_vertical(16.0, top + ph / 2.0, y_label, 2, INK);
+    draw_legend(&mut cv, right, top);
+
+    let stair = pareto_stair(&pts, &area);
+    cv.polyline(&stair, PARETO, 2.0, false);
+    // Points: others first, Pareto on top.
+    let scale = if pts.len() <= 12 { 2 } else { 1 };
+    let mut order: Vec<&&ScatterPoint> = pts.iter().collect();
+    order.sort_by_key(|p| p.pareto);
+    let boxes = obstacles(&pts, &area, &stair);
+    draw_points(&mut cv, &area, &order);
+    let left_out = draw_labels(&mut cv, &area, &order, boxes, scale);
+    if left_out > 0 {
+        let note = format!(
+            "{left_out} {} not shown (no room)",
+            if left_out == 1 { "name" } else { "names" }
+        );
+        cv.text(left, top - 16.0, &note, 2, Align::Left, INK, false);
+    }
+    if pts.is_empty() {
+        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+    }
+    cv.finish()
+}
+
+/// The plot area in pixels and the value axes mapped onto it.
+struct Area {
+    /// Left edge, px.
+    left: f32,
+    /// Top edge, px.
+    top: f32,
+    /// Right edge, px.
+    right: f32,
+    /// Bottom edge, px.
+    bottom: f32,
+    /// The abscissa.
+    x_axis: Axis,
+    /// The ordinate.
+    y_axis: Axis,
+}
+
+impl Area {
+    /// Pixel column of abscissa `x`.
+    fn px(&self, x: f64) -> f32 {
+        self.left + self.x_axis.t(x) as f32 * (self.right - self.left)
+    }
+
+    /// Pixel row of ordinate `y`.
+    fn py(&self, y: f64) -> f32 {
+        self.bottom - self.y_axis.t(y) as f32 * (self.bottom - self.top)
+    }
+
+    /// Whether box `b` lies inside the area, 2 px from its edges.
+    fn holds(&self, b: &[f32; 4]) -> bool {
+        b[0] >= self.left + 2.0 && b[2] <= self.right - 2.0 && b[1] >= self.top + 2.0 && b[3] <= self.bottom - 2.0
+    }
+}
+
+/// The x axis over the points' abscissae (log10 of them when `log_x`),
+/// padded so that no point sits on the frame.
+fn x_axis_of(pts: &[&ScatterPoint], log_x: bool) -> Axis {
     let xv = |p: &ScatterPoint| if log_x { p.x.log10() } else { p.x };
     let (mut xa, mut xb) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
         (a.min(xv(p)), b.max(xv(p)))
@@ -97,7 +175,7 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
     }
     let pad = (xb - xa) * 0.08;
     let (xa, xb) = (xa - pad, xb + pad);
-    let x_axis = if log_x {
+    if log_x {
         Axis {
             lo: xa,
             hi: xb,
@@ -110,7 +188,12 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
             hi: (xb / s).ceil() * s,
             log: false,
         }
-    };
+    }
+}
+
+/// The y axis over the points' ordinates: from 0 when none is negative,
+/// logarithmic when all are positive and span [`LOG_Y_RATIO`] or more.
+fn y_axis_of(pts: &[&ScatterPoint]) -> Axis {
     let (mut ya, mut yb) = pts
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.y), b.max(p.y)));
@@ -120,7 +203,7 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
     // Errors spanning more than LOG_Y_RATIO (a fitted model next to filters)
     // would sit on the floor of a linear axis: log axis then.
     let log_y = ya > 0.0 && yb / ya >= LOG_Y_RATIO;
-    let y_axis = if log_y {
+    if log_y {
         let (la, lb) = (ya.log10(), yb.log10());
         let pad = (lb - la) * 0.08;
         Axis {
@@ -142,18 +225,21 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
             hi: (yb / s).ceil() * s,
             log: false,
         }
-    };
-    // Left margin: the y label, then the widest tick label.
-    let y_ticks = y_axis.ticks();
-    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
-    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
-    let (pw, ph) = (right - left, bottom - top);
-    let px = |x: f64| left + x_axis.t(x) as f32 * pw;
-    let py = |y: f64| bottom - y_axis.t(y) as f32 * ph;
+    }
+}
 
-    // Grid and ticks.
-    for (t, lab) in x_axis.ticks() {
-        let x = px(t).round() + 0.5;
+/// Grid lines, tick marks and tick labels of both axes (`y_ticks` as
+/// `area.y_axis` gives them); minor ticks are shorter, their lines lighter.
+fn draw_grid(cv: &mut Canvas, area: &Area, y_ticks: Vec<(f64, String)>) {
+    let Area {
+        left,
+        top,
+        right,
+        bottom,
+        ..
+    } = *area;
+    for (t, lab) in area.x_axis.ticks() {
+        let x = area.px(t).round() + 0.5;
         let major = !lab.is_empty();
         cv.line(x, top, x, bottom, if major { GRID } else { [240, 240, 240] }, 1.0);
         cv.line(x, bottom, x, bottom + if major { 6.0 } else { 3.0 }, AXIS, 1.0);
@@ -162,7 +248,7 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         }
     }
     for (t, lab) in y_ticks {
-        let y = py(t).round() + 0.5;
+        let y = area.py(t).round() + 0.5;
         let major = !lab.is_empty();
         cv.line(left, y, right, y, if major { GRID } else { [240, 240, 240] }, 1.0);
         cv.line(left - if major { 6.0 } else { 3.0 }, y, left, y, AXIS, 1.0);
@@ -170,11 +256,11 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
             cv.text(left - 10.0, y, &lab, 2, Align::Right, INK, false);
         }
     }
-    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
-    cv.text(left + pw / 2.0, hf - 16.0, x_label, 2, Align::Center, INK, false);
-    cv.text_vertical(16.0, top + ph / 2.0, y_label, 2, INK);
+}
 
-    // Legend above the plot, right-aligned.
+/// The legend above the plot area, right-aligned at `right`: the Pareto
+/// front's line and point, then the other points' marker.
+fn draw_legend(cv: &mut Canvas, right: f32, top: f32) {
     let lx = right - font::text_width("Pareto front", 2) as f32;
     cv.text(lx, top - 16.0, "Pareto front", 2, Align::Left, INK, false);
     cv.line(lx - 46.0, top - 16.0, lx - 10.0, top - 16.0, PARETO, 2.0);
@@ -182,18 +268,25 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
     let lx2 = lx - 70.0 - font::text_width("other", 2) as f32;
     cv.text(lx2, top - 16.0, "other", 2, Align::Left, INK, false);
     cv.circle(lx2 - 12.0, top - 16.0, 4.0, OTHER, None);
+}
 
-    // Pareto front: staircase through the Pareto points in x order.
+/// The Pareto front in pixels: a staircase through the Pareto points in x order.
+fn pareto_stair(pts: &[&ScatterPoint], area: &Area) -> Vec<(f32, f32)> {
     let mut front: Vec<(f64, f64)> = pts.iter().filter(|p| p.pareto).map(|p| (p.x, p.y)).collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
     let mut stair = Vec::new();
     for (k, &(x, y)) in front.iter().enumerate() {
         if k > 0 {
-            stair.push((px(x), py(front[k - 1].1)));
+            stair.push((area.px(x), area.py(front[k - 1].1)));
         }
-        stair.push((px(x), py(y)));
+        stair.push((area.px(x), area.py(y)));
     }
-    cv.polyline(&stair, PARETO, 2.0, false);
+    stair
+}
+
+/// The boxes no name may overlap: every point's, and every step's of the
+/// Pareto front (`stair`).
+fn obstacles(pts: &[&ScatterPoint], area: &Area, stair: &[(f32, f32)]) -> Vec<[f32; 4]> {
     let stair_boxes = stair.windows(2).map(|s| {
         [
             s[0].0.min(s[1].0) - 1.0,
@@ -202,78 +295,36 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
             s[0].1.max(s[1].1) + 1.0,
         ]
     });
-
-    // Points: others first, Pareto on top.
-    let scale = if pts.len() <= 12 { 2 } else { 1 };
-    let mut order: Vec<&&ScatterPoint> = pts.iter().collect();
-    order.sort_by_key(|p| p.pareto);
-    let mut boxes: Vec<[f32; 4]> = pts
-        .iter()
+    pts.iter()
         .map(|p| {
-            let (x, y) = (px(p.x), py(p.y));
+            let (x, y) = (area.px(p.x), area.py(p.y));
             [x - 6.0, y - 6.0, x + 6.0, y + 6.0]
         })
         .chain(stair_boxes)
-        .collect();
-    for p in &order {
-        let (x, y) = (px(p.x), py(p.y));
+        .collect()
+}
+
+/// The points in drawing `order`: Pareto ones larger, in red.
+fn draw_points(cv: &mut Canvas, area: &Area, order: &[&&ScatterPoint]) {
+    for p in order {
+        let (x, y) = (area.px(p.x), area.py(p.y));
         if p.pareto {
             cv.circle(x, y, 6.0, PARETO, Some([120, 20, 20]));
         } else {
             cv.circle(x, y, 4.5, OTHER, None);
         }
     }
-    // Labels: first free spot among right, left, above, below.
+}
+
+/// The names of the points in `order`, each at a spot that overlaps none of
+/// `boxes` (points, front, names already placed), at text `scale`; returns
+/// how many found no room and were left out.
+fn draw_labels(cv: &mut Canvas, area: &Area, order: &[&&ScatterPoint], mut boxes: Vec<[f32; 4]>, scale: u32) -> usize {
     let th = font::text_height(scale) as f32;
     let mut left_out = 0usize;
-    for p in &order {
-        let (x, y) = (px(p.x), py(p.y));
+    for p in order {
+        let (x, y) = (area.px(p.x), area.py(p.y));
         let tw = font::text_width(&p.label, scale) as f32;
-        // Right, left, above, below; then right and left shifted up or down
-        // by one and two text rows, so that neighbours' names never overlap.
-        let mut cands = vec![
-            (
-                x + 9.0,
-                y,
-                Align::Left,
-                [x + 9.0, y - th / 2.0, x + 9.0 + tw, y + th / 2.0],
-            ),
-            (
-                x - 9.0,
-                y,
-                Align::Right,
-                [x - 9.0 - tw, y - th / 2.0, x - 9.0, y + th / 2.0],
-            ),
-            (
-                x,
-                y - 9.0 - th / 2.0,
-                Align::Center,
-                [x - tw / 2.0, y - 9.0 - th, x + tw / 2.0, y - 9.0],
-            ),
-            (
-                x,
-                y + 9.0 + th / 2.0,
-                Align::Center,
-                [x - tw / 2.0, y + 9.0, x + tw / 2.0, y + 9.0 + th],
-            ),
-        ];
-        for k in [1.0f32, -1.0, 2.0, -2.0, 3.0, -3.0] {
-            let yc = y + k * (th + 4.0);
-            cands.push((
-                x + 9.0,
-                yc,
-                Align::Left,
-                [x + 9.0, yc - th / 2.0, x + 9.0 + tw, yc + th / 2.0],
-            ));
-            cands.push((
-                x - 9.0,
-                yc,
-                Align::Right,
-                [x - 9.0 - tw, yc - th / 2.0, x - 9.0, yc + th / 2.0],
-            ));
-        }
-        let inside =
-            |b: &[f32; 4]| b[0] >= left + 2.0 && b[2] <= right - 2.0 && b[1] >= top + 2.0 && b[3] <= bottom - 2.0;
         // Text boxes keep the white pad of their background (scale + 1 px)
         // clear of every other box.
         let gap = scale as f32 + 2.0;
@@ -282,28 +333,12 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
                 .iter()
                 .all(|o| b[2] + gap <= o[0] || b[0] - gap >= o[2] || b[3] + gap <= o[1] || b[1] - gap >= o[3])
         };
-        let near = cands.iter().find(|c| inside(&c.3) && free(&c.3)).cloned();
+        let near = label_candidates(x, y, tw, th)
+            .into_iter()
+            .find(|c| area.holds(&c.3) && free(&c.3));
         // Crowded: the free spot of the plot area nearest the point, with a
         // leader line; none at all: the name is left out and counted.
-        let pick = near.or_else(|| {
-            let mut best: Option<(Spot, f32)> = None;
-            let mut gy = top + 2.0 + th / 2.0;
-            while gy + th / 2.0 <= bottom - 2.0 {
-                let mut gx = left + 2.0;
-                while gx + tw <= right - 2.0 {
-                    let b = [gx, gy - th / 2.0, gx + tw, gy + th / 2.0];
-                    let dx = (b[0] - x).max(x - b[2]).max(0.0);
-                    let dy = (b[1] - y).max(y - b[3]).max(0.0);
-                    let d = dx * dx + dy * dy;
-                    if best.as_ref().is_none_or(|(_, bd)| d < *bd) && free(&b) {
-                        best = Some(((gx, gy, Align::Left, b), d));
-                    }
-                    gx += 6.0;
-                }
-                gy += 6.0;
-            }
-            best.map(|(c, _)| c)
-        });
+        let pick = near.or_else(|| nearest_free_spot(area, (x, y), (tw, th), &free));
         let Some(pick) = pick else {
             left_out += 1;
             continue;
@@ -325,15 +360,80 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         );
         boxes.push(bx);
     }
-    if left_out > 0 {
-        let note = format!(
-            "{left_out} {} not shown (no room)",
-            if left_out == 1 { "name" } else { "names" }
-        );
-        cv.text(left, top - 16.0, &note, 2, Align::Left, INK, false);
+    left_out
+}
+
+/// Spots next to the point (x, y) for a name `tw` × `th` px, in order of
+/// preference: right, left, above, below; then right and left shifted up or
+/// down by one, two and three text rows, so that neighbours' names never overlap.
+fn label_candidates(x: f32, y: f32, tw: f32, th: f32) -> Vec<Spot> {
+    let mut cands = vec![
+        (
+            x + 9.0,
+            y,
+            Align::Left,
+            [x + 9.0, y - th / 2.0, x + 9.0 + tw, y + th / 2.0],
+        ),
+        (
+            x - 9.0,
+            y,
+            Align::Right,
+            [x - 9.0 - tw, y - th / 2.0, x - 9.0, y + th / 2.0],
+        ),
+        (
+            x,
+            y - 9.0 - th / 2.0,
+            Align::Center,
+            [x - tw / 2.0, y - 9.0 - th, x + tw / 2.0, y - 9.0],
+        ),
+        (
+            x,
+            y + 9.0 + th / 2.0,
+            Align::Center,
+            [x - tw / 2.0, y + 9.0, x + tw / 2.0, y + 9.0 + th],
+        ),
+    ];
+    for k in [1.0f32, -1.0, 2.0, -2.0, 3.0, -3.0] {
+        let yc = y + k * (th + 4.0);
+        cands.push((
+            x + 9.0,
+            yc,
+            Align::Left,
+            [x + 9.0, yc - th / 2.0, x + 9.0 + tw, yc + th / 2.0],
+        ));
+        cands.push((
+            x - 9.0,
+            yc,
+            Align::Right,
+            [x - 9.0 - tw, yc - th / 2.0, x - 9.0, yc + th / 2.0],
+        ));
     }
-    if pts.is_empty() {
-        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+    cands
+}
+
+/// The `free` spot for a name of size (tw, th) px nearest the point, on a
+/// 6 px raster over the plot area; `None` when there is none.
+fn nearest_free_spot(
+    area: &Area,
+    (x, y): (f32, f32),
+    (tw, th): (f32, f32),
+    free: &dyn Fn(&[f32; 4]) -> bool,
+) -> Option<Spot> {
+    let mut best: Option<(Spot, f32)> = None;
+    let mut gy = area.top + 2.0 + th / 2.0;
+    while gy + th / 2.0 <= area.bottom - 2.0 {
+        let mut gx = area.left + 2.0;
+        while gx + tw <= area.right - 2.0 {
+            let b = [gx, gy - th / 2.0, gx + tw, gy + th / 2.0];
+            let dx = (b[0] - x).max(x - b[2]).max(0.0);
+            let dy = (b[1] - y).max(y - b[3]).max(0.0);
+            let d = dx * dx + dy * dy;
+            if best.as_ref().is_none_or(|(_, bd)| d < *bd) && free(&b) {
+                best = Some(((gx, gy, Align::Left, b), d));
+            }
+            gx += 6.0;
+        }
+        gy += 6.0;
     }
-    cv.finish()
+    best.map(|(c, _)| c)
 }

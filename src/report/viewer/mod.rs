@@ -143,97 +143,116 @@ impl ViewerData {
             i_max,
             ..
         } = *samples;
-        let cs: Vec<f64> = (0..nc).map(|k| k as f64 * dc).collect();
-        let gs: Vec<f64> = (0..ng).map(|k| k as f64 * dg).collect();
-        let dirs: Vec<glam::DVec3> = cs
-            .iter()
-            .flat_map(|&c| gs.iter().map(move |&g| frame::direction(c, g)))
-            .collect();
         let reference = &samples.reference;
-        let recons: Vec<&Vec<f64>> = samples.recons.iter().map(|r| &r.values).collect();
-        let errors: Vec<&Vec<f64>> = samples.recons.iter().map(|r| &r.errors_pct).collect();
         let radius = std::iter::once(reference)
-            .chain(recons.iter().copied())
+            .chain(samples.recons.iter().map(|r| &r.values))
             .flat_map(|v| v.iter().map(|&x| radius_of(x)))
             .fold(0.0, f64::max);
         let radius = if radius > 0.0 { radius } else { 1.0 };
-        let max_abs = |e: &[f64]| e.iter().fold(0.0, |m: f64, x| m.max(x.abs()));
-        let err_max_pct = errors.iter().map(|e| max_abs(e)).fold(0.0, f64::max);
-        let pack_radius = |v: &[f64]| -> String {
-            let bytes: Vec<u8> = v
-                .iter()
-                .flat_map(|&x| quantise_u16(radius_of(x), radius).to_le_bytes())
-                .collect();
-            base64(&bytes)
-        };
-        let direction_bytes: Vec<u8> = dirs
-            .iter()
-            .flat_map(|d| [d.x, d.y, d.z])
-            .flat_map(|x| ((x.clamp(-1.0, 1.0) * 32767.0).round() as i16).to_le_bytes())
-            .collect();
-        let q_err = if err_max_pct > 0.0 { err_max_pct } else { 1.0 };
-        let pack_err = |e: &[f64]| -> String {
-            let bytes: Vec<u8> = e
-                .iter()
-                .flat_map(|x| (((x / q_err).clamp(-1.0, 1.0) * 32767.0).round() as i16).to_le_bytes())
-                .collect();
-            base64(&bytes)
-        };
-        let hex = |c: [u8; 3]| format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
-        let mut solids = vec![PackedSolid {
-            name: "reference".into(),
-            role: "reference",
-            color: "#000000".into(),
-            radius: pack_radius(reference),
-            err: String::new(),
-            max_abs_err_pct: 0.0,
-            scale_pct: 0.0,
-        }];
-        for (k, ((name, v), e)) in samples
+        let err_max_pct = samples
             .recons
             .iter()
-            .map(|r| (&r.name, &r.values))
-            .zip(&errors)
-            .enumerate()
-        {
-            solids.push(PackedSolid {
-                name: name.clone(),
-                role: "reconstruction",
-                color: hex(palette(k)),
-                radius: pack_radius(v),
-                err: pack_err(e),
-                max_abs_err_pct: max_abs(e),
-                scale_pct: nice_ceiling(max_abs(e)),
-            });
-        }
+            .map(|r| max_abs(&r.errors_pct))
+            .fold(0.0, f64::max);
         ViewerData {
             reference: samples.reference_label.clone(),
             note: samples.note.clone(),
-            legend_quantity: match samples.note {
-                None => "max |err|".into(),
-                Some(_) => format!(
-                    "max |diff from {}|",
-                    samples
-                        .reference_label
-                        .split(" (")
-                        .next()
-                        .unwrap_or(&samples.reference_label)
-                ),
-            },
+            legend_quantity: legend_quantity(samples),
             i_max,
             c_step_deg: dc,
             gamma_step_deg: dg,
             nc,
             ng,
-            directions: base64(&direction_bytes),
+            directions: packed_directions(samples),
             radius,
             err_max_pct,
             lut: (0..LUT_ENTRIES)
                 .map(|k| ColorMap::RdBu.rgb8(k as f64 / (LUT_ENTRIES - 1) as f64))
                 .collect(),
-            solids,
+            solids: packed_solids(samples, radius, err_max_pct),
         }
     }
+}
+
+/// The largest |e|, 0 for none.
+fn max_abs(e: &[f64]) -> f64 {
+    e.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
+}
+
+/// What the legend's number is: `max |err|`, or with a note (the colours
+/// show another difference) `max |diff from <the reference shown>|`.
+fn legend_quantity(samples: &SampledSolids) -> String {
+    match samples.note {
+        None => "max |err|".into(),
+        Some(_) => format!(
+            "max |diff from {}|",
+            samples
+                .reference_label
+                .split(" (")
+                .next()
+                .unwrap_or(&samples.reference_label)
+        ),
+    }
+}
+
+/// The unit direction of every grid vertex (C-planes outer, γ inner),
+/// 3 × `i16` each, base64.
+fn packed_directions(samples: &SampledSolids) -> String {
+    let cs: Vec<f64> = (0..samples.nc).map(|k| k as f64 * samples.c_step_deg).collect();
+    let gs: Vec<f64> = (0..samples.ng).map(|k| k as f64 * samples.gamma_step_deg).collect();
+    let dirs: Vec<glam::DVec3> = cs
+        .iter()
+        .flat_map(|&c| gs.iter().map(move |&g| frame::direction(c, g)))
+        .collect();
+    let direction_bytes: Vec<u8> = dirs
+        .iter()
+        .flat_map(|d| [d.x, d.y, d.z])
+        .flat_map(|x| ((x.clamp(-1.0, 1.0) * 32767.0).round() as i16).to_le_bytes())
+        .collect();
+    base64(&direction_bytes)
+}
+
+/// The reference, then each reconstruction in its palette colour: radii
+/// quantised over [0, `radius`], errors over ±`err_max_pct` (±1 when 0).
+fn packed_solids(samples: &SampledSolids, radius: f64, err_max_pct: f64) -> Vec<PackedSolid> {
+    let pack_radius = |v: &[f64]| -> String {
+        let bytes: Vec<u8> = v
+            .iter()
+            .flat_map(|&x| quantise_u16(radius_of(x), radius).to_le_bytes())
+            .collect();
+        base64(&bytes)
+    };
+    let q_err = if err_max_pct > 0.0 { err_max_pct } else { 1.0 };
+    let pack_err = |e: &[f64]| -> String {
+        let bytes: Vec<u8> = e
+            .iter()
+            .flat_map(|x| (((x / q_err).clamp(-1.0, 1.0) * 32767.0).round() as i16).to_le_bytes())
+            .collect();
+        base64(&bytes)
+    };
+    let hex = |c: [u8; 3]| format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+    let mut solids = vec![PackedSolid {
+        name: "reference".into(),
+        role: "reference",
+        color: "#000000".into(),
+        radius: pack_radius(&samples.reference),
+        err: String::new(),
+        max_abs_err_pct: 0.0,
+        scale_pct: 0.0,
+    }];
+    for (k, r) in samples.recons.iter().enumerate() {
+        let e = &r.errors_pct;
+        solids.push(PackedSolid {
+            name: r.name.clone(),
+            role: "reconstruction",
+            color: hex(palette(k)),
+            radius: pack_radius(&r.values),
+            err: pack_err(e),
+            max_abs_err_pct: max_abs(e),
+            scale_pct: nice_ceiling(max_abs(e)),
+        });
+    }
+    solids
 }
 
 /// The viewer's script: the page's own WebGL code (orbit, pan, zoom, the
