@@ -68,12 +68,14 @@ impl RowDistances {
         refinement: &Refinement,
         progress: &Progress<'_>,
     ) -> Result<(), ModelError> {
-        let points: Vec<DVec3> = set
+        // Each withheld point as its direction and measured value, and as a position (cd).
+        let polar: Vec<(DVec3, f64)> = set
             .directions
             .iter()
             .zip(m)
-            .map(|(&(c, g), &v)| v * direction(c, g))
+            .map(|(&(c, g), &v)| (direction(c, g), v))
             .collect();
+        let points: Vec<DVec3> = polar.iter().map(|&(d, v)| v * d).collect();
         // Kept data that is zero everywhere reconstructs to nothing: the
         // solid is the origin, every withheld point is |p| away from it.
         if fold.kept.max_cd() <= 0.0 {
@@ -103,7 +105,7 @@ impl RowDistances {
         if r != Recon::Measured && field.is_continuous() {
             self.method("surface");
             self.dist
-                .extend(distances_to_solid(&*field, &points, &NearestSearch::default()));
+                .extend(distances_to_solid(&*field, &polar, &NearestSearch::default()));
             return Ok(());
         }
         self.method("mesh");

@@ -69,10 +69,18 @@ struct Candidate {
     d: f64,
 }
 
-/// The distance (cd) from `p` (cd-scaled position in the luminaire frame) to
-/// the solid of `field`. See the module documentation for the search and
+/// The distance (cd) from the point `m · dir` (`dir` a unit direction of the
+/// luminaire frame, `m` ≥ 0 in cd) to the solid of `field`. The direction is
+/// given apart from `m` so that a point at the origin (a zero measurement)
+/// still starts in its own direction: where the field is 0 there too, the
+/// distance is 0 at once. See the module documentation for the search and
 /// what it guarantees.
-pub fn distance_to_solid(field: &dyn IntensityField, p: DVec3, search: &NearestSearch) -> f64 {
+pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search: &NearestSearch) -> f64 {
+    let own = dir.try_normalize().unwrap_or(DVec3::NEG_Z);
+    // A negative m is the point on the opposite side.
+    let (own, m) = if m < 0.0 { (-own, -m) } else { (own, m) };
+    let m = if m.is_finite() { m } else { f64::INFINITY };
+    let p = m * own;
     let at = |w: DVec3| {
         let r = field.intensity_dir_cd(w);
         let r = if r.is_finite() { r } else { 0.0 };
@@ -82,8 +90,6 @@ pub fn distance_to_solid(field: &dyn IntensityField, p: DVec3, search: &NearestS
             d: p.distance(r * w),
         }
     };
-    let m = p.length();
-    let own = if m > 0.0 { p / m } else { DVec3::NEG_Z };
     let first = at(own);
     let u = first.d;
     if u == 0.0 || !m.is_finite() {
@@ -98,6 +104,9 @@ pub fn distance_to_solid(field: &dyn IntensityField, p: DVec3, search: &NearestS
         }
     }
     samples.sort_by(|a, b| a.d.total_cmp(&b.d));
+    if samples[0].d == 0.0 {
+        return 0.0; // on the solid: nothing is nearer
+    }
     let step = if u < m {
         (u / m).asin() / search.rings.max(1) as f64
     } else {
@@ -106,24 +115,38 @@ pub fn distance_to_solid(field: &dyn IntensityField, p: DVec3, search: &NearestS
     // A sample is a seed when its basin may hold the minimum: within what
     // one step can change the distance (a surface point moves by about
     // r · step, twice for a steep flank), the best `seeds` of them always.
+    // On the whole sphere (a point near the origin) the lattice is coarse
+    // and the window would take every sample: the best `seeds` only.
     let r_max = samples.iter().map(|s| s.r).fold(m, f64::max);
-    let window = samples[0].d + 2.0 * step * r_max;
-    samples
+    let window = if u < m {
+        samples[0].d + 2.0 * step * r_max
+    } else {
+        samples[0].d
+    };
+    // Every seed to a sixteenth of the step (its basin's bottom, roughly),
+    // then the best few to the end.
+    let mut rough: Vec<Candidate> = samples
         .iter()
         .enumerate()
         .take_while(|&(k, s)| k < search.seeds.max(1) || (s.d <= window && k < MAX_SEEDS))
-        .map(|(_, &s)| polish(s, step, search.stop_rad, &at))
+        .map(|(_, &s)| polish(s, step, step / 16.0, &at))
+        .collect();
+    rough.sort_by(|a, b| a.d.total_cmp(&b.d));
+    rough
+        .iter()
+        .take(search.seeds.max(1))
+        .map(|&s| polish(s, step / 16.0, search.stop_rad, &at).d)
         .fold(u, f64::min)
 }
 
 /// At most this many samples are polished (the window's cap).
 const MAX_SEEDS: usize = 24;
 
-/// [`distance_to_solid`] of every point, in order (in parallel).
-pub fn distances_to_solid(field: &dyn IntensityField, points: &[DVec3], search: &NearestSearch) -> Vec<f64> {
+/// [`distance_to_solid`] of every point `(dir, m)`, in order (in parallel).
+pub fn distances_to_solid(field: &dyn IntensityField, points: &[(DVec3, f64)], search: &NearestSearch) -> Vec<f64> {
     points
         .par_iter()
-        .map(|&p| distance_to_solid(field, p, search))
+        .map(|&(dir, m)| distance_to_solid(field, dir, m, search))
         .collect()
 }
 
@@ -154,8 +177,8 @@ fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, search: &Near
 
 /// Pattern search on the sphere from `start`: try the eight tangent
 /// neighbours at `step` radians, move to the best that is closer, else halve
-/// the step; stop below `stop_rad`. Returns the smallest distance found.
-fn polish(start: Candidate, step: f64, stop_rad: f64, at_dir: &dyn Fn(DVec3) -> Candidate) -> f64 {
+/// the step; stop below `stop_rad`. Returns the nearest point found.
+fn polish(start: Candidate, step: f64, stop_rad: f64, at_dir: &dyn Fn(DVec3) -> Candidate) -> Candidate {
     let mut at = start;
     let mut step = step.max(stop_rad);
     // 64 halvings take any step below 1e-19 rad; moves are bounded too.
@@ -178,7 +201,7 @@ fn polish(start: Candidate, step: f64, stop_rad: f64, at_dir: &dyn Fn(DVec3) -> 
             step *= 0.5;
         }
     }
-    at.d
+    at
 }
 
 #[cfg(test)]
@@ -197,7 +220,7 @@ mod tests {
             (DVec3::ZERO, 100.0),
             (DVec3::new(0.0, 100.0, 0.0), 0.0),
         ] {
-            let d = distance_to_solid(&iso, p, &s);
+            let d = distance_to_solid(&iso, p.normalize_or(DVec3::NEG_Z), p.length(), &s);
             assert!((d - want).abs() <= 1e-9 * 100.0, "{p}: {d} vs {want}");
         }
     }
@@ -217,7 +240,7 @@ mod tests {
             let m = i0 * (0.3 + 0.9 * ((k * 7) % 11) as f64 / 10.0);
             let p = m * frame::direction(c, g);
             let want = (p.distance(centre) - 0.5 * i0).abs();
-            let d = distance_to_solid(&lambert, p, &s);
+            let d = distance_to_solid(&lambert, p.normalize(), p.length(), &s);
             assert!(d >= want - 1e-9 * i0, "{p}: {d} below the true {want}");
             worst = worst.max(d - want);
         }
@@ -229,10 +252,16 @@ mod tests {
     fn extremes_stay_finite() {
         let nan = |_: f64, _: f64| f64::NAN;
         let s = NearestSearch::default();
-        assert_eq!(distance_to_solid(&nan, DVec3::new(0.0, 0.0, -2.0), &s), 2.0);
+        assert_eq!(distance_to_solid(&nan, DVec3::NEG_Z, 2.0, &s), 2.0);
         let zero = |_: f64, _: f64| 0.0;
-        assert_eq!(distance_to_solid(&zero, DVec3::new(3.0, 0.0, 4.0), &s), 5.0);
+        assert_eq!(distance_to_solid(&zero, DVec3::new(0.6, 0.0, 0.8), 5.0, &s), 5.0);
+        // A zero measurement where the field is zero: on the solid at once.
+        let down = |_: f64, g: f64| if g < 90.0 { 10.0 } else { 0.0 };
+        assert_eq!(distance_to_solid(&down, DVec3::Z, 0.0, &s), 0.0);
+        // At the origin where the field is not zero: the nearest zero elsewhere.
+        assert_eq!(distance_to_solid(&down, DVec3::NEG_Z, 0.0, &s), 0.0);
         let iso = |_: f64, _: f64| 1.0;
-        assert!(distance_to_solid(&iso, DVec3::splat(f64::INFINITY), &s).is_finite());
+        assert!(distance_to_solid(&iso, DVec3::X, f64::INFINITY, &s).is_finite());
+        assert!(distance_to_solid(&iso, DVec3::splat(f64::NAN), 1.0, &s).is_finite());
     }
 }

@@ -44,7 +44,8 @@ fn agrees(name: &str, d: &Distribution, field: &dyn IntensityField) {
     let h_sm = surface_distance(field, &mesh, 100_000, 3).max(a.tolerance_cd.max(a.tested_deviation_cd));
     let pts = points(d);
     let on_mesh = distances(&pts, &Bvh::build(&pos, mesh.triangles()));
-    let on_surface = distances_to_solid(field, &pts, &NearestSearch::default());
+    let polar: Vec<(DVec3, f64)> = pts.iter().map(|p| (p.normalize_or(DVec3::NEG_Z), p.length())).collect();
+    let on_surface = distances_to_solid(field, &polar, &NearestSearch::default());
     let bound = 2.0 * h_sm + 1e-9 * i_max;
     let mut worst: f64 = 0.0;
     for (k, (&m, &s)) in on_mesh.iter().zip(&on_surface).enumerate() {
