@@ -382,8 +382,9 @@ pub struct ReconResult {
     /// `withheld` reference only: how the distance from a withheld point to
     /// the rebuilt solid was measured: `surface` (searched on the solid of a
     /// continuous field, [`crate::metrics::nearest`]), `mesh` (exact to the
-    /// adaptive mesh of a field that may jump, whose solid has walls, or to
-    /// the measured solid), `profile` (a solid of revolution's meridian), or
+    /// adaptive mesh of a field that may jump, whose solid has walls, of a
+    /// fold with more than 2,000 withheld points, where one mesh is cheaper,
+    /// or to the measured solid), `profile` (a solid of revolution's meridian), or
     /// `origin` (kept data all zero); several joined by `+` when folds differ.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub withheld_distance: Option<String>,

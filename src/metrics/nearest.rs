@@ -11,10 +11,12 @@
 //!   θ ≤ asin(d / m) around ω_p, and the cap shrinks as better points are found.
 //!
 //! [`distance_to_solid`] samples the cap ring by ring from ω_p outward
-//! (rings [`NearestSearch::rings`] apart, points on a ring as far apart as
-//! the rings), stops at the first ring outside the cap of the best distance
-//! so far, and polishes the best [`NearestSearch::seeds`] samples by pattern
-//! search on the sphere down to [`NearestSearch::stop_rad`]. When U ≥ m (p at
+//! ([`NearestSearch::rings`] rings across the starting cap, points on a ring
+//! as far apart as the rings), stops at the first ring outside the cap of the
+//! best distance so far, polishes every sample within one step's change of
+//! the best (at most 24, at least [`NearestSearch::seeds`]) by pattern search
+//! on the sphere to a sixteenth of the step, and the best
+//! [`NearestSearch::seeds`] of those down to [`NearestSearch::stop_rad`]. When U ≥ m (p at
 //! or near the origin, or an error as large as the value) the cap is the
 //! whole sphere and a Fibonacci lattice seeds the search instead.
 //!
@@ -40,7 +42,8 @@ pub struct NearestSearch {
     pub rings: usize,
     /// Directions of the Fibonacci lattice when the cap is the whole sphere.
     pub sphere: usize,
-    /// Best samples polished by pattern search.
+    /// Samples polished to the end by pattern search (every sample within one
+    /// step's change of the best, at most 24, is first polished roughly).
     pub seeds: usize,
     /// The pattern search stops when its step is below this, radians.
     pub stop_rad: f64,

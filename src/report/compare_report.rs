@@ -34,7 +34,7 @@ fn hausdorff_meaning(c: &Comparison) -> String {
         format!(
             "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
              (no bound to certify; searched on the solid itself for continuous reconstructions, to the mesh for the \
-             measured solid and those that jump); radial max over the same points",
+             measured solid, those that jump and folds of over 2,000 points); radial max over the same points",
             c.n_directions
         )
     }
