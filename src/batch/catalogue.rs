@@ -24,6 +24,7 @@ use rayon::prelude::*;
 use super::BatchRecord;
 use crate::error::Error;
 use crate::formats::ReadOptions;
+use crate::model::Progress;
 use crate::photometry::plane_profile;
 use crate::report::compare_report::{esc, write_files, Figure};
 use crate::report::plot::{self, PolarSpec, Series, SeriesStyle};
@@ -291,12 +292,7 @@ fn to_markdown(rows: &[BatchRecord]) -> String {
 ///
 /// # Errors
 /// [`Error::Io`] naming the file that could not be written.
-pub fn write(
-    dir: &Path,
-    rows: &[BatchRecord],
-    read: &ReadOptions,
-    progress: &(dyn Fn(usize, usize, &str) + Sync),
-) -> Result<Vec<PathBuf>, Error> {
+pub fn write(dir: &Path, rows: &[BatchRecord], read: &ReadOptions, progress: &Progress) -> Result<Vec<PathBuf>, Error> {
     let done = AtomicUsize::new(0);
     let pngs: Vec<Option<Vec<u8>>> = rows
         .par_iter()

@@ -25,6 +25,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, ErrorRecord};
 use crate::fit::{fit, FitOptions};
 use crate::formats::ReadOptions;
+use crate::model::Progress;
 use crate::reconstruct::{holdout, Filter, HoldoutSpec};
 
 /// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
@@ -295,11 +296,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
 /// The rows of `files` in input order, analysed in parallel (rayon).
 /// `progress(done, total, path)` is called after each file, from the worker
 /// threads.
-pub fn run(
-    files: &[PathBuf],
-    options: &BatchOptions,
-    progress: &(dyn Fn(usize, usize, &str) + Sync),
-) -> Vec<BatchRecord> {
+pub fn run(files: &[PathBuf], options: &BatchOptions, progress: &Progress) -> Vec<BatchRecord> {
     let done = AtomicUsize::new(0);
     files
         .par_iter()

@@ -18,11 +18,12 @@
 //! ending with the built-in scene (illuminance on the road and the sensor,
 //! its isolux maps `isolux_*.png`) and the plan.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
-use photosolid::compare::{compare, CompareOptions};
+use photosolid::compare::{compare, CompareOptions, Comparison};
 use photosolid::fit::{fit, FitOptions, FitReport};
+use photosolid::model::{Distribution, Luminaire};
 use photosolid::reconstruct::{exr_io, holdout, render, Filter, HoldoutSpec, LightTexture};
 use photosolid::report::plot::{write_texture_preview, TexturePreview};
 use photosolid::report::{compare_report, InfoReport};
@@ -40,24 +41,73 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let grid = GridSpec::uniform(5.0, 2.5)?;
     let lum = Synth::Roadway.build(&grid, 12_000.0)?;
     outln!("built-in luminaire: synthetic road luminaire, peak 12000 cd, 5° x 2.5° grid");
+    outln!("{}", write_and_read_back(&lum, &a.output)?);
+    let d = lum.distribution();
+    let tex = write_textures(d, &a.output)?;
+
+    let spec = HoldoutSpec {
+        c_step: 2,
+        gamma_step: 2,
+    };
+    outln!("\n== hold-out: keep every 2 C-plane(s) and every 2 gamma row(s); errors in % of I_max ==");
+    outln!(
+        "{}",
+        photosolid::reconstruct::HoldoutReport::table(&holdout(d, spec, &Filter::ALL)?)
+    );
+
+    outln!("== fitted OpenGL lights ==");
+    print!("{}", FitReport::of(&fit(d, &FitOptions::default())?).to_text());
+
+    let c = compare_to_truth(&lum)?;
+    print!("{}", compare_report::to_text(&c));
+    let mut figs = compare_report::figures(&c)?;
+    figs.extend(shading_figures(&tex, &a.output)?);
+    let scene = scene_and_plan(&a.output)?;
+
+    let (mut md, mut html) = (
+        compare_report::to_markdown(&c, &figs),
+        compare_report::to_html(&c, &figs),
+    );
+    // The report ends with the scene and the plan (README, `demo`).
+    let tail =
+        photosolid::report::scene_report::scene_and_plan_html(SCENE_TITLE, &scene.text, &scene.maps, &scene.plan);
+    match html.rfind("</body>") {
+        Some(i) => html.insert_str(i, &tail),
+        None => html.push_str(&tail),
+    }
+    md.push_str(&format!(
+        "\n## Built-in scene\n\n{SCENE_TITLE}\n\n```\n{}\n```\n\n## Plan\n\n```\n{}\n```\n",
+        scene.text, scene.plan
+    ));
+    compare_report::write_files(&a.output, &figs, &c, &md, &html)?;
+    outln!("report written to {}", a.output.join("index.html").display());
+    Ok(0)
+}
+
+/// Writes `lum` as EULUMDAT and IES into `dir`, reads both back and returns
+/// their `info` reports one after the other.
+fn write_and_read_back(lum: &Luminaire, dir: &Path) -> anyhow::Result<String> {
     let mut text = String::new();
     for ext in ["ldt", "ies"] {
-        let path = a.output.join(format!("demo_roadway.{ext}"));
+        let path = dir.join(format!("demo_roadway.{ext}"));
         photosolid::save(&lum.clone().into(), &path, &Default::default())?;
         let back = photosolid::load(&path)?;
         text.push_str(&format!("\n== {} ==\n", path.display()));
         text.push_str(&InfoReport::of(&back).to_text());
     }
-    outln!("{text}");
-    let d = lum.distribution();
+    Ok(text)
+}
 
-    outln!("== textures (factor 5; EXR and PNG in {}) ==", a.output.display());
+/// Renders the factor-5 texture of every filter into `dir` (EXR and PNG
+/// preview), printing each one's size; returns the light texture.
+fn write_textures(d: &Distribution, dir: &Path) -> anyhow::Result<LightTexture> {
+    outln!("== textures (factor 5; EXR and PNG in {}) ==", dir.display());
     let tex = LightTexture::new(d)?;
     for f in Filter::ALL {
         let r = render(&tex, f, 5)?;
         let (exr, png) = (
-            a.output.join(format!("texture-{f}.exr")),
-            a.output.join(format!("texture-{f}.png")),
+            dir.join(format!("texture-{f}.exr")),
+            dir.join(format!("texture-{f}.png")),
         );
         exr_io::write_exr(
             &exr,
@@ -77,23 +127,13 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
             png.display()
         );
     }
+    Ok(tex)
+}
 
-    let spec = HoldoutSpec {
-        c_step: 2,
-        gamma_step: 2,
-    };
-    outln!("\n== hold-out: keep every 2 C-plane(s) and every 2 gamma row(s); errors in % of I_max ==");
-    outln!(
-        "{}",
-        photosolid::reconstruct::HoldoutReport::table(&holdout(d, spec, &Filter::ALL)?)
-    );
-
-    outln!("== fitted OpenGL lights ==");
-    print!("{}", FitReport::of(&fit(d, &FitOptions::default())?).to_text());
-
-    // The built-in luminaire is analytic: every reconstruction, the measured
-    // solid included, is measured against its closed form.
-    let truth = Truth::of_luminaire(&lum);
+/// Every reconstruction of `lum`, the measured solid included, against its
+/// closed form (the built-in luminaire is analytic), with plots.
+fn compare_to_truth(lum: &Luminaire) -> anyhow::Result<Comparison> {
+    let truth = Truth::of_luminaire(lum);
     outln!(
         "\n== every reconstruction against the truth ({}) ==",
         truth.map_or("none".into(), |t| t.to_string())
@@ -103,46 +143,41 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
         plots: true,
         ..Default::default()
     };
-    let mut c = compare(d, None, &opts)?;
+    let mut c = compare(lum.distribution(), None, &opts)?;
     c.file = "built-in synthetic road luminaire".into();
-    print!("{}", compare_report::to_text(&c));
-    let mut figs = compare_report::figures(&c)?;
-    figs.extend(shading_figures(&tex, &a.output)?);
+    Ok(c)
+}
 
-    const SCENE_TITLE: &str = "built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it";
+const SCENE_TITLE: &str = "built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it";
+
+/// The built-in scene's text, its isolux maps (file names in the report
+/// directory) and the plan's text.
+struct SceneSection {
+    text: String,
+    maps: Vec<String>,
+    plan: String,
+}
+
+/// Evaluates and plans the built-in scene, printing both, and writes its
+/// isolux maps into `dir`.
+fn scene_and_plan(dir: &Path) -> anyhow::Result<SceneSection> {
     outln!("\n== {SCENE_TITLE} ==");
     let scene = photosolid::scene::demo_scene()?;
     let lit = photosolid::scene::illuminance::evaluate(&scene, None)?;
-    let scene_text = photosolid::report::scene_report::scene_text(&lit);
-    outln!("{scene_text}");
+    let text = photosolid::report::scene_report::scene_text(&lit);
+    outln!("{text}");
     let plan = photosolid::scene::plan::plan(&scene, &Default::default(), None)?;
-    let plan_text = photosolid::report::scene_report::plan_text(&plan);
-    outln!("{plan_text}");
-    let mut maps = Vec::new();
-    for path in photosolid::report::scene_report::write_maps(&scene, &lit, &a.output)? {
-        let name = path
-            .file_name()
-            .map(|n| n.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        maps.push(name);
-    }
-
-    let (mut md, mut html) = (
-        compare_report::to_markdown(&c, &figs),
-        compare_report::to_html(&c, &figs),
-    );
-    // The report ends with the scene and the plan (README, `demo`).
-    let tail = photosolid::report::scene_report::scene_and_plan_html(SCENE_TITLE, &scene_text, &maps, &plan_text);
-    match html.rfind("</body>") {
-        Some(i) => html.insert_str(i, &tail),
-        None => html.push_str(&tail),
-    }
-    md.push_str(&format!(
-        "\n## Built-in scene\n\n{SCENE_TITLE}\n\n```\n{scene_text}\n```\n\n## Plan\n\n```\n{plan_text}\n```\n"
-    ));
-    compare_report::write_files(&a.output, &figs, &c, &md, &html)?;
-    outln!("report written to {}", a.output.join("index.html").display());
-    Ok(0)
+    let plan = photosolid::report::scene_report::plan_text(&plan);
+    outln!("{plan}");
+    let maps = photosolid::report::scene_report::write_maps(&scene, &lit, dir)?
+        .iter()
+        .map(|path| {
+            path.file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default()
+        })
+        .collect();
+    Ok(SceneSection { text, maps, plan })
 }
 
 /// Wallner's (2008) Figure 5 setting: a plane lit through the bilinear and the

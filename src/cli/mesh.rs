@@ -4,10 +4,13 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
+use photosolid::model::Distribution;
 use photosolid::registry::{Recon, Reconstructions};
+use photosolid::solid::adaptive::AdaptiveGrid;
 use photosolid::solid::adaptive::DEFAULT_TOLERANCE_PCT;
 use photosolid::solid::{
-    export, texture_solid, topology, AdaptiveOptions, ColorMap, Refinement, Tolerance, Units, UnitsName,
+    export, texture_solid, topology, AdaptiveOptions, ColorMap, Mesh, MeshTopology, Refinement, SanityReport,
+    Tolerance, Units, UnitsName,
 };
 
 use super::ReadArgs;
@@ -73,27 +76,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     let d = lum.distribution();
     let units =
         Units::resolve(a.units, d, lum.declared().lamp_flux_lm).with_context(|| a.file.display().to_string())?;
-    let mut adaptive = None;
-    let mut mesh = match recon {
-        Recon::Filter(f) if a.texture => {
-            texture_solid(d, f, u32::try_from(a.factor.unwrap_or(5)).unwrap_or(u32::MAX), units)?
-        }
-        Recon::Measured => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, 1, units)?,
-        _ => match a.factor {
-            Some(factor) => Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, factor, units)?,
-            None => {
-                let recs = Reconstructions::new(d.clone(), &[recon])?;
-                let tolerance = Tolerance::PercentOfPeak(a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct()));
-                let field = recs.field(recon)?;
-                let (mesh, found) = super::with_progress("adaptive solid", |progress| {
-                    Refinement::Adaptive(AdaptiveOptions::new(tolerance))
-                        .solid_with_progress(&*field, d, units, progress)
-                })?;
-                adaptive = found;
-                mesh
-            }
-        },
-    };
+    let (mut mesh, adaptive) = build(&a, recon, d, units)?;
     mesh.info_mut().source = a.file.display().to_string();
     if a.color {
         mesh.colorize(ColorMap::Viridis);
@@ -104,11 +87,76 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
     export::write(&mesh, &a.output)?;
     // What a reader of the file gets: read it back, merge vertices by position, check.
     let written = export::read(&a.output)?;
-    let topo = topology(written.positions(), written.triangles());
+    let solid = Written {
+        mesh: &mesh,
+        report: &report,
+        written: &written,
+        topo: topology(written.positions(), written.triangles()),
+        adaptive: adaptive.as_ref(),
+        units,
+    };
     if a.json {
-        let v = serde_json::json!({
+        outln!("{}", serde_json::to_string_pretty(&solid.json(&a))?);
+    } else {
+        solid.print(&a)?;
+    }
+    Ok(0)
+}
+
+/// The solid `a` asks for: a filter's texture, the measured points, a fixed
+/// `--factor` grid or the adaptive grid of `--tolerance` (then with the grid
+/// it found).
+fn build(a: &MeshArgs, recon: Recon, d: &Distribution, units: Units) -> anyhow::Result<(Mesh, Option<AdaptiveGrid>)> {
+    Ok(match recon {
+        Recon::Filter(f) if a.texture => (
+            texture_solid(d, f, u32::try_from(a.factor.unwrap_or(5)).unwrap_or(u32::MAX), units)?,
+            None,
+        ),
+        Recon::Measured => (
+            Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, 1, units)?,
+            None,
+        ),
+        _ => match a.factor {
+            Some(factor) => (
+                Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, factor, units)?,
+                None,
+            ),
+            None => {
+                let recs = Reconstructions::new(d.clone(), &[recon])?;
+                let tolerance = Tolerance::PercentOfPeak(tolerance_pct(a));
+                let field = recs.field(recon)?;
+                super::with_progress("adaptive solid", |progress| {
+                    Refinement::Adaptive(AdaptiveOptions::new(tolerance))
+                        .solid_with_progress(&*field, d, units, progress)
+                })?
+            }
+        },
+    })
+}
+
+/// The adaptive grid's tolerance, % of I_max.
+fn tolerance_pct(a: &MeshArgs) -> f64 {
+    a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct())
+}
+
+/// A written solid and what was checked of it: the mesh's own sanity report
+/// and the topology of the file as read back.
+struct Written<'a> {
+    mesh: &'a Mesh,
+    report: &'a SanityReport,
+    written: &'a Mesh,
+    topo: MeshTopology,
+    adaptive: Option<&'a AdaptiveGrid>,
+    units: Units,
+}
+
+impl Written<'_> {
+    /// `mesh --json`.
+    fn json(&self, a: &MeshArgs) -> serde_json::Value {
+        let (mesh, report, written, topo, adaptive) = (self.mesh, self.report, self.written, &self.topo, self.adaptive);
+        serde_json::json!({
             "path": a.output.display().to_string(),
-            "units": units.name(),
+            "units": self.units.name(),
             "vertices": written.positions().len(),
             "triangles": written.triangles().len(),
             "volume": mesh.volume(),
@@ -121,50 +169,53 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
             "watertight": topo.watertight,
             "manifold": topo.manifold,
             "file_topology": topo,
-            "tolerance_cd": adaptive.as_ref().map(|f| f.tolerance_cd),
-            "tolerance_pct": adaptive.as_ref().map(|_| a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct())),
-            "tested_deviation_cd": adaptive.as_ref().map(|f| f.tested_deviation_cd),
-            "tolerance_reached": adaptive.as_ref().map(|f| f.reached),
-            "stopped_by": adaptive.as_ref().map(|f| f.stop),
-        });
-        outln!("{}", serde_json::to_string_pretty(&v)?);
-        return Ok(0);
+            "tolerance_cd": adaptive.map(|f| f.tolerance_cd),
+            "tolerance_pct": adaptive.map(|_| tolerance_pct(a)),
+            "tested_deviation_cd": adaptive.map(|f| f.tested_deviation_cd),
+            "tolerance_reached": adaptive.map(|f| f.reached),
+            "stopped_by": adaptive.map(|f| f.stop),
+        })
     }
-    // Each number once: the file's vertices and triangles (as read back), the solid's volume and area.
-    let count = photosolid::error::count;
-    outln!(
-        "{}: {}, {}, {}, χ = {}, {} at the origin; volume {} {u}³, area {} {u}²; as read back: {}, {}, {}",
-        a.output.display(),
-        count(written.positions().len(), "vertex", "vertices"),
-        count(written.triangles().len(), "triangle", "triangles"),
-        count(report.edges, "edge", "edges"),
-        report.euler_characteristic,
-        count(report.origin_sheets, "sheet", "sheets"),
-        photosolid::error::sig(mesh.volume(), 6),
-        photosolid::error::sig(mesh.area(), 6),
-        if topo.watertight {
-            "watertight"
-        } else {
-            "NOT watertight"
-        },
-        if topo.manifold { "manifold" } else { "NOT manifold" },
-        count(topo.components, "component", "components"),
-        u = units.name(),
-    );
-    if let Some(f) = &adaptive {
+
+    /// The text summary: each number once, the file's vertices and triangles
+    /// (as read back), the solid's volume and area, then the adaptive grid.
+    fn print(&self, a: &MeshArgs) -> std::io::Result<()> {
+        let (mesh, report, written, topo) = (self.mesh, self.report, self.written, &self.topo);
+        let count = photosolid::error::count;
         outln!(
-            "adaptive grid {} C x {} gamma: largest tested deviation {:.4} cd, tolerance {}% of I_max = {:.4} cd{}",
-            f.grid.c_angles_deg().len(),
-            f.grid.gamma_angles_deg().len(),
-            f.tested_deviation_cd,
-            super::parse::short(a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct())),
-            f.tolerance_cd,
-            if f.reached {
-                String::new()
+            "{}: {}, {}, {}, χ = {}, {} at the origin; volume {} {u}³, area {} {u}²; as read back: {}, {}, {}",
+            a.output.display(),
+            count(written.positions().len(), "vertex", "vertices"),
+            count(written.triangles().len(), "triangle", "triangles"),
+            count(report.edges, "edge", "edges"),
+            report.euler_characteristic,
+            count(report.origin_sheets, "sheet", "sheets"),
+            photosolid::error::sig(mesh.volume(), 6),
+            photosolid::error::sig(mesh.area(), 6),
+            if topo.watertight {
+                "watertight"
             } else {
-                format!(" (NOT reached: {})", f.stop)
-            }
+                "NOT watertight"
+            },
+            if topo.manifold { "manifold" } else { "NOT manifold" },
+            count(topo.components, "component", "components"),
+            u = self.units.name(),
         );
+        if let Some(f) = self.adaptive {
+            outln!(
+                "adaptive grid {} C x {} gamma: largest tested deviation {:.4} cd, tolerance {}% of I_max = {:.4} cd{}",
+                f.grid.c_angles_deg().len(),
+                f.grid.gamma_angles_deg().len(),
+                f.tested_deviation_cd,
+                super::parse::short(tolerance_pct(a)),
+                f.tolerance_cd,
+                if f.reached {
+                    String::new()
+                } else {
+                    format!(" (NOT reached: {})", f.stop)
+                }
+            );
+        }
+        Ok(())
     }
-    Ok(0)
 }

@@ -6,9 +6,10 @@
 //! terminal and there are many files.
 
 use std::io::{IsTerminal, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::Args;
+use photosolid::formats::Document;
 use photosolid::report::info::Tables;
 use photosolid::report::InfoReport;
 use rayon::prelude::*;
@@ -55,11 +56,8 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     let opts = a.read.options();
     let tables = if a.derived { Tables::Compute } else { Tables::Skip };
     let bar = (std::io::stderr().is_terminal() && files.len() > 20).then(|| {
-        let b = indicatif::ProgressBar::new(files.len() as u64);
-        b.set_style(
-            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} files {elapsed}")
-                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-        );
+        let b = super::progress_bar("files");
+        b.set_length(files.len() as u64);
         b
     });
     let results: Vec<Line> = files
@@ -69,55 +67,20 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
             if let Some(b) = &bar {
                 b.inc(1);
             }
-            match r {
-                Ok(lum) => {
-                    let mut info = InfoReport::of_document_with(&lum, tables, &Default::default());
-                    info.path = f.display().to_string();
-                    Line {
-                        path: f.display().to_string(),
-                        ok: true,
-                        errors: vec![],
-                        warnings: info.warnings.iter().map(Into::into).collect(),
-                        info: Some(info),
-                    }
-                }
-                Err(e) => Line {
-                    path: f.display().to_string(),
-                    ok: false,
-                    errors: vec![photosolid::error::ErrorRecord::from(&e)],
-                    warnings: vec![],
-                    info: None,
-                },
-            }
+            Line::of(f, r, tables)
         })
         .collect();
     if let Some(b) = bar {
         b.finish_and_clear();
     }
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let mut failed = 0;
+    let failed = results.iter().filter(|r| !r.ok).count();
     for r in &results {
-        if !r.ok {
-            failed += 1;
-        }
         if a.json {
             serde_json::to_writer(&mut out, r)?;
             writeln!(out)?;
-        } else if r.ok {
-            writeln!(
-                out,
-                "ok   {} ({})",
-                r.path,
-                photosolid::error::count(r.warnings.len(), "warning", "warnings")
-            )?;
-            for w in &r.warnings {
-                writeln!(out, "       {w}")?;
-            }
         } else {
-            writeln!(out, "FAIL {}", r.path)?;
-            for e in &r.errors {
-                writeln!(out, "       {}", e.message)?;
-            }
+            r.write_text(&mut out)?;
         }
     }
     if !a.json {
@@ -139,4 +102,51 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     }
     out.flush()?;
     Ok(if failed == 0 { 0 } else { 1 })
+}
+
+impl Line {
+    /// The line of file `f` from what reading it gave.
+    fn of(f: &Path, read: Result<Document, photosolid::Error>, tables: Tables) -> Line {
+        match read {
+            Ok(lum) => {
+                let mut info = InfoReport::of_document_with(&lum, tables, &Default::default());
+                info.path = f.display().to_string();
+                Line {
+                    path: f.display().to_string(),
+                    ok: true,
+                    errors: vec![],
+                    warnings: info.warnings.iter().map(Into::into).collect(),
+                    info: Some(info),
+                }
+            }
+            Err(e) => Line {
+                path: f.display().to_string(),
+                ok: false,
+                errors: vec![photosolid::error::ErrorRecord::from(&e)],
+                warnings: vec![],
+                info: None,
+            },
+        }
+    }
+
+    /// The text form: `ok PATH (N warnings)` and each warning, or `FAIL PATH` and each error.
+    fn write_text(&self, out: &mut impl Write) -> std::io::Result<()> {
+        if self.ok {
+            writeln!(
+                out,
+                "ok   {} ({})",
+                self.path,
+                photosolid::error::count(self.warnings.len(), "warning", "warnings")
+            )?;
+            for w in &self.warnings {
+                writeln!(out, "       {w}")?;
+            }
+        } else {
+            writeln!(out, "FAIL {}", self.path)?;
+            for e in &self.errors {
+                writeln!(out, "       {}", e.message)?;
+            }
+        }
+        Ok(())
+    }
 }

@@ -144,6 +144,20 @@ impl Opening {
                 crate::error::sig(h, 6)
             )));
         }
+        Self::ies_shape(w, l, h, old, v1995).ok_or_else(|| {
+            ModelError::Opening(format!(
+                "luminous opening signs W {}, L {}, H {} m match no LM-63 shape (point, rectangle, box, disk or \
+                 ellipse, cylinder, sphere or ellipsoid, vertical disk)",
+                crate::error::sig(w, 6),
+                crate::error::sig(l, 6),
+                crate::error::sig(h, 6)
+            ))
+        })
+    }
+
+    /// LM-63's table of shapes by the signs of the (finite) width, length and
+    /// height (metres); None for a combination the table does not list.
+    fn ies_shape(w: f64, l: f64, h: f64, old: bool, v1995: bool) -> Option<Opening> {
         let s = |v: f64| {
             if v > 0.0 {
                 1
@@ -154,7 +168,7 @@ impl Opening {
             }
         };
         let (aw, al, ah) = (w.abs(), l.abs(), h.abs());
-        Ok(match (s(w), s(l), s(h)) {
+        Some(match (s(w), s(l), s(h)) {
             (0, 0, 0) => Opening::Point,
             (1, 1, 0) => Opening::Rectangle {
                 length_m: al,
@@ -215,15 +229,7 @@ impl Opening {
                 width_m: al,
                 height_m: ah,
             },
-            _ => {
-                return Err(ModelError::Opening(format!(
-                    "luminous opening signs W {}, L {}, H {} m match no LM-63 shape (point, rectangle, box, disk or \
-                     ellipse, cylinder, sphere or ellipsoid, vertical disk)",
-                    crate::error::sig(w, 6),
-                    crate::error::sig(l, 6),
-                    crate::error::sig(h, 6)
-                )))
-            }
+            _ => return None,
         })
     }
 
@@ -348,7 +354,6 @@ impl Opening {
     /// lit side) for an EULUMDAT area.
     pub fn patches(&self, n: usize) -> Vec<(DVec3, f64)> {
         let n = n.max(1);
-        let mid = |i: usize, k: usize| (i as f64 + 0.5) / k as f64; // in (0, 1)
         let mut out = Vec::new();
         match *self {
             Opening::Point => out.push((DVec3::ZERO, 1.0)),
@@ -370,49 +375,9 @@ impl Opening {
                     out.push((DVec3::new(0.0, a * width_m / 2.0, b * height_m / 2.0), w));
                 }
             }
-            Opening::Box(e) => {
-                for i in 0..n {
-                    for j in 0..n {
-                        for k in 0..n {
-                            let p = DVec3::new(
-                                (mid(i, n) - 0.5) * e.length_m,
-                                (mid(j, n) - 0.5) * e.width_m,
-                                (mid(k, n) - 0.5) * e.height_m,
-                            );
-                            out.push((p, 1.0));
-                        }
-                    }
-                }
-            }
-            Opening::Cylinder(cyl) => {
-                for (a, b, w) in disk_points(n) {
-                    for k in 0..n {
-                        let along = (mid(k, n) - 0.5) * cyl.length_m;
-                        let (a, b) = (a * cyl.diameter_a_m / 2.0, b * cyl.diameter_b_m / 2.0);
-                        let p = match cyl.axis {
-                            0 => DVec3::new(along, a, b),
-                            1 => DVec3::new(a, along, b),
-                            _ => DVec3::new(a, b, along),
-                        };
-                        out.push((p, w));
-                    }
-                }
-            }
-            Opening::Ellipsoid(e) => {
-                // Equal-volume cells: uniform in r³, cos θ and φ.
-                for i in 0..n {
-                    let r = mid(i, n).cbrt();
-                    for j in 0..n {
-                        let ct = 2.0 * mid(j, n) - 1.0;
-                        let st = (1.0 - ct * ct).max(0.0).sqrt();
-                        for k in 0..4 * n {
-                            let (sp, cp) = crate::model::frame::sin_cos_deg(360.0 * mid(k, 4 * n));
-                            let u = DVec3::new(st * cp, st * sp, ct) * r;
-                            out.push((u * DVec3::new(e.length_m, e.width_m, e.height_m) / 2.0, 1.0));
-                        }
-                    }
-                }
-            }
+            Opening::Box(e) => box_patches(e, n, &mut out),
+            Opening::Cylinder(cyl) => cylinder_patches(cyl, n, &mut out),
+            Opening::Ellipsoid(e) => ellipsoid_patches(e, n, &mut out),
             Opening::LdtArea {
                 length_m,
                 width_m,
@@ -438,6 +403,59 @@ fn cylinder_coords(axis: u8, p: DVec3) -> (f64, f64, f64) {
     }
 }
 
+/// The middle of cell `i` of `k` equal cells of (0, 1).
+fn mid(i: usize, k: usize) -> f64 {
+    (i as f64 + 0.5) / k as f64
+}
+
+/// n³ equal cells of a box (centres, weight 1 each).
+fn box_patches(e: Extent3, n: usize, out: &mut Vec<(DVec3, f64)>) {
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                let p = DVec3::new(
+                    (mid(i, n) - 0.5) * e.length_m,
+                    (mid(j, n) - 0.5) * e.width_m,
+                    (mid(k, n) - 0.5) * e.height_m,
+                );
+                out.push((p, 1.0));
+            }
+        }
+    }
+}
+
+/// A cylinder's cells: the disk's points (with their weights) times n steps along the axis.
+fn cylinder_patches(cyl: CylinderShape, n: usize, out: &mut Vec<(DVec3, f64)>) {
+    for (a, b, w) in disk_points(n) {
+        for k in 0..n {
+            let along = (mid(k, n) - 0.5) * cyl.length_m;
+            let (a, b) = (a * cyl.diameter_a_m / 2.0, b * cyl.diameter_b_m / 2.0);
+            let p = match cyl.axis {
+                0 => DVec3::new(along, a, b),
+                1 => DVec3::new(a, along, b),
+                _ => DVec3::new(a, b, along),
+            };
+            out.push((p, w));
+        }
+    }
+}
+
+/// An ellipsoid's cells, of equal volume: uniform in r³, cos θ and φ (weight 1 each).
+fn ellipsoid_patches(e: Extent3, n: usize, out: &mut Vec<(DVec3, f64)>) {
+    for i in 0..n {
+        let r = mid(i, n).cbrt();
+        for j in 0..n {
+            let ct = 2.0 * mid(j, n) - 1.0;
+            let st = (1.0 - ct * ct).max(0.0).sqrt();
+            for k in 0..4 * n {
+                let (sp, cp) = crate::model::frame::sin_cos_deg(360.0 * mid(k, 4 * n));
+                let u = DVec3::new(st * cp, st * sp, ct) * r;
+                out.push((u * DVec3::new(e.length_m, e.width_m, e.height_m) / 2.0, 1.0));
+            }
+        }
+    }
+}
+
 /// Equal-area points of the unit disk: n rings (uniform in ρ²) × 4n sectors,
 /// each with weight 1 (midpoint rule in ρ² and angle).
 fn disk_points(n: usize) -> Vec<(f64, f64, f64)> {
@@ -455,7 +473,6 @@ fn disk_points(n: usize) -> Vec<(f64, f64, f64)> {
 /// Patches of an EULUMDAT area: the base (rectangle or disk) and the lit
 /// sides, each weighted by its area.
 fn ldt_patches(length: f64, width: f64, heights: [f64; 4], n: usize, out: &mut Vec<(DVec3, f64)>) {
-    let mid = |i: usize, k: usize| (i as f64 + 0.5) / k as f64;
     if width == 0.0 {
         let r = length / 2.0;
         let base_w = PI * r * r / (4 * n * n) as f64;

@@ -392,11 +392,44 @@ pub fn ugr_room(
     h_m: f64,
     spacing_h: f64,
 ) -> Result<Option<f64>, ModelError> {
-    let opening = Opening::of_luminaire(lum)?;
-    let layout = Layout::new(spacing_h)?;
-    let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
-    let f = super::flux::flux(lum.distribution());
-    Ok(one(&array, &f, room_h, rho, h_m))
+    let rooms = Rooms::new(lum, spacing_h)?;
+    Ok(one(&rooms.array(view), &rooms.flux, room_h, rho, h_m))
+}
+
+/// The set-up every standard room of one luminaire shares: its luminous
+/// opening, the array layout and its flux (one place, so the table, one
+/// room and one background cannot drift apart).
+struct Rooms<'a> {
+    lum: &'a Luminaire,
+    opening: Opening,
+    layout: Layout,
+    flux: super::Flux,
+}
+
+impl<'a> Rooms<'a> {
+    /// # Errors
+    /// [`ModelError::Parameter`] when `spacing_h` is not 1/n of H (checked first);
+    /// [`ModelError::Opening`] when the luminous opening cannot be built.
+    fn new(lum: &'a Luminaire, spacing_h: f64) -> Result<Self, ModelError> {
+        let layout = Layout::new(spacing_h)?;
+        let opening = Opening::of_luminaire(lum)?;
+        Ok(Rooms {
+            lum,
+            opening,
+            layout,
+            flux: super::flux::flux(lum.distribution()),
+        })
+    }
+
+    /// The array of luminaires seen in `view`.
+    fn array(&self, view: View) -> Array<'_> {
+        Array::new(
+            GridLookup::new(self.lum.distribution()),
+            &self.opening,
+            view,
+            self.layout,
+        )
+    }
 }
 
 /// The background of one standard room: where each luminaire's flux lands
@@ -429,12 +462,9 @@ pub fn background(
     h_m: f64,
     spacing_h: f64,
 ) -> Result<Background, ModelError> {
-    let opening = Opening::of_luminaire(lum)?;
-    let layout = Layout::new(spacing_h)?;
-    let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
-    let f = super::flux::flux(lum.distribution());
-    let (_, floor) = array.room(room_h.0, room_h.1);
-    Ok(room_background(&f, layout, room_h, floor, rho, h_m))
+    let rooms = Rooms::new(lum, spacing_h)?;
+    let (_, floor) = rooms.array(view).room(room_h.0, room_h.1);
+    Ok(room_background(&rooms.flux, rooms.layout, room_h, floor, rho, h_m))
 }
 
 /// [`Background`] from the array's direct floor flux (`floor`, all luminaires, lm).
@@ -496,26 +526,25 @@ pub fn ugr_table(lum: &Luminaire) -> Result<UgrTable, ModelError> {
 /// downward light or one that sends none toward the observer of a room; [`ModelError::Opening`] when the declared opening is not
 /// one this crate models; [`ModelError::Parameter`] for a spacing that is not 1/n of H.
 pub fn ugr_table_at(lum: &Luminaire, spacing_h: f64) -> Result<UgrTable, ModelError> {
-    let layout = Layout::new(spacing_h)?;
-    let opening = Opening::of_luminaire(lum)?;
+    let rooms = Rooms::new(lum, spacing_h)?;
+    let (layout, f) = (rooms.layout, &rooms.flux);
     let undefined = |why| ModelError::Undefined { quantity: "UGR", why };
-    if opening.is_point() {
+    if rooms.opening.is_point() {
         return Err(undefined(Undefined::NoLuminousArea));
     }
-    let f = super::flux::flux(lum.distribution());
     if f.downward_lm.is_nan() || f.downward_lm <= 0.0 {
         return Err(undefined(Undefined::NoDownwardLight));
     }
     let mut tables = Vec::new();
     for view in [View::Crosswise, View::Endwise] {
-        let array = Array::new(GridLookup::new(lum.distribution()), &opening, view, layout);
+        let array = rooms.array(view);
         let mut rows = Vec::new();
         for &room in &ROOMS_H {
             let mut row = Vec::new();
             // The array's sums do not depend on the reflectances: once per room.
             let sums = array.room(room.0, room.1);
             for &rho in &REFLECTANCES {
-                match ugr_of(layout, &f, room, sums, rho, 1.0) {
+                match ugr_of(layout, f, room, sums, rho, 1.0) {
                     Some(u) => row.push(u),
                     None => return Err(undefined(Undefined::NoLightTowardObserver { room_h: room })),
                 }

@@ -95,6 +95,55 @@ pub const MAX_RENDER_TEXELS: usize = 1 << 28;
 /// The default oversampling factor of a render (Wallner renders a five times larger texture).
 pub const DEFAULT_FACTOR: u32 = 5;
 
+/// The γ rows (indices into the distribution's angles) a texture keeps: the
+/// non-zero rows and two more on each side (within the measured band), so
+/// the widest kernel sees the zeros beyond a cut-off.
+fn kept_rows(d: &Distribution) -> (usize, usize) {
+    let ng = d.gamma_angles_deg().len();
+    let nonzero = |ig: usize| (0..d.n_c()).any(|ic| d.value_cd(ic, ig) != 0.0);
+    // I_max > 0, so some row is non-zero (the defaults are never taken).
+    let first = (0..ng).find(|&ig| nonzero(ig)).unwrap_or(0);
+    let last = (0..ng).rev().find(|&ig| nonzero(ig)).unwrap_or(ng - 1);
+    (first.saturating_sub(2), (last + 2).min(ng - 1))
+}
+
+/// What continues the kept rows `lo..=hi` of the measured angles `g`
+/// (degrees) below and above: each ghost row's kind and its knot (γ, degrees).
+fn ghosts(g: &[f64], lo: usize, hi: usize) -> ((GhostKind, f64), (GhostKind, f64)) {
+    let ng = g.len();
+    let lo_kind = if lo > 0 {
+        GhostKind::Cropped
+    } else if ng == 1 {
+        GhostKind::Single
+    } else if g[0] <= ANGLE_EPS {
+        GhostKind::Pole
+    } else {
+        GhostKind::Edge
+    };
+    let hi_kind = if hi < ng - 1 {
+        GhostKind::Cropped
+    } else if ng == 1 {
+        GhostKind::Single
+    } else if g[ng - 1] >= 180.0 - ANGLE_EPS {
+        GhostKind::Pole
+    } else {
+        GhostKind::Edge
+    };
+    let lo_knot = match lo_kind {
+        GhostKind::Cropped => g[lo - 1],
+        GhostKind::Single => g[0] - 1.0,
+        GhostKind::Pole => -g[1],
+        GhostKind::Edge => 2.0 * g[0] - g[1],
+    };
+    let hi_knot = match hi_kind {
+        GhostKind::Cropped => g[hi + 1],
+        GhostKind::Single => g[0] + 1.0,
+        GhostKind::Pole => 360.0 - g[ng - 2],
+        GhostKind::Edge => 2.0 * g[ng - 1] - g[ng - 2],
+    };
+    ((lo_kind, lo_knot), (hi_kind, hi_knot))
+}
+
 /// Linear interpolation in C (degrees) of row `ig` between the full-circle planes around `c`.
 fn linear_in_c(d: &Distribution, full: &[(f64, usize)], c: f64, ig: usize) -> f64 {
     let n = full.len();
@@ -136,46 +185,12 @@ impl LightTexture {
         }
         let g = d.gamma_angles_deg();
         let ng = g.len();
-        let nonzero = |ig: usize| (0..d.n_c()).any(|ic| d.value_cd(ic, ig) != 0.0);
-        // I_max > 0, so some row is non-zero (the defaults are never taken).
-        let first = (0..ng).find(|&ig| nonzero(ig)).unwrap_or(0);
-        let last = (0..ng).rev().find(|&ig| nonzero(ig)).unwrap_or(ng - 1);
-        let (lo, hi) = (first.saturating_sub(2), (last + 2).min(ng - 1));
+        let (lo, hi) = kept_rows(&d);
         let gamma = g[lo..=hi].to_vec();
         let rows = gamma.len() + 2;
         let full = d.full_planes();
         let columns = d.c_angles_deg().to_vec();
-
-        let lo_kind = if lo > 0 {
-            GhostKind::Cropped
-        } else if ng == 1 {
-            GhostKind::Single
-        } else if g[0] <= ANGLE_EPS {
-            GhostKind::Pole
-        } else {
-            GhostKind::Edge
-        };
-        let hi_kind = if hi < ng - 1 {
-            GhostKind::Cropped
-        } else if ng == 1 {
-            GhostKind::Single
-        } else if g[ng - 1] >= 180.0 - ANGLE_EPS {
-            GhostKind::Pole
-        } else {
-            GhostKind::Edge
-        };
-        let lo_knot = match lo_kind {
-            GhostKind::Cropped => g[lo - 1],
-            GhostKind::Single => g[0] - 1.0,
-            GhostKind::Pole => -g[1],
-            GhostKind::Edge => 2.0 * g[0] - g[1],
-        };
-        let hi_knot = match hi_kind {
-            GhostKind::Cropped => g[hi + 1],
-            GhostKind::Single => g[0] + 1.0,
-            GhostKind::Pole => 360.0 - g[ng - 2],
-            GhostKind::Edge => 2.0 * g[ng - 1] - g[ng - 2],
-        };
+        let ((lo_kind, lo_knot), (hi_kind, hi_knot)) = ghosts(g, lo, hi);
 
         let mut cd = Vec::with_capacity(columns.len() * rows);
         for (ic, &c) in columns.iter().enumerate() {

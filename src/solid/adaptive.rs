@@ -346,20 +346,12 @@ pub fn adaptive_grid_with_progress(
 ) -> Result<AdaptiveGrid, ModelError> {
     let min_step = opts.min_step_deg.max(1e-6);
     let max_points = opts.max_points.clamp(1, MAX_GRID_POINTS);
-    let mut grid = start.clone();
     // A C-independent field: the C planes follow from the circle's chord error alone.
     let c_fixed = crate::metrics::profile::is_c_independent(field, start.gamma_angles_deg());
-    if c_fixed {
-        let radii = grid_radii(field, &grid, Units::Candela)?;
-        let peak = peak_of(&grid, &radii);
-        let tol = opts.tolerance.candela(peak).max(RESOLUTION_FLOOR * peak);
-        // Within the point budget: the chord test then reports what the planes miss.
-        let most = (max_points / grid.gamma_angles_deg().len()).max(4);
-        grid = SolidGrid::new(
-            rotational_planes(&grid, &radii, tol, most),
-            grid.gamma_angles_deg().to_vec(),
-        )?;
-    }
+    let mut grid = match c_fixed {
+        true => rotational_start(field, start, opts, max_points)?,
+        false => start.clone(),
+    };
     // Each interval's history: its parent's deviation (∞ for the start intervals) and stalls.
     let mut c_parent = vec![History::START; grid.c_angles_deg().len()];
     let mut g_parent = vec![History::START; grid.gamma_angles_deg().len()];
@@ -408,18 +400,41 @@ pub fn adaptive_grid_with_progress(
                 rounds: round,
             });
         }
-        // A half remembers its parent's deviation and stalls; an interval left whole keeps its history.
-        c_parent = c_from
-            .iter()
-            .map(|&(i, cut)| if cut { c_now[i] } else { c_parent[i] })
-            .collect();
-        g_parent = g_from
-            .iter()
-            .map(|&(i, cut)| if cut { g_now[i] } else { g_parent[i] })
-            .collect();
+        c_parent = inherit(&c_from, &c_now, &c_parent);
+        g_parent = inherit(&g_from, &g_now, &g_parent);
         grid = SolidGrid::new(c, gamma)?;
     }
     unreachable!("the loop returns: intervals halve down to the minimum step")
+}
+
+/// The start grid of a C-independent field: `start`'s γ angles and as many
+/// evenly spaced C planes as the chord error of the widest ring needs
+/// ([`rotational_planes`]), within the point budget `max_points`.
+fn rotational_start(
+    field: &dyn IntensityField,
+    start: &SolidGrid,
+    opts: &AdaptiveOptions,
+    max_points: usize,
+) -> Result<SolidGrid, ModelError> {
+    let radii = grid_radii(field, start, Units::Candela)?;
+    let peak = peak_of(start, &radii);
+    let tol = opts.tolerance.candela(peak).max(RESOLUTION_FLOOR * peak);
+    // Within the point budget: the chord test then reports what the planes miss.
+    let most = (max_points / start.gamma_angles_deg().len()).max(4);
+    SolidGrid::new(
+        rotational_planes(start, &radii, tol, most),
+        start.gamma_angles_deg().to_vec(),
+    )
+}
+
+/// The histories of the next round's intervals (`from`: each new interval's
+/// old interval and whether it was halved, as [`halve`] returns them): a half
+/// remembers its parent's deviation and stalls (`now`, from [`verdicts`]); an
+/// interval left whole keeps its history (`parent`).
+fn inherit(from: &[(usize, bool)], now: &[History], parent: &[History]) -> Vec<History> {
+    from.iter()
+        .map(|&(i, cut)| if cut { now[i] } else { parent[i] })
+        .collect()
 }
 
 /// An interval's refinement history.
@@ -525,18 +540,41 @@ fn halve(angles: &[f64], marked: &[bool], min_step: f64, period: Option<f64>) ->
     (out, from, cut)
 }
 
-/// Test every quad of `grid` (see the module docs): the largest deviation
-/// per interval. With `c_fixed` (a C-independent field: every column alike)
-/// only the first column is tested, and its worst C interval stands for all.
-fn test_round(field: &dyn IntensityField, grid: &SolidGrid, r: &GridRadii, peak: f64, c_fixed: bool) -> Marks {
-    let (cs, gs) = (grid.c_angles_deg(), grid.gamma_angles_deg());
-    let (nc, ng) = (cs.len(), gs.len());
-    let sc: Vec<(f64, f64)> = cs.iter().map(|c| c.to_radians().sin_cos()).collect();
-    let sg: Vec<(f64, f64)> = gs.iter().map(|g| g.to_radians().sin_cos()).collect();
-    // Vertex ids as grid_solid assigns them, up to renumbering: the origin,
-    // the two poles, and one per inner grid point.
+/// A test point of one round: where on the grid solid it lies, the (C, γ)
+/// of the grid's parameters it sits at (the direction to test when the
+/// point is the origin), and the interval it would split.
+type TestPoint = (DVec3, (f64, f64), Split);
+
+/// The grid solid's vertices as `grid_solid` builds them, for placing the
+/// test points on its quads.
+struct GridVertices<'a> {
+    cs: &'a [f64],
+    gs: &'a [f64],
+    /// (sin, cos) of each C and γ.
+    sc: Vec<(f64, f64)>,
+    sg: Vec<(f64, f64)>,
+    r: &'a GridRadii,
+}
+
+impl<'a> GridVertices<'a> {
+    /// Vertex ids as grid_solid assigns them, up to renumbering: the origin,
+    /// the two poles, and one per inner grid point.
     const ORIGIN: u32 = u32::MAX;
-    let point = |ic: usize, ig: usize| -> ([f32; 3], u32) {
+
+    fn new(grid: &'a SolidGrid, r: &'a GridRadii) -> Self {
+        let (cs, gs) = (grid.c_angles_deg(), grid.gamma_angles_deg());
+        GridVertices {
+            cs,
+            gs,
+            sc: cs.iter().map(|c| c.to_radians().sin_cos()).collect(),
+            sg: gs.iter().map(|g| g.to_radians().sin_cos()).collect(),
+            r,
+        }
+    }
+
+    /// The vertex at grid point (`ic`, `ig`) and its id.
+    fn point(&self, ic: usize, ig: usize) -> ([f32; 3], u32) {
+        let (r, ng) = (self.r, self.gs.len());
         let rad = if ig == 0 {
             r.r_nadir
         } else if ig == ng - 1 {
@@ -545,92 +583,87 @@ fn test_round(field: &dyn IntensityField, grid: &SolidGrid, r: &GridRadii, peak:
             r.radii[ic * ng + ig]
         };
         if rad == 0.0 {
-            return ([0.0; 3], ORIGIN);
+            return ([0.0; 3], Self::ORIGIN);
         }
         if ig == 0 || ig == ng - 1 {
             let cg = if ig == 0 { 1.0 } else { -1.0 };
             return (vertex(rad, 0.0, cg, 0.0, 1.0), if ig == 0 { 0 } else { 1 });
         }
-        (
-            vertex(rad, sg[ig].0, sg[ig].1, sc[ic].0, sc[ic].1),
-            (2 + ic * ng + ig) as u32,
-        )
-    };
-    let mid_c = |ic: usize| {
-        let next = if ic + 1 == nc { cs[0] + 360.0 } else { cs[ic + 1] };
+        let (sg, sc) = (self.sg[ig], self.sc[ic]);
+        (vertex(rad, sg.0, sg.1, sc.0, sc.1), (2 + ic * ng + ig) as u32)
+    }
+
+    /// The middle C of interval `ic` (the last one wraps to 360°).
+    fn mid_c(&self, ic: usize) -> f64 {
+        let cs = self.cs;
+        let next = if ic + 1 == cs.len() { cs[0] + 360.0 } else { cs[ic + 1] };
         0.5 * (cs[ic] + next)
-    };
-    // Test points: (mesh point, its (C, γ) in the grid's parameters as the
-    // direction when the point is the origin, what it splits).
-    let columns = if c_fixed { 1 } else { nc };
-    let tests: Vec<(DVec3, (f64, f64), Split)> = (0..columns)
-        .into_par_iter()
-        .flat_map_iter(|ic| {
-            let ic1 = if ic + 1 == nc { 0 } else { ic + 1 };
-            let mut out = Vec::with_capacity(6 * ng);
-            for ig in 0..ng - 1 {
-                let q = [point(ic, ig), point(ic1, ig), point(ic1, ig + 1), point(ic, ig + 1)];
-                let corners = q.map(|x| x.0);
-                let ids = q.map(|x| x.1);
-                let p = corners.map(|x| p64(&x));
-                let gm = 0.5 * (gs[ig] + gs[ig + 1]);
-                // γ edge (C_ic, γ_ig)–(C_ic, γ_ig+1).
-                out.push((0.5 * (p[0] + p[3]), (cs[ic], gm), Split::Gamma(ig)));
-                // C edge (C_ic, γ_ig)–(C_ic+1, γ_ig), not at a pole.
-                if ig > 0 {
-                    out.push((0.5 * (p[0] + p[1]), (mid_c(ic), gs[ig]), Split::C(ic)));
-                }
-                let longer =
-                    if p[0].distance(p[1]).max(p[3].distance(p[2])) >= p[0].distance(p[3]).max(p[1].distance(p[2])) {
-                        Split::C(ic)
-                    } else {
-                        Split::Gamma(ig)
-                    };
-                let centre = (mid_c(ic), gm);
-                let tris = quad_split(&corners, &ids);
-                if let (Some(a), Some(b)) = (tris[0], tris[1]) {
-                    // The shared diagonal's midpoint.
-                    let shared: Vec<usize> = a.iter().copied().filter(|k| b.contains(k)).collect();
-                    if shared.len() == 2 {
-                        out.push((0.5 * (p[shared[0]] + p[shared[1]]), centre, longer));
-                    }
-                }
-                for t in tris.into_iter().flatten() {
-                    out.push(((p[t[0]] + p[t[1]] + p[t[2]]) / 3.0, centre, longer));
+    }
+
+    /// The test points of column `ic`'s quads: each γ edge's and C edge's
+    /// midpoint, the shared diagonal's midpoint and each triangle's centroid.
+    fn column_tests(&self, ic: usize) -> Vec<TestPoint> {
+        let (cs, gs) = (self.cs, self.gs);
+        let (nc, ng) = (cs.len(), gs.len());
+        let ic1 = if ic + 1 == nc { 0 } else { ic + 1 };
+        let mut out = Vec::with_capacity(6 * ng);
+        for ig in 0..ng - 1 {
+            let q = [
+                self.point(ic, ig),
+                self.point(ic1, ig),
+                self.point(ic1, ig + 1),
+                self.point(ic, ig + 1),
+            ];
+            let corners = q.map(|x| x.0);
+            let ids = q.map(|x| x.1);
+            let p = corners.map(|x| p64(&x));
+            let gm = 0.5 * (gs[ig] + gs[ig + 1]);
+            // γ edge (C_ic, γ_ig)–(C_ic, γ_ig+1).
+            out.push((0.5 * (p[0] + p[3]), (cs[ic], gm), Split::Gamma(ig)));
+            // C edge (C_ic, γ_ig)–(C_ic+1, γ_ig), not at a pole.
+            if ig > 0 {
+                out.push((0.5 * (p[0] + p[1]), (self.mid_c(ic), gs[ig]), Split::C(ic)));
+            }
+            let longer = if p[0].distance(p[1]).max(p[3].distance(p[2])) >= p[0].distance(p[3]).max(p[1].distance(p[2]))
+            {
+                Split::C(ic)
+            } else {
+                Split::Gamma(ig)
+            };
+            let centre = (self.mid_c(ic), gm);
+            let tris = quad_split(&corners, &ids);
+            if let (Some(a), Some(b)) = (tris[0], tris[1]) {
+                // The shared diagonal's midpoint.
+                let shared: Vec<usize> = a.iter().copied().filter(|k| b.contains(k)).collect();
+                if shared.len() == 2 {
+                    out.push((0.5 * (p[shared[0]] + p[shared[1]]), centre, longer));
                 }
             }
-            out
-        })
+            for t in tris.into_iter().flatten() {
+                out.push(((p[t[0]] + p[t[1]] + p[t[2]]) / 3.0, centre, longer));
+            }
+        }
+        out
+    }
+}
+
+/// Test every quad of `grid` (see the module docs): the largest deviation
+/// per interval. With `c_fixed` (a C-independent field: every column alike)
+/// only the first column is tested, and its worst C interval stands for all.
+fn test_round(field: &dyn IntensityField, grid: &SolidGrid, r: &GridRadii, peak: f64, c_fixed: bool) -> Marks {
+    let (nc, ng) = (grid.c_angles_deg().len(), grid.gamma_angles_deg().len());
+    let vertices = GridVertices::new(grid, r);
+    let columns = if c_fixed { 1 } else { nc };
+    let tests: Vec<TestPoint> = (0..columns)
+        .into_par_iter()
+        .flat_map_iter(|ic| vertices.column_tests(ic))
         .collect();
-    let dirs: Vec<(f64, f64)> = tests
-        .iter()
-        .map(|(p, fallback, _)| match p.try_normalize() {
-            Some(u) => unit_angles(u),
-            None => *fallback,
-        })
-        .collect();
-    let values = eval_all(field, &dirs);
-    // The surface point at the parameter midpoint: a second candidate nearest point.
-    let params: Vec<(f64, f64)> = tests.iter().map(|t| t.1).collect();
-    let at_params = eval_all(field, &params);
-    let zero = (f32::MIN_POSITIVE as f64).max(ZERO_FRACTION * peak);
-    let clean = |v: f64| if v < zero || v.is_nan() { 0.0 } else { v };
     let mut marks = Marks {
         c: vec![0.0; nc],
         gamma: vec![0.0; ng],
         worst: 0.0,
     };
-    for (((p, (c, g), split), v), vm) in tests.iter().zip(values).zip(at_params) {
-        let v = clean(v);
-        let beside = p.distance(clean(vm) * crate::model::frame::direction(*c, *g));
-        // Where the field is zero somewhere the origin is a point of its solid, so |p| bounds
-        // the distance too: it is the smaller bound on the fans to the origin, whose edges run
-        // along rays (a point halfway to a vertex is |p| away along its ray, yet beside the surface).
-        let dev = match r.any_zero {
-            true => (p.length() - v).abs().min(p.length()),
-            false => (p.length() - v).abs(),
-        }
-        .min(beside);
+    for ((_, _, split), dev) in tests.iter().zip(deviations(field, &tests, r.any_zero, peak)) {
         marks.worst = marks.worst.max(dev);
         let slot = match *split {
             Split::C(i) => &mut marks.c[i],
@@ -644,6 +677,44 @@ fn test_round(field: &dyn IntensityField, grid: &SolidGrid, r: &GridRadii, peak:
         marks.c.fill(worst_c);
     }
     marks
+}
+
+/// Each test point's deviation from the field's solid (cd): the radial gap
+/// in its own direction, or the distance to the surface point at its
+/// parameter midpoint when that is smaller. `any_zero`: the field is zero
+/// somewhere (the origin is then a point of its solid); `peak` sets the
+/// level below which a value counts as zero.
+fn deviations(field: &dyn IntensityField, tests: &[TestPoint], any_zero: bool, peak: f64) -> Vec<f64> {
+    let dirs: Vec<(f64, f64)> = tests
+        .iter()
+        .map(|(p, fallback, _)| match p.try_normalize() {
+            Some(u) => unit_angles(u),
+            None => *fallback,
+        })
+        .collect();
+    let values = eval_all(field, &dirs);
+    // The surface point at the parameter midpoint: a second candidate nearest point.
+    let params: Vec<(f64, f64)> = tests.iter().map(|t| t.1).collect();
+    let at_params = eval_all(field, &params);
+    let zero = (f32::MIN_POSITIVE as f64).max(ZERO_FRACTION * peak);
+    let clean = |v: f64| if v < zero || v.is_nan() { 0.0 } else { v };
+    tests
+        .iter()
+        .zip(values)
+        .zip(at_params)
+        .map(|(((p, (c, g), _), v), vm)| {
+            let v = clean(v);
+            let beside = p.distance(clean(vm) * crate::model::frame::direction(*c, *g));
+            // Where the field is zero somewhere the origin is a point of its solid, so |p| bounds
+            // the distance too: it is the smaller bound on the fans to the origin, whose edges run
+            // along rays (a point halfway to a vertex is |p| away along its ray, yet beside the surface).
+            match any_zero {
+                true => (p.length() - v).abs().min(p.length()),
+                false => (p.length() - v).abs(),
+            }
+            .min(beside)
+        })
+        .collect()
 }
 
 /// The largest distance (cd) from the field's solid to `mesh`, sampled at

@@ -48,34 +48,12 @@ pub fn read_emitter(
     let text = xml::decode(bytes, path)?;
     let doc = xml::parse(text, path, "a TM-33 document")?;
     let root = doc.root_element();
-    let edition = match root.tag_name().name() {
-        "LuminaireOpticalData" => Tm33Edition::Tm33_18,
-        "IESTM33-22" => Tm33Edition::Tm33_23,
-        other => {
-            return Err(error_at(
-                path,
-                root,
-                ErrorKind::Invalid,
-                "the root element LuminaireOpticalData (TM-33-18) or IESTM33-22 (TM-33-23)",
-                format!("<{other}>"),
-            ))
-        }
-    };
+    let edition = edition_of(path, root)?;
     let mut warnings = Vec::new();
     let emitter = super::emitters::choose(path, root, emitter)?;
     let block = intensity_block(path, emitter)?;
     check_type_and_metric(path, block)?;
-    let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
-    if multiplier <= 0.0 {
-        let node = child(block, &["Multiplier"]).unwrap_or(block);
-        return Err(error_at(
-            path,
-            node,
-            ErrorKind::Invalid,
-            "a multiplier > 0",
-            Num(multiplier),
-        ));
-    }
+    let multiplier = multiplier_of(path, block)?;
     let declared_symmetry = symmetry_code(path, block)?;
     let distribution = grid(path, block, multiplier, declared_symmetry, &mut warnings)?;
 
@@ -102,29 +80,13 @@ pub fn read_emitter(
             lamp_set.cri.clone_from(c);
         }
     }
-    let dims = match child(root, &["Luminaire"]).and_then(|l| child(l, &["Dimensions"])) {
-        Some(d) => Dimensions {
-            length_m: child_number(path, d, &["Length"])?.unwrap_or(0.0) / 1000.0,
-            width_m: child_number(path, d, &["Width"])?.unwrap_or(0.0) / 1000.0,
-            height_m: child_number(path, d, &["Height"])?.unwrap_or(0.0) / 1000.0,
-        },
-        None => Dimensions::default(),
-    };
-    let header = child(root, &["Header"]);
-    let text_of = |names: &[&str]| -> String { header.and_then(|h| child_text(h, names)).unwrap_or("").to_string() };
+    let dims = dimensions(path, root)?;
     let parts = LuminaireParts {
         path: Some(path.to_path_buf()),
         format: Format::Tm33,
         version: edition.version().into(),
         photometric_type: PhotometricType::C,
-        metadata: Metadata {
-            manufacturer: text_of(&["Manufacturer"]),
-            catalogue: text_of(&["CatalogNumber"]),
-            luminaire: text_of(&["Description"]),
-            lamp: lamp_set.lamp_type.clone(),
-            test_report: text_of(&["ReportNumber"]),
-            date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
-        },
+        metadata: metadata(root, &lamp_set.lamp_type),
         lamp_sets: vec![lamp_set],
         dimensions: dims,
         luminous_opening: kept.as_ref().map_or_else(Dimensions::default, |k| k.luminous_area),
@@ -136,6 +98,65 @@ pub fn read_emitter(
         warnings,
     };
     crate::formats::document(path, parts, crate::formats::Header::None)
+}
+
+/// The edition the root element names.
+fn edition_of(path: &Path, root: Node<'_, '_>) -> Result<Tm33Edition, ParseError> {
+    match root.tag_name().name() {
+        "LuminaireOpticalData" => Ok(Tm33Edition::Tm33_18),
+        "IESTM33-22" => Ok(Tm33Edition::Tm33_23),
+        other => Err(error_at(
+            path,
+            root,
+            ErrorKind::Invalid,
+            "the root element LuminaireOpticalData (TM-33-18) or IESTM33-22 (TM-33-23)",
+            format!("<{other}>"),
+        )),
+    }
+}
+
+/// The intensity block's `Multiplier` (1 when absent), which must be > 0.
+fn multiplier_of(path: &Path, block: Node<'_, '_>) -> Result<f64, ParseError> {
+    let multiplier = child_number(path, block, &["Multiplier"])?.unwrap_or(1.0);
+    if multiplier <= 0.0 {
+        let node = child(block, &["Multiplier"]).unwrap_or(block);
+        return Err(error_at(
+            path,
+            node,
+            ErrorKind::Invalid,
+            "a multiplier > 0",
+            Num(multiplier),
+        ));
+    }
+    Ok(multiplier)
+}
+
+/// The luminaire's `Dimensions` (millimetres in the file, metres here; zero when absent).
+fn dimensions(path: &Path, root: Node<'_, '_>) -> Result<Dimensions, ParseError> {
+    Ok(
+        match child(root, &["Luminaire"]).and_then(|l| child(l, &["Dimensions"])) {
+            Some(d) => Dimensions {
+                length_m: child_number(path, d, &["Length"])?.unwrap_or(0.0) / 1000.0,
+                width_m: child_number(path, d, &["Width"])?.unwrap_or(0.0) / 1000.0,
+                height_m: child_number(path, d, &["Height"])?.unwrap_or(0.0) / 1000.0,
+            },
+            None => Dimensions::default(),
+        },
+    )
+}
+
+/// The `Header`'s texts (empty when absent) and the lamp type.
+fn metadata(root: Node<'_, '_>, lamp: &str) -> Metadata {
+    let header = child(root, &["Header"]);
+    let text_of = |names: &[&str]| -> String { header.and_then(|h| child_text(h, names)).unwrap_or("").to_string() };
+    Metadata {
+        manufacturer: text_of(&["Manufacturer"]),
+        catalogue: text_of(&["CatalogNumber"]),
+        luminaire: text_of(&["Description"]),
+        lamp: lamp.to_string(),
+        test_report: text_of(&["ReportNumber"]),
+        date: text_of(&["ReportDate", "TestDate", "IssueDate"]),
+    }
 }
 
 /// What our writer keeps in its `CustomData` item ([`super::DECLARATIONS_ID`]).
