@@ -10,7 +10,10 @@ use crate::compare::{Comparison, ErrorMap, PolarPlane, ReconResult};
 use crate::error::Error;
 use crate::formats::write_atomic;
 use crate::photometry::derived::{side_by_side_markdown, side_by_side_text};
-use crate::report::plot::{self, ColorScale, HeatmapSpec, PolarSpec, ScatterPoint, ScatterSpec, Series, SeriesStyle};
+use crate::registry::Recon;
+use crate::report::plot::{
+    self, ColorScale, HeatmapSpec, LineSpec, PolarSpec, ScatterPoint, ScatterSpec, Series, SeriesStyle,
+};
 
 /// Significant digits of every number in the tables and texts of a comparison.
 const DIGITS: usize = 4;
@@ -297,6 +300,7 @@ pub fn figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         out.push(error_figure(c, m)?);
     }
     out.extend(scatter_figures(c)?);
+    out.extend(degree_figure(c)?);
     Ok(out)
 }
 
@@ -438,6 +442,72 @@ fn scatter_figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         });
     }
     Ok(out)
+}
+
+/// One error column of a row, % of I_max.
+type Metric = fn(&ReconResult) -> f64;
+
+/// The error of the spherical-harmonic rows against their degree L (when
+/// two degrees or more were compared): radial max, radial RMS and the
+/// Hausdorff distance, % of I_max, against the comparison's reference;
+/// half-float coefficients (`sh:L+f16`) dashed beside the f32 ones.
+fn degree_figure(c: &Comparison) -> Result<Option<Figure>, Error> {
+    let sh: Vec<(usize, bool, &ReconResult)> = c
+        .results
+        .iter()
+        .filter_map(|r| match r.name.parse::<Recon>() {
+            Ok(Recon::Sh { degree, f16 }) => Some((degree, f16, r)),
+            _ => None,
+        })
+        .collect();
+    let mut degrees: Vec<usize> = sh.iter().map(|s| s.0).collect();
+    degrees.sort_unstable();
+    degrees.dedup();
+    if degrees.len() < 2 {
+        return Ok(None);
+    }
+    let metrics: [(&str, Metric); 3] = [
+        ("radial max", |r| r.radial_max_pct),
+        ("radial RMS", |r| r.radial_rms_pct),
+        ("Hausdorff H", |r| r.hausdorff_pct),
+    ];
+    let mut series = Vec::new();
+    for half in [false, true] {
+        for (k, (what, value)) in metrics.iter().enumerate() {
+            let points: Vec<(f64, f64)> = sh
+                .iter()
+                .filter(|s| s.1 == half)
+                .map(|s| (s.0 as f64, value(s.2)))
+                .collect();
+            if !points.is_empty() {
+                series.push(Series {
+                    label: format!("{what}{}", if half { " (+f16)" } else { "" }),
+                    points,
+                    color: plot::palette(k),
+                    style: if half { SeriesStyle::Dashed } else { SeriesStyle::Line },
+                });
+            }
+        }
+    }
+    let title = format!(
+        "Spherical harmonics: error against degree L ({})",
+        c.reference_kind.as_str()
+    );
+    let png = plot::line_chart(&LineSpec {
+        title: &title,
+        x_label: "degree L (sh:L holds (L+1)^2 coefficients)",
+        y_label: "error (% of I_max)",
+        series: &series,
+        ..LineSpec::default()
+    })?;
+    Ok(Some(Figure {
+        file: "error_vs_degree.png".into(),
+        caption: format!(
+            "Radial max, radial RMS and Hausdorff error of sh:L against {}, by degree L, % of I_max",
+            c.reference
+        ),
+        png,
+    }))
 }
 
 /// `report.md`: the header, the table and the figures by file name.

@@ -155,8 +155,8 @@ fn errors_spanning_decades_are_spread_out() {
 // Issue 27 item 6: maps and plots that can be read.
 
 use photosolid::report::plot::{
-    contour_levels, isolux_plot, scatter_plot, texture_preview_plot, IsoluxSpec, MapAxis, MapQuantity, Plot,
-    TexturePreview,
+    contour_levels, isolux_plot, line_chart_plot, scatter_plot, texture_preview_plot, IsoluxSpec, LineSpec, MapAxis,
+    MapQuantity, Plot, TexturePreview,
 };
 
 /// Every text box inside the image and clear of every other one.
@@ -323,4 +323,75 @@ fn texture_preview_explains_its_exposure() {
     let yc = f64::from(tick.rect[1] + tick.rect[3]) / 2.0;
     let want = bottom - photosolid::report::plot::tone_map(2000.0 / r.i_max_cd, 4.0) * (bottom - top);
     assert!((yc - want).abs() <= 2.0, "tick at {yc}, the curve puts it at {want}");
+}
+
+/// Values against a parameter (the error-vs-L figure): six series whose
+/// legend wraps, every text inside and apart, 1-2-5 ticks on the log axis
+/// their span asks for, each series drawn in its colour; empty and
+/// non-finite input says "no data" instead of failing.
+#[test]
+fn line_chart_is_legible() {
+    let degrees = [2.0, 4.0, 8.0, 16.0];
+    let mut series = Vec::new();
+    for (k, what) in ["radial max", "radial RMS", "Hausdorff H"].iter().enumerate() {
+        for half in [false, true] {
+            series.push(Series {
+                label: format!("{what}{}", if half { " (+f16)" } else { "" }),
+                points: degrees
+                    .iter()
+                    .map(|&l| (l, 60.0 / (1.0 + k as f64) / l * if half { 1.05 } else { 1.0 }))
+                    .collect(),
+                color: palette(k),
+                style: if half { SeriesStyle::Dashed } else { SeriesStyle::Line },
+            });
+        }
+    }
+    let plot = line_chart_plot(&LineSpec {
+        title: "Spherical harmonics: error against degree L (truth)",
+        x_label: "degree L",
+        y_label: "error (% of I_max)",
+        series: &series,
+        ..LineSpec::default()
+    })
+    .unwrap();
+    std::fs::write(std::env::temp_dir().join("photosolid_line_chart.png"), &plot.png).unwrap();
+    assert_legible(&plot, "line chart");
+    for s in &series {
+        assert!(
+            plot.texts.iter().any(|t| t.text == s.label),
+            "legend lacks {:?}",
+            s.label
+        );
+    }
+    // 1.25 ... 31.5 spans more than 20x: a log axis, labelled at the powers of ten
+    // (the linear x axis has 0, 5, 10, 15, 20; a linear y axis would have no 1).
+    let ticks: Vec<f64> = plot.texts.iter().filter_map(|t| t.text.parse::<f64>().ok()).collect();
+    assert!(ticks.contains(&1.0) && ticks.contains(&10.0), "{ticks:?}");
+    let pm = Pixmap::decode_png(&plot.png).unwrap();
+    for k in 0..3 {
+        let rgb = palette(k);
+        let n = pm
+            .pixels()
+            .iter()
+            .filter(|p| [p.red(), p.green(), p.blue()] == rgb)
+            .count();
+        assert!(n > 20, "series {k}: {n} px of {rgb:?}");
+    }
+    for (what, points) in [
+        ("empty", vec![]),
+        ("non-finite", vec![(f64::NAN, 1.0), (1.0, f64::INFINITY)]),
+    ] {
+        let s = [Series {
+            label: what.into(),
+            points,
+            color: palette(0),
+            style: SeriesStyle::Line,
+        }];
+        let plot = line_chart_plot(&LineSpec {
+            series: &s,
+            ..LineSpec::default()
+        })
+        .unwrap();
+        assert!(plot.texts.iter().any(|t| t.text == "no data"), "{what}");
+    }
 }

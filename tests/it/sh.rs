@@ -484,3 +484,71 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
         "no sh/lobes row where the bytes front needs one: {missing:?}"
     );
 }
+
+/// The report plots error against L (issue 30 item 1): a comparison with
+/// `sh:L` rows at several degrees gets `error_vs_degree.png`, drawn from
+/// those rows' own errors, and one with a single degree gets none.
+#[test]
+fn report_plots_error_against_degree() {
+    use photosolid::report::compare_report;
+    let lum = Synth::Roadway
+        .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 1000.0)
+        .unwrap();
+    let d = lum.distribution();
+    let recons: Vec<Recon> = ["sh:2", "sh:4", "sh:8", "sh:8+f16"]
+        .iter()
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let opts = CompareOptions {
+        recons,
+        truth: Truth::of_luminaire(&lum),
+        directions: Directions::Dense(2000),
+        factor: 1,
+        solid_tolerance: None,
+        timing_samples: 50,
+        timing_repeats: 1,
+        plots: true,
+        ..Default::default()
+    };
+    let c = photosolid::compare::compare(d, None, &opts).unwrap();
+    // The rows the figure is drawn from: errors that fall with L, as the figure shows them.
+    let max_of = |name: &str| c.results.iter().find(|r| r.name == name).unwrap().radial_max_pct;
+    assert!(
+        max_of("sh:8") < max_of("sh:2"),
+        "{} vs {}",
+        max_of("sh:8"),
+        max_of("sh:2")
+    );
+    let figs = compare_report::figures(&c).unwrap();
+    let fig = figs
+        .iter()
+        .find(|f| f.file == "error_vs_degree.png")
+        .expect("an error-vs-L figure");
+    assert!(
+        fig.caption.contains("against") && fig.caption.contains(&c.reference),
+        "{}",
+        fig.caption
+    );
+    let pm = tiny_skia::Pixmap::decode_png(&fig.png).unwrap();
+    // Three metrics, solid for f32 and dashed for f16 coefficients, in the palette's first three colours.
+    for k in 0..3 {
+        let rgb = photosolid::report::plot::palette(k);
+        let n = pm
+            .pixels()
+            .iter()
+            .filter(|p| [p.red(), p.green(), p.blue()] == rgb && p.alpha() == 255)
+            .count();
+        assert!(n > 20, "series colour {k} ({rgb:?}): {n} px");
+    }
+
+    let one = CompareOptions {
+        recons: vec!["sh:4".parse().unwrap(), Recon::Filter(Filter::Bilinear)],
+        ..opts
+    };
+    let c = photosolid::compare::compare(d, None, &one).unwrap();
+    let figs = compare_report::figures(&c).unwrap();
+    assert!(
+        figs.iter().all(|f| f.file != "error_vs_degree.png"),
+        "one degree is no curve"
+    );
+}

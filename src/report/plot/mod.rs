@@ -1,7 +1,7 @@
 //! PNG plots for reports, drawn with tiny-skia and the crate's bitmap font
 //! ([`super::font`]).
 //!
-//! Four kinds, each drawn from one spec struct whose `Default` gives the
+//! Five kinds, each drawn from one spec struct whose `Default` gives the
 //! standard size:
 //! - [`polar_diagram`] ([`PolarSpec`]): the photometric polar diagram of one
 //!   plane pair (C0–C180, C90–C270, ...), nadir down, as lighting engineers draw it;
@@ -9,11 +9,13 @@
 //!   of a reconstruction), viridis or a diverging blue–white–red map;
 //! - [`scatter()`] ([`ScatterSpec`]): cost versus error of several methods, with
 //!   the Pareto front;
+//! - [`line_chart()`] ([`LineSpec`]): values against a parameter, e.g. a
+//!   representation's error against its degree;
 //! - [`texture_preview`] ([`TexturePreview`]): a rendered light texture as a
 //!   C × γ heat map in candela through an exposure tone curve.
 //!
 //! Modules: [`canvas`] (pixmap, text, legend), [`axis`] (ticks and their
-//! labels), one module per kind. Colours come from
+//! labels), `area` (the x-y plots' axes, pixel mapping and grid), one module per kind. Colours come from
 //! [`crate::solid::ColorMap`], the crate's one colour map.
 //!
 //! All of them return PNG bytes, never panic on empty or non-finite input
@@ -22,16 +24,19 @@
 //! background, anti-aliased 1–2 px strokes, dark grey text, tick values on
 //! the 1–2–5 × 10^k sequence.
 
+mod area;
 pub mod axis;
 pub mod canvas;
 pub mod heatmap;
 pub mod isolux;
+pub mod lines;
 pub mod polar;
 pub mod scatter;
 pub mod texture;
 
 pub use heatmap::{heatmap, heatmap_plot, ColorScale, HeatmapSpec};
 pub use isolux::{contour_levels, isolux_plot, IsoluxSpec, MapAxis, MapQuantity};
+pub use lines::{line_chart, line_chart_plot, LineSpec};
 pub use polar::{polar_diagram, PolarSpec};
 pub use scatter::{scatter, scatter_plot, ScatterSpec};
 pub use texture::{

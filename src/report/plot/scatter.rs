@@ -3,16 +3,12 @@
 use crate::error::Error;
 use crate::report::font;
 
-use super::axis::{nice_step, Axis};
+use super::area::{draw_grid, x_axis_over, y_axis_over, Area};
 use super::canvas::{Align, Canvas};
-use super::{Plot, ScatterPoint, AXIS, GRID, INK, OTHER, PARETO, SCATTER_SIZE};
+use super::{Plot, ScatterPoint, AXIS, INK, OTHER, PARETO, SCATTER_SIZE};
 
 /// A label's anchor (x, y), alignment and box.
 type Spot = (f32, f32, Align, [f32; 4]);
-
-/// Ratio of the largest to the smallest positive ordinate from which
-/// [`scatter()`] draws its y axis logarithmic.
-const LOG_Y_RATIO: f64 = 20.0;
 
 /// What [`scatter()`] draws. `Default` gives an empty 800 × 550 px plot with a
 /// linear x axis.
@@ -81,8 +77,8 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         .iter()
         .filter(|p| p.x.is_finite() && p.y.is_finite() && (!log_x || p.x > 0.0))
         .collect();
-    let x_axis = x_axis_of(&pts, log_x);
-    let y_axis = y_axis_of(&pts);
+    let x_axis = x_axis_over(&pts.iter().map(|p| p.x).collect::<Vec<_>>(), log_x);
+    let y_axis = y_axis_over(&pts.iter().map(|p| p.y).collect::<Vec<_>>());
     // Left margin: the y label, then the widest tick label.
     let y_ticks = y_axis.ticks();
     let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
@@ -123,139 +119,6 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
     }
     cv.finish()
-}
-
-/// The plot area in pixels and the value axes mapped onto it.
-struct Area {
-    /// Left edge, px.
-    left: f32,
-    /// Top edge, px.
-    top: f32,
-    /// Right edge, px.
-    right: f32,
-    /// Bottom edge, px.
-    bottom: f32,
-    /// The abscissa.
-    x_axis: Axis,
-    /// The ordinate.
-    y_axis: Axis,
-}
-
-impl Area {
-    /// Pixel column of abscissa `x`.
-    fn px(&self, x: f64) -> f32 {
-        self.left + self.x_axis.t(x) as f32 * (self.right - self.left)
-    }
-
-    /// Pixel row of ordinate `y`.
-    fn py(&self, y: f64) -> f32 {
-        self.bottom - self.y_axis.t(y) as f32 * (self.bottom - self.top)
-    }
-
-    /// Whether box `b` lies inside the area, 2 px from its edges.
-    fn holds(&self, b: &[f32; 4]) -> bool {
-        b[0] >= self.left + 2.0 && b[2] <= self.right - 2.0 && b[1] >= self.top + 2.0 && b[3] <= self.bottom - 2.0
-    }
-}
-
-/// The x axis over the points' abscissae (log10 of them when `log_x`),
-/// padded so that no point sits on the frame.
-fn x_axis_of(pts: &[&ScatterPoint], log_x: bool) -> Axis {
-    let xv = |p: &ScatterPoint| if log_x { p.x.log10() } else { p.x };
-    let (mut xa, mut xb) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-        (a.min(xv(p)), b.max(xv(p)))
-    });
-    if pts.is_empty() {
-        (xa, xb) = if log_x { (0.0, 2.0) } else { (0.0, 1.0) };
-    }
-    if xb - xa < 1e-12 * xa.abs().max(1e-300) || xb <= xa {
-        let d = if log_x { 0.5 } else { xa.abs().max(1e-300) * 0.5 };
-        let d = if d > 0.0 && d.is_finite() { d } else { 1.0 };
-        (xa, xb) = (xa - d, xb + d);
-    }
-    let pad = (xb - xa) * 0.08;
-    let (xa, xb) = (xa - pad, xb + pad);
-    if log_x {
-        Axis {
-            lo: xa,
-            hi: xb,
-            log: true,
-        }
-    } else {
-        let s = nice_step(xb - xa, 6);
-        Axis {
-            lo: (xa / s).floor() * s,
-            hi: (xb / s).ceil() * s,
-            log: false,
-        }
-    }
-}
-
-/// The y axis over the points' ordinates: from 0 when none is negative,
-/// logarithmic when all are positive and span [`LOG_Y_RATIO`] or more.
-fn y_axis_of(pts: &[&ScatterPoint]) -> Axis {
-    let (mut ya, mut yb) = pts
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.y), b.max(p.y)));
-    if pts.is_empty() {
-        (ya, yb) = (0.0, 1.0);
-    }
-    // Errors spanning more than LOG_Y_RATIO (a fitted model next to filters)
-    // would sit on the floor of a linear axis: log axis then.
-    let log_y = ya > 0.0 && yb / ya >= LOG_Y_RATIO;
-    if log_y {
-        let (la, lb) = (ya.log10(), yb.log10());
-        let pad = (lb - la) * 0.08;
-        Axis {
-            lo: la - pad,
-            hi: lb + pad,
-            log: true,
-        }
-    } else {
-        if ya >= 0.0 {
-            ya = 0.0;
-        }
-        if yb <= ya {
-            yb = if ya == 0.0 { 1.0 } else { ya + ya.abs() };
-        }
-        let yb = yb + (yb - ya) * 0.08;
-        let s = nice_step(yb - ya, 6);
-        Axis {
-            lo: (ya / s).floor() * s,
-            hi: (yb / s).ceil() * s,
-            log: false,
-        }
-    }
-}
-
-/// Grid lines, tick marks and tick labels of both axes (`y_ticks` as
-/// `area.y_axis` gives them); minor ticks are shorter, their lines lighter.
-fn draw_grid(cv: &mut Canvas, area: &Area, y_ticks: Vec<(f64, String)>) {
-    let Area {
-        left,
-        top,
-        right,
-        bottom,
-        ..
-    } = *area;
-    for (t, lab) in area.x_axis.ticks() {
-        let x = area.px(t).round() + 0.5;
-        let major = !lab.is_empty();
-        cv.line(x, top, x, bottom, if major { GRID } else { [240, 240, 240] }, 1.0);
-        cv.line(x, bottom, x, bottom + if major { 6.0 } else { 3.0 }, AXIS, 1.0);
-        if major {
-            cv.text(x, bottom + 16.0, &lab, 2, Align::Center, INK, false);
-        }
-    }
-    for (t, lab) in y_ticks {
-        let y = area.py(t).round() + 0.5;
-        let major = !lab.is_empty();
-        cv.line(left, y, right, y, if major { GRID } else { [240, 240, 240] }, 1.0);
-        cv.line(left - if major { 6.0 } else { 3.0 }, y, left, y, AXIS, 1.0);
-        if major {
-            cv.text(left - 10.0, y, &lab, 2, Align::Right, INK, false);
-        }
-    }
 }
 
 /// The legend above the plot area, right-aligned at `right`: the Pareto

@@ -1,0 +1,128 @@
+//! Values against a parameter: one or more series of (x, y) points joined by
+//! lines, each point marked (e.g. a representation's error against its
+//! degree).
+
+use crate::error::Error;
+use crate::report::font;
+
+use super::area::{draw_grid, x_axis_over, y_axis_over, Area};
+use super::canvas::{finite2, legend, Align, Canvas};
+use super::{Plot, Series, SeriesStyle, AXIS, INK, SCATTER_SIZE};
+
+/// What [`line_chart()`] draws. `Default` gives an empty 800 × 550 px plot.
+#[derive(Debug, Clone, Copy)]
+pub struct LineSpec<'a> {
+    /// Title at the top.
+    pub title: &'a str,
+    /// Abscissa title with its unit, e.g. "degree L".
+    pub x_label: &'a str,
+    /// Ordinate title with its unit, e.g. "radial error (% of I_max)".
+    pub y_label: &'a str,
+    /// The series: [`SeriesStyle::Line`] and [`SeriesStyle::Dashed`] are
+    /// joined in x order, [`SeriesStyle::Markers`] are not; every point is marked.
+    pub series: &'a [Series],
+    /// Width × height, px (each 120..=8192).
+    pub size: (u32, u32),
+}
+
+impl Default for LineSpec<'_> {
+    fn default() -> Self {
+        Self {
+            title: "",
+            x_label: "",
+            y_label: "",
+            series: &[],
+            size: SCATTER_SIZE,
+        }
+    }
+}
+
+/// Series against a parameter, `spec.size` px, with a legend under the
+/// title. The x axis is linear over the points; the y axis starts at 0 when
+/// no value is negative and is logarithmic when all are positive and span a
+/// ratio of 20 or more (as [`super::scatter()`]'s). Non-finite points are
+/// skipped; nothing to draw gives a plot that says "no data".
+///
+/// # Errors
+/// [`crate::ModelError::Parameter`] for a size outside 120..=8192 px, [`Error::Encode`] if encoding fails.
+pub fn line_chart(spec: &LineSpec) -> Result<Vec<u8>, Error> {
+    Ok(line_chart_plot(spec)?.png)
+}
+
+/// [`line_chart()`] with the boxes of its texts ([`Plot`]).
+///
+/// # Errors
+/// As [`line_chart()`].
+pub fn line_chart_plot(spec: &LineSpec) -> Result<Plot, Error> {
+    let LineSpec {
+        title,
+        x_label,
+        y_label,
+        series,
+        size: (w, h),
+    } = *spec;
+    let mut cv = Canvas::new(w, h, "line chart")?;
+    let (wf, hf) = (cv.w(), cv.h());
+    cv.title(title);
+    // Points in x order, non-finite ones dropped (a log axis needs y > 0, which the axis checks).
+    let curves: Vec<Vec<(f64, f64)>> = series
+        .iter()
+        .map(|s| {
+            let mut pts: Vec<(f64, f64)> = s.points.iter().copied().filter(finite2).collect();
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            pts
+        })
+        .collect();
+    let all = || curves.iter().flatten();
+    let x_axis = x_axis_over(&all().map(|p| p.0).collect::<Vec<_>>(), false);
+    let y_axis = y_axis_over(&all().map(|p| p.1).collect::<Vec<_>>());
+    let y_ticks = y_axis.ticks();
+    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
+    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
+    let right = wf - 30.0;
+    // The legend sits between the title and the plot area, as many rows as it needs.
+    let legend_h = legend(&mut cv, series, left, 44.0, right, true);
+    let (top, bottom) = (52.0 + legend_h + 8.0, hf - 64.0);
+    let area = Area {
+        left,
+        top,
+        right,
+        bottom,
+        x_axis,
+        y_axis,
+    };
+    draw_grid(&mut cv, &area, y_ticks);
+    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
+    cv.text(
+        left + (right - left) / 2.0,
+        hf - 16.0,
+        x_label,
+        2,
+        Align::Center,
+        INK,
+        false,
+    );
+    cv.text_vertical(16.0, top + (bottom - top) / 2.0, y_label, 2, INK);
+    legend(&mut cv, series, left, 44.0, right, false);
+    for (s, pts) in series.iter().zip(&curves) {
+        let px: Vec<(f32, f32)> = pts.iter().map(|&(x, y)| (area.px(x), area.py(y))).collect();
+        if s.style != SeriesStyle::Markers {
+            cv.polyline(&px, s.color, 2.0, s.style == SeriesStyle::Dashed);
+        }
+        for &(x, y) in &px {
+            cv.circle(x, y, 4.0, s.color, None);
+        }
+    }
+    if all().next().is_none() {
+        cv.text(
+            left + (right - left) / 2.0,
+            top + (bottom - top) / 2.0,
+            "no data",
+            3,
+            Align::Center,
+            INK,
+            true,
+        );
+    }
+    cv.finish()
+}
