@@ -6,7 +6,8 @@
 //! evaluated on the native grid (the texture of measured values, f64);
 //! Catmull–Rom textures rendered at factors k read back with nearest,
 //! bilinear and Catmull–Rom lookups; the k = 5 bilinear texture stored in
-//! f16 and/or only in the symmetry's C sector; the fitted OpenGL lights with
+//! f16, 16-bit and 8-bit normalised integers (`+u16`, `+u8`: steps of the
+//! largest texel) and/or only in the symmetry's C sector; the fitted OpenGL lights with
 //! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
 //! Catmull–Rom reconstruction for L in [`SH_DEGREES`]
 //! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`);
@@ -57,7 +58,10 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
             out.push(tex(k, l, Precision::F32, false));
         }
     }
-    out.push(tex(5, Lookup::Bilinear, Precision::F16, false));
+    // The same texture in half floats and in 16- and 8-bit normalised integers.
+    for precision in [Precision::F16, Precision::U16, Precision::U8] {
+        out.push(tex(5, Lookup::Bilinear, precision, false));
+    }
     if symmetry != Symmetry::None {
         out.push(tex(5, Lookup::Bilinear, Precision::F32, true));
         out.push(tex(5, Lookup::Bilinear, Precision::F16, true));

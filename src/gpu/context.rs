@@ -262,6 +262,14 @@ impl GpuContext {
         self.device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)
     }
 
+    /// Whether R16Unorm textures can be created and filtered here
+    /// (`TEXTURE_FORMAT_16BIT_NORM`).
+    pub fn unorm16(&self) -> bool {
+        self.device
+            .features()
+            .contains(wgpu::Features::TEXTURE_FORMAT_16BIT_NORM)
+    }
+
     /// Maximum workgroups per dispatch dimension.
     pub fn max_workgroups_per_dim(&self) -> u32 {
         self.limits.max_compute_workgroups_per_dimension

@@ -239,6 +239,16 @@ impl LookupBatch {
     }
 }
 
+/// The integer a normalised-integer texel `x` (I / I_max) stores: `x / scale`
+/// in `steps` (0 for an all-zero texture).
+fn unorm(x: f32, scale: f32, steps: f32) -> f32 {
+    if scale > 0.0 {
+        (x / scale * steps).round().clamp(0.0, steps)
+    } else {
+        0.0
+    }
+}
+
 fn texture_error(what: &str, e: impl std::fmt::Display) -> GpuError {
     GpuError::Device(format!("{what}: {e}"))
 }
@@ -259,10 +269,10 @@ impl<'a> RealtimeTexture<'a> {
         precision: Precision,
         lookup: HardwareLookup,
     ) -> Result<Self, GpuError> {
-        let precision = if ctx.float32_filterable() {
-            precision
-        } else {
-            Precision::F16
+        let precision = match precision {
+            Precision::F32 if !ctx.float32_filterable() => Precision::F16,
+            Precision::U16 if !ctx.unorm16() => Precision::F16,
+            p => p,
         };
         let exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
         let (h, (_, cols)) = (exact.height(), exact.stored_columns());
@@ -292,6 +302,21 @@ impl<'a> RealtimeTexture<'a> {
                     .collect();
                 (wgpu::TextureFormat::R16Float, bytemuck::cast_slice(&v).to_vec())
             }
+            // The stored texels are already on the format's steps of the largest texel.
+            Precision::U16 => {
+                let scale = exact.unorm_scale();
+                let v: Vec<u16> = exact
+                    .texels()
+                    .iter()
+                    .map(|&x| unorm(x, scale, 65_535.0) as u16)
+                    .collect();
+                (wgpu::TextureFormat::R16Unorm, bytemuck::cast_slice(&v).to_vec())
+            }
+            Precision::U8 => {
+                let scale = exact.unorm_scale();
+                let v: Vec<u8> = exact.texels().iter().map(|&x| unorm(x, scale, 255.0) as u8).collect();
+                (wgpu::TextureFormat::R8Unorm, v)
+            }
         };
         let mirror = exact.reduced().is_some();
         let fold = exact.reduced().map_or(0, |s| s.isym() as u32);
@@ -317,7 +342,7 @@ impl<'a> RealtimeTexture<'a> {
     pub fn context(&self) -> &'a GpuContext {
         self.ctx
     }
-    /// The texture format used (`R32Float` or `R16Float`).
+    /// The texture format used (`R32Float`, `R16Float`, `R16Unorm` or `R8Unorm`).
     pub fn format(&self) -> wgpu::TextureFormat {
         self.format
     }
@@ -485,7 +510,8 @@ impl<'a> RealtimeTexture<'a> {
     pub fn sample_dirs_cd(&self, dirs: &[DVec3]) -> Result<Vec<f64>, GpuError> {
         let batch = self.prepare(dirs)?;
         self.run(&batch)?;
-        let i_max = self.exact.i_max_cd();
+        // A normalised-integer texel of 1 is the largest texel, not I_max.
+        let i_max = self.exact.i_max_cd() * f64::from(self.exact.unorm_scale());
         Ok(self.read(&batch)?.into_iter().map(|v| f64::from(v) * i_max).collect())
     }
 

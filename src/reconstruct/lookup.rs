@@ -72,6 +72,76 @@ pub enum Precision {
     /// 16-bit floats (`R16F`): values rounded to the nearest f16 (10-bit
     /// mantissa; I/I_max under 6.1e-5 become subnormal, under 3e-8 zero).
     F16,
+    /// 16-bit unsigned normalised integers (`R16_UNORM`): each texel is
+    /// rounded to the nearest of 65,535 steps of the texture's largest texel
+    /// (one scale per texture; a step is at most 1.5e-5 of it).
+    U16,
+    /// 8-bit unsigned normalised integers (`R8_UNORM`): 255 steps of the
+    /// largest texel (a step is 0.39 % of it; values under half a step become 0).
+    U8,
+}
+
+impl Precision {
+    /// Bytes per stored value: 4 (f32), 2 (f16, u16) or 1 (u8).
+    pub fn bytes(self) -> usize {
+        match self {
+            Precision::F32 => 4,
+            Precision::F16 | Precision::U16 => 2,
+            Precision::U8 => 1,
+        }
+    }
+
+    /// The steps of a normalised-integer format (65,535 or 255); None for floats.
+    pub fn unorm_steps(self) -> Option<f32> {
+        match self {
+            Precision::F32 | Precision::F16 => None,
+            Precision::U16 => Some(65_535.0),
+            Precision::U8 => Some(255.0),
+        }
+    }
+
+    /// The suffix of its name (`+f16`, `+u16`, `+u8`; none for f32).
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Precision::F32 => "",
+            Precision::F16 => "+f16",
+            Precision::U16 => "+u16",
+            Precision::U8 => "+u8",
+        }
+    }
+
+    /// Values `v` as stored in this precision and read back. A float format
+    /// rounds each value; a normalised-integer format rounds `v / scale` to
+    /// its steps, `scale` being the largest |value| (UNORM: 255 or 65,535
+    /// steps; when some value is negative, SNORM: 127 or 32,767 steps each
+    /// side, as for spherical-harmonic coefficients). Non-finite values become 0.
+    pub fn store(self, v: &[f64]) -> Vec<f64> {
+        let finite = |x: f64| if x.is_finite() { x } else { 0.0 };
+        match self.unorm_steps() {
+            None => v
+                .iter()
+                .map(|&x| match self {
+                    Precision::F16 => half::f16::from_f64(finite(x)).to_f64(),
+                    _ => finite(x) as f32 as f64,
+                })
+                .collect(),
+            Some(steps) => {
+                let signed = v.iter().any(|&x| finite(x) < 0.0);
+                let steps = if signed {
+                    (f64::from(steps) - 1.0) / 2.0
+                } else {
+                    f64::from(steps)
+                };
+                let scale = v.iter().map(|&x| finite(x).abs()).fold(0.0, f64::max);
+                if scale == 0.0 {
+                    return vec![0.0; v.len()];
+                }
+                v.iter()
+                    .map(|&x| (finite(x) / scale * steps).round() / steps * scale)
+                    .collect()
+            }
+        }
+    }
 }
 
 /// A rendered texture as a renderer stores it: all of it or only the C
@@ -125,15 +195,12 @@ impl StoredTexture {
             _ => (0, w),
         };
         let reduced = reduced.filter(|&s| s != Symmetry::None && columns < w);
-        let round = |v: f32| match precision {
-            Precision::F32 => v,
-            Precision::F16 => half::f16::from_f32(v).to_f32(),
-        };
-        let mut data = Vec::with_capacity(h * columns);
+        let mut kept = Vec::with_capacity(h * columns);
         for i in 0..h {
             let row = &rendered.data[i * w..][..w];
-            data.extend(row[first_column..first_column + columns].iter().map(|&v| round(v)));
+            kept.extend(row[first_column..first_column + columns].iter().map(|&v| f64::from(v)));
         }
+        let data = precision.store(&kept).into_iter().map(|v| v as f32).collect();
         Self {
             data,
             height: h,
@@ -149,13 +216,20 @@ impl StoredTexture {
         }
     }
 
-    /// Bytes of the stored texels (4 per texel in f32, 2 in f16).
+    /// Bytes of the stored texels (4 per texel in f32, 2 in f16 and u16, 1
+    /// in u8); the scale of a normalised-integer texture is not counted (it
+    /// takes the place of I_max, which a float texture needs as well).
     pub fn texel_bytes(&self) -> usize {
-        self.data.len()
-            * match self.precision {
-                Precision::F32 => 4,
-                Precision::F16 => 2,
-            }
+        self.data.len() * self.precision.bytes()
+    }
+
+    /// What a normalised-integer texel of 1 stands for, I / I_max (the
+    /// largest stored texel); 1 for float precisions.
+    pub fn unorm_scale(&self) -> f32 {
+        match self.precision.unorm_steps() {
+            Some(_) => self.data.iter().copied().fold(0.0, f32::max),
+            None => 1.0,
+        }
     }
 
     /// The stored texels (I / I_max, already rounded to the precision),
@@ -398,10 +472,13 @@ impl IntensityField for StoredTexture {
         self.cd(c_deg, gamma_deg)
     }
     fn name(&self) -> String {
-        let mut n = format!("{}@x{}/{}", self.filter, self.factor, self.lookup);
-        if self.precision == Precision::F16 {
-            n.push_str("+f16");
-        }
+        let mut n = format!(
+            "{}@x{}/{}{}",
+            self.filter,
+            self.factor,
+            self.lookup,
+            self.precision.suffix()
+        );
         if self.reduced.is_some() {
             n.push_str("+reduced");
         }

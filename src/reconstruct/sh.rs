@@ -285,17 +285,12 @@ impl ShField {
         let degree = degree.min(MAX_SH_DEGREE);
         let ok = scale_cd.is_finite() && scale_cd > 0.0;
         let norm = if ok { 1.0 / ((4.0 * PI).sqrt() * scale_cd) } else { 0.0 };
-        let coeffs = (0..=degree)
+        let windowed: Vec<f64> = (0..=degree)
             .flat_map(|l| (0..2 * l + 1).map(move |k| (l, l * l + k)))
-            .map(|(l, i)| {
-                let b = c.get(i).copied().unwrap_or(0.0) * window.factor(l, degree) * norm;
-                let b = if b.is_finite() { b } else { 0.0 };
-                match precision {
-                    Precision::F32 => b as f32 as f64,
-                    Precision::F16 => half::f16::from_f64(b).to_f64(),
-                }
-            })
+            .map(|(l, i)| c.get(i).copied().unwrap_or(0.0) * window.factor(l, degree) * norm)
             .collect();
+        // As stored: rounded to the float format, or to the integer steps of the largest |coefficient|.
+        let coeffs = precision.store(&windowed);
         let diag = (0..=degree)
             .map(|m| {
                 if m == 0 {
@@ -395,17 +390,17 @@ impl IntensityField for ShField {
         }
     }
     fn name(&self) -> String {
-        let f16 = if self.precision == Precision::F16 { "+f16" } else { "" };
-        format!("sh:{}{f16} ({} window)", self.degree, self.window.name())
+        format!(
+            "sh:{}{} ({} window)",
+            self.degree,
+            self.precision.suffix(),
+            self.window.name()
+        )
     }
-    /// `(L + 1)²` coefficients × 4 bytes (f32) or × 2 (f16); the f64 scale
-    /// is not counted (as a stored texture's I_max).
+    /// `(L + 1)²` coefficients × 4 bytes (f32), × 2 (f16, u16) or × 1 (u8);
+    /// the f64 scale is not counted (as a stored texture's I_max).
     fn bytes(&self) -> usize {
-        let per = match self.precision {
-            Precision::F32 => 4,
-            Precision::F16 => 2,
-        };
-        (self.degree + 1) * (self.degree + 1) * per
+        (self.degree + 1) * (self.degree + 1) * self.precision.bytes()
     }
     /// A finite sum of harmonics, clamped at 0: continuous.
     fn is_continuous(&self) -> bool {

@@ -1,5 +1,5 @@
 //! A rendered texture as a renderer stores and reads it: [`TextureSpec`],
-//! written `FILTER@xK/LOOKUP[+f16][+reduced]`.
+//! written `FILTER@xK/LOOKUP[+f16|+u16|+u8][+reduced]`.
 
 use std::fmt;
 use std::str::FromStr;
@@ -9,7 +9,7 @@ use super::lookup::{Lookup, Precision};
 use crate::error::ModelError;
 
 /// A rendered texture as a renderer stores and reads it. Written
-/// `FILTER@xK/LOOKUP[+f16][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
+/// `FILTER@xK/LOOKUP[+f16|+u16|+u8][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TextureSpec {
     /// The filter the texture is rendered with.
@@ -26,10 +26,14 @@ pub struct TextureSpec {
 
 impl fmt::Display for TextureSpec {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}@x{}/{}", self.filter, self.factor, self.lookup)?;
-        if self.precision == Precision::F16 {
-            f.write_str("+f16")?;
-        }
+        write!(
+            f,
+            "{}@x{}/{}{}",
+            self.filter,
+            self.factor,
+            self.lookup,
+            self.precision.suffix()
+        )?;
         if self.reduced {
             f.write_str("+reduced")?;
         }
@@ -43,7 +47,7 @@ impl FromStr for TextureSpec {
         let bad = |why: &str| ModelError::Parameter {
             name: "texture",
             value: s.to_string(),
-            reason: format!("{why}; expected FILTER@xK/LOOKUP[+f16][+reduced], e.g. catmull-rom@x5/bilinear"),
+            reason: format!("{why}; expected FILTER@xK/LOOKUP[+f16|+u16|+u8][+reduced], e.g. catmull-rom@x5/bilinear"),
         };
         let (filter, rest) = s.trim().split_once('@').ok_or_else(|| bad("no @"))?;
         let mut parts = rest.split('+');
@@ -66,6 +70,8 @@ impl FromStr for TextureSpec {
         for p in parts {
             match p {
                 "f16" => spec.precision = Precision::F16,
+                "u16" => spec.precision = Precision::U16,
+                "u8" => spec.precision = Precision::U8,
                 "reduced" => spec.reduced = true,
                 _ => return Err(bad("unknown option")),
             }

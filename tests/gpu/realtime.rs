@@ -115,6 +115,55 @@ fn hardware_lookups_match_exact_within_weight_precision() {
     }
 }
 
+/// 16- and 8-bit normalised-integer textures on the GPU (`R16Unorm`,
+/// `R8Unorm`): the hardware reads the same steps the exact lookup reads,
+/// within the weight precision plus one step (the filtered value may be
+/// rounded to the format); without `TEXTURE_FORMAT_16BIT_NORM` the
+/// 16-bit texture falls back to f16 and says so.
+#[test]
+fn quantised_textures_match_exact_on_the_gpu() {
+    let Some(c) = ctx("quantised_textures_match_exact_on_the_gpu") else {
+        return;
+    };
+    let eps = subtexel_precision(c, 4097).unwrap().max_weight_error;
+    let dirs = random_directions(20_000, 11);
+    for file in ["roadway.ldt", "spot_p8_c40.ldt"] {
+        let (r, _) = rendered(file, 5);
+        for precision in [Precision::U16, Precision::U8] {
+            let t = RealtimeTexture::new(c, &r, None, precision, HardwareLookup::Linear).unwrap();
+            if t.precision() != precision {
+                println!(
+                    "{file}: {precision:?} not on this adapter (no TEXTURE_FORMAT_16BIT_NORM): {:?}",
+                    t.format()
+                );
+                assert_eq!((precision, t.precision()), (Precision::U16, Precision::F16));
+                continue;
+            }
+            let want = if precision == Precision::U8 {
+                wgpu::TextureFormat::R8Unorm
+            } else {
+                wgpu::TextureFormat::R16Unorm
+            };
+            assert_eq!(t.format(), want);
+            assert_eq!(t.bytes(), precision.bytes() * r.data.len());
+            let hw = t.sample_dirs_cd(&dirs).unwrap();
+            let ex = t.exact();
+            let worst = dirs
+                .iter()
+                .zip(&hw)
+                .map(|(d, g)| (g - ex.intensity_dir_cd(*d)).abs() / r.i_max_cd)
+                .fold(0.0, f64::max);
+            // A texture unit may return a filtered 8-bit texel at the format's own precision
+            // (llvmpipe filters UNORM8 in 8-bit fixed point): one step of the scale on top.
+            let steps = if precision == Precision::U8 { 255.0 } else { 65_535.0 };
+            let tol = lookup_tolerance(&r, HardwareLookup::Linear, eps) + f64::from(ex.unorm_scale()) / steps;
+            println!("{file} {precision:?}: max |hw - exact| = {worst:.3e} of I_max (tol {tol:.2e})");
+            assert!(worst <= tol, "{file} {precision:?}: {worst:e} > {tol:e}");
+            assert!(hw.iter().all(|v| v.is_finite() && *v >= 0.0));
+        }
+    }
+}
+
 /// The probe sees monotone weights from 0 to 1 and at least 4 bits.
 #[test]
 fn subtexel_precision_probe() {

@@ -552,3 +552,78 @@ fn report_plots_error_against_degree() {
         "one degree is no curve"
     );
 }
+
+/// 16- and 8-bit normalised-integer textures (issue 30 item 5): each texel
+/// is within half a step of the largest texel of the f32 texel it stores,
+/// bilinear lookups (convex weights) within the same bound, bytes 2 and 1
+/// per texel; the spelling round-trips; a p = 128 spot (most texels far
+/// below one 8-bit step) stays finite and non-negative; the default trade
+/// table holds both.
+#[test]
+fn quantised_textures_keep_half_a_step() {
+    use photosolid::compare::trade::representations;
+    use photosolid::reconstruct::{render, Lookup, StoredTexture, TextureSpec};
+    for (what, synth) in [
+        ("roadway", Synth::Roadway),
+        (
+            "spot p 128",
+            Synth::Spot {
+                p: 128.0,
+                cutoff_deg: 60.0,
+            },
+        ),
+    ] {
+        let lum = synth.build(&GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0).unwrap();
+        let tex = LightTexture::new(lum.distribution()).unwrap();
+        let r = render(&tex, Filter::CatmullRom, 5).unwrap();
+        let full = StoredTexture::new(&r, None, Precision::F32, Lookup::Bilinear);
+        let dirs = photosolid::metrics::random_directions(5000, 3);
+        for (precision, steps, bytes) in [(Precision::U16, 65_535.0, 2), (Precision::U8, 255.0, 1)] {
+            let q = StoredTexture::new(&r, None, precision, Lookup::Bilinear);
+            let scale = f64::from(q.unorm_scale());
+            let top = full.texels().iter().copied().fold(0.0f32, f32::max);
+            assert_eq!(
+                q.unorm_scale(),
+                top,
+                "{what} {precision:?}: the scale is the largest texel"
+            );
+            let half_step = 0.5 * scale / steps + 1e-7 * scale;
+            let worst = q
+                .texels()
+                .iter()
+                .zip(full.texels())
+                .map(|(a, b)| f64::from((a - b).abs()))
+                .fold(0.0, f64::max);
+            assert!(
+                worst <= half_step,
+                "{what} {precision:?}: texel off by {worst:e} > {half_step:e}"
+            );
+            assert_eq!(q.bytes(), bytes * full.texels().len(), "{what} {precision:?}");
+            for d in &dirs {
+                let (a, b) = (q.intensity_dir_cd(*d), full.intensity_dir_cd(*d));
+                assert!(a.is_finite() && a >= 0.0, "{what} {precision:?} {d}: {a}");
+                assert!(
+                    (a - b).abs() <= half_step * r.i_max_cd,
+                    "{what} {precision:?} {d}: {a} vs {b}"
+                );
+            }
+            assert!(q.name().ends_with(precision.suffix()), "{}", q.name());
+        }
+    }
+    for s in [
+        "catmull-rom@x5/bilinear+u16",
+        "catmull-rom@x5/bilinear+u8",
+        "bilinear@x2/nearest+u8+reduced",
+    ] {
+        let spec: TextureSpec = s.parse().unwrap();
+        assert_eq!(spec.to_string(), s);
+        assert_eq!(s.parse::<Recon>().unwrap().to_string(), s);
+    }
+    let names: Vec<String> = representations(Symmetry::None, &[1, 2, 5, 10])
+        .iter()
+        .map(|r| r.to_string())
+        .collect();
+    for want in ["catmull-rom@x5/bilinear+u16", "catmull-rom@x5/bilinear+u8"] {
+        assert!(names.iter().any(|n| n == want), "{want} not in {names:?}");
+    }
+}
