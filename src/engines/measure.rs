@@ -310,7 +310,7 @@ fn layout_row(em: &Emulation, reference: &Reference<'_>, setup: &Setup<'_>) -> R
 
 /// The row of defect `d` of `engine` (emulated at `resolution` with
 /// `stand_ins`): the engine with the defect against the same engine without
-/// it (percentages of `i_max`, cd, the reference's maximum).
+/// it, percentages of `i_max` (cd, the reference's maximum).
 fn defect_row(
     engine: Engine,
     resolution: Option<usize>,

@@ -359,9 +359,10 @@ impl Views {
     }
 }
 
-/// Look-ups the standard's formulas leave out, counted for the warnings.
+/// What the warnings count: r lookups into blank table cells, luminaires
+/// left out of TI.
 #[derive(Default)]
-struct LeftOut {
+struct WarningCounts {
     /// r lookups that read blank table cells.
     blank: usize,
     /// Luminaires within 1.5° of a TI line of sight.
@@ -417,7 +418,7 @@ fn edge_ratio(ctx: &Ctx<'_>, xs: &[f64], w: f64, refine: usize) -> f64 {
 
 /// The observers of lane `k` (0-based): the luminance grid they see
 /// (cd/m²), its L_av, U_o and U_l, and TI over the stops.
-fn observe_lane(ctx: &Ctx<'_>, v: &Views, k: usize, left_out: &mut LeftOut) -> (LaneResult, Observer, Grid) {
+fn observe_lane(ctx: &Ctx<'_>, v: &Views, k: usize, counts: &mut WarningCounts) -> (LaneResult, Observer, Grid) {
     let road = ctx.road;
     let y_obs = (k as f64 + 0.5) * road.lane_width_m;
     let eye = DVec3::new(v.eye_x, y_obs, EYE_HEIGHT_M);
@@ -429,7 +430,7 @@ fn observe_lane(ctx: &Ctx<'_>, v: &Views, k: usize, left_out: &mut LeftOut) -> (
     for &y in &v.ys {
         grid.values.push(
             v.xs.iter()
-                .map(|&x| ctx.luminance(DVec3::new(x, y, 0.0), eye, &mut left_out.blank))
+                .map(|&x| ctx.luminance(DVec3::new(x, y, 0.0), eye, &mut counts.blank))
                 .collect(),
         );
     }
@@ -442,7 +443,7 @@ fn observe_lane(ctx: &Ctx<'_>, v: &Views, k: usize, left_out: &mut LeftOut) -> (
     let u_o = if l_av > 0.0 { l_min / l_av } else { 0.0 };
     let u_l = if c_max > 0.0 { c_min / c_max } else { 0.0 };
     // TI: initial values (MF = 1)
-    let ti = max_ti(ctx, v, y_obs, l_av / road.maintenance_factor, &mut left_out.too_close);
+    let ti = max_ti(ctx, v, y_obs, l_av / road.maintenance_factor, &mut counts.too_close);
     let observer = Observer {
         lane: k + 1,
         luminance_eye_m: eye.to_array(),
@@ -474,8 +475,8 @@ fn max_ti(ctx: &Ctx<'_>, v: &Views, y_obs: f64, l_init: f64, too_close: &mut usi
 }
 
 /// The warnings of a calculation: an observer that sees no luminance, and
-/// the look-ups left out.
-fn road_warnings(lanes: &[LaneResult], left_out: &LeftOut) -> Vec<String> {
+/// the `counts` of blank r-table cells read and of luminaires left out of TI.
+fn road_warnings(lanes: &[LaneResult], counts: &WarningCounts) -> Vec<String> {
     let mut warnings = Vec::new();
     if lanes.iter().any(|l| l.l_av_cd_m2 <= 0.0) {
         warnings.push(
@@ -483,14 +484,14 @@ fn road_warnings(lanes: &[LaneResult], left_out: &LeftOut) -> Vec<String> {
                 .into(),
         );
     }
-    let blank = left_out.blank;
+    let blank = counts.blank;
     if blank > 0 {
         warnings.push(format!(
             "{blank} r-table look-ups read cells the CIE table leaves blank (filled with the last tabulated value \
              of their row)"
         ));
     }
-    let too_close = left_out.too_close;
+    let too_close = counts.too_close;
     if too_close > 0 {
         warnings.push(format!(
             "{too_close} luminaire positions within 1.5 degrees of the line of sight were left out of TI (the \
@@ -550,10 +551,10 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
     let e_min = e_grid.min();
     let r_ei = edge_ratio(&ctx, &views.xs, w, refine);
     // Luminance per observer lane.
-    let mut left_out = LeftOut::default();
+    let mut counts = WarningCounts::default();
     let (mut lanes, mut grids, mut observers) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..road.lanes {
-        let (lane, observer, grid) = observe_lane(&ctx, &views, k, &mut left_out);
+        let (lane, observer, grid) = observe_lane(&ctx, &views, k, &mut counts);
         observers.push(observer);
         lanes.push(lane);
         grids.push(grid);
@@ -561,7 +562,7 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
     if lanes.iter().all(|l| l.l_av_cd_m2 <= 0.0) && e_av <= 0.0 {
         return Err(RoadError::NothingInView);
     }
-    let warnings = road_warnings(&lanes, &left_out);
+    let warnings = road_warnings(&lanes, &counts);
     let overall = overall_figures(&lanes, r_ei, e_av, e_min, ehs_grid.mean());
     let ch = road.surface.characteristics();
     Ok(RoadResult {
