@@ -6,7 +6,7 @@
 use super::table::IesTable;
 use super::{blender, ue, unity, web, Engine};
 use crate::error::ModelError;
-use crate::model::{IntensityField, Luminaire, PhotometricType, Symmetry};
+use crate::model::{Distribution, IntensityField, Luminaire, PhotometricType, Symmetry};
 
 /// One defect of one engine on one file.
 pub struct Defect {
@@ -101,6 +101,56 @@ pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
         .max_by(|a, b| (a.1 - 1.0).abs().total_cmp(&(b.1 - 1.0).abs()))
 }
 
+/// What the defects of one file are measured on.
+struct FileTables {
+    /// The file's distribution as an IES table holds it, cd.
+    t: IesTable,
+    /// Its largest value, cd.
+    i_max: f64,
+    /// With a tilt table: the tilt angle (degrees) furthest from a multiplier
+    /// of 1 and the table tilted there, cd.
+    tilted: Option<(f64, IesTable)>,
+    /// With a Type A/B file: its type, the defect's name and the file's own
+    /// grid read as if it were Type C, cd.
+    as_type_c: Option<(PhotometricType, String, IesTable)>,
+}
+
+impl FileTables {
+    /// The tables of `lum`.
+    ///
+    /// # Errors
+    /// A tilted distribution that cannot be built.
+    fn of(lum: &Luminaire) -> Result<Self, ModelError> {
+        let t = IesTable::of(lum.distribution());
+        let i_max = t.max_cd();
+        let tilted = match worst_tilt(lum) {
+            Some((angle, _)) => Some((angle, IesTable::of(&lum.tilted_distribution(angle)?))),
+            None => None,
+        };
+        // The file's own Type A/B grid, read as if it were Type C.
+        let as_type_c = lum.source_grid().as_ref().map(|sg| {
+            let kind = if sg.kind == PhotometricType::A { "A" } else { "B" };
+            let t = IesTable {
+                h: sg.horizontal.clone(),
+                v: sg.vertical.clone(),
+                cd: sg.cd.clone(),
+            };
+            (sg.kind, format!("Type {kind} read as Type C"), t)
+        });
+        Ok(Self {
+            t,
+            i_max,
+            tilted,
+            as_type_c,
+        })
+    }
+}
+
+/// The name of the ignored-TILT row at tilt angle `a` (degrees).
+fn tilt_name(a: f64) -> String {
+    format!("ignores TILT (at tilt {a} deg)")
+}
+
 /// The defects of `engine` that apply to `lum` (none for the engines
 /// without documented defects: pbrt, UE5 on Type C files, glTF).
 ///
@@ -119,208 +169,248 @@ pub fn worst_tilt(lum: &Luminaire) -> Option<(f64, f64)> {
 /// A table Blender refuses.
 pub fn defects(engine: Engine, lum: &Luminaire) -> Result<Vec<Defect>, ModelError> {
     let dist = lum.distribution();
-    let t = IesTable::of(dist);
-    let i_max = t.max_cd();
-    let tilted = match worst_tilt(lum) {
-        Some((angle, _)) => Some((angle, IesTable::of(&lum.tilted_distribution(angle)?))),
-        None => None,
-    };
-    let tilt_name = |a: f64| format!("ignores TILT (at tilt {a} deg)");
-    // The file's own Type A/B grid, read as if it were Type C.
-    let as_type_c = lum.source_grid().as_ref().map(|sg| {
-        let kind = if sg.kind == PhotometricType::A { "A" } else { "B" };
-        let t = IesTable {
-            h: sg.horizontal.clone(),
-            v: sg.vertical.clone(),
-            cd: sg.cd.clone(),
-        };
-        (sg.kind, format!("Type {kind} read as Type C"), t)
-    });
-    let mut out = Vec::new();
-    match engine {
-        Engine::Threejs | Engine::Babylon => {
-            let three = engine == Engine::Threejs;
-            let all = if three {
-                web::WebLookup::ThreeAllPlanes
-            } else {
-                web::WebLookup::Babylon
-            };
-            out.push(Defect {
-                engine,
-                name: if three {
-                    "squared candela (three.js <= 0.186.1, before PR #34554)".into()
-                } else {
-                    "squared candela x file-generation type (Babylon.js < 9.23.0, before PR #18833)".into()
-                },
-                source: if three { THREE_SQUARE } else { BABYLON_SQUARE },
-                versions: if three {
-                    THREE_SQUARE_VERSIONS
-                } else {
-                    BABYLON_SQUARE_VERSIONS
-                },
-                with: web_field(&t.squared(), all, i_max),
-                without: web_field(&t, all, i_max),
-            });
-            let (name, source, lookup) = if three {
-                ("single C-plane", THREE_PLANE, web::WebLookup::ThreeSinglePlane)
-            } else {
-                ("row-0 lookup", BABYLON_ROW, web::WebLookup::BabylonRowZero)
-            };
-            out.push(Defect {
-                engine,
-                name: name.into(),
-                source,
-                versions: if three {
-                    THREE_ALL_VERSIONS
-                } else {
-                    BABYLON_ROW_VERSIONS
-                },
-                with: web_field(&t, lookup, i_max),
-                without: web_field(&t, all, i_max),
-            });
-            if let Some((_, name, tab)) = &as_type_c {
-                out.push(Defect {
-                    engine,
-                    name: name.clone(),
-                    source: if three { THREE_TYPE } else { BABYLON_TYPE },
-                    versions: if three {
-                        THREE_ALL_VERSIONS
-                    } else {
-                        BABYLON_ALL_VERSIONS
-                    },
-                    with: web_field(tab, all, tab.max_cd()),
-                    without: web_field(&t, all, i_max),
-                });
-            }
-            if let Some((angle, tt)) = &tilted {
-                out.push(Defect {
-                    engine,
-                    name: tilt_name(*angle),
-                    source: if three { THREE_TILT } else { BABYLON_TILT },
-                    versions: if three {
-                        THREE_ALL_VERSIONS
-                    } else {
-                        BABYLON_ALL_VERSIONS
-                    },
-                    with: web_field(&t, all, i_max),
-                    without: web_field(tt, all, tt.max_cd()),
-                });
-            }
-        }
-        Engine::Blender => {
-            if dist.symmetry() == Symmetry::C90C270 {
-                out.push(Defect {
-                    engine,
-                    name: "90-270 file turned by 90 deg".into(),
-                    source: BLENDER_ROTATE,
-                    versions: engine.version(),
-                    with: Box::new(blender::BlenderField {
-                        table: blender::process(&t, true)?,
-                    }),
-                    without: Box::new(blender::BlenderField {
-                        table: blender::process(&t, false)?,
-                    }),
-                });
-            }
-            if let Some((angle, tt)) = &tilted {
-                out.push(Defect {
-                    engine,
-                    name: tilt_name(*angle),
-                    source: BLENDER_TILT,
-                    versions: engine.version(),
-                    with: Box::new(blender::BlenderField {
-                        table: blender::process(&t, false)?,
-                    }),
-                    without: Box::new(blender::BlenderField {
-                        table: blender::process(tt, false)?,
-                    }),
-                });
-            }
-        }
+    let x = FileTables::of(lum)?;
+    Ok(match engine {
+        Engine::Threejs | Engine::Babylon => web_defects(engine, &x),
+        Engine::Blender => blender_defects(engine, dist.symmetry(), &x)?,
         Engine::UnityPoint | Engine::UnitySpot if dist.symmetry() == Symmetry::C90C270 => {
-            let n = super::resolution(engine, &super::EngineOptions::default())?.unwrap_or(unity::DEFAULT_SIZE);
-            let field = |fold: bool| -> Result<Box<dyn IntensityField>, ModelError> {
-                Ok(if engine == Engine::UnityPoint {
-                    Box::new(unity::UnityField::point(&unity::bake_point(&t, n, fold)?, n, i_max)?)
-                } else {
-                    let cone = unity::DEFAULT_CONE_DEG;
-                    Box::new(unity::UnityField::spot(
-                        &unity::bake_spot(&t, n, cone, fold)?,
-                        cone,
-                        i_max,
-                    ))
-                })
-            };
-            out.push(Defect {
-                engine,
-                name: "90-270 file clamped outside 90..270".into(),
-                source: UNITY_90_270,
-                versions: engine.version(),
-                with: field(false)?,
-                without: field(true)?,
-            });
+            vec![unity_defect(engine, &x)?]
         }
-        Engine::Ue5 | Engine::Ue4 => {
-            if engine == Engine::Ue4 {
-                let strip = ue::bake_ue4(&t)?;
-                let (right, swapped) = (ue::ue4_integral(&t, false), ue::ue4_integral(&t, true));
-                if right > 0.0 && swapped > 0.0 {
-                    out.push(Defect {
-                        engine,
-                        name: "swapped-angle integral".into(),
-                        source: UE4_INTEGRAL,
-                        versions: engine.version(),
-                        with: Box::new(ue::UeField {
-                            image: strip.clone(),
-                            i_max_cd: i_max * right / swapped,
-                        }),
-                        without: Box::new(ue::UeField {
-                            image: strip,
-                            i_max_cd: i_max,
-                        }),
-                    });
-                }
-            }
-            if let Some((PhotometricType::B, name, tab)) = &as_type_c {
-                let bake = |t: &IesTable| {
-                    if engine == Engine::Ue5 {
-                        ue::bake_ue5(t)
-                    } else {
-                        ue::bake_ue4(t)
-                    }
-                };
-                out.push(Defect {
-                    engine,
-                    name: name.clone(),
-                    source: UE_TYPE_B,
-                    versions: engine.version(),
-                    with: Box::new(ue::UeField {
-                        image: bake(tab)?,
-                        i_max_cd: tab.max_cd(),
-                    }),
-                    without: Box::new(ue::UeField {
-                        image: bake(&t)?,
-                        i_max_cd: i_max,
-                    }),
-                });
-            }
-        }
-        Engine::Godot => {
-            // The naive export: linear I/I_max in the EXR, decoded as sRGB by the atlas view.
-            let texture = crate::reconstruct::LightTexture::new(dist)?;
-            let h = super::godot::DEFAULT_HEIGHT;
-            let linear = super::godot::bake_linear(&texture.sampler(crate::reconstruct::Filter::CatmullRom), h, i_max)?;
-            let encoded = super::godot::encode_for_godot(&linear)?;
-            out.push(Defect {
-                engine,
-                name: "linear texture read through the sRGB atlas view".into(),
-                source: GODOT_SRGB,
-                versions: engine.version(),
-                with: Box::new(super::godot::GodotField::new(&linear, i_max)),
-                without: Box::new(super::godot::GodotField::new(&encoded, i_max)),
-            });
-        }
-        _ => {}
+        Engine::Ue5 | Engine::Ue4 => ue_defects(engine, &x)?,
+        Engine::Godot => vec![godot_defect(engine, dist, x.i_max)?],
+        _ => Vec::new(),
+    })
+}
+
+/// What one web engine's defect rows say and which lookups they compare.
+struct WebRows {
+    /// The engine's lookup without the defects (every plane).
+    lookup: web::WebLookup,
+    /// The squared-candela row's name, source and versions.
+    square_name: &'static str,
+    square_source: &'static str,
+    square_versions: &'static str,
+    /// The row of the lookup that reads one plane (three.js) or row 0
+    /// (Babylon.js): name, source, the lookup and versions.
+    plane_name: &'static str,
+    plane_source: &'static str,
+    plane_lookup: web::WebLookup,
+    plane_versions: &'static str,
+    /// The sources of the Type A/B and TILT rows, and their versions.
+    type_source: &'static str,
+    tilt_source: &'static str,
+    versions: &'static str,
+}
+
+const THREE_ROWS: WebRows = WebRows {
+    lookup: web::WebLookup::ThreeAllPlanes,
+    square_name: "squared candela (three.js <= 0.186.1, before PR #34554)",
+    square_source: THREE_SQUARE,
+    square_versions: THREE_SQUARE_VERSIONS,
+    plane_name: "single C-plane",
+    plane_source: THREE_PLANE,
+    plane_lookup: web::WebLookup::ThreeSinglePlane,
+    plane_versions: THREE_ALL_VERSIONS,
+    type_source: THREE_TYPE,
+    tilt_source: THREE_TILT,
+    versions: THREE_ALL_VERSIONS,
+};
+
+const BABYLON_ROWS: WebRows = WebRows {
+    lookup: web::WebLookup::Babylon,
+    square_name: "squared candela x file-generation type (Babylon.js < 9.23.0, before PR #18833)",
+    square_source: BABYLON_SQUARE,
+    square_versions: BABYLON_SQUARE_VERSIONS,
+    plane_name: "row-0 lookup",
+    plane_source: BABYLON_ROW,
+    plane_lookup: web::WebLookup::BabylonRowZero,
+    plane_versions: BABYLON_ROW_VERSIONS,
+    type_source: BABYLON_TYPE,
+    tilt_source: BABYLON_TILT,
+    versions: BABYLON_ALL_VERSIONS,
+};
+
+/// three.js's or Babylon.js's defects (`engine` is one of the two): the
+/// squared candela, the one plane (three.js) or row 0 (Babylon), and for
+/// such files the Type A/B grid read as Type C and the ignored TILT.
+fn web_defects(engine: Engine, x: &FileTables) -> Vec<Defect> {
+    let w = if engine == Engine::Threejs {
+        &THREE_ROWS
+    } else {
+        &BABYLON_ROWS
+    };
+    let (t, i_max, all) = (&x.t, x.i_max, w.lookup);
+    let mut out = vec![
+        Defect {
+            engine,
+            name: w.square_name.into(),
+            source: w.square_source,
+            versions: w.square_versions,
+            with: web_field(&t.squared(), all, i_max),
+            without: web_field(t, all, i_max),
+        },
+        Defect {
+            engine,
+            name: w.plane_name.into(),
+            source: w.plane_source,
+            versions: w.plane_versions,
+            with: web_field(t, w.plane_lookup, i_max),
+            without: web_field(t, all, i_max),
+        },
+    ];
+    if let Some((_, name, tab)) = &x.as_type_c {
+        out.push(Defect {
+            engine,
+            name: name.clone(),
+            source: w.type_source,
+            versions: w.versions,
+            with: web_field(tab, all, tab.max_cd()),
+            without: web_field(t, all, i_max),
+        });
+    }
+    if let Some((angle, tt)) = &x.tilted {
+        out.push(Defect {
+            engine,
+            name: tilt_name(*angle),
+            source: w.tilt_source,
+            versions: w.versions,
+            with: web_field(t, all, i_max),
+            without: web_field(tt, all, tt.max_cd()),
+        });
+    }
+    out
+}
+
+/// Blender's defects: a 90-270 file (`symmetry`) turned by 90°, and the
+/// ignored TILT of a file with a tilt table.
+///
+/// # Errors
+/// A table Blender refuses.
+fn blender_defects(engine: Engine, symmetry: Symmetry, x: &FileTables) -> Result<Vec<Defect>, ModelError> {
+    let mut out = Vec::new();
+    if symmetry == Symmetry::C90C270 {
+        out.push(Defect {
+            engine,
+            name: "90-270 file turned by 90 deg".into(),
+            source: BLENDER_ROTATE,
+            versions: engine.version(),
+            with: Box::new(blender::BlenderField {
+                table: blender::process(&x.t, true)?,
+            }),
+            without: Box::new(blender::BlenderField {
+                table: blender::process(&x.t, false)?,
+            }),
+        });
+    }
+    if let Some((angle, tt)) = &x.tilted {
+        out.push(Defect {
+            engine,
+            name: tilt_name(*angle),
+            source: BLENDER_TILT,
+            versions: engine.version(),
+            with: Box::new(blender::BlenderField {
+                table: blender::process(&x.t, false)?,
+            }),
+            without: Box::new(blender::BlenderField {
+                table: blender::process(tt, false)?,
+            }),
+        });
     }
     Ok(out)
+}
+
+/// Unity's clamp of a 90-270 file outside 90..270 (`engine`: the point or
+/// the spot light; the caller checks the symmetry).
+fn unity_defect(engine: Engine, x: &FileTables) -> Result<Defect, ModelError> {
+    let (t, i_max) = (&x.t, x.i_max);
+    let n = super::resolution(engine, &super::EngineOptions::default())?.unwrap_or(unity::DEFAULT_SIZE);
+    // Unity's lookup of the table baked with or without the fold.
+    let field = |fold: bool| -> Result<Box<dyn IntensityField>, ModelError> {
+        Ok(if engine == Engine::UnityPoint {
+            Box::new(unity::UnityField::point(&unity::bake_point(t, n, fold)?, n, i_max)?)
+        } else {
+            let cone = unity::DEFAULT_CONE_DEG;
+            Box::new(unity::UnityField::spot(
+                &unity::bake_spot(t, n, cone, fold)?,
+                cone,
+                i_max,
+            ))
+        })
+    };
+    Ok(Defect {
+        engine,
+        name: "90-270 file clamped outside 90..270".into(),
+        source: UNITY_90_270,
+        versions: engine.version(),
+        with: field(false)?,
+        without: field(true)?,
+    })
+}
+
+/// UE's defects (`engine`: UE5 or UE4): UE4's integral with the angles
+/// swapped, and a Type B file read as Type C.
+fn ue_defects(engine: Engine, x: &FileTables) -> Result<Vec<Defect>, ModelError> {
+    let (t, i_max) = (&x.t, x.i_max);
+    let mut out = Vec::new();
+    if engine == Engine::Ue4 {
+        let strip = ue::bake_ue4(t)?;
+        let (right, swapped) = (ue::ue4_integral(t, false), ue::ue4_integral(t, true));
+        if right > 0.0 && swapped > 0.0 {
+            out.push(Defect {
+                engine,
+                name: "swapped-angle integral".into(),
+                source: UE4_INTEGRAL,
+                versions: engine.version(),
+                with: Box::new(ue::UeField {
+                    image: strip.clone(),
+                    i_max_cd: i_max * right / swapped,
+                }),
+                without: Box::new(ue::UeField {
+                    image: strip,
+                    i_max_cd: i_max,
+                }),
+            });
+        }
+    }
+    if let Some((PhotometricType::B, name, tab)) = &x.as_type_c {
+        let bake = |t: &IesTable| {
+            if engine == Engine::Ue5 {
+                ue::bake_ue5(t)
+            } else {
+                ue::bake_ue4(t)
+            }
+        };
+        out.push(Defect {
+            engine,
+            name: name.clone(),
+            source: UE_TYPE_B,
+            versions: engine.version(),
+            with: Box::new(ue::UeField {
+                image: bake(tab)?,
+                i_max_cd: tab.max_cd(),
+            }),
+            without: Box::new(ue::UeField {
+                image: bake(t)?,
+                i_max_cd: i_max,
+            }),
+        });
+    }
+    Ok(out)
+}
+
+/// Godot's naive export: linear I/I_max (`i_max` in cd) in the EXR, decoded
+/// as sRGB by the atlas view.
+fn godot_defect(engine: Engine, dist: &Distribution, i_max: f64) -> Result<Defect, ModelError> {
+    let texture = crate::reconstruct::LightTexture::new(dist)?;
+    let h = super::godot::DEFAULT_HEIGHT;
+    let linear = super::godot::bake_linear(&texture.sampler(crate::reconstruct::Filter::CatmullRom), h, i_max)?;
+    let encoded = super::godot::encode_for_godot(&linear)?;
+    Ok(Defect {
+        engine,
+        name: "linear texture read through the sRGB atlas view".into(),
+        source: GODOT_SRGB,
+        versions: engine.version(),
+        with: Box::new(super::godot::GodotField::new(&linear, i_max)),
+        without: Box::new(super::godot::GodotField::new(&encoded, i_max)),
+    })
 }

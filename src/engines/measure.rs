@@ -15,7 +15,8 @@
 
 use serde::Serialize;
 
-use super::{defects, emulate, Engine, EngineOptions};
+use super::defects::{self, Defect};
+use super::{emulate, Emulation, Engine, EngineOptions};
 use crate::compare::ReferenceKind;
 use crate::compare::{
     mark_pareto, measure_field, solid_hausdorff, Against, ErrorMap, FieldTarget, PlotData, ReconResult,
@@ -227,6 +228,136 @@ fn metrics(
     ))
 }
 
+/// What [`measure_engines`] measured.
+struct Measured {
+    /// Layout rows (Pareto front marked among them), then defect rows.
+    rows: Vec<EngineRow>,
+    /// Each row's field with its name, for the plots.
+    fields: Vec<(String, Box<dyn IntensityField>)>,
+    /// Engines that cannot take the file.
+    skipped: Vec<SkippedEngine>,
+}
+
+/// Emulate every engine of `opts` on `lum` and measure it: a layout row per
+/// engine against `reference`, then a row per defect.
+///
+/// # Errors
+/// A bad layout option (resolution), a solid that cannot be built.
+fn measure_engines(
+    lum: &Luminaire,
+    opts: &EnginesOptions,
+    reference: &Reference<'_>,
+    setup: &Setup<'_>,
+) -> Result<Measured, ModelError> {
+    let mut rows = Vec::new();
+    let mut fields: Vec<(String, Box<dyn IntensityField>)> = Vec::new();
+    let mut defect_rows = Vec::new();
+    let mut skipped = Vec::new();
+    for &engine in &opts.engines {
+        // A file an engine refuses (or a fit that fails) leaves that engine out, with the reason;
+        // a bad option (resolution) is the caller's error.
+        super::resolution(engine, &opts.layout)?;
+        let (em, found) = match emulate(engine, lum.distribution(), &opts.layout)
+            .and_then(|em| Ok((em, defects::defects(engine, lum)?)))
+        {
+            Ok(x) => x,
+            Err(e) => {
+                skipped.push(SkippedEngine {
+                    engine,
+                    reason: e.to_string(),
+                });
+                continue;
+            }
+        };
+        rows.push(layout_row(&em, reference, setup)?);
+        fields.push((engine.name().into(), em.field));
+        for d in found {
+            let row = defect_row(engine, em.resolution, &em.stand_ins, &d, reference.i_max, setup)?;
+            fields.push((row.name.clone(), d.with));
+            defect_rows.push(row);
+        }
+    }
+    // The Pareto front is over the layout rows: a defect row measures the engine with the
+    // defect against the engine without it, not against the reference.
+    let mut metrics_rows: Vec<ReconResult> = rows.iter().map(|r| r.metrics.clone()).collect();
+    mark_pareto(&mut metrics_rows);
+    for (r, m) in rows.iter_mut().zip(metrics_rows) {
+        r.metrics.pareto = m.pareto;
+    }
+    for r in &mut defect_rows {
+        r.metrics.pareto = false;
+    }
+    rows.extend(defect_rows);
+    Ok(Measured { rows, fields, skipped })
+}
+
+/// The layout row of emulation `em`: its lookup against `reference`.
+fn layout_row(em: &Emulation, reference: &Reference<'_>, setup: &Setup<'_>) -> Result<EngineRow, ModelError> {
+    let engine = em.engine;
+    Ok(EngineRow {
+        engine,
+        kind: "layout".into(),
+        name: engine.name().into(),
+        layout: em.layout.clone(),
+        resolution: em.resolution,
+        against: "reference".into(),
+        source: None,
+        stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
+        engine_version: engine.version().into(),
+        metrics: metrics(engine.name(), &*em.field, reference, setup)?,
+    })
+}
+
+/// The row of defect `d` of `engine` (emulated at `resolution` with
+/// `stand_ins`): the engine with the defect against the same engine without
+/// it, percentages of `i_max` (cd, the reference's maximum).
+fn defect_row(
+    engine: Engine,
+    resolution: Option<usize>,
+    stand_ins: &[&str],
+    d: &Defect,
+    i_max: f64,
+    setup: &Setup<'_>,
+) -> Result<EngineRow, ModelError> {
+    let name = format!("{engine}: {}", d.name);
+    let own = Reference::new(&*d.without, setup, i_max)?;
+    Ok(EngineRow {
+        engine,
+        kind: "defect".into(),
+        name: name.clone(),
+        layout: d.name.clone(),
+        resolution,
+        against: format!("{engine} without the defect"),
+        source: Some(d.source.to_string()),
+        stand_ins: stand_ins.iter().map(|s| s.to_string()).collect(),
+        engine_version: d.versions.into(),
+        metrics: metrics(&name, &*d.with, &own, setup)?,
+    })
+}
+
+/// The closed-form truth of the file, which `opts` must record to measure against it.
+fn recorded_truth(opts: &EnginesOptions) -> Result<Truth, ModelError> {
+    opts.truth.ok_or_else(|| ModelError::Parameter {
+        name: "reference",
+        value: "truth".into(),
+        reason: "this file records no closed-form truth (only files written by `photosolid synth` do)".into(),
+    })
+}
+
+/// The reference over the error maps' C x γ cells of `plots`, % of `i_max`
+/// (cd); `None` without error maps.
+fn reference_over_cells(plots: &PlotData, label: &str, field: &dyn IntensityField, i_max: f64) -> Option<ErrorMap> {
+    plots.error_maps.first().map(|m| {
+        let dirs: Vec<(f64, f64)> = m.ys.iter().flat_map(|&g| m.xs.iter().map(move |&c| (c, g))).collect();
+        ErrorMap {
+            name: label.to_string(),
+            xs: m.xs.clone(),
+            ys: m.ys.clone(),
+            values: eval_all(field, &dirs).iter().map(|v| 100.0 * v / i_max).collect(),
+        }
+    })
+}
+
 /// Emulate every engine of `opts` on `lum` and measure it against the reference.
 ///
 /// # Errors
@@ -242,11 +373,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
     let truth_holder: Truth;
     let (ref_field, label, kind): (&dyn IntensityField, String, ReferenceKind) = match opts.reference {
         Against::Truth => {
-            truth_holder = opts.truth.ok_or_else(|| ModelError::Parameter {
-                name: "reference",
-                value: "truth".into(),
-                reason: "this file records no closed-form truth (only files written by `photosolid synth` do)".into(),
-            })?;
+            truth_holder = recorded_truth(opts)?;
             (&truth_holder, format!("truth ({truth_holder})"), ReferenceKind::Truth)
         }
         Against::Withheld => {
@@ -274,89 +401,15 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
         tol_cd: opts.hausdorff_tolerance.max(0.0) * i_max,
     };
     let reference = Reference::new(ref_field, &setup, i_max)?;
-    let mut rows = Vec::new();
-    let mut fields: Vec<(String, Box<dyn IntensityField>)> = Vec::new();
-    let mut defect_rows = Vec::new();
-    let mut skipped = Vec::new();
-    for &engine in &opts.engines {
-        // A file an engine refuses (or a fit that fails) leaves that engine out, with the reason;
-        // a bad option (resolution) is the caller's error.
-        super::resolution(engine, &opts.layout)?;
-        let (em, found) =
-            match emulate(engine, dist, &opts.layout).and_then(|em| Ok((em, defects::defects(engine, lum)?))) {
-                Ok(x) => x,
-                Err(e) => {
-                    skipped.push(SkippedEngine {
-                        engine,
-                        reason: e.to_string(),
-                    });
-                    continue;
-                }
-            };
-        rows.push(EngineRow {
-            engine,
-            kind: "layout".into(),
-            name: engine.name().into(),
-            layout: em.layout.clone(),
-            resolution: em.resolution,
-            against: "reference".into(),
-            source: None,
-            stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
-            engine_version: engine.version().into(),
-            metrics: metrics(engine.name(), &*em.field, &reference, &setup)?,
-        });
-        fields.push((engine.name().into(), em.field));
-        for d in found {
-            let name = format!("{engine}: {}", d.name);
-            let own = Reference::new(&*d.without, &setup, i_max)?;
-            defect_rows.push(EngineRow {
-                engine,
-                kind: "defect".into(),
-                name: name.clone(),
-                layout: d.name.clone(),
-                resolution: em.resolution,
-                against: format!("{engine} without the defect"),
-                source: Some(d.source.to_string()),
-                stand_ins: em.stand_ins.iter().map(|s| s.to_string()).collect(),
-                engine_version: d.versions.into(),
-                metrics: metrics(&name, &*d.with, &own, &setup)?,
-            });
-            fields.push((name, d.with));
-        }
-    }
-    // The Pareto front is over the layout rows: a defect row measures the engine with the
-    // defect against the engine without it, not against the reference.
-    let mut metrics_rows: Vec<ReconResult> = rows.iter().map(|r| r.metrics.clone()).collect();
-    mark_pareto(&mut metrics_rows);
-    for (r, m) in rows.iter_mut().zip(metrics_rows) {
-        r.metrics.pareto = m.pareto;
-    }
-    for r in &mut defect_rows {
-        r.metrics.pareto = false;
-    }
-    rows.extend(defect_rows);
-    let resolutions = match opts.tolerance {
-        Some(tol) => opts
-            .engines
-            .iter()
-            .filter(|e| e.resolution_range().is_some() && !skipped.iter().any(|s| s.engine == **e))
-            .map(|&e| search(e, lum, tol, &reference, &setup, &opts.layout))
-            .collect::<Result<Vec<_>, _>>()?,
-        None => Vec::new(),
-    };
+    let Measured { rows, fields, skipped } = measure_engines(lum, opts, &reference, &setup)?;
+    let resolutions = resolution_searches(lum, opts, &skipped, &reference, &setup)?;
     let plots = opts.plots.then(|| {
         let named: Vec<(String, &dyn IntensityField)> = fields.iter().map(|(n, f)| (n.clone(), &**f)).collect();
         crate::compare::plot_data(&named, Some((label.as_str(), ref_field)), dist, None, i_max)
     });
-    let reference_map = plots.as_ref().and_then(|p| p.error_maps.first()).map(|m| {
-        let dirs: Vec<(f64, f64)> = m.ys.iter().flat_map(|&g| m.xs.iter().map(move |&c| (c, g))).collect();
-        ErrorMap {
-            name: label.clone(),
-            xs: m.xs.clone(),
-            ys: m.ys.clone(),
-            values: eval_all(ref_field, &dirs).iter().map(|v| 100.0 * v / i_max).collect(),
-        }
-    });
+    let reference_map = plots
+        .as_ref()
+        .and_then(|p| reference_over_cells(p, &label, ref_field, i_max));
     Ok(EnginesReport {
         file: String::new(),
         reference: label,
@@ -373,6 +426,26 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
         skipped,
         plots,
         reference_map,
+    })
+}
+
+/// With a tolerance in `opts`, the resolution search of each of its engines
+/// that has a choice of resolution and was not `skipped`; none without.
+fn resolution_searches(
+    lum: &Luminaire,
+    opts: &EnginesOptions,
+    skipped: &[SkippedEngine],
+    reference: &Reference<'_>,
+    setup: &Setup<'_>,
+) -> Result<Vec<ResolutionSearch>, ModelError> {
+    Ok(match opts.tolerance {
+        Some(tol) => opts
+            .engines
+            .iter()
+            .filter(|e| e.resolution_range().is_some() && !skipped.iter().any(|s| s.engine == **e))
+            .map(|&e| search(e, lum, tol, reference, setup, &opts.layout))
+            .collect::<Result<Vec<_>, _>>()?,
+        None => Vec::new(),
     })
 }
 

@@ -247,6 +247,169 @@ pub fn resolution(engine: Engine, opts: &EngineOptions) -> Result<Option<usize>,
     }
 }
 
+/// One engine's layout baked from a file.
+struct Baked {
+    /// The layout in words (size, mapping, filter).
+    layout: String,
+    /// The engine's lookup, cd.
+    field: Box<dyn IntensityField>,
+    /// The image the engine holds (texture layouts).
+    image: Option<Image>,
+}
+
+/// pbrt's `n` x `n` equal-area octahedral image, baked from `texture` with `filter`.
+fn bake_pbrt(texture: &LightTexture, n: usize, filter: Filter) -> Result<Baked, ModelError> {
+    let image = pbrt::bake(&texture.sampler(filter), n)?;
+    let f = pbrt::PbrtField { image: image.clone() };
+    Ok(Baked {
+        layout: format!("{n}x{n} equal-area octahedral, Y in cd, {filter} bake, nearest lookup"),
+        field: Box::new(f),
+        image: Some(image),
+    })
+}
+
+/// UE5's 256 x 256 or UE4's 256 x 1 (averaged over C) texture of `table`
+/// (`engine`: UE5 or UE4), I/I_max (`i_max` in cd).
+fn bake_ue(engine: Engine, table: &IesTable, i_max: f64) -> Result<Baked, ModelError> {
+    let image = if engine == Engine::Ue5 {
+        ue::bake_ue5(table)?
+    } else {
+        ue::bake_ue4(table)?
+    };
+    let layout = format!(
+        "{}x{} half float, x -> gamma = 180x/256{}, I/I_max, bilinear",
+        image.width,
+        image.height,
+        if engine == Engine::Ue5 {
+            ", y -> C = 360y/256"
+        } else {
+            ", averaged over C"
+        }
+    );
+    Ok(Baked {
+        layout,
+        field: Box::new(ue::UeField {
+            image: image.clone(),
+            i_max_cd: i_max,
+        }),
+        image: Some(image),
+    })
+}
+
+/// Unity's point light (`2n` x `2n` cylindrical buffer, a cube map of `n`
+/// per face) or spot light (`n` x `n` cookie) of `table` (`engine`: one of
+/// the two), I/I_max (`i_max` in cd).
+fn bake_unity(engine: Engine, table: &IesTable, n: usize, i_max: f64) -> Result<Baked, ModelError> {
+    if engine == Engine::UnityPoint {
+        let image = unity::bake_point(table, n, true)?;
+        let f = unity::UnityField::point(&image, n, i_max)?;
+        let layout = format!(
+            "{0}x{0} cylindrical, 8-bit I/I_max -> cube map {n}x{n} per face -> HDRP octahedral atlas {1}x{1} R11G11B10, bilinear (90-270 files folded; Unity's clamp is a defect row)",
+            2 * n,
+            f.image.width
+        );
+        Ok(Baked {
+            layout,
+            field: Box::new(f),
+            image: Some(image),
+        })
+    } else {
+        let cone = unity::DEFAULT_CONE_DEG;
+        let image = unity::bake_spot(table, n, cone, true)?;
+        let f = unity::UnityField::spot(&image, cone, i_max);
+        let layout = format!(
+            "{n}x{n} gnomonic cookie, cone {cone} deg, attenuation on, 8-bit I/I_max, atlas R11G11B10, bilinear"
+        );
+        Ok(Baked {
+            layout,
+            field: Box::new(f),
+            image: Some(image),
+        })
+    }
+}
+
+/// three.js's or Babylon.js's 1-degree grid of `table` (`engine`: one of
+/// the two), I/I_max (`i_max` in cd).
+fn bake_web(engine: Engine, table: &IesTable, i_max: f64) -> Result<Baked, ModelError> {
+    let three = engine == Engine::Threejs;
+    let data = if three {
+        web::bake_grid_three(table)
+    } else {
+        web::bake_grid(table, false)
+    };
+    let image = web::grid_image(&data, !three)?;
+    let lookup = if three {
+        web::WebLookup::Three
+    } else {
+        web::WebLookup::Babylon
+    };
+    let layout = if three {
+        "180x360 grid data[phi + theta*180] (gamma = phi*180/179, theta 0..359 wrapping), half float, I/I_max, every plane, bilinear"
+    } else {
+        "180x1 R32F: the C0 plane of the 1-degree grid (LoadIESData returns width 180, height 1), I/I_max, linear, gamma read 0.5 deg early, every C alike"
+    };
+    let f = web::WebField {
+        data,
+        lookup,
+        i_max_cd: i_max,
+    };
+    Ok(Baked {
+        layout: layout.to_string(),
+        field: Box::new(f),
+        image: Some(image),
+    })
+}
+
+/// Cycles' processed IES table of `table` (no image).
+fn bake_blender(table: &IesTable) -> Result<Baked, ModelError> {
+    let t = blender::process(table, false)?;
+    let layout = format!(
+        "IES table {} x {} (0..360), separable Catmull-Rom, clamped at 0",
+        t.h.len(),
+        t.v.len()
+    );
+    Ok(Baked {
+        layout,
+        field: Box::new(blender::BlenderField { table: t }),
+        image: None,
+    })
+}
+
+/// Godot's `2h` x `h` projector panorama, baked from `texture` with
+/// `filter`, sRGB-encoded I/I_max (`i_max` in cd).
+fn bake_godot(texture: &LightTexture, h: usize, filter: Filter, i_max: f64) -> Result<Baked, ModelError> {
+    let linear = godot::bake_linear(&texture.sampler(filter), h, i_max)?;
+    let image = godot::encode_for_godot(&linear)?;
+    let f = godot::GodotField::new(&image, i_max);
+    let layout = format!(
+        "{w}x{h} equirectangular panorama (row 0 = nadir, column u: C = 360u + 90 deg), sRGB-encoded \
+         I/I_max, {} bake -> dual-paraboloid decal atlas rect {w}x{h} RGBA8 read through its sRGB \
+         view, bilinear, mip 0",
+        filter,
+        w = 2 * h
+    );
+    Ok(Baked {
+        layout,
+        field: Box::new(f),
+        image: Some(image),
+    })
+}
+
+/// glTF's `KHR_lights_punctual` fallback: the lights fitted to `dist` (no image).
+fn bake_gltf(dist: &Distribution) -> Result<Baked, ModelError> {
+    let fitted = crate::fit::fit(dist, &crate::fit::FitOptions::default())?;
+    let lights = gltf::khr_lights(fitted.model());
+    let layout = format!(
+        "KHR_lights_punctual fallback: {} fitted light(s); EXT_lights_ies embeds the IES file",
+        lights.len()
+    );
+    Ok(Baked {
+        layout,
+        field: Box::new(gltf::KhrField { lights }),
+        image: None,
+    })
+}
+
 /// Emulate `engine`'s lookup of the distribution `dist` (cd).
 ///
 /// # Errors
@@ -261,123 +424,14 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
         ));
     }
     let texture = LightTexture::new(dist)?;
-    let (layout, field, image): (String, Box<dyn IntensityField>, Option<Image>) = match engine {
-        Engine::Pbrt => {
-            let n = n.unwrap_or(256);
-            let image = pbrt::bake(&texture.sampler(opts.filter), n)?;
-            let f = pbrt::PbrtField { image: image.clone() };
-            (
-                format!(
-                    "{n}x{n} equal-area octahedral, Y in cd, {} bake, nearest lookup",
-                    opts.filter
-                ),
-                Box::new(f),
-                Some(image),
-            )
-        }
-        Engine::Ue5 | Engine::Ue4 => {
-            let image = if engine == Engine::Ue5 {
-                ue::bake_ue5(&table)?
-            } else {
-                ue::bake_ue4(&table)?
-            };
-            let layout = format!(
-                "{}x{} half float, x -> gamma = 180x/256{}, I/I_max, bilinear",
-                image.width,
-                image.height,
-                if engine == Engine::Ue5 {
-                    ", y -> C = 360y/256"
-                } else {
-                    ", averaged over C"
-                }
-            );
-            (
-                layout,
-                Box::new(ue::UeField {
-                    image: image.clone(),
-                    i_max_cd: i_max,
-                }),
-                Some(image),
-            )
-        }
-        Engine::UnityPoint | Engine::UnitySpot => {
-            let n = n.unwrap_or(unity::DEFAULT_SIZE);
-            if engine == Engine::UnityPoint {
-                let image = unity::bake_point(&table, n, true)?;
-                let f = unity::UnityField::point(&image, n, i_max)?;
-                let layout = format!(
-                    "{0}x{0} cylindrical, 8-bit I/I_max -> cube map {n}x{n} per face -> HDRP octahedral atlas {1}x{1} R11G11B10, bilinear (90-270 files folded; Unity's clamp is a defect row)",
-                    2 * n,
-                    f.image.width
-                );
-                (layout, Box::new(f), Some(image))
-            } else {
-                let cone = unity::DEFAULT_CONE_DEG;
-                let image = unity::bake_spot(&table, n, cone, true)?;
-                let f = unity::UnityField::spot(&image, cone, i_max);
-                let layout = format!(
-                    "{n}x{n} gnomonic cookie, cone {cone} deg, attenuation on, 8-bit I/I_max, atlas R11G11B10, bilinear"
-                );
-                (layout, Box::new(f), Some(image))
-            }
-        }
-        Engine::Threejs | Engine::Babylon => {
-            let three = engine == Engine::Threejs;
-            let data = if three {
-                web::bake_grid_three(&table)
-            } else {
-                web::bake_grid(&table, false)
-            };
-            let image = web::grid_image(&data, !three)?;
-            let lookup = if three {
-                web::WebLookup::Three
-            } else {
-                web::WebLookup::Babylon
-            };
-            let layout = if three {
-                "180x360 grid data[phi + theta*180] (gamma = phi*180/179, theta 0..359 wrapping), half float, I/I_max, every plane, bilinear"
-            } else {
-                "180x1 R32F: the C0 plane of the 1-degree grid (LoadIESData returns width 180, height 1), I/I_max, linear, gamma read 0.5 deg early, every C alike"
-            };
-            let f = web::WebField {
-                data,
-                lookup,
-                i_max_cd: i_max,
-            };
-            (layout.to_string(), Box::new(f), Some(image))
-        }
-        Engine::Blender => {
-            let t = blender::process(&table, false)?;
-            let layout = format!(
-                "IES table {} x {} (0..360), separable Catmull-Rom, clamped at 0",
-                t.h.len(),
-                t.v.len()
-            );
-            (layout, Box::new(blender::BlenderField { table: t }), None)
-        }
-        Engine::Godot => {
-            let h = n.unwrap_or(godot::DEFAULT_HEIGHT);
-            let linear = godot::bake_linear(&texture.sampler(opts.filter), h, i_max)?;
-            let image = godot::encode_for_godot(&linear)?;
-            let f = godot::GodotField::new(&image, i_max);
-            let layout = format!(
-                "{w}x{h} equirectangular panorama (row 0 = nadir, column u: C = 360u + 90 deg), sRGB-encoded \
-                 I/I_max, {} bake -> dual-paraboloid decal atlas rect {w}x{h} RGBA8 read through its sRGB \
-                 view, bilinear, mip 0",
-                opts.filter,
-                w = 2 * h
-            );
-            (layout, Box::new(f), Some(image))
-        }
-        Engine::Gltf => {
-            let fitted = crate::fit::fit(dist, &crate::fit::FitOptions::default())?;
-            let lights = gltf::khr_lights(fitted.model());
-            let layout = format!(
-                "KHR_lights_punctual fallback: {} fitted light(s); EXT_lights_ies embeds the IES file",
-                lights.len()
-            );
-            (layout, Box::new(gltf::KhrField { lights }), None)
-        }
+    let baked = match engine {
+        Engine::Pbrt => bake_pbrt(&texture, n.unwrap_or(256), opts.filter)?,
+        Engine::Ue5 | Engine::Ue4 => bake_ue(engine, &table, i_max)?,
+        Engine::UnityPoint | Engine::UnitySpot => bake_unity(engine, &table, n.unwrap_or(unity::DEFAULT_SIZE), i_max)?,
+        Engine::Threejs | Engine::Babylon => bake_web(engine, &table, i_max)?,
+        Engine::Blender => bake_blender(&table)?,
+        Engine::Godot => bake_godot(&texture, n.unwrap_or(godot::DEFAULT_HEIGHT), opts.filter, i_max)?,
+        Engine::Gltf => bake_gltf(dist)?,
     };
     let stand_ins = match engine {
         Engine::UnityPoint => unity::POINT_STAND_INS.to_vec(),
@@ -388,9 +442,9 @@ pub fn emulate(engine: Engine, dist: &Distribution, opts: &EngineOptions) -> Res
     Ok(Emulation {
         engine,
         resolution: n,
-        layout,
-        field,
-        image,
+        layout: baked.layout,
+        field: baked.field,
+        image: baked.image,
         stand_ins,
     })
 }

@@ -13,8 +13,10 @@ use serde::Deserialize;
 use super::aim::{Aim, Pose};
 use super::opening::Opening;
 use super::representation::parse_representation;
+use super::road::layout::{Road, RoadSpec};
 use super::{Occluder, Receiver, Scene, SceneError, SceneLuminaire, SourceKind};
 use crate::error::Location;
+use crate::model::Luminaire;
 
 /// Most receiver points a scene may ask for (a typo in a spacing must not
 /// allocate gigabytes).
@@ -167,6 +169,263 @@ fn vec3(a: [f64; 3]) -> DVec3 {
     DVec3::from_array(a)
 }
 
+/// Whether all three numbers are finite.
+fn finite3(a: &[f64; 3]) -> bool {
+    a.iter().all(|v| v.is_finite())
+}
+
+/// The scene file being checked, to build its errors: its path, and its text
+/// to find the line of a table or key.
+#[derive(Clone, Copy)]
+struct SpecText<'a> {
+    path: &'a Path,
+    text: &'a str,
+}
+
+/// The `k`-th (0-based) `[[table]]` of a scene file, where its errors point.
+struct TableAt<'a> {
+    file: SpecText<'a>,
+    table: &'static str,
+    k: usize,
+}
+
+impl<'a> SpecText<'a> {
+    /// The `k`-th (0-based) `[[table]]` of this file.
+    fn table(self, table: &'static str, k: usize) -> TableAt<'a> {
+        TableAt { file: self, table, k }
+    }
+
+    /// An error about the `[road]` table, at its header line.
+    fn road_error(self, message: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            location: Location::line(
+                self.text
+                    .lines()
+                    .position(|l| l.trim_start().starts_with("[road]"))
+                    .map_or(0, |i| i + 1),
+            ),
+            message,
+        }
+    }
+}
+
+impl TableAt<'_> {
+    /// An error in this table as a whole: at its header line, the message
+    /// prefixed with `table #n`.
+    fn error(&self, message: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.file.path.to_path_buf(),
+            location: Location::line(table_line(self.file.text, self.table, self.k)),
+            message: format!("{} #{}: {message}", self.table, self.k + 1),
+        }
+    }
+
+    /// An error in one key's value: at that key's line.
+    fn key_error(&self, key: &str, message: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.file.path.to_path_buf(),
+            location: Location::line(key_line(self.file.text, self.table, self.k, key)),
+            message: format!("{} #{}: {message}", self.table, self.k + 1),
+        }
+    }
+}
+
+/// The luminaires and the field receiver a `[road]` table generates.
+fn road_parts(
+    spec: &SceneSpec,
+    road: &RoadSpec,
+    file: SpecText<'_>,
+) -> Result<(Vec<SceneLuminaire>, Receiver), SceneError> {
+    if !spec.luminaires.is_empty() {
+        return Err(file.road_error(
+            "a scene with [road] holds no [[luminaire]] tables: the road generates its luminaires".into(),
+        ));
+    }
+    let road = Road::from_spec(road, file.path).map_err(|e| file.road_error(e.to_string()))?;
+    Ok(road.scene_parts())
+}
+
+/// One `[[luminaire]]` checked, its file loaded (relative to `base`, the
+/// scene file's directory); a deprecated representation spelling adds a line
+/// to `warnings`.
+fn luminaire(
+    l: &LuminaireSpec,
+    at: &TableAt<'_>,
+    base: &Path,
+    warnings: &mut Vec<String>,
+) -> Result<SceneLuminaire, SceneError> {
+    if !finite3(&l.position) {
+        return Err(at.key_error(
+            "position",
+            format!("position {:?}: expected 3 finite numbers (m)", l.position),
+        ));
+    }
+    let position = vec3(l.position);
+    let aim = luminaire_aim(l, position, at)?;
+    let mf = l.maintenance_factor.unwrap_or(1.0);
+    if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
+        return Err(at.key_error(
+            "maintenance_factor",
+            format!("maintenance_factor = {mf}: expected a number in (0, 1]"),
+        ));
+    }
+    let representation = match &l.representation {
+        None => None,
+        Some(r) => {
+            let (rep, deprecated) = parse_representation(r)
+                .map_err(|e| at.key_error("representation", format!("representation = {r:?}: {e}")))?;
+            warnings.extend(deprecated.map(|w| format!("[[luminaire]] #{}: {w}", at.k + 1)));
+            Some(rep)
+        }
+    };
+    let source = match l.source.as_deref() {
+        None => None,
+        Some("point") => Some(SourceKind::Point),
+        Some("area") => Some(SourceKind::Area),
+        Some(s) => return Err(at.key_error("source", format!("source = {s:?}: expected \"point\" or \"area\""))),
+    };
+    let luminaire = load_luminaire(l, base, at)?;
+    let opening = luminaire_opening(l, &luminaire, at)?;
+    let name = l.name.clone().unwrap_or_else(|| l.file.display().to_string());
+    Ok(SceneLuminaire {
+        name,
+        luminaire,
+        pose: Pose::new(position, aim),
+        maintenance_factor: mf,
+        opening,
+        representation,
+        source,
+    })
+}
+
+/// The aim of a luminaire at `position` (m): its `aim` angles (degrees),
+/// towards its `aim_at` point, or straight down.
+fn luminaire_aim(l: &LuminaireSpec, position: DVec3, at: &TableAt<'_>) -> Result<Aim, SceneError> {
+    Ok(match (&l.aim, &l.aim_at) {
+        (Some(_), Some(_)) => return Err(at.error("give either aim or aim_at, not both".into())),
+        (Some(a), None) => {
+            if ![a.orient, a.tilt, a.roll, a.spin].iter().all(|v| v.is_finite()) {
+                return Err(at.key_error("aim", format!("aim {a:?}: expected finite degrees")));
+            }
+            Aim {
+                orient: a.orient,
+                tilt: a.tilt,
+                roll: a.roll,
+                spin: a.spin,
+            }
+        }
+        (None, Some(t)) => {
+            if !finite3(t) {
+                return Err(at.key_error("aim_at", format!("aim_at {t:?}: expected 3 finite numbers (m)")));
+            }
+            Aim::at(position, vec3(*t))
+                .ok_or_else(|| at.key_error("aim_at", "aim_at is the luminaire's own position: no direction".into()))?
+        }
+        (None, None) => Aim::default(),
+    })
+}
+
+/// The luminaire's photometric file, read from next to the scene file (`base`).
+fn load_luminaire(l: &LuminaireSpec, base: &Path, at: &TableAt<'_>) -> Result<Luminaire, SceneError> {
+    let file = base.join(&l.file);
+    crate::load(&file).map_err(|e| {
+        // The path as resolved (relative to the scene file), and the
+        // reason once (an I/O error's text already names the path).
+        let resolved = std::path::absolute(&file).unwrap_or_else(|_| file.clone());
+        let why = match &e {
+            crate::Error::Io { source, .. } => source.to_string(),
+            other => other.to_string(),
+        };
+        at.key_error(
+            "file",
+            format!(
+                "file = {:?} (resolved next to the scene file: {}): {why}",
+                l.file.display().to_string(),
+                resolved.display()
+            ),
+        )
+    })
+}
+
+/// The luminous opening: the one the scene gives (checked), else the one
+/// the file declares.
+fn luminaire_opening(l: &LuminaireSpec, luminaire: &Luminaire, at: &TableAt<'_>) -> Result<Opening, SceneError> {
+    Ok(match l.opening {
+        Some(o) => {
+            Opening::check(&o).map_err(|m| at.key_error("opening", format!("opening: {m}")))?;
+            o
+        }
+        None => Opening::of_luminaire(luminaire).map_err(|m| {
+            at.error(format!(
+                "{}: {m}; give the opening in the scene (opening = {{ shape = \"point\" }})",
+                l.file.display()
+            ))
+        })?,
+    })
+}
+
+/// One `[[receiver]]` checked, with its calculation points.
+fn receiver(r: &ReceiverSpec, at: &TableAt<'_>) -> Result<Receiver, SceneError> {
+    Ok(match r {
+        ReceiverSpec::Point { name, position, normal } => {
+            if !finite3(position) || !finite3(normal) {
+                return Err(at.error("position and normal: expected 3 finite numbers each".into()));
+            }
+            let n = vec3(*normal)
+                .try_normalize()
+                .ok_or_else(|| at.key_error("normal", format!("normal {normal:?}: expected a non-zero vector")))?;
+            Receiver::point(name, vec3(*position), n)
+        }
+        ReceiverSpec::Plane {
+            name,
+            origin,
+            u,
+            v,
+            spacing,
+        } => {
+            if !finite3(origin) || !finite3(u) || !finite3(v) {
+                return Err(at.error("origin, u and v: expected 3 finite numbers each".into()));
+            }
+            let (o, u, v) = (vec3(*origin), vec3(*u), vec3(*v));
+            if u.cross(v).try_normalize().is_none() {
+                return Err(at.error("u and v: expected two non-zero, non-parallel edges".into()));
+            }
+            let (du, dv) = plane_spacing(spacing, u, v, at)?;
+            let (nu, nv) = ((u.length() / du).ceil().max(1.0), (v.length() / dv).ceil().max(1.0));
+            if nu * nv > MAX_POINTS as f64 {
+                return Err(at.error(format!(
+                    "{nu} x {nv} points: more than {MAX_POINTS}; use a coarser spacing"
+                )));
+            }
+            Receiver::plane(name, o, u, v, nu as usize, nv as usize)
+        }
+    })
+}
+
+/// The grid spacing (m along `u`, m along `v`) of a plane receiver with edges
+/// `u` and `v` (m): EN 12464-1's for the longer edge, or the one given.
+fn plane_spacing(spacing: &SpacingSpec, u: DVec3, v: DVec3, at: &TableAt<'_>) -> Result<(f64, f64), SceneError> {
+    Ok(match spacing {
+        SpacingSpec::Named(s) if s == "en12464" => {
+            let p = en12464_spacing(u.length().max(v.length()));
+            (p, p)
+        }
+        SpacingSpec::Named(s) => {
+            return Err(at.key_error(
+                "spacing",
+                format!("spacing = {s:?}: expected \"en12464\" or [du, dv] in metres"),
+            ))
+        }
+        SpacingSpec::Metres([a, b]) => {
+            if !(a.is_finite() && b.is_finite() && *a > 0.0 && *b > 0.0) {
+                return Err(at.key_error("spacing", format!("spacing [{a}, {b}]: expected two positive metres")));
+            }
+            (*a, *b)
+        }
+    })
+}
+
 impl Scene {
     /// Read and check a scene file.
     ///
@@ -207,213 +466,32 @@ impl Scene {
     /// only used to find table lines for messages.
     pub fn from_spec(spec: &SceneSpec, text: &str, path: &Path) -> Result<Scene, SceneError> {
         let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-        let err = |table: &str, k: usize, message: String| SceneError::Invalid {
-            path: path.to_path_buf(),
-            location: Location::line(table_line(text, table, k)),
-            message: format!("{table} #{}: {message}", k + 1),
-        };
-        // An error in one key's value: at that key's line.
-        let err_key = |table: &str, k: usize, key: &str, message: String| SceneError::Invalid {
-            path: path.to_path_buf(),
-            location: Location::line(key_line(text, table, k, key)),
-            message: format!("{table} #{}: {message}", k + 1),
-        };
-        let finite3 = |a: &[f64; 3]| a.iter().all(|v| v.is_finite());
+        let file = SpecText { path, text };
         let mut warnings = Vec::new();
         let mut luminaires = Vec::new();
         let mut receivers = Vec::new();
         if let Some(road) = &spec.road {
-            let fail = |message: String| SceneError::Invalid {
-                path: path.to_path_buf(),
-                location: Location::line(
-                    text.lines()
-                        .position(|l| l.trim_start().starts_with("[road]"))
-                        .map_or(0, |i| i + 1),
-                ),
-                message,
-            };
-            if !spec.luminaires.is_empty() {
-                return Err(fail(
-                    "a scene with [road] holds no [[luminaire]] tables: the road generates its luminaires".into(),
-                ));
-            }
-            let road = super::road::layout::Road::from_spec(road, path).map_err(|e| fail(e.to_string()))?;
-            let (lums, field) = road.scene_parts();
+            let (lums, field) = road_parts(spec, road, file)?;
             luminaires.extend(lums);
             receivers.push(field);
         }
         for (k, l) in spec.luminaires.iter().enumerate() {
-            let bad = |m: String| err("luminaire", k, m);
-            let bad_key = |key: &str, m: String| err_key("luminaire", k, key, m);
-            if !finite3(&l.position) {
-                return Err(bad_key(
-                    "position",
-                    format!("position {:?}: expected 3 finite numbers (m)", l.position),
-                ));
-            }
-            let position = vec3(l.position);
-            let aim = match (&l.aim, &l.aim_at) {
-                (Some(_), Some(_)) => return Err(bad("give either aim or aim_at, not both".into())),
-                (Some(a), None) => {
-                    if ![a.orient, a.tilt, a.roll, a.spin].iter().all(|v| v.is_finite()) {
-                        return Err(bad_key("aim", format!("aim {a:?}: expected finite degrees")));
-                    }
-                    Aim {
-                        orient: a.orient,
-                        tilt: a.tilt,
-                        roll: a.roll,
-                        spin: a.spin,
-                    }
-                }
-                (None, Some(t)) => {
-                    if !finite3(t) {
-                        return Err(bad_key(
-                            "aim_at",
-                            format!("aim_at {t:?}: expected 3 finite numbers (m)"),
-                        ));
-                    }
-                    Aim::at(position, vec3(*t)).ok_or_else(|| {
-                        bad_key("aim_at", "aim_at is the luminaire's own position: no direction".into())
-                    })?
-                }
-                (None, None) => Aim::default(),
-            };
-            let mf = l.maintenance_factor.unwrap_or(1.0);
-            if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
-                return Err(bad_key(
-                    "maintenance_factor",
-                    format!("maintenance_factor = {mf}: expected a number in (0, 1]"),
-                ));
-            }
-            let representation = match &l.representation {
-                None => None,
-                Some(r) => {
-                    let (rep, deprecated) = parse_representation(r)
-                        .map_err(|e| bad_key("representation", format!("representation = {r:?}: {e}")))?;
-                    warnings.extend(deprecated.map(|w| format!("[[luminaire]] #{}: {w}", k + 1)));
-                    Some(rep)
-                }
-            };
-            let source = match l.source.as_deref() {
-                None => None,
-                Some("point") => Some(SourceKind::Point),
-                Some("area") => Some(SourceKind::Area),
-                Some(s) => {
-                    return Err(bad_key(
-                        "source",
-                        format!("source = {s:?}: expected \"point\" or \"area\""),
-                    ))
-                }
-            };
-            let file = base.join(&l.file);
-            let luminaire = crate::load(&file).map_err(|e| {
-                // The path as resolved (relative to the scene file), and the
-                // reason once (an I/O error's text already names the path).
-                let resolved = std::path::absolute(&file).unwrap_or_else(|_| file.clone());
-                let why = match &e {
-                    crate::Error::Io { source, .. } => source.to_string(),
-                    other => other.to_string(),
-                };
-                bad_key(
-                    "file",
-                    format!(
-                        "file = {:?} (resolved next to the scene file: {}): {why}",
-                        l.file.display().to_string(),
-                        resolved.display()
-                    ),
-                )
-            })?;
-            let opening = match l.opening {
-                Some(o) => {
-                    Opening::check(&o).map_err(|m| bad_key("opening", format!("opening: {m}")))?;
-                    o
-                }
-                None => Opening::of_luminaire(&luminaire).map_err(|m| {
-                    bad(format!(
-                        "{}: {m}; give the opening in the scene (opening = {{ shape = \"point\" }})",
-                        l.file.display()
-                    ))
-                })?,
-            };
-            let name = l.name.clone().unwrap_or_else(|| l.file.display().to_string());
-            luminaires.push(SceneLuminaire {
-                name,
-                luminaire,
-                pose: Pose::new(position, aim),
-                maintenance_factor: mf,
-                opening,
-                representation,
-                source,
-            });
+            luminaires.push(luminaire(l, &file.table("luminaire", k), &base, &mut warnings)?);
         }
         let mut total = receivers.iter().map(|r: &Receiver| r.points.len()).sum::<usize>();
         for (k, r) in spec.receivers.iter().enumerate() {
-            let bad = |m: String| err("receiver", k, m);
-            let bad_key = |key: &str, m: String| err_key("receiver", k, key, m);
-            let rec = match r {
-                ReceiverSpec::Point { name, position, normal } => {
-                    if !finite3(position) || !finite3(normal) {
-                        return Err(bad("position and normal: expected 3 finite numbers each".into()));
-                    }
-                    let n = vec3(*normal)
-                        .try_normalize()
-                        .ok_or_else(|| bad_key("normal", format!("normal {normal:?}: expected a non-zero vector")))?;
-                    Receiver::point(name, vec3(*position), n)
-                }
-                ReceiverSpec::Plane {
-                    name,
-                    origin,
-                    u,
-                    v,
-                    spacing,
-                } => {
-                    if !finite3(origin) || !finite3(u) || !finite3(v) {
-                        return Err(bad("origin, u and v: expected 3 finite numbers each".into()));
-                    }
-                    let (o, u, v) = (vec3(*origin), vec3(*u), vec3(*v));
-                    if u.cross(v).try_normalize().is_none() {
-                        return Err(bad("u and v: expected two non-zero, non-parallel edges".into()));
-                    }
-                    let (du, dv) = match spacing {
-                        SpacingSpec::Named(s) if s == "en12464" => {
-                            let p = en12464_spacing(u.length().max(v.length()));
-                            (p, p)
-                        }
-                        SpacingSpec::Named(s) => {
-                            return Err(bad_key(
-                                "spacing",
-                                format!("spacing = {s:?}: expected \"en12464\" or [du, dv] in metres"),
-                            ))
-                        }
-                        SpacingSpec::Metres([a, b]) => {
-                            if !(a.is_finite() && b.is_finite() && *a > 0.0 && *b > 0.0) {
-                                return Err(bad_key(
-                                    "spacing",
-                                    format!("spacing [{a}, {b}]: expected two positive metres"),
-                                ));
-                            }
-                            (*a, *b)
-                        }
-                    };
-                    let (nu, nv) = ((u.length() / du).ceil().max(1.0), (v.length() / dv).ceil().max(1.0));
-                    if nu * nv > MAX_POINTS as f64 {
-                        return Err(bad(format!(
-                            "{nu} x {nv} points: more than {MAX_POINTS}; use a coarser spacing"
-                        )));
-                    }
-                    Receiver::plane(name, o, u, v, nu as usize, nv as usize)
-                }
-            };
+            let at = file.table("receiver", k);
+            let rec = receiver(r, &at)?;
             total += rec.points.len();
             if total > MAX_POINTS {
-                return Err(bad(format!("the scene has more than {MAX_POINTS} receiver points")));
+                return Err(at.error(format!("the scene has more than {MAX_POINTS} receiver points")));
             }
             receivers.push(rec);
         }
         let mut occluders = Vec::new();
         for (k, o) in spec.occluders.iter().enumerate() {
             let verts: Vec<DVec3> = o.vertices.iter().map(|v| vec3(*v)).collect();
-            occluders.push(Occluder::new(verts).map_err(|e| err("occluder", k, e.to_string()))?);
+            occluders.push(Occluder::new(verts).map_err(|e| file.table("occluder", k).error(e.to_string()))?);
         }
         // A scene that cannot light anything is a mistake, not 0 lx.
         let none = |what: &str, table: &str| SceneError::Invalid {

@@ -20,7 +20,7 @@ use serde::Serialize;
 
 use super::aim::Pose;
 use super::representation::{Models, REFERENCE};
-use super::{Occluder, ReceiverShape, Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
+use super::{Occluder, Receiver, ReceiverShape, Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::model::IntensityField;
 
 /// Most patches an area source is refined to.
@@ -367,6 +367,55 @@ pub(crate) fn luminaire_lux(
     Ok((used, point_lux, report))
 }
 
+/// The result of receiver `r` of `scene`: its illuminance `values` (lx) and
+/// point-source errors `far_field` (fractions), one per point.
+fn receiver_result(scene: &Scene, r: &Receiver, values: &[f64], far_field: &[f64]) -> ReceiverResult {
+    let n = r.points.len();
+    let pts = r
+        .points
+        .iter()
+        .zip(values)
+        .zip(far_field)
+        .map(|((p, &e), &ff)| PointResult {
+            position: p.to_array(),
+            e_lux: e,
+            far_field_error_pct: 100.0 * ff,
+            distance_ratio: scene
+                .luminaires
+                .iter()
+                .filter(|l| !l.opening.is_point())
+                .map(|l| (*p - l.pose.position).length() / l.opening.largest_dimension_m())
+                .reduce(f64::min),
+        })
+        .collect();
+    let (min, max) = values
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &e| (lo.min(e), hi.max(e)));
+    let min = if values.is_empty() { 0.0 } else { min };
+    let avg = if values.is_empty() {
+        0.0
+    } else {
+        values.iter().sum::<f64>() / n as f64
+    };
+    ReceiverResult {
+        name: r.name.clone(),
+        kind: match r.shape {
+            ReceiverShape::Plane { .. } => "plane",
+            ReceiverShape::Point => "point",
+        },
+        e_avg_lux: avg,
+        e_min_lux: min,
+        e_max_lux: max,
+        u0: (avg > 0.0).then(|| min / avg),
+        emin_emax: (max > 0.0).then(|| min / max),
+        grid: match r.shape {
+            ReceiverShape::Plane { nu, nv, .. } => Some([nu, nv]),
+            ReceiverShape::Point => None,
+        },
+        points: pts,
+    }
+}
+
 /// The illuminance at every receiver point of `scene` (see the module docs).
 /// `progress` is called with the number of points done per luminaire pass.
 pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Result<SceneResult, SceneError> {
@@ -390,51 +439,13 @@ pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Resul
     let mut offset = 0;
     for r in &scene.receivers {
         let n = r.points.len();
-        let values = &total[offset..offset + n];
-        let pts = r
-            .points
-            .iter()
-            .zip(values)
-            .zip(&per_point_ff[offset..offset + n])
-            .map(|((p, &e), &ff)| PointResult {
-                position: p.to_array(),
-                e_lux: e,
-                far_field_error_pct: 100.0 * ff,
-                distance_ratio: scene
-                    .luminaires
-                    .iter()
-                    .filter(|l| !l.opening.is_point())
-                    .map(|l| (*p - l.pose.position).length() / l.opening.largest_dimension_m())
-                    .reduce(f64::min),
-            })
-            .collect();
+        receivers.push(receiver_result(
+            scene,
+            r,
+            &total[offset..offset + n],
+            &per_point_ff[offset..offset + n],
+        ));
         offset += n;
-        let (min, max) = values
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), &e| (lo.min(e), hi.max(e)));
-        let min = if values.is_empty() { 0.0 } else { min };
-        let avg = if values.is_empty() {
-            0.0
-        } else {
-            values.iter().sum::<f64>() / n as f64
-        };
-        receivers.push(ReceiverResult {
-            name: r.name.clone(),
-            kind: match r.shape {
-                ReceiverShape::Plane { .. } => "plane",
-                ReceiverShape::Point => "point",
-            },
-            e_avg_lux: avg,
-            e_min_lux: min,
-            e_max_lux: max,
-            u0: (avg > 0.0).then(|| min / avg),
-            emin_emax: (max > 0.0).then(|| min / max),
-            grid: match r.shape {
-                ReceiverShape::Plane { nu, nv, .. } => Some([nu, nv]),
-                ReceiverShape::Point => None,
-            },
-            points: pts,
-        });
     }
     let mut warnings = scene.warnings.clone();
     for (k, r) in receivers.iter().enumerate() {

@@ -32,7 +32,7 @@ pub use super::representation::{Models, REFERENCE};
 use super::{Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::error::ModelError;
 use crate::metrics::{random_directions, time_per_sample_ns};
-use crate::model::{Distribution, Symmetry};
+use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
 pub use crate::registry::{OwnedSampler, Recon};
 
@@ -296,6 +296,231 @@ fn shared_models(
     Ok(cache.len() - 1)
 }
 
+/// The error of a luminaire's model that cannot be built, naming the luminaire.
+fn model_err(l: &SceneLuminaire) -> impl FnOnce(ModelError) -> SceneError {
+    let name = l.name.clone();
+    move |e| SceneError::Model {
+        luminaire: name,
+        source: e,
+    }
+}
+
+/// One luminaire's reference (module docs) measured on the scene.
+struct Reference {
+    /// Illuminance at every point (lx) from the reference area source (one
+    /// patch for a point opening).
+    lux: Vec<f64>,
+    /// The same from the reference field as a point source, lx.
+    point_lux: Vec<f64>,
+    /// The area source's patches (luminaire frame m, share of the light);
+    /// the area candidates use the same.
+    patches: Vec<(DVec3, f64)>,
+    /// The area source's refinement.
+    refinement: AreaRefinement,
+    /// The five-times rule measured on this scene.
+    far_field: FarField,
+    /// `FIELD, KIND source`.
+    name: String,
+}
+
+impl Reference {
+    /// The reference of `lum` at `points` of `scene`.
+    fn measure(scene: &Scene, lum: &SceneLuminaire, points: &[ScenePoint]) -> Result<Self, SceneError> {
+        let models = Models::new(lum, &[REFERENCE]).map_err(model_err(lum))?;
+        let field = models.field(&REFERENCE).map_err(model_err(lum))?;
+        let point = Source {
+            field: &*field,
+            pose: lum.pose,
+            maintenance_factor: lum.maintenance_factor,
+            patches: vec![(DVec3::ZERO, 1.0)],
+        };
+        let point_lux = point.lux_all(points, &scene.occluders, None);
+        let (area, area_lux, refinement) = area_source(&*field, lum, points, &scene.occluders);
+        let far_field = FarField::measure(lum, points, &point_lux, &area_lux);
+        let kind = if lum.opening.is_point() {
+            SourceKind::Point
+        } else {
+            SourceKind::Area
+        };
+        Ok(Self {
+            lux: area_lux,
+            point_lux,
+            patches: area.patches,
+            refinement,
+            far_field,
+            name: format!("{}, {kind} source", field.name()),
+        })
+    }
+}
+
+/// Every luminaire's reference (`say` gets a line each) and their total
+/// illuminance at every point, lx.
+fn references(
+    scene: &Scene,
+    points: &[ScenePoint],
+    say: &dyn Fn(&str),
+) -> Result<(Vec<Reference>, Vec<f64>), SceneError> {
+    let mut references = Vec::new();
+    for lum in &scene.luminaires {
+        say(&format!("{}: reference", lum.name));
+        references.push(Reference::measure(scene, lum, points)?);
+    }
+    let mut total_ref = vec![0.0; points.len()];
+    for r in &references {
+        for (t, e) in total_ref.iter_mut().zip(&r.lux) {
+            *t += e;
+        }
+    }
+    Ok((references, total_ref))
+}
+
+/// What one luminaire's candidates are measured with.
+struct Bench<'a> {
+    scene: &'a Scene,
+    lum: &'a SceneLuminaire,
+    points: &'a [ScenePoint],
+    reference: &'a Reference,
+    /// Illuminance with every luminaire's reference at each point, lx.
+    total_ref: &'a [f64],
+    /// Directions each field's lookup is timed on.
+    dirs: &'a [DVec3],
+    options: &'a PlanOptions,
+}
+
+/// A candidate with its illuminance at every point (lx, this luminaire alone).
+type Measured = (Candidate, Vec<f64>);
+
+impl Bench<'_> {
+    /// Every representation of `reps` built from `models` and measured (as a
+    /// point source and, where the opening has a size, as the area source);
+    /// those that cannot be built, with the reason. `say` gets a line per
+    /// representation.
+    fn measure_all(&self, models: &Models, reps: Vec<Recon>, say: &dyn Fn(&str)) -> (Vec<Measured>, Vec<Unavailable>) {
+        let mut measured = Vec::new();
+        let mut unavailable = Vec::new();
+        for rep in reps {
+            say(&format!("{}: {rep}", self.lum.name));
+            let field = match models.field(&rep) {
+                Ok(f) => f,
+                Err(e) => {
+                    unavailable.push(Unavailable {
+                        representation: rep.to_string(),
+                        reason: e.to_string(),
+                    });
+                    continue;
+                }
+            };
+            let ns = time_per_sample_ns(&*field, self.dirs, self.options.timing_repeats);
+            let mut kinds = vec![SourceKind::Point];
+            if !self.lum.opening.is_point() {
+                kinds.push(SourceKind::Area);
+            }
+            for kind in kinds {
+                measured.push(self.measure(rep, &*field, ns, kind));
+            }
+        }
+        (measured, unavailable)
+    }
+
+    /// `field` (representation `rep`, `ns` per lookup) as a source of `kind`
+    /// in place of the luminaire's reference.
+    fn measure(&self, rep: Recon, field: &dyn IntensityField, ns: f64, kind: SourceKind) -> Measured {
+        let src = Source {
+            field,
+            pose: self.lum.pose,
+            maintenance_factor: self.lum.maintenance_factor,
+            patches: match kind {
+                SourceKind::Point => vec![(DVec3::ZERO, 1.0)],
+                SourceKind::Area => self.reference.patches.clone(),
+            },
+        };
+        let values = src.lux_all(self.points, &self.scene.occluders, None);
+        let total: Vec<f64> = self
+            .total_ref
+            .iter()
+            .zip(&self.reference.lux)
+            .zip(&values)
+            .map(|((t, r), v)| t - r + v)
+            .collect();
+        let (max, mean) = relative_difference(&total, self.total_ref, self.points);
+        let n = src.patches.len();
+        (
+            Candidate {
+                representation: field.name(),
+                spec: rep,
+                source: kind,
+                bytes: field.bytes() + if kind == SourceKind::Area { n * 32 } else { 0 },
+                ns_per_eval: ns * n as f64,
+                max_error_pct: 100.0 * max,
+                mean_error_pct: 100.0 * mean,
+            },
+            values,
+        )
+    }
+
+    /// The plan from the `measured` candidates (sorted here, cheapest first)
+    /// and the chosen one's illuminance at every point, lx.
+    ///
+    /// # Errors
+    /// [`SceneError::Model`] when not even the reference is within the tolerance.
+    fn choose(
+        &self,
+        mut measured: Vec<Measured>,
+        unavailable: Vec<Unavailable>,
+    ) -> crate::Result<(LuminairePlan, Vec<f64>)> {
+        measured.sort_by(|a, b| {
+            a.0.bytes
+                .cmp(&b.0.bytes)
+                .then(a.0.ns_per_eval.total_cmp(&b.0.ns_per_eval))
+        });
+        let tol_pct = 100.0 * self.options.tolerance;
+        let chosen_at = measured.iter().position(|(c, _)| c.max_error_pct <= tol_pct);
+        let Some(chosen_at) = chosen_at else {
+            return Err(SceneError::Model {
+                luminaire: self.lum.name.clone(),
+                source: ModelError::Internal("the reference itself is not within the tolerance".into()),
+            }
+            .into());
+        };
+        let (chosen, values) = measured[chosen_at].clone();
+        let r = self.reference;
+        let (ff_max, _) = relative_difference(
+            &self
+                .total_ref
+                .iter()
+                .zip(&r.lux)
+                .zip(&r.point_lux)
+                .map(|((t, r), p)| t - r + p)
+                .collect::<Vec<_>>(),
+            self.total_ref,
+            self.points,
+        );
+        let plan = LuminairePlan {
+            name: self.lum.name.clone(),
+            chosen: format!("{}, {} source", chosen.representation, chosen.source),
+            representation: chosen.representation.clone(),
+            chosen_spec: chosen.spec,
+            source: chosen.source,
+            bytes: chosen.bytes,
+            ns_per_eval: chosen.ns_per_eval,
+            max_error_pct: chosen.max_error_pct,
+            mean_error_pct: chosen.mean_error_pct,
+            far_field_ok: 100.0 * ff_max <= tol_pct,
+            far_field: r.far_field,
+            reference: r.name.clone(),
+            area: r.refinement,
+            candidates: measured.len(),
+            rejected: measured
+                .iter()
+                .filter(|(c, _)| c.max_error_pct > tol_pct)
+                .map(|(c, _)| c.clone())
+                .collect(),
+            unavailable,
+        };
+        Ok((plan, values))
+    }
+}
+
 /// Plan every luminaire of `scene` (see the module docs). `progress` gets a
 /// line per luminaire and candidate.
 ///
@@ -319,158 +544,35 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
             f(m)
         }
     };
-    let model_err = |l: &SceneLuminaire| {
-        let name = l.name.clone();
-        move |e| SceneError::Model {
-            luminaire: name,
-            source: e,
-        }
-    };
-    let mut references = Vec::new();
-    for lum in &scene.luminaires {
-        say(&format!("{}: reference", lum.name));
-        let models = Models::new(lum, &[REFERENCE]).map_err(model_err(lum))?;
-        let field = models.field(&REFERENCE).map_err(model_err(lum))?;
-        let point = Source {
-            field: &*field,
-            pose: lum.pose,
-            maintenance_factor: lum.maintenance_factor,
-            patches: vec![(DVec3::ZERO, 1.0)],
-        };
-        let point_lux = point.lux_all(&points, &scene.occluders, None);
-        let (area, area_lux, refinement) = area_source(&*field, lum, &points, &scene.occluders);
-        let far_field = FarField::measure(lum, &points, &point_lux, &area_lux);
-        let kind = if lum.opening.is_point() {
-            SourceKind::Point
-        } else {
-            SourceKind::Area
-        };
-        let name = format!("{}, {kind} source", field.name());
-        references.push((area_lux, point_lux, area.patches, refinement, far_field, name, kind));
-    }
-    let mut total_ref = vec![0.0; points.len()];
-    for r in &references {
-        for (t, e) in total_ref.iter_mut().zip(&r.0) {
-            *t += e;
-        }
-    }
+    let (references, total_ref) = references(scene, &points, &say)?;
     let dirs = random_directions(options.timing_directions.max(1), 0x5CE7E);
     let mut plans = Vec::new();
     let mut total_chosen = vec![0.0; points.len()];
     let mut models_cache: Vec<(usize, Models)> = Vec::new();
     for (li, lum) in scene.luminaires.iter().enumerate() {
         let lit = lum.texture()?.is_some(); // an all-zero luminaire has one candidate
-        let (ref_lux, point_ref_lux, patches, refinement, far_field, ref_name, _) = &references[li];
-        let visible = visible_grid(lum, patches, &points);
-        let mut measured: Vec<(Candidate, Vec<f64>)> = Vec::new();
-        let mut unavailable = Vec::new();
+        let bench = Bench {
+            scene,
+            lum,
+            points: &points,
+            reference: &references[li],
+            total_ref: &total_ref,
+            dirs: &dirs,
+            options,
+        };
+        let visible = visible_grid(lum, &bench.reference.patches, &points);
         let reps = if lit {
             candidate_representations(lum, visible)
         } else {
             vec![REFERENCE] // all-zero: every representation is the same dark field
         };
         let slot = shared_models(&mut models_cache, &scene.luminaires, li, &reps).map_err(model_err(lum))?;
-        let models = &models_cache[slot].1;
-        for rep in reps {
-            say(&format!("{}: {rep}", lum.name));
-            let field = match models.field(&rep) {
-                Ok(f) => f,
-                Err(e) => {
-                    unavailable.push(Unavailable {
-                        representation: rep.to_string(),
-                        reason: e.to_string(),
-                    });
-                    continue;
-                }
-            };
-            let ns = time_per_sample_ns(&*field, &dirs, options.timing_repeats);
-            let mut kinds = vec![SourceKind::Point];
-            if !lum.opening.is_point() {
-                kinds.push(SourceKind::Area);
-            }
-            for kind in kinds {
-                let src = Source {
-                    field: &*field,
-                    pose: lum.pose,
-                    maintenance_factor: lum.maintenance_factor,
-                    patches: match kind {
-                        SourceKind::Point => vec![(DVec3::ZERO, 1.0)],
-                        SourceKind::Area => patches.clone(),
-                    },
-                };
-                let values = src.lux_all(&points, &scene.occluders, None);
-                let total: Vec<f64> = total_ref
-                    .iter()
-                    .zip(ref_lux)
-                    .zip(&values)
-                    .map(|((t, r), v)| t - r + v)
-                    .collect();
-                let (max, mean) = relative_difference(&total, &total_ref, &points);
-                let n = src.patches.len();
-                measured.push((
-                    Candidate {
-                        representation: field.name(),
-                        spec: rep,
-                        source: kind,
-                        bytes: field.bytes() + if kind == SourceKind::Area { n * 32 } else { 0 },
-                        ns_per_eval: ns * n as f64,
-                        max_error_pct: 100.0 * max,
-                        mean_error_pct: 100.0 * mean,
-                    },
-                    values,
-                ));
-            }
-        }
-        measured.sort_by(|a, b| {
-            a.0.bytes
-                .cmp(&b.0.bytes)
-                .then(a.0.ns_per_eval.total_cmp(&b.0.ns_per_eval))
-        });
-        let tol_pct = 100.0 * options.tolerance;
-        let chosen_at = measured.iter().position(|(c, _)| c.max_error_pct <= tol_pct);
-        let Some(chosen_at) = chosen_at else {
-            return Err(SceneError::Model {
-                luminaire: lum.name.clone(),
-                source: ModelError::Internal("the reference itself is not within the tolerance".into()),
-            }
-            .into());
-        };
-        let (chosen, values) = measured[chosen_at].clone();
+        let (measured, unavailable) = bench.measure_all(&models_cache[slot].1, reps, &say);
+        let (plan, values) = bench.choose(measured, unavailable)?;
         for (t, v) in total_chosen.iter_mut().zip(&values) {
             *t += v;
         }
-        let (ff_max, _) = relative_difference(
-            &total_ref
-                .iter()
-                .zip(ref_lux)
-                .zip(point_ref_lux)
-                .map(|((t, r), p)| t - r + p)
-                .collect::<Vec<_>>(),
-            &total_ref,
-            &points,
-        );
-        plans.push(LuminairePlan {
-            name: lum.name.clone(),
-            chosen: format!("{}, {} source", chosen.representation, chosen.source),
-            representation: chosen.representation.clone(),
-            chosen_spec: chosen.spec,
-            source: chosen.source,
-            bytes: chosen.bytes,
-            ns_per_eval: chosen.ns_per_eval,
-            max_error_pct: chosen.max_error_pct,
-            mean_error_pct: chosen.mean_error_pct,
-            far_field_ok: 100.0 * ff_max <= tol_pct,
-            far_field: *far_field,
-            reference: ref_name.clone(),
-            area: *refinement,
-            candidates: measured.len(),
-            rejected: measured
-                .iter()
-                .filter(|(c, _)| c.max_error_pct > tol_pct)
-                .map(|(c, _)| c.clone())
-                .collect(),
-            unavailable,
-        });
+        plans.push(plan);
     }
     let (cmax, cmean) = relative_difference(&total_chosen, &total_ref, &points);
     Ok(PlanResult {

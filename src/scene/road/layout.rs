@@ -172,6 +172,78 @@ fn finite_key(key: &'static str, v: f64, unit: &str) -> Result<f64, RoadError> {
     }
 }
 
+/// The checked dimensions of a `[road]` table (metres, degrees).
+struct RoadDimensions {
+    lane_width_m: f64,
+    spacing_m: f64,
+    mounting_height_m: f64,
+    overhang_m: f64,
+    setback_m: f64,
+    tilt_deg: f64,
+}
+
+impl RoadDimensions {
+    /// The lanes and dimensions of `spec`, each checked in turn.
+    fn check(spec: &RoadSpec) -> Result<Self, RoadError> {
+        let invalid = |key: &'static str, reason: String| RoadError::Invalid { key, reason };
+        if spec.lanes == 0 || spec.lanes > 64 {
+            return Err(invalid("lanes", format!("{}: expected 1 to 64 lanes", spec.lanes)));
+        }
+        let lane_width_m = finite_key("lane_width_m", spec.lane_width_m, "m")?;
+        if !(lane_width_m > 0.0 && lane_width_m <= 50.0) {
+            return Err(invalid("lane_width_m", format!("{lane_width_m} m: expected (0, 50] m")));
+        }
+        let spacing_m = finite_key("spacing_m", spec.spacing_m, "m")?;
+        if !(spacing_m > 0.0 && spacing_m <= 1000.0) {
+            return Err(invalid(
+                "spacing_m",
+                format!("{spacing_m} m: expected a spacing in (0, 1000] m between two luminaires of a row"),
+            ));
+        }
+        let h = finite_key("mounting_height_m", spec.mounting_height_m, "m")?;
+        if h <= 0.0 {
+            return Err(RoadError::LuminaireBelowRoad { height_m: h });
+        }
+        let overhang_m = finite_key("overhang_m", spec.overhang_m.unwrap_or(0.0), "m")?;
+        let setback_m = finite_key("setback_m", spec.setback_m.unwrap_or(0.0), "m")?;
+        let tilt_deg = finite_key("tilt_deg", spec.tilt_deg.unwrap_or(0.0), "degrees")?;
+        if tilt_deg.abs() >= 90.0 {
+            return Err(invalid("tilt_deg", format!("{tilt_deg}: expected |tilt| < 90 degrees")));
+        }
+        Ok(Self {
+            lane_width_m,
+            spacing_m,
+            mounting_height_m: h,
+            overhang_m,
+            setback_m,
+            tilt_deg,
+        })
+    }
+}
+
+/// The surface's r-table: a standard one by name, else a user table read
+/// from `base` (the scene file's directory); scaled to the `q0` given.
+fn road_surface(spec: &RoadSpec, base: &Path) -> Result<RTable, RoadError> {
+    let mut surface = match RTable::standard(&spec.surface) {
+        Ok(t) => t,
+        Err(RoadError::UnknownSurface { .. }) => {
+            let p = base.join(&spec.surface);
+            if p.is_file() {
+                RTable::load(&p)?
+            } else {
+                return Err(RoadError::UnknownSurface {
+                    surface: spec.surface.clone(),
+                });
+            }
+        }
+        Err(e) => return Err(e),
+    };
+    if let Some(q0) = spec.q0 {
+        surface = surface.with_q0(q0)?;
+    }
+    Ok(surface)
+}
+
 impl Road {
     /// Read the `[road]` table of a scene file when it has one (`None`: a
     /// scene file without `[road]`).
@@ -218,30 +290,7 @@ impl Road {
     pub fn from_spec(spec: &RoadSpec, scene_path: &Path) -> Result<Road, RoadError> {
         let base = scene_path.parent().map(Path::to_path_buf).unwrap_or_default();
         let invalid = |key: &'static str, reason: String| RoadError::Invalid { key, reason };
-        if spec.lanes == 0 || spec.lanes > 64 {
-            return Err(invalid("lanes", format!("{}: expected 1 to 64 lanes", spec.lanes)));
-        }
-        let lane_width_m = finite_key("lane_width_m", spec.lane_width_m, "m")?;
-        if !(lane_width_m > 0.0 && lane_width_m <= 50.0) {
-            return Err(invalid("lane_width_m", format!("{lane_width_m} m: expected (0, 50] m")));
-        }
-        let spacing_m = finite_key("spacing_m", spec.spacing_m, "m")?;
-        if !(spacing_m > 0.0 && spacing_m <= 1000.0) {
-            return Err(invalid(
-                "spacing_m",
-                format!("{spacing_m} m: expected a spacing in (0, 1000] m between two luminaires of a row"),
-            ));
-        }
-        let h = finite_key("mounting_height_m", spec.mounting_height_m, "m")?;
-        if h <= 0.0 {
-            return Err(RoadError::LuminaireBelowRoad { height_m: h });
-        }
-        let overhang_m = finite_key("overhang_m", spec.overhang_m.unwrap_or(0.0), "m")?;
-        let setback_m = finite_key("setback_m", spec.setback_m.unwrap_or(0.0), "m")?;
-        let tilt_deg = finite_key("tilt_deg", spec.tilt_deg.unwrap_or(0.0), "degrees")?;
-        if tilt_deg.abs() >= 90.0 {
-            return Err(invalid("tilt_deg", format!("{tilt_deg}: expected |tilt| < 90 degrees")));
-        }
+        let dims = RoadDimensions::check(spec)?;
         let mf = spec.maintenance_factor.unwrap_or(1.0);
         if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
             return Err(invalid(
@@ -259,23 +308,7 @@ impl Road {
                 ),
             ));
         }
-        let mut surface = match RTable::standard(&spec.surface) {
-            Ok(t) => t,
-            Err(RoadError::UnknownSurface { .. }) => {
-                let p = base.join(&spec.surface);
-                if p.is_file() {
-                    RTable::load(&p)?
-                } else {
-                    return Err(RoadError::UnknownSurface {
-                        surface: spec.surface.clone(),
-                    });
-                }
-            }
-            Err(e) => return Err(e),
-        };
-        if let Some(q0) = spec.q0 {
-            surface = surface.with_q0(q0)?;
-        }
+        let surface = road_surface(spec, &base)?;
         let representation = match &spec.representation {
             None => None,
             Some(r) => Some(
@@ -296,14 +329,14 @@ impl Road {
             representation,
             maintenance_factor: mf,
             lanes: spec.lanes,
-            lane_width_m,
+            lane_width_m: dims.lane_width_m,
             surface,
             arrangement,
-            spacing_m,
-            mounting_height_m: h,
-            overhang_m,
-            tilt_deg,
-            setback_m,
+            spacing_m: dims.spacing_m,
+            mounting_height_m: dims.mounting_height_m,
+            overhang_m: dims.overhang_m,
+            tilt_deg: dims.tilt_deg,
+            setback_m: dims.setback_m,
         })
     }
 

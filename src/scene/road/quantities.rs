@@ -309,6 +309,215 @@ impl Ctx<'_> {
     }
 }
 
+/// Where the luminance and TI are calculated (module docs).
+struct Views {
+    /// x of the grid's columns (cell centres over the field), m.
+    xs: Vec<f64>,
+    /// y of the luminance grid's rows over every lane, m.
+    ys: Vec<f64>,
+    /// Luminance rows per lane.
+    per_lane: usize,
+    /// x of the luminance observers' eyes, m.
+    eye_x: f64,
+    /// x of the TI observer's first stop, m.
+    ti_start: f64,
+    /// Number of TI stops (the grid's columns).
+    ti_stops: usize,
+    /// Distance between two TI stops, m.
+    ti_step: f64,
+}
+
+impl Views {
+    /// The grid and stops of `road` at `refine` times the standard's grid
+    /// counts, the luminance observers `observer_distance_m` (m) before the field.
+    fn new(road: &Road, refine: usize, observer_distance_m: f64) -> Self {
+        let (s, h) = (road.spacing_m, road.mounting_height_m);
+        let n_along = road.n_along() * refine;
+        let per_lane = 3 * refine;
+        Views {
+            xs: centres(0.0, s, n_along),
+            ys: (0..road.lanes)
+                .flat_map(|k| centres(k as f64 * road.lane_width_m, road.lane_width_m, per_lane))
+                .collect(),
+            per_lane,
+            eye_x: -observer_distance_m,
+            ti_start: -2.75 * (h - EYE_HEIGHT_M).max(0.0),
+            ti_stops: n_along,
+            ti_step: s / n_along as f64,
+        }
+    }
+
+    /// The x range (m) of the luminaires any quantity counts: from the
+    /// luminance's and the illuminance's reach before the field (and before
+    /// the first TI stop) to the TI range beyond the last stop, a spacing
+    /// more each way.
+    fn luminaire_reach(&self, road: &Road) -> (f64, f64) {
+        let (s, h) = (road.spacing_m, road.mounting_height_m);
+        let x_from = (self.ti_start - LUM_BEFORE_H * h).min(-ILLUM_REACH_H * h) - s;
+        let x_to = s + (TI_RANGE_M + self.ti_step * self.ti_stops as f64).max(LUM_BEYOND_H * h) + s;
+        (x_from, x_to)
+    }
+}
+
+/// What the warnings count: r lookups into blank table cells, luminaires
+/// left out of TI.
+#[derive(Default)]
+struct WarningCounts {
+    /// r lookups that read blank table cells.
+    blank: usize,
+    /// Luminaires within 1.5° of a TI line of sight.
+    too_close: usize,
+}
+
+/// The illuminance and hemispherical illuminance grids (lx) over the field:
+/// columns at `xs` (m), rows across the width `w` (m), `refine` times the standard's.
+fn illuminance_grids(ctx: &Ctx<'_>, xs: &[f64], w: f64, refine: usize) -> (Grid, Grid) {
+    let ys_e = centres(0.0, w, Road::n_across(w) * refine);
+    let mut e_grid = Grid {
+        x_m: xs.to_vec(),
+        y_m: ys_e.clone(),
+        values: Vec::new(),
+    };
+    let mut ehs_grid = e_grid.clone();
+    for &y in &ys_e {
+        let (row_e, row_hs): (Vec<f64>, Vec<f64>) = xs.iter().map(|&x| ctx.illuminance(DVec3::new(x, y, 0.0))).unzip();
+        e_grid.values.push(row_e);
+        ehs_grid.values.push(row_hs);
+    }
+    (e_grid, ehs_grid)
+}
+
+/// R_EI: the smaller over the two edges of the carriageway (width `w`, m) of
+/// the mean illuminance on the strip outside over that on the strip inside;
+/// 0 when no inside strip is lit.
+fn edge_ratio(ctx: &Ctx<'_>, xs: &[f64], w: f64, refine: usize) -> f64 {
+    let strip = (w / 2.0).min(5.0);
+    let strip_mean = |y0: f64| {
+        let ys = centres(y0, strip, Road::n_across(strip) * refine);
+        let (mut sum, mut n) = (0.0, 0usize);
+        for &y in &ys {
+            for &x in xs {
+                sum += ctx.illuminance(DVec3::new(x, y, 0.0)).0;
+                n += 1;
+            }
+        }
+        sum / n as f64
+    };
+    let mut r_ei = f64::INFINITY;
+    for (outside, inside) in [(-strip, 0.0), (w, w - strip)] {
+        let (eo, ei) = (strip_mean(outside), strip_mean(inside));
+        if ei > 0.0 {
+            r_ei = r_ei.min(eo / ei);
+        }
+    }
+    if !r_ei.is_finite() {
+        r_ei = 0.0;
+    }
+    r_ei
+}
+
+/// The observers of lane `k` (0-based): the luminance grid they see
+/// (cd/m²), its L_av, U_o and U_l, and TI over the stops.
+fn observe_lane(ctx: &Ctx<'_>, v: &Views, k: usize, counts: &mut WarningCounts) -> (LaneResult, Observer, Grid) {
+    let road = ctx.road;
+    let y_obs = (k as f64 + 0.5) * road.lane_width_m;
+    let eye = DVec3::new(v.eye_x, y_obs, EYE_HEIGHT_M);
+    let mut grid = Grid {
+        x_m: v.xs.clone(),
+        y_m: v.ys.clone(),
+        values: Vec::new(),
+    };
+    for &y in &v.ys {
+        grid.values.push(
+            v.xs.iter()
+                .map(|&x| ctx.luminance(DVec3::new(x, y, 0.0), eye, &mut counts.blank))
+                .collect(),
+        );
+    }
+    let l_av = grid.mean();
+    let l_min = grid.min();
+    // centre line of lane k: the middle row of its points
+    let centre = &grid.values[k * v.per_lane + v.per_lane / 2];
+    let c_max = centre.iter().copied().fold(0.0, f64::max);
+    let c_min = centre.iter().copied().fold(f64::INFINITY, f64::min);
+    let u_o = if l_av > 0.0 { l_min / l_av } else { 0.0 };
+    let u_l = if c_max > 0.0 { c_min / c_max } else { 0.0 };
+    // TI: initial values (MF = 1)
+    let ti = max_ti(ctx, v, y_obs, l_av / road.maintenance_factor, &mut counts.too_close);
+    let observer = Observer {
+        lane: k + 1,
+        luminance_eye_m: eye.to_array(),
+        ti_x_m: [v.ti_start, v.ti_start + (v.ti_stops - 1) as f64 * v.ti_step],
+        ti_stops: v.ti_stops,
+    };
+    let result = LaneResult {
+        lane: k + 1,
+        l_av_cd_m2: l_av,
+        u_o,
+        u_l,
+        ti_pct: ti,
+    };
+    (result, observer, grid)
+}
+
+/// The largest TI (%) over the stops of the observer at `y_obs` (m), with
+/// the initial average luminance `l_init` (cd/m²; 0 when it is not positive).
+fn max_ti(ctx: &Ctx<'_>, v: &Views, y_obs: f64, l_init: f64, too_close: &mut usize) -> f64 {
+    let mut ti: f64 = 0.0;
+    for m in 0..v.ti_stops {
+        let eye = DVec3::new(v.ti_start + m as f64 * v.ti_step, y_obs, EYE_HEIGHT_M);
+        let l_v = ctx.veiling(eye, too_close);
+        if l_init > 0.0 {
+            ti = ti.max(threshold_increment(l_v, l_init));
+        }
+    }
+    ti
+}
+
+/// The warnings of a calculation: an observer that sees no luminance, and
+/// the `counts` of blank r-table cells read and of luminaires left out of TI.
+fn road_warnings(lanes: &[LaneResult], counts: &WarningCounts) -> Vec<String> {
+    let mut warnings = Vec::new();
+    if lanes.iter().any(|l| l.l_av_cd_m2 <= 0.0) {
+        warnings.push(
+            "an observer sees no luminance on the field (L_av = 0): its U_o, U_l are 0 and its TI is not defined (0)"
+                .into(),
+        );
+    }
+    let blank = counts.blank;
+    if blank > 0 {
+        warnings.push(format!(
+            "{blank} r-table look-ups read cells the CIE table leaves blank (filled with the last tabulated value \
+             of their row)"
+        ));
+    }
+    let too_close = counts.too_close;
+    if too_close > 0 {
+        warnings.push(format!(
+            "{too_close} luminaire positions within 1.5 degrees of the line of sight were left out of TI (the \
+             formula holds from 1.5 to 60 degrees)"
+        ));
+    }
+    warnings
+}
+
+/// The installation's figures from the lanes', R_EI, the field's average
+/// and smallest illuminance and its average hemispherical illuminance (lx).
+fn overall_figures(lanes: &[LaneResult], r_ei: f64, e_av: f64, e_min: f64, e_hs_av: f64) -> Overall {
+    let fmin = |f: fn(&LaneResult) -> f64| lanes.iter().map(f).fold(f64::INFINITY, f64::min);
+    Overall {
+        l_av_cd_m2: fmin(|l| l.l_av_cd_m2),
+        u_o: fmin(|l| l.u_o),
+        u_l: fmin(|l| l.u_l),
+        ti_pct: lanes.iter().map(|l| l.ti_pct).fold(0.0, f64::max),
+        r_ei,
+        e_av_lux: e_av,
+        e_min_lux: e_min,
+        u_o_e: if e_av > 0.0 { e_min / e_av } else { 0.0 },
+        e_hs_av_lux: e_hs_av,
+    }
+}
+
 /// Compute the road (see the module docs).
 pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadError> {
     let s = road.spacing_m;
@@ -329,151 +538,32 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
     let rep = road.representation.unwrap_or(REFERENCE);
     let models = Models::new(&template, &[rep]).map_err(luminaire_err)?;
     let field = models.field(&rep).map_err(luminaire_err)?;
-    let n_along = road.n_along() * refine;
-    let d_along = s / n_along as f64;
-    let ti_start = -2.75 * (h - EYE_HEIGHT_M).max(0.0);
-    let x_from = (ti_start - LUM_BEFORE_H * h).min(-ILLUM_REACH_H * h) - s;
-    let x_to = s + (TI_RANGE_M + d_along * n_along as f64).max(LUM_BEYOND_H * h) + s;
+    let views = Views::new(road, refine, options.observer_distance_m);
+    let (x_from, x_to) = views.luminaire_reach(road);
     let ctx = Ctx {
         road,
         field: &*field,
         lums: road.luminaires(x_from, x_to),
         h,
     };
-    let xs = centres(0.0, s, n_along);
-    let mut warnings = Vec::new();
-
-    // Illuminance and hemispherical illuminance.
-    let ys_e = centres(0.0, w, Road::n_across(w) * refine);
-    let mut e_grid = Grid {
-        x_m: xs.clone(),
-        y_m: ys_e.clone(),
-        values: Vec::new(),
-    };
-    let mut ehs_grid = e_grid.clone();
-    for &y in &ys_e {
-        let (row_e, row_hs): (Vec<f64>, Vec<f64>) = xs.iter().map(|&x| ctx.illuminance(DVec3::new(x, y, 0.0))).unzip();
-        e_grid.values.push(row_e);
-        ehs_grid.values.push(row_hs);
-    }
+    let (e_grid, ehs_grid) = illuminance_grids(&ctx, &views.xs, w, refine);
     let e_av = e_grid.mean();
     let e_min = e_grid.min();
-
-    // R_EI: strips outside and inside each edge.
-    let strip = (w / 2.0).min(5.0);
-    let strip_mean = |y0: f64| {
-        let ys = centres(y0, strip, Road::n_across(strip) * refine);
-        let (mut sum, mut n) = (0.0, 0usize);
-        for &y in &ys {
-            for &x in &xs {
-                sum += ctx.illuminance(DVec3::new(x, y, 0.0)).0;
-                n += 1;
-            }
-        }
-        sum / n as f64
-    };
-    let mut r_ei = f64::INFINITY;
-    for (outside, inside) in [(-strip, 0.0), (w, w - strip)] {
-        let (eo, ei) = (strip_mean(outside), strip_mean(inside));
-        if ei > 0.0 {
-            r_ei = r_ei.min(eo / ei);
-        }
-    }
-    if !r_ei.is_finite() {
-        r_ei = 0.0;
-    }
-
+    let r_ei = edge_ratio(&ctx, &views.xs, w, refine);
     // Luminance per observer lane.
-    let per_lane = 3 * refine;
-    let ys_l: Vec<f64> = (0..road.lanes)
-        .flat_map(|k| centres(k as f64 * road.lane_width_m, road.lane_width_m, per_lane))
-        .collect();
-    let mut lanes = Vec::new();
-    let mut grids = Vec::new();
-    let mut observers = Vec::new();
-    let mut blank = 0usize;
-    let mut too_close = 0usize;
+    let mut counts = WarningCounts::default();
+    let (mut lanes, mut grids, mut observers) = (Vec::new(), Vec::new(), Vec::new());
     for k in 0..road.lanes {
-        let y_obs = (k as f64 + 0.5) * road.lane_width_m;
-        let eye = DVec3::new(-options.observer_distance_m, y_obs, EYE_HEIGHT_M);
-        let mut grid = Grid {
-            x_m: xs.clone(),
-            y_m: ys_l.clone(),
-            values: Vec::new(),
-        };
-        for &y in &ys_l {
-            grid.values.push(
-                xs.iter()
-                    .map(|&x| ctx.luminance(DVec3::new(x, y, 0.0), eye, &mut blank))
-                    .collect(),
-            );
-        }
-        let l_av = grid.mean();
-        let l_min = grid.min();
-        // centre line of lane k: the middle row of its points
-        let centre = &grid.values[k * per_lane + per_lane / 2];
-        let c_max = centre.iter().copied().fold(0.0, f64::max);
-        let c_min = centre.iter().copied().fold(f64::INFINITY, f64::min);
-        let u_o = if l_av > 0.0 { l_min / l_av } else { 0.0 };
-        let u_l = if c_max > 0.0 { c_min / c_max } else { 0.0 };
-        // TI: initial values (MF = 1)
-        let l_init = l_av / road.maintenance_factor;
-        let mut ti: f64 = 0.0;
-        for m in 0..n_along {
-            let eye = DVec3::new(ti_start + m as f64 * d_along, y_obs, EYE_HEIGHT_M);
-            let l_v = ctx.veiling(eye, &mut too_close);
-            if l_init > 0.0 {
-                ti = ti.max(threshold_increment(l_v, l_init));
-            }
-        }
-        observers.push(Observer {
-            lane: k + 1,
-            luminance_eye_m: eye.to_array(),
-            ti_x_m: [ti_start, ti_start + (n_along - 1) as f64 * d_along],
-            ti_stops: n_along,
-        });
-        lanes.push(LaneResult {
-            lane: k + 1,
-            l_av_cd_m2: l_av,
-            u_o,
-            u_l,
-            ti_pct: ti,
-        });
+        let (lane, observer, grid) = observe_lane(&ctx, &views, k, &mut counts);
+        observers.push(observer);
+        lanes.push(lane);
         grids.push(grid);
     }
     if lanes.iter().all(|l| l.l_av_cd_m2 <= 0.0) && e_av <= 0.0 {
         return Err(RoadError::NothingInView);
     }
-    if lanes.iter().any(|l| l.l_av_cd_m2 <= 0.0) {
-        warnings.push(
-            "an observer sees no luminance on the field (L_av = 0): its U_o, U_l are 0 and its TI is not defined (0)"
-                .into(),
-        );
-    }
-    if blank > 0 {
-        warnings.push(format!(
-            "{blank} r-table look-ups read cells the CIE table leaves blank (filled with the last tabulated value \
-             of their row)"
-        ));
-    }
-    if too_close > 0 {
-        warnings.push(format!(
-            "{too_close} luminaire positions within 1.5 degrees of the line of sight were left out of TI (the \
-             formula holds from 1.5 to 60 degrees)"
-        ));
-    }
-    let fmin = |f: fn(&LaneResult) -> f64| lanes.iter().map(f).fold(f64::INFINITY, f64::min);
-    let overall = Overall {
-        l_av_cd_m2: fmin(|l| l.l_av_cd_m2),
-        u_o: fmin(|l| l.u_o),
-        u_l: fmin(|l| l.u_l),
-        ti_pct: lanes.iter().map(|l| l.ti_pct).fold(0.0, f64::max),
-        r_ei,
-        e_av_lux: e_av,
-        e_min_lux: e_min,
-        u_o_e: if e_av > 0.0 { e_min / e_av } else { 0.0 },
-        e_hs_av_lux: ehs_grid.mean(),
-    };
+    let warnings = road_warnings(&lanes, &counts);
+    let overall = overall_figures(&lanes, r_ei, e_av, e_min, ehs_grid.mean());
     let ch = road.surface.characteristics();
     Ok(RoadResult {
         scene: road.path.as_ref().map(|p| p.display().to_string()).unwrap_or_default(),
