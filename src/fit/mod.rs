@@ -425,7 +425,7 @@ impl Search<'_> {
         };
         let mut all: Vec<(Combination, Option<Outcome>)> = first.into_iter().zip(outcomes).collect();
         if combos.contains(&Combination::SpotDownSpotUp) {
-            let o = self.two_spots(&all);
+            let o = self.two_spots_from_singles(&all);
             all.push((Combination::SpotDownSpotUp, o));
         }
         all
@@ -451,7 +451,7 @@ impl Search<'_> {
 
     /// The outcome of two spots, started from the single spot down and the single spot
     /// up among the outcomes `singles`; `None` when it is skipped or either single one was.
-    fn two_spots(&self, singles: &[(Combination, Option<Outcome>)]) -> Option<Outcome> {
+    fn two_spots_from_singles(&self, singles: &[(Combination, Option<Outcome>)]) -> Option<Outcome> {
         let single = |h: Combination| {
             singles
                 .iter()
