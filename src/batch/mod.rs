@@ -25,7 +25,8 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, ErrorRecord};
 use crate::fit::{fit, FitOptions};
 use crate::formats::ReadOptions;
-use crate::model::Progress;
+use crate::model::{Distribution, Luminaire, Progress};
+use crate::photometry::Summary;
 use crate::reconstruct::{holdout, Filter, HoldoutSpec};
 
 /// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
@@ -220,10 +221,20 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     // whole `info` report: its UGR, BUG and luminance tables, flux code and
     // zonal lumens would cost more than the parse (issue 26).
     let l = &lum.luminaire;
-    let d = l.distribution();
     let s = crate::photometry::summary(l);
     row.parse_ms = ms(t);
     row.ok = true;
+    add_summary(&mut row, l, &s);
+    add_holdout(&mut row, lum.distribution());
+    add_fit(&mut row, lum.distribution());
+    row
+}
+
+/// Fills the columns of `row` that describe the luminaire `l` (its warnings,
+/// format, grid and metadata) and its photometric summary `s` (cd, lm, degrees,
+/// W, lm/W); a number that is not finite is left null.
+fn add_summary(row: &mut BatchRecord, l: &Luminaire, s: &Summary) {
+    let d = l.distribution();
     row.warnings = l
         .warnings()
         .iter()
@@ -257,9 +268,14 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     row.catalogue = Some(l.metadata().catalogue.clone());
     row.input_watts = finite(watts);
     row.efficacy_lm_per_w = finite(watts.map(|w| s.flux.total_lm / w));
+}
 
+/// Fills the hold-out columns of `row` for `d`: the filter of the smallest RMS
+/// error ([`HOLDOUT`], every filter) with its RMS and max errors (% of I_max),
+/// and the time taken (`holdout_ms`); an error message when the hold-out fails.
+fn add_holdout(row: &mut BatchRecord, d: &Distribution) {
     let t = Instant::now();
-    match holdout(lum.distribution(), HOLDOUT, &Filter::ALL) {
+    match holdout(d, HOLDOUT, &Filter::ALL) {
         Ok(reports) => {
             // The first of the smallest RMS errors (Filter::ALL order breaks ties).
             let best = reports
@@ -275,14 +291,19 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
         Err(e) => row.errors.push(format!("holdout: {}", Error::from(e))),
     }
     row.holdout_ms = ms(t);
+}
 
+/// Fills the fit columns of `row` for `d`: the chosen combination of fitted
+/// OpenGL lights and its error, and the time taken (`fit_ms`); an error
+/// message when the fit fails.
+fn add_fit(row: &mut BatchRecord, d: &Distribution) {
     let t = Instant::now();
     // Files run in parallel already: the fit's own parallelism would only add overhead.
     let opts = FitOptions {
         parallel: false,
         ..FitOptions::default()
     };
-    match fit(lum.distribution(), &opts) {
+    match fit(d, &opts) {
         Ok(f) => {
             row.fitted_gl = Some(f.chosen().combination.name().to_string());
             row.fitted_gl_error = finite(Some(f.error()));
@@ -290,7 +311,6 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
         Err(e) => row.errors.push(format!("fit: {}", Error::from(e))),
     }
     row.fit_ms = ms(t);
-    row
 }
 
 /// The rows of `files` in input order, analysed in parallel (rayon).

@@ -230,28 +230,70 @@ pub fn rows_of(b: &RecordBatch) -> Result<Vec<BatchRecord>> {
 
 /// [`rows_of`], the errors naming `path`.
 fn rows_in(b: &RecordBatch, path: &Path) -> Result<Vec<BatchRecord>> {
-    let s = |name| -> Result<Vec<Option<String>>> {
-        let a = column_of::<StringArray>(b, path, name, "Utf8")?;
+    let v = ColumnValues::read(&Columns { b, path })?;
+    Ok((0..b.num_rows()).map(|i| v.record(i)).collect())
+}
+
+/// The Float64 columns that every schema has, in the order [`ColumnValues::record`] indexes them.
+const FLOAT_COLUMNS: [&str; 19] = [
+    "gamma_min_deg",
+    "gamma_max_deg",
+    "max_cd",
+    "flux_lm",
+    "declared_flux_lm",
+    "flux_ratio",
+    "lor",
+    "dlor",
+    "ulor",
+    "beam_angle_deg",
+    "field_angle_deg",
+    "beam_angle_c90_deg",
+    "field_angle_c90_deg",
+    "best_filter_rms_pct",
+    "best_filter_max_pct",
+    "fitted_gl_error",
+    "parse_ms",
+    "holdout_ms",
+    "fit_ms",
+];
+
+/// The columns of one record batch, read by name into one value per row
+/// (the errors naming `path`).
+struct Columns<'a> {
+    b: &'a RecordBatch,
+    path: &'a Path,
+}
+
+impl Columns<'_> {
+    /// The Utf8 column `name`, `None` where null.
+    fn strings(&self, name: &str) -> Result<Vec<Option<String>>> {
+        let a = column_of::<StringArray>(self.b, self.path, name, "Utf8")?;
         Ok((0..a.len())
             .map(|i| a.is_valid(i).then(|| a.value(i).to_string()))
             .collect())
-    };
-    let f = |name| -> Result<Vec<Option<f64>>> {
-        let a = column_of::<Float64Array>(b, path, name, "Float64")?;
+    }
+
+    /// The Float64 column `name`, `None` where null.
+    fn floats(&self, name: &str) -> Result<Vec<Option<f64>>> {
+        let a = column_of::<Float64Array>(self.b, self.path, name, "Float64")?;
         Ok((0..a.len()).map(|i| a.is_valid(i).then(|| a.value(i))).collect())
-    };
-    let u = |name| -> Result<Vec<Option<u32>>> {
-        let a = column_of::<UInt32Array>(b, path, name, "UInt32")?;
+    }
+
+    /// The UInt32 column `name`, `None` where null.
+    fn counts(&self, name: &str) -> Result<Vec<Option<u32>>> {
+        let a = column_of::<UInt32Array>(self.b, self.path, name, "UInt32")?;
         Ok((0..a.len()).map(|i| a.is_valid(i).then(|| a.value(i))).collect())
-    };
-    let l = |name| -> Result<Vec<Vec<String>>> {
-        let a = column_of::<ListArray>(b, path, name, "List(Utf8)")?;
+    }
+
+    /// The List(Utf8) column `name`, each list without its null items.
+    fn lists(&self, name: &str) -> Result<Vec<Vec<String>>> {
+        let a = column_of::<ListArray>(self.b, self.path, name, "List(Utf8)")?;
         (0..a.len())
             .map(|i| {
                 let v = a.value(i);
                 let v = v.as_any().downcast_ref::<StringArray>().ok_or_else(|| {
                     Error::Parse(ParseError {
-                        path: path.to_path_buf(),
+                        path: self.path.to_path_buf(),
                         location: Location::default(),
                         kind: ErrorKind::Invalid,
                         expected: format!(
@@ -266,90 +308,137 @@ fn rows_in(b: &RecordBatch, path: &Path) -> Result<Vec<BatchRecord>> {
                     .collect())
             })
             .collect()
-    };
-    let ok = column_of::<BooleanArray>(b, path, "ok", "Boolean")?;
-    let (path, errors, warnings) = (s("path")?, l("errors")?, l("warnings")?);
-    let (format, version, ptype, symmetry) = (s("format")?, s("version")?, s("photometric_type")?, s("symmetry")?);
-    let (n_c, n_c_full, n_gamma) = (u("n_c")?, u("n_c_full")?, u("n_gamma")?);
-    let names = [
-        "gamma_min_deg",
-        "gamma_max_deg",
-        "max_cd",
-        "flux_lm",
-        "declared_flux_lm",
-        "flux_ratio",
-        "lor",
-        "dlor",
-        "ulor",
-        "beam_angle_deg",
-        "field_angle_deg",
-        "beam_angle_c90_deg",
-        "field_angle_c90_deg",
-        "best_filter_rms_pct",
-        "best_filter_max_pct",
-        "fitted_gl_error",
-        "parse_ms",
-        "holdout_ms",
-        "fit_ms",
-    ];
-    let nums: Vec<Vec<Option<f64>>> = names.iter().map(|n| f(n)).collect::<Result<_>>()?;
-    let (best, gl) = (s("best_filter")?, s("fitted_gl")?);
-    // Schema 2 columns: null when reading a schema-1 table (e.g. `batch --resume` on an older file).
-    let rows = b.num_rows();
-    let f2 = |name| match b.column_by_name(name) {
-        None => Ok(vec![None; rows]),
-        Some(_) => f(name),
-    };
-    let s2 = |name| match b.column_by_name(name) {
-        None => Ok(vec![None; rows]),
-        Some(_) => s(name),
-    };
-    let (lamp_flux, watts, efficacy) = (f2("lamp_flux_lm")?, f2("input_watts")?, f2("efficacy_lm_per_w")?);
-    let (manufacturer, catalogue) = (s2("manufacturer")?, s2("catalogue")?);
-    Ok((0..b.num_rows())
-        .map(|i| {
-            let x = |k: usize| nums[k][i];
-            BatchRecord {
-                path: path[i].clone().unwrap_or_default(),
-                ok: ok.is_valid(i) && ok.value(i),
-                errors: errors[i].clone(),
-                warnings: warnings[i].clone(),
-                format: format[i].clone(),
-                version: version[i].clone(),
-                photometric_type: ptype[i].clone(),
-                symmetry: symmetry[i].clone(),
-                n_c: n_c[i],
-                n_c_full: n_c_full[i],
-                n_gamma: n_gamma[i],
-                gamma_min_deg: x(0),
-                gamma_max_deg: x(1),
-                max_cd: x(2),
-                flux_lm: x(3),
-                declared_flux_lm: x(4),
-                flux_ratio: x(5),
-                lor: x(6),
-                dlor: x(7),
-                ulor: x(8),
-                beam_angle_deg: x(9),
-                field_angle_deg: x(10),
-                beam_angle_c90_deg: x(11),
-                field_angle_c90_deg: x(12),
-                lamp_flux_lm: lamp_flux[i],
-                manufacturer: manufacturer[i].clone(),
-                catalogue: catalogue[i].clone(),
-                input_watts: watts[i],
-                efficacy_lm_per_w: efficacy[i],
-                best_filter: best[i].clone(),
-                best_filter_rms_pct: x(13),
-                best_filter_max_pct: x(14),
-                fitted_gl: gl[i].clone(),
-                fitted_gl_error: x(15),
-                parse_ms: x(16).unwrap_or(0.0),
-                holdout_ms: x(17).unwrap_or(0.0),
-                fit_ms: x(18).unwrap_or(0.0),
-            }
+    }
+
+    /// [`Columns::floats`] of a schema-2 column: all null when a schema-1 table
+    /// lacks it (e.g. `batch --resume` on an older file).
+    fn floats_since_2(&self, name: &str) -> Result<Vec<Option<f64>>> {
+        match self.b.column_by_name(name) {
+            None => Ok(vec![None; self.b.num_rows()]),
+            Some(_) => self.floats(name),
+        }
+    }
+
+    /// [`Columns::strings`] of a schema-2 column, as [`Columns::floats_since_2`].
+    fn strings_since_2(&self, name: &str) -> Result<Vec<Option<String>>> {
+        match self.b.column_by_name(name) {
+            None => Ok(vec![None; self.b.num_rows()]),
+            Some(_) => self.strings(name),
+        }
+    }
+}
+
+/// Every batch column of one record batch, read ([`ColumnValues::read`]).
+struct ColumnValues<'a> {
+    ok: &'a BooleanArray,
+    path: Vec<Option<String>>,
+    errors: Vec<Vec<String>>,
+    warnings: Vec<Vec<String>>,
+    format: Vec<Option<String>>,
+    version: Vec<Option<String>>,
+    ptype: Vec<Option<String>>,
+    symmetry: Vec<Option<String>>,
+    n_c: Vec<Option<u32>>,
+    n_c_full: Vec<Option<u32>>,
+    n_gamma: Vec<Option<u32>>,
+    /// The columns of [`FLOAT_COLUMNS`], in its order.
+    nums: Vec<Vec<Option<f64>>>,
+    best: Vec<Option<String>>,
+    gl: Vec<Option<String>>,
+    lamp_flux: Vec<Option<f64>>,
+    watts: Vec<Option<f64>>,
+    efficacy: Vec<Option<f64>>,
+    manufacturer: Vec<Option<String>>,
+    catalogue: Vec<Option<String>>,
+}
+
+impl<'a> ColumnValues<'a> {
+    /// Every batch column of `c`; the first one missing or of another type (in
+    /// this order) is the [`Error::Parse`].
+    fn read(c: &Columns<'a>) -> Result<Self> {
+        let ok = column_of::<BooleanArray>(c.b, c.path, "ok", "Boolean")?;
+        let (path, errors, warnings) = (c.strings("path")?, c.lists("errors")?, c.lists("warnings")?);
+        let (format, version, ptype, symmetry) = (
+            c.strings("format")?,
+            c.strings("version")?,
+            c.strings("photometric_type")?,
+            c.strings("symmetry")?,
+        );
+        let (n_c, n_c_full, n_gamma) = (c.counts("n_c")?, c.counts("n_c_full")?, c.counts("n_gamma")?);
+        let nums: Vec<Vec<Option<f64>>> = FLOAT_COLUMNS.iter().map(|n| c.floats(n)).collect::<Result<_>>()?;
+        let (best, gl) = (c.strings("best_filter")?, c.strings("fitted_gl")?);
+        let (lamp_flux, watts, efficacy) = (
+            c.floats_since_2("lamp_flux_lm")?,
+            c.floats_since_2("input_watts")?,
+            c.floats_since_2("efficacy_lm_per_w")?,
+        );
+        let (manufacturer, catalogue) = (c.strings_since_2("manufacturer")?, c.strings_since_2("catalogue")?);
+        Ok(Self {
+            ok,
+            path,
+            errors,
+            warnings,
+            format,
+            version,
+            ptype,
+            symmetry,
+            n_c,
+            n_c_full,
+            n_gamma,
+            nums,
+            best,
+            gl,
+            lamp_flux,
+            watts,
+            efficacy,
+            manufacturer,
+            catalogue,
         })
-        .collect())
+    }
+
+    /// Row `i` (a missing path reads as empty, a null `ok` as false, null timings as 0 ms).
+    fn record(&self, i: usize) -> BatchRecord {
+        let x = |k: usize| self.nums[k][i];
+        BatchRecord {
+            path: self.path[i].clone().unwrap_or_default(),
+            ok: self.ok.is_valid(i) && self.ok.value(i),
+            errors: self.errors[i].clone(),
+            warnings: self.warnings[i].clone(),
+            format: self.format[i].clone(),
+            version: self.version[i].clone(),
+            photometric_type: self.ptype[i].clone(),
+            symmetry: self.symmetry[i].clone(),
+            n_c: self.n_c[i],
+            n_c_full: self.n_c_full[i],
+            n_gamma: self.n_gamma[i],
+            gamma_min_deg: x(0),
+            gamma_max_deg: x(1),
+            max_cd: x(2),
+            flux_lm: x(3),
+            declared_flux_lm: x(4),
+            flux_ratio: x(5),
+            lor: x(6),
+            dlor: x(7),
+            ulor: x(8),
+            beam_angle_deg: x(9),
+            field_angle_deg: x(10),
+            beam_angle_c90_deg: x(11),
+            field_angle_c90_deg: x(12),
+            lamp_flux_lm: self.lamp_flux[i],
+            manufacturer: self.manufacturer[i].clone(),
+            catalogue: self.catalogue[i].clone(),
+            input_watts: self.watts[i],
+            efficacy_lm_per_w: self.efficacy[i],
+            best_filter: self.best[i].clone(),
+            best_filter_rms_pct: x(13),
+            best_filter_max_pct: x(14),
+            fitted_gl: self.gl[i].clone(),
+            fitted_gl_error: x(15),
+            parse_ms: x(16).unwrap_or(0.0),
+            holdout_ms: x(17).unwrap_or(0.0),
+            fit_ms: x(18).unwrap_or(0.0),
+        }
+    }
 }
 
 #[cfg(test)]

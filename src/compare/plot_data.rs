@@ -56,71 +56,16 @@ pub(crate) fn plot_data(
     file_dist: Option<&Distribution>,
     i_max: f64,
 ) -> PlotData {
-    // The plane of maximum intensity of the reference.
-    let d = ref_dist;
-    let ng = d.n_gamma();
-    let (mut best, mut c_max) = (f64::NEG_INFINITY, 0.0);
-    for (c, ic) in d.full_planes() {
-        for ig in 0..ng {
-            if d.value_cd(ic, ig) > best {
-                best = d.value_cd(ic, ig);
-                c_max = c;
-            }
-        }
-    }
-    let gammas: Vec<f64> = (0..=360).map(|k| k as f64 * 0.5).collect();
-    let curve = |f: &dyn IntensityField, right: f64, left: f64| -> Vec<(f64, f64)> {
-        let mut pts: Vec<(f64, f64)> = gammas.iter().rev().map(|&g| (-g, f.intensity_cd(left, g))).collect();
-        pts.extend(gammas.iter().skip(1).map(|&g| (g, f.intensity_cd(right, g))));
-        pts
-    };
-    let points = |dist: &Distribution, right: f64, left: f64| -> Vec<(f64, f64)> {
-        let g = dist.gamma_angles_deg();
-        let (r, l) = (
-            crate::photometry::plane_profile(dist, right),
-            crate::photometry::plane_profile(dist, left),
-        );
-        let mut pts: Vec<(f64, f64)> = g.iter().zip(&l).rev().map(|(&g, &v)| (-g, v)).collect();
-        pts.extend(g.iter().zip(&r).filter(|(&g, _)| g > 0.0).map(|(&g, &v)| (g, v)));
-        pts
-    };
+    let c_max = c_of_max(ref_dist);
     let pairs = [
         (0.0, 180.0),
         (90.0, 270.0),
         (c_max, crate::model::wrap360(c_max + 180.0)),
     ];
-    let vs = file_dist.is_some();
     let planes = pairs
         .iter()
-        .map(|&(right, left)| {
-            let mut curves: Vec<(String, Vec<(f64, f64)>)> = recons
-                .iter()
-                .map(|(name, f)| (name.clone(), curve(*f, right, left)))
-                .collect();
-            if let Some((name, f)) = reference {
-                curves.push((format!("{name} (reference)"), curve(f, right, left)));
-            }
-            let mut measured = vec![(
-                if vs { "measured (OTHER)" } else { "measured" }.to_string(),
-                points(ref_dist, right, left),
-            )];
-            if let Some(fd) = file_dist {
-                measured.push(("measured (FILE)".into(), points(fd, right, left)));
-            }
-            PolarPlane {
-                left_c: left,
-                right_c: right,
-                curves,
-                measured,
-            }
-        })
+        .map(|&(right, left)| polar_plane(recons, reference, ref_dist, file_dist, right, left))
         .collect();
-    // Cell centres of a 2° x 1° grid: between the knots of the usual
-    // measurement grids, where reconstructions differ (at a knot every
-    // interpolating filter equals the measurement).
-    let xs: Vec<f64> = (0..180).map(|k| 1.0 + k as f64 * 2.0).collect();
-    let ys: Vec<f64> = (0..180).map(|k| 0.5 + k as f64).collect();
-    let dirs: Vec<(f64, f64)> = ys.iter().flat_map(|&g| xs.iter().map(move |&c| (c, g))).collect();
     let Some((reference_name, reference)) = reference else {
         return PlotData {
             planes,
@@ -128,19 +73,7 @@ pub(crate) fn plot_data(
             viewer: None,
         };
     };
-    let m = eval_all(reference, &dirs);
-    let error_maps = recons
-        .iter()
-        .map(|(name, f)| {
-            let v = eval_all(*f, &dirs);
-            ErrorMap {
-                name: name.clone(),
-                xs: xs.clone(),
-                ys: ys.clone(),
-                values: v.iter().zip(&m).map(|(a, b)| 100.0 * (a - b) / i_max).collect(),
-            }
-        })
-        .collect();
+    let error_maps = error_maps(recons, reference, i_max);
     let viewer = Some(SampledSolids::new(&SolidSet {
         reference_label: reference_name,
         reference,
@@ -153,4 +86,100 @@ pub(crate) fn plot_data(
         error_maps,
         viewer,
     }
+}
+
+/// The C angle (degrees, of the full circle of planes) of `d`'s largest
+/// intensity: the first plane that holds it.
+fn c_of_max(d: &Distribution) -> f64 {
+    let ng = d.n_gamma();
+    let (mut best, mut c_max) = (f64::NEG_INFINITY, 0.0);
+    for (c, ic) in d.full_planes() {
+        for ig in 0..ng {
+            if d.value_cd(ic, ig) > best {
+                best = d.value_cd(ic, ig);
+                c_max = c;
+            }
+        }
+    }
+    c_max
+}
+
+/// The polar plot of the plane pair `right` (+γ) and `left` (−γ), C in degrees: the
+/// curve of every field, then the reference's, and the measured points of the
+/// reference data and (when it is another file) of FILE's.
+fn polar_plane(
+    recons: &[(String, &dyn IntensityField)],
+    reference: Option<(&str, &dyn IntensityField)>,
+    ref_dist: &Distribution,
+    file_dist: Option<&Distribution>,
+    right: f64,
+    left: f64,
+) -> PolarPlane {
+    let mut curves: Vec<(String, Vec<(f64, f64)>)> = recons
+        .iter()
+        .map(|(name, f)| (name.clone(), polar_curve(*f, right, left)))
+        .collect();
+    if let Some((name, f)) = reference {
+        curves.push((format!("{name} (reference)"), polar_curve(f, right, left)));
+    }
+    let vs = file_dist.is_some();
+    let mut measured = vec![(
+        if vs { "measured (OTHER)" } else { "measured" }.to_string(),
+        measured_points(ref_dist, right, left),
+    )];
+    if let Some(fd) = file_dist {
+        measured.push(("measured (FILE)".into(), measured_points(fd, right, left)));
+    }
+    PolarPlane {
+        left_c: left,
+        right_c: right,
+        curves,
+        measured,
+    }
+}
+
+/// `f` along the plane pair as (signed γ, cd) every 0.5°: the plane `left`
+/// at −γ (from −180° up), then the plane `right` at +γ.
+fn polar_curve(f: &dyn IntensityField, right: f64, left: f64) -> Vec<(f64, f64)> {
+    let gammas: Vec<f64> = (0..=360).map(|k| k as f64 * 0.5).collect();
+    let mut pts: Vec<(f64, f64)> = gammas.iter().rev().map(|&g| (-g, f.intensity_cd(left, g))).collect();
+    pts.extend(gammas.iter().skip(1).map(|&g| (g, f.intensity_cd(right, g))));
+    pts
+}
+
+/// The measured points of `dist` along the plane pair as (signed γ, cd), at
+/// its own γ angles: the plane `left` at −γ, then the plane `right` at +γ > 0.
+fn measured_points(dist: &Distribution, right: f64, left: f64) -> Vec<(f64, f64)> {
+    let g = dist.gamma_angles_deg();
+    let (r, l) = (
+        crate::photometry::plane_profile(dist, right),
+        crate::photometry::plane_profile(dist, left),
+    );
+    let mut pts: Vec<(f64, f64)> = g.iter().zip(&l).rev().map(|(&g, &v)| (-g, v)).collect();
+    pts.extend(g.iter().zip(&r).filter(|(&g, _)| g > 0.0).map(|(&g, &v)| (g, v)));
+    pts
+}
+
+/// Each reconstruction's signed error against `reference`, % of `i_max` (cd),
+/// on the cell centres of a 2° x 1° (C, γ) grid.
+fn error_maps(recons: &[(String, &dyn IntensityField)], reference: &dyn IntensityField, i_max: f64) -> Vec<ErrorMap> {
+    // Cell centres of a 2° x 1° grid: between the knots of the usual
+    // measurement grids, where reconstructions differ (at a knot every
+    // interpolating filter equals the measurement).
+    let xs: Vec<f64> = (0..180).map(|k| 1.0 + k as f64 * 2.0).collect();
+    let ys: Vec<f64> = (0..180).map(|k| 0.5 + k as f64).collect();
+    let dirs: Vec<(f64, f64)> = ys.iter().flat_map(|&g| xs.iter().map(move |&c| (c, g))).collect();
+    let m = eval_all(reference, &dirs);
+    recons
+        .iter()
+        .map(|(name, f)| {
+            let v = eval_all(*f, &dirs);
+            ErrorMap {
+                name: name.clone(),
+                xs: xs.clone(),
+                ys: ys.clone(),
+                values: v.iter().zip(&m).map(|(a, b)| 100.0 * (a - b) / i_max).collect(),
+            }
+        })
+        .collect()
 }

@@ -137,56 +137,156 @@ pub(super) fn compare_withheld(
     opts: &CompareOptions,
     progress: &Progress<'_>,
 ) -> Result<Comparison, ModelError> {
-    let folds = kfold(a, opts.folds)?;
-    let i_max = a.max_cd();
-    if i_max.is_nan() || i_max <= 0.0 {
-        return Err(ModelError::AllZero("errors are relative to I_max"));
-    }
-    let planes = a.full_planes();
-    // Per fold: the withheld directions (with weights) and their measured values.
-    let sets: Vec<(DirectionSet, Vec<f64>)> = folds
-        .iter()
-        .map(|f| {
-            let mut mask = vec![false; a.n_c() * a.n_gamma()];
-            for &(ic, ig) in &f.withheld {
-                mask[ic * a.n_gamma() + ig] = true;
-            }
-            let at = |ic: usize, ig: usize| mask[ic * a.n_gamma() + ig];
-            let set = DirectionSet::measured_where(a, "withheld", at);
-            // The same order as `measured_where`: rows, then full planes (poles are never withheld, see `kfold`).
-            let mut m = Vec::with_capacity(set.len());
-            for ig in 0..a.n_gamma() {
-                for &(_, ic) in &planes {
-                    if at(ic, ig) {
-                        m.push(a.value_cd(ic, ig));
-                    }
-                }
-            }
-            (set, m)
-        })
-        .collect();
-    let pooled = DirectionSet {
-        label: format!(
-            "withheld samples of a {}-fold hold-out ({} folds)",
-            opts.folds,
-            folds.len()
-        ),
-        directions: sets.iter().flat_map(|s| s.0.directions.iter().copied()).collect(),
-        weights: sets.iter().flat_map(|s| s.0.weights.iter().copied()).collect(),
-    };
-    let m_all: Vec<f64> = sets.iter().flat_map(|s| s.1.iter().copied()).collect();
-    let full = Reconstructions::new(a.clone(), &opts.recons)?;
-    let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
-    let refinement = opts.refinement(i_max);
-    let rotational = a.symmetry() == crate::model::Symmetry::Rotational;
+    let h = HoldOut::new(a, opts)?;
+    let i_max = h.i_max;
     let mut results = Vec::with_capacity(opts.recons.len());
-    let solid_tol_cd = opts.solid_tolerance.map(|f| f.max(0.0) * i_max);
     for (i, &r) in opts.recons.iter().enumerate() {
         progress(i, opts.recons.len(), &r.to_string());
         let row_progress = |_: usize, _: usize, what: &str| progress(i, opts.recons.len(), &format!("{r}: {what}"));
+        results.push(h.row(r, &row_progress)?);
+    }
+    progress(opts.recons.len(), opts.recons.len(), "done");
+    mark_pareto(&mut results);
+    let plots = opts.plots.then(|| h.plot_data(a));
+    Ok(Comparison {
+        file: String::new(),
+        vs: None,
+        reference: format!(
+            "withheld ({}-fold hold-out of the measured C-planes and gamma rows; each reconstruction rebuilt without them)",
+            opts.folds
+        ),
+        reference_kind: super::ReferenceKind::Withheld,
+        normalize: opts.normalize,
+        units: opts.normalize.unit().into(),
+        directions: h.pooled.label.clone(),
+        n_directions: h.pooled.len(),
+        radial_max_method: format!("max over the {} withheld measured directions", h.pooled.len()),
+        tolerance: opts.tolerance,
+        tolerance_pct: crate::error::percent_of(opts.tolerance),
+        // Printed in the file's unit; the withheld H is exact and uses no tolerance.
+        tolerance_cd: opts.tolerance * i_max,
+        factor: opts.factor,
+        solid_tolerance_cd: h.solid_tol_cd,
+        solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
+        solid_deviation_cd: None,
+        solid_tolerance_reached: None,
+        i_max_cd: i_max,
+        reference_triangles: 0,
+        zotti_c: opts.zotti_c,
+        alignment: None,
+        results,
+        plots,
+        photometry_side_by_side: None,
+    })
+}
+
+/// The withheld points of one fold.
+struct FoldPoints {
+    /// The withheld directions, each with its measured solid angle.
+    set: DirectionSet,
+    /// The measured value at each of them, cd.
+    measured_cd: Vec<f64>,
+}
+
+impl FoldPoints {
+    /// Every symmetry image of the stored samples `fold` withholds from `a`.
+    fn of(a: &Distribution, fold: &Fold, planes: &[(f64, usize)]) -> Self {
+        let mut mask = vec![false; a.n_c() * a.n_gamma()];
+        for &(ic, ig) in &fold.withheld {
+            mask[ic * a.n_gamma() + ig] = true;
+        }
+        let at = |ic: usize, ig: usize| mask[ic * a.n_gamma() + ig];
+        let set = DirectionSet::measured_where(a, "withheld", at);
+        // The same order as `measured_where`: rows, then full planes (poles are never withheld, see `kfold`).
+        let mut measured_cd = Vec::with_capacity(set.len());
+        for ig in 0..a.n_gamma() {
+            for &(_, ic) in planes {
+                if at(ic, ig) {
+                    measured_cd.push(a.value_cd(ic, ig));
+                }
+            }
+        }
+        Self { set, measured_cd }
+    }
+}
+
+/// One withheld comparison's folds and withheld points, and what every row
+/// is measured with.
+struct HoldOut<'a> {
+    opts: &'a CompareOptions,
+    folds: Vec<Fold>,
+    /// The withheld points of each fold.
+    sets: Vec<FoldPoints>,
+    /// Every fold's withheld directions (the radial metrics pool the folds).
+    pooled: DirectionSet,
+    /// The measured value at each direction of `pooled`, cd.
+    m_all: Vec<f64>,
+    /// The reconstructions from all the data (bytes, timing, plots).
+    full: Reconstructions,
+    /// The directions each reconstruction is timed at.
+    timing: Vec<DVec3>,
+    refinement: Refinement,
+    /// I_max of the data, cd.
+    i_max: f64,
+    rotational: bool,
+    /// The solid tolerance, cd (`None`: fixed grids).
+    solid_tol_cd: Option<f64>,
+}
+
+impl<'a> HoldOut<'a> {
+    /// The folds of `a` and their withheld points, and `a`'s reconstructions.
+    ///
+    /// Errors: those of [`kfold`] and of the reconstructions; data without
+    /// light ([`ModelError::AllZero`]).
+    fn new(a: &Distribution, opts: &'a CompareOptions) -> Result<Self, ModelError> {
+        let folds = kfold(a, opts.folds)?;
+        let i_max = a.max_cd();
+        if i_max.is_nan() || i_max <= 0.0 {
+            return Err(ModelError::AllZero("errors are relative to I_max"));
+        }
+        let planes = a.full_planes();
+        let sets: Vec<FoldPoints> = folds.iter().map(|f| FoldPoints::of(a, f, &planes)).collect();
+        let pooled = DirectionSet {
+            label: format!(
+                "withheld samples of a {}-fold hold-out ({} folds)",
+                opts.folds,
+                folds.len()
+            ),
+            directions: sets.iter().flat_map(|s| s.set.directions.iter().copied()).collect(),
+            weights: sets.iter().flat_map(|s| s.set.weights.iter().copied()).collect(),
+        };
+        let m_all: Vec<f64> = sets.iter().flat_map(|s| s.measured_cd.iter().copied()).collect();
+        let full = Reconstructions::new(a.clone(), &opts.recons)?;
+        Ok(Self {
+            opts,
+            folds,
+            sets,
+            pooled,
+            m_all,
+            full,
+            timing: random_directions(opts.timing_samples.max(1), 0x5eed),
+            refinement: opts.refinement(i_max),
+            i_max,
+            rotational: a.symmetry() == crate::model::Symmetry::Rotational,
+            solid_tol_cd: opts.solid_tolerance.map(|f| f.max(0.0) * i_max),
+        })
+    }
+
+    /// The row of `r`: rebuilt without each fold's withheld points and measured
+    /// at them (the folds pooled), its bytes and lookup time from all the data.
+    fn row(&self, r: Recon, progress: &Progress<'_>) -> Result<ReconResult, ModelError> {
+        let i_max = self.i_max;
         let mut row_acc = RowDistances::default();
-        for (fold, (set, m)) in folds.iter().zip(&sets) {
-            row_acc.add_fold(r, fold, set, m, rotational, &refinement, &row_progress)?;
+        for (fold, points) in self.folds.iter().zip(&self.sets) {
+            row_acc.add_fold(
+                r,
+                fold,
+                &points.set,
+                &points.measured_cd,
+                self.rotational,
+                &self.refinement,
+                progress,
+            )?;
         }
         let RowDistances {
             recon: recon_all,
@@ -196,12 +296,12 @@ pub(super) fn compare_withheld(
             segments,
             methods,
         } = row_acc;
-        let rad = radial_errors(&pooled, &m_all, &recon_all, i_max, opts.zotti_c);
+        let rad = radial_errors(&self.pooled, &self.m_all, &recon_all, i_max, self.opts.zotti_c);
         let n = dist_all.len().max(1) as f64;
         let h = dist_all.iter().copied().fold(0.0, f64::max);
         let mean = dist_all.iter().sum::<f64>() / n;
         let rms = (dist_all.iter().map(|d| d * d).sum::<f64>() / n).sqrt();
-        let field = full.field(r)?;
+        let field = self.full.field(r)?;
         let mut row = ReconResult::new(
             r.to_string(),
             field.bytes(),
@@ -224,58 +324,30 @@ pub(super) fn compare_withheld(
             },
             &rad,
             i_max,
-            Some(time_per_sample_ns(&*field, &timing, opts.timing_repeats)),
+            Some(time_per_sample_ns(&*field, &self.timing, self.opts.timing_repeats)),
             triangles,
         );
         row.solid_deviation_cd = deviation;
-        row.solid_tolerance_reached = deviation.zip(solid_tol_cd).map(|(d, t)| d <= t);
+        row.solid_tolerance_reached = deviation.zip(self.solid_tol_cd).map(|(d, t)| d <= t);
         row.profile_segments = segments;
         row.withheld_distance = Some(methods.join("+"));
-        results.push(row);
+        Ok(row)
     }
-    progress(opts.recons.len(), opts.recons.len(), "done");
-    mark_pareto(&mut results);
-    let plots = opts.plots.then(|| {
-        let fields: Vec<(String, Box<dyn IntensityField + '_>)> = opts
+
+    /// The report's plot data: every reconstruction of `a` from all its data, and
+    /// the 3D view against the measured solid ([`measured_viewer`]).
+    fn plot_data(&self, a: &Distribution) -> super::PlotData {
+        let fields: Vec<(String, Box<dyn IntensityField + '_>)> = self
+            .opts
             .recons
             .iter()
-            .filter_map(|&r| full.field(r).ok().map(|f| (r.to_string(), f)))
+            .filter_map(|&r| self.full.field(r).ok().map(|f| (r.to_string(), f)))
             .collect();
         let named: Vec<(String, &dyn IntensityField)> = fields.iter().map(|(n, f)| (n.clone(), &**f)).collect();
-        let mut p = super::plot_data::plot_data(&named, None, a, None, i_max);
-        p.viewer = measured_viewer(a, &named, i_max);
+        let mut p = super::plot_data::plot_data(&named, None, a, None, self.i_max);
+        p.viewer = measured_viewer(a, &named, self.i_max);
         p
-    });
-    Ok(Comparison {
-        file: String::new(),
-        vs: None,
-        reference: format!(
-            "withheld ({}-fold hold-out of the measured C-planes and gamma rows; each reconstruction rebuilt without them)",
-            opts.folds
-        ),
-        reference_kind: super::ReferenceKind::Withheld,
-        normalize: opts.normalize,
-        units: opts.normalize.unit().into(),
-        directions: pooled.label.clone(),
-        n_directions: pooled.len(),
-        radial_max_method: format!("max over the {} withheld measured directions", pooled.len()),
-        tolerance: opts.tolerance,
-        tolerance_pct: crate::error::percent_of(opts.tolerance),
-        // Printed in the file's unit; the withheld H is exact and uses no tolerance.
-        tolerance_cd: opts.tolerance * i_max,
-        factor: opts.factor,
-        solid_tolerance_cd: solid_tol_cd,
-        solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
-        solid_deviation_cd: None,
-        solid_tolerance_reached: None,
-        i_max_cd: i_max,
-        reference_triangles: 0,
-        zotti_c: opts.zotti_c,
-        alignment: None,
-        results,
-        plots,
-        photometry_side_by_side: None,
-    })
+    }
 }
 
 /// The 3D view of a withheld comparison: withheld points are no surface, so

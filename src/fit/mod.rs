@@ -327,6 +327,35 @@ fn two_spots(s: &Samples, thin: Option<&Samples>, down: SpotFit, up: SpotFit, fr
 /// Errors: an all-zero (or all-negative) distribution ([`ModelError::AllZero`]);
 /// options outside their domain ([`ModelError::Parameter`]).
 pub fn fit(d: &Distribution, options: &FitOptions) -> Result<Fit, ModelError> {
+    check_options(options)?;
+    let s = Samples::new(d, options.metric, options.guard)?;
+    let free = !s.rotational;
+    let thin = s.thinned();
+    let search = Search {
+        s: &s,
+        thin: thin.as_ref(),
+        free,
+    };
+    let outcomes = search.outcomes(options);
+    let data_flux = crate::photometry::flux(d).total_lm;
+    let trials: Vec<Trial> = outcomes
+        .into_iter()
+        .map(|(c, o)| trial(&s, d, data_flux, c, o))
+        .collect();
+    let chosen = select(&trials, options.tolerance);
+    Ok(Fit {
+        chosen,
+        trials,
+        i_max_cd: s.i_max,
+        options: options.clone(),
+        axis_vertical: !free,
+        directions: s.len(),
+    })
+}
+
+/// `Ok` when the options [`fit`] cannot check by fitting are in their domain
+/// (`max_lights` 1 or 2, `tolerance` finite and >= 0), else [`ModelError::Parameter`].
+fn check_options(options: &FitOptions) -> Result<(), ModelError> {
     let bad = |name, value: String, reason: &str| {
         Err(ModelError::Parameter {
             name,
@@ -344,138 +373,154 @@ pub fn fit(d: &Distribution, options: &FitOptions) -> Result<Fit, ModelError> {
             "must be a finite number >= 0",
         );
     }
-    let s = Samples::new(d, options.metric, options.guard)?;
-    let free = !s.rotational;
-    let thin = s.thinned();
-    let thin = thin.as_ref();
-    let skip_reason = |c: Combination| -> Option<String> {
-        for &h in c.hemispheres() {
-            let (i, name) = match h {
-                Hemisphere::Down => (0, "lower"),
-                Hemisphere::Up => (1, "upper"),
-            };
-            if !s.measured[i] {
-                return Some(format!("no measured direction in the {name} hemisphere"));
-            }
-            if !s.lit[i] {
-                return Some(format!("the {name} hemisphere is dark"));
-            }
+    Ok(())
+}
+
+/// Why `c` cannot be fitted to `s` (a hemisphere it puts a spot in holds no measured
+/// direction, or only dark ones), the text a skipped [`Trial`] reports; `None` when it can.
+fn skip_reason(s: &Samples, c: Combination) -> Option<String> {
+    for &h in c.hemispheres() {
+        let (i, name) = match h {
+            Hemisphere::Down => (0, "lower"),
+            Hemisphere::Up => (1, "upper"),
+        };
+        if !s.measured[i] {
+            return Some(format!("no measured direction in the {name} hemisphere"));
         }
-        None
-    };
-    let combos: Vec<Combination> = Combination::ALL
-        .into_iter()
-        .filter(|c| c.lights() <= options.max_lights)
-        .collect();
-    let run_one = |c: Combination| -> Option<Outcome> {
-        if skip_reason(c).is_some() {
+        if !s.lit[i] {
+            return Some(format!("the {name} hemisphere is dark"));
+        }
+    }
+    None
+}
+
+/// What every combination of one [`fit`] is searched on.
+struct Search<'a> {
+    /// The measured directions, in units of I_max.
+    s: &'a Samples,
+    /// Every other direction of `s` for the cheap early rounds (`None` on small grids).
+    thin: Option<&'a Samples>,
+    /// Spot axes free (tilt and azimuth); held vertical for rotationally symmetric data.
+    free: bool,
+}
+
+impl Search<'_> {
+    /// The outcome of every combination up to `options.max_lights` lights, in
+    /// [`Combination::ALL`] order, `None` for one skipped. The single-spot ones come
+    /// first (in parallel when asked): two spots start from their fits.
+    fn outcomes(&self, options: &FitOptions) -> Vec<(Combination, Option<Outcome>)> {
+        let combos: Vec<Combination> = Combination::ALL
+            .into_iter()
+            .filter(|c| c.lights() <= options.max_lights)
+            .collect();
+        let first: Vec<Combination> = combos
+            .iter()
+            .copied()
+            .filter(|&c| c != Combination::SpotDownSpotUp)
+            .collect();
+        let outcomes: Vec<Option<Outcome>> = if options.parallel {
+            first.par_iter().map(|&c| self.single(c, options.seed)).collect()
+        } else {
+            first.iter().map(|&c| self.single(c, options.seed)).collect()
+        };
+        let mut all: Vec<(Combination, Option<Outcome>)> = first.into_iter().zip(outcomes).collect();
+        if combos.contains(&Combination::SpotDownSpotUp) {
+            let o = self.two_spots_from_singles(&all);
+            all.push((Combination::SpotDownSpotUp, o));
+        }
+        all
+    }
+
+    /// The outcome of `c`, any combination but two spots, with the search seeded from
+    /// `seed` and `c`; `None` when `c` is skipped ([`skip_reason`]).
+    fn single(&self, c: Combination, seed: u64) -> Option<Outcome> {
+        let (s, thin, free) = (self.s, self.thin, self.free);
+        if skip_reason(s, c).is_some() {
             return None;
         }
-        let seed = seed_for(options.seed, c);
+        let seed = seed_for(seed, c);
         Some(match c {
-            Combination::Point => point_only(&s),
-            Combination::SpotDown => one_spot(&s, thin, Hemisphere::Down, false, free, seed),
-            Combination::SpotUp => one_spot(&s, thin, Hemisphere::Up, false, free, seed),
-            Combination::PointSpotDown => one_spot(&s, thin, Hemisphere::Down, true, free, seed),
-            Combination::PointSpotUp => one_spot(&s, thin, Hemisphere::Up, true, free, seed),
+            Combination::Point => point_only(s),
+            Combination::SpotDown => one_spot(s, thin, Hemisphere::Down, false, free, seed),
+            Combination::SpotUp => one_spot(s, thin, Hemisphere::Up, false, free, seed),
+            Combination::PointSpotDown => one_spot(s, thin, Hemisphere::Down, true, free, seed),
+            Combination::PointSpotUp => one_spot(s, thin, Hemisphere::Up, true, free, seed),
             Combination::SpotDownSpotUp => unreachable!("fitted after the single spots"),
         })
-    };
-    let first: Vec<Combination> = combos
-        .iter()
-        .copied()
-        .filter(|&c| c != Combination::SpotDownSpotUp)
-        .collect();
-    let mut outcomes: Vec<Option<Outcome>> = if options.parallel {
-        first.par_iter().map(|&c| run_one(c)).collect()
-    } else {
-        first.iter().map(|&c| run_one(c)).collect()
-    };
-    if combos.contains(&Combination::SpotDownSpotUp) {
-        let c = Combination::SpotDownSpotUp;
+    }
+
+    /// The outcome of two spots, started from the single spot down and the single spot
+    /// up among the outcomes `singles`; `None` when it is skipped or either single one was.
+    fn two_spots_from_singles(&self, singles: &[(Combination, Option<Outcome>)]) -> Option<Outcome> {
         let single = |h: Combination| {
-            first
+            singles
                 .iter()
-                .position(|&x| x == h)
-                .and_then(|i| outcomes[i].as_ref())
+                .find(|(x, _)| *x == h)
+                .and_then(|(_, o)| o.as_ref())
                 .map(|o| o.spots[0])
         };
-        let o = match (
-            skip_reason(c),
+        match (
+            skip_reason(self.s, Combination::SpotDownSpotUp),
             single(Combination::SpotDown),
             single(Combination::SpotUp),
         ) {
-            (None, Some(dn), Some(up)) => Some(two_spots(&s, thin, dn, up, free)),
+            (None, Some(dn), Some(up)) => Some(two_spots(self.s, self.thin, dn, up, self.free)),
             _ => None,
+        }
+    }
+}
+
+/// The [`Trial`] of combination `c` on the samples `s` of `d` (whose flux is
+/// `data_flux`, lm): the outcome's lights scaled to cd, with their error, largest
+/// error (relative to I_max) and flux ratio; the skip reason when `o` is `None`.
+fn trial(s: &Samples, d: &Distribution, data_flux: f64, c: Combination, o: Option<Outcome>) -> Trial {
+    let Some(o) = o else {
+        return Trial {
+            combination: c,
+            lights: c.lights(),
+            model: None,
+            error: None,
+            max_error: None,
+            flux_ratio: None,
+            evaluations: 0,
+            skipped: skip_reason(s, c),
         };
-        outcomes.push(o);
-    }
-    let mut all = first.clone();
-    if combos.contains(&Combination::SpotDownSpotUp) {
-        all.push(Combination::SpotDownSpotUp);
-    }
-    let data_flux = crate::photometry::flux(d).total_lm;
+    };
+    // The search works in units of I_max; the model is reported in cd.
+    let model = FittedLights::new(
+        o.lights
+            .iter()
+            .map(|l| match *l {
+                Light::Spot(sp) => Light::Spot(Spot {
+                    weight_cd: sp.weight_cd * s.i_max,
+                    ..sp
+                }),
+                Light::Point { weight_cd } => Light::Point {
+                    weight_cd: weight_cd * s.i_max,
+                },
+            })
+            .collect(),
+    );
     let k = 1.0 / s.i_max;
-    let trials: Vec<Trial> = all
-        .iter()
-        .zip(outcomes)
-        .map(|(&c, o)| match o {
-            None => Trial {
-                combination: c,
-                lights: c.lights(),
-                model: None,
-                error: None,
-                max_error: None,
-                flux_ratio: None,
-                evaluations: 0,
-                skipped: skip_reason(c),
-            },
-            Some(o) => {
-                let model = FittedLights::new(
-                    o.lights
-                        .iter()
-                        .map(|l| match *l {
-                            Light::Spot(sp) => Light::Spot(Spot {
-                                weight_cd: sp.weight_cd * s.i_max,
-                                ..sp
-                            }),
-                            Light::Point { weight_cd } => Light::Point {
-                                weight_cd: weight_cd * s.i_max,
-                            },
-                        })
-                        .collect(),
-                );
-                let a = |dir: glam::DVec3| k * model.intensity_dir(dir);
-                let error = s.error_sq(a).sqrt();
-                let max_error = s.max_abs_error(a);
-                let flux_ratio = model
-                    .sample_like(d)
-                    .ok()
-                    .map(|m| crate::photometry::flux(&m).total_lm)
-                    .filter(|_| data_flux > 0.0)
-                    .map(|f| f / data_flux);
-                Trial {
-                    combination: c,
-                    lights: c.lights(),
-                    model: Some(model),
-                    error: Some(error),
-                    max_error: Some(max_error),
-                    flux_ratio,
-                    evaluations: o.evals,
-                    skipped: None,
-                }
-            }
-        })
-        .collect();
-    let chosen = select(&trials, options.tolerance);
-    Ok(Fit {
-        chosen,
-        trials,
-        i_max_cd: s.i_max,
-        options: options.clone(),
-        axis_vertical: !free,
-        directions: s.len(),
-    })
+    let a = |dir: glam::DVec3| k * model.intensity_dir(dir);
+    let error = s.error_sq(a).sqrt();
+    let max_error = s.max_abs_error(a);
+    let flux_ratio = model
+        .sample_like(d)
+        .ok()
+        .map(|m| crate::photometry::flux(&m).total_lm)
+        .filter(|_| data_flux > 0.0)
+        .map(|f| f / data_flux);
+    Trial {
+        combination: c,
+        lights: c.lights(),
+        model: Some(model),
+        error: Some(error),
+        max_error: Some(max_error),
+        flux_ratio,
+        evaluations: o.evals,
+        skipped: None,
+    }
 }
 
 /// Fewest lights within `tolerance` of the best error, then the smallest

@@ -130,48 +130,15 @@ impl Samples {
             d
         };
         let rotational = d.symmetry() == Symmetry::Rotational;
-        let planes = d.full_planes();
-        let widths = periodic_widths(&planes.iter().map(|p| p.0).collect::<Vec<_>>());
-        let g = d.gamma_angles_deg();
-        let ng = g.len();
-        // γ band of each sample: half-way to its neighbours, inside the measured range.
-        let band: Vec<f64> = (0..ng)
-            .map(|j| {
-                let lo = if j == 0 { g[0] } else { 0.5 * (g[j - 1] + g[j]) };
-                let hi = if j + 1 == ng {
-                    g[ng - 1]
-                } else {
-                    0.5 * (g[j] + g[j + 1])
-                };
-                (lo.to_radians().cos() - hi.to_radians().cos()).max(0.0)
-            })
-            .collect();
-        let n = planes.len() * ng;
-        let mut dir = Vec::with_capacity(n);
-        let mut m = Vec::with_capacity(n);
-        let mut omega = Vec::with_capacity(n);
-        let mut measured = [false; 2];
-        let mut lit = [false; 2];
-        for (&(c, ic), w) in planes.iter().zip(&widths) {
-            let v = d.plane_cd(ic);
-            for j in 0..ng {
-                dir.push(direction(c, g[j]));
-                let mk = v[j].max(0.0) / i_max;
-                m.push(mk);
-                omega.push(w.to_radians() * band[j]);
-                let h = if g[j] < 90.0 {
-                    Some(0)
-                } else if g[j] > 90.0 {
-                    Some(1)
-                } else {
-                    None
-                };
-                if let Some(h) = h {
-                    measured[h] = true;
-                    lit[h] |= mk > 0.0;
-                }
-            }
-        }
+        let Directions {
+            dir,
+            m,
+            mut omega,
+            measured,
+            lit,
+            shape,
+        } = Directions::of(d, i_max);
+        let n = dir.len();
         let total: f64 = omega.iter().sum();
         if total > 0.0 {
             omega.iter_mut().for_each(|o| *o /= total);
@@ -179,17 +146,7 @@ impl Samples {
             // A single γ angle spans no solid angle: fall back to equal shares.
             omega.iter_mut().for_each(|o| *o = 1.0 / n as f64);
         }
-        let rho: Vec<f64> = m
-            .iter()
-            .zip(&omega)
-            .map(|(&mk, &o)| {
-                let w = match metric {
-                    ErrorMetric::Relative => 1.0 / n as f64,
-                    ErrorMetric::SolidAngle => o,
-                };
-                w / ((mk + guard) * (mk + guard))
-            })
-            .collect();
+        let rho = weights(&m, &omega, metric, guard);
         let mm = rho.iter().zip(&m).map(|(r, x)| r * x * x).sum();
         let rho_sum = rho.iter().sum();
         let rho_m = rho.iter().zip(&m).map(|(r, x)| r * x).sum();
@@ -205,7 +162,7 @@ impl Samples {
             rotational,
             measured,
             lit,
-            shape: (planes.len(), ng),
+            shape,
         })
     }
 
@@ -276,6 +233,103 @@ impl Samples {
             .map(|(&d, &m)| (a(d) - m).abs())
             .fold(0.0, f64::max)
     }
+}
+
+/// The measured directions of a distribution and their magnitudes, before the
+/// error's weights: what [`Samples::new`] weights.
+struct Directions {
+    /// Unit directions (luminaire frame), plane-major over the full circle of planes.
+    dir: Vec<DVec3>,
+    /// Magnitudes m = max(I, 0) / I_max.
+    m: Vec<f64>,
+    /// Solid angle of each direction's cell, sr (the plane's width times its γ band).
+    omega: Vec<f64>,
+    /// Whether any direction lies strictly below / above the horizontal.
+    measured: [bool; 2],
+    /// Whether any direction strictly below / above the horizontal is lit (m > 0).
+    lit: [bool; 2],
+    /// Number of full-circle planes and of γ angles.
+    shape: (usize, usize),
+}
+
+impl Directions {
+    /// Every measured direction of `d` (its planes expanded to the full circle), with
+    /// magnitudes relative to `i_max` (cd) and cells half-way to the neighbours.
+    fn of(d: &Distribution, i_max: f64) -> Self {
+        let planes = d.full_planes();
+        let widths = periodic_widths(&planes.iter().map(|p| p.0).collect::<Vec<_>>());
+        let g = d.gamma_angles_deg();
+        let ng = g.len();
+        let band = gamma_bands(g);
+        let n = planes.len() * ng;
+        let mut dir = Vec::with_capacity(n);
+        let mut m = Vec::with_capacity(n);
+        let mut omega = Vec::with_capacity(n);
+        let mut measured = [false; 2];
+        let mut lit = [false; 2];
+        for (&(c, ic), w) in planes.iter().zip(&widths) {
+            let v = d.plane_cd(ic);
+            for j in 0..ng {
+                dir.push(direction(c, g[j]));
+                let mk = v[j].max(0.0) / i_max;
+                m.push(mk);
+                omega.push(w.to_radians() * band[j]);
+                let h = if g[j] < 90.0 {
+                    Some(0)
+                } else if g[j] > 90.0 {
+                    Some(1)
+                } else {
+                    None
+                };
+                if let Some(h) = h {
+                    measured[h] = true;
+                    lit[h] |= mk > 0.0;
+                }
+            }
+        }
+        Self {
+            dir,
+            m,
+            omega,
+            measured,
+            lit,
+            shape: (planes.len(), ng),
+        }
+    }
+}
+
+/// The γ band of each angle of `g` (degrees, ascending) as cos(lower edge) −
+/// cos(upper edge), the solid angle of its cell per radian of plane width (sr/rad);
+/// each band reaches half-way to its neighbours, inside the measured range.
+fn gamma_bands(g: &[f64]) -> Vec<f64> {
+    let ng = g.len();
+    (0..ng)
+        .map(|j| {
+            let lo = if j == 0 { g[0] } else { 0.5 * (g[j - 1] + g[j]) };
+            let hi = if j + 1 == ng {
+                g[ng - 1]
+            } else {
+                0.5 * (g[j] + g[j + 1])
+            };
+            (lo.to_radians().cos() - hi.to_radians().cos()).max(0.0)
+        })
+        .collect()
+}
+
+/// ρ = w / (m + C)² of each direction with magnitude `m` and solid-angle share
+/// `omega` (summing to 1), for `metric` (w = 1/N, or the share) and guard `guard` = C.
+fn weights(m: &[f64], omega: &[f64], metric: ErrorMetric, guard: f64) -> Vec<f64> {
+    let n = m.len();
+    m.iter()
+        .zip(omega)
+        .map(|(&mk, &o)| {
+            let w = match metric {
+                ErrorMetric::Relative => 1.0 / n as f64,
+                ErrorMetric::SolidAngle => o,
+            };
+            w / ((mk + guard) * (mk + guard))
+        })
+        .collect()
 }
 
 /// The other light of a two-light combination, held fixed while one spot's
@@ -401,6 +455,15 @@ impl<'a> Profiler<'a> {
     /// The best cut-off and weights for a spot with unit `axis` and exponent `p`.
     pub fn profile(&mut self, axis: DVec3, p: f64) -> Profile {
         self.evals += 1;
+        self.bin_directions(axis, p);
+        let boundary = self.best_bin_boundary();
+        self.best_split_near(boundary).into_profile()
+    }
+
+    /// Fills the bins (`bin_s2`, `bin_sm`, `bin_sb`, `bin_n`) and the candidates
+    /// (`cand`) with the directions in front of a unit-weight spot with unit `axis`
+    /// and exponent `p`, each binned by q = sin(θ/2) of its angle θ to the axis.
+    fn bin_directions(&mut self, axis: DVec3, p: f64) {
         let s = self.s;
         self.bin_s2.iter_mut().for_each(|x| *x = 0.0);
         self.bin_sm.iter_mut().for_each(|x| *x = 0.0);
@@ -437,7 +500,11 @@ impl<'a> Profiler<'a> {
             self.bin_n[bin] += 1;
             self.cand.push((bin as u32, q, a2, am, ab));
         }
-        // Coarse: every bin boundary j (bins < j lit).
+    }
+
+    /// The coarse cut-off: the bin boundary j (the bins below j lit, the rest dark)
+    /// of the smallest error, 0 when no lit bin beats the spot off.
+    fn best_bin_boundary(&self) -> usize {
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
         let mut best_j = 0;
         let mut best_e = self.solve(0.0, 0.0, 0.0).0;
@@ -454,7 +521,12 @@ impl<'a> Profiler<'a> {
                 best_j = j + 1;
             }
         }
-        // Exact: every split among the directions of the bins around the boundary.
+        best_j
+    }
+
+    /// The exact cut-off: the best split among the directions of the bins around
+    /// bin boundary `best_j` (the coarse one), every direction below them lit.
+    fn best_split_near(&mut self, best_j: usize) -> Split {
         let lo = best_j.saturating_sub(2);
         let hi = (best_j + 1).min(N_BINS - 1);
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
@@ -477,9 +549,15 @@ impl<'a> Profiler<'a> {
             }
         }
         self.window.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        let (e0, ws0, wo0) = self.solve(s2, sm, sb);
-        let first_out = self.window.first().map_or(q_after, |w| w.0);
-        let mut best = (e0, ws0, wo0, q_in, first_out);
+        let (e, w_spot, w_other) = self.solve(s2, sm, sb);
+        let q_dark = self.window.first().map_or(q_after, |w| w.0);
+        let mut best = Split {
+            e,
+            w_spot,
+            w_other,
+            q_lit: q_in,
+            q_dark,
+        };
         let mut i = 0;
         while i < self.window.len() {
             // Directions at the same angle are lit or dark together.
@@ -490,26 +568,54 @@ impl<'a> Profiler<'a> {
                 sb += self.window[i].3;
                 i += 1;
             }
-            let (e, ws, wo) = self.solve(s2, sm, sb);
-            if e < best.0 {
-                let next = self.window.get(i).map_or(q_after, |w| w.0);
-                best = (e, ws, wo, q, next);
+            let (e, w_spot, w_other) = self.solve(s2, sm, sb);
+            if e < best.e {
+                let q_dark = self.window.get(i).map_or(q_after, |w| w.0);
+                best = Split {
+                    e,
+                    w_spot,
+                    w_other,
+                    q_lit: q,
+                    q_dark,
+                };
             }
         }
-        let (e, ws, wo, qin, qout) = best;
-        let cutoff_deg = if ws == 0.0 || !qin.is_finite() {
+        best
+    }
+}
+
+/// A split of the directions in front of a spot into lit and dark, with the
+/// weights that fit it best.
+struct Split {
+    /// err² with these weights (may round below 0).
+    e: f64,
+    /// Spot weight, relative to I_max.
+    w_spot: f64,
+    /// Other light's weight, relative to I_max.
+    w_other: f64,
+    /// q = sin(θ/2) of the last lit direction (−∞: none).
+    q_lit: f64,
+    /// q of the first dark direction (+∞: none).
+    q_dark: f64,
+}
+
+impl Split {
+    /// The profile of this split: the cut-off (degrees in [0, 90]) half-way between
+    /// the last lit and the first dark direction, the data cannot place it better.
+    fn into_profile(self) -> Profile {
+        let cutoff_deg = if self.w_spot == 0.0 || !self.q_lit.is_finite() {
             // Nothing lit: the spot is off; any cut-off will do.
             0.0
-        } else if !qout.is_finite() {
+        } else if !self.q_dark.is_finite() {
             90.0
         } else {
-            (0.5 * (theta_deg(qin) + theta_deg(qout))).clamp(0.0, 90.0)
+            (0.5 * (theta_deg(self.q_lit) + theta_deg(self.q_dark))).clamp(0.0, 90.0)
         };
         Profile {
-            e: e.max(0.0),
+            e: self.e.max(0.0),
             cutoff_deg,
-            w_spot: ws,
-            w_other: wo,
+            w_spot: self.w_spot,
+            w_other: self.w_other,
         }
     }
 }

@@ -133,26 +133,15 @@ pub(crate) fn nelder_mead<F: FnMut(&[f64]) -> f64>(
     }
     let mut vals: Vec<f64> = pts.iter().map(|p| f(p)).collect();
     let mut evals = n + 1;
-    let combine =
-        |a: &[f64], b: &[f64], t: f64| -> Vec<f64> { a.iter().zip(b).map(|(x, y)| x + t * (y - x)).collect() };
     while evals < max_evals {
         let mut order: Vec<usize> = (0..=n).collect();
         order.sort_by(|&a, &b| vals[a].total_cmp(&vals[b]));
         pts = order.iter().map(|&i| pts[i].clone()).collect();
         vals = order.iter().map(|&i| vals[i]).collect();
-        let extent = pts[1..]
-            .iter()
-            .map(|p| p.iter().zip(&pts[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
-            .fold(0.0, f64::max);
-        if vals[n] - vals[0] <= ftol || extent <= xtol {
+        if vals[n] - vals[0] <= ftol || extent(&pts) <= xtol {
             break;
         }
-        let mut centroid = vec![0.0; n];
-        for p in &pts[..n] {
-            for (c, v) in centroid.iter_mut().zip(p) {
-                *c += v / n as f64;
-            }
-        }
+        let centroid = centroid(&pts[..n]);
         let xr = combine(&centroid, &pts[n], -1.0);
         let fr = f(&xr);
         evals += 1;
@@ -196,6 +185,34 @@ pub(crate) fn nelder_mead<F: FnMut(&[f64]) -> f64>(
     }
     let b = (1..=n).fold(0, |b, a| if vals[a].total_cmp(&vals[b]).is_lt() { a } else { b });
     (pts[b].clone(), vals[b], evals)
+}
+
+/// The point a + t (b − a), coordinate by coordinate (t = −1: `b` reflected
+/// through `a`; 0.5: half-way).
+fn combine(a: &[f64], b: &[f64], t: f64) -> Vec<f64> {
+    a.iter().zip(b).map(|(x, y)| x + t * (y - x)).collect()
+}
+
+/// The extent of a simplex sorted best first: the largest coordinate difference
+/// (in the units of the coordinates) between the best point and any other.
+fn extent(pts: &[Vec<f64>]) -> f64 {
+    pts[1..]
+        .iter()
+        .map(|p| p.iter().zip(&pts[0]).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max)
+}
+
+/// The centroid of the points `pts`: the simplex without its worst point, so n
+/// points in n dimensions.
+fn centroid(pts: &[Vec<f64>]) -> Vec<f64> {
+    let n = pts.len();
+    let mut centroid = vec![0.0; n];
+    for p in pts {
+        for (c, v) in centroid.iter_mut().zip(p) {
+            *c += v / n as f64;
+        }
+    }
+    centroid
 }
 
 /// Number of exponents on the coarse grid.

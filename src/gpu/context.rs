@@ -114,77 +114,53 @@ fn rank(info: &wgpu::AdapterInfo) -> (u8, u8) {
     (t, b)
 }
 
-impl GpuContext {
-    /// The process-wide context, created on first use (honouring
-    /// `WGPU_BACKEND`). A failure is cached too, so a machine without an
-    /// adapter pays the probe once.
-    pub fn global() -> Result<&'static GpuContext, GpuError> {
-        GLOBAL.get_or_init(GpuContext::new).as_ref().map_err(Clone::clone)
-    }
+/// A wgpu instance for `backends` (the rest of its descriptor from the environment).
+fn instance_for(backends: wgpu::Backends) -> wgpu::Instance {
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    desc.backends = backends;
+    wgpu::Instance::new(desc)
+}
 
-    /// Whether [`GpuContext::global`] has already been initialised successfully.
-    pub fn global_is_ready() -> bool {
-        matches!(GLOBAL.get(), Some(Ok(_)))
-    }
-
-    /// A fresh context (instance, adapter, device, pipeline): what the
-    /// set-up benchmark measures. Prefer [`GpuContext::global`].
-    pub fn new() -> Result<GpuContext, GpuError> {
-        let t0 = Instant::now();
-        let backends = requested_backends() & COMPILED_BACKENDS;
-        let tried = match std::env::var("WGPU_BACKEND") {
-            Ok(v) => format!("{} (WGPU_BACKEND={v})", backend_names(backends)),
-            Err(_) => backend_names(backends),
-        };
-        let no_adapter = |detail: String| GpuError::NoAdapter {
-            tried: tried.clone(),
-            detail,
-        };
-        if backends.is_empty() {
-            return Err(no_adapter("no compiled-in backend selected".into()));
+/// The adapter [`GpuContext::new`] uses: the first by [`rank`] among all those
+/// `instance` enumerates for `backends`, a deterministic choice; else wgpu's own
+/// request (without, then with, `force_fallback_adapter`) as a second chance.
+/// Errors: the last request's error text when there is none.
+fn choose_adapter(instance: &wgpu::Instance, backends: wgpu::Backends) -> Result<wgpu::Adapter, String> {
+    let mut adapters = pollster::block_on(instance.enumerate_adapters(backends));
+    adapters.sort_by_key(|a| rank(&a.get_info()));
+    let mut adapter = adapters.into_iter().next();
+    let mut last_err = String::from("no adapters enumerated");
+    for fallback in [false, true] {
+        if adapter.is_some() {
+            break;
         }
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-        desc.backends = backends;
-        let instance = wgpu::Instance::new(desc);
-
-        // Deterministic choice among all adapters; then wgpu's own request
-        // (without, then with, `force_fallback_adapter`) as a second chance.
-        let mut adapters = pollster::block_on(instance.enumerate_adapters(backends));
-        adapters.sort_by_key(|a| rank(&a.get_info()));
-        let mut adapter = adapters.into_iter().next();
-        let mut last_err = String::from("no adapters enumerated");
-        for fallback in [false, true] {
-            if adapter.is_some() {
-                break;
-            }
-            let opts = wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: fallback,
-                compatible_surface: None,
-                apply_limit_buckets: false,
-            };
-            match pollster::block_on(instance.request_adapter(&opts)) {
-                Ok(a) => adapter = Some(a),
-                Err(e) => last_err = e.to_string(),
-            }
+        let opts = wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: fallback,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        };
+        match pollster::block_on(instance.request_adapter(&opts)) {
+            Ok(a) => adapter = Some(a),
+            Err(e) => last_err = e.to_string(),
         }
-        let adapter = adapter.ok_or_else(|| no_adapter(last_err))?;
-        let info = adapter.get_info();
-        let summary = AdapterSummary::from_info(&info);
+    }
+    adapter.ok_or(last_err)
+}
 
-        let limits = adapter.limits();
-        // R32Float textures are filterable only with this feature (else the
-        // real-time path stores R16Float, see `realtime`).
-        let features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
-        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("photosolid"),
-            required_features: features,
-            required_limits: limits.clone(),
-            memory_hints: wgpu::MemoryHints::Performance,
-            ..Default::default()
-        }))
-        .map_err(|e| GpuError::Device(format!("{summary}: {e}")))?;
+/// The render kernels' bind group layout and compute pipelines.
+struct RenderPipelines {
+    /// Input words (read-only), output values, clamped counts: bindings 0, 1, 2.
+    layout: wgpu::BindGroupLayout,
+    /// The fused kernel (`kernel.wgsl`).
+    fused: wgpu::ComputePipeline,
+    /// The two passes of `separable.wgsl`: γ, then C.
+    two_pass: [wgpu::ComputePipeline; 2],
+}
 
+impl RenderPipelines {
+    /// Compiles both render shaders (each with `taps.wgsl` prepended) on `device`.
+    fn new(device: &wgpu::Device) -> Self {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("photosolid render"),
             source: wgpu::ShaderSource::Wgsl(concat!(include_str!("taps.wgsl"), include_str!("kernel.wgsl")).into()),
@@ -218,12 +194,71 @@ impl GpuContext {
                 cache: None,
             })
         };
-        let pipeline = compute(&module, "main");
+        let fused = compute(&module, "main");
         let separable = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("photosolid render, two passes"),
             source: wgpu::ShaderSource::Wgsl(concat!(include_str!("taps.wgsl"), include_str!("separable.wgsl")).into()),
         });
         let two_pass = [compute(&separable, "gamma_main"), compute(&separable, "c_main")];
+        Self {
+            layout,
+            fused,
+            two_pass,
+        }
+    }
+}
+
+impl GpuContext {
+    /// The process-wide context, created on first use (honouring
+    /// `WGPU_BACKEND`). A failure is cached too, so a machine without an
+    /// adapter pays the probe once.
+    pub fn global() -> Result<&'static GpuContext, GpuError> {
+        GLOBAL.get_or_init(GpuContext::new).as_ref().map_err(Clone::clone)
+    }
+
+    /// Whether [`GpuContext::global`] has already been initialised successfully.
+    pub fn global_is_ready() -> bool {
+        matches!(GLOBAL.get(), Some(Ok(_)))
+    }
+
+    /// A fresh context (instance, adapter, device, pipeline): what the
+    /// set-up benchmark measures. Prefer [`GpuContext::global`].
+    pub fn new() -> Result<GpuContext, GpuError> {
+        let t0 = Instant::now();
+        let backends = requested_backends() & COMPILED_BACKENDS;
+        let tried = match std::env::var("WGPU_BACKEND") {
+            Ok(v) => format!("{} (WGPU_BACKEND={v})", backend_names(backends)),
+            Err(_) => backend_names(backends),
+        };
+        let no_adapter = |detail: String| GpuError::NoAdapter {
+            tried: tried.clone(),
+            detail,
+        };
+        if backends.is_empty() {
+            return Err(no_adapter("no compiled-in backend selected".into()));
+        }
+        let instance = instance_for(backends);
+        let adapter = choose_adapter(&instance, backends).map_err(no_adapter)?;
+        let info = adapter.get_info();
+        let summary = AdapterSummary::from_info(&info);
+
+        let limits = adapter.limits();
+        // R32Float textures are filterable only with this feature (else the
+        // real-time path stores R16Float, see `realtime`).
+        let features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("photosolid"),
+            required_features: features,
+            required_limits: limits.clone(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device(format!("{summary}: {e}")))?;
+        let RenderPipelines {
+            layout,
+            fused: pipeline,
+            two_pass,
+        } = RenderPipelines::new(&device);
         Ok(GpuContext {
             device,
             queue,
@@ -279,9 +314,7 @@ impl GpuContext {
 /// Adapters visible to this process (for diagnostics), without creating a device.
 pub fn list_adapters() -> Vec<AdapterSummary> {
     let backends = requested_backends() & COMPILED_BACKENDS;
-    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-    desc.backends = backends;
-    let instance = wgpu::Instance::new(desc);
+    let instance = instance_for(backends);
     let adapters = pollster::block_on(instance.enumerate_adapters(backends));
     adapters
         .iter()

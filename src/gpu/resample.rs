@@ -364,6 +364,97 @@ fn pack_chunk(jobs: &[RenderJob<'_>], dispatch_x: u32, kernel: RenderKernel) -> 
     (w, out_offsets, out_off, tmp_off - out_total)
 }
 
+/// `jobs` cut greedily into chunks of consecutive jobs, each chunk as many as
+/// fit one storage binding of `max_bytes` (input words; output values plus,
+/// for the two-pass kernel, the γ scratch) and `max_dim`² workgroups.
+///
+/// Errors: [`GpuError::TooLarge`] naming the first job that fits no chunk alone.
+fn chunk_ranges(
+    jobs: &[RenderJob<'_>],
+    max_bytes: u64,
+    max_dim: usize,
+    kernel: RenderKernel,
+) -> Result<Vec<std::ops::Range<usize>>, GpuError> {
+    let two_pass = kernel == RenderKernel::TwoPass;
+    let max_words = (max_bytes / 4) as usize;
+    let mut ranges = Vec::new();
+    let mut start = 0;
+    while start < jobs.len() {
+        let (mut in_w, mut out_w, mut n_tiles) = (HEADER, 0usize, 0usize);
+        let mut end = start;
+        while end < jobs.len() {
+            let j = &jobs[end];
+            // The two-pass kernel's γ scratch shares the output binding.
+            let scratch = if two_pass { gamma_entries(j) } else { 0 };
+            let (iw, ow, tl) = (DESC + job_words(j), j.height() * j.width() + scratch, tiles(j));
+            let fits = in_w + iw <= max_words
+                && out_w + ow <= max_words
+                && n_tiles + tl <= max_dim.saturating_mul(max_dim)
+                && in_w + iw <= u32::MAX as usize;
+            if !fits {
+                break;
+            }
+            in_w += iw;
+            out_w += ow;
+            n_tiles += tl;
+            end += 1;
+        }
+        if end == start {
+            let j = &jobs[start];
+            return Err(GpuError::TooLarge {
+                index: start,
+                reason: format!(
+                    "{} input words / {} output values exceed the device's storage binding limit of {} bytes",
+                    DESC + job_words(j),
+                    j.height() * j.width(),
+                    max_bytes
+                ),
+            });
+        }
+        ranges.push(start..end);
+        start = end;
+    }
+    Ok(ranges)
+}
+
+/// One chunk of jobs packed for upload ([`pack_chunk`]) with its workgroup counts.
+struct PackedChunk {
+    /// Job indices in this chunk.
+    jobs: std::ops::Range<usize>,
+    /// The kernels' input words.
+    words: Vec<u32>,
+    /// Output f32 offset of each job within the chunk output.
+    out_offsets: Vec<usize>,
+    /// Output values of the chunk, and the γ-pass scratch after them (two-pass kernel).
+    out_len: usize,
+    tmp_len: usize,
+    /// Workgroups of the render (fused kernel, or the C pass).
+    dispatch: (u32, u32),
+    /// Workgroups of the γ pass (two-pass kernel).
+    dispatch_gamma: (u32, u32),
+}
+
+impl PackedChunk {
+    /// The jobs `r` of `jobs` packed for `kernel`, their tiles laid out at most
+    /// `max_dim` workgroups wide.
+    fn new(jobs: &[RenderJob<'_>], r: std::ops::Range<usize>, max_dim: usize, kernel: RenderKernel) -> Self {
+        let n_tiles: usize = jobs[r.clone()].iter().map(tiles).sum();
+        let dx = n_tiles.clamp(1, max_dim);
+        let dy = n_tiles.div_ceil(dx).max(1);
+        let (words, out_offsets, out_len, tmp_len) = pack_chunk(&jobs[r.clone()], dx as u32, kernel);
+        let dy_gamma = (words[3] as usize).div_ceil(dx).max(1);
+        Self {
+            jobs: r,
+            words,
+            out_offsets,
+            out_len,
+            tmp_len,
+            dispatch: (dx as u32, dy as u32),
+            dispatch_gamma: (dx as u32, dy_gamma as u32),
+        }
+    }
+}
+
 impl GpuContext {
     /// Render one job on the GPU.
     pub fn render_job(&self, job: &RenderJob<'_>) -> Result<Rendered, GpuError> {
@@ -442,6 +533,9 @@ impl GpuContext {
         self.upload_inner(jobs, &mut Timings::default(), self.max_binding_bytes(), kernel)
     }
 
+    /// Validate, pack and upload `jobs` in chunks of at most `max_bytes` per
+    /// binding for `kernel`, timing the packing and the upload into `t`; waits
+    /// until the upload is complete.
     fn upload_inner(
         &self,
         jobs: &[RenderJob<'_>],
@@ -449,131 +543,97 @@ impl GpuContext {
         max_bytes: u64,
         kernel: RenderKernel,
     ) -> Result<GpuBatch, GpuError> {
-        let two_pass = kernel == RenderKernel::TwoPass;
         let t0 = Instant::now();
         for (k, job) in jobs.iter().enumerate() {
             job.validate(k)?;
         }
-        let max_words = (max_bytes / 4) as usize;
         let max_dim = self.max_workgroups_per_dim().max(1) as usize;
-        // Greedy chunking: as many consecutive jobs as fit in one binding.
-        let mut ranges = Vec::new();
-        let mut start = 0;
-        while start < jobs.len() {
-            let (mut in_w, mut out_w, mut n_tiles) = (HEADER, 0usize, 0usize);
-            let mut end = start;
-            while end < jobs.len() {
-                let j = &jobs[end];
-                // The two-pass kernel's γ scratch shares the output binding.
-                let scratch = if two_pass { gamma_entries(j) } else { 0 };
-                let (iw, ow, tl) = (DESC + job_words(j), j.height() * j.width() + scratch, tiles(j));
-                let fits = in_w + iw <= max_words
-                    && out_w + ow <= max_words
-                    && n_tiles + tl <= max_dim.saturating_mul(max_dim)
-                    && in_w + iw <= u32::MAX as usize;
-                if !fits {
-                    break;
-                }
-                in_w += iw;
-                out_w += ow;
-                n_tiles += tl;
-                end += 1;
-            }
-            if end == start {
-                let j = &jobs[start];
-                return Err(GpuError::TooLarge {
-                    index: start,
-                    reason: format!(
-                        "{} input words / {} output values exceed the device's storage binding limit of {} bytes",
-                        DESC + job_words(j),
-                        j.height() * j.width(),
-                        max_bytes
-                    ),
-                });
-            }
-            ranges.push(start..end);
-            start = end;
-        }
-        let mut packed = Vec::with_capacity(ranges.len());
-        for r in ranges {
-            let n_tiles: usize = jobs[r.clone()].iter().map(tiles).sum();
-            let dx = n_tiles.clamp(1, max_dim);
-            let dy = n_tiles.div_ceil(dx).max(1);
-            let (words, out_offsets, out_len, tmp_len) = pack_chunk(&jobs[r.clone()], dx as u32, kernel);
-            let dy_gamma = (words[3] as usize).div_ceil(dx).max(1);
-            let dispatch = ((dx as u32, dy as u32), (dx as u32, dy_gamma as u32));
-            packed.push((r, words, out_offsets, out_len, tmp_len, dispatch));
-        }
+        let packed: Vec<PackedChunk> = chunk_ranges(jobs, max_bytes, max_dim, kernel)?
+            .into_iter()
+            .map(|r| PackedChunk::new(jobs, r, max_dim, kernel))
+            .collect();
         t.pack = t0.elapsed();
 
         let t0 = Instant::now();
-        let mut chunks = Vec::with_capacity(packed.len());
-        for (r, words, out_offsets, out_len, tmp_len, (dispatch, dispatch_gamma)) in packed {
-            let in_bytes = (words.len() * 4) as u64;
-            let out_bytes = ((out_len + tmp_len).max(1) * 4) as u64;
-            let staged_out_bytes = (out_len.max(1) * 4) as u64;
-            let count_bytes = (r.len() * 4) as u64;
-            let input = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("render input"),
-                size: in_bytes,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            self.queue.write_buffer(&input, 0, bytemuck::cast_slice(&words));
-            let output = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("render output"),
-                size: out_bytes,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let counts = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("render clamped counts"),
-                size: count_bytes,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("render staging"),
-                size: staged_out_bytes + count_bytes,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("render"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: input.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: output.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: counts.as_entire_binding(),
-                    },
-                ],
-            });
-            chunks.push(Chunk {
-                jobs: r,
-                out_offsets,
-                out_len,
-                dispatch,
-                dispatch_gamma,
-                _input: input,
-                output,
-                counts,
-                staging,
-                bind_group,
-            });
-        }
+        let chunks: Vec<Chunk> = packed.into_iter().map(|p| self.upload_chunk(p)).collect();
         self.queue.submit(std::iter::empty());
         self.wait()?;
         t.upload = t0.elapsed();
         let meta = jobs.iter().map(|j| j.rendered(Vec::new(), 0)).collect();
         Ok(GpuBatch { kernel, chunks, meta })
+    }
+
+    /// The buffers and bind group of one packed chunk, its words written to the
+    /// input buffer (queued: the caller submits and waits).
+    fn upload_chunk(&self, p: PackedChunk) -> Chunk {
+        let PackedChunk {
+            jobs: r,
+            words,
+            out_offsets,
+            out_len,
+            tmp_len,
+            dispatch,
+            dispatch_gamma,
+        } = p;
+        let in_bytes = (words.len() * 4) as u64;
+        let out_bytes = ((out_len + tmp_len).max(1) * 4) as u64;
+        let staged_out_bytes = (out_len.max(1) * 4) as u64;
+        let count_bytes = (r.len() * 4) as u64;
+        let input = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render input"),
+            size: in_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.queue.write_buffer(&input, 0, bytemuck::cast_slice(&words));
+        let output = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render output"),
+            size: out_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let counts = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render clamped counts"),
+            size: count_bytes,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("render staging"),
+            size: staged_out_bytes + count_bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("render"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: input.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: output.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: counts.as_entire_binding(),
+                },
+            ],
+        });
+        Chunk {
+            jobs: r,
+            out_offsets,
+            out_len,
+            dispatch,
+            dispatch_gamma,
+            _input: input,
+            output,
+            counts,
+            staging,
+            bind_group,
+        }
     }
 
     fn encode_dispatch(&self, batch: &GpuBatch, enc: &mut wgpu::CommandEncoder) {
