@@ -243,9 +243,11 @@ impl GpuContext {
         let summary = AdapterSummary::from_info(&info);
 
         let limits = adapter.limits();
-        // R32Float textures are filterable only with this feature (else the
-        // real-time path stores R16Float, see `realtime`).
-        let features = adapter.features() & wgpu::Features::FLOAT32_FILTERABLE;
+        // R32Float textures are filterable only with FLOAT32_FILTERABLE, and
+        // R16Unorm textures exist only with TEXTURE_FORMAT_16BIT_NORM (else the
+        // real-time path stores R16Float, see `realtime`): each where the adapter has it.
+        let features =
+            adapter.features() & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("photosolid"),
             required_features: features,
