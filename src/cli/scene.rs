@@ -3,7 +3,6 @@
 //! layers over `photosolid::scene` (JSON keys: `scene::illuminance::SceneResult`,
 //! `scene::plan::PlanResult`).
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -45,17 +44,7 @@ pub struct PlanArgs {
 
 pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
     let scene = Scene::load(&a.scene)?;
-    let work = (scene.points().len() * scene.luminaires.len()) as u64;
-    let bar = (std::io::stderr().is_terminal() && work > 20_000).then(|| indicatif::ProgressBar::new(work));
-    let tick = |n: u64| {
-        if let Some(b) = &bar {
-            b.inc(n)
-        }
-    };
-    let result = evaluate(&scene, Some(&tick))?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    let result = super::with_progress("points", |progress| evaluate(&scene, Some(progress)))?;
     if let Some(dir) = &a.report {
         // The maps and the page, as before: scene.json is not announced.
         for path in write_scene_report(dir, &scene, &result, &scene_text(&result))?
@@ -73,20 +62,10 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
 }
 
 pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
-    let bar = std::io::stderr()
-        .is_terminal()
-        .then(indicatif::ProgressBar::new_spinner);
-    let say = |m: &str| {
-        if let Some(b) = &bar {
-            b.set_message(m.to_string());
-            b.tick();
-        }
-    };
     if let Some(road) = Road::load_if_road(&a.scene)? {
-        let result = plan_road(&road, a.tolerance.fraction(), Some(&say));
-        if let Some(b) = &bar {
-            b.finish_and_clear();
-        }
+        let result = super::with_progress("candidates", |progress| {
+            plan_road(&road, a.tolerance.fraction(), Some(progress))
+        });
         return write_road_plan(&a, &result?);
     }
     let scene = Scene::load(&a.scene)?;
@@ -94,10 +73,7 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
         tolerance: a.tolerance.fraction(),
         ..PlanOptions::default()
     };
-    let result = plan(&scene, &options, Some(&say))?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    let result = super::with_progress("steps", |progress| plan(&scene, &options, Some(progress)))?;
     if let Some(dir) = &a.report {
         for path in write_plan_report(dir, &scene, &result, &plan_text(&result))?
             .iter()

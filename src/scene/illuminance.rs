@@ -14,6 +14,8 @@
 //! precision. Where a whole receiver is dark the floor is 0: equal values
 //! differ by 0, and light where the reference has none counts as 100 %.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use glam::DVec3;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -21,7 +23,7 @@ use serde::Serialize;
 use super::aim::Pose;
 use super::representation::{Models, REFERENCE};
 use super::{Occluder, Receiver, ReceiverShape, Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
-use crate::model::IntensityField;
+use crate::model::{IntensityField, Progress};
 
 /// Most patches an area source is refined to.
 pub const MAX_PATCHES: usize = 65_536;
@@ -73,20 +75,16 @@ impl Source<'_> {
         }
     }
 
-    /// Illuminance (lx) at every point, in parallel; `progress` is called with
-    /// the number of points done since its last call.
-    pub fn lux_all(
-        &self,
-        points: &[ScenePoint],
-        occluders: &[Occluder],
-        progress: Option<&(dyn Fn(u64) + Sync)>,
-    ) -> Vec<f64> {
+    /// Illuminance (lx) at every point, in parallel; `progress(done, points,
+    /// "illuminance")` is called after each point, from the worker threads.
+    pub fn lux_all(&self, points: &[ScenePoint], occluders: &[Occluder], progress: Option<&Progress<'_>>) -> Vec<f64> {
+        let done = AtomicUsize::new(0);
         points
             .par_iter()
             .map(|p| {
                 let e = self.lux(p, occluders);
                 if let Some(f) = progress {
-                    f(1);
+                    f(done.fetch_add(1, Ordering::Relaxed) + 1, points.len(), "illuminance");
                 }
                 e
             })
@@ -325,7 +323,7 @@ pub(crate) fn luminaire_lux(
     scene: &Scene,
     lum: &SceneLuminaire,
     points: &[ScenePoint],
-    progress: Option<&(dyn Fn(u64) + Sync)>,
+    progress: Option<&Progress<'_>>,
 ) -> Result<(Vec<f64>, Vec<f64>, LuminaireResult), SceneError> {
     let rep = lum.representation.unwrap_or(REFERENCE);
     let models = Models::new(lum, &[rep]).map_err(|e| SceneError::Model {
@@ -417,15 +415,22 @@ fn receiver_result(scene: &Scene, r: &Receiver, values: &[f64], far_field: &[f64
 }
 
 /// The illuminance at every receiver point of `scene` (see the module docs).
-/// `progress` is called with the number of points done per luminaire pass.
-pub fn evaluate(scene: &Scene, progress: Option<&(dyn Fn(u64) + Sync)>) -> Result<SceneResult, SceneError> {
+/// `progress(done, total, "illuminance")` counts points over all luminaire
+/// passes (total = points × luminaires).
+pub fn evaluate(scene: &Scene, progress: Option<&Progress<'_>>) -> Result<SceneResult, SceneError> {
     scene.check_points()?;
     let points = scene.points();
     let mut total = vec![0.0; points.len()];
     let mut total_point = vec![0.0; points.len()];
     let mut luminaires = Vec::new();
-    for lum in &scene.luminaires {
-        let (used, point_lux, report) = luminaire_lux(scene, lum, &points, progress)?;
+    let passes = scene.luminaires.len();
+    for (li, lum) in scene.luminaires.iter().enumerate() {
+        let pass = |done: usize, n: usize, what: &str| {
+            if let Some(f) = progress {
+                f(li * n + done, passes * n, what);
+            }
+        };
+        let (used, point_lux, report) = luminaire_lux(scene, lum, &points, Some(&pass))?;
         for (t, e) in total.iter_mut().zip(used) {
             *t += e;
         }

@@ -32,7 +32,7 @@ pub use super::representation::{Models, REFERENCE};
 use super::{Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::error::ModelError;
 use crate::metrics::{random_directions, time_per_sample_ns};
-use crate::model::{Distribution, IntensityField, Symmetry};
+use crate::model::{Distribution, IntensityField, Progress, Symmetry};
 use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
 pub use crate::registry::{OwnedSampler, Recon};
 
@@ -353,16 +353,16 @@ impl Reference {
     }
 }
 
-/// Every luminaire's reference (`say` gets a line each) and their total
-/// illuminance at every point, lx.
+/// Every luminaire's reference (`progress(luminaire, luminaires, what)`
+/// before each) and their total illuminance at every point, lx.
 fn references(
     scene: &Scene,
     points: &[ScenePoint],
-    say: &dyn Fn(&str),
+    progress: &Progress<'_>,
 ) -> Result<(Vec<Reference>, Vec<f64>), SceneError> {
     let mut references = Vec::new();
-    for lum in &scene.luminaires {
-        say(&format!("{}: reference", lum.name));
+    for (li, lum) in scene.luminaires.iter().enumerate() {
+        progress(li, scene.luminaires.len(), &format!("{}: reference", lum.name));
         references.push(Reference::measure(scene, lum, points)?);
     }
     let mut total_ref = vec![0.0; points.len()];
@@ -395,11 +395,17 @@ impl Bench<'_> {
     /// point source and, where the opening has a size, as the area source);
     /// those that cannot be built, with the reason. `say` gets a line per
     /// representation.
-    fn measure_all(&self, models: &Models, reps: Vec<Recon>, say: &dyn Fn(&str)) -> (Vec<Measured>, Vec<Unavailable>) {
+    fn measure_all(
+        &self,
+        models: &Models,
+        reps: Vec<Recon>,
+        progress: &Progress<'_>,
+    ) -> (Vec<Measured>, Vec<Unavailable>) {
         let mut measured = Vec::new();
         let mut unavailable = Vec::new();
-        for rep in reps {
-            say(&format!("{}: {rep}", self.lum.name));
+        let n = reps.len();
+        for (k, rep) in reps.into_iter().enumerate() {
+            progress(k, n, &format!("{}: {rep}", self.lum.name));
             let field = match models.field(&rep) {
                 Ok(f) => f,
                 Err(e) => {
@@ -521,14 +527,16 @@ impl Bench<'_> {
     }
 }
 
-/// Plan every luminaire of `scene` (see the module docs). `progress` gets a
-/// line per luminaire and candidate.
+/// Plan every luminaire of `scene` (see the module docs).
+/// `progress(done, total, what)` is called before each luminaire's reference
+/// (over the luminaires) and before each candidate (over its luminaire's
+/// candidates), `what` naming the luminaire and the candidate.
 ///
 /// # Errors
 /// [`ModelError::Parameter`] for a tolerance that is not a finite fraction
 /// ≥ 0; [`SceneError`] when a point lies in an opening or a luminaire's
 /// model cannot be built.
-pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)>) -> crate::Result<PlanResult> {
+pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&Progress<'_>>) -> crate::Result<PlanResult> {
     if !(options.tolerance.is_finite() && options.tolerance >= 0.0) {
         return Err(ModelError::Parameter {
             name: "tolerance",
@@ -539,9 +547,9 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&dyn Fn(&str)
     }
     scene.check_points()?;
     let points = scene.points();
-    let say = |m: &str| {
+    let say = |done: usize, total: usize, what: &str| {
         if let Some(f) = progress {
-            f(m)
+            f(done, total, what)
         }
     };
     let (references, total_ref) = references(scene, &points, &say)?;

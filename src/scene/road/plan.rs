@@ -19,7 +19,7 @@ use super::layout::Road;
 use super::quantities::{evaluate, Overall, RoadOptions, RoadResult};
 use super::RoadError;
 use crate::metrics::{random_directions, time_per_sample_ns};
-use crate::model::IntensityField;
+use crate::model::{IntensityField, Progress};
 use crate::scene::plan::{candidate_representations, Models, Recon, REFERENCE};
 
 /// Largest change of U_o or U_l a candidate may make (absolute).
@@ -140,12 +140,12 @@ fn measure(
 }
 
 /// Plan `road` with the relative `tolerance` (a fraction: 0.01 = 1 %) on
-/// L_av and E_av. `progress` gets a line per candidate.
+/// L_av and E_av. `progress(done, candidates, "road: CANDIDATE")` is called before each candidate.
 ///
 /// # Errors
 /// [`RoadError::Invalid`] for a tolerance that is not a finite fraction
 /// ≥ 0; any error of [`evaluate`] on the reference.
-pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -> Result<RoadPlan, RoadError> {
+pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&Progress<'_>>) -> Result<RoadPlan, RoadError> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(RoadError::Invalid {
             key: "tolerance",
@@ -172,9 +172,10 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&dyn Fn(&str)>) -
     let dirs = random_directions(4096, 0x20AD);
     let mut candidates = Vec::new();
     let mut unavailable = Vec::new();
-    for rep in reps {
+    let n = reps.len();
+    for (k, rep) in reps.into_iter().enumerate() {
         if let Some(say) = progress {
-            say(&format!("road: {rep}"));
+            say(k, n, &format!("road: {rep}"));
         }
         match models.field(&rep) {
             Ok(field) => candidates.push(measure(road, rep, &*field, &dirs, &reference, tolerance)?),
