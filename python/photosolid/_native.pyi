@@ -69,7 +69,8 @@ class Luminaire:
         tolerance: float = 1e-3,
         factor: int | None = None,
     ) -> dict[str, Any]:
-        """The comparison of ``photosolid compare FILE --json`` as a dict (adaptive solids unless ``factor`` names a fixed grid)."""
+        """The comparison of ``photosolid compare FILE --json`` as a dict (adaptive solids unless ``factor`` names a fixed grid);
+        its ``smallest_within_1pct`` names the reconstruction with the fewest bytes whose radial max error is within 1 % of I_max, or is None."""
     def fit(
         self, max_lights: int = 2, error: str = "relative", tolerance: float = 0.01, guard: float = 0.02
     ) -> dict[str, Any]:

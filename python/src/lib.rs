@@ -300,6 +300,8 @@ impl Luminaire {
     /// comparison as a dict. `recons`: names (default: the CLI's); `against`:
     /// `truth`, `withheld` or a reconstruction (default as the CLI: truth when
     /// the file records one, else withheld; with `vs`, catmull-rom of `vs`).
+    /// Its `smallest_within_1pct` names the reconstruction with the fewest
+    /// bytes whose radial max error is within 1 % of I_max (or None).
     #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = 1e-3, factor = None))]
     #[allow(clippy::too_many_arguments)]
     fn compare<'py>(

@@ -113,6 +113,21 @@ def test_fit_and_compare_equal_the_cli():
         for k in a:
             if "time" not in k and "pareto" not in k:
                 assert a[k] == b[k], k
+    assert ours["smallest_within_1pct"] == theirs["smallest_within_1pct"]
+
+
+def test_compare_names_the_smallest_within_1pct():
+    """`smallest_within_1pct` of `compare` follows its rule on the rows it returns:
+    the fewest bytes with radial max <= 1 % (ties: the smaller error), else None."""
+    lum = photosolid.load(DATA / "cosine_p5.ldt")
+    c = lum.compare(recons=["bilinear", "sh:2", "lobes:1", "fitted-gl"], directions="dense:2000", factor=1)
+    within = [r for r in c["results"] if r["radial_max_pct"] <= 1.0]
+    want = min(within, key=lambda r: (r["bytes"], r["radial_max_pct"]))["name"] if within else None
+    assert c["smallest_within_1pct"] == want
+    assert want is not None  # a cos^5 lobe is one lobe: lobes:1 (20 bytes) is exact
+    none = lum.compare(recons=["sh:2"], directions="dense:2000", factor=1)
+    assert none["results"][0]["radial_max_pct"] > 1.0
+    assert none["smallest_within_1pct"] is None
 
 
 def test_errors_carry_path_line_and_message(tmp_path: Path):

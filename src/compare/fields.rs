@@ -285,6 +285,7 @@ impl<'a> FieldComparison<'a> {
             reference_triangles: reference.solid.n_triangles(),
             zotti_c: opts.zotti_c,
             alignment: None,
+            smallest_within_1pct: super::smallest_within_1pct(&results),
             results,
             plots,
             photometry_side_by_side: None,

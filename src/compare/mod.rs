@@ -555,6 +555,11 @@ pub struct Comparison {
     pub alignment: Option<Alignment>,
     /// One per reconstruction.
     pub results: Vec<ReconResult>,
+    /// The reconstruction with the fewest bytes whose radial max error is
+    /// within 1 % of I_max against this comparison's reference (ties: the
+    /// smaller error), or null when none is: `tradeoff`'s key of the same
+    /// name, for any set of reconstructions ([`smallest_within_1pct`]).
+    pub smallest_within_1pct: Option<String>,
     /// Plot data (with `plots`), not in the JSON.
     #[serde(skip)]
     pub plots: Option<PlotData>,
@@ -563,6 +568,25 @@ pub struct Comparison {
     /// `photometry::derived::side_by_side`). Absent from the JSON when unset.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub photometry_side_by_side: Option<Vec<crate::photometry::derived::SideRow>>,
+}
+
+/// The name with the fewest bytes among `rows` (name, bytes, radial max
+/// error in % of I_max) whose error is at most `pct` (ties: the smaller
+/// error); None when none is. The one rule of `smallest_within_1pct`.
+pub fn smallest_named<'a>(rows: impl IntoIterator<Item = (&'a str, usize, f64)>, pct: f64) -> Option<String> {
+    rows.into_iter()
+        .filter(|r| r.2 <= pct)
+        .min_by(|a, b| a.1.cmp(&b.1).then(a.2.total_cmp(&b.2)))
+        .map(|r| r.0.to_string())
+}
+
+/// [`Comparison::smallest_within_1pct`] of `results`: within
+/// [`trade::WITHIN_PCT`] (1 %) of I_max.
+pub fn smallest_within_1pct(results: &[ReconResult]) -> Option<String> {
+    smallest_named(
+        results.iter().map(|r| (r.name.as_str(), r.bytes, r.radial_max_pct)),
+        trade::WITHIN_PCT,
+    )
 }
 
 impl Comparison {

@@ -288,14 +288,11 @@ pub fn mark_pareto_bytes(rows: &mut [TradeRow]) {
 /// The row with the fewest bytes whose radial max error is at most `pct`
 /// (% of I_max); ties go to the smaller error. `None` when no row is.
 pub fn smallest_within(rows: &[TradeRow], pct: f64) -> Option<String> {
-    rows.iter()
-        .filter(|r| r.radial_max_pct <= pct)
-        .min_by(|a, b| {
-            a.bytes
-                .cmp(&b.bytes)
-                .then(a.radial_max_pct.total_cmp(&b.radial_max_pct))
-        })
-        .map(|r| r.representation.clone())
+    super::smallest_named(
+        rows.iter()
+            .map(|r| (r.representation.as_str(), r.bytes, r.radial_max_pct)),
+        pct,
+    )
 }
 
 /// Fill the f32 columns of a stored-texture row: the same texels read with

@@ -174,6 +174,7 @@ pub(super) fn compare_withheld(
         reference_triangles: 0,
         zotti_c: opts.zotti_c,
         alignment: None,
+        smallest_within_1pct: super::smallest_within_1pct(&results),
         results,
         plots,
         photometry_side_by_side: None,

@@ -69,6 +69,10 @@ fn header(c: &Comparison) -> Vec<String> {
         "radial metrics over {} directions ({}), Zotti C = {} of I_max; radial max: {}",
         c.n_directions, c.directions, c.zotti_c, c.radial_max_method
     ));
+    l.push(format!(
+        "smallest within 1 % radial max: {}",
+        c.smallest_within_1pct.as_deref().unwrap_or("none")
+    ));
     if let Some(a) = &c.alignment {
         l.push(format!(
             "alignment: FILE rotated {} deg{} (step {} deg, {} candidates): RMS {:.3} % -> {:.3} % of I_max",

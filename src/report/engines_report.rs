@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::compare::{Comparison, Normalize};
+use crate::compare::{Comparison, Normalize, ReconResult};
 use crate::engines::EnginesReport;
 use crate::error::Error;
 use crate::report::compare_report::{self, esc, Figure};
@@ -15,6 +15,7 @@ use crate::report::plot::{self, ColorScale, HeatmapSpec};
 /// The engines table as a [`Comparison`] (one result per row), so the
 /// comparison report draws it.
 pub fn to_comparison(r: &EnginesReport) -> Comparison {
+    let results: Vec<ReconResult> = r.rows.iter().map(|row| row.metrics.clone()).collect();
     Comparison {
         file: r.file.clone(),
         vs: None,
@@ -37,7 +38,8 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         reference_triangles: 0,
         zotti_c: crate::metrics::ZOTTI_C,
         alignment: None,
-        results: r.rows.iter().map(|row| row.metrics.clone()).collect(),
+        smallest_within_1pct: crate::compare::smallest_within_1pct(&results),
+        results,
         plots: r.plots.clone(),
         photometry_side_by_side: None,
     }

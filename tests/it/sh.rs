@@ -627,3 +627,43 @@ fn quantised_textures_keep_half_a_step() {
         assert!(names.iter().any(|n| n == want), "{want} not in {names:?}");
     }
 }
+
+/// Every comparison names its smallest reconstruction within 1 % of I_max
+/// (issue 30 item 5: `compare --json` and the Python `compare` carry
+/// `tradeoff`'s key): the rule recomputed from its own rows, and null when
+/// no row is within.
+#[test]
+fn comparisons_name_the_smallest_within_1pct() {
+    let lum = Synth::CosinePower { p: 5.0 }
+        .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0)
+        .unwrap();
+    let opts = |recons: &[&str]| CompareOptions {
+        recons: recons.iter().map(|s| s.parse().unwrap()).collect(),
+        truth: Truth::of_luminaire(&lum),
+        directions: Directions::Dense(2000),
+        factor: 1,
+        solid_tolerance: None,
+        timing_samples: 50,
+        timing_repeats: 1,
+        ..Default::default()
+    };
+    let c = photosolid::compare::compare(lum.distribution(), None, &opts(&["bilinear", "sh:2", "lobes:1"])).unwrap();
+    let want = c
+        .results
+        .iter()
+        .filter(|r| r.radial_max_pct <= 1.0)
+        .min_by(|a, b| {
+            a.bytes
+                .cmp(&b.bytes)
+                .then(a.radial_max_pct.total_cmp(&b.radial_max_pct))
+        })
+        .map(|r| r.name.clone());
+    assert_eq!(c.smallest_within_1pct, want);
+    assert_eq!(c.smallest_within_1pct.as_deref(), Some("lobes:1"), "{:?}", c.results);
+    let json = serde_json::to_value(&c).unwrap();
+    assert_eq!(json["smallest_within_1pct"], "lobes:1");
+    let none = photosolid::compare::compare(lum.distribution(), None, &opts(&["sh:2"])).unwrap();
+    assert!(none.results[0].radial_max_pct > 1.0);
+    assert_eq!(none.smallest_within_1pct, None);
+    assert!(serde_json::to_value(&none).unwrap()["smallest_within_1pct"].is_null());
+}
