@@ -7,7 +7,7 @@
 //! Catmull–Rom textures rendered at factors k read back with nearest,
 //! bilinear and Catmull–Rom lookups; the k = 5 bilinear texture stored in
 //! f16, 16-bit and 8-bit normalised integers (`+u16`, `+u8`: steps of the
-//! largest texel) and/or only in the symmetry's C sector; the fitted OpenGL lights with
+//! largest texel), BC6H blocks (`+bc6h`, feature `bc6h`) and/or only in the symmetry's C sector; the fitted OpenGL lights with
 //! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
 //! Catmull–Rom reconstruction for L in [`SH_DEGREES`]
 //! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`);
@@ -61,6 +61,9 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
     // The same texture in half floats and in 16- and 8-bit normalised integers.
     for precision in [Precision::F16, Precision::U16, Precision::U8] {
         out.push(tex(5, Lookup::Bilinear, precision, false));
+    }
+    if crate::reconstruct::bc6h::available() {
+        out.push(tex(5, Lookup::Bilinear, Precision::Bc6h, false));
     }
     if symmetry != Symmetry::None {
         out.push(tex(5, Lookup::Bilinear, Precision::F32, true));

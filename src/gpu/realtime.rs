@@ -272,6 +272,9 @@ impl<'a> RealtimeTexture<'a> {
         let precision = match precision {
             Precision::F32 if !ctx.float32_filterable() => Precision::F16,
             Precision::U16 if !ctx.unorm16() => Precision::F16,
+            // Not yet on the GPU: a BC6H texture's sides must be whole blocks, the lookup's
+            // coordinates would need the padded size (docs/compact.md).
+            Precision::Bc6h => Precision::F16,
             p => p,
         };
         let exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
@@ -311,6 +314,12 @@ impl<'a> RealtimeTexture<'a> {
                     .map(|&x| unorm(x, scale, 65_535.0) as u16)
                     .collect();
                 (wgpu::TextureFormat::R16Unorm, bytemuck::cast_slice(&v).to_vec())
+            }
+            Precision::Bc6h => {
+                return Err(GpuError::InvalidJob {
+                    index: 0,
+                    reason: "BC6H textures are not uploaded (stored as f16)".into(),
+                })
             }
             Precision::U8 => {
                 let scale = exact.unorm_scale();

@@ -79,6 +79,13 @@ pub enum Precision {
     /// 8-bit unsigned normalised integers (`R8_UNORM`): 255 steps of the
     /// largest texel (a step is 0.39 % of it; values under half a step become 0).
     U8,
+    /// BC6H block compression (`BC6H_UF16`, feature `bc6h`): 16 bytes per
+    /// 4 × 4 texels (1 byte per texel; edges padded to whole blocks), each
+    /// block two half-float endpoints and 3- or 4-bit indices between them.
+    /// Encoded by Intel's ISPC compressor, read back by an independent
+    /// decoder (bcdec). As 1-D values ([`Precision::store`]) it rounds like
+    /// f16 (its endpoints' precision); textures go through the blocks.
+    Bc6h,
 }
 
 impl Precision {
@@ -87,14 +94,14 @@ impl Precision {
         match self {
             Precision::F32 => 4,
             Precision::F16 | Precision::U16 => 2,
-            Precision::U8 => 1,
+            Precision::U8 | Precision::Bc6h => 1,
         }
     }
 
     /// The steps of a normalised-integer format (65,535 or 255); None for floats.
     pub fn unorm_steps(self) -> Option<f32> {
         match self {
-            Precision::F32 | Precision::F16 => None,
+            Precision::F32 | Precision::F16 | Precision::Bc6h => None,
             Precision::U16 => Some(65_535.0),
             Precision::U8 => Some(255.0),
         }
@@ -107,6 +114,7 @@ impl Precision {
             Precision::F16 => "+f16",
             Precision::U16 => "+u16",
             Precision::U8 => "+u8",
+            Precision::Bc6h => "+bc6h",
         }
     }
 
@@ -121,7 +129,7 @@ impl Precision {
             None => v
                 .iter()
                 .map(|&x| match self {
-                    Precision::F16 => half::f16::from_f64(finite(x)).to_f64(),
+                    Precision::F16 | Precision::Bc6h => half::f16::from_f64(finite(x)).to_f64(),
                     _ => finite(x) as f32 as f64,
                 })
                 .collect(),
@@ -195,12 +203,21 @@ impl StoredTexture {
             _ => (0, w),
         };
         let reduced = reduced.filter(|&s| s != Symmetry::None && columns < w);
+        // Without the encoder the blocks cannot be made: f16, named so (never `+bc6h` unencoded).
+        let precision = match precision {
+            Precision::Bc6h if !super::bc6h::available() => Precision::F16,
+            p => p,
+        };
         let mut kept = Vec::with_capacity(h * columns);
         for i in 0..h {
             let row = &rendered.data[i * w..][..w];
             kept.extend(row[first_column..first_column + columns].iter().map(|&v| f64::from(v)));
         }
-        let data = precision.store(&kept).into_iter().map(|v| v as f32).collect();
+        let data = match precision {
+            #[cfg(feature = "bc6h")]
+            Precision::Bc6h => super::bc6h::round_trip(&kept, columns, h),
+            p => p.store(&kept).into_iter().map(|v| v as f32).collect(),
+        };
         Self {
             data,
             height: h,
@@ -220,7 +237,11 @@ impl StoredTexture {
     /// in u8); the scale of a normalised-integer texture is not counted (it
     /// takes the place of I_max, which a float texture needs as well).
     pub fn texel_bytes(&self) -> usize {
-        self.data.len() * self.precision.bytes()
+        match self.precision {
+            // Whole 4 x 4 blocks of 16 bytes.
+            Precision::Bc6h => self.columns.div_ceil(4) * self.height.div_ceil(4) * 16,
+            p => self.data.len() * p.bytes(),
+        }
     }
 
     /// What a normalised-integer texel of 1 stands for, I / I_max (the

@@ -22,6 +22,7 @@
 
 mod axis;
 pub mod backend;
+pub mod bc6h;
 pub mod exr_io;
 mod filter;
 pub mod holdout;

@@ -268,13 +268,22 @@ impl ShField {
     /// The series of degree `degree` of `field`, windowed and stored in `precision`.
     ///
     /// # Errors
-    /// [`ModelError::Parameter`] (`sh`) for a degree above [`MAX_SH_DEGREE`].
+    /// [`ModelError::Parameter`] (`sh`) for a degree above [`MAX_SH_DEGREE`], (`precision`) for [`Precision::Bc6h`].
     pub fn new(
         field: &dyn IntensityField,
         degree: usize,
         window: ShWindow,
         precision: Precision,
     ) -> Result<Self, ModelError> {
+        if precision == Precision::Bc6h {
+            return Err(ModelError::Parameter {
+                name: "precision",
+                value: "bc6h".into(),
+                reason:
+                    "BC6H is a texture block format: spherical-harmonic coefficients are stored as f32, f16, u16 or u8"
+                        .into(),
+            });
+        }
         let (c, scale_cd) = project(field, degree)?;
         Ok(Self::from_coefficients(&c, scale_cd, degree, window, precision))
     }

@@ -1,5 +1,5 @@
 //! A rendered texture as a renderer stores and reads it: [`TextureSpec`],
-//! written `FILTER@xK/LOOKUP[+f16|+u16|+u8][+reduced]`.
+//! written `FILTER@xK/LOOKUP[+f16|+u16|+u8|+bc6h][+reduced]`.
 
 use std::fmt;
 use std::str::FromStr;
@@ -9,7 +9,7 @@ use super::lookup::{Lookup, Precision};
 use crate::error::ModelError;
 
 /// A rendered texture as a renderer stores and reads it. Written
-/// `FILTER@xK/LOOKUP[+f16|+u16|+u8][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
+/// `FILTER@xK/LOOKUP[+f16|+u16|+u8|+bc6h][+reduced]`, e.g. `catmull-rom@x5/bilinear+f16`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TextureSpec {
     /// The filter the texture is rendered with.
@@ -47,7 +47,9 @@ impl FromStr for TextureSpec {
         let bad = |why: &str| ModelError::Parameter {
             name: "texture",
             value: s.to_string(),
-            reason: format!("{why}; expected FILTER@xK/LOOKUP[+f16|+u16|+u8][+reduced], e.g. catmull-rom@x5/bilinear"),
+            reason: format!(
+                "{why}; expected FILTER@xK/LOOKUP[+f16|+u16|+u8|+bc6h][+reduced], e.g. catmull-rom@x5/bilinear"
+            ),
         };
         let (filter, rest) = s.trim().split_once('@').ok_or_else(|| bad("no @"))?;
         let mut parts = rest.split('+');
@@ -72,6 +74,8 @@ impl FromStr for TextureSpec {
                 "f16" => spec.precision = Precision::F16,
                 "u16" => spec.precision = Precision::U16,
                 "u8" => spec.precision = Precision::U8,
+                "bc6h" if super::bc6h::available() => spec.precision = Precision::Bc6h,
+                "bc6h" => return Err(bad("+bc6h needs photosolid built with the `bc6h` feature")),
                 "reduced" => spec.reduced = true,
                 _ => return Err(bad("unknown option")),
             }
