@@ -18,7 +18,7 @@
 //! **Error**: each candidate replaces its luminaire's reference while the
 //! others stay; at every receiver point the total illuminance is compared
 //! with the all-reference total ([`super::illuminance::relative_errors`]).
-//! **Cost**: bytes held ([`IntensityField::bytes`](crate::model::IntensityField::bytes), plus 32 bytes per patch
+//! **Cost**: bytes held ([`IntensityField::bytes`], plus 32 bytes per patch
 //! of an area source), then time per illuminance evaluation
 //! ([`time_per_sample_ns`] on [`random_directions`], times the patch
 //! count). The chosen candidate is the first within the tolerance in that
