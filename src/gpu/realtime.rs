@@ -239,6 +239,50 @@ impl LookupBatch {
     }
 }
 
+/// The texture format and the bytes to upload for `exact`'s texels: f32,
+/// f16, or the normalised integers of the largest texel (already on their
+/// steps in `exact`).
+///
+/// # Errors
+/// [`GpuError::InvalidJob`] for BC6H, which is not uploaded (stored as f16).
+fn upload_texels(exact: &StoredTexture) -> Result<(wgpu::TextureFormat, Vec<u8>), GpuError> {
+    Ok(match exact.precision() {
+        Precision::F32 => (
+            wgpu::TextureFormat::R32Float,
+            bytemuck::cast_slice(exact.texels()).to_vec(),
+        ),
+        Precision::F16 => {
+            let v: Vec<u16> = exact
+                .texels()
+                .iter()
+                .map(|&x| half::f16::from_f32(x).to_bits())
+                .collect();
+            (wgpu::TextureFormat::R16Float, bytemuck::cast_slice(&v).to_vec())
+        }
+        // The stored texels are already on the format's steps of the largest texel.
+        Precision::U16 => {
+            let scale = exact.unorm_scale();
+            let v: Vec<u16> = exact
+                .texels()
+                .iter()
+                .map(|&x| unorm(x, scale, 65_535.0) as u16)
+                .collect();
+            (wgpu::TextureFormat::R16Unorm, bytemuck::cast_slice(&v).to_vec())
+        }
+        Precision::Bc6h => {
+            return Err(GpuError::InvalidJob {
+                index: 0,
+                reason: "BC6H textures are not uploaded (stored as f16)".into(),
+            })
+        }
+        Precision::U8 => {
+            let scale = exact.unorm_scale();
+            let v: Vec<u8> = exact.texels().iter().map(|&x| unorm(x, scale, 255.0) as u8).collect();
+            (wgpu::TextureFormat::R8Unorm, v)
+        }
+    })
+}
+
 /// The integer a normalised-integer texel `x` (I / I_max) stores: `x / scale`
 /// in `steps` (0 for an all-zero texture).
 fn unorm(x: f32, scale: f32, steps: f32) -> f32 {
@@ -292,41 +336,7 @@ impl<'a> RealtimeTexture<'a> {
                 reason: format!("a {cols} x {h} texture exceeds the device's {max} texels per side"),
             });
         }
-        let (format, bytes): (_, Vec<u8>) = match precision {
-            Precision::F32 => (
-                wgpu::TextureFormat::R32Float,
-                bytemuck::cast_slice(exact.texels()).to_vec(),
-            ),
-            Precision::F16 => {
-                let v: Vec<u16> = exact
-                    .texels()
-                    .iter()
-                    .map(|&x| half::f16::from_f32(x).to_bits())
-                    .collect();
-                (wgpu::TextureFormat::R16Float, bytemuck::cast_slice(&v).to_vec())
-            }
-            // The stored texels are already on the format's steps of the largest texel.
-            Precision::U16 => {
-                let scale = exact.unorm_scale();
-                let v: Vec<u16> = exact
-                    .texels()
-                    .iter()
-                    .map(|&x| unorm(x, scale, 65_535.0) as u16)
-                    .collect();
-                (wgpu::TextureFormat::R16Unorm, bytemuck::cast_slice(&v).to_vec())
-            }
-            Precision::Bc6h => {
-                return Err(GpuError::InvalidJob {
-                    index: 0,
-                    reason: "BC6H textures are not uploaded (stored as f16)".into(),
-                })
-            }
-            Precision::U8 => {
-                let scale = exact.unorm_scale();
-                let v: Vec<u8> = exact.texels().iter().map(|&x| unorm(x, scale, 255.0) as u8).collect();
-                (wgpu::TextureFormat::R8Unorm, v)
-            }
-        };
+        let (format, bytes) = upload_texels(&exact)?;
         let mirror = exact.reduced().is_some();
         let fold = exact.reduced().map_or(0, |s| s.isym() as u32);
         Pipelines::of(ctx)?;
