@@ -124,8 +124,11 @@ fn instance_for(backends: wgpu::Backends) -> wgpu::Instance {
 /// The adapter [`GpuContext::new`] uses: the first by [`rank`] among all those
 /// `instance` enumerates for `backends`, a deterministic choice; else wgpu's own
 /// request (without, then with, `force_fallback_adapter`) as a second chance.
-/// Errors: the last request's error text when there is none.
-fn choose_adapter(instance: &wgpu::Instance, backends: wgpu::Backends) -> Result<wgpu::Adapter, String> {
+///
+/// # Errors
+/// [`GpuError::NoAdapter`] naming `tried` (the backends) and the last
+/// request's error text when there is none.
+fn choose_adapter(instance: &wgpu::Instance, backends: wgpu::Backends, tried: &str) -> Result<wgpu::Adapter, GpuError> {
     let mut adapters = pollster::block_on(instance.enumerate_adapters(backends));
     adapters.sort_by_key(|a| rank(&a.get_info()));
     let mut adapter = adapters.into_iter().next();
@@ -145,7 +148,10 @@ fn choose_adapter(instance: &wgpu::Instance, backends: wgpu::Backends) -> Result
             Err(e) => last_err = e.to_string(),
         }
     }
-    adapter.ok_or(last_err)
+    adapter.ok_or_else(|| GpuError::NoAdapter {
+        tried: tried.to_string(),
+        detail: last_err,
+    })
 }
 
 /// The render kernels' bind group layout and compute pipelines.
@@ -230,15 +236,14 @@ impl GpuContext {
             Ok(v) => format!("{} (WGPU_BACKEND={v})", backend_names(backends)),
             Err(_) => backend_names(backends),
         };
-        let no_adapter = |detail: String| GpuError::NoAdapter {
-            tried: tried.clone(),
-            detail,
-        };
         if backends.is_empty() {
-            return Err(no_adapter("no compiled-in backend selected".into()));
+            return Err(GpuError::NoAdapter {
+                tried,
+                detail: "no compiled-in backend selected".into(),
+            });
         }
         let instance = instance_for(backends);
-        let adapter = choose_adapter(&instance, backends).map_err(no_adapter)?;
+        let adapter = choose_adapter(&instance, backends, &tried)?;
         let info = adapter.get_info();
         let summary = AdapterSummary::from_info(&info);
 
