@@ -173,6 +173,8 @@ pub struct StoredTexture {
     /// `Some` when only the symmetry's sector is stored.
     reduced: Option<Symmetry>,
     precision: Precision,
+    /// What a normalised-integer texel of 1 stands for (the largest texel; 1 for floats).
+    unorm_scale: f32,
     lookup: Lookup,
     i_max_cd: f64,
     /// What the texture was rendered with, for its name.
@@ -218,8 +220,13 @@ impl StoredTexture {
             Precision::Bc6h => super::bc6h::round_trip(&kept, columns, h),
             p => p.store(&kept).into_iter().map(|v| v as f32).collect(),
         };
+        let unorm_scale = match precision.unorm_steps() {
+            Some(_) => data.iter().copied().fold(0.0, f32::max),
+            None => 1.0,
+        };
         Self {
             data,
+            unorm_scale,
             height: h,
             full_width: w,
             first_column,
@@ -247,10 +254,7 @@ impl StoredTexture {
     /// What a normalised-integer texel of 1 stands for, I / I_max (the
     /// largest stored texel); 1 for float precisions.
     pub fn unorm_scale(&self) -> f32 {
-        match self.precision.unorm_steps() {
-            Some(_) => self.data.iter().copied().fold(0.0, f32::max),
-            None => 1.0,
-        }
+        self.unorm_scale
     }
 
     /// The stored texels (I / I_max, already rounded to the precision),

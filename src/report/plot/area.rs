@@ -5,6 +5,14 @@
 use super::axis::{nice_step, Axis};
 use super::canvas::{Align, Canvas};
 use super::{AXIS, GRID, INK};
+use crate::report::font;
+
+/// The plot area's left edge, px, in an image `width` px wide: room for the
+/// y label, then the widest of `y_ticks`' labels (at least 72 px, at most a third).
+pub(super) fn left_margin(y_ticks: &[(f64, String)], width: f32) -> f32 {
+    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
+    (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(width / 3.0)
+}
 
 /// Ratio of the largest to the smallest positive ordinate from which the y
 /// axis is drawn logarithmic.

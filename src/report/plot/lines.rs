@@ -3,9 +3,8 @@
 //! degree).
 
 use crate::error::Error;
-use crate::report::font;
 
-use super::area::{draw_grid, x_axis_over, y_axis_over, Area};
+use super::area::{draw_grid, left_margin, x_axis_over, y_axis_over, Area};
 use super::canvas::{finite2, legend, Align, Canvas};
 use super::{Plot, Series, SeriesStyle, AXIS, INK, SCATTER_SIZE};
 
@@ -77,8 +76,7 @@ pub fn line_chart_plot(spec: &LineSpec) -> Result<Plot, Error> {
     let x_axis = x_axis_over(&all().map(|p| p.0).collect::<Vec<_>>(), false);
     let y_axis = y_axis_over(&all().map(|p| p.1).collect::<Vec<_>>());
     let y_ticks = y_axis.ticks();
-    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
-    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
+    let left = left_margin(&y_ticks, wf);
     let right = wf - 30.0;
     // The legend sits between the title and the plot area, as many rows as it needs.
     let legend_h = legend(&mut cv, series, left, 44.0, right, true);

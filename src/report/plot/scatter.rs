@@ -3,7 +3,7 @@
 use crate::error::Error;
 use crate::report::font;
 
-use super::area::{draw_grid, x_axis_over, y_axis_over, Area};
+use super::area::{draw_grid, left_margin, x_axis_over, y_axis_over, Area};
 use super::canvas::{Align, Canvas};
 use super::{Plot, ScatterPoint, AXIS, INK, OTHER, PARETO, SCATTER_SIZE};
 
@@ -81,8 +81,7 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
     let y_axis = y_axis_over(&pts.iter().map(|p| p.y).collect::<Vec<_>>());
     // Left margin: the y label, then the widest tick label.
     let y_ticks = y_axis.ticks();
-    let tick_w = y_ticks.iter().map(|(_, l)| font::text_width(l, 2)).max().unwrap_or(0) as f32;
-    let left = (30.0 + 12.0 + tick_w + 12.0).max(72.0).min(wf / 3.0);
+    let left = left_margin(&y_ticks, wf);
     let area = Area {
         left,
         top,
