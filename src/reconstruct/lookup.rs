@@ -215,7 +215,7 @@ impl StoredTexture {
             let row = &rendered.data[i * w..][..w];
             kept.extend(row[first_column..first_column + columns].iter().map(|&v| f64::from(v)));
         }
-        let data = match precision {
+        let data: Vec<f32> = match precision {
             #[cfg(feature = "bc6h")]
             Precision::Bc6h => super::bc6h::round_trip(&kept, columns, h),
             p => p.store(&kept).into_iter().map(|v| v as f32).collect(),
