@@ -29,7 +29,11 @@
 //! direction as the caller sees it (upload, dispatch, read-back),
 //! `ns_per_sample_gpu` the dispatch alone, and they name the adapter, the
 //! texture format, the observed sub-texel weight precision and the largest
-//! difference from the exact lookup on the same texels.
+//! difference from the exact lookup on the same texels. `sh:16+gpu` and
+//! `lobes:4+gpu` are the largest series and mixture of the table evaluated
+//! by the GPU's compute shader in f32 (`gpu::compact`), measured the same
+//! way; their largest difference is from the CPU's f64 evaluation of the
+//! same stored parameters.
 
 use serde::Serialize;
 
@@ -70,8 +74,12 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
         out.push(tex(5, Lookup::Bilinear, Precision::F16, true));
     }
     out.push(Recon::FittedGl);
-    out.extend(SH_DEGREES.map(|degree| Recon::Sh { degree, f16: false }));
-    out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count }));
+    out.extend(SH_DEGREES.map(|degree| Recon::Sh {
+        degree,
+        f16: false,
+        gpu: false,
+    }));
+    out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count, gpu: false }));
     out
 }
 
@@ -111,14 +119,16 @@ pub struct TradeRow {
     pub ns_per_sample_gpu: Option<f64>,
     /// `+gpu` rows: the adapter, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) [Vulkan, Cpu, …]`.
     pub adapter: Option<String>,
-    /// `+gpu` rows: the texture format used (`R32Float`, or `R16Float` where
-    /// the adapter cannot filter 32-bit floats).
+    /// `+gpu` texture rows: the texture format used (`R32Float`, or `R16Float` where
+    /// the adapter cannot filter 32-bit floats); null for `sh:L+gpu` and `lobes:K+gpu`.
     pub texture_format: Option<String>,
-    /// `+gpu` rows: the adapter's observed sub-texel weight precision, bits
+    /// `+gpu` texture rows: the adapter's observed sub-texel weight precision, bits
     /// (`gpu::precision::subtexel_precision`, 65,537 probes: 16 means at least 16).
     pub subtexel_bits: Option<f64>,
     /// `+gpu` rows: largest |hardware − exact lookup on the same texels| over
-    /// the timing directions, % of I_max: the cost of hardware filtering alone.
+    /// the timing directions, % of I_max: the cost of hardware filtering alone;
+    /// for `sh:L+gpu` and `lobes:K+gpu`, |f32 shader − f64 CPU evaluation of
+    /// the same stored parameters|, % of the CPU evaluation's largest value.
     pub hardware_vs_exact_max_pct: Option<f64>,
     /// Hausdorff distance, % of the reference I_max (certified for a field
     /// reference: the true value is at most this plus `hausdorff_bound_pct`).
@@ -189,9 +199,11 @@ impl Default for TradeOptions {
 }
 
 /// The `+gpu` rows of [`TradeOptions::gpu`]: the k = 5 Catmull–Rom texture
-/// read with the hardware's bilinear filter and with Catmull–Rom from linear fetches.
+/// read with the hardware's bilinear filter and with Catmull–Rom from linear
+/// fetches, and the largest spherical-harmonic series and lobe mixture of the
+/// table evaluated by the compute shader (`sh:16+gpu`, `lobes:4+gpu`).
 pub fn gpu_representations() -> Vec<Recon> {
-    [Lookup::Bilinear, Lookup::CatmullRom]
+    let mut out: Vec<Recon> = [Lookup::Bilinear, Lookup::CatmullRom]
         .into_iter()
         .map(|lookup| {
             Recon::Gpu(TextureSpec {
@@ -202,7 +214,17 @@ pub fn gpu_representations() -> Vec<Recon> {
                 reduced: false,
             })
         })
-        .collect()
+        .collect();
+    out.push(Recon::Sh {
+        degree: SH_DEGREES[SH_DEGREES.len() - 1],
+        f16: false,
+        gpu: true,
+    });
+    out.push(Recon::Lobes {
+        count: LOBE_COUNTS[LOBE_COUNTS.len() - 1],
+        gpu: true,
+    });
+    out
 }
 
 /// Measure every representation of `file` against the reference (the
@@ -261,6 +283,12 @@ pub fn trade_table(
     for row in &mut rows {
         match row.recon {
             Some(Recon::Gpu(spec)) => gpu_columns(row, file, spec, &opts.compare)?,
+            Some(r @ (Recon::Sh { gpu: true, .. } | Recon::Lobes { gpu: true, .. })) => {
+                compact_gpu_columns(row, file, r, &opts.compare)?;
+                if matches!(r, Recon::Sh { .. }) {
+                    row.window = Some(ShWindow::Lanczos.name().into());
+                }
+            }
             Some(Recon::Texture(spec)) => f32_columns(row, file, spec, &opts.compare)?,
             Some(Recon::Sh { .. }) => row.window = Some(ShWindow::Lanczos.name().into()),
             _ => {}
@@ -350,6 +378,42 @@ fn gpu_columns(
     row.subtexel_bits = Some(h.precision.bits);
     row.hardware_vs_exact_max_pct = Some(100.0 * h.vs_exact_max);
     Ok(())
+}
+
+/// Fill the GPU columns of a `sh:L+gpu` or `lobes:K+gpu` row: the adapter,
+/// the dispatch time, and the largest difference from the CPU evaluation of
+/// the same stored parameters (`hardware_vs_exact_max_pct`).
+#[cfg(feature = "gpu")]
+fn compact_gpu_columns(
+    row: &mut TradeRow,
+    file: &Distribution,
+    r: Recon,
+    opts: &CompareOptions,
+) -> Result<(), ModelError> {
+    use crate::gpu::compact::{compact_row, GpuCompact};
+    use crate::gpu::GpuContext;
+    let fail = |source: crate::gpu::GpuError| ModelError::Gpu {
+        recon: row.representation.clone(),
+        source,
+    };
+    let ctx = GpuContext::global().map_err(fail)?;
+    let compact = crate::registry::Reconstructions::new(file.clone(), &[r])?.compact(r)?;
+    let gpu = GpuCompact::new(ctx, compact).map_err(fail)?;
+    let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
+    let h = compact_row(&gpu, &dirs, opts.timing_repeats).map_err(fail)?;
+    row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
+    row.adapter = Some(ctx.adapter().to_string());
+    row.hardware_vs_exact_max_pct = Some(100.0 * h.vs_exact_max);
+    Ok(())
+}
+
+/// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).
+#[cfg(not(feature = "gpu"))]
+fn compact_gpu_columns(row: &mut TradeRow, _: &Distribution, _: Recon, _: &CompareOptions) -> Result<(), ModelError> {
+    Err(ModelError::Gpu {
+        recon: row.representation.clone(),
+        source: crate::error::GpuError::NotBuilt,
+    })
 }
 
 /// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).

@@ -27,121 +27,29 @@
 //! directions); the final weights come from all of them.
 //!
 //! # Storage
-//! A lobe is 5 f32 (axis x, y, z, exponent, weight): 20 bytes; the
-//! parameters are rounded to f32 as a shader's uniforms hold them.
+//! The representation, [`Lobes`], lives in [`crate::reconstruct::lobes`]
+//! (20 bytes a lobe); it is re-exported here.
 
 use glam::DVec3;
 
 use super::objective::{ErrorMetric, Samples, DEFAULT_GUARD};
 use super::optimize::nelder_mead;
 use crate::error::ModelError;
-use crate::model::{Distribution, IntensityField};
+use crate::model::Distribution;
+use crate::reconstruct::lobes::lobe_factor;
+pub use crate::reconstruct::lobes::{Lobe, Lobes, LOBE_BYTES, MAX_LOBE_EXPONENT};
 
 /// Largest lobe count accepted.
 pub const MAX_LOBES: usize = 16;
-/// Largest exponent of a lobe (a beam of about 3° half width at half maximum).
-pub const MAX_LOBE_EXPONENT: f64 = 1024.0;
 /// Largest weight of a lobe, relative to I_max (as the OpenGL fit's spots).
 pub const MAX_LOBE_WEIGHT: f64 = 10.0;
 /// Directions the shape search runs on at most (thinned planes and rows).
 pub const SEARCH_DIRECTIONS: usize = 2000;
-/// Bytes a lobe holds: axis (3), exponent, weight, each an f32.
-pub const LOBE_BYTES: usize = 20;
 
 /// Rounds of alternating refinement at most.
 const ROUNDS: usize = 2;
 /// Exponents on the coarse grid of a new lobe.
 const U_GRID: usize = 17;
-
-/// One cosine-power lobe.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Lobe {
-    /// Unit axis in the luminaire frame ([`crate::model::frame`]).
-    pub axis: DVec3,
-    /// Exponent p (dimensionless), in [0, [`MAX_LOBE_EXPONENT`]].
-    pub exponent: f64,
-    /// On-axis intensity, cd.
-    pub weight_cd: f64,
-}
-
-impl Lobe {
-    /// Intensity (cd) in unit direction `u`.
-    #[inline]
-    pub fn intensity_unit(&self, u: DVec3) -> f64 {
-        lobe_factor(u.dot(self.axis), self.exponent) * self.weight_cd
-    }
-}
-
-/// `max(0, t)^p`, 1 at t > 0 for p = 0, finite for every input.
-#[inline]
-fn lobe_factor(t: f64, p: f64) -> f64 {
-    if t > 0.0 {
-        let v = t.min(1.0).powf(p);
-        if v.is_finite() {
-            v
-        } else {
-            0.0
-        }
-    } else {
-        0.0
-    }
-}
-
-/// A mixture of lobes, an [`IntensityField`] named `lobes:K`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Lobes {
-    /// The lobes, parameters rounded to f32.
-    pub lobes: Vec<Lobe>,
-}
-
-impl Lobes {
-    /// The mixture of `lobes`, parameters rounded to f32 (axes renormalised,
-    /// exponents and weights clamped to their ranges, non-finite ones 0).
-    pub fn new(lobes: Vec<Lobe>) -> Self {
-        let f = |x: f64| if x.is_finite() { x as f32 as f64 } else { 0.0 };
-        let lobes = lobes
-            .into_iter()
-            .map(|l| {
-                let a = l.axis.try_normalize().unwrap_or(DVec3::NEG_Z);
-                Lobe {
-                    axis: DVec3::new(f(a.x), f(a.y), f(a.z)),
-                    exponent: f(l.exponent).clamp(0.0, MAX_LOBE_EXPONENT),
-                    weight_cd: f(l.weight_cd).max(0.0),
-                }
-            })
-            .collect();
-        Self { lobes }
-    }
-
-    /// Intensity (cd) in unit direction `u`.
-    #[inline]
-    pub fn intensity_unit(&self, u: DVec3) -> f64 {
-        self.lobes.iter().map(|l| l.intensity_unit(u)).sum()
-    }
-}
-
-impl IntensityField for Lobes {
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
-            return 0.0;
-        }
-        self.intensity_unit(crate::model::frame::direction(c_deg, gamma_deg))
-    }
-    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
-        d.try_normalize().map_or(0.0, |u| self.intensity_unit(u))
-    }
-    fn name(&self) -> String {
-        format!("lobes:{}", self.lobes.len())
-    }
-    /// [`LOBE_BYTES`] per lobe.
-    fn bytes(&self) -> usize {
-        self.lobes.len() * LOBE_BYTES
-    }
-    /// `max(0, t)^p` is continuous for p > 0; p = 0 is a hemisphere's step.
-    fn is_continuous(&self) -> bool {
-        self.lobes.iter().all(|l| l.exponent > 0.0 || l.weight_cd == 0.0)
-    }
-}
 
 /// The data of a lobe fit: unit directions, magnitudes `I / I_max` and
 /// solid-angle weights (summing to 1).

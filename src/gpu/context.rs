@@ -63,6 +63,8 @@ pub struct GpuContext {
     pub(crate) two_pass: [wgpu::ComputePipeline; 2],
     /// The real-time lookup pipeline (`realtime.wgsl`), built on first use.
     pub(crate) realtime: OnceLock<Result<super::realtime::Pipelines, GpuError>>,
+    /// The compact representation pipeline (`compact.wgsl`), built on first use.
+    pub(crate) compact: OnceLock<Result<super::compact::Pipeline, GpuError>>,
     pub(crate) layout: wgpu::BindGroupLayout,
     pub(crate) limits: wgpu::Limits,
     summary: AdapterSummary,
@@ -272,6 +274,7 @@ impl GpuContext {
             pipeline,
             two_pass,
             realtime: OnceLock::new(),
+            compact: OnceLock::new(),
             layout,
             limits,
             summary,

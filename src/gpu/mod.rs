@@ -37,6 +37,8 @@ pub mod resample;
 
 pub use backend::{resolve, Backend, Resolved};
 pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
+mod batch;
+pub mod compact;
 pub mod precision;
 pub mod realtime;
 pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings};

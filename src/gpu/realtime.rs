@@ -17,11 +17,12 @@
 //! sub-texel weights, f32 coordinates), measured per adapter with
 //! [`super::precision::subtexel_precision`].
 
-use std::sync::mpsc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use glam::DVec3;
 
+pub use super::batch::LookupBatch;
+use super::batch::{angle_directions, direction_data, end_to_end_ns_per_sample, grid_angles};
 use super::{GpuContext, GpuError};
 use crate::model::{frame, IntensityField, Symmetry};
 use crate::reconstruct::{Lookup, Precision, Rendered, StoredTexture};
@@ -85,7 +86,6 @@ impl HardwareLookup {
 
 /// The probe mode of the shader: raw (u, v) coordinates, one linear fetch.
 pub(crate) const MODE_PROBE: u32 = 3;
-const WORKGROUP: usize = 64;
 
 /// Wallner's (2008) texture coordinates (s, t) of direction `d` in the luminaire
 /// frame, literally as its equations 1–3 (f64): `s = arccos(n₀·d)/π`,
@@ -211,34 +211,6 @@ impl std::fmt::Debug for RealtimeTexture<'_> {
     }
 }
 
-/// Directions uploaded once, dispatched as often as needed (for timing).
-pub struct LookupBatch {
-    n: usize,
-    bind_group: wgpu::BindGroup,
-    output: wgpu::Buffer,
-    staging: wgpu::Buffer,
-    dispatch: (u32, u32),
-}
-
-impl std::fmt::Debug for LookupBatch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("LookupBatch")
-            .field("n", &self.n)
-            .finish_non_exhaustive()
-    }
-}
-
-impl LookupBatch {
-    /// Directions in the batch.
-    pub fn len(&self) -> usize {
-        self.n
-    }
-    /// True for an empty batch.
-    pub fn is_empty(&self) -> bool {
-        self.n == 0
-    }
-}
-
 /// The texture format and the bytes to upload for `exact`'s texels: f32,
 /// f16, or the normalised integers of the largest texel (already on their
 /// steps in `exact`).
@@ -291,10 +263,6 @@ fn unorm(x: f32, scale: f32, steps: f32) -> f32 {
     } else {
         0.0
     }
-}
-
-fn texture_error(what: &str, e: impl std::fmt::Display) -> GpuError {
-    GpuError::Device(format!("{what}: {e}"))
 }
 
 impl<'a> RealtimeTexture<'a> {
@@ -384,141 +352,46 @@ impl<'a> RealtimeTexture<'a> {
     /// # Errors
     /// [`GpuError::TooLarge`] when the batch exceeds the device's binding or dispatch limits.
     pub fn prepare(&self, dirs: &[DVec3]) -> Result<LookupBatch, GpuError> {
-        let data: Vec<[f32; 4]> = dirs
-            .iter()
-            .map(|d| {
-                let d = if d.is_finite() {
-                    d.normalize_or_zero()
-                } else {
-                    DVec3::ZERO
-                };
-                [d.x as f32, d.y as f32, d.z as f32, 0.0]
-            })
-            .collect();
-        self.prepare_raw(&data, self.lookup.mode())
+        self.prepare_raw(&direction_data(dirs), self.lookup.mode())
     }
 
     pub(crate) fn prepare_raw(&self, data: &[[f32; 4]], mode: u32) -> Result<LookupBatch, GpuError> {
-        let n = data.len();
-        let max_dim = self.ctx.max_workgroups_per_dim().max(1) as usize;
-        let groups = n.div_ceil(WORKGROUP).max(1);
-        let dx = groups.min(max_dim);
-        let dy = groups.div_ceil(dx);
-        if (n * 16) as u64 > self.ctx.max_binding_bytes() || dy > max_dim {
-            return Err(GpuError::TooLarge {
-                index: 0,
-                reason: format!("{n} directions exceed the device's binding or dispatch limits"),
-            });
-        }
         let (h, (first, cols)) = (self.exact.height(), self.exact.stored_columns());
         let mut params = [0u32; 8];
-        params[..4].copy_from_slice(&[n as u32, mode, self.fold, dx as u32]);
+        params[1] = mode;
+        params[2] = self.fold;
         for (p, v) in params[4..]
             .iter_mut()
             .zip([h as f32, self.exact.full_width() as f32, first as f32, cols as f32])
         {
             *p = v.to_bits();
         }
-        let d = &self.ctx.device;
-        let buf = |label, size: u64, usage| {
-            d.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: size.max(16),
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        use wgpu::BufferUsages as U;
-        let input = buf("realtime directions", (n * 16) as u64, U::STORAGE | U::COPY_DST);
-        self.ctx.queue.write_buffer(&input, 0, bytemuck::cast_slice(data));
-        let output = buf("realtime output", (n * 4) as u64, U::STORAGE | U::COPY_SRC);
-        let staging = buf("realtime staging", (n * 4) as u64, U::MAP_READ | U::COPY_DST);
-        let uniform = buf("realtime params", 32, U::UNIFORM | U::COPY_DST);
-        self.ctx.queue.write_buffer(&uniform, 0, bytemuck::cast_slice(&params));
+        let buffers = super::batch::upload(self.ctx, "realtime", data, params)?;
         let pipes = Pipelines::of(self.ctx)?;
-        let bind_group = d.create_bind_group(&wgpu::BindGroupDescriptor {
+        let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+        let bind_group = self.ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("realtime"),
             layout: &pipes.layout,
             entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&self.view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: input.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: output.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: uniform.as_entire_binding(),
-                },
+                entry(0, wgpu::BindingResource::TextureView(&self.view)),
+                entry(1, wgpu::BindingResource::Sampler(&self.sampler)),
+                entry(2, buffers.input.as_entire_binding()),
+                entry(3, buffers.output.as_entire_binding()),
+                entry(4, buffers.uniform.as_entire_binding()),
             ],
         });
-        Ok(LookupBatch {
-            n,
-            bind_group,
-            output,
-            staging,
-            dispatch: (dx as u32, dy as u32),
-        })
+        Ok(LookupBatch::new(buffers, &pipes.pipeline, bind_group))
     }
 
     /// Run the lookups of an uploaded batch and wait for them; returns the
     /// wall time from submission to completion.
     pub fn run(&self, batch: &LookupBatch) -> Result<Duration, GpuError> {
-        let t0 = Instant::now();
-        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
-        if batch.n > 0 {
-            let pipes = Pipelines::of(self.ctx)?;
-            let mut pass = enc.begin_compute_pass(&Default::default());
-            pass.set_pipeline(&pipes.pipeline);
-            pass.set_bind_group(0, &batch.bind_group, &[]);
-            pass.dispatch_workgroups(batch.dispatch.0, batch.dispatch.1, 1);
-        }
-        self.ctx.queue.submit([enc.finish()]);
-        self.ctx
-            .device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| texture_error("realtime dispatch", e))?;
-        Ok(t0.elapsed())
+        batch.run(self.ctx)
     }
 
     /// The results of the last [`RealtimeTexture::run`] of `batch`: I / I_max per direction.
     pub fn read(&self, batch: &LookupBatch) -> Result<Vec<f32>, GpuError> {
-        if batch.n == 0 {
-            return Ok(Vec::new());
-        }
-        let mut enc = self.ctx.device.create_command_encoder(&Default::default());
-        enc.copy_buffer_to_buffer(&batch.output, 0, &batch.staging, 0, (batch.n * 4) as u64);
-        self.ctx.queue.submit([enc.finish()]);
-        let (tx, rx) = mpsc::channel();
-        batch.staging.map_async(wgpu::MapMode::Read, .., move |r| {
-            let _ = tx.send(r);
-        });
-        self.ctx
-            .device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| texture_error("realtime read-back wait", e))?;
-        rx.recv()
-            .map_err(|e| GpuError::BufferMap(format!("realtime read-back: {e}")))?
-            .map_err(|e| GpuError::BufferMap(format!("realtime read-back: {e}")))?;
-        let out = {
-            let view = batch
-                .staging
-                .get_mapped_range(..)
-                .map_err(|e| GpuError::BufferMap(format!("realtime read-back: {e}")))?;
-            bytemuck::cast_slice::<u8, f32>(&view[..batch.n * 4]).to_vec()
-        };
-        batch.staging.unmap();
-        Ok(out)
+        batch.read(self.ctx)
     }
 
     /// Intensity (cd, ≥ 0) in each direction of `dirs` (luminaire frame):
@@ -540,13 +413,7 @@ impl<'a> RealtimeTexture<'a> {
     /// # Errors
     /// As [`RealtimeTexture::prepare`], and device errors.
     pub fn dispatch_ns_per_sample(&self, dirs: &[DVec3], repeats: usize) -> Result<f64, GpuError> {
-        let batch = self.prepare(dirs)?;
-        self.run(&batch)?; // warm-up
-        let mut t = (0..repeats.max(1))
-            .map(|_| self.run(&batch).map(|d| d.as_secs_f64()))
-            .collect::<Result<Vec<_>, _>>()?;
-        t.sort_by(f64::total_cmp);
-        Ok(1e9 * t[t.len() / 2] / dirs.len().max(1) as f64)
+        self.prepare(dirs)?.dispatch_ns_per_sample(self.ctx, repeats)
     }
 
     /// [`RealtimeTexture::sample_dirs_cd`] at (C, γ) degrees.
@@ -632,17 +499,8 @@ impl IntensityField for RealtimeTexture<'_> {
         self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
     }
     fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
-        let d: Vec<DVec3> = dirs
-            .iter()
-            .map(|&(c, g)| {
-                if c.is_finite() && g.is_finite() {
-                    frame::direction(c, g.clamp(0.0, 180.0))
-                } else {
-                    DVec3::ZERO
-                }
-            })
-            .collect();
-        self.sample_dirs_cd(&d).unwrap_or_else(|_| vec![0.0; dirs.len()])
+        self.sample_dirs_cd(&angle_directions(dirs))
+            .unwrap_or_else(|_| vec![0.0; dirs.len()])
     }
     fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
         assert_eq!(
@@ -650,22 +508,10 @@ impl IntensityField for RealtimeTexture<'_> {
             c_deg.len() * gamma_deg.len(),
             "one output per grid direction"
         );
-        let dirs: Vec<(f64, f64)> = c_deg
-            .iter()
-            .flat_map(|&c| gamma_deg.iter().map(move |&g| (c, g)))
-            .collect();
-        out.copy_from_slice(&self.intensity_batch_cd(&dirs));
+        out.copy_from_slice(&self.intensity_batch_cd(&grid_angles(c_deg, gamma_deg)));
     }
     fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
-        let mut t: Vec<f64> = (0..repeats.max(1))
-            .map(|_| {
-                let t0 = Instant::now();
-                let v = self.sample_dirs_cd(std::hint::black_box(dirs));
-                std::hint::black_box(v).ok().map(|_| t0.elapsed().as_secs_f64())
-            })
-            .collect::<Option<_>>()?;
-        t.sort_by(f64::total_cmp);
-        Some(1e9 * t[t.len() / 2] / dirs.len().max(1) as f64)
+        end_to_end_ns_per_sample(dirs.len(), repeats, || self.sample_dirs_cd(std::hint::black_box(dirs)))
     }
     fn name(&self) -> String {
         format!("{}+gpu", self.exact.name())

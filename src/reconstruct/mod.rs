@@ -23,9 +23,11 @@
 mod axis;
 pub mod backend;
 pub mod bc6h;
+pub mod compact;
 pub mod exr_io;
 mod filter;
 pub mod holdout;
+pub mod lobes;
 mod lookup;
 mod sampler;
 pub mod sh;
@@ -34,8 +36,10 @@ pub mod texture;
 
 pub use axis::AxisTaps;
 pub use backend::Backend;
+pub use compact::Compact;
 pub use filter::{combine, Filter, Real, FILTER_NAMES};
 pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
+pub use lobes::{Lobe, Lobes};
 pub use lookup::{Lookup, Precision, StoredTexture};
 pub use sampler::Sampler;
 pub use sh::{ShField, ShWindow, MAX_SH_DEGREE};

@@ -336,6 +336,22 @@ impl ShField {
     pub fn scale_cd(&self) -> f64 {
         self.scale_cd
     }
+    /// The coefficients as stored: windowed, divided by `√(4π)` and the
+    /// scale, rounded to the storage precision (at `l² + l + m`).
+    pub fn stored_coefficients(&self) -> &[f64] {
+        &self.coeffs
+    }
+    /// The recurrence constants `(a_lm, b_lm)` of the evaluation, per (l, m ≥ 0)
+    /// at `l(l+1)/2 + m` (see [`ShField::unclamped_cd`]).
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))] // read by the GPU's compact shader
+    pub(crate) fn recurrence_constants(&self) -> &[(f64, f64)] {
+        &self.rec
+    }
+    /// The diagonal factors `√((2m+1)/2m)` per m (1 at m = 0).
+    #[cfg_attr(not(feature = "gpu"), allow(dead_code))] // read by the GPU's compact shader
+    pub(crate) fn diagonal_factors(&self) -> &[f64] {
+        &self.diag
+    }
     /// The stored coefficients as orthonormal ones, windowed (cd, at `l² + l + m`).
     pub fn coefficients_cd(&self) -> Vec<f64> {
         let k = (4.0 * PI).sqrt() * self.scale_cd;

@@ -11,7 +11,7 @@ use crate::fit::lobes::{fit_lobes, Lobes, MAX_LOBES};
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{
-    render, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec, MAX_SH_DEGREE,
+    render, Compact, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec, MAX_SH_DEGREE,
 };
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
@@ -60,18 +60,24 @@ pub enum Recon {
     },
     /// Spherical harmonics of degree `degree` of the Catmull–Rom
     /// reconstruction, Lanczos-windowed, clamped at 0
-    /// ([`ShField`]); written `sh:L`, `sh:L+f16` for half-float coefficients.
+    /// ([`ShField`]); written `sh:L`, `sh:L+f16` for half-float coefficients,
+    /// with `+gpu` evaluated by the GPU in f32 (`gpu::compact`, feature `gpu`).
     Sh {
         /// The degree L (0 to [`MAX_SH_DEGREE`]).
         degree: usize,
         /// Coefficients stored as f16 (2 bytes) instead of f32 (4 bytes).
         f16: bool,
+        /// Evaluated by the GPU's compute shader instead of the CPU.
+        gpu: bool,
     },
     /// A mixture of `count` cosine-power lobes fitted to the measured data
-    /// ([`crate::fit::lobes`]); written `lobes:K`.
+    /// ([`crate::fit::lobes`]); written `lobes:K`, `lobes:K+gpu` evaluated by
+    /// the GPU in f32.
     Lobes {
         /// The number of lobes K (1 to [`MAX_LOBES`]).
         count: usize,
+        /// Evaluated by the GPU's compute shader instead of the CPU.
+        gpu: bool,
     },
 }
 
@@ -118,8 +124,15 @@ impl fmt::Display for Recon {
                 Ok(())
             }
             Recon::Symmetric { filter, symmetry } => write!(f, "{filter}+isym:{}", symmetry.isym()),
-            Recon::Sh { degree, f16 } => write!(f, "{SH_PREFIX}{degree}{}", if *f16 { "+f16" } else { "" }),
-            Recon::Lobes { count } => write!(f, "{LOBES_PREFIX}{count}"),
+            Recon::Sh { degree, f16, gpu } => write!(
+                f,
+                "{SH_PREFIX}{degree}{}{}",
+                if *f16 { "+f16" } else { "" },
+                if *gpu { GPU_SUFFIX } else { "" }
+            ),
+            Recon::Lobes { count, gpu } => {
+                write!(f, "{LOBES_PREFIX}{count}{}", if *gpu { GPU_SUFFIX } else { "" })
+            }
         }
     }
 }
@@ -132,14 +145,7 @@ impl FromStr for Recon {
             x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),
             x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
             x if x.starts_with(SH_PREFIX) => parse_sh(x),
-            x if x.starts_with(LOBES_PREFIX) => match x[LOBES_PREFIX.len()..].parse::<usize>() {
-                Ok(count) if (1..=MAX_LOBES).contains(&count) => Ok(Recon::Lobes { count }),
-                _ => Err(ModelError::Parameter {
-                    name: "recon",
-                    value: x.to_string(),
-                    reason: format!("expected lobes:K with the lobe count K from 1 to {MAX_LOBES}"),
-                }),
-            },
+            x if x.starts_with(LOBES_PREFIX) => parse_lobes(x),
             x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
                 Some(t) => t.parse().map(Recon::Gpu),
                 None => x.parse().map(Recon::Texture),
@@ -198,20 +204,42 @@ fn parse_regridded(s: &str) -> Result<Recon, ModelError> {
     }
 }
 
-/// `sh:L` or `sh:L+f16`, L in 0..=[`MAX_SH_DEGREE`].
+/// `sh:L[+f16][+gpu]`, L in 0..=[`MAX_SH_DEGREE`].
 fn parse_sh(x: &str) -> Result<Recon, ModelError> {
     let body = x.strip_prefix(SH_PREFIX).unwrap_or(x);
+    let (body, gpu) = strip_gpu(body);
     let (digits, f16) = match body.strip_suffix("+f16") {
         Some(d) => (d, true),
         None => (body, false),
     };
     match digits.parse::<usize>() {
-        Ok(degree) if degree <= MAX_SH_DEGREE => Ok(Recon::Sh { degree, f16 }),
+        Ok(degree) if degree <= MAX_SH_DEGREE => Ok(Recon::Sh { degree, f16, gpu }),
         _ => Err(ModelError::Parameter {
             name: "recon",
             value: x.to_string(),
-            reason: format!("expected sh:L or sh:L+f16 with the degree L from 0 to {MAX_SH_DEGREE}"),
+            reason: format!("expected sh:L[+f16][+gpu] with the degree L from 0 to {MAX_SH_DEGREE}"),
         }),
+    }
+}
+
+/// `lobes:K[+gpu]`, K in 1..=[`MAX_LOBES`].
+fn parse_lobes(x: &str) -> Result<Recon, ModelError> {
+    let (body, gpu) = strip_gpu(x.strip_prefix(LOBES_PREFIX).unwrap_or(x));
+    match body.parse::<usize>() {
+        Ok(count) if (1..=MAX_LOBES).contains(&count) => Ok(Recon::Lobes { count, gpu }),
+        _ => Err(ModelError::Parameter {
+            name: "recon",
+            value: x.to_string(),
+            reason: format!("expected lobes:K[+gpu] with the lobe count K from 1 to {MAX_LOBES}"),
+        }),
+    }
+}
+
+/// `s` without a trailing [`GPU_SUFFIX`], and whether it had one.
+fn strip_gpu(s: &str) -> (&str, bool) {
+    match s.strip_suffix(GPU_SUFFIX) {
+        Some(body) => (body, true),
+        None => (s, false),
     }
 }
 
@@ -258,7 +286,7 @@ impl Reconstructions {
         let max_lobes = recons
             .iter()
             .filter_map(|r| match r {
-                Recon::Lobes { count } => Some(*count),
+                Recon::Lobes { count, .. } => Some(*count),
                 _ => None,
             })
             .max();
@@ -298,13 +326,40 @@ impl Reconstructions {
                 c,
             } => self.owned(r, crop(&self.dist, gamma_from, gamma_to, c)?, filter)?,
             Recon::Symmetric { filter, symmetry } => self.owned(r, self.dist.with_symmetry(symmetry)?, filter)?,
-            Recon::Lobes { count } => Box::new(Borrowed(self.lobes.get(count - 1).ok_or_else(missing)?)),
-            Recon::Sh { degree, f16 } => {
+            Recon::Lobes { gpu: false, .. } | Recon::Sh { gpu: false, .. } => Box::new(self.compact(r)?),
+            Recon::Lobes { gpu: true, .. } | Recon::Sh { gpu: true, .. } => self.gpu_compact(r, self.compact(r)?)?,
+        })
+    }
+
+    /// The compact representation of `r` (`sh:L`, `lobes:K`, with or without `+gpu`).
+    ///
+    /// # Errors
+    /// [`ModelError::Parameter`] for another reconstruction, [`ModelError::Internal`]
+    /// for lobes not fitted in [`Reconstructions::new`] (a bug).
+    pub fn compact(&self, r: Recon) -> Result<Compact, ModelError> {
+        match r {
+            Recon::Lobes { count, .. } => self
+                .lobes
+                .get(count - 1)
+                .cloned()
+                .map(Compact::Lobes)
+                .ok_or_else(|| ModelError::Internal(format!("reconstruction {r} was not prepared"))),
+            Recon::Sh { degree, f16, .. } => {
                 let precision = if f16 { Precision::F16 } else { Precision::F32 };
                 let source = self.texture.sampler(Filter::CatmullRom);
-                Box::new(ShField::new(&source, degree, ShWindow::Lanczos, precision)?)
+                Ok(Compact::Sh(ShField::new(
+                    &source,
+                    degree,
+                    ShWindow::Lanczos,
+                    precision,
+                )?))
             }
-        })
+            _ => Err(ModelError::Parameter {
+                name: "recon",
+                value: r.to_string(),
+                reason: "not a compact representation (sh:L, lobes:K)".into(),
+            }),
+        }
     }
 
     /// A filter on a re-stored grid, sampled through the texture it owns.
@@ -330,6 +385,26 @@ impl Reconstructions {
         Ok(Box::new(
             RealtimeTexture::new(ctx, &rendered, reduced, t.precision, lookup).map_err(unavailable)?,
         ))
+    }
+
+    /// A spherical-harmonic series or lobe mixture evaluated by the GPU.
+    #[cfg(feature = "gpu")]
+    fn gpu_compact(&self, r: Recon, compact: Compact) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+        use crate::gpu::compact::GpuCompact;
+        let unavailable = |source: crate::gpu::GpuError| ModelError::Gpu {
+            recon: r.to_string(),
+            source,
+        };
+        let ctx = crate::gpu::GpuContext::global().map_err(unavailable)?;
+        Ok(Box::new(GpuCompact::new(ctx, compact).map_err(unavailable)?))
+    }
+
+    #[cfg(not(feature = "gpu"))]
+    fn gpu_compact(&self, r: Recon, _: Compact) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+        Err(ModelError::Gpu {
+            recon: r.to_string(),
+            source: crate::error::GpuError::NotBuilt,
+        })
     }
 
     #[cfg(not(feature = "gpu"))]
@@ -373,6 +448,52 @@ mod tests {
             Recon::Texture(_)
         ));
         assert!("catmull-rom@x5/bilinear+gpu+f16".parse::<Recon>().is_err());
+    }
+
+    /// `sh:L[+f16]+gpu` and `lobes:K+gpu` name the compute shader's
+    /// evaluation and round-trip; `+gpu` comes last.
+    #[test]
+    fn compact_gpu_names() {
+        for (name, r) in [
+            (
+                "sh:16+gpu",
+                Recon::Sh {
+                    degree: 16,
+                    f16: false,
+                    gpu: true,
+                },
+            ),
+            (
+                "sh:8+f16+gpu",
+                Recon::Sh {
+                    degree: 8,
+                    f16: true,
+                    gpu: true,
+                },
+            ),
+            (
+                "sh:8+f16",
+                Recon::Sh {
+                    degree: 8,
+                    f16: true,
+                    gpu: false,
+                },
+            ),
+            ("lobes:3+gpu", Recon::Lobes { count: 3, gpu: true }),
+            ("lobes:3", Recon::Lobes { count: 3, gpu: false }),
+        ] {
+            assert_eq!(name.parse::<Recon>().unwrap(), r, "{name}");
+            assert_eq!(r.to_string(), name);
+        }
+        for bad in [
+            "sh:8+gpu+f16",
+            "lobes:3+gpu+gpu",
+            "lobes:0+gpu",
+            "sh:33+gpu",
+            "lobes:+gpu",
+        ] {
+            assert!(bad.parse::<Recon>().is_err(), "{bad}");
+        }
     }
 
     /// The re-gridded reconstructions round-trip through their names, which

@@ -250,8 +250,12 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
     }
     reps.push(Recon::FittedGl);
     // The compact representations between the fitted lights and the textures (issue 30).
-    reps.extend([2, 4, 8, 16].map(|degree| Recon::Sh { degree, f16: false }));
-    reps.extend((1..=4).map(|count| Recon::Lobes { count }));
+    reps.extend([2, 4, 8, 16].map(|degree| Recon::Sh {
+        degree,
+        f16: false,
+        gpu: false,
+    }));
+    reps.extend((1..=4).map(|count| Recon::Lobes { count, gpu: false }));
     if let Some((gamma_from, gamma_to, c)) = visible {
         reps.push(Recon::Cropped {
             filter: Filter::CatmullRom,

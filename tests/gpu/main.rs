@@ -1,5 +1,6 @@
 //! The GPU integration tests, one binary: headless wgpu textures against the
-//! CPU reference (`textures`) and the real-time lookups (`realtime`).
+//! CPU reference (`textures`), the real-time lookups (`realtime`) and the
+//! compact representations evaluated by the compute shader (`compact`).
 //! `scripts/test-all.sh` runs it once per backend with
 //! `PHOTOSOLID_REQUIRE_GPU=1 WGPU_BACKEND=<vulkan|gl>`.
 #![allow(
@@ -12,5 +13,6 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod compact;
 mod realtime;
 mod textures;

@@ -317,5 +317,18 @@ fn trade_table_gpu_rows() {
                 "{gpu}: {g:?} vs {e:?}"
             );
         }
+        // The compute shader's series and mixture: the same stored parameters in f32.
+        for (gpu, cpu) in [("sh:16+gpu", "sh:16"), ("lobes:4+gpu", "lobes:4")] {
+            let (g, e) = (row(gpu), row(cpu));
+            println!("{against}: {gpu}: {g:?}");
+            assert_eq!(g.adapter.as_deref(), Some(c.adapter().to_string().as_str()));
+            assert!(g.ns_per_sample_gpu.is_some_and(|v| v > 0.0) && g.ns_per_sample > 0.0);
+            assert!(g.texture_format.is_none() && g.subtexel_bits.is_none());
+            assert_eq!((g.bytes, g.window.as_deref()), (e.bytes, e.window.as_deref()));
+            let d = g.hardware_vs_exact_max_pct.unwrap();
+            assert!(d < 1e-3, "{gpu}: {d} % from the CPU evaluation");
+            // Relative to the row's own peak, which is at most about I_max: a margin of 2.
+            assert_close!(g.radial_max_pct, e.radial_max_pct, abs = 2.0 * d + 1e-6, "{gpu}");
+        }
     }
 }

@@ -69,7 +69,11 @@ fn isotropic_is_exact_at_any_degree() {
     let d = lum.distribution();
     let set = DirectionSet::fibonacci(2000);
     for degree in [2, 16] {
-        let r = Recon::Sh { degree, f16: false };
+        let r = Recon::Sh {
+            degree,
+            f16: false,
+            gpu: false,
+        };
         let recs = Reconstructions::new(d.clone(), &[r]).unwrap();
         let v = eval_all(&*recs.field(r).unwrap(), &set.directions);
         let truth = vec![d.max_cd(); v.len()];
@@ -176,7 +180,11 @@ fn sh_extremes() {
         .build(&GridSpec::uniform(15.0, 1.0).unwrap(), 1000.0)
         .unwrap();
     for degree in [2, 16, MAX_SH_DEGREE] {
-        let r = Recon::Sh { degree, f16: true };
+        let r = Recon::Sh {
+            degree,
+            f16: true,
+            gpu: false,
+        };
         let recs = Reconstructions::new(lum.distribution().clone(), &[r]).unwrap();
         let v = eval_all(&*recs.field(r).unwrap(), &DirectionSet::fibonacci(3000).directions);
         assert!(v.iter().all(|x| x.is_finite() && *x >= 0.0), "sh:{degree}+f16");
@@ -185,9 +193,16 @@ fn sh_extremes() {
     assert_eq!((zero.intensity_cd(0.0, 0.0), zero.scale_cd()), (0.0, 0.0));
     let g: Vec<f64> = (0..=18).map(|k| 10.0 * k as f64).collect();
     let dark = Distribution::new(vec![0.0], g.clone(), vec![0.0; g.len()], Symmetry::Rotational).unwrap();
-    let err = Reconstructions::new(dark.clone(), &[Recon::Sh { degree: 4, f16: false }])
-        .unwrap_err()
-        .to_string();
+    let err = Reconstructions::new(
+        dark.clone(),
+        &[Recon::Sh {
+            degree: 4,
+            f16: false,
+            gpu: false,
+        }],
+    )
+    .unwrap_err()
+    .to_string();
     assert!(err.contains("I_max"), "{err}");
     assert!(fit_lobes(&dark, 2).is_err());
     assert!(ShField::new(&f, MAX_SH_DEGREE + 1, ShWindow::None, Precision::F32).is_err());

@@ -1,0 +1,292 @@
+//! The compact representations evaluated by the GPU beside the texture
+//! lookups (issue 30): a spherical-harmonic series
+//! ([`crate::reconstruct::ShField`]) or a mixture of cosine-power lobes
+//! ([`crate::reconstruct::Lobes`]) evaluated for a batch of directions in a
+//! compute shader (`compact.wgsl`), in f32 as a renderer's shader evaluates
+//! them.
+//!
+//! A [`GpuCompact`] holds its CPU twin, the same stored parameters evaluated
+//! in f64 ([`GpuCompact::exact`]), so the difference of the two is the cost
+//! of evaluating in f32 on that adapter alone. Its parameters live in one
+//! storage buffer: the coefficients and recurrence constants of the series,
+//! or 5 floats per lobe; the bytes a renderer stores are the CPU
+//! representation's ([`IntensityField::bytes`]: the recurrence constants
+//! depend on L only and are not counted, as a shader's constants).
+
+use glam::DVec3;
+
+use super::batch::{angle_directions, direction_data, end_to_end_ns_per_sample, grid_angles, upload, LookupBatch};
+use super::{GpuContext, GpuError};
+use crate::model::{frame, IntensityField};
+use crate::reconstruct::Compact;
+
+/// The shader's kind, count, offsets of the recurrence and diagonal
+/// factors, the parameter floats, and the scale (cd) of its output.
+fn shader_data(exact: &Compact) -> ([u32; 4], Vec<f32>, f64) {
+    match exact {
+        Compact::Sh(s) => {
+            let mut data: Vec<f32> = s.stored_coefficients().iter().map(|&c| c as f32).collect();
+            let rec_at = data.len() as u32;
+            data.extend(s.recurrence_constants().iter().flat_map(|&(a, b)| [a as f32, b as f32]));
+            let diag_at = data.len() as u32;
+            data.extend(s.diagonal_factors().iter().map(|&x| x as f32));
+            ([0, s.degree() as u32, rec_at, diag_at], data, s.scale_cd())
+        }
+        Compact::Lobes(m) => {
+            let data = m
+                .lobes
+                .iter()
+                .flat_map(|l| [l.axis.x, l.axis.y, l.axis.z, l.exponent, l.weight_cd].map(|x| x as f32))
+                .collect();
+            ([1, m.lobes.len() as u32, 0, 0], data, 1.0)
+        }
+    }
+}
+
+/// The compact pipeline and its bind group layout (one per device).
+pub(crate) struct Pipeline {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl Pipeline {
+    /// The pipeline of `ctx`, built on first use; a validation error (a
+    /// driver that cannot compile the shader) is returned, not raised.
+    fn of(ctx: &GpuContext) -> Result<&Pipeline, GpuError> {
+        ctx.compact
+            .get_or_init(|| {
+                let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+                let p = Pipeline::new(ctx);
+                match pollster::block_on(scope.pop()) {
+                    None => Ok(p),
+                    Some(e) => Err(GpuError::Pipeline(format!("compact representation pipeline: {e}"))),
+                }
+            })
+            .as_ref()
+            .map_err(Clone::clone)
+    }
+
+    fn new(ctx: &GpuContext) -> Self {
+        let d = &ctx.device;
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let mut uniform = storage(4, true);
+        uniform.ty = wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("compact"),
+            entries: &[storage(0, true), storage(2, true), storage(3, false), uniform],
+        });
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("compact"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("compact.wgsl").into()),
+        });
+        let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("compact"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("compact"),
+            layout: Some(&pl),
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Pipeline { layout, pipeline }
+    }
+}
+
+/// A spherical-harmonic series or lobe mixture on the device, evaluated for
+/// batches of directions.
+pub struct GpuCompact<'a> {
+    ctx: &'a GpuContext,
+    exact: Compact,
+    /// The parameter buffer (binding 0).
+    params: wgpu::Buffer,
+    /// Kind, count, recurrence offset, diagonal offset.
+    header: [u32; 4],
+    /// Intensity (cd) of an output of 1.
+    scale_cd: f64,
+}
+
+impl std::fmt::Debug for GpuCompact<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("GpuCompact")
+            .field("adapter", self.ctx.adapter())
+            .field("representation", &self.exact.field().name())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> GpuCompact<'a> {
+    /// Upload the stored parameters of `exact` to `ctx`'s device.
+    ///
+    /// # Errors
+    /// [`GpuError::Pipeline`] when the driver cannot build the shader.
+    pub fn new(ctx: &'a GpuContext, exact: Compact) -> Result<Self, GpuError> {
+        Pipeline::of(ctx)?;
+        let (header, data, scale_cd) = shader_data(&exact);
+        let params = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("compact parameters"),
+            size: ((data.len() * 4) as u64).max(16),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        ctx.queue.write_buffer(&params, 0, bytemuck::cast_slice(&data));
+        Ok(Self {
+            ctx,
+            exact,
+            params,
+            header,
+            scale_cd,
+        })
+    }
+
+    /// The adapter it lives on.
+    pub fn context(&self) -> &'a GpuContext {
+        self.ctx
+    }
+
+    /// The CPU twin: the same stored parameters evaluated in f64.
+    pub fn exact(&self) -> &dyn IntensityField {
+        self.exact.field()
+    }
+
+    /// Upload `dirs` (luminaire frame, any length; zero vectors give 0) as a batch.
+    ///
+    /// # Errors
+    /// [`GpuError::TooLarge`] when the batch exceeds the device's binding or dispatch limits.
+    pub fn prepare(&self, dirs: &[DVec3]) -> Result<LookupBatch, GpuError> {
+        let [kind, count, rec_at, diag_at] = self.header;
+        let params = [0, kind, count, 0, rec_at, diag_at, 0, 0];
+        let buffers = upload(self.ctx, "compact", &direction_data(dirs), params)?;
+        let pipe = Pipeline::of(self.ctx)?;
+        let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
+        let bind_group = self.ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("compact"),
+            layout: &pipe.layout,
+            entries: &[
+                entry(0, self.params.as_entire_binding()),
+                entry(2, buffers.input.as_entire_binding()),
+                entry(3, buffers.output.as_entire_binding()),
+                entry(4, buffers.uniform.as_entire_binding()),
+            ],
+        });
+        Ok(LookupBatch::new(buffers, &pipe.pipeline, bind_group))
+    }
+
+    /// Intensity (cd, ≥ 0) in each direction of `dirs` (luminaire frame):
+    /// one upload, one dispatch, one read-back.
+    ///
+    /// # Errors
+    /// As [`GpuCompact::prepare`], and device errors.
+    pub fn sample_dirs_cd(&self, dirs: &[DVec3]) -> Result<Vec<f64>, GpuError> {
+        let batch = self.prepare(dirs)?;
+        batch.run(self.ctx)?;
+        Ok(batch
+            .read(self.ctx)?
+            .into_iter()
+            .map(|v| {
+                let cd = f64::from(v) * self.scale_cd;
+                if cd.is_finite() {
+                    cd.max(0.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect())
+    }
+
+    /// Median wall time (ns) per direction of the dispatch alone over `repeats` runs.
+    ///
+    /// # Errors
+    /// As [`GpuCompact::prepare`], and device errors.
+    pub fn dispatch_ns_per_sample(&self, dirs: &[DVec3], repeats: usize) -> Result<f64, GpuError> {
+        self.prepare(dirs)?.dispatch_ns_per_sample(self.ctx, repeats)
+    }
+}
+
+/// What the GPU evaluation of a compact representation costs, on one adapter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompactRow {
+    /// Median ns per direction of the dispatch alone.
+    pub ns_per_sample_dispatch: f64,
+    /// Largest |GPU − CPU (f64) evaluation| of the same stored parameters, as
+    /// a share of the CPU evaluation's largest value over the directions.
+    pub vs_exact_max: f64,
+}
+
+/// Evaluate `gpu` at `dirs` against its CPU twin and time its dispatch over `repeats` runs.
+///
+/// # Errors
+/// Device errors.
+pub fn compact_row(gpu: &GpuCompact<'_>, dirs: &[DVec3], repeats: usize) -> Result<CompactRow, GpuError> {
+    let on_gpu = gpu.sample_dirs_cd(dirs)?;
+    let exact: Vec<f64> = dirs.iter().map(|d| gpu.exact().intensity_dir_cd(*d)).collect();
+    let peak = exact.iter().copied().fold(0.0, f64::max);
+    let worst = on_gpu
+        .iter()
+        .zip(&exact)
+        .map(|(g, e)| (g - e).abs())
+        .fold(0.0, f64::max);
+    Ok(CompactRow {
+        ns_per_sample_dispatch: gpu.dispatch_ns_per_sample(dirs, repeats)?,
+        vs_exact_max: if peak > 0.0 { worst / peak } else { worst },
+    })
+}
+
+/// The GPU evaluation as an intensity field (cd). Batches are one dispatch
+/// each; a single direction is a dispatch of its own (correct, but slow:
+/// use batches). A device error gives 0 (the field has no error channel);
+/// [`GpuCompact::sample_dirs_cd`] reports it.
+impl IntensityField for GpuCompact<'_> {
+    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+            return 0.0;
+        }
+        self.intensity_dir_cd(frame::direction(c_deg, gamma_deg.clamp(0.0, 180.0)))
+    }
+    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
+        if !(d.is_finite() && d.length_squared() > 0.0) {
+            return 0.0;
+        }
+        self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
+    }
+    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+        self.sample_dirs_cd(&angle_directions(dirs))
+            .unwrap_or_else(|_| vec![0.0; dirs.len()])
+    }
+    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
+        assert_eq!(
+            out.len(),
+            c_deg.len() * gamma_deg.len(),
+            "one output per grid direction"
+        );
+        out.copy_from_slice(&self.intensity_batch_cd(&grid_angles(c_deg, gamma_deg)));
+    }
+    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
+        end_to_end_ns_per_sample(dirs.len(), repeats, || self.sample_dirs_cd(std::hint::black_box(dirs)))
+    }
+    fn name(&self) -> String {
+        format!("{}+gpu", self.exact.field().name())
+    }
+    fn bytes(&self) -> usize {
+        self.exact.field().bytes()
+    }
+    fn is_continuous(&self) -> bool {
+        self.exact.field().is_continuous()
+    }
+}
