@@ -58,15 +58,19 @@ struct Data {
     m: Vec<f64>,
     w: Vec<f64>,
     mm: f64,
+    /// Distinct directions a lobe's half-maximum cone must hold ([`Data::supported`]).
+    support: usize,
 }
 
 impl Data {
     fn of(s: &Samples) -> Self {
-        Self::new(s.dir.clone(), s.m.clone(), s.omega.clone())
+        // One kept plane stands for a ring: two samples on it pin a vertical lobe's width.
+        let support = if s.rotational { 2 } else { 3 };
+        Self::new(s.dir.clone(), s.m.clone(), s.omega.clone(), support)
     }
-    fn new(dir: Vec<DVec3>, m: Vec<f64>, w: Vec<f64>) -> Self {
+    fn new(dir: Vec<DVec3>, m: Vec<f64>, w: Vec<f64>, support: usize) -> Self {
         let mm = w.iter().zip(&m).map(|(w, m)| w * m * m).sum();
-        Self { dir, m, w, mm }
+        Self { dir, m, w, mm, support }
     }
     /// Every `k`-th direction (weights scaled by k), or `None` when small enough.
     fn thinned(&self, max: usize) -> Option<Self> {
@@ -84,9 +88,48 @@ impl Data {
             idx.iter().map(|&i| self.dir[i]).collect(),
             idx.iter().map(|&i| self.m[i]).collect(),
             idx.iter().map(|&i| self.w[i] * k as f64).collect(),
+            self.support,
         ))
     }
+    /// Exponent `p`, lowered until the lobe's half-maximum cone around `axis`
+    /// (`t^p ≥ 1/2`) holds [`Data::support`] distinct measured directions.
+    ///
+    /// Between measured directions the error sees nothing: without this a
+    /// lobe narrower than the grid's spacing, aimed between samples, costs
+    /// nothing where it is fitted and rises far above every measurement
+    /// where it is not (on a real 5-plane file a p = 800 lobe of 6 I_max
+    /// between the kept planes of a hold-out fold: 600 % radial error at the
+    /// withheld ones). Three directions pin a peak's position and width on
+    /// a grid (two on the kept plane of rotational data).
+    fn supported(&self, axis: DVec3, p: f64) -> f64 {
+        let mut near: Vec<(f64, DVec3)> = Vec::with_capacity(self.support + 1);
+        for &d in &self.dir {
+            let t = d.dot(axis);
+            // Poles repeat once per plane: a direction already held is not a new sample.
+            if near.len() == self.support && t <= near[self.support - 1].0
+                || near.iter().any(|(_, e)| e.distance_squared(d) < 1e-18)
+            {
+                continue;
+            }
+            let at = near.iter().position(|&(u, _)| t > u).unwrap_or(near.len());
+            near.insert(at, (t, d));
+            near.truncate(self.support);
+        }
+        let t = match near.get(self.support - 1) {
+            Some(&(t, _)) => t,
+            None => return p,
+        };
+        if t >= 1.0 {
+            p
+        } else if t <= 0.0 {
+            0.0
+        } else {
+            p.min(0.5f64.ln() / t.ln())
+        }
+    }
+    /// The lobe's values at every direction, its exponent [`Data::supported`].
     fn column(&self, axis: DVec3, p: f64) -> Vec<f64> {
+        let p = self.supported(axis, p);
         self.dir.iter().map(|d| lobe_factor(d.dot(axis), p)).collect()
     }
 }
@@ -397,7 +440,7 @@ fn weighted(full: &Data, shapes: &[Shape], i_max: f64) -> Lobes {
             .zip(&wts)
             .map(|(s, w)| Lobe {
                 axis: s.axis(),
-                exponent: s.exponent(),
+                exponent: full.supported(s.axis(), s.exponent()),
                 weight_cd: w * i_max,
             })
             .collect(),

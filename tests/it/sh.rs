@@ -246,6 +246,45 @@ fn sh16_beats_sh4_on_every_corpus_file() {
     assert!(n >= 20, "only {n} corpus files");
 }
 
+/// Fitted lobes never rise far above the data between measured directions
+/// (a lobe's half-maximum cone must hold three measured directions,
+/// `fit::lobes`): on every loadable corpus file and each of its 2-fold
+/// hold-outs, the mixtures of 1 to 4 lobes stay below 2 I_max over 20,000
+/// directions. The cone bounds one lobe's peak to twice its value at a
+/// measured direction, where the fit holds the mixture near the data. (Before
+/// that rule: up to 10.4 I_max, the weight cap, on 8 files; after: 1.84 at most.)
+#[test]
+fn lobes_do_not_spike_between_samples() {
+    let Some(root) = common::corpus() else { return };
+    let dirs = photosolid::metrics::random_directions(20_000, 7);
+    let mut n = 0;
+    let mut worst = (0.0f64, String::new());
+    for e in common::manifest(&root) {
+        if e.malformed() || !e.photometric() {
+            continue;
+        }
+        let Ok(lum) = photosolid::load(&e.path) else { continue };
+        let d = lum.distribution();
+        let Ok(folds) = photosolid::reconstruct::kfold(d, 2) else {
+            continue;
+        };
+        for dist in std::iter::once(d.clone()).chain(folds.into_iter().map(|f| f.kept)) {
+            let Ok(stages) = fit_lobes(&dist, 4) else { continue };
+            for m in &stages {
+                let peak = dirs.iter().map(|u| m.intensity_dir_cd(*u)).fold(0.0, f64::max);
+                let ratio = peak / dist.max_cd();
+                if ratio > worst.0 {
+                    worst = (ratio, format!("{} {}", e.rel, m.name()));
+                }
+                assert!(ratio < 2.0, "{}: {} peaks at {ratio} I_max", e.rel, m.name());
+            }
+        }
+        n += 1;
+    }
+    eprintln!("largest lobe-mixture peak: {:.3} I_max ({})", worst.0, worst.1);
+    assert!(n >= 50, "only {n} corpus files");
+}
+
 fn lobe_truth(lobes: &[(f64, f64, f64, f64)]) -> Lobes {
     Lobes::new(
         lobes
