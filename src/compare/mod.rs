@@ -385,8 +385,11 @@ pub struct ReconResult {
     /// continuous field, [`crate::metrics::nearest`]), `mesh` (exact to the
     /// adaptive mesh of a field that may jump, whose solid has walls, of a
     /// fold with more than 2,000 withheld points, where one mesh is cheaper,
-    /// or to the measured solid), `profile` (a solid of revolution's meridian), or
-    /// `origin` (kept data all zero); several joined by `+` when folds differ.
+    /// or to the measured solid), `cells` (exact, in closed form, to the
+    /// patches and walls of a field made of constant cells: a nearest
+    /// texture lookup, [`crate::metrics::cells`]), `profile` (a solid of
+    /// revolution's meridian), or `origin` (kept data all zero); several
+    /// joined by `+` when folds differ.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub withheld_distance: Option<String>,
     /// The largest deviation of this row's adaptive solid (or profile) from

@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use super::{mark_pareto, own_or_grid_solid, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
+use crate::metrics::cells::distances_to_cells;
 use crate::metrics::hausdorff::distances;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
@@ -103,6 +104,13 @@ impl RowDistances {
             let own = Profile::of_field(&*field, &g);
             self.segments = self.segments.max(Some(own.n_segments()));
             self.dist.extend(profile::distances_3d(&points, &own));
+            return Ok(());
+        }
+        // Constant cells (a nearest texture lookup): exact distances to its
+        // patches and walls in closed form (metrics::cells), no mesh.
+        if let Some(cells) = field.constant_cells() {
+            self.method("cells");
+            self.dist.extend(distances_to_cells(&cells, &polar));
             return Ok(());
         }
         // Any other continuous field: the distance to its solid, searched on

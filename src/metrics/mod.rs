@@ -1,6 +1,7 @@
 //! Metrics between photometric solids and distributions.
 
 pub mod bvh;
+pub mod cells;
 pub mod cost;
 pub mod hausdorff;
 pub mod nearest;

@@ -93,6 +93,43 @@ pub trait IntensityField: Sync {
     fn is_continuous(&self) -> bool {
         false
     }
+
+    /// The field as constant cells, when it is exactly that (a nearest
+    /// lookup of a texture): its solid is then spherical patches joined by
+    /// radial walls, and [`crate::metrics::cells`] measures distances to it
+    /// exactly instead of on a mesh. `None` (the default) for every other field.
+    fn constant_cells(&self) -> Option<ConstantCells> {
+        None
+    }
+}
+
+/// A field that is constant on the cells of a C × γ grid: `values_cd[i *
+/// n_c + j]` on γ ∈ [`gamma_edges_deg[i]`, `gamma_edges_deg[i + 1]`) and C ∈
+/// [`c_edges_deg[j]`, `c_edges_deg[j + 1]`), n_c = `c_edges_deg.len() − 1`.
+/// The γ edges run from 0 to 180 and the C edges from 0 to 360 (the last
+/// column meets the first at the seam), both increasing; values are cd, ≥ 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConstantCells {
+    /// Row edges, degrees, 0 to 180, increasing.
+    pub gamma_edges_deg: Vec<f64>,
+    /// Column edges, degrees, 0 to 360, increasing.
+    pub c_edges_deg: Vec<f64>,
+    /// Each cell's intensity, cd, row-major (γ rows of `c_edges_deg.len() − 1` columns).
+    pub values_cd: Vec<f64>,
+}
+
+impl ConstantCells {
+    /// Rows (γ) and columns (C).
+    pub fn shape(&self) -> (usize, usize) {
+        (
+            self.gamma_edges_deg.len().saturating_sub(1),
+            self.c_edges_deg.len().saturating_sub(1),
+        )
+    }
+    /// Intensity (cd) of cell (row `i`, column `j`).
+    pub fn value(&self, i: usize, j: usize) -> f64 {
+        self.values_cd[i * self.shape().1 + j]
+    }
 }
 
 impl<F: Fn(f64, f64) -> f64 + Sync> IntensityField for F {
@@ -137,6 +174,9 @@ impl IntensityField for Borrowed<'_> {
     }
     fn is_continuous(&self) -> bool {
         self.0.is_continuous()
+    }
+    fn constant_cells(&self) -> Option<ConstantCells> {
+        self.0.constant_cells()
     }
 }
 

@@ -515,6 +515,26 @@ impl IntensityField for StoredTexture {
     fn is_continuous(&self) -> bool {
         !matches!(self.lookup, Lookup::Nearest) && !matches!(self.filter, Filter::Nearest)
     }
+    /// A nearest lookup of the whole texture is its texels as cells: row i
+    /// covers γ from i·180/height to (i + 1)·180/height, column j C from
+    /// j·360/full_width to (j + 1)·360/full_width, each texel × I_max,
+    /// clamped at 0 (as [`StoredTexture::cd`]). A symmetry-reduced texture
+    /// mirrors its columns and is not described here (`None`).
+    fn constant_cells(&self) -> Option<crate::model::ConstantCells> {
+        if self.lookup != Lookup::Nearest || self.reduced.is_some() || self.height == 0 || self.full_width == 0 {
+            return None;
+        }
+        let edges = |n: usize, span: f64| (0..=n).map(|k| span * k as f64 / n as f64).collect();
+        Some(crate::model::ConstantCells {
+            gamma_edges_deg: edges(self.height, 180.0),
+            c_edges_deg: edges(self.full_width, 360.0),
+            values_cd: self
+                .data
+                .iter()
+                .map(|&v| (f64::from(v) * self.i_max_cd).max(0.0))
+                .collect(),
+        })
+    }
 }
 
 impl Rendered {
