@@ -21,16 +21,19 @@ from ._native import Luminaire, PhotosolidError, __version__, batch_parquet, loa
 __all__ = ["Luminaire", "PhotosolidError", "__version__", "batch", "load"]
 
 
-def batch(paths: Union[str, os.PathLike, Iterable[Union[str, os.PathLike]]]) -> "pyarrow.Table":  # noqa: F821
+def batch(
+    paths: Union[str, os.PathLike, Iterable[Union[str, os.PathLike]]], compact: bool = False
+) -> "pyarrow.Table":  # noqa: F821
     """The batch table of every .ies/.ldt file under ``paths`` (directories recursively), one row per file.
 
-    Equal to ``photosolid batch PATHS -o OUT.parquet`` read with ``pyarrow.parquet.read_table``. A file that
-    does not load is a row with ``ok`` False and its error, not an exception. Needs pyarrow.
+    Equal to ``photosolid batch PATHS -o OUT.parquet`` read with ``pyarrow.parquet.read_table``; with
+    ``compact=True`` to ``batch --compact``, which fills ``smallest_within_1pct``. A file that does not load is
+    a row with ``ok`` False and its error, not an exception. Needs pyarrow.
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    data = batch_parquet([os.fspath(p) for p in paths])
+    data = batch_parquet([os.fspath(p) for p in paths], compact)
     return pq.read_table(pa.BufferReader(data))

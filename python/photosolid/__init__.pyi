@@ -11,5 +11,8 @@ from ._native import __version__ as __version__
 from ._native import batch_parquet as batch_parquet
 from ._native import load as load
 
-def batch(paths: Union[str, os.PathLike[str], Iterable[Union[str, os.PathLike[str]]]]) -> pyarrow.Table:
-    """The batch table (columns of ``photosolid batch``, docs/batch.md) of every .ies/.ldt file under ``paths``."""
+def batch(
+    paths: Union[str, os.PathLike[str], Iterable[Union[str, os.PathLike[str]]]], compact: bool = False
+) -> pyarrow.Table:
+    """The batch table (columns of ``photosolid batch``, docs/batch.md) of every .ies/.ldt file under ``paths``;
+    ``compact=True`` as ``batch --compact`` (fills ``smallest_within_1pct``)."""

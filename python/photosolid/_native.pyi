@@ -79,5 +79,5 @@ class Luminaire:
 def load(path: Union[str, os.PathLike[str]]) -> Luminaire:
     """Load an .ies or .ldt file; raises PhotosolidError naming the file and line when it is bad."""
 
-def batch_parquet(paths: Sequence[Union[str, os.PathLike[str]]]) -> bytes:
-    """The batch table of every .ies/.ldt file under ``paths`` as Parquet bytes."""
+def batch_parquet(paths: Sequence[Union[str, os.PathLike[str]]], compact: bool = False) -> bytes:
+    """The batch table of every .ies/.ldt file under ``paths`` as Parquet bytes (``compact``: ``batch --compact``)."""

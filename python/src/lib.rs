@@ -387,14 +387,19 @@ impl Luminaire {
 }
 
 /// The batch table of every .ies/.ldt file under `paths` (as `photosolid
-/// batch PATHS -o OUT.parquet`) as Parquet bytes; `photosolid.batch` reads
-/// them into a `pyarrow.Table`.
+/// batch PATHS -o OUT.parquet`, with `compact` as `--compact`) as Parquet
+/// bytes; `photosolid.batch` reads them into a `pyarrow.Table`.
 #[pyfunction]
-fn batch_parquet<'py>(py: Python<'py>, paths: Vec<PathBuf>) -> PyResult<Bound<'py, PyBytes>> {
+#[pyo3(signature = (paths, compact = false))]
+fn batch_parquet<'py>(py: Python<'py>, paths: Vec<PathBuf>, compact: bool) -> PyResult<Bound<'py, PyBytes>> {
     let bytes = py
         .detach(|| -> photosolid::Result<Vec<u8>> {
             let files = photosolid::batch::collect(&paths)?;
-            let rows = photosolid::batch::run(&files, &Default::default(), &|_, _, _| {});
+            let options = photosolid::batch::BatchOptions {
+                compact,
+                ..Default::default()
+            };
+            let rows = photosolid::batch::run(&files, &options, &|_, _, _| {});
             photosolid::batch::table::parquet_bytes(&rows)
         })
         .map_err(py_err)?;

@@ -153,7 +153,7 @@ def test_batch_equals_the_cli_table(tmp_path: Path):
     cli = pq.read_table(tmp_path / "t.parquet")
     assert table.schema == cli.schema
     assert table.num_rows == len(FILES) + 1
-    timing = {"parse_ms", "holdout_ms", "fit_ms"}
+    timing = {"parse_ms", "holdout_ms", "fit_ms", "compact_ms"}
     for name in table.column_names:
         if name not in timing:
             assert table[name].to_pylist() == cli[name].to_pylist(), name
@@ -163,6 +163,22 @@ def test_batch_equals_the_cli_table(tmp_path: Path):
     # Units as documented: flux in lm equal to info --json, angles in degrees, errors in % of I_max.
     info = cli_json("info", str(work / "roadway.ldt"), "--json")
     assert rows[str(work / "roadway.ldt")]["flux_lm"] == info["flux_lm"]
+
+
+def test_batch_compact_equals_the_cli(tmp_path: Path):
+    """``compact=True`` is ``batch --compact``: the same ``smallest_within_1pct`` per file, each measured."""
+    work = tmp_path / "files"
+    shutil.copytree(DATA, work, ignore=shutil.ignore_patterns("*.toml"))
+    table = photosolid.batch(work, compact=True)
+    out = tmp_path / "t.parquet"
+    subprocess.run([BIN, "batch", str(work), "-o", str(out), "--compact"], check=True, capture_output=True)
+    cli = pq.read_table(out)
+    assert table.schema == cli.schema
+    assert table["smallest_within_1pct"].to_pylist() == cli["smallest_within_1pct"].to_pylist()
+    ok = [r for r in table.to_pylist() if r["ok"] and not r["errors"]]
+    assert ok and all(r["compact_ms"] is not None and r["compact_ms"] > 0 for r in ok)
+    plain = photosolid.batch(work)
+    assert all(v is None for v in plain["compact_ms"].to_pylist())
 
 
 @pytest.mark.parametrize("path", FILES, ids=lambda p: p.name)

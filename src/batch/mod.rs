@@ -22,12 +22,17 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::error::ModelError;
 use crate::error::{Error, ErrorRecord};
+use crate::fit::lobes::fit_lobes;
 use crate::fit::{fit, FitOptions};
 use crate::formats::ReadOptions;
+use crate::model::IntensityField;
 use crate::model::{Distribution, Luminaire, Progress};
 use crate::photometry::Summary;
-use crate::reconstruct::{holdout, Filter, HoldoutSpec};
+use crate::reconstruct::{
+    holdout, holdout_split, Filter, HoldoutReport, HoldoutSpec, LightTexture, Precision, ShField, ShWindow,
+};
 
 /// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
 /// row, reconstruct the others (`photosolid holdout`'s default).
@@ -120,6 +125,16 @@ pub struct BatchRecord {
     pub holdout_ms: f64,
     /// Time of the OpenGL fit, ms.
     pub fit_ms: f64,
+    /// With `batch --compact` ([`BatchOptions::compact`]): the representation
+    /// with the fewest bytes whose largest error over the hold-out's withheld
+    /// samples ([`HOLDOUT`]) is within 1 % of I_max, among the six filters on
+    /// the measured grid, `sh:{2,4,8,16}` and `lobes:{1,2,3,4}` (each rebuilt
+    /// from the kept samples; `compare::smallest_named`, the rule of
+    /// `tradeoff`'s key of the same name). Null when none is, and when not
+    /// measured (then `compact_ms` is null too; schema 3).
+    pub smallest_within_1pct: Option<String>,
+    /// Time of the compact candidates (`--compact`), ms; null when not measured.
+    pub compact_ms: Option<f64>,
 }
 
 impl BatchRecord {
@@ -163,6 +178,8 @@ impl BatchRecord {
             parse_ms: 0.0,
             holdout_ms: 0.0,
             fit_ms: 0.0,
+            smallest_within_1pct: None,
+            compact_ms: None,
         }
     }
 
@@ -185,6 +202,9 @@ impl BatchRecord {
 pub struct BatchOptions {
     /// Reader options (the CLI uses the defaults).
     pub read: ReadOptions,
+    /// Measure the compact candidates and fill `smallest_within_1pct`
+    /// (`batch --compact`; off by default: tens of ms a file).
+    pub compact: bool,
 }
 
 /// A number only when finite (a table never holds NaN or infinity).
@@ -225,8 +245,12 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     row.parse_ms = ms(t);
     row.ok = true;
     add_summary(&mut row, l, &s);
-    add_holdout(&mut row, lum.distribution());
+    let reports = add_holdout(&mut row, lum.distribution());
     add_fit(&mut row, lum.distribution());
+    // Without a hold-out (its error is in the row) there is nothing to measure against.
+    if options.compact && !reports.is_empty() {
+        add_compact(&mut row, lum.distribution(), &reports);
+    }
     row
 }
 
@@ -273,8 +297,9 @@ fn add_summary(row: &mut BatchRecord, l: &Luminaire, s: &Summary) {
 /// Fills the hold-out columns of `row` for `d`: the filter of the smallest RMS
 /// error ([`HOLDOUT`], every filter) with its RMS and max errors (% of I_max),
 /// and the time taken (`holdout_ms`); an error message when the hold-out fails.
-fn add_holdout(row: &mut BatchRecord, d: &Distribution) {
+fn add_holdout(row: &mut BatchRecord, d: &Distribution) -> Vec<HoldoutReport> {
     let t = Instant::now();
+    let mut out = Vec::new();
     match holdout(d, HOLDOUT, &Filter::ALL) {
         Ok(reports) => {
             // The first of the smallest RMS errors (Filter::ALL order breaks ties).
@@ -287,10 +312,66 @@ fn add_holdout(row: &mut BatchRecord, d: &Distribution) {
                 row.best_filter_rms_pct = finite(Some(b.rms_percent));
                 row.best_filter_max_pct = finite(Some(b.max_percent));
             }
+            out = reports;
         }
         Err(e) => row.errors.push(format!("holdout: {}", Error::from(e))),
     }
     row.holdout_ms = ms(t);
+    out
+}
+
+/// Fills `smallest_within_1pct` (and `compact_ms`) of `row` for `d`: the
+/// filters' hold-out errors (`reports`), and `sh:L` and `lobes:K` rebuilt
+/// from the same kept samples and measured at the same withheld ones; an
+/// error message when they cannot be built (the column then stays null).
+fn add_compact(row: &mut BatchRecord, d: &Distribution, reports: &[HoldoutReport]) {
+    let t = Instant::now();
+    match compact_candidates(d, reports) {
+        Ok(c) => {
+            row.smallest_within_1pct = crate::compare::smallest_named(
+                c.iter().map(|(name, bytes, pct)| (name.as_str(), *bytes, *pct)),
+                crate::compare::trade::WITHIN_PCT,
+            );
+        }
+        Err(e) => row.errors.push(format!("compact: {}", Error::from(e))),
+    }
+    row.compact_ms = Some(ms(t));
+}
+
+/// (name, bytes, largest hold-out error in % of I_max) of every candidate of
+/// [`BatchRecord::smallest_within_1pct`].
+fn compact_candidates(d: &Distribution, reports: &[HoldoutReport]) -> Result<Vec<(String, usize, f64)>, ModelError> {
+    use crate::compare::trade::{LOBE_COUNTS, SH_DEGREES};
+    use crate::registry::Recon;
+    let i_max = d.max_cd();
+    let full = LightTexture::new(d)?;
+    let mut out: Vec<(String, usize, f64)> = reports
+        .iter()
+        .map(|r| (r.filter.to_string(), full.sampler(r.filter).bytes(), r.max_percent))
+        .collect();
+    let split = holdout_split(d, HOLDOUT)?;
+    let source = LightTexture::new(&split.kept)?;
+    let catmull_rom = source.sampler(Filter::CatmullRom);
+    for degree in SH_DEGREES {
+        let s = ShField::new(&catmull_rom, degree, ShWindow::Lanczos, Precision::F32)?;
+        let name = Recon::Sh {
+            degree,
+            f16: false,
+            gpu: false,
+        }
+        .to_string();
+        out.push((name, s.bytes(), split.max_percent(&s, i_max)));
+    }
+    let most = LOBE_COUNTS.iter().copied().max().unwrap_or(1);
+    for (k, m) in fit_lobes(&split.kept, most)?.iter().enumerate() {
+        let name = Recon::Lobes {
+            count: k + 1,
+            gpu: false,
+        }
+        .to_string();
+        out.push((name, m.bytes(), split.max_percent(m, i_max)));
+    }
+    Ok(out)
 }
 
 /// Fills the fit columns of `row` for `d`: the chosen combination of fitted

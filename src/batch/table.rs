@@ -28,7 +28,9 @@ use crate::error::{Error, ErrorKind, Location, ParseError, Result};
 ///
 /// 2 (issue 27): `lamp_flux_lm`, `manufacturer`, `catalogue`, `input_watts`, `efficacy_lm_per_w`
 /// after `field_angle_c90_deg`; a schema-1 table still reads (those columns null).
-pub const SCHEMA_VERSION: &str = "2";
+/// 3 (issue 30): `smallest_within_1pct` and `compact_ms` at the end (`batch --compact`);
+/// an older table reads with them null.
+pub const SCHEMA_VERSION: &str = "3";
 
 /// Rows per Parquet row group.
 pub const ROW_GROUP: usize = 65_536;
@@ -104,6 +106,12 @@ fn columns(rows: &[BatchRecord]) -> Vec<(&'static str, ArrayRef, bool)> {
         ("parse_ms", floats(rows, |r| Some(r.parse_ms)), false),
         ("holdout_ms", floats(rows, |r| Some(r.holdout_ms)), false),
         ("fit_ms", floats(rows, |r| Some(r.fit_ms)), false),
+        (
+            "smallest_within_1pct",
+            strings(rows, |r| r.smallest_within_1pct.as_deref()),
+            true,
+        ),
+        ("compact_ms", floats(rows, |r| r.compact_ms), true),
     ]
 }
 
@@ -310,17 +318,17 @@ impl Columns<'_> {
             .collect()
     }
 
-    /// [`Columns::floats`] of a schema-2 column: all null when a schema-1 table
-    /// lacks it (e.g. `batch --resume` on an older file).
-    fn floats_since_2(&self, name: &str) -> Result<Vec<Option<f64>>> {
+    /// [`Columns::floats`] of a column added after schema 1: all null when an
+    /// older table lacks it (e.g. `batch --resume` on an older file).
+    fn floats_if_present(&self, name: &str) -> Result<Vec<Option<f64>>> {
         match self.b.column_by_name(name) {
             None => Ok(vec![None; self.b.num_rows()]),
             Some(_) => self.floats(name),
         }
     }
 
-    /// [`Columns::strings`] of a schema-2 column, as [`Columns::floats_since_2`].
-    fn strings_since_2(&self, name: &str) -> Result<Vec<Option<String>>> {
+    /// [`Columns::strings`] of a column added after schema 1, as [`Columns::floats_if_present`].
+    fn strings_if_present(&self, name: &str) -> Result<Vec<Option<String>>> {
         match self.b.column_by_name(name) {
             None => Ok(vec![None; self.b.num_rows()]),
             Some(_) => self.strings(name),
@@ -350,6 +358,8 @@ struct ColumnValues<'a> {
     efficacy: Vec<Option<f64>>,
     manufacturer: Vec<Option<String>>,
     catalogue: Vec<Option<String>>,
+    smallest: Vec<Option<String>>,
+    compact_ms: Vec<Option<f64>>,
 }
 
 impl<'a> ColumnValues<'a> {
@@ -368,11 +378,18 @@ impl<'a> ColumnValues<'a> {
         let nums: Vec<Vec<Option<f64>>> = FLOAT_COLUMNS.iter().map(|n| c.floats(n)).collect::<Result<_>>()?;
         let (best, gl) = (c.strings("best_filter")?, c.strings("fitted_gl")?);
         let (lamp_flux, watts, efficacy) = (
-            c.floats_since_2("lamp_flux_lm")?,
-            c.floats_since_2("input_watts")?,
-            c.floats_since_2("efficacy_lm_per_w")?,
+            c.floats_if_present("lamp_flux_lm")?,
+            c.floats_if_present("input_watts")?,
+            c.floats_if_present("efficacy_lm_per_w")?,
         );
-        let (manufacturer, catalogue) = (c.strings_since_2("manufacturer")?, c.strings_since_2("catalogue")?);
+        let (manufacturer, catalogue) = (
+            c.strings_if_present("manufacturer")?,
+            c.strings_if_present("catalogue")?,
+        );
+        let (smallest, compact_ms) = (
+            c.strings_if_present("smallest_within_1pct")?,
+            c.floats_if_present("compact_ms")?,
+        );
         Ok(Self {
             ok,
             path,
@@ -393,6 +410,8 @@ impl<'a> ColumnValues<'a> {
             efficacy,
             manufacturer,
             catalogue,
+            smallest,
+            compact_ms,
         })
     }
 
@@ -437,6 +456,8 @@ impl<'a> ColumnValues<'a> {
             parse_ms: x(16).unwrap_or(0.0),
             holdout_ms: x(17).unwrap_or(0.0),
             fit_ms: x(18).unwrap_or(0.0),
+            smallest_within_1pct: self.smallest[i].clone(),
+            compact_ms: self.compact_ms[i],
         }
     }
 }

@@ -33,6 +33,10 @@ pub struct BatchArgs {
     /// Skip files whose path is already in the output (OUT.parquet, else OUT.jsonl), keeping their rows.
     #[arg(long)]
     resume: bool,
+    /// Also measure sh:{2,4,8,16} and lobes:{1,2,3,4} against the hold-out and fill the
+    /// `smallest_within_1pct` column (tens of ms a file; null without this flag).
+    #[arg(long)]
+    compact: bool,
 }
 
 /// Rows of an earlier run, for `--resume`.
@@ -101,7 +105,10 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
         .into_iter()
         .filter(|f| !seen.contains(&f.display().to_string()))
         .collect();
-    let options = BatchOptions::default();
+    let options = BatchOptions {
+        compact: a.compact,
+        ..BatchOptions::default()
+    };
     let bar = super::progress_bar("files");
     bar.set_length(todo.len() as u64);
     // At least one pass, so that an empty or fully resumed run still writes its outputs.

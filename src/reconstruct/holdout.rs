@@ -21,7 +21,7 @@
 use serde::Serialize;
 
 use crate::error::ModelError;
-use crate::model::{Distribution, Symmetry, ANGLE_EPS};
+use crate::model::{Distribution, IntensityField, Symmetry, ANGLE_EPS};
 
 use super::filter::Filter;
 use super::texture::LightTexture;
@@ -215,14 +215,14 @@ fn flux(d: &Distribution, cd: &[f64]) -> f64 {
     .unwrap_or(0.0)
 }
 
-/// Run the hold-out test of `dist` for each filter.
+/// The kept stored C-plane and γ-row indices of `spec` on `dist` and the
+/// thinned grid holding only them.
 ///
 /// # Errors
-/// [`ModelError::Parameter`] when the spec drops nothing;
-/// [`ModelError::AllZero`] when the original or the thinned data is all zero.
-pub fn holdout(dist: &Distribution, spec: HoldoutSpec, filters: &[Filter]) -> Result<Vec<HoldoutReport>, ModelError> {
-    let i_max = dist.max_cd();
-    if i_max <= 0.0 {
+/// [`ModelError::AllZero`] for data without light (errors are relative to
+/// I_max); [`ModelError::Parameter`] (`holdout`) when `spec` drops nothing.
+fn plan(dist: &Distribution, spec: HoldoutSpec) -> Result<(Vec<usize>, Vec<usize>, Distribution), ModelError> {
+    if dist.max_cd() <= 0.0 {
         return Err(ModelError::AllZero("hold-out errors are relative to I_max"));
     }
     let periodic = dist.symmetry() == Symmetry::None;
@@ -235,9 +235,65 @@ pub fn holdout(dist: &Distribution, spec: HoldoutSpec, filters: &[Filter]) -> Re
             reason: "drops nothing on this grid; use a step of 2 or more on an axis with 3 or more angles".into(),
         });
     }
+    let thin = thinned(dist, &kc, &kg)?;
+    Ok((kc, kg, thin))
+}
+
+/// The hold-out of a [`HoldoutSpec`] for any representation
+/// ([`holdout_split`]): what to rebuild it from and where to measure it.
+#[derive(Debug, Clone)]
+pub struct HoldoutSplit {
+    /// The thinned grid: the kept samples only.
+    pub kept: Distribution,
+    /// The samples it drops, as (C°, γ°, cd).
+    pub dropped: Vec<(f64, f64, f64)>,
+}
+
+impl HoldoutSplit {
+    /// The largest |field − measured| over the dropped samples, % of
+    /// `i_max_cd` (the [`HoldoutReport::max_percent`] of any
+    /// representation); 0 when nothing is dropped or `i_max_cd` is not positive.
+    pub fn max_percent(&self, field: &dyn IntensityField, i_max_cd: f64) -> f64 {
+        if i_max_cd.is_nan() || i_max_cd <= 0.0 {
+            return 0.0;
+        }
+        let worst = self
+            .dropped
+            .iter()
+            .map(|&(c, g, v)| (field.intensity_cd(c, g) - v).abs())
+            .fold(0.0, f64::max);
+        100.0 * worst / i_max_cd
+    }
+}
+
+/// The hold-out of `spec` on `dist` for any representation.
+///
+/// # Errors
+/// As [`holdout`].
+pub fn holdout_split(dist: &Distribution, spec: HoldoutSpec) -> Result<HoldoutSplit, ModelError> {
+    let (kc, kg, kept) = plan(dist, spec)?;
+    let (c, g) = (dist.c_angles_deg(), dist.gamma_angles_deg());
+    let mut dropped = Vec::new();
+    for (ic, &cc) in c.iter().enumerate() {
+        for (ig, &gg) in g.iter().enumerate() {
+            if kc.binary_search(&ic).is_err() || kg.binary_search(&ig).is_err() {
+                dropped.push((cc, gg, dist.value_cd(ic, ig)));
+            }
+        }
+    }
+    Ok(HoldoutSplit { kept, dropped })
+}
+
+/// Run the hold-out test of `dist` for each filter.
+///
+/// # Errors
+/// [`ModelError::Parameter`] when the spec drops nothing;
+/// [`ModelError::AllZero`] when the original or the thinned data is all zero.
+pub fn holdout(dist: &Distribution, spec: HoldoutSpec, filters: &[Filter]) -> Result<Vec<HoldoutReport>, ModelError> {
+    let i_max = dist.max_cd();
+    let (kc, kg, thin) = plan(dist, spec)?;
     let c = dist.c_angles_deg();
     let g = dist.gamma_angles_deg();
-    let thin = thinned(dist, &kc, &kg)?;
     let tex = LightTexture::new(&thin)?;
     let is_kept_c: Vec<bool> = (0..dist.n_c()).map(|i| kc.binary_search(&i).is_ok()).collect();
     let is_kept_g: Vec<bool> = (0..dist.n_gamma()).map(|i| kg.binary_search(&i).is_ok()).collect();

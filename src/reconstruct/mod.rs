@@ -38,7 +38,7 @@ pub use axis::AxisTaps;
 pub use backend::Backend;
 pub use compact::Compact;
 pub use filter::{combine, Filter, Real, FILTER_NAMES};
-pub use holdout::{holdout, kfold, Fold, HoldoutReport, HoldoutSpec};
+pub use holdout::{holdout, holdout_split, kfold, Fold, HoldoutReport, HoldoutSpec, HoldoutSplit};
 pub use lobes::{Lobe, Lobes};
 pub use lookup::{Lookup, Precision, StoredTexture};
 pub use sampler::Sampler;

@@ -103,8 +103,13 @@ fn table_equals_the_per_file_commands() {
         .key_value_metadata()
         .and_then(|kv| kv.iter().find(|kv| kv.key == "photosolid.batch.schema"))
         .and_then(|kv| kv.value.clone());
-    assert_eq!(schema.as_deref(), Some("2"));
-    assert_eq!(photosolid::batch::table::SCHEMA_VERSION, "2");
+    assert_eq!(schema.as_deref(), Some("3"));
+    assert_eq!(photosolid::batch::table::SCHEMA_VERSION, "3");
+    // Schema 3: the compact columns exist and, without --compact, say nothing was measured.
+    for r in &table {
+        assert_eq!(r["smallest_within_1pct"], serde_json::Value::Null, "{r:?}");
+        assert_eq!(r["compact_ms"], serde_json::Value::Null, "{r:?}");
+    }
     let n_data = std::fs::read_dir(&data)
         .unwrap()
         .filter(|e| {
@@ -268,4 +273,47 @@ fn corpus_rows_follow_the_manifest() {
         checked += 1;
     }
     assert!(checked >= 100, "{checked}");
+}
+
+/// `batch --compact` fills `smallest_within_1pct` by the rule of
+/// `tradeoff` over the hold-out: an isotropic file is `sh:2` (36 bytes, exact:
+/// `lobes:1` is a hemisphere), a Lambertian one `lobes:1` (20 bytes, exact),
+/// each with its time; the Parquet table and the JSON Lines agree.
+#[test]
+fn compact_names_the_smallest_within_1pct() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::create_dir(d.join("files")).unwrap();
+    for (kind, file) in [
+        ("isotropic", "files/iso.ldt"),
+        ("lambertian", "files/lamb.ldt"),
+        ("roadway", "files/road.ldt"),
+    ] {
+        ok(&run(&["synth", kind, "-o", file], d));
+    }
+    ok(&run(
+        &["batch", "files", "-o", "t.parquet", "--jsonl", "t.jsonl", "--compact"],
+        d,
+    ));
+    let table = rows(&read(&d.join("t.parquet")));
+    let lines: Vec<serde_json::Value> = std::fs::read_to_string(d.join("t.jsonl"))
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let want = [("iso.ldt", Some("sh:2")), ("lamb.ldt", Some("lobes:1"))];
+    for (name, expected) in want {
+        let r = table
+            .iter()
+            .find(|r| r["path"].as_str().unwrap().ends_with(name))
+            .unwrap();
+        assert_eq!(r["smallest_within_1pct"].as_str(), expected, "{name}: {r:?}");
+        assert!(r["compact_ms"].as_f64().is_some_and(|t| t > 0.0), "{name}: {r:?}");
+    }
+    for r in &table {
+        let j = lines.iter().find(|l| l["path"] == r["path"]).unwrap();
+        assert_eq!(j["smallest_within_1pct"], r["smallest_within_1pct"], "{r:?}");
+        let name = r["smallest_within_1pct"].as_str().unwrap_or("none");
+        eprintln!("{}: smallest within 1 %: {name}", r["path"]);
+    }
 }
