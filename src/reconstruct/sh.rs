@@ -35,7 +35,9 @@
 //! ([`ShField::unclamped_cd`] shows it).
 //!
 //! # Storage
-//! `(L + 1)²` coefficients relative to a scale (the largest sampled
+//! `(L + 1)²` coefficients (only the `L + 1` zonal ones, m = 0, when every
+//! other one is zero to rounding: a rotationally symmetric field,
+//! [`ShField::is_zonal`]) relative to a scale (the largest sampled
 //! intensity, f64, not counted: the same convention as a stored texture's
 //! I_max), in f32 (4 bytes each) or f16 (2 bytes: rounded to the nearest half
 //! float, 11 significant bits). The scale makes the isotropic `Y_00`
@@ -238,6 +240,31 @@ pub fn project(field: &dyn IntensityField, degree: usize) -> Result<(Vec<f64>, f
     Ok((c, scale))
 }
 
+/// The largest |coefficient| with m ≠ 0, relative to the largest one, below
+/// which a series is stored zonal (m = 0 only). The projection of a field
+/// that does not depend on C leaves its non-zonal coefficients at rounding
+/// level (about 1e-17 of the largest); a real asymmetry is many orders above.
+pub const ZONAL_TOLERANCE: f64 = 1e-12;
+
+/// Whether the non-zonal coefficients of `coeffs` (degree `degree`, at
+/// `l² + l + m`) are all within [`ZONAL_TOLERANCE`] of zero; they are then
+/// set to exactly zero (what is stored is what is evaluated).
+fn zonal_only(coeffs: &mut [f64], degree: usize) -> bool {
+    let largest = coeffs.iter().fold(0.0f64, |a, c| a.max(c.abs()));
+    let non_zonal = |l: usize| (0..2 * l + 1).filter(move |&k| k != l).map(move |k| l * l + k);
+    let zonal = (0..=degree)
+        .flat_map(non_zonal)
+        .all(|i| coeffs.get(i).is_none_or(|c| c.abs() <= ZONAL_TOLERANCE * largest));
+    if zonal {
+        for i in (0..=degree).flat_map(non_zonal) {
+            if let Some(c) = coeffs.get_mut(i) {
+                *c = 0.0;
+            }
+        }
+    }
+    zonal
+}
+
 fn check_degree(degree: usize) -> Result<(), ModelError> {
     if degree > MAX_SH_DEGREE {
         return Err(ModelError::Parameter {
@@ -260,6 +287,9 @@ pub struct ShField {
     scale_cd: f64,
     /// `σ_l c_lm / (√(4π) scale)`, rounded to the storage precision.
     coeffs: Vec<f64>,
+    /// Every stored coefficient with m ≠ 0 is zero (a rotationally symmetric
+    /// field): only the L + 1 zonal ones are stored and evaluated.
+    zonal: bool,
     rec: Vec<(f64, f64)>,
     diag: Vec<f64>,
 }
@@ -299,7 +329,8 @@ impl ShField {
             .map(|(l, i)| c.get(i).copied().unwrap_or(0.0) * window.factor(l, degree) * norm)
             .collect();
         // As stored: rounded to the float format, or to the integer steps of the largest |coefficient|.
-        let coeffs = precision.store(&windowed);
+        let mut coeffs = precision.store(&windowed);
+        let zonal = zonal_only(&mut coeffs, degree);
         let diag = (0..=degree)
             .map(|m| {
                 if m == 0 {
@@ -315,6 +346,7 @@ impl ShField {
             precision,
             scale_cd: if ok { scale_cd } else { 0.0 },
             coeffs,
+            zonal,
             rec: recurrence(degree),
             diag,
         }
@@ -323,6 +355,11 @@ impl ShField {
     /// The degree L.
     pub fn degree(&self) -> usize {
         self.degree
+    }
+    /// Whether only the zonal coefficients (m = 0) are stored: the field is
+    /// rotationally symmetric about the vertical axis (see [`ZONAL_TOLERANCE`]).
+    pub fn is_zonal(&self) -> bool {
+        self.zonal
     }
     /// The window.
     pub fn window(&self) -> ShWindow {
@@ -365,7 +402,8 @@ impl ShField {
         let mut sum = 0.0;
         let mut pmm = 1.0;
         let (mut cr, mut ci) = (1.0, 0.0);
-        for m in 0..=self.degree {
+        let orders = if self.zonal { 0 } else { self.degree };
+        for m in 0..=orders {
             if m > 0 {
                 pmm *= self.diag[m];
                 (cr, ci) = (cr * x - ci * y, cr * y + ci * x);
@@ -416,16 +454,23 @@ impl IntensityField for ShField {
     }
     fn name(&self) -> String {
         format!(
-            "sh:{}{} ({} window)",
+            "sh:{}{} ({} window{})",
             self.degree,
             self.precision.suffix(),
-            self.window.name()
+            self.window.name(),
+            if self.zonal { ", zonal" } else { "" }
         )
     }
-    /// `(L + 1)²` coefficients × 4 bytes (f32), × 2 (f16, u16) or × 1 (u8);
-    /// the f64 scale is not counted (as a stored texture's I_max).
+    /// `(L + 1)²` coefficients (`L + 1` when zonal) × 4 bytes (f32), × 2
+    /// (f16, u16) or × 1 (u8); the f64 scale is not counted (as a stored
+    /// texture's I_max).
     fn bytes(&self) -> usize {
-        (self.degree + 1) * (self.degree + 1) * self.precision.bytes()
+        let n = if self.zonal {
+            self.degree + 1
+        } else {
+            (self.degree + 1) * (self.degree + 1)
+        };
+        n * self.precision.bytes()
     }
     /// A finite sum of harmonics, clamped at 0: continuous.
     fn is_continuous(&self) -> bool {

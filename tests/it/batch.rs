@@ -276,7 +276,7 @@ fn corpus_rows_follow_the_manifest() {
 }
 
 /// `batch --compact` fills `smallest_within_1pct` by the rule of
-/// `tradeoff` over the hold-out: an isotropic file is `sh:2` (36 bytes, exact:
+/// `tradeoff` over the hold-out: an isotropic file is `sh:2` (12 bytes, zonal, exact:
 /// `lobes:1` is a hemisphere), a Lambertian one `lobes:1` (20 bytes, exact),
 /// each with its time; the Parquet table and the JSON Lines agree.
 #[test]

@@ -152,8 +152,41 @@ fn sh_against_synthetic_truths() {
                 .fold(0.0, f64::max);
             assert!(worst <= bound, "{kind:?} sh:{degree}+f16: {worst} > {bound}");
             assert_eq!(2 * h.bytes(), s.bytes());
-            assert_eq!(s.bytes(), (degree + 1) * (degree + 1) * 4);
+            // A rotationally symmetric truth stores only its L + 1 zonal coefficients.
+            let rotational = lum.distribution().symmetry() == Symmetry::Rotational;
+            assert_eq!(s.is_zonal(), rotational, "{kind:?} sh:{degree}");
+            let n = if rotational {
+                degree + 1
+            } else {
+                (degree + 1) * (degree + 1)
+            };
+            assert_eq!(s.bytes(), n * 4, "{kind:?} sh:{degree}");
         }
+    }
+}
+
+/// Zonal storage loses nothing: the batwing's series (rotational, stored
+/// zonal) evaluates as the full series of the same coefficients with one
+/// non-zonal coefficient raised by δ = 1e-9 of the scale (stored full) to
+/// within δ·max|Y_11| ≤ 0.5 δ; the perturbed series is no longer zonal.
+#[test]
+fn zonal_storage_is_exact() {
+    let lum = Synth::Batwing
+        .build(&GridSpec::uniform(5.0, 2.5).unwrap(), 1000.0)
+        .unwrap();
+    let tex = LightTexture::new(lum.distribution()).unwrap();
+    let (c, scale) = project(&tex.sampler(Filter::CatmullRom), 16).unwrap();
+    let zonal = ShField::from_coefficients(&c, scale, 16, ShWindow::None, Precision::F32);
+    let mut bumped = c.clone();
+    let delta = 1e-9 * scale;
+    bumped[sh_index(1, 1)] += delta;
+    let full = ShField::from_coefficients(&bumped, scale, 16, ShWindow::None, Precision::F32);
+    assert!(zonal.is_zonal() && !full.is_zonal());
+    assert_eq!((zonal.bytes(), full.bytes()), (17 * 4, 289 * 4));
+    for &(cc, g) in &DirectionSet::fibonacci(3000).directions {
+        let u = direction(cc, g);
+        let d = (zonal.unclamped_cd(u) - full.unclamped_cd(u)).abs();
+        assert!(d <= 0.5 * delta + 1e-12 * scale, "({cc}, {g}): {d}");
     }
 }
 
@@ -429,9 +462,10 @@ fn bytes_front_and_smallest_within() {
 /// row, `smallest_within_1pct`. On every corpus file an sh/lobes row is on
 /// the bytes front at 10 kB or less; on every file that is not rotationally
 /// symmetric one lies between 128 bytes and 10 kB, unless a row under 128
-/// bytes is already within 1 % of I_max. (A rotational file's x1
-/// texture is one column, 144-720 bytes, and beats `sh:16` at 1156 bytes;
-/// there the front's sh/lobes rows are the ones under 128 bytes. On the
+/// bytes is already within 1 % of I_max. (A rotational file's series are
+/// zonal, `sh:16` 68 bytes, and its x1 texture one column, 144-720 bytes:
+/// there every sh/lobes row is under 128 bytes, and those are the front's
+/// compact rows. On the
 /// coarse synthetic roadway against withheld samples the lobes beat every
 /// grid representation, so its front ends at `lobes:4`, 80 bytes.)
 #[test]
