@@ -250,11 +250,14 @@ impl GpuContext {
         let summary = AdapterSummary::from_info(&info);
 
         let limits = adapter.limits();
-        // R32Float textures are filterable only with FLOAT32_FILTERABLE, and
-        // R16Unorm textures exist only with TEXTURE_FORMAT_16BIT_NORM (else the
-        // real-time path stores R16Float, see `realtime`): each where the adapter has it.
-        let features =
-            adapter.features() & (wgpu::Features::FLOAT32_FILTERABLE | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM);
+        // R32Float textures are filterable only with FLOAT32_FILTERABLE,
+        // R16Unorm textures exist only with TEXTURE_FORMAT_16BIT_NORM and BC6H
+        // ones only with TEXTURE_COMPRESSION_BC (else the real-time path stores
+        // R16Float, see `realtime`): each where the adapter has it.
+        let features = adapter.features()
+            & (wgpu::Features::FLOAT32_FILTERABLE
+                | wgpu::Features::TEXTURE_FORMAT_16BIT_NORM
+                | wgpu::Features::TEXTURE_COMPRESSION_BC);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("photosolid"),
             required_features: features,
@@ -313,6 +316,12 @@ impl GpuContext {
         self.device
             .features()
             .contains(wgpu::Features::TEXTURE_FORMAT_16BIT_NORM)
+    }
+
+    /// Whether BC1-7 block-compressed textures (BC6H among them) can be
+    /// created and filtered here (`TEXTURE_COMPRESSION_BC`).
+    pub fn bc_compression(&self) -> bool {
+        self.device.features().contains(wgpu::Features::TEXTURE_COMPRESSION_BC)
     }
 
     /// Maximum workgroups per dispatch dimension.

@@ -216,7 +216,8 @@ impl std::fmt::Debug for RealtimeTexture<'_> {
 /// steps in `exact`).
 ///
 /// # Errors
-/// [`GpuError::InvalidJob`] for BC6H, which is not uploaded (stored as f16).
+/// [`GpuError::InvalidJob`] for a BC6H texture without its blocks (the
+/// encoder not built in; [`RealtimeTexture::new`] stores such a row in f16).
 fn upload_texels(exact: &StoredTexture) -> Result<(wgpu::TextureFormat, Vec<u8>), GpuError> {
     Ok(match exact.precision() {
         Precision::F32 => (
@@ -241,12 +242,15 @@ fn upload_texels(exact: &StoredTexture) -> Result<(wgpu::TextureFormat, Vec<u8>)
                 .collect();
             (wgpu::TextureFormat::R16Unorm, bytemuck::cast_slice(&v).to_vec())
         }
-        Precision::Bc6h => {
-            return Err(GpuError::InvalidJob {
-                index: 0,
-                reason: "BC6H textures are not uploaded (stored as f16)".into(),
-            })
-        }
+        Precision::Bc6h => match exact.bc6h_blocks() {
+            Some(blocks) => (wgpu::TextureFormat::Bc6hRgbUfloat, blocks.to_vec()),
+            None => {
+                return Err(GpuError::InvalidJob {
+                    index: 0,
+                    reason: "a BC6H texture without its blocks".into(),
+                })
+            }
+        },
         Precision::U8 => {
             let scale = exact.unorm_scale();
             let v: Vec<u8> = exact.texels().iter().map(|&x| unorm(x, scale, 255.0) as u8).collect();
@@ -284,12 +288,16 @@ impl<'a> RealtimeTexture<'a> {
         let precision = match precision {
             Precision::F32 if !ctx.float32_filterable() => Precision::F16,
             Precision::U16 if !ctx.unorm16() => Precision::F16,
-            // Not yet on the GPU: a BC6H texture's sides must be whole blocks, the lookup's
-            // coordinates would need the padded size (docs/compact.md).
-            Precision::Bc6h => Precision::F16,
+            Precision::Bc6h if !ctx.bc_compression() => Precision::F16,
             p => p,
         };
-        let exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
+        let mut exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
+        // A BC6H texture on the device must be whole 4 x 4 blocks: padding would move
+        // the texel centres the lookup's coordinates address and break the periodic seam.
+        let (rows, (_, columns)) = (exact.height(), exact.stored_columns());
+        if exact.precision() == Precision::Bc6h && (rows % 4 != 0 || columns % 4 != 0) {
+            exact = StoredTexture::new(rendered, reduced, Precision::F16, lookup.exact());
+        }
         let (h, (_, cols)) = (exact.height(), exact.stored_columns());
         if h == 0 || cols == 0 {
             return Err(GpuError::InvalidJob {
@@ -448,7 +456,9 @@ fn upload(
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     });
-    let texel = bytes.len() / (cols * rows);
+    // Rows of texels, or of 4 x 4 blocks for a block-compressed format (BC6H).
+    let (block_w, block_h) = format.block_dimensions();
+    let block_bytes = format.block_copy_size(None).unwrap_or(4);
     ctx.queue.write_texture(
         wgpu::TexelCopyTextureInfo {
             texture: &tex,
@@ -459,8 +469,8 @@ fn upload(
         bytes,
         wgpu::TexelCopyBufferLayout {
             offset: 0,
-            bytes_per_row: Some((cols * texel) as u32),
-            rows_per_image: Some(rows as u32),
+            bytes_per_row: Some((cols as u32).div_ceil(block_w) * block_bytes),
+            rows_per_image: Some((rows as u32).div_ceil(block_h)),
         },
         size,
     );

@@ -26,14 +26,24 @@ pub fn round_trip(texels: &[f64], width: usize, height: usize) -> Vec<f32> {
     if width == 0 || height == 0 || texels.len() != width * height {
         return texels.iter().map(|&v| v as f32).collect();
     }
-    let (bw, bh) = (width.div_ceil(4), height.div_ceil(4));
-    let (pw, ph) = (4 * bw, 4 * bh);
+    decode(&encode(texels, width, height), width, height)
+}
+
+/// The BC6H_UF16 blocks of `texels` (row-major, `width` × `height` > 0,
+/// I / I_max): 16 bytes per 4 × 4 block, blocks row-major, the surface padded
+/// to whole blocks with its edge texels (what a renderer uploads).
+#[cfg(feature = "bc6h")]
+pub fn encode(texels: &[f64], width: usize, height: usize) -> Vec<u8> {
+    let (pw, ph) = (4 * width.div_ceil(4), 4 * height.div_ceil(4));
     // RGBA16F, edge texels repeated into the padding; alpha 1 (BC6H has none).
     let one = half::f16::ONE.to_bits().to_le_bytes();
     let mut surface = Vec::with_capacity(pw * ph * 8);
     for y in 0..ph {
         for x in 0..pw {
-            let v = texels[y.min(height - 1) * width + x.min(width - 1)];
+            let v = texels
+                .get(y.min(height.saturating_sub(1)) * width + x.min(width.saturating_sub(1)))
+                .copied()
+                .unwrap_or(0.0);
             let v = if v.is_finite() { v.max(0.0) } else { 0.0 };
             let h = half::f16::from_f64(v).to_bits().to_le_bytes();
             for _ in 0..3 {
@@ -48,11 +58,18 @@ pub fn round_trip(texels: &[f64], width: usize, height: usize) -> Vec<f32> {
         stride: (pw * 8) as u32,
         data: &surface,
     };
-    let blocks = intel_tex_2::bc6h::compress_blocks(&intel_tex_2::bc6h::very_slow_settings(), &rgba);
+    intel_tex_2::bc6h::compress_blocks(&intel_tex_2::bc6h::very_slow_settings(), &rgba)
+}
+
+/// The texels (`width` × `height`, the red channel) of BC6H_UF16 `blocks`
+/// laid out as [`encode`] writes them, decoded by bcdec.
+#[cfg(feature = "bc6h")]
+pub fn decode(blocks: &[u8], width: usize, height: usize) -> Vec<f32> {
+    let bw = width.div_ceil(4);
     let mut out = vec![0.0f32; width * height];
     let mut block = [0.0f32; 4 * 4 * 3];
     for (k, bytes) in blocks.chunks_exact(16).enumerate() {
-        let (bx, by) = (4 * (k % bw), 4 * (k / bw));
+        let (bx, by) = (4 * (k % bw.max(1)), 4 * (k / bw.max(1)));
         bcdec_rs::bc6h_float(bytes, &mut block, 4 * 3, false);
         for i in 0..4 {
             for j in 0..4 {

@@ -175,11 +175,28 @@ pub struct StoredTexture {
     precision: Precision,
     /// What a normalised-integer texel of 1 stands for (the largest texel; 1 for floats).
     unorm_scale: f32,
+    /// [`Precision::Bc6h`]: the BC6H_UF16 blocks the texels were decoded
+    /// from (what a renderer uploads); `None` for other precisions.
+    blocks: Option<Vec<u8>>,
     lookup: Lookup,
     i_max_cd: f64,
     /// What the texture was rendered with, for its name.
     filter: Filter,
     factor: u32,
+}
+
+/// The texels `kept` (`columns` × `h`, I / I_max) as `precision` stores
+/// them, and the BC6H blocks they were decoded from for [`Precision::Bc6h`].
+#[cfg_attr(not(feature = "bc6h"), allow(unused_variables))] // the sizes are the encoder's
+fn stored_texels(kept: &[f64], columns: usize, h: usize, precision: Precision) -> (Vec<f32>, Option<Vec<u8>>) {
+    match precision {
+        #[cfg(feature = "bc6h")]
+        Precision::Bc6h if columns > 0 && h > 0 => {
+            let blocks = super::bc6h::encode(kept, columns, h);
+            (super::bc6h::decode(&blocks, columns, h), Some(blocks))
+        }
+        p => (p.store(kept).into_iter().map(|v| v as f32).collect(), None),
+    }
 }
 
 impl StoredTexture {
@@ -215,11 +232,7 @@ impl StoredTexture {
             let row = &rendered.data[i * w..][..w];
             kept.extend(row[first_column..first_column + columns].iter().map(|&v| f64::from(v)));
         }
-        let data: Vec<f32> = match precision {
-            #[cfg(feature = "bc6h")]
-            Precision::Bc6h => super::bc6h::round_trip(&kept, columns, h),
-            p => p.store(&kept).into_iter().map(|v| v as f32).collect(),
-        };
+        let (data, blocks) = stored_texels(&kept, columns, h, precision);
         let unorm_scale = match precision.unorm_steps() {
             Some(_) => data.iter().copied().fold(0.0, f32::max),
             None => 1.0,
@@ -227,6 +240,7 @@ impl StoredTexture {
         Self {
             data,
             unorm_scale,
+            blocks,
             height: h,
             full_width: w,
             first_column,
@@ -238,6 +252,13 @@ impl StoredTexture {
             filter: rendered.filter,
             factor: rendered.factor,
         }
+    }
+
+    /// The BC6H_UF16 blocks of a [`Precision::Bc6h`] texture (16 bytes per
+    /// 4 × 4 block, row-major, the stored columns padded to whole blocks with
+    /// their edge texels): what a renderer uploads; `None` for other precisions.
+    pub fn bc6h_blocks(&self) -> Option<&[u8]> {
+        self.blocks.as_deref()
     }
 
     /// Bytes of the stored texels (4 per texel in f32, 2 in f16 and u16, 1

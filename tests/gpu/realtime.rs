@@ -164,6 +164,73 @@ fn quantised_textures_match_exact_on_the_gpu() {
     }
 }
 
+/// BC6H on the GPU (`Bc6hRgbUfloat`, where the adapter has
+/// `TEXTURE_COMPRESSION_BC` and the texture is whole 4 x 4 blocks): the
+/// texture unit's own decoder reads the blocks the encoder wrote. At texel
+/// centres a nearest lookup returns exactly the texel bcdec decoded (BC6H
+/// decodes to half floats bit for bit); bilinear lookups stay within the
+/// weight-precision tolerance of the exact lookup on those texels. A texture
+/// that is not whole blocks is stored in f16 and says so.
+#[test]
+fn bc6h_textures_are_decoded_by_the_gpu() {
+    let Some(c) = ctx("bc6h_textures_are_decoded_by_the_gpu") else {
+        return;
+    };
+    if !photosolid::reconstruct::bc6h::available() {
+        println!("SKIPPED bc6h_textures_are_decoded_by_the_gpu: built without the bc6h feature");
+        return;
+    }
+    let eps = subtexel_precision(c, 4097).unwrap().max_weight_error;
+    let dirs = random_directions(20_000, 13);
+    for (file, factor) in [("roadway.ldt", 5), ("spot_p8_c40.ldt", 5), ("roadway.ldt", 3)] {
+        let (r, _) = rendered(file, factor);
+        let (h, w) = (r.mapping.height, r.mapping.width);
+        let t = RealtimeTexture::new(c, &r, None, Precision::Bc6h, HardwareLookup::Nearest).unwrap();
+        if !c.bc_compression() || h % 4 != 0 || w % 4 != 0 {
+            println!(
+                "{file} x{factor}: {w} x {h} texels, BC compression {}: stored as {:?}",
+                c.bc_compression(),
+                t.format()
+            );
+            assert_eq!(
+                (t.precision(), t.format()),
+                (Precision::F16, wgpu::TextureFormat::R16Float)
+            );
+            continue;
+        }
+        assert_eq!(
+            (t.precision(), t.format()),
+            (Precision::Bc6h, wgpu::TextureFormat::Bc6hRgbUfloat)
+        );
+        assert_eq!(t.bytes(), w / 4 * (h / 4) * 16);
+        // Texel centres, through the nearest sampler: the hardware's decode against bcdec's.
+        let centres: Vec<(f64, f64)> = (0..h)
+            .flat_map(|i| {
+                (0..w).map(move |j| (360.0 * (j as f64 + 0.5) / w as f64, 180.0 * (i as f64 + 0.5) / h as f64))
+            })
+            .collect();
+        let hw = t.sample_angles_cd(&centres).unwrap();
+        let texels = t.exact().texels();
+        let worst = hw
+            .iter()
+            .zip(texels)
+            .map(|(g, &x)| (g / r.i_max_cd - f64::from(x)).abs())
+            .fold(0.0, f64::max);
+        println!("{file} x{factor}: BC6H texel centres, max |gpu - bcdec| = {worst:.3e} of I_max");
+        assert!(worst <= 1e-6, "{file} x{factor}: {worst:e}");
+        let lin = RealtimeTexture::new(c, &r, None, Precision::Bc6h, HardwareLookup::Linear).unwrap();
+        let hw = lin.sample_dirs_cd(&dirs).unwrap();
+        let worst = dirs
+            .iter()
+            .zip(&hw)
+            .map(|(d, g)| (g - lin.exact().intensity_dir_cd(*d)).abs() / r.i_max_cd)
+            .fold(0.0, f64::max);
+        let tol = lookup_tolerance(&r, HardwareLookup::Linear, eps) + 2f64.powi(-11);
+        println!("{file} x{factor}: BC6H bilinear, max |hw - exact| = {worst:.3e} of I_max (tol {tol:.2e})");
+        assert!(worst <= tol, "{file} x{factor}: {worst:e} > {tol:e}");
+    }
+}
+
 /// The probe sees monotone weights from 0 to 1 and at least 4 bits.
 #[test]
 fn subtexel_precision_probe() {
