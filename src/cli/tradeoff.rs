@@ -35,9 +35,11 @@ pub struct TradeoffArgs {
     #[arg(long, default_value_t = 5, value_parser = super::parse::at_least_one, allow_negative_numbers = true)]
     repeats: usize,
     /// Add rows for the k = 5 texture read by the GPU's texture hardware
-    /// (bilinear, and Catmull-Rom from linear fetches; `+gpu`): their errors,
-    /// GPU dispatch time, adapter, texture format and sub-texel precision.
-    /// An error when no GPU adapter is available.
+    /// (bilinear, and Catmull-Rom from linear fetches) and for sh:16 and
+    /// lobes:4 evaluated by a compute shader in f32 (`+gpu`): their errors,
+    /// GPU dispatch time, adapter, texture format and sub-texel precision
+    /// (textures), difference from the CPU evaluation. An error when no GPU
+    /// adapter is available.
     #[arg(long)]
     gpu: bool,
     #[command(flatten)]

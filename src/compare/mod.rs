@@ -575,10 +575,12 @@ pub struct Comparison {
 
 /// The name with the fewest bytes among `rows` (name, bytes, radial max
 /// error in % of I_max) whose error is at most `pct` (ties: the smaller
-/// error); None when none is. The one rule of `smallest_within_1pct`.
+/// error); None when none is. The one rule of `smallest_within_1pct`. A
+/// `…+gpu` row (the GPU's evaluation of a representation another row names)
+/// is not a representation of its own and is never the answer.
 pub fn smallest_named<'a>(rows: impl IntoIterator<Item = (&'a str, usize, f64)>, pct: f64) -> Option<String> {
     rows.into_iter()
-        .filter(|r| r.2 <= pct)
+        .filter(|r| r.2 <= pct && !r.0.ends_with(crate::registry::GPU_SUFFIX))
         .min_by(|a, b| a.1.cmp(&b.1).then(a.2.total_cmp(&b.2)))
         .map(|r| r.0.to_string())
 }

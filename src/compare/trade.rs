@@ -128,7 +128,7 @@ pub struct TradeRow {
     /// `+gpu` rows: largest |hardware − exact lookup on the same texels| over
     /// the timing directions, % of I_max: the cost of hardware filtering alone;
     /// for `sh:L+gpu` and `lobes:K+gpu`, |f32 shader − f64 CPU evaluation of
-    /// the same stored parameters|, % of the CPU evaluation's largest value.
+    /// the same stored parameters|, % of the file's I_max.
     pub hardware_vs_exact_max_pct: Option<f64>,
     /// Hausdorff distance, % of the reference I_max (certified for a field
     /// reference: the true value is at most this plus `hausdorff_bound_pct`).
@@ -308,11 +308,19 @@ pub fn trade_table(
     })
 }
 
-/// Mark the rows on the Pareto front of (bytes, radial max error).
+/// Mark the rows on the Pareto front of (bytes, radial max error). A `+gpu`
+/// row is the GPU's evaluation of a representation another row holds (the
+/// same bytes): it is not on this front and does not displace its CPU twin.
 pub fn mark_pareto_bytes(rows: &mut [TradeRow]) {
-    let costs: Vec<Vec<f64>> = rows.iter().map(|r| vec![r.bytes as f64, r.radial_max_pct]).collect();
-    for (r, p) in rows.iter_mut().zip(crate::metrics::pareto_front(&costs)) {
-        r.pareto_bytes = p;
+    let gpu = |r: &TradeRow| r.recon.is_some_and(|x| x.on_gpu());
+    let costs: Vec<Vec<f64>> = rows
+        .iter()
+        .filter(|r| !gpu(r))
+        .map(|r| vec![r.bytes as f64, r.radial_max_pct])
+        .collect();
+    let mut front = crate::metrics::pareto_front(&costs).into_iter();
+    for r in rows.iter_mut() {
+        r.pareto_bytes = !gpu(r) && front.next().unwrap_or(false);
     }
 }
 
@@ -403,7 +411,8 @@ fn compact_gpu_columns(
     let h = compact_row(&gpu, &dirs, opts.timing_repeats).map_err(fail)?;
     row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
     row.adapter = Some(ctx.adapter().to_string());
-    row.hardware_vs_exact_max_pct = Some(100.0 * h.vs_exact_max);
+    let i_max = file.max_cd();
+    row.hardware_vs_exact_max_pct = Some(if i_max > 0.0 { 100.0 * h.vs_exact_max_cd / i_max } else { 0.0 });
     Ok(())
 }
 

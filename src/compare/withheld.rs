@@ -116,7 +116,12 @@ impl RowDistances {
         // Any other continuous field: the distance to its solid, searched on
         // the solid itself (metrics::nearest). The measured solid is a mesh,
         // and a field that may jump has walls only a mesh holds.
-        if r != Recon::Measured && field.is_continuous() && points.len() <= SURFACE_SEARCH_MAX_POINTS {
+        // A field that answers only in batches (the GPU's) is meshed: the search asks one direction at a time.
+        if r != Recon::Measured
+            && field.is_continuous()
+            && !field.prefers_batches()
+            && points.len() <= SURFACE_SEARCH_MAX_POINTS
+        {
             self.method("surface");
             self.dist
                 .extend(distances_to_solid(&*field, &polar, &NearestSearch::default()));

@@ -339,6 +339,12 @@ impl Search<'_> {
     }
 
     fn set(&mut self, j: usize, s: Shape) {
+        // Keep the exponent the error was evaluated with: above the cap of
+        // Data::supported the error is flat, and the search may have drifted there.
+        let s = Shape {
+            u: self.data.supported(s.axis(), s.exponent()).ln_1p(),
+            ..s
+        };
         let col = self.data.column(s.axis(), s.exponent());
         if j == self.shapes.len() {
             self.shapes.push(s);

@@ -64,14 +64,15 @@ pub(crate) fn direction_data(dirs: &[DVec3]) -> Vec<[f32; 4]> {
         .collect()
 }
 
-/// The unit directions of (C, γ) pairs in degrees (γ clamped to [0, 180]);
-/// a non-finite pair gives the zero vector (answered 0).
-pub(crate) fn angle_directions(angles: &[(f64, f64)]) -> Vec<DVec3> {
+/// The unit directions of (C, γ) pairs in degrees (γ clamped to [0, 180]
+/// with `clamp_gamma`, as a texture's rows clamp); a non-finite pair gives
+/// the zero vector (answered 0).
+pub(crate) fn angle_directions(angles: &[(f64, f64)], clamp_gamma: bool) -> Vec<DVec3> {
     angles
         .iter()
         .map(|&(c, g)| {
             if c.is_finite() && g.is_finite() {
-                crate::model::frame::direction(c, g.clamp(0.0, 180.0))
+                crate::model::frame::direction(c, if clamp_gamma { g.clamp(0.0, 180.0) } else { g })
             } else {
                 DVec3::ZERO
             }

@@ -21,16 +21,24 @@ use crate::model::{frame, IntensityField};
 use crate::reconstruct::Compact;
 
 /// The shader's kind, count, offsets of the recurrence and diagonal
-/// factors, the parameter floats, and the scale (cd) of its output.
-fn shader_data(exact: &Compact) -> ([u32; 4], Vec<f32>, f64) {
+/// factors and zonal flag, the parameter floats (what the device stores:
+/// only the L + 1 zonal coefficients of a zonal series), and the scale (cd)
+/// of its output.
+fn shader_data(exact: &Compact) -> ([u32; 5], Vec<f32>, f64) {
     match exact {
         Compact::Sh(s) => {
-            let mut data: Vec<f32> = s.stored_coefficients().iter().map(|&c| c as f32).collect();
+            let stored = s.stored_coefficients();
+            let mut data: Vec<f32> = if s.is_zonal() {
+                (0..=s.degree()).map(|l| stored[l * l + l] as f32).collect()
+            } else {
+                stored.iter().map(|&c| c as f32).collect()
+            };
             let rec_at = data.len() as u32;
             data.extend(s.recurrence_constants().iter().flat_map(|&(a, b)| [a as f32, b as f32]));
             let diag_at = data.len() as u32;
             data.extend(s.diagonal_factors().iter().map(|&x| x as f32));
-            ([0, s.degree() as u32, rec_at, diag_at], data, s.scale_cd())
+            let zonal = u32::from(s.is_zonal());
+            ([0, s.degree() as u32, rec_at, diag_at, zonal], data, s.scale_cd())
         }
         Compact::Lobes(m) => {
             let data = m
@@ -38,7 +46,7 @@ fn shader_data(exact: &Compact) -> ([u32; 4], Vec<f32>, f64) {
                 .iter()
                 .flat_map(|l| [l.axis.x, l.axis.y, l.axis.z, l.exponent, l.weight_cd].map(|x| x as f32))
                 .collect();
-            ([1, m.lobes.len() as u32, 0, 0], data, 1.0)
+            ([1, m.lobes.len() as u32, 0, 0, 0], data, 1.0)
         }
     }
 }
@@ -116,8 +124,8 @@ pub struct GpuCompact<'a> {
     exact: Compact,
     /// The parameter buffer (binding 0).
     params: wgpu::Buffer,
-    /// Kind, count, recurrence offset, diagonal offset.
-    header: [u32; 4],
+    /// Kind, count, recurrence offset, diagonal offset, zonal flag.
+    header: [u32; 5],
     /// Intensity (cd) of an output of 1.
     scale_cd: f64,
 }
@@ -165,13 +173,18 @@ impl<'a> GpuCompact<'a> {
         self.exact.field()
     }
 
+    /// The representation on the device (its stored parameters).
+    pub fn compact(&self) -> &Compact {
+        &self.exact
+    }
+
     /// Upload `dirs` (luminaire frame, any length; zero vectors give 0) as a batch.
     ///
     /// # Errors
     /// [`GpuError::TooLarge`] when the batch exceeds the device's binding or dispatch limits.
     pub fn prepare(&self, dirs: &[DVec3]) -> Result<LookupBatch, GpuError> {
-        let [kind, count, rec_at, diag_at] = self.header;
-        let params = [0, kind, count, 0, rec_at, diag_at, 0, 0];
+        let [kind, count, rec_at, diag_at, zonal] = self.header;
+        let params = [0, kind, count, 0, rec_at, diag_at, zonal, 0];
         let buffers = upload(self.ctx, "compact", &direction_data(dirs), params)?;
         let pipe = Pipeline::of(self.ctx)?;
         let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
@@ -224,9 +237,9 @@ impl<'a> GpuCompact<'a> {
 pub struct CompactRow {
     /// Median ns per direction of the dispatch alone.
     pub ns_per_sample_dispatch: f64,
-    /// Largest |GPU − CPU (f64) evaluation| of the same stored parameters, as
-    /// a share of the CPU evaluation's largest value over the directions.
-    pub vs_exact_max: f64,
+    /// Largest |GPU − CPU (f64) evaluation| of the same stored parameters
+    /// over the directions, cd.
+    pub vs_exact_max_cd: f64,
 }
 
 /// Evaluate `gpu` at `dirs` against its CPU twin and time its dispatch over `repeats` runs.
@@ -235,16 +248,14 @@ pub struct CompactRow {
 /// Device errors.
 pub fn compact_row(gpu: &GpuCompact<'_>, dirs: &[DVec3], repeats: usize) -> Result<CompactRow, GpuError> {
     let on_gpu = gpu.sample_dirs_cd(dirs)?;
-    let exact: Vec<f64> = dirs.iter().map(|d| gpu.exact().intensity_dir_cd(*d)).collect();
-    let peak = exact.iter().copied().fold(0.0, f64::max);
     let worst = on_gpu
         .iter()
-        .zip(&exact)
-        .map(|(g, e)| (g - e).abs())
+        .zip(dirs)
+        .map(|(g, d)| (g - gpu.exact().intensity_dir_cd(*d)).abs())
         .fold(0.0, f64::max);
     Ok(CompactRow {
         ns_per_sample_dispatch: gpu.dispatch_ns_per_sample(dirs, repeats)?,
-        vs_exact_max: if peak > 0.0 { worst / peak } else { worst },
+        vs_exact_max_cd: worst,
     })
 }
 
@@ -257,7 +268,8 @@ impl IntensityField for GpuCompact<'_> {
         if !(c_deg.is_finite() && gamma_deg.is_finite()) {
             return 0.0;
         }
-        self.intensity_dir_cd(frame::direction(c_deg, gamma_deg.clamp(0.0, 180.0)))
+        // No clamp of γ: the series and lobes are functions of the direction, as on the CPU.
+        self.intensity_dir_cd(frame::direction(c_deg, gamma_deg))
     }
     fn intensity_dir_cd(&self, d: DVec3) -> f64 {
         if !(d.is_finite() && d.length_squared() > 0.0) {
@@ -266,7 +278,7 @@ impl IntensityField for GpuCompact<'_> {
         self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
     }
     fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
-        self.sample_dirs_cd(&angle_directions(dirs))
+        self.sample_dirs_cd(&angle_directions(dirs, false))
             .unwrap_or_else(|_| vec![0.0; dirs.len()])
     }
     fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
@@ -276,6 +288,10 @@ impl IntensityField for GpuCompact<'_> {
             "one output per grid direction"
         );
         out.copy_from_slice(&self.intensity_batch_cd(&grid_angles(c_deg, gamma_deg)));
+    }
+    /// One direction is a dispatch of its own: searches use batches instead.
+    fn prefers_batches(&self) -> bool {
+        true
     }
     fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
         end_to_end_ns_per_sample(dirs.len(), repeats, || self.sample_dirs_cd(std::hint::black_box(dirs)))

@@ -7,7 +7,8 @@
 // trigonometry: sin^m(gamma) e^{imC} = (d.x + i d.y)^m), the fully
 // normalised associated Legendre functions by the three-term recurrence
 // (Holmes and Featherstone 2002) with constants precomputed on the CPU.
-// data = [coefficients (L+1)^2, relative to the scale, at l^2 + l + m]
+// data = [coefficients (L+1)^2, relative to the scale, at l^2 + l + m;
+//         a zonal series (params.zonal = 1) holds only its L+1 m = 0 ones, at l]
 //        [recurrence (a, b) per (l, m >= 0) at l(l+1)/2 + m, from rec_at]
 //        [the diagonal factors sqrt((2m+1)/2m) per m, from diag_at].
 // Output: the series / scale, clamped at 0.
@@ -26,8 +27,8 @@ struct Params {
     dispatch_x: u32,
     rec_at: u32,
     diag_at: u32,
-    pad0: u32,
-    pad1: u32,
+    zonal: u32,
+    pad: u32,
 }
 
 @group(0) @binding(0) var<storage, read> data: array<f32>;
@@ -46,7 +47,9 @@ fn sh_eval(d: vec3<f32>) -> f32 {
     var pmm = 1.0;
     var cr = 1.0;
     var ci = 0.0;
-    for (var m = 0u; m <= degree; m++) {
+    // A zonal series has only the m = 0 order (its other coefficients are zero and not stored).
+    let orders = select(degree, 0u, params.zonal == 1u);
+    for (var m = 0u; m <= orders; m++) {
         if (m > 0u) {
             pmm *= data[params.diag_at + m];
             let ncr = cr * x - ci * y;
@@ -55,7 +58,7 @@ fn sh_eval(d: vec3<f32>) -> f32 {
         }
         var p2 = 0.0;
         var p1 = pmm;
-        var sc = data[m * m + 2u * m] * p1;
+        var sc = data[select(m * m + 2u * m, 0u, params.zonal == 1u)] * p1;
         var ss = 0.0;
         if (m > 0u) {
             ss = data[m * m] * p1;
@@ -63,7 +66,7 @@ fn sh_eval(d: vec3<f32>) -> f32 {
         for (var l = m + 1u; l <= degree; l++) {
             let r = params.rec_at + 2u * (l * (l + 1u) / 2u + m);
             let p = data[r] * (z * p1 - data[r + 1u] * p2);
-            let base = l * l + l;
+            let base = select(l * l + l, l, params.zonal == 1u);
             sc += data[base + m] * p;
             if (m > 0u) {
                 ss += data[base - m] * p;

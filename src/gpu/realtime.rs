@@ -291,12 +291,14 @@ impl<'a> RealtimeTexture<'a> {
             Precision::Bc6h if !ctx.bc_compression() => Precision::F16,
             p => p,
         };
-        let mut exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
         // A BC6H texture on the device must be whole 4 x 4 blocks: padding would move
         // the texel centres the lookup's coordinates address and break the periodic seam.
+        // The sizes come from an f16 store (cheap), before the slow encoder runs.
+        let mut exact = StoredTexture::new(rendered, reduced, Precision::F16, lookup.exact());
         let (rows, (_, columns)) = (exact.height(), exact.stored_columns());
-        if exact.precision() == Precision::Bc6h && (rows % 4 != 0 || columns % 4 != 0) {
-            exact = StoredTexture::new(rendered, reduced, Precision::F16, lookup.exact());
+        let whole_blocks = rows % 4 == 0 && columns % 4 == 0;
+        if precision != Precision::F16 && (precision != Precision::Bc6h || whole_blocks) {
+            exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
         }
         let (h, (_, cols)) = (exact.height(), exact.stored_columns());
         if h == 0 || cols == 0 {
@@ -509,7 +511,7 @@ impl IntensityField for RealtimeTexture<'_> {
         self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
     }
     fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
-        self.sample_dirs_cd(&angle_directions(dirs))
+        self.sample_dirs_cd(&angle_directions(dirs, true))
             .unwrap_or_else(|_| vec![0.0; dirs.len()])
     }
     fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
@@ -519,6 +521,10 @@ impl IntensityField for RealtimeTexture<'_> {
             "one output per grid direction"
         );
         out.copy_from_slice(&self.intensity_batch_cd(&grid_angles(c_deg, gamma_deg)));
+    }
+    /// One direction is a dispatch of its own: searches use batches instead.
+    fn prefers_batches(&self) -> bool {
+        true
     }
     fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
         end_to_end_ns_per_sample(dirs.len(), repeats, || self.sample_dirs_cd(std::hint::black_box(dirs)))

@@ -33,8 +33,10 @@ use crate::model::frame::unit_angles;
 use crate::model::ConstantCells;
 
 /// The distance (cd) from each point `(dir, m)` (the point m · dir, `dir`
-/// a unit vector of the luminaire frame, m ≥ 0 cd) to the solid of `cells`,
-/// in order (in parallel). Exact up to rounding.
+/// a unit vector of the luminaire frame, m a finite intensity ≥ 0 cd: a
+/// measured value) to the solid of `cells`, in order (in parallel). Exact up
+/// to rounding. `cells` must hold what [`ConstantCells`] documents (γ edges
+/// 0 to 180 and C edges 0 to 360, increasing; one value per cell).
 pub fn distances_to_cells(cells: &ConstantCells, points: &[(DVec3, f64)]) -> Vec<f64> {
     let grid = Grid::new(cells);
     points.par_iter().map(|&(dir, m)| grid.distance(dir, m)).collect()
@@ -52,6 +54,15 @@ struct Grid<'a> {
 impl<'a> Grid<'a> {
     fn new(cells: &'a ConstantCells) -> Self {
         let (rows, cols) = cells.shape();
+        debug_assert_eq!(cells.values_cd.len(), rows * cols, "one value per cell");
+        debug_assert!(
+            cells.gamma_edges_deg.first() == Some(&0.0) && cells.gamma_edges_deg.last() == Some(&180.0),
+            "γ edges from 0 to 180"
+        );
+        debug_assert!(
+            cells.c_edges_deg.first() == Some(&0.0) && cells.c_edges_deg.last() == Some(&360.0),
+            "C edges from 0 to 360"
+        );
         Self {
             cells,
             gamma: cells.gamma_edges_deg.iter().map(|g| g.to_radians()).collect(),
@@ -74,6 +85,7 @@ impl<'a> Grid<'a> {
         let Some(u) = dir.try_normalize() else {
             return self.cells.values_cd.iter().copied().fold(f64::INFINITY, f64::min);
         };
+        debug_assert!(m.is_finite(), "a measured value is finite");
         let rho = m.max(0.0);
         let (c_deg, g_deg) = unit_angles(u);
         let (cu, gu) = (c_deg.to_radians(), g_deg.to_radians());
@@ -261,9 +273,10 @@ mod tests {
         let cells = uniform(36, 72, |_, j| if j == 28 { 50.0 } else { 10.0 });
         let d = distances_to_cells(&cells, &[(direction(80.0, 90.0), 100.0)])[0];
         assert!((d - 7500f64.sqrt()).abs() < 1e-9, "{d}");
-        // The same across the seam: the band at C 355°-360°, the point at C 295°.
-        let cells = uniform(36, 72, |_, j| if j == 71 { 50.0 } else { 10.0 });
-        let d = distances_to_cells(&cells, &[(direction(295.0, 90.0), 100.0)])[0];
+        // The same across the seam: the band at C 0°-5°, the point at C 300°; the
+        // column window [235.8°, 364.2°] wraps through C = 0.
+        let cells = uniform(36, 72, |_, j| if j == 0 { 50.0 } else { 10.0 });
+        let d = distances_to_cells(&cells, &[(direction(300.0, 90.0), 100.0)])[0];
         assert!((d - 7500f64.sqrt()).abs() < 1e-9, "{d}");
     }
 

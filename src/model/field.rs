@@ -94,6 +94,15 @@ pub trait IntensityField: Sync {
         false
     }
 
+    /// Whether evaluating one direction is a round trip (a GPU dispatch,
+    /// upload and read-back each): algorithms that ask one direction at a
+    /// time (the surface search of [`crate::metrics::nearest`]) then use a
+    /// batched alternative (an adaptive mesh, built from batches). `false`
+    /// (the default) for every field evaluated in place.
+    fn prefers_batches(&self) -> bool {
+        false
+    }
+
     /// The field as constant cells, when it is exactly that (a nearest
     /// lookup of a texture): its solid is then spherical patches joined by
     /// radial walls, and [`crate::metrics::cells`] measures distances to it
@@ -174,6 +183,9 @@ impl IntensityField for Borrowed<'_> {
     }
     fn is_continuous(&self) -> bool {
         self.0.is_continuous()
+    }
+    fn prefers_batches(&self) -> bool {
+        self.0.prefers_batches()
     }
     fn constant_cells(&self) -> Option<ConstantCells> {
         self.0.constant_cells()

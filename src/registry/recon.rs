@@ -137,6 +137,17 @@ impl fmt::Display for Recon {
     }
 }
 
+impl Recon {
+    /// Whether this is the GPU's evaluation of a representation (`…+gpu`):
+    /// the same stored data as its CPU twin, evaluated by the GPU.
+    pub fn on_gpu(&self) -> bool {
+        matches!(
+            self,
+            Recon::Gpu(_) | Recon::Sh { gpu: true, .. } | Recon::Lobes { gpu: true, .. }
+        )
+    }
+}
+
 impl FromStr for Recon {
     type Err = ModelError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {

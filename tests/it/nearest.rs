@@ -194,3 +194,51 @@ fn cell_distances_agree_with_a_mesh_of_patches_and_walls() {
         assert!(worst <= sag, "{name}: {worst} cd over the sag bound {sag} cd");
     }
 }
+
+/// The cells describe the lookup they come from: at 20,000 random
+/// directions a nearest texture (f32 and 8-bit, on the roadway and a real
+/// file) answers exactly the value of the cell holding the direction (its
+/// row floor(γ h / 180), column floor(C w / 360)); a bilinear lookup and a
+/// symmetry-reduced texture are not constant cells.
+#[test]
+fn constant_cells_are_the_nearest_lookup() {
+    use photosolid::reconstruct::{render, Lookup, Precision, StoredTexture};
+    let mut files: Vec<Distribution> = vec![Synth::Roadway
+        .build(&GridSpec::uniform(15.0, 10.0).unwrap(), 1000.0)
+        .unwrap()
+        .into_distribution()];
+    if let Some(root) = corpus() {
+        let lum = photosolid::formats::load(root.join("lithonia-iesparser/PMO_2_32_9LS_ASY.ies")).unwrap();
+        files.push(lum.distribution().clone());
+    }
+    let dirs = photosolid::metrics::random_directions(20_000, 5);
+    for d in files {
+        let rendered = render(&LightTexture::new(&d).unwrap(), Filter::CatmullRom, 2).unwrap();
+        for precision in [Precision::F32, Precision::U8] {
+            let tex = StoredTexture::new(&rendered, None, precision, Lookup::Nearest);
+            let cells = tex.constant_cells().unwrap();
+            let (rows, cols) = cells.shape();
+            assert_eq!((rows, cols), (tex.height(), tex.full_width()));
+            let mut near_edge = 0;
+            for &u in &dirs {
+                let (c, g) = photosolid::model::frame::unit_angles(u);
+                let (y, x) = (g / 180.0 * rows as f64, c / 360.0 * cols as f64);
+                // A direction within rounding of a cell edge may fall either side.
+                if (y - y.round()).abs() < 1e-9 || (x - x.round()).abs() < 1e-9 {
+                    near_edge += 1;
+                    continue;
+                }
+                let (i, j) = ((y.floor() as usize).min(rows - 1), (x.floor() as usize) % cols);
+                assert_eq!(tex.intensity_dir_cd(u), cells.value(i, j), "{precision:?} at ({c}, {g})");
+            }
+            assert!(near_edge < 10, "{near_edge} directions on an edge");
+        }
+        assert!(StoredTexture::new(&rendered, None, Precision::F32, Lookup::Bilinear)
+            .constant_cells()
+            .is_none());
+        if d.symmetry() != photosolid::model::Symmetry::None {
+            let reduced = StoredTexture::new(&rendered, Some(d.symmetry()), Precision::F32, Lookup::Nearest);
+            assert!(reduced.reduced().is_none() || reduced.constant_cells().is_none());
+        }
+    }
+}
