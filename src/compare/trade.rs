@@ -412,7 +412,11 @@ fn compact_gpu_columns(
     row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
     row.adapter = Some(ctx.adapter().to_string());
     let i_max = file.max_cd();
-    row.hardware_vs_exact_max_pct = Some(if i_max > 0.0 { 100.0 * h.vs_exact_max_cd / i_max } else { 0.0 });
+    row.hardware_vs_exact_max_pct = Some(if i_max > 0.0 {
+        100.0 * h.vs_exact_max_cd / i_max
+    } else {
+        0.0
+    });
     Ok(())
 }
 

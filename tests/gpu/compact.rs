@@ -167,7 +167,10 @@ fn lobes_on_the_gpu_match_the_cpu() {
         let axis = lobes_axis(&gpu);
         let on_axis = gpu.sample_dirs_cd(&[axis]).unwrap()[0];
         let want = gpu.exact().intensity_dir_cd(axis);
-        assert!((on_axis - want).abs() <= bound && want > 0.0, "{name}: {on_axis} vs {want} on the axis");
+        assert!(
+            (on_axis - want).abs() <= bound && want > 0.0,
+            "{name}: {on_axis} vs {want} on the axis"
+        );
     }
 }
 

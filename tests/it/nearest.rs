@@ -229,7 +229,11 @@ fn constant_cells_are_the_nearest_lookup() {
                     continue;
                 }
                 let (i, j) = ((y.floor() as usize).min(rows - 1), (x.floor() as usize) % cols);
-                assert_eq!(tex.intensity_dir_cd(u), cells.value(i, j), "{precision:?} at ({c}, {g})");
+                assert_eq!(
+                    tex.intensity_dir_cd(u),
+                    cells.value(i, j),
+                    "{precision:?} at ({c}, {g})"
+                );
             }
             assert!(near_edge < 10, "{near_edge} directions on an edge");
         }
