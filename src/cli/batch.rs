@@ -39,6 +39,24 @@ pub struct BatchArgs {
     compact: bool,
 }
 
+/// A note when resumed rows were measured with another `--compact` choice
+/// than this run's: the table then mixes measured and unmeasured
+/// `smallest_within_1pct` columns, which a null alone would not say.
+fn compact_mismatch(resumed: &[BatchRecord], compact: bool) -> Option<String> {
+    let other = resumed
+        .iter()
+        .filter(|r| r.ok && r.errors.is_empty() && r.compact_ms.is_some() != compact)
+        .count();
+    (other > 0).then(|| {
+        let rows = photosolid::error::count(other, "resumed row was", "resumed rows were");
+        if compact {
+            format!("note: {rows} measured without --compact: their smallest_within_1pct stays null (run without --resume to measure them)")
+        } else {
+            format!("note: {rows} measured with --compact: only they have smallest_within_1pct (add --compact to measure the new rows too)")
+        }
+    })
+}
+
 /// Rows of an earlier run, for `--resume`.
 fn previous(a: &BatchArgs) -> anyhow::Result<Vec<BatchRecord>> {
     if !a.resume {
@@ -92,7 +110,7 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
         super::check_output("--jsonl", j)?;
     }
     let walked = photosolid::formats::collect(&a.paths)?;
-    let notes = walked.summary();
+    let mut notes = walked.summary();
     let files = walked.files;
     if files.is_empty() {
         // An empty table would look like a successful run.
@@ -100,6 +118,7 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
     }
     let mut rows = previous(&a)?;
     let resumed = rows.len();
+    notes.extend(compact_mismatch(&rows, a.compact));
     let seen: HashSet<String> = rows.iter().map(|r| r.path.clone()).collect();
     let todo: Vec<PathBuf> = files
         .into_iter()

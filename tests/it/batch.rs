@@ -230,6 +230,7 @@ fn resume_adds_only_new_files() {
     assert_eq!(first.len(), 2);
     let out = ok(&run(&["batch", "a", "b", "-o", "t.parquet", "--resume"], d));
     assert!(out.contains("2 resumed, 1 analysed"), "{out}");
+    assert!(!out.contains("--compact"), "{out}");
     let second = rows(&read(&d.join("t.parquet")));
     assert_eq!(second.len(), 3);
     assert_eq!(&second[..2], &first[..], "resumed rows are kept as they were");
@@ -246,6 +247,21 @@ fn resume_adds_only_new_files() {
         d,
     ));
     assert!(out.contains("2 resumed, 1 analysed"), "{out}");
+    // Resumed rows measured with another --compact choice are named, not silently mixed.
+    ok(&run(&["batch", "a", "-o", "v.parquet"], d));
+    let out = ok(&run(
+        &["batch", "a", "b", "-o", "v.parquet", "--resume", "--compact"],
+        d,
+    ));
+    assert!(
+        out.contains("2 resumed rows were measured without --compact: their smallest_within_1pct stays null"),
+        "{out}"
+    );
+    let v = rows(&read(&d.join("v.parquet")));
+    assert!(
+        v[0]["compact_ms"].is_null() && v[2]["compact_ms"].as_f64().is_some(),
+        "{v:?}"
+    );
 }
 
 /// The corpus: a row per photometric file; ok exactly where the manifest says the file loads.
