@@ -17,6 +17,41 @@ use glam::DVec3;
 
 use super::{GpuContext, GpuError};
 
+/// The pipeline in `cell`, built by `build` on first use inside a validation
+/// error scope: a driver that cannot compile the shader gives
+/// [`GpuError::Pipeline`] naming `what`, not a panic. One per device.
+pub(crate) fn built_once<'a, P>(
+    cell: &'a std::sync::OnceLock<Result<P, GpuError>>,
+    ctx: &GpuContext,
+    what: &str,
+    build: impl FnOnce(&GpuContext) -> P,
+) -> Result<&'a P, GpuError> {
+    cell.get_or_init(|| {
+        let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let p = build(ctx);
+        match pollster::block_on(scope.pop()) {
+            None => Ok(p),
+            Some(e) => Err(GpuError::Pipeline(format!("{what} pipeline: {e}"))),
+        }
+    })
+    .as_ref()
+    .map_err(Clone::clone)
+}
+
+/// A compute shader's buffer binding of type `ty` at `binding`.
+pub(crate) fn buffer_entry(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
 /// Threads per workgroup of the direction shaders (`@workgroup_size(64)`).
 pub(crate) const WORKGROUP: usize = 64;
 

@@ -15,7 +15,10 @@
 
 use glam::DVec3;
 
-use super::batch::{angle_directions, direction_data, end_to_end_ns_per_sample, grid_angles, upload, LookupBatch};
+use super::batch::{
+    angle_directions, buffer_entry, built_once, direction_data, end_to_end_ns_per_sample, grid_angles, upload,
+    LookupBatch,
+};
 use super::{GpuContext, GpuError};
 use crate::model::{frame, IntensityField};
 use crate::reconstruct::Compact;
@@ -61,40 +64,20 @@ impl Pipeline {
     /// The pipeline of `ctx`, built on first use; a validation error (a
     /// driver that cannot compile the shader) is returned, not raised.
     fn of(ctx: &GpuContext) -> Result<&Pipeline, GpuError> {
-        ctx.compact
-            .get_or_init(|| {
-                let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
-                let p = Pipeline::new(ctx);
-                match pollster::block_on(scope.pop()) {
-                    None => Ok(p),
-                    Some(e) => Err(GpuError::Pipeline(format!("compact representation pipeline: {e}"))),
-                }
-            })
-            .as_ref()
-            .map_err(Clone::clone)
+        built_once(&ctx.compact, ctx, "compact representation", Pipeline::new)
     }
 
     fn new(ctx: &GpuContext) -> Self {
         let d = &ctx.device;
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let mut uniform = storage(4, true);
-        uniform.ty = wgpu::BindingType::Buffer {
-            ty: wgpu::BufferBindingType::Uniform,
-            has_dynamic_offset: false,
-            min_binding_size: None,
-        };
+        let storage = |binding, read_only| buffer_entry(binding, wgpu::BufferBindingType::Storage { read_only });
         let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("compact"),
-            entries: &[storage(0, true), storage(2, true), storage(3, false), uniform],
+            entries: &[
+                storage(0, true),
+                storage(2, true),
+                storage(3, false),
+                buffer_entry(4, wgpu::BufferBindingType::Uniform),
+            ],
         });
         let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("compact"),

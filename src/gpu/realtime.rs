@@ -123,17 +123,7 @@ impl Pipelines {
     /// The pipeline of `ctx`, built on first use; a validation error (a
     /// driver that cannot compile the shader) is returned, not raised.
     fn of(ctx: &GpuContext) -> Result<&Pipelines, GpuError> {
-        ctx.realtime
-            .get_or_init(|| {
-                let scope = ctx.device.push_error_scope(wgpu::ErrorFilter::Validation);
-                let p = Pipelines::new(ctx);
-                match pollster::block_on(scope.pop()) {
-                    None => Ok(p),
-                    Some(e) => Err(GpuError::Pipeline(format!("real-time lookup pipeline: {e}"))),
-                }
-            })
-            .as_ref()
-            .map_err(Clone::clone)
+        super::batch::built_once(&ctx.realtime, ctx, "real-time lookup", Pipelines::new)
     }
 
     fn new(ctx: &GpuContext) -> Self {
@@ -143,11 +133,6 @@ impl Pipelines {
             visibility: wgpu::ShaderStages::COMPUTE,
             ty,
             count: None,
-        };
-        let buffer = |ty| wgpu::BindingType::Buffer {
-            ty,
-            has_dynamic_offset: false,
-            min_binding_size: None,
         };
         let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("realtime"),
@@ -162,9 +147,9 @@ impl Pipelines {
                 ),
                 // One sampler per texture: GL pairs each texture with one sampler.
                 entry(1, wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)),
-                entry(2, buffer(wgpu::BufferBindingType::Storage { read_only: true })),
-                entry(3, buffer(wgpu::BufferBindingType::Storage { read_only: false })),
-                entry(4, buffer(wgpu::BufferBindingType::Uniform)),
+                super::batch::buffer_entry(2, wgpu::BufferBindingType::Storage { read_only: true }),
+                super::batch::buffer_entry(3, wgpu::BufferBindingType::Storage { read_only: false }),
+                super::batch::buffer_entry(4, wgpu::BufferBindingType::Uniform),
             ],
         });
         let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
