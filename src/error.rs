@@ -82,40 +82,6 @@ pub fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
 }
 
-/// `x` with `n` significant digits as a reader expects it: plain decimals
-/// without trailing zeros from 1e-4 to below 1e9 (`3153`, `0.316992`,
-/// `-12.5`), scientific outside (`1.5e-7`); `NaN` and `inf` as such.
-pub fn sig(x: f64, n: usize) -> String {
-    let n = n.max(1);
-    if x == 0.0 {
-        return "0".into();
-    }
-    if !x.is_finite() {
-        return x.to_string();
-    }
-    let a = x.abs();
-    if !(1e-4..1e9).contains(&a) {
-        let s = format!("{:.*e}", n - 1, x);
-        // 1.500e-7 -> 1.5e-7
-        return match s.split_once('e') {
-            Some((m, e)) if m.contains('.') => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
-            _ => s,
-        };
-    }
-    let decimals = (n as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
-    let s = format!("{x:.decimals$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    };
-    if s == "-0" {
-        "0".into()
-    } else {
-        s
-    }
-}
-
 /// `fraction` in percent, rounded to 12 significant digits so that a
 /// percent typed by a user reads back as typed (`0.001` is `0.1`, not
 /// `0.10000000000000002`).

@@ -1,6 +1,14 @@
-//! Numbers as text for tables and messages: [`significant()`], used by the
-//! readers' warnings (`formats`) and every report. (Readers' error messages
-//! use [`crate::error::sig`], which drops trailing zeros.)
+//! Numbers as text, in one place: [`significant()`] for tables and reports
+//! (one precision per column, trailing zeros kept), [`trimmed()`] for
+//! messages (trailing zeros dropped: `3153`, `0.316992`, `1.5e-7`), and
+//! [`push_fixed_trimmed()`], the allocation-free core the writers append
+//! with (fixed notation only, as the file formats require).
+//!
+//! The lowest layer: it depends on nothing, so the error messages
+//! (`crate::error`), the readers' warnings, the writers and the reports all
+//! share it.
+
+use std::fmt::Write as _;
 
 /// `x` with `digits` significant digits: fixed notation for 1e-3 <= |x| < 1e6
 /// (trailing zeros kept, so a column of numbers has one precision), scientific
@@ -26,9 +34,52 @@ pub fn significant(x: f64, digits: usize) -> String {
     }
 }
 
+/// `x` with `n` significant digits as a reader expects it: plain decimals
+/// without trailing zeros from 1e-4 to below 1e9 (`3153`, `0.316992`,
+/// `-12.5`), scientific outside (`1.5e-7`); `NaN` and `inf` as such (a
+/// message about a value read from a file names the value as it was).
+pub fn trimmed(x: f64, n: usize) -> String {
+    let n = n.max(1);
+    if x == 0.0 {
+        return "0".into();
+    }
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let a = x.abs();
+    if !(1e-4..1e9).contains(&a) {
+        let s = format!("{:.*e}", n - 1, x);
+        // 1.500e-7 -> 1.5e-7
+        return match s.split_once('e') {
+            Some((m, e)) if m.contains('.') => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+            _ => s,
+        };
+    }
+    let decimals = (n as i32 - 1 - a.log10().floor() as i32).max(0) as usize;
+    let mut s = String::new();
+    push_fixed_trimmed(&mut s, x, decimals);
+    s
+}
+
+/// Append `v` in fixed notation with at most `decimals` decimals, trailing
+/// zeros (and a bare point) trimmed, never `-0`. No allocation beyond `out`
+/// (the LDT writer appends every value of a file with it).
+pub fn push_fixed_trimmed(out: &mut String, v: f64, decimals: usize) {
+    let start = out.len();
+    let _ = write!(out, "{v:.decimals$}");
+    if out[start..].contains('.') {
+        let trimmed = out.trim_end_matches('0').trim_end_matches('.').len();
+        out.truncate(trimmed);
+    }
+    if &out[start..] == "-0" {
+        out.truncate(start);
+        out.push('0');
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::significant;
+    use super::{push_fixed_trimmed, significant, trimmed};
 
     #[test]
     fn one_precision_for_every_magnitude() {
@@ -48,5 +99,31 @@ mod tests {
             assert_eq!(significant(x, 4), want, "{x}");
         }
         assert_eq!(significant(0.5672226957349551, 6), "0.567223");
+    }
+
+    #[test]
+    fn messages_drop_trailing_zeros() {
+        assert_eq!(trimmed(3153.04, 4), "3153");
+        assert_eq!(trimmed(-0.31699200000000005, 6), "-0.316992");
+        assert_eq!(trimmed(1.5e-7, 4), "1.5e-7");
+        assert_eq!(trimmed(2.0e9, 3), "2e9");
+        assert_eq!(trimmed(-1e-9, 3), "-1e-9");
+        assert_eq!(trimmed(12.5, 6), "12.5");
+        assert_eq!(trimmed(-0.00001, 1), "-1e-5");
+        assert_eq!(trimmed(f64::NAN, 3), "NaN");
+        assert_eq!(trimmed(f64::NEG_INFINITY, 3), "-inf");
+    }
+
+    #[test]
+    fn fixed_values_append_without_negative_zero() {
+        let f = |v: f64, d: usize| {
+            let mut s = String::from("x=");
+            push_fixed_trimmed(&mut s, v, d);
+            s
+        };
+        assert_eq!(f(123.4000, 3), "x=123.4");
+        assert_eq!(f(-0.0001, 2), "x=0");
+        assert_eq!(f(5.0, 4), "x=5");
+        assert_eq!(f(1200.0, 0), "x=1200");
     }
 }

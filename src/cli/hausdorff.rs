@@ -180,5 +180,5 @@ pub fn run(a: HausdorffArgs) -> anyhow::Result<i32> {
 
 /// A distance with 6 significant digits.
 fn sig(x: f64) -> String {
-    photosolid::error::sig(x, 6)
+    photosolid::numfmt::trimmed(x, 6)
 }

@@ -190,8 +190,8 @@ impl Written<'_> {
             count(report.edges, "edge", "edges"),
             report.euler_characteristic,
             count(report.origin_sheets, "sheet", "sheets"),
-            photosolid::error::sig(mesh.volume(), 6),
-            photosolid::error::sig(mesh.area(), 6),
+            photosolid::numfmt::trimmed(mesh.volume(), 6),
+            photosolid::numfmt::trimmed(mesh.area(), 6),
             if topo.watertight {
                 "watertight"
             } else {

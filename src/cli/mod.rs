@@ -361,13 +361,9 @@ pub(crate) mod parse {
         if x != 0.0 && x.abs() < 1e-10 {
             return format!("{x:e}");
         }
-        let s = format!("{x:.10}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" {
-            "0".into()
-        } else {
-            s.into()
-        }
+        let mut s = String::new();
+        photosolid::numfmt::push_fixed_trimmed(&mut s, x, 10);
+        s
     }
 
     /// A percent of I_max, with its sign (`0.1%`); `zero_allowed`: whether 0% is accepted.

@@ -139,18 +139,18 @@ impl Opening {
         if ![w, l, h].iter().all(|v| v.is_finite()) {
             return Err(ModelError::Opening(format!(
                 "luminous opening W {}, L {}, H {} m: expected finite numbers",
-                crate::error::sig(w, 6),
-                crate::error::sig(l, 6),
-                crate::error::sig(h, 6)
+                crate::numfmt::trimmed(w, 6),
+                crate::numfmt::trimmed(l, 6),
+                crate::numfmt::trimmed(h, 6)
             )));
         }
         Self::ies_shape(w, l, h, old, v1995).ok_or_else(|| {
             ModelError::Opening(format!(
                 "luminous opening signs W {}, L {}, H {} m match no LM-63 shape (point, rectangle, box, disk or \
                  ellipse, cylinder, sphere or ellipsoid, vertical disk)",
-                crate::error::sig(w, 6),
-                crate::error::sig(l, 6),
-                crate::error::sig(h, 6)
+                crate::numfmt::trimmed(w, 6),
+                crate::numfmt::trimmed(l, 6),
+                crate::numfmt::trimmed(h, 6)
             ))
         })
     }

@@ -255,7 +255,7 @@ impl Derived {
             Some(Derivation::Value(t)) => {
                 let _ = writeln!(o, "luminance, cd/m² (gamma: C0, C90):");
                 for (k, g) in t.gamma_deg.iter().enumerate() {
-                    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| crate::error::sig(x, 4));
+                    let f = |v: Option<f64>| v.map_or("-".to_string(), |x| crate::numfmt::trimmed(x, 4));
                     let _ = writeln!(o, "  {:>4.0}°  {:>11}  {:>11}", g, f(t.c0_cd_m2[k]), f(t.c90_cd_m2[k]));
                 }
             }
@@ -382,7 +382,7 @@ pub fn side_by_side_text(rows: &[SideRow], file: &str, other: &str) -> String {
 fn side_value(unit: &str, v: Option<f64>, none: &str) -> String {
     v.map_or(none.to_string(), |x| match unit {
         "class" => format!("{x:.0}"),
-        "cd/m2" => crate::error::sig(x, 4),
+        "cd/m2" => crate::numfmt::trimmed(x, 4),
         _ => format!("{x:.4}"),
     })
 }

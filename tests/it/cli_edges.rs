@@ -754,8 +754,8 @@ fn numbers_are_printed_once_with_sensible_precision() {
     assert!(!bug.contains('.'), "{bug}");
     let w = |n: usize| photosolid::error::count(n, "warning", "warnings");
     assert_eq!((w(1), w(2)), ("1 warning".to_string(), "2 warnings".to_string()));
-    assert_eq!(photosolid::error::sig(3153.04, 4), "3153");
-    assert_eq!(photosolid::error::sig(-0.31699200000000005, 6), "-0.316992");
-    assert_eq!(photosolid::error::sig(1.5e-7, 4), "1.5e-7");
+    assert_eq!(photosolid::numfmt::trimmed(3153.04, 4), "3153");
+    assert_eq!(photosolid::numfmt::trimmed(-0.31699200000000005, 6), "-0.316992");
+    assert_eq!(photosolid::numfmt::trimmed(1.5e-7, 4), "1.5e-7");
     assert_eq!(photosolid::error::percent_of(0.001), 0.1);
 }

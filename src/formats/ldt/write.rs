@@ -142,7 +142,7 @@ impl Lines {
         self.0.push_str("\r\n");
     }
     fn angle(&mut self, v: f64) {
-        push_fixed(&mut self.0, v, 9);
+        crate::numfmt::push_fixed_trimmed(&mut self.0, v, 9);
         self.0.push_str("\r\n");
     }
     fn int(&mut self, v: i64) {
@@ -367,21 +367,7 @@ fn push_sig_with(out: &mut String, v: f64, max_decimals: usize) {
     }
     let mag = v.abs().log10().floor() as i32;
     let decimals = (SIGNIFICANT_DIGITS as i32 - 1 - mag).clamp(0, max_decimals as i32) as usize;
-    push_fixed(out, v, decimals);
-}
-
-/// Append `v` with at most `decimals` decimals, trailing zeros trimmed, never `-0`.
-fn push_fixed(out: &mut String, v: f64, decimals: usize) {
-    let start = out.len();
-    let _ = write!(out, "{v:.decimals$}");
-    if out[start..].contains('.') {
-        let trimmed = out.trim_end_matches('0').trim_end_matches('.').len();
-        out.truncate(trimmed);
-    }
-    if &out[start..] == "-0" {
-        out.truncate(start);
-        out.push('0');
-    }
+    crate::numfmt::push_fixed_trimmed(out, v, decimals);
 }
 
 #[cfg(test)]
@@ -403,7 +389,7 @@ mod tests {
         assert_eq!(f(1234567.891), "1234567.9");
         assert_eq!(f(-1e-20), "0");
         let mut s = String::new();
-        push_fixed(&mut s, 7.300000000000011, 9);
+        crate::numfmt::push_fixed_trimmed(&mut s, 7.300000000000011, 9);
         assert_eq!(s, "7.3");
     }
 
