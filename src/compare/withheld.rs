@@ -26,7 +26,7 @@ use crate::registry::{Recon, Reconstructions};
 use crate::solid::Refinement;
 
 /// Withheld points of one fold up to which the distances are searched on the
-/// solid itself (`metrics::nearest`, about 170 µs a point); above, one
+/// solid itself (`metrics::nearest`, about 130 µs a point on 2 cores); above, one
 /// adaptive mesh of the rebuilt solid (about 1 s whatever the count) is cheaper.
 /// Measured on ITALO (6,400 points a fold: mesh 3x faster) and a 1.4 kB file (71: surface 60x faster).
 pub const SURFACE_SEARCH_MAX_POINTS: usize = 2_000;

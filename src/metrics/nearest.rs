@@ -132,13 +132,13 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
         .iter()
         .enumerate()
         .take_while(|&(k, s)| k < search.seeds.max(1) || (s.d <= window && k < MAX_SEEDS))
-        .map(|(_, &s)| polish(s, step, step / 16.0, &at))
+        .map(|(_, &s)| polish(s, step, step / 16.0, false, &at))
         .collect();
     rough.sort_by(|a, b| a.d.total_cmp(&b.d));
     rough
         .iter()
         .take(search.seeds.max(1))
-        .map(|&s| polish(s, step / 16.0, search.stop_rad, &at).d)
+        .map(|&s| polish(s, step / 16.0, search.stop_rad, true, &at).d)
         .fold(u, f64::min)
 }
 
@@ -179,12 +179,25 @@ fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, search: &Near
 }
 
 /// Pattern search on the sphere from `start`: try the eight tangent
-/// neighbours at `step` radians, move to the best that is closer, else halve
-/// the step; stop below `stop_rad`. Returns the nearest point found.
-fn polish(start: Candidate, step: f64, stop_rad: f64, at_dir: &dyn Fn(DVec3) -> Candidate) -> Candidate {
+/// neighbours at `step` radians (and, with `newton`, the minimum of the
+/// quadratic through them), move to the best that is closer, else halve the
+/// step; stop below `stop_rad`. Returns the nearest point found.
+///
+/// The eight neighbours and the centre determine a quadratic model of d² in
+/// the tangent plane (central differences along C and γ, the mixed term from
+/// the diagonals). Near a smooth minimum its Newton point is nearer than any
+/// neighbour and the step shrinks to the move's length (at most 8x a round),
+/// so the final polish converges in a few rounds instead of crawling a step
+/// at a time (about 2.8 moves per halving before). On a crease (a bilinear
+/// lookup's minimum along C or γ) the model is poor, its point is not nearer,
+/// and the search is the plain pattern search. The rough polish, which
+/// decides the basin, never takes the Newton step: a jump of up to two steps
+/// could leave a seed's basin for a shallower one (measured: up to 0.03 % of
+/// I_max on a real file when the rough polish took it too).
+fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn Fn(DVec3) -> Candidate) -> Candidate {
     let mut at = start;
     let mut step = step.max(stop_rad);
-    // 64 halvings take any step below 1e-19 rad; moves are bounded too.
+    // 64 shrinks take any step below 1e-19 rad; moves are bounded too.
     for _ in 0..400 {
         if step < stop_rad {
             break;
@@ -194,22 +207,95 @@ fn polish(start: Candidate, step: f64, stop_rad: f64, at_dir: &dyn Fn(DVec3) -> 
         let (ec, eg) = tangents(at.w);
         let (d1, d2) = ((ec + eg) * FRAC_1_SQRT_2, (ec - eg) * FRAC_1_SQRT_2);
         let (s, c) = step.sin_cos();
-        let best = [ec, -ec, eg, -eg, d1, -d1, d2, -d2]
-            .into_iter()
-            .map(|e| at_dir((at.w * c + e * s).normalize()))
-            .fold(at, |b, x| if x.d < b.d { x } else { b });
-        if best.d < at.d {
-            at = best;
-        } else {
-            step *= 0.5;
+        let n = [ec, -ec, eg, -eg, d1, -d1, d2, -d2].map(|e| at_dir((at.w * c + e * s).normalize()));
+        let neighbour = n.iter().fold(at, |b, &x| if x.d < b.d { x } else { b });
+        let newton = newton
+            .then(|| newton_move(at, &n, step))
+            .flatten()
+            .map(|(t, len)| (at_dir((at.w * len.cos() + t * len.sin()).normalize()), len));
+        match newton {
+            Some((x, len)) if x.d < neighbour.d && x.d < at.d => {
+                at = x;
+                step = len.clamp(step / 8.0, step);
+            }
+            _ if neighbour.d < at.d => at = neighbour,
+            _ => step *= 0.5,
         }
     }
     at
 }
 
+/// The Newton move of the quadratic model of d² through the centre `at`
+/// and its eight neighbours `n` (order: +C, −C, +γ, −γ, +diagonal,
+/// −diagonal, +anti-diagonal, −anti-diagonal, all `h` radians away): the
+/// unit tangent and its length (radians), when the model has a minimum
+/// within two steps.
+fn newton_move(at: Candidate, n: &[Candidate; 8], h: f64) -> Option<(DVec3, f64)> {
+    let f0 = at.d * at.d;
+    let f = n.map(|x| x.d * x.d);
+    let h2 = h * h;
+    let (gx, gy) = ((f[0] - f[1]) / (2.0 * h), (f[2] - f[3]) / (2.0 * h));
+    let (hxx, hyy) = ((f[0] + f[1] - 2.0 * f0) / h2, (f[2] + f[3] - 2.0 * f0) / h2);
+    // The diagonals are at (±h/√2, ±h/√2): their sums cancel all but the mixed term.
+    let hxy = (f[4] + f[5] - f[6] - f[7]) / (2.0 * h2);
+    let det = hxx * hyy - hxy * hxy;
+    if !(hxx > 0.0 && det > 0.0) {
+        return None;
+    }
+    let (dx, dy) = ((-hyy * gx + hxy * gy) / det, (hxy * gx - hxx * gy) / det);
+    let len = dx.hypot(dy);
+    if !(len > 0.0 && len <= 2.0 * h) {
+        return None;
+    }
+    let (ec, eg) = tangents(at.w);
+    Some(((ec * dx + eg * dy) / len, len))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The Newton move lands on the minimum of a quadratic d² exactly (the
+    /// stencil's central differences and mixed term are exact for it), and
+    /// a saddle or a maximum gives no move.
+    #[test]
+    fn newton_move_finds_the_minimum_of_a_quadratic() {
+        let w = frame::direction(30.0, 70.0);
+        let (ec, eg) = tangents(w);
+        let (x0, y0) = (0.01, -0.02);
+        let cand = |f: &dyn Fn(f64, f64) -> f64, x: f64, y: f64| Candidate {
+            w,
+            r: 1.0,
+            d: f(x, y).sqrt(),
+        };
+        let stencil = |f: &dyn Fn(f64, f64) -> f64, h: f64| {
+            let a = h * FRAC_1_SQRT_2;
+            [
+                (h, 0.0),
+                (-h, 0.0),
+                (0.0, h),
+                (0.0, -h),
+                (a, a),
+                (-a, -a),
+                (a, -a),
+                (-a, a),
+            ]
+            .map(|(x, y)| cand(f, x, y))
+        };
+        let bowl = |x: f64, y: f64| 4.0 + 3.0 * (x - x0).powi(2) + 2.0 * (y - y0).powi(2) + (x - x0) * (y - y0);
+        let h = 0.02;
+        let (t, len) = newton_move(cand(&bowl, 0.0, 0.0), &stencil(&bowl, h), h).unwrap();
+        let got = t * len;
+        let want = ec * x0 + eg * y0;
+        assert!((got - want).length() < 1e-12, "{got} vs {want}");
+        let saddle = |x: f64, y: f64| 4.0 + 3.0 * x * x - 2.0 * y * y + x;
+        assert!(newton_move(cand(&saddle, 0.0, 0.0), &stencil(&saddle, h), h).is_none());
+        let cap = |x: f64, y: f64| 4.0 - x * x - y * y + 0.1 * x;
+        assert!(newton_move(cand(&cap, 0.0, 0.0), &stencil(&cap, h), h).is_none());
+        // A minimum beyond two steps is left to the pattern search.
+        let far = |x: f64, y: f64| 4.0 + (x - 0.1).powi(2) + y * y;
+        assert!(newton_move(cand(&far, 0.0, 0.0), &stencil(&far, h), h).is_none());
+    }
 
     /// The isotropic source: S is the sphere of radius I0, d = | |p| − I0 |.
     #[test]
