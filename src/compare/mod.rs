@@ -384,7 +384,7 @@ pub struct ReconResult {
     /// the rebuilt solid was measured: `surface` (searched on the solid of a
     /// continuous field, [`crate::metrics::nearest`]), `mesh` (exact to the
     /// adaptive mesh of a field that may jump, whose solid has walls, of a
-    /// fold with more than 2,000 withheld points, where one mesh is cheaper,
+    /// fold with more than 6,000 searched points, where one mesh is cheaper,
     /// or to the measured solid), `cells` (exact, in closed form, to the
     /// patches and walls of a field made of constant cells: a nearest
     /// texture lookup, [`crate::metrics::cells`]), `profile` (a solid of

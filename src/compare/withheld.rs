@@ -6,7 +6,9 @@
 //! pool all folds (with k = 2 every inner sample is withheld once per axis,
 //! so twice in all, each time with its measured solid angle). The
 //! Hausdorff figure is one-sided and exact: the largest distance from a
-//! withheld measured point `I·d` to the solid rebuilt without it.
+//! withheld measured point `I·d` to the solid rebuilt without it. (A filter
+//! on symmetric data is searched once per withheld stored sample: its images
+//! are equally far from the symmetric rebuilt solid.)
 
 use glam::DVec3;
 
@@ -25,11 +27,16 @@ use crate::reconstruct::{eval_all, kfold, Fold};
 use crate::registry::{Recon, Reconstructions};
 use crate::solid::Refinement;
 
-/// Withheld points of one fold up to which the distances are searched on the
-/// solid itself (`metrics::nearest`, about 130 µs a point on 2 cores); above, one
-/// adaptive mesh of the rebuilt solid (about 1 s whatever the count) is cheaper.
-/// Measured on ITALO (6,400 points a fold: mesh 3x faster) and a 1.4 kB file (71: surface 60x faster).
-pub const SURFACE_SEARCH_MAX_POINTS: usize = 2_000;
+/// Searched points of one fold up to which the distances are searched on the
+/// solid itself (`metrics::nearest`, about 130 µs a point on 2 cores; a filter
+/// searches each stored sample once, not each of its images); above, one
+/// adaptive mesh of the rebuilt solid is cheaper. A mesh costs what the solid
+/// needs, 0.6-7 s a row whatever the count, so the switch is where the search
+/// costs about as much (release build, 2 cores, one row of the default
+/// `compare`): `gldf-rs/lampsets.ldt` (3,250 points a fold) catmull-rom 7.2 s
+/// meshed, about 1.7 s searched; ITALO (6,400) 1.5 s meshed, 1.6 s searched;
+/// OutdoorRoadway (12,800) 3.6 s meshed, 5.6 s searched.
+pub const SURFACE_SEARCH_MAX_POINTS: usize = 6_000;
 
 /// What one row gathers over the folds: each withheld point's
 /// reconstructed value and distance (cd), and how the distances were measured.
@@ -64,17 +71,16 @@ impl RowDistances {
 
     /// Rebuild `r` from `fold`'s kept data and measure the withheld points
     /// of `set` (measured values `m`, cd) against it.
-    #[allow(clippy::too_many_arguments)]
     fn add_fold(
         &mut self,
         r: Recon,
         fold: &Fold,
-        set: &DirectionSet,
-        m: &[f64],
+        withheld: &FoldPoints,
         rotational: bool,
         refinement: &Refinement,
         progress: &Progress<'_>,
     ) -> Result<(), ModelError> {
+        let (set, m) = (&withheld.set, &withheld.measured_cd[..]);
         // Each withheld point as its direction and measured value, and as a position (cd).
         let polar: Vec<(DVec3, f64)> = set
             .directions
@@ -120,11 +126,11 @@ impl RowDistances {
         if r != Recon::Measured
             && field.is_continuous()
             && !field.prefers_batches()
-            && points.len() <= SURFACE_SEARCH_MAX_POINTS
+            && searched_points(r, &withheld.stored) <= SURFACE_SEARCH_MAX_POINTS
         {
             self.method("surface");
             self.dist
-                .extend(distances_to_solid(&*field, &polar, &NearestSearch::default()));
+                .extend(surface_distances(r, &*field, &polar, &withheld.stored));
             return Ok(());
         }
         self.method("mesh");
@@ -194,12 +200,65 @@ pub(super) fn compare_withheld(
     })
 }
 
+/// The distance of each withheld point `polar` (direction, measured cd) to
+/// the solid of `field` (reconstruction `r`), searched on the solid itself.
+///
+/// A filter on symmetric data is symmetric with it (its texture's planes are
+/// the stored planes' images), so a withheld point and its images under the
+/// symmetry (`stored`: the stored sample of each point) are equally far from
+/// its solid: the search runs once per stored sample.
+fn surface_distances(
+    r: Recon,
+    field: &dyn IntensityField,
+    polar: &[(DVec3, f64)],
+    stored: &[(usize, usize)],
+) -> Vec<f64> {
+    let search = NearestSearch::default();
+    if !matches!(r, Recon::Filter(_)) {
+        return distances_to_solid(field, polar, &search);
+    }
+    let (first, of_point) = first_images(stored);
+    let points: Vec<(DVec3, f64)> = first.iter().map(|&i| polar[i]).collect();
+    let d = distances_to_solid(field, &points, &search);
+    of_point.iter().map(|&k| d[k]).collect()
+}
+
+/// How many points [`surface_distances`] searches for reconstruction `r`:
+/// one per stored sample for a filter, else one per point.
+fn searched_points(r: Recon, stored: &[(usize, usize)]) -> usize {
+    if matches!(r, Recon::Filter(_)) {
+        first_images(stored).0.len()
+    } else {
+        stored.len()
+    }
+}
+
+/// The first point of each stored sample in `stored` (indices into it), and
+/// for every point the position of its sample's first point in that list.
+fn first_images(stored: &[(usize, usize)]) -> (Vec<usize>, Vec<usize>) {
+    let mut seen = std::collections::HashMap::with_capacity(stored.len());
+    let mut first = Vec::new();
+    let of_point = stored
+        .iter()
+        .enumerate()
+        .map(|(i, key)| {
+            *seen.entry(*key).or_insert_with(|| {
+                first.push(i);
+                first.len() - 1
+            })
+        })
+        .collect();
+    (first, of_point)
+}
+
 /// The withheld points of one fold.
 struct FoldPoints {
     /// The withheld directions, each with its measured solid angle.
     set: DirectionSet,
     /// The measured value at each of them, cd.
     measured_cd: Vec<f64>,
+    /// The stored sample `(ic, ig)` each of them is an image of.
+    stored: Vec<(usize, usize)>,
 }
 
 impl FoldPoints {
@@ -213,14 +272,20 @@ impl FoldPoints {
         let set = DirectionSet::measured_where(a, "withheld", at);
         // The same order as `measured_where`: rows, then full planes (poles are never withheld, see `kfold`).
         let mut measured_cd = Vec::with_capacity(set.len());
+        let mut stored = Vec::with_capacity(set.len());
         for ig in 0..a.n_gamma() {
             for &(_, ic) in planes {
                 if at(ic, ig) {
                     measured_cd.push(a.value_cd(ic, ig));
+                    stored.push((ic, ig));
                 }
             }
         }
-        Self { set, measured_cd }
+        Self {
+            set,
+            measured_cd,
+            stored,
+        }
     }
 }
 
@@ -292,15 +357,7 @@ impl<'a> HoldOut<'a> {
         let i_max = self.i_max;
         let mut row_acc = RowDistances::default();
         for (fold, points) in self.folds.iter().zip(&self.sets) {
-            row_acc.add_fold(
-                r,
-                fold,
-                &points.set,
-                &points.measured_cd,
-                self.rotational,
-                &self.refinement,
-                progress,
-            )?;
+            row_acc.add_fold(r, fold, points, self.rotational, &self.refinement, progress)?;
         }
         let RowDistances {
             recon: recon_all,
@@ -391,4 +448,71 @@ fn measured_viewer(
                 .into(),
         ),
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Distribution, Symmetry};
+    use crate::reconstruct::{Filter, LightTexture};
+
+    /// A quadrant-symmetric distribution that varies with C and γ.
+    fn quadrant() -> Distribution {
+        let c: Vec<f64> = (0..=6).map(|k| 15.0 * k as f64).collect();
+        let g: Vec<f64> = (0..=18).map(|k| 10.0 * k as f64).collect();
+        let cd = c
+            .iter()
+            .flat_map(|&c| {
+                g.iter().map(move |&g: &f64| {
+                    let (c, g) = (c.to_radians(), g.to_radians());
+                    100.0 + 80.0 * (2.0 * c).cos() * g.sin() + 60.0 * g.cos().max(0.0).powi(3)
+                })
+            })
+            .collect();
+        Distribution::new(c, g, cd, Symmetry::Quadrant).unwrap()
+    }
+
+    /// A filter row searches once per stored sample and gives every image
+    /// its sample's distance; searching every image on its own gives the
+    /// same distances (to the search's accuracy, 1e-6 of I_max).
+    #[test]
+    fn images_of_a_withheld_sample_share_its_distance() {
+        let a = quadrant();
+        let opts = CompareOptions::default();
+        let i_max = a.max_cd();
+        let planes = a.full_planes();
+        let mut shared = 0;
+        for fold in kfold(&a, 2).unwrap() {
+            let points = FoldPoints::of(&a, &fold, &planes);
+            let (first, _) = first_images(&points.stored);
+            assert!(2 * first.len() < points.stored.len(), "quadrant images: {first:?}");
+            shared += points.stored.len() - first.len();
+            let mut row = RowDistances::default();
+            let r = Recon::Filter(Filter::CatmullRom);
+            row.add_fold(r, &fold, &points, false, &opts.refinement(i_max), &|_, _, _| {})
+                .unwrap();
+            assert_eq!(row.methods, ["surface"]);
+            let tex = LightTexture::new(&fold.kept).unwrap();
+            let polar: Vec<(DVec3, f64)> = points
+                .set
+                .directions
+                .iter()
+                .zip(&points.measured_cd)
+                .map(|(&(c, g), &v)| (direction(c, g), v))
+                .collect();
+            let each = distances_to_solid(&tex.sampler(Filter::CatmullRom), &polar, &NearestSearch::default());
+            assert_eq!(row.dist.len(), each.len());
+            for (k, (x, y)) in row.dist.iter().zip(&each).enumerate() {
+                assert!((x - y).abs() <= 1e-6 * i_max, "point {k} {:?}: {x} vs {y}", polar[k]);
+            }
+        }
+        assert!(shared > 0);
+    }
+
+    #[test]
+    fn first_images_index_each_sample_once() {
+        let (first, of) = first_images(&[(0, 1), (2, 1), (0, 1), (0, 3), (2, 1)]);
+        assert_eq!(first, [0, 1, 3]);
+        assert_eq!(of, [0, 1, 0, 2, 1]);
+    }
 }
