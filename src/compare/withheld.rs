@@ -6,9 +6,9 @@
 //! pool all folds (with k = 2 every inner sample is withheld once per axis,
 //! so twice in all, each time with its measured solid angle). The
 //! Hausdorff figure is one-sided and exact: the largest distance from a
-//! withheld measured point `I·d` to the solid rebuilt without it. (A filter
-//! on symmetric data is searched once per withheld stored sample: its images
-//! are equally far from the symmetric rebuilt solid.)
+//! withheld measured point `I·d` to the solid rebuilt without it. (A field
+//! symmetric with the data, checked at every withheld point, is searched once
+//! per withheld stored sample: its images are equally far from its solid.)
 
 use glam::DVec3;
 
@@ -28,8 +28,9 @@ use crate::registry::{Recon, Reconstructions};
 use crate::solid::Refinement;
 
 /// Searched points of one fold up to which the distances are searched on the
-/// solid itself (`metrics::nearest`, about 130 µs a point on 2 cores; a filter
-/// searches each stored sample once, not each of its images); above, one
+/// solid itself (`metrics::nearest`, about 130 µs a point on 2 cores; a field
+/// symmetric with the data searches each stored sample once, not each of its
+/// images: [`shared_images`]); above, one
 /// adaptive mesh of the rebuilt solid is cheaper. A mesh costs what the solid
 /// needs, 0.6-7 s a row whatever the count, so the switch is where the search
 /// costs about as much (release build, 2 cores, one row of the default
@@ -82,12 +83,7 @@ impl RowDistances {
     ) -> Result<(), ModelError> {
         let (set, m) = (&withheld.set, &withheld.measured_cd[..]);
         // Each withheld point as its direction and measured value, and as a position (cd).
-        let polar: Vec<(DVec3, f64)> = set
-            .directions
-            .iter()
-            .zip(m)
-            .map(|(&(c, g), &v)| (direction(c, g), v))
-            .collect();
+        let polar = withheld.polar();
         let points: Vec<DVec3> = polar.iter().map(|&(d, v)| v * d).collect();
         // Kept data that is zero everywhere reconstructs to nothing: the
         // solid is the origin, every withheld point is |p| away from it.
@@ -123,15 +119,19 @@ impl RowDistances {
         // the solid itself (metrics::nearest). The measured solid is a mesh,
         // and a field that may jump has walls only a mesh holds.
         // A field that answers only in batches (the GPU's) is meshed: the search asks one direction at a time.
-        if r != Recon::Measured
-            && field.is_continuous()
-            && !field.prefers_batches()
-            && searched_points(r, &withheld.stored) <= SURFACE_SEARCH_MAX_POINTS
-        {
-            self.method("surface");
-            self.dist
-                .extend(surface_distances(r, &*field, &polar, &withheld.stored));
-            return Ok(());
+        if r != Recon::Measured && field.is_continuous() && !field.prefers_batches() {
+            let images = shared_images(
+                &*field,
+                &polar,
+                &withheld.stored,
+                SYMMETRY_TOLERANCE * fold.kept.max_cd(),
+            );
+            let searched = images.as_ref().map_or(polar.len(), |i| i.first.len());
+            if searched <= SURFACE_SEARCH_MAX_POINTS {
+                self.method("surface");
+                self.dist.extend(surface_distances(&*field, &polar, images.as_ref()));
+                return Ok(());
+            }
         }
         self.method("mesh");
         match own_or_grid_solid(&recs, r, &*field, &fold.kept, refinement, progress) {
@@ -200,37 +200,56 @@ pub(super) fn compare_withheld(
     })
 }
 
-/// The distance of each withheld point `polar` (direction, measured cd) to
-/// the solid of `field` (reconstruction `r`), searched on the solid itself.
-///
-/// A filter on symmetric data is symmetric with it (its texture's planes are
-/// the stored planes' images), so a withheld point and its images under the
-/// symmetry (`stored`: the stored sample of each point) are equally far from
-/// its solid: the search runs once per stored sample.
-fn surface_distances(
-    r: Recon,
+/// Two field values count as equal for [`shared_images`] within this
+/// fraction of the kept data's I_max (a filter's images differ by rounding,
+/// about 1e-16; a distance differs by at most the value's difference).
+const SYMMETRY_TOLERANCE: f64 = 1e-9;
+
+/// Withheld points searched once per stored sample: `first` holds the first
+/// point of each sample (indices into the points), `of_point` each point's
+/// position in `first`.
+struct SharedImages {
+    first: Vec<usize>,
+    of_point: Vec<usize>,
+}
+
+/// The images of each withheld stored sample (`stored`: the sample of each
+/// point of `polar`) share one search when the rebuilt field is symmetric
+/// with the data: a point and its images are then equally far from its solid.
+/// A filter's texture holds the stored planes' images and is symmetric; a
+/// render at a width whose column centres are not symmetric, a block-
+/// compressed texture or a fit need not be. So the symmetry is checked, not
+/// assumed: `Some` only when the field at every point equals the field at its
+/// sample's first point within `tol_cd`, and some sample has two points.
+fn shared_images(
     field: &dyn IntensityField,
     polar: &[(DVec3, f64)],
     stored: &[(usize, usize)],
-) -> Vec<f64> {
-    let search = NearestSearch::default();
-    if !matches!(r, Recon::Filter(_)) {
-        return distances_to_solid(field, polar, &search);
-    }
+    tol_cd: f64,
+) -> Option<SharedImages> {
     let (first, of_point) = first_images(stored);
-    let points: Vec<(DVec3, f64)> = first.iter().map(|&i| polar[i]).collect();
-    let d = distances_to_solid(field, &points, &search);
-    of_point.iter().map(|&k| d[k]).collect()
+    if first.len() == stored.len() {
+        return None;
+    }
+    let at_first: Vec<f64> = first.iter().map(|&i| field.intensity_dir_cd(polar[i].0)).collect();
+    let symmetric = polar
+        .iter()
+        .zip(&of_point)
+        .all(|(&(w, _), &k)| (field.intensity_dir_cd(w) - at_first[k]).abs() <= tol_cd);
+    symmetric.then_some(SharedImages { first, of_point })
 }
 
-/// How many points [`surface_distances`] searches for reconstruction `r`:
-/// one per stored sample for a filter, else one per point.
-fn searched_points(r: Recon, stored: &[(usize, usize)]) -> usize {
-    if matches!(r, Recon::Filter(_)) {
-        first_images(stored).0.len()
-    } else {
-        stored.len()
-    }
+/// The distance of each withheld point `polar` (direction, measured cd) to
+/// the solid of `field`, searched on the solid itself: once per stored sample
+/// when `images` says the field is symmetric with the data.
+fn surface_distances(field: &dyn IntensityField, polar: &[(DVec3, f64)], images: Option<&SharedImages>) -> Vec<f64> {
+    let search = NearestSearch::default();
+    let Some(images) = images else {
+        return distances_to_solid(field, polar, &search);
+    };
+    let points: Vec<(DVec3, f64)> = images.first.iter().map(|&i| polar[i]).collect();
+    let d = distances_to_solid(field, &points, &search);
+    images.of_point.iter().map(|&k| d[k]).collect()
 }
 
 /// The first point of each stored sample in `stored` (indices into it), and
@@ -262,6 +281,16 @@ struct FoldPoints {
 }
 
 impl FoldPoints {
+    /// Each point as its unit direction and measured value (cd).
+    fn polar(&self) -> Vec<(DVec3, f64)> {
+        self.set
+            .directions
+            .iter()
+            .zip(&self.measured_cd)
+            .map(|(&(c, g), &v)| (direction(c, g), v))
+            .collect()
+    }
+
     /// Every symmetry image of the stored samples `fold` withholds from `a`.
     fn of(a: &Distribution, fold: &Fold, planes: &[(f64, usize)]) -> Self {
         let mut mask = vec![false; a.n_c() * a.n_gamma()];
@@ -493,20 +522,34 @@ mod tests {
                 .unwrap();
             assert_eq!(row.methods, ["surface"]);
             let tex = LightTexture::new(&fold.kept).unwrap();
-            let polar: Vec<(DVec3, f64)> = points
-                .set
-                .directions
-                .iter()
-                .zip(&points.measured_cd)
-                .map(|(&(c, g), &v)| (direction(c, g), v))
-                .collect();
-            let each = distances_to_solid(&tex.sampler(Filter::CatmullRom), &polar, &NearestSearch::default());
+            let polar = points.polar();
+            let sampler = tex.sampler(Filter::CatmullRom);
+            let tol = SYMMETRY_TOLERANCE * fold.kept.max_cd();
+            let images = shared_images(&sampler, &polar, &points.stored, tol).expect("a filter keeps the symmetry");
+            assert_eq!(images.first.len(), first.len());
+            // A field that breaks the symmetry searches every point.
+            assert!(shared_images(&Tilted, &polar, &points.stored, tol).is_none());
+            let each = distances_to_solid(&sampler, &polar, &NearestSearch::default());
             assert_eq!(row.dist.len(), each.len());
             for (k, (x, y)) in row.dist.iter().zip(&each).enumerate() {
                 assert!((x - y).abs() <= 1e-6 * i_max, "point {k} {:?}: {x} vs {y}", polar[k]);
             }
         }
         assert!(shared > 0);
+    }
+
+    /// 100 cd plus a term odd in C: not symmetric about any plane through the axis.
+    struct Tilted;
+    impl IntensityField for Tilted {
+        fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+            100.0 + 50.0 * c_deg.to_radians().sin() * gamma_deg.to_radians().sin()
+        }
+        fn name(&self) -> String {
+            "tilted".into()
+        }
+        fn bytes(&self) -> usize {
+            0
+        }
     }
 
     #[test]
