@@ -67,12 +67,7 @@ pub struct Num(pub f64);
 
 impl fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let x = self.0;
-        if x == 0.0 || !x.is_finite() || (1e-4..1e16).contains(&x.abs()) {
-            write!(f, "{x}")
-        } else {
-            write!(f, "{x:e}")
-        }
+        crate::numfmt::write_shortest(f, self.0)
     }
 }
 

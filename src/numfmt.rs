@@ -1,12 +1,13 @@
 //! Numbers as text, in one place: [`significant()`] for tables and reports
 //! (one precision per column, trailing zeros kept), [`trimmed()`] for
-//! messages (trailing zeros dropped: `3153`, `0.316992`, `1.5e-7`), and
+//! messages about computed values (trailing zeros dropped: `3153`,
+//! `0.316992`, `1.5e-7`), [`write_shortest()`] for a value as it was read
+//! (`crate::error::Num` in error and warning messages), and
 //! [`push_fixed_trimmed()`], the allocation-free core the writers append
 //! with (fixed notation only, as the file formats require).
 //!
-//! The lowest layer: it depends on nothing, so the error messages
-//! (`crate::error`), the readers' warnings, the writers and the reports all
-//! share it.
+//! The lowest layer: it depends on nothing, so the errors (`crate::error`),
+//! the readers' warnings, the writers and the reports all share it.
 
 use std::fmt::Write as _;
 
@@ -61,6 +62,17 @@ pub fn trimmed(x: f64, n: usize) -> String {
     s
 }
 
+/// Write `x` as the shortest text that reads back to the same `f64`, in
+/// scientific notation below 1e-4 and from 1e16 on in magnitude (`1e-200`,
+/// not two hundred digits); `0`, `NaN` and `inf` as such.
+pub fn write_shortest(out: &mut dyn std::fmt::Write, x: f64) -> std::fmt::Result {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e16).contains(&x.abs()) {
+        write!(out, "{x}")
+    } else {
+        write!(out, "{x:e}")
+    }
+}
+
 /// Append `v` in fixed notation with at most `decimals` decimals, trailing
 /// zeros (and a bare point) trimmed, never `-0`. No allocation beyond `out`
 /// (the LDT writer appends every value of a file with it).
@@ -79,7 +91,7 @@ pub fn push_fixed_trimmed(out: &mut String, v: f64, decimals: usize) {
 
 #[cfg(test)]
 mod tests {
-    use super::{push_fixed_trimmed, significant, trimmed};
+    use super::{push_fixed_trimmed, significant, trimmed, write_shortest};
 
     #[test]
     fn one_precision_for_every_magnitude() {
@@ -112,6 +124,23 @@ mod tests {
         assert_eq!(trimmed(-0.00001, 1), "-1e-5");
         assert_eq!(trimmed(f64::NAN, 3), "NaN");
         assert_eq!(trimmed(f64::NEG_INFINITY, 3), "-inf");
+    }
+
+    #[test]
+    fn shortest_reads_back_the_same_value() {
+        let f = |x: f64| {
+            let mut s = String::new();
+            write_shortest(&mut s, x).unwrap();
+            s
+        };
+        assert_eq!(f(0.1 + 0.2), "0.30000000000000004");
+        assert_eq!(f(1e-200), "1e-200");
+        assert_eq!(f(2.5e16), "2.5e16");
+        assert_eq!(f(-12.5), "-12.5");
+        assert_eq!(f(f64::NAN), "NaN");
+        for x in [0.1 + 0.2, 1e-200, 2.5e16, 123456.789, -3e-5] {
+            assert_eq!(f(x).parse::<f64>().unwrap(), x);
+        }
     }
 
     #[test]

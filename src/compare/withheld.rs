@@ -22,7 +22,7 @@ use crate::metrics::{
     OneSided,
 };
 use crate::model::frame::direction;
-use crate::model::{Distribution, IntensityField};
+use crate::model::{Distribution, IntensityField, Symmetry, ANGLE_EPS};
 use crate::reconstruct::{eval_all, kfold, Fold};
 use crate::registry::{Recon, Reconstructions};
 use crate::solid::Refinement;
@@ -55,6 +55,8 @@ struct RowDistances {
     segments: Option<usize>,
     /// How the distances were measured (`ReconResult::withheld_distance`), in order of first use.
     methods: Vec<&'static str>,
+    /// Points searched on the solid (symmetric images share a search).
+    searched: usize,
 }
 
 impl RowDistances {
@@ -120,15 +122,13 @@ impl RowDistances {
         // and a field that may jump has walls only a mesh holds.
         // A field that answers only in batches (the GPU's) is meshed: the search asks one direction at a time.
         if r != Recon::Measured && field.is_continuous() && !field.prefers_batches() {
-            let images = shared_images(
-                &*field,
-                &polar,
-                &withheld.stored,
-                SYMMETRY_TOLERANCE * fold.kept.max_cd(),
-            );
+            let values = &self.recon[self.recon.len() - polar.len()..];
+            let tol_cd = SYMMETRY_TOLERANCE * fold.kept.max_cd();
+            let images = shared_images(&*field, fold.kept.symmetry(), values, &withheld.stored, tol_cd);
             let searched = images.as_ref().map_or(polar.len(), |i| i.first.len());
             if searched <= SURFACE_SEARCH_MAX_POINTS {
                 self.method("surface");
+                self.searched += searched;
                 self.dist.extend(surface_distances(&*field, &polar, images.as_ref()));
                 return Ok(());
             }
@@ -213,30 +213,49 @@ struct SharedImages {
     of_point: Vec<usize>,
 }
 
+/// Probe directions of the symmetry check in [`shared_images`] (a Fibonacci lattice).
+const SYMMETRY_PROBES: usize = 1024;
+
 /// The images of each withheld stored sample (`stored`: the sample of each
-/// point of `polar`) share one search when the rebuilt field is symmetric
-/// with the data: a point and its images are then equally far from its solid.
-/// A filter's texture holds the stored planes' images and is symmetric; a
-/// render at a width whose column centres are not symmetric, a block-
+/// point) share one search when the rebuilt field is symmetric with the data
+/// (`symmetry`, the kept data's): a point and its images are then equally far
+/// from its solid. A filter's texture holds the stored planes' images and is
+/// symmetric; a render whose column centres are not symmetric, a block-
 /// compressed texture or a fit need not be. So the symmetry is checked, not
-/// assumed: `Some` only when the field at every point equals the field at its
-/// sample's first point within `tol_cd`, and some sample has two points.
+/// assumed, where the searches look: `Some` only when the field's `values` at
+/// the points equal their sample's first point's value, and the field at
+/// [`SYMMETRY_PROBES`] directions spread over the sphere equals it at each of
+/// their images, all within `tol_cd`, and some sample has two points. (Equal
+/// values at the points alone would miss a field that agrees there but not
+/// between them, where a search may find the nearest point.)
 fn shared_images(
     field: &dyn IntensityField,
-    polar: &[(DVec3, f64)],
+    symmetry: Symmetry,
+    values: &[f64],
     stored: &[(usize, usize)],
     tol_cd: f64,
 ) -> Option<SharedImages> {
     let (first, of_point) = first_images(stored);
-    if first.len() == stored.len() {
+    if first.len() == stored.len() || values.len() != stored.len() {
         return None;
     }
-    let at_first: Vec<f64> = first.iter().map(|&i| field.intensity_dir_cd(polar[i].0)).collect();
-    let symmetric = polar
+    let at_points = values
         .iter()
         .zip(&of_point)
-        .all(|(&(w, _), &k)| (field.intensity_dir_cd(w) - at_first[k]).abs() <= tol_cd);
-    symmetric.then_some(SharedImages { first, of_point })
+        .all(|(v, &k)| (v - values[first[k]]).abs() <= tol_cd);
+    let at_probes = || {
+        DirectionSet::fibonacci(SYMMETRY_PROBES)
+            .directions
+            .iter()
+            .all(|&(c, g)| {
+                let v = field.intensity_cd(c, g);
+                symmetry
+                    .images(c)
+                    .into_iter()
+                    .all(|ci| (field.intensity_cd(ci, g) - v).abs() <= tol_cd)
+            })
+    };
+    (at_points && at_probes()).then_some(SharedImages { first, of_point })
 }
 
 /// The distance of each withheld point `polar` (direction, measured cd) to
@@ -299,17 +318,20 @@ impl FoldPoints {
         }
         let at = |ic: usize, ig: usize| mask[ic * a.n_gamma() + ig];
         let set = DirectionSet::measured_where(a, "withheld", at);
-        // The same order as `measured_where`: rows, then full planes (poles are never withheld, see `kfold`).
+        // The same order as `measured_where`: rows, then full planes; a pole
+        // row is one direction, kept when any plane's sample there is (`kfold`
+        // withholds no pole today: this keeps the lists aligned if it did).
         let mut measured_cd = Vec::with_capacity(set.len());
         let mut stored = Vec::with_capacity(set.len());
-        for ig in 0..a.n_gamma() {
-            for &(_, ic) in planes {
-                if at(ic, ig) {
-                    measured_cd.push(a.value_cd(ic, ig));
-                    stored.push((ic, ig));
-                }
+        for (ig, &g) in a.gamma_angles_deg().iter().enumerate() {
+            let pole = g <= ANGLE_EPS || g >= 180.0 - ANGLE_EPS;
+            let withheld = planes.iter().filter(|&&(_, ic)| at(ic, ig));
+            for &(_, ic) in withheld.take(if pole { 1 } else { usize::MAX }) {
+                measured_cd.push(a.value_cd(ic, ig));
+                stored.push((ic, ig));
             }
         }
+        debug_assert_eq!(stored.len(), set.len(), "one value per withheld direction");
         Self {
             set,
             measured_cd,
@@ -395,6 +417,7 @@ impl<'a> HoldOut<'a> {
             deviation,
             segments,
             methods,
+            searched: _,
         } = row_acc;
         let rad = radial_errors(&self.pooled, &self.m_all, &recon_all, i_max, self.opts.zotti_c);
         let n = dist_all.len().max(1) as f64;
@@ -525,10 +548,18 @@ mod tests {
             let polar = points.polar();
             let sampler = tex.sampler(Filter::CatmullRom);
             let tol = SYMMETRY_TOLERANCE * fold.kept.max_cd();
-            let images = shared_images(&sampler, &polar, &points.stored, tol).expect("a filter keeps the symmetry");
+            let values: Vec<f64> = polar.iter().map(|&(w, _)| sampler.intensity_dir_cd(w)).collect();
+            let images = shared_images(&sampler, Symmetry::Quadrant, &values, &points.stored, tol)
+                .expect("a filter keeps the symmetry");
             assert_eq!(images.first.len(), first.len());
+            assert_eq!(row.searched, first.len(), "the row shared its images' searches");
             // A field that breaks the symmetry searches every point.
-            assert!(shared_images(&Tilted, &polar, &points.stored, tol).is_none());
+            let tilted: Vec<f64> = polar.iter().map(|&(w, _)| Tilted.intensity_dir_cd(w)).collect();
+            assert!(shared_images(&Tilted, Symmetry::Quadrant, &tilted, &points.stored, tol).is_none());
+            // A field that equals the filter at every withheld point but breaks
+            // the symmetry between them is found out by the probes.
+            let between = Between(&sampler);
+            assert!(shared_images(&between, Symmetry::Quadrant, &values, &points.stored, tol).is_none());
             let each = distances_to_solid(&sampler, &polar, &NearestSearch::default());
             assert_eq!(row.dist.len(), each.len());
             for (k, (x, y)) in row.dist.iter().zip(&each).enumerate() {
@@ -538,8 +569,25 @@ mod tests {
         assert!(shared > 0);
     }
 
-    /// 100 cd plus a term odd in C: not symmetric about any plane through the axis.
+    /// 100 cd plus a term in sin C: not quadrant-symmetric (C and 180 + C differ).
     struct Tilted;
+
+    /// A field plus a bump in sin(3C) that vanishes at every multiple of 15°
+    /// (the test's planes) and on the γ rows at multiples of 10°: equal to the
+    /// field at every withheld direction, not symmetric between them.
+    struct Between<'a>(&'a dyn IntensityField);
+    impl IntensityField for Between<'_> {
+        fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+            let bump = (12.0 * c_deg.to_radians()).sin() * (18.0 * gamma_deg.to_radians()).sin();
+            self.0.intensity_cd(c_deg, gamma_deg) + 5.0 * bump.abs() * (3.0 * c_deg.to_radians()).sin()
+        }
+        fn name(&self) -> String {
+            "between".into()
+        }
+        fn bytes(&self) -> usize {
+            0
+        }
+    }
     impl IntensityField for Tilted {
         fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
             100.0 + 50.0 * c_deg.to_radians().sin() * gamma_deg.to_radians().sin()

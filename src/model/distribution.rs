@@ -171,7 +171,7 @@ impl Symmetry {
     }
 
     /// All images of C under the symmetry group, wrapped to [0, 360).
-    fn images(self, c: f64) -> Vec<f64> {
+    pub(crate) fn images(self, c: f64) -> Vec<f64> {
         let v = match self {
             Symmetry::None => vec![c],
             Symmetry::Rotational => vec![c],
