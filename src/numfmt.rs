@@ -37,8 +37,7 @@ pub fn significant(x: f64, digits: usize) -> String {
 
 /// `x` with `n` significant digits as a reader expects it: plain decimals
 /// without trailing zeros from 1e-4 to below 1e9 (`3153`, `0.316992`,
-/// `-12.5`), scientific outside (`1.5e-7`); `NaN` and `inf` as such (a
-/// message about a value read from a file names the value as it was).
+/// `-12.5`), scientific outside (`1.5e-7`); `NaN` and `inf` as such.
 pub fn trimmed(x: f64, n: usize) -> String {
     let n = n.max(1);
     if x == 0.0 {

@@ -7,8 +7,9 @@
 //! so twice in all, each time with its measured solid angle). The
 //! Hausdorff figure is one-sided and exact: the largest distance from a
 //! withheld measured point `I·d` to the solid rebuilt without it. (A field
-//! symmetric with the data, checked at every withheld point, is searched once
-//! per withheld stored sample: its images are equally far from its solid.)
+//! symmetric with the data, checked at every withheld point and at probe
+//! directions over the sphere, is searched once per withheld stored sample:
+//! its images are equally far from its solid.)
 
 use glam::DVec3;
 
@@ -72,8 +73,8 @@ impl RowDistances {
         }
     }
 
-    /// Rebuild `r` from `fold`'s kept data and measure the withheld points
-    /// of `set` (measured values `m`, cd) against it.
+    /// Rebuild `r` from `fold`'s kept data and measure the `withheld`
+    /// points (directions and measured values, cd) against it.
     fn add_fold(
         &mut self,
         r: Recon,

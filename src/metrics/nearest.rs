@@ -210,11 +210,12 @@ fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn
         let n = [ec, -ec, eg, -eg, d1, -d1, d2, -d2].map(|e| at_dir((at.w * c + e * s).normalize()));
         let neighbour = n.iter().fold(at, |b, &x| if x.d < b.d { x } else { b });
         let newton = newton
-            .then(|| newton_move(at, &n, step))
+            .then(|| newton_move(at, &n, step, (ec, eg)))
             .flatten()
             .map(|(t, len)| (at_dir((at.w * len.cos() + t * len.sin()).normalize()), len));
         match newton {
-            Some((x, len)) if x.d < neighbour.d && x.d < at.d => {
+            // `neighbour` is never further than `at`: nearer than it is nearer than both.
+            Some((x, len)) if x.d < neighbour.d => {
                 at = x;
                 step = len.clamp(step / 8.0, step);
             }
@@ -227,10 +228,10 @@ fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn
 
 /// The Newton move of the quadratic model of d² through the centre `at`
 /// and its eight neighbours `n` (order: +C, −C, +γ, −γ, +diagonal,
-/// −diagonal, +anti-diagonal, −anti-diagonal, all `h` radians away): the
-/// unit tangent and its length (radians), when the model has a minimum
-/// within two steps.
-fn newton_move(at: Candidate, n: &[Candidate; 8], h: f64) -> Option<(DVec3, f64)> {
+/// −diagonal, +anti-diagonal, −anti-diagonal, all `h` radians away along
+/// the tangents `(ec, eg)` of C and γ at `at`): the unit tangent and its
+/// length (radians), when the model has a minimum within two steps.
+fn newton_move(at: Candidate, n: &[Candidate; 8], h: f64, (ec, eg): (DVec3, DVec3)) -> Option<(DVec3, f64)> {
     let f0 = at.d * at.d;
     let f = n.map(|x| x.d * x.d);
     let h2 = h * h;
@@ -247,7 +248,6 @@ fn newton_move(at: Candidate, n: &[Candidate; 8], h: f64) -> Option<(DVec3, f64)
     if !(len > 0.0 && len <= 2.0 * h) {
         return None;
     }
-    let (ec, eg) = tangents(at.w);
     Some(((ec * dx + eg * dy) / len, len))
 }
 
@@ -284,17 +284,17 @@ mod tests {
         };
         let bowl = |x: f64, y: f64| 4.0 + 3.0 * (x - x0).powi(2) + 2.0 * (y - y0).powi(2) + (x - x0) * (y - y0);
         let h = 0.02;
-        let (t, len) = newton_move(cand(&bowl, 0.0, 0.0), &stencil(&bowl, h), h).unwrap();
+        let (t, len) = newton_move(cand(&bowl, 0.0, 0.0), &stencil(&bowl, h), h, (ec, eg)).unwrap();
         let got = t * len;
         let want = ec * x0 + eg * y0;
         assert!((got - want).length() < 1e-12, "{got} vs {want}");
         let saddle = |x: f64, y: f64| 4.0 + 3.0 * x * x - 2.0 * y * y + x;
-        assert!(newton_move(cand(&saddle, 0.0, 0.0), &stencil(&saddle, h), h).is_none());
+        assert!(newton_move(cand(&saddle, 0.0, 0.0), &stencil(&saddle, h), h, (ec, eg)).is_none());
         let cap = |x: f64, y: f64| 4.0 - x * x - y * y + 0.1 * x;
-        assert!(newton_move(cand(&cap, 0.0, 0.0), &stencil(&cap, h), h).is_none());
+        assert!(newton_move(cand(&cap, 0.0, 0.0), &stencil(&cap, h), h, (ec, eg)).is_none());
         // A minimum beyond two steps is left to the pattern search.
         let far = |x: f64, y: f64| 4.0 + (x - 0.1).powi(2) + y * y;
-        assert!(newton_move(cand(&far, 0.0, 0.0), &stencil(&far, h), h).is_none());
+        assert!(newton_move(cand(&far, 0.0, 0.0), &stencil(&far, h), h, (ec, eg)).is_none());
     }
 
     /// The isotropic source: S is the sphere of radius I0, d = | |p| − I0 |.
