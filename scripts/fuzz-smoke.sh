@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# Bounded fuzz smoke run: each cargo-fuzz target for FUZZ_SECONDS (default 60)
-# seconds, seeded from data/ and, when present, ../shared/corpus (copied at run
+# Bounded fuzz smoke run: each cargo-fuzz target for FUZZ_SECONDS (default 45)
+# seconds, FUZZ_JOBS (default 2) targets at a time, seeded from data/ and, when present, ../shared/corpus (copied at run
 # time into fuzz/corpus-smoke/, which git ignores, and recreated each run so the
 # time stays bounded; the long runs of RELIABILITY.md use fuzz/corpus/). Fails when a target crashes;
 # prints one visible SKIP line and exits 0 when the toolchain or cargo-fuzz is
 # unavailable. See RELIABILITY.md for the long runs.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-SECONDS_PER_TARGET="${FUZZ_SECONDS:-60}"
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-45}"
 TARGETS="${FUZZ_TARGETS:-ies_parse ldt_parse ies_reader ldt_reader pipeline}"
 
 skip() {
@@ -49,8 +49,9 @@ seed() { # seed TARGET MAX_SIZE EXTENSIONS...
     done
 }
 
-status=0
-for t in $TARGETS; do
+# One target's bounded run: seeds, libFuzzer, and one result line in its log's .result file.
+run_target() {
+    local t="$1" log="/tmp/fuzz-smoke-$1.log" rc runs
     case "$t" in
         ies_reader | ies_parse) seed "$t" 256k ies ;;
         ldt_reader | ldt_parse) seed "$t" 256k ldt ;;
@@ -58,7 +59,6 @@ for t in $TARGETS; do
         *) seed "$t" 16k ies ldt ;;
     esac
     echo "fuzz smoke: $t for ${SECONDS_PER_TARGET} s ($(ls "fuzz/corpus-smoke/$t" | wc -l) seeds)"
-    log="/tmp/fuzz-smoke-$t.log"
     # libFuzzer finishes its pass over the seeds before it looks at the clock;
     # `timeout` bounds that pass too (exit 124 = stopped at the limit, not a crash).
     timeout $((SECONDS_PER_TARGET + 30)) cargo fuzz run -s none --fuzz-dir fuzz "$t" "fuzz/corpus-smoke/$t" -- \
@@ -67,13 +67,39 @@ for t in $TARGETS; do
     rc=$?
     runs=$(grep -E '^stat::number_of_executed_units' "$log" | awk '{print $2}')
     if [ "$rc" -eq 0 ]; then
-        echo "fuzz smoke: $t ok: ${runs} executions"
+        echo "fuzz smoke: $t ok: ${runs} executions" >"$log.result"
     elif [ "$rc" -eq 124 ]; then
-        echo "fuzz smoke: $t ok: stopped at the time limit during the seed pass, no crash"
+        echo "fuzz smoke: $t ok: stopped at the time limit during the seed pass, no crash" >"$log.result"
     else
+        {
+            echo "fuzz smoke: $t FAILED (exit $rc); the crashing input is in fuzz/artifacts/$t/:"
+            grep -E "panicked|Test unit written|ERROR" "$log" | head -5
+        } >"$log.result"
+    fi
+}
+
+# libFuzzer runs one process per target: JOBS targets at a time (default 2, one per
+# core of CI's machine), each for SECONDS_PER_TARGET.
+JOBS="${FUZZ_JOBS:-2}"
+running=0
+for t in $TARGETS; do
+    rm -f "/tmp/fuzz-smoke-$t.log.result"
+    run_target "$t" &
+    running=$((running + 1))
+    if [ "$running" -ge "$JOBS" ]; then
+        wait -n || true
+        running=$((running - 1))
+    fi
+done
+wait
+status=0
+for t in $TARGETS; do
+    if [ -f "/tmp/fuzz-smoke-$t.log.result" ]; then
+        cat "/tmp/fuzz-smoke-$t.log.result"
+        grep -q " FAILED " "/tmp/fuzz-smoke-$t.log.result" && status=1
+    else
+        echo "fuzz smoke: $t FAILED: no result (see /tmp/fuzz-smoke-$t.log)"
         status=1
-        echo "fuzz smoke: $t FAILED (exit $rc); the crashing input is in fuzz/artifacts/$t/:"
-        grep -E "panicked|Test unit written|ERROR" "$log" | head -5
     fi
 done
 exit $status

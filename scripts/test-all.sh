@@ -124,23 +124,37 @@ if [ "$PROBE_ONLY" = 1 ]; then
 fi
 
 start_all=$SECONDS
-echo "== toolchain"
+# section TITLE: prints "== TITLE" and how long the previous section took (the summary lists them all).
+TIMES=()
+section_title=""
+section_start=$SECONDS
+section() {
+  if [ -n "$section_title" ]; then
+    local name="${section_title%%:*}"
+    TIMES+=("$((SECONDS - section_start)) s  ${name%% (*}")
+    echo "-- $((SECONDS - section_start)) s"
+  fi
+  section_title="$1"
+  section_start=$SECONDS
+  echo "== $1"
+}
+section "toolchain"
 cargo --version
 rustc --version
 
-echo "== layers: imports only point down (scripts/check_layers.py, the order in ARCHITECTURE.md)"
+section "layers: imports only point down (scripts/check_layers.py, the order in ARCHITECTURE.md)"
 python3 scripts/check_layers.py
-echo "== functions a reader can hold: none over 80 lines in src/ beyond the shrinking allow list (scripts/check_fn_length.py)"
+section "functions a reader can hold: none over 80 lines in src/ beyond the shrinking allow list (scripts/check_fn_length.py)"
 python3 scripts/check_fn_length.py
 
-echo "== build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
+section "build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
 build_start=$SECONDS
 cargo build --all-targets --locked 2>&1 | tail -n 3
 echo "build: $((SECONDS - build_start)) s, target/ $(du -sh target 2>/dev/null | cut -f1)"
 PHOTOSOLID_BIN="$(pwd)/target/debug/photosolid"
 export PHOTOSOLID_BIN
 
-echo "== install what the optional groups need (headless Chromium, Mesa's software GPU drivers)"
+section "install what the optional groups need (headless Chromium, Mesa's software GPU drivers)"
 if ! chromium_exe >/dev/null; then
   if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
     (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) || echo "chromium could not be installed"
@@ -154,15 +168,15 @@ if [ "${#MISSING_REQUIRED[@]}" -gt 0 ]; then
   summary || exit 1
 fi
 
-echo "== cargo test (library, integration, doc tests)"
+section "cargo test (library, integration, doc tests)"
 rm -rf "$PHOTOSOLID_SKIPPED_CORPUS_DIR"
 cargo test --all-targets --locked
 cargo test --doc --locked
 
-echo "== rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"
+section "rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --locked 2>&1 | tail -n 3
 
-echo "== clippy: the [lints] of Cargo.toml hold on every target (-D warnings; no unwrap/expect in the library)"
+section "clippy: the [lints] of Cargo.toml hold on every target (-D warnings; no unwrap/expect in the library)"
 if ! cargo clippy --version >/dev/null 2>&1; then
   rustup component add clippy >/dev/null 2>&1 || true
 fi
@@ -174,11 +188,11 @@ else
   need "clippy" "cargo clippy is not installed and rustup cannot add it"
 fi
 
-echo "== the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
+section "the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
 cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1
 
-echo "== GPU: the wgpu render against the CPU render (tests/gpu/textures.rs) and the real-time lookups (tests/gpu/realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
+section "GPU: the wgpu render against the CPU render (tests/gpu/textures.rs) and the real-time lookups (tests/gpu/realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
 gpu_start=$SECONDS
 for backend in "${GPU_BACKENDS[@]+"${GPU_BACKENDS[@]}"}"; do
   echo "-- WGPU_BACKEND=$backend PHOTOSOLID_REQUIRE_GPU=1"
@@ -187,17 +201,17 @@ done
 echo "GPU tests: $((SECONDS - gpu_start)) s"
 corpus_skips
 
-echo "== data/ is reproducible from the code (scripts/make-data.sh)"
+section "data/ is reproducible from the code (scripts/make-data.sh)"
 bash scripts/make-data.sh 2>/dev/null
 if git rev-parse --git-dir >/dev/null 2>&1; then
   git diff --exit-code --stat -- data || { echo "data/ differs from what scripts/make-data.sh writes"; exit 1; }
 fi
 
-echo "== CLI smoke: demo and validate on the project's own data/"
+section "CLI smoke: demo and validate on the project's own data/"
 "$PHOTOSOLID_BIN" demo --output target/demo-smoke
 "$PHOTOSOLID_BIN" validate data
 
-echo "== browser: the HTML reports' interactive 3D view in headless Chromium (scripts/browser-tests.sh, tests/browser/)"
+section "browser: the HTML reports' interactive 3D view in headless Chromium (scripts/browser-tests.sh, tests/browser/)"
 br_rc=0
 bash scripts/browser-tests.sh || br_rc=$?
 if [ "$br_rc" = 3 ]; then
@@ -207,10 +221,10 @@ elif [ "$br_rc" != 0 ]; then
   exit 1
 fi
 
-echo "== fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 60) s (scripts/fuzz-smoke.sh; RELIABILITY.md)"
+section "fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 45) s, two at a time (scripts/fuzz-smoke.sh; RELIABILITY.md)"
 bash scripts/fuzz-smoke.sh
 
-echo "== Python bindings: wheel (maturin), pytest over python/tests: bindings vs the CLI, Dask recipe (scripts/python.sh)"
+section "Python bindings: wheel (maturin), pytest over python/tests: bindings vs the CLI, Dask recipe (scripts/python.sh)"
 py_rc=0
 bash scripts/python.sh || py_rc=$?
 if [ "$py_rc" = 3 ]; then
@@ -220,7 +234,7 @@ elif [ "$py_rc" != 0 ]; then
   exit 1
 fi
 
-echo "== notebooks: cross-checks with trimesh / colour-science (executed copies and speed.json in target/notebooks/)"
+section "notebooks: cross-checks with trimesh / colour-science (executed copies and speed.json in target/notebooks/)"
 nb_rc=0
 bash scripts/notebooks.sh || nb_rc=$?
 if [ "$nb_rc" = 3 ]; then
@@ -230,6 +244,8 @@ elif [ "$nb_rc" != 0 ]; then
   exit 1
 fi
 
-echo "== done in $((SECONDS - start_all)) s; target/ uses $(du -sh target 2>/dev/null | cut -f1)"
+section "done in $((SECONDS - start_all)) s; target/ uses $(du -sh target 2>/dev/null | cut -f1)"
+echo "== time per section"
+for t in "${TIMES[@]}"; do echo "   $t"; done
 summary || exit 1
 echo "all tests passed"

@@ -1,10 +1,11 @@
-//! `photosolid texture FILE --filter F [--factor 5] [-o out.exr|out.png] [--png out.png] [--backend auto|gpu|cpu]`:
+//! `photosolid texture FILE --filter F [--factor 5] [-o out.exr|out.dds|out.png] [--png out.png] [--backend auto|gpu|cpu]`:
 //! at least one output; the encoder follows the extension.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
+use photosolid::reconstruct::bc6h::write_dds;
 use photosolid::reconstruct::{exr_io, Backend, Filter, LightTexture, RenderOptions};
 use photosolid::registry::render_on;
 use photosolid::report::plot::{write_texture_preview, TexturePreview, DEFAULT_EXPOSURE};
@@ -22,7 +23,9 @@ pub struct TextureArgs {
     #[arg(long, default_value_t = 5, value_parser = super::parse::texture_factor, allow_negative_numbers = true)]
     factor: u32,
     /// Output, format from the extension: .exr (single float channel, I / I_max;
-    /// metadata in the header) or .png (the preview, as --png).
+    /// metadata in the header), .dds (BC6H_UF16 block-compressed, what a
+    /// renderer uploads: texels I / I_max in red, green and blue; I_max is
+    /// printed, the format has no place for it) or .png (the preview, as --png).
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// PNG preview (Wallner's exposure tone map, viridis, colour bar in cd, axes in degrees); the name must end in .png.
@@ -47,6 +50,8 @@ pub struct TextureArgs {
 enum Encoding {
     Exr,
     Png,
+    /// BC6H_UF16 in a DDS file (feature `bc6h`).
+    Dds,
 }
 
 /// The encoder of `path` from its extension (any case), one of `accepted`
@@ -56,6 +61,16 @@ fn encoding(flag: &'static str, path: &std::path::Path, accepted: &'static [&'st
     match ext.as_deref() {
         Some("exr") if accepted.contains(&".exr") => Ok(Encoding::Exr),
         Some("png") if accepted.contains(&".png") => Ok(Encoding::Png),
+        Some("dds") if accepted.contains(&".dds") => {
+            if photosolid::reconstruct::bc6h::available() {
+                Ok(Encoding::Dds)
+            } else {
+                Err(anyhow::anyhow!(
+                    "{flag} {}: this build has no BC6H encoder (feature `bc6h`); write .exr instead",
+                    path.display()
+                ))
+            }
+        }
         _ => Err(anyhow::Error::from(photosolid::Error::UnknownExtension {
             path: path.to_path_buf(),
             what: "texture format",
@@ -69,7 +84,7 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
     // Check the outputs before loading and rendering anything.
     let mut outputs = Vec::new();
     if let Some(out) = &a.output {
-        outputs.push((out, encoding("-o", out, &[".exr", ".png"])?));
+        outputs.push((out, encoding("-o", out, &[".exr", ".dds", ".png"])?));
     }
     if let Some(png) = &a.png {
         outputs.push((png, encoding("--png", png, &[".png"])?));
@@ -113,6 +128,16 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
                     source: Some(a.file.display().to_string()),
                 },
             )?,
+            Encoding::Dds => {
+                let e = write_dds(path, &rendered)?;
+                outln!(
+                    "{}: BC6H_UF16, texels I / I_max (I_max {:.3} cd); decoded against the float texels: max {} %, RMS {} % of I_max",
+                    path.display(),
+                    rendered.i_max_cd,
+                    photosolid::numfmt::significant(100.0 * e.max, 3),
+                    photosolid::numfmt::significant(100.0 * e.rms, 3)
+                );
+            }
             Encoding::Png => write_texture_preview(
                 path,
                 &TexturePreview {

@@ -1,7 +1,8 @@
 //! Running the real `photosolid` binary in a test directory.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::OnceLock;
 
 /// The binary under test.
 pub fn bin() -> Command {
@@ -23,6 +24,22 @@ pub fn ok(o: &Output) -> String {
         String::from_utf8_lossy(&o.stderr)
     );
     String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// One `photosolid demo --output d` run shared by the tests that only read
+/// what it wrote (a demo run takes about 25 s of a test thread; two tests
+/// each ran their own). Runs once per test process in a fresh directory
+/// under `CARGO_TARGET_TMPDIR`; returns (that directory, the run's stdout).
+/// Its output is in `dir/d`, and `dir/out/demo` must not exist.
+pub fn shared_demo() -> &'static (PathBuf, String) {
+    static DEMO: OnceLock<(PathBuf, String)> = OnceLock::new();
+    DEMO.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("shared-demo");
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = ok(&run(&["demo", "--output", "d"], &dir));
+        (dir, out)
+    })
 }
 
 /// Stderr of a run that must have failed with exit code `code`.

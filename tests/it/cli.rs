@@ -200,10 +200,9 @@ fn info_on_missing_file_is_a_clear_error() {
 fn demo_writes_what_the_readme_says() {
     let readme = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
     let readme = readme.split_whitespace().collect::<Vec<_>>().join(" ");
-    let t = tempfile::tempdir().unwrap();
-    let out = ok(&run(&["demo", "--output", "d"], t.path()));
+    let (dir, out) = common::cli::shared_demo();
     assert!(out.contains("flux"), "{out}");
-    let d = t.path().join("d");
+    let d = dir.join("d");
     let html = std::fs::read_to_string(d.join("index.html")).unwrap();
     let files: Vec<String> = std::fs::read_dir(&d)
         .unwrap()
@@ -254,7 +253,7 @@ fn demo_writes_what_the_readme_says() {
         ),
         (
             "`--output DIR` writes them elsewhere",
-            Box::new(|| assert!(!t.path().join("out/demo").exists())),
+            Box::new(|| assert!(!dir.join("out/demo").exists())),
         ),
         (
             "opens with an interactive 3D view of the solids",

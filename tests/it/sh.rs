@@ -508,23 +508,7 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
     for (name, d, corpus) in files {
         let start = std::time::Instant::now();
         let t = trade_table(&d, None, &opts, &|_, _, _| {}).unwrap();
-        let all = start.elapsed().as_secs_f64();
-        let start = std::time::Instant::now();
-        let compact: Vec<Recon> = [
-            "sh:2", "sh:4", "sh:8", "sh:16", "lobes:1", "lobes:2", "lobes:3", "lobes:4",
-        ]
-        .iter()
-        .map(|r| r.parse().unwrap())
-        .collect();
-        let only = CompareOptions {
-            recons: compact,
-            ..opts.compare.clone()
-        };
-        photosolid::compare::compare(&d, None, &only).unwrap();
-        eprintln!(
-            "{name}: trade table {all:.2} s, of which the 8 sh/lobes rows about {:.2} s",
-            start.elapsed().as_secs_f64()
-        );
+        eprintln!("{name}: trade table {:.2} s", start.elapsed().as_secs_f64());
         let json = serde_json::to_value(&t).unwrap();
         assert!(json.get("smallest_within_1pct").is_some(), "{name}");
         for r in json["rows"].as_array().unwrap() {
@@ -823,4 +807,43 @@ fn bc6h_textures_read_back_within_their_blocks() {
         .map(|r| r.to_string())
         .collect();
     assert!(names.iter().any(|n| n == s), "{names:?}");
+}
+
+/// `texture -o OUT.dds` (issue 30 item 5): a DDS file of BC6H_UF16 blocks
+/// whose texels, decoded, are within the printed error of the float texture
+/// written by the same render, and the printed max and RMS are what the
+/// decoded file gives (python/tests/test_dds.py reads the same file with
+/// OpenImageIO and texture2ddecoder).
+#[test]
+fn texture_writes_bc6h_dds_with_its_error() {
+    use photosolid::reconstruct::{bc6h, exr_io};
+    let t = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| common::cli::ok(&common::cli::run(args, t.path()));
+    run(&["synth", "batwing", "-o", "b.ldt"]);
+    if !bc6h::available() {
+        let o = common::cli::run(&["texture", "b.ldt", "-o", "t.dds"], t.path());
+        let err = common::cli::fails(&o, 1);
+        assert!(err.contains("no BC6H encoder"), "{err}");
+        return;
+    }
+    run(&["texture", "b.ldt", "--backend", "cpu", "-o", "t.exr"]);
+    let out = run(&["texture", "b.ldt", "--backend", "cpu", "-o", "t.dds"]);
+    let (exr, _) = exr_io::read_exr(t.path().join("t.exr")).unwrap();
+    let (blocks, w, h) = bc6h::read_dds(&std::fs::read(t.path().join("t.dds")).unwrap()).unwrap();
+    assert_eq!((w, h), (exr.mapping.width, exr.mapping.height));
+    let decoded = bc6h::decode(&blocks, w, h);
+    let errs: Vec<f64> = decoded
+        .iter()
+        .zip(&exr.data)
+        .map(|(d, f)| f64::from((d - f).abs()))
+        .collect();
+    let max = 100.0 * errs.iter().copied().fold(0.0, f64::max);
+    let rms = 100.0 * (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
+    assert!(max > 0.0 && max < 2.0, "{max}");
+    let expect = format!(
+        "max {} %, RMS {} % of I_max",
+        photosolid::numfmt::significant(max, 3),
+        photosolid::numfmt::significant(rms, 3)
+    );
+    assert!(out.contains(&expect), "{out}\nexpected: {expect}");
 }

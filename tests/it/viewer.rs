@@ -116,10 +116,8 @@ fn tradeoff_and_engines_reports_have_the_viewer() {
 
 #[test]
 fn demo_report_has_the_viewer() {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("demo");
-    run(bin().arg("demo").arg("--output").arg(&out));
-    let (html, v) = viewer_data(&out.join("index.html"));
+    let (dir, _) = common::cli::shared_demo();
+    let (html, v) = viewer_data(&dir.join("d/index.html"));
     assert!(v["reference"].as_str().unwrap().starts_with("truth"));
     check_solids(&v, 6);
     assert!(html.len() < 1_000_000, "{} bytes", html.len());
