@@ -336,6 +336,12 @@ impl Luminaire {
             // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
             factor: factor.unwrap_or(defaults.factor),
             solid_tolerance: if factor.is_some() { None } else { defaults.solid_tolerance },
+            // As the CLI: a Type A/B file's withheld reference withholds its own readings
+            // (read with the default handedness, as `load` reads).
+            source: self.lum.source_grid().map(|grid| photosolid::compare::SourceMeasurements {
+                grid: grid.clone(),
+                handedness: photosolid::formats::Handedness::default(),
+            }),
             ..defaults
         };
         let other = vs.as_ref().map(|o| o.lum.distribution());

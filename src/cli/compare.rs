@@ -99,6 +99,7 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         },
         align: a.align,
         plots: a.out.report.is_some(),
+        source: a.read.source_of(&lum),
         ..Default::default()
     };
     let mut c = super::with_progress("reconstructions", |progress| {

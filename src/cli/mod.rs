@@ -111,6 +111,15 @@ pub struct ReadArgs {
 }
 
 impl ReadArgs {
+    /// `lum`'s Type A/B readings and the handedness they were read with,
+    /// for a `withheld` reference that withholds the readings themselves.
+    pub fn source_of(&self, lum: &photosolid::model::Luminaire) -> Option<photosolid::compare::SourceMeasurements> {
+        lum.source_grid().map(|grid| photosolid::compare::SourceMeasurements {
+            grid: grid.clone(),
+            handedness: self.handedness.into(),
+        })
+    }
+
     fn options(&self) -> ReadOptions {
         ReadOptions {
             repair: self.repair,

@@ -92,6 +92,7 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
             timing_repeats: a.repeats,
             directions: Directions::default(),
             plots: a.out.report.is_some(),
+            source: a.read.source_of(&lum),
             ..CompareOptions::default()
         },
         gpu: a.gpu,

@@ -72,6 +72,7 @@ mod plot_data;
 pub mod trade;
 pub mod view;
 mod withheld;
+mod withheld_source;
 
 use std::str::FromStr;
 
@@ -292,6 +293,9 @@ pub struct CompareOptions {
     pub timing_repeats: usize,
     /// Compute the data of the report's plots. Default: false.
     pub plots: bool,
+    /// A Type A/B file's own readings: the `withheld` reference then
+    /// withholds them instead of the converted grid's points. Default: none.
+    pub source: Option<SourceMeasurements>,
 }
 
 impl Default for CompareOptions {
@@ -314,8 +318,22 @@ impl Default for CompareOptions {
             timing_samples: 20_000,
             timing_repeats: 5,
             plots: false,
+            source: None,
         }
     }
+}
+
+/// A Type A/B file's goniometer readings and the handedness it was read
+/// with ([`crate::model::Luminaire::source_grid`]): given in
+/// [`CompareOptions::source`], the `withheld` reference withholds these
+/// readings and rebuilds the Type C grid from the rest, as the reader
+/// converted it (`withheld_source`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SourceMeasurements {
+    /// The readings as the file holds them.
+    pub grid: crate::model::SourceGrid,
+    /// The rotation sense the file was read with.
+    pub handedness: crate::formats::Handedness,
 }
 
 /// The metrics of one reconstruction against the reference.

@@ -171,10 +171,7 @@ pub(super) fn compare_withheld(
     Ok(Comparison {
         file: String::new(),
         vs: None,
-        reference: format!(
-            "withheld ({}-fold hold-out of the measured C-planes and gamma rows; each reconstruction rebuilt without them)",
-            opts.folds
-        ),
+        reference: h.reference.clone(),
         reference_kind: super::ReferenceKind::Withheld,
         normalize: opts.normalize,
         units: opts.normalize.unit().into(),
@@ -291,13 +288,14 @@ fn first_images(stored: &[(usize, usize)]) -> (Vec<usize>, Vec<usize>) {
 }
 
 /// The withheld points of one fold.
-struct FoldPoints {
+pub(super) struct FoldPoints {
     /// The withheld directions, each with its measured solid angle.
-    set: DirectionSet,
+    pub(super) set: DirectionSet,
     /// The measured value at each of them, cd.
-    measured_cd: Vec<f64>,
-    /// The stored sample `(ic, ig)` each of them is an image of.
-    stored: Vec<(usize, usize)>,
+    pub(super) measured_cd: Vec<f64>,
+    /// The stored sample each of them is an image of: `(ic, ig)` of the
+    /// Type C grid, or `(ih, iv)` of a Type A/B file's readings.
+    pub(super) stored: Vec<(usize, usize)>,
 }
 
 impl FoldPoints {
@@ -345,6 +343,8 @@ impl FoldPoints {
 /// is measured with.
 struct HoldOut<'a> {
     opts: &'a CompareOptions,
+    /// What was withheld (the comparison's `reference`).
+    reference: String,
     folds: Vec<Fold>,
     /// The withheld points of each fold.
     sets: Vec<FoldPoints>,
@@ -370,16 +370,27 @@ impl<'a> HoldOut<'a> {
     /// Errors: those of [`kfold`] and of the reconstructions; data without
     /// light ([`ModelError::AllZero`]).
     fn new(a: &Distribution, opts: &'a CompareOptions) -> Result<Self, ModelError> {
-        let folds = kfold(a, opts.folds)?;
         let i_max = a.max_cd();
         if i_max.is_nan() || i_max <= 0.0 {
             return Err(ModelError::AllZero("errors are relative to I_max"));
         }
-        let planes = a.full_planes();
-        let sets: Vec<FoldPoints> = folds.iter().map(|f| FoldPoints::of(a, f, &planes)).collect();
+        let readings = match &opts.source {
+            Some(src) => super::withheld_source::source_folds(a, src, opts.folds)?,
+            None => None,
+        };
+        let (folds, sets, withheld_what) = match readings {
+            Some((folds, sets)) => (folds, sets, "readings"),
+            None => {
+                let folds = kfold(a, opts.folds)?;
+                let planes = a.full_planes();
+                let sets: Vec<FoldPoints> = folds.iter().map(|f| FoldPoints::of(a, f, &planes)).collect();
+                (folds, sets, "samples")
+            }
+        };
+        let of_readings = withheld_what == "readings";
         let pooled = DirectionSet {
             label: format!(
-                "withheld samples of a {}-fold hold-out ({} folds)",
+                "withheld {withheld_what} of a {}-fold hold-out ({} folds)",
                 opts.folds,
                 folds.len()
             ),
@@ -388,8 +399,23 @@ impl<'a> HoldOut<'a> {
         };
         let m_all: Vec<f64> = sets.iter().flat_map(|s| s.measured_cd.iter().copied()).collect();
         let full = Reconstructions::new(a.clone(), &opts.recons)?;
+        let reference = match (&opts.source, of_readings) {
+            (Some(src), true) => format!(
+                "withheld ({}-fold hold-out of the Type {:?} file's own readings: its horizontal and vertical angles; each reconstruction rebuilt from the rest through the same conversion to Type C)",
+                opts.folds, src.grid.kind
+            ),
+            (Some(src), false) => format!(
+                "withheld ({}-fold hold-out of the converted Type C grid's C-planes and gamma rows: the Type {:?} readings do not rebuild this distribution; each reconstruction rebuilt without them)",
+                opts.folds, src.grid.kind
+            ),
+            (None, _) => format!(
+                "withheld ({}-fold hold-out of the measured C-planes and gamma rows; each reconstruction rebuilt without them)",
+                opts.folds
+            ),
+        };
         Ok(Self {
             opts,
+            reference,
             folds,
             sets,
             pooled,

@@ -419,6 +419,25 @@ fn geometry(kind: PhotometricType, c: &[f64], gamma: &[f64], step: f64, mirror: 
 /// (−90 … 90) applies; the model's error when the converted grid is not a
 /// distribution.
 pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distribution, ModelError> {
+    to_type_c_at(grid, handedness, target_step(grid))
+}
+
+/// [`to_type_c`] onto the target grid of `step` degrees (one of
+/// [`target_step`]'s steps) instead of the one `grid`'s spacing gives: a
+/// hold-out rebuilds a grid without some of its angles on the full grid's
+/// target, as the reader converted it.
+///
+/// # Errors
+/// As [`to_type_c`]; [`ModelError::Angles`] for a step outside 0.5-5 degrees
+/// that does not divide 90.
+pub fn to_type_c_at(grid: &SourceGrid, handedness: Handedness, step: f64) -> Result<Distribution, ModelError> {
+    let divides_90 = (90.0 / step - (90.0 / step).round()).abs() < 1e-9;
+    if !(0.5..=5.0).contains(&step) || !divides_90 {
+        return Err(ModelError::Angles {
+            axis: "target",
+            reason: format!("a step of {} degrees", crate::error::Num(step)),
+        });
+    }
     let hs = &grid.horizontal;
     let h0 = hs[0];
     if h0 > 1e-9 {
@@ -432,7 +451,6 @@ pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distributi
         });
     }
     let mirror = h0.abs() <= 1e-9;
-    let step = target_step(grid);
     let n_gamma = (180.0 / step).round() as usize + 1;
     let gamma: Vec<f64> = (0..n_gamma).map(|i| (i as f64 * step).min(180.0)).collect();
     let (symmetry, n_c) = if mirror {
