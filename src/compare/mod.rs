@@ -698,7 +698,8 @@ pub fn compare_with_progress(
         (None, None) => Against::Withheld,
     });
     let mut comparison = match (against, &b_dist) {
-        (Against::Withheld, None) => withheld::compare_withheld(&a, opts, progress)?,
+        // `k`: a Type A/B file's readings are scaled as the distribution was.
+        (Against::Withheld, None) => withheld::compare_withheld(&a, k, opts, progress)?,
         (Against::Withheld, Some(_)) => {
             return Err(ModelError::Parameter {
                 name: "against",

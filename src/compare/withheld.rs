@@ -152,12 +152,16 @@ impl RowDistances {
 }
 
 /// Every reconstruction of `a` against its own withheld measurements.
+///
+/// `scale`: what the file's values were multiplied by to give `a` (the
+/// normalisation), applied to a Type A/B file's readings as well.
 pub(super) fn compare_withheld(
     a: &Distribution,
+    scale: f64,
     opts: &CompareOptions,
     progress: &Progress<'_>,
 ) -> Result<Comparison, ModelError> {
-    let h = HoldOut::new(a, opts)?;
+    let h = HoldOut::new(a, scale, opts)?;
     let i_max = h.i_max;
     let mut results = Vec::with_capacity(opts.recons.len());
     for (i, &r) in opts.recons.iter().enumerate() {
@@ -365,17 +369,18 @@ struct HoldOut<'a> {
 }
 
 impl<'a> HoldOut<'a> {
-    /// The folds of `a` and their withheld points, and `a`'s reconstructions.
+    /// The folds of `a` and their withheld points, and `a`'s reconstructions
+    /// (`scale`: the normalisation of `a`, for a Type A/B file's readings).
     ///
     /// Errors: those of [`kfold`] and of the reconstructions; data without
     /// light ([`ModelError::AllZero`]).
-    fn new(a: &Distribution, opts: &'a CompareOptions) -> Result<Self, ModelError> {
+    fn new(a: &Distribution, scale: f64, opts: &'a CompareOptions) -> Result<Self, ModelError> {
         let i_max = a.max_cd();
         if i_max.is_nan() || i_max <= 0.0 {
             return Err(ModelError::AllZero("errors are relative to I_max"));
         }
         let readings = match &opts.source {
-            Some(src) => super::withheld_source::source_folds(a, src, opts.folds)?,
+            Some(src) => super::withheld_source::source_folds(a, scale, src, opts.folds)?,
             None => None,
         };
         let (folds, sets, withheld_what) = match readings {

@@ -35,19 +35,27 @@ pub(super) type Folds = (Vec<Fold>, Vec<FoldPoints>);
 
 /// The k-fold hold-out of `src`'s readings (k ≥ 2): for each axis with at
 /// least 3 angles and each f < k, a fold keeping the angles whose index is
-/// f modulo k and both ends. `None` when `src` is not a Type A/B grid, does
-/// not rebuild `a` bit for bit, or nothing can be withheld.
+/// f modulo k and both ends. `scale` is what the file's values were
+/// multiplied by to give `a` (the normalisation): the kept data and the
+/// readings are scaled alike. `None` when `src` is not a Type A/B grid,
+/// does not rebuild `a` bit for bit, or nothing can be withheld.
 ///
 /// # Errors
 /// The conversion's, for a kept grid that does not convert.
-pub(super) fn source_folds(a: &Distribution, src: &SourceMeasurements, k: usize) -> Result<Option<Folds>, ModelError> {
+pub(super) fn source_folds(
+    a: &Distribution,
+    scale: f64,
+    src: &SourceMeasurements,
+    k: usize,
+) -> Result<Option<Folds>, ModelError> {
     let g = &src.grid;
     let (nh, nv) = (g.horizontal.len(), g.vertical.len());
     if g.kind == PhotometricType::C || k < 2 || nh == 0 || nv == 0 || g.cd.len() != nh * nv {
         return Ok(None);
     }
     let step = target_step(g);
-    if to_type_c_at(g, src.handedness, step).ok().as_ref() != Some(a) {
+    let rebuilt = to_type_c_at(g, src.handedness, step).and_then(|d| d.scaled(scale));
+    if rebuilt.ok().as_ref() != Some(a) {
         return Ok(None);
     }
     let mut folds = Vec::new();
@@ -62,8 +70,10 @@ pub(super) fn source_folds(a: &Distribution, src: &SourceMeasurements, k: usize)
                 continue;
             }
             let (kept_grid, withheld) = split(g, axis == "horizontal", &keep);
-            let kept = to_type_c_at(&kept_grid, src.handedness, step)?;
-            points.push(reading_points(g, &withheld, src.handedness, axis));
+            let kept = to_type_c_at(&kept_grid, src.handedness, step)?.scaled(scale)?;
+            let mut p = reading_points(g, &withheld, src.handedness, axis);
+            p.measured_cd.iter_mut().for_each(|v| *v *= scale);
+            points.push(p);
             folds.push(Fold { axis, kept, withheld });
         }
     }
@@ -112,7 +122,8 @@ fn split(g: &SourceGrid, horizontal: bool, keep: &[bool]) -> (SourceGrid, Vec<(u
 /// The withheld readings as points: each reading's direction (and, for a
 /// laterally symmetric grid, 0 ≤ H, its mirror image at −H), its measured
 /// value and its solid angle on the goniometer's grid (half-way to the
-/// neighbouring angles, clamped at the ends).
+/// neighbouring angles, clamped at the ends). Readings at the frame's pole
+/// are left out.
 fn reading_points(g: &SourceGrid, withheld: &[(usize, usize)], handedness: Handedness, axis: &str) -> FoldPoints {
     let nv = g.vertical.len();
     let mirror = g.horizontal.first().is_some_and(|h| h.abs() <= 1e-9);
@@ -126,6 +137,16 @@ fn reading_points(g: &SourceGrid, withheld: &[(usize, usize)], handedness: Hande
     let mut stored = Vec::with_capacity(2 * withheld.len());
     for &(ih, iv) in withheld {
         let (h, v) = (g.horizontal[ih], g.vertical[iv]);
+        // A reading at the frame's pole (Type B: H = ±90; Type A: V = ±90) shares its
+        // direction with the kept readings at the other angles: nothing is withheld there
+        // (as `kfold` withholds no pole row).
+        let pole = match g.kind {
+            PhotometricType::A => v,
+            _ => h,
+        };
+        if pole.abs() >= 90.0 - 1e-9 {
+            continue;
+        }
         let weight = cell_solid_angle(g, ih, iv, mirror);
         let images: &[f64] = if mirror && h > 1e-9 { &[1.0, -1.0] } else { &[1.0] };
         for &sign in images {
@@ -218,9 +239,22 @@ mod tests {
                 Handedness::CounterClockwise,
                 "horizontal",
             );
-            let total: f64 = pts.set.weights.iter().sum();
+            // Readings at the frame's pole are left out: add their cells (and images) back.
+            let poles: f64 = (0..5)
+                .flat_map(|ih| (0..vertical.len()).map(move |iv| (ih, iv)))
+                .filter(|&(ih, iv)| match kind {
+                    PhotometricType::A => vertical[iv].abs() >= 90.0,
+                    _ => half.horizontal[ih].abs() >= 90.0,
+                })
+                .map(|(ih, iv)| cell_solid_angle(&half, ih, iv, true) * if ih == 0 { 1.0 } else { 2.0 })
+                .sum();
+            let total: f64 = pts.set.weights.iter().sum::<f64>() + poles;
             assert!((total - want).abs() < 1e-12, "{kind:?} mirrored: {total} vs {want}");
-            assert_eq!(pts.set.len(), (1 + 2 * 4) * vertical.len());
+            let (n_h, n_v) = match kind {
+                PhotometricType::A => (1 + 2 * 4, vertical.len() - 2),
+                _ => (1 + 2 * 3, vertical.len()),
+            };
+            assert_eq!(pts.set.len(), n_h * n_v, "{kind:?}");
         }
     }
 

@@ -147,6 +147,9 @@ pub fn read_dds(bytes: &[u8]) -> Option<(Vec<u8>, usize, usize)> {
         return None;
     }
     let (height, width) = (word(2)? as usize, word(3)? as usize);
+    if width == 0 || height == 0 {
+        return None;
+    }
     let size = width.div_ceil(4).checked_mul(height.div_ceil(4))?.checked_mul(16)?;
     let blocks = bytes.get(4 + 124 + 20..)?;
     (blocks.len() == size).then(|| (blocks.to_vec(), width, height))
@@ -239,6 +242,9 @@ mod tests {
         assert_eq!(dds(&[], 0, 4), None);
         assert_eq!(read_dds(&file[..file.len() - 1]), None);
         assert_eq!(read_dds(&file[..100]), None);
+        let mut empty = dds(&blocks, w, h).unwrap()[..148].to_vec();
+        empty[16..20].copy_from_slice(&0u32.to_le_bytes()); // width 0, no blocks
+        assert_eq!(read_dds(&empty), None);
         let mut bc7 = file.clone();
         bc7[128] = 98; // DXGI_FORMAT_BC7_UNORM
         assert_eq!(read_dds(&bc7), None);

@@ -34,7 +34,8 @@ pub fn ok(o: &Output) -> String {
 pub fn shared_demo() -> &'static (PathBuf, String) {
     static DEMO: OnceLock<(PathBuf, String)> = OnceLock::new();
     DEMO.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("shared-demo");
+        // One directory per test process: two runs at once must not remove each other's.
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shared-demo-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let out = ok(&run(&["demo", "--output", "d"], &dir));

@@ -40,6 +40,9 @@ use crate::error::ModelError;
 use crate::formats::Handedness;
 use crate::model::{Distribution, PhotometricType, SourceGrid, Symmetry};
 
+/// The target grid steps (degrees): divisors of 90, so C0/C90/C180 and γ 90 are grid lines.
+const STEPS: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.5, 5.0];
+
 /// Target grid step (degrees) from the source spacing. See the module docs.
 pub fn target_step(grid: &SourceGrid) -> f64 {
     let min_gap = |a: &[f64]| {
@@ -49,7 +52,6 @@ pub fn target_step(grid: &SourceGrid) -> f64 {
             .fold(f64::INFINITY, f64::min)
     };
     let g = min_gap(&grid.vertical).min(min_gap(&grid.horizontal));
-    const STEPS: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.5, 5.0];
     if !g.is_finite() {
         return 5.0;
     }
@@ -428,11 +430,10 @@ pub fn to_type_c(grid: &SourceGrid, handedness: Handedness) -> Result<Distributi
 /// target, as the reader converted it.
 ///
 /// # Errors
-/// As [`to_type_c`]; [`ModelError::Angles`] for a step outside 0.5-5 degrees
-/// that does not divide 90.
+/// As [`to_type_c`]; [`ModelError::Angles`] for a step that is not one of
+/// [`target_step`]'s.
 pub fn to_type_c_at(grid: &SourceGrid, handedness: Handedness, step: f64) -> Result<Distribution, ModelError> {
-    let divides_90 = (90.0 / step - (90.0 / step).round()).abs() < 1e-9;
-    if !(0.5..=5.0).contains(&step) || !divides_90 {
+    if !STEPS.contains(&step) {
         return Err(ModelError::Angles {
             axis: "target",
             reason: format!("a step of {} degrees", crate::error::Num(step)),
