@@ -9,9 +9,11 @@
 //! f16, 16-bit and 8-bit normalised integers (`+u16`, `+u8`: steps of the
 //! largest texel), BC6H blocks (`+bc6h`, feature `bc6h`) and/or only in the symmetry's C sector; the fitted OpenGL lights with
 //! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
-//! Catmull–Rom reconstruction for L in [`SH_DEGREES`]
+//! Catmull–Rom reconstruction for L in [`SH_DEGREES`], and L =
+//! [`ROTATIONAL_SH_DEGREE`] for rotationally symmetric data
 //! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`);
-//! mixtures of K cosine-power lobes `lobes:K` for K in [`LOBE_COUNTS`]
+//! mixtures of K cosine-power lobes `lobes:K` for K in [`LOBE_COUNTS`] (and
+//! K = [`ROTATIONAL_LOBE_COUNT`] for rotationally symmetric data)
 //! ([`crate::fit::lobes`]).
 //! Errors come from [`compare`](super::compare())
 //! (same metrics, same reference rules); a row is on the Pareto front
@@ -79,9 +81,33 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
         f16: false,
         gpu: false,
     }));
+    if symmetry == Symmetry::Rotational {
+        out.push(Recon::Sh {
+            degree: ROTATIONAL_SH_DEGREE,
+            f16: false,
+            gpu: false,
+        });
+    }
     out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count, gpu: false }));
+    if symmetry == Symmetry::Rotational {
+        out.push(Recon::Lobes {
+            count: ROTATIONAL_LOBE_COUNT,
+            gpu: false,
+        });
+    }
     out
 }
+
+/// The degree of the extra `sh:L` row of rotationally symmetric data. Its
+/// series are zonal, L + 1 coefficients (`sh:16` is 68 bytes), so every
+/// default compact row is under 128 bytes; `sh:32` is 132 bytes and costs
+/// 33 terms a lookup: with [`ROTATIONAL_LOBE_COUNT`] it fills the bytes
+/// front between those rows and the one-column texture (144-720 bytes).
+pub const ROTATIONAL_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
+
+/// The lobe count of the extra `lobes:K` row of rotationally symmetric data
+/// (160 bytes; a narrow spot is lobes', where 33 zonal bands still ring).
+pub const ROTATIONAL_LOBE_COUNT: usize = 8;
 
 /// The lobe counts K of the default `lobes:K` rows.
 pub const LOBE_COUNTS: [usize; 4] = [1, 2, 3, 4];
