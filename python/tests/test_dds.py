@@ -1,6 +1,7 @@
-"""BC6H textures in DDS files (`photosolid texture -o OUT.dds`), read back by two decoders
-independent of ours (bcdec_rs in the library): OpenImageIO's DDS reader (half floats) and
-texture2ddecoder (Perfare's Texture2DDecoder, 8-bit channels).
+"""BC6H textures in DDS files (`photosolid texture -o OUT.dds`), read back as a user would:
+OpenImageIO's DDS reader (half floats; it parses the container itself, and decodes the blocks
+with bcdec in C, the same algorithm as the library's bcdec_rs port) and texture2ddecoder
+(Perfare's Texture2DDecoder, a decoder written separately, 8-bit channels).
 
 Checks, on the synthetic roadway (steep gradients, so BC6H's error is not trivially small):
 - OpenImageIO reads the file as a BC6H (unsigned) texture of the rendered size;

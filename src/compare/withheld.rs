@@ -383,16 +383,16 @@ impl<'a> HoldOut<'a> {
             Some(src) => super::withheld_source::source_folds(a, scale, src, opts.folds)?,
             None => None,
         };
-        let (folds, sets, withheld_what) = match readings {
-            Some((folds, sets)) => (folds, sets, "readings"),
+        let (folds, sets, of_readings) = match readings {
+            Some((folds, sets)) => (folds, sets, true),
             None => {
                 let folds = kfold(a, opts.folds)?;
                 let planes = a.full_planes();
                 let sets: Vec<FoldPoints> = folds.iter().map(|f| FoldPoints::of(a, f, &planes)).collect();
-                (folds, sets, "samples")
+                (folds, sets, false)
             }
         };
-        let of_readings = withheld_what == "readings";
+        let withheld_what = if of_readings { "readings" } else { "samples" };
         let pooled = DirectionSet {
             label: format!(
                 "withheld {withheld_what} of a {}-fold hold-out ({} folds)",

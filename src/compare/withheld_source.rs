@@ -23,7 +23,7 @@ use glam::DVec3;
 use super::withheld::FoldPoints;
 use super::SourceMeasurements;
 use crate::error::ModelError;
-use crate::formats::ies::type_ab::{direction as source_direction, target_step, to_type_c_at};
+use crate::formats::ies::type_ab::{direction as source_direction, laterally_symmetric, target_step, to_type_c_at};
 use crate::formats::Handedness;
 use crate::metrics::DirectionSet;
 use crate::model::frame::unit_angles;
@@ -126,7 +126,7 @@ fn split(g: &SourceGrid, horizontal: bool, keep: &[bool]) -> (SourceGrid, Vec<(u
 /// are left out.
 fn reading_points(g: &SourceGrid, withheld: &[(usize, usize)], handedness: Handedness, axis: &str) -> FoldPoints {
     let nv = g.vertical.len();
-    let mirror = g.horizontal.first().is_some_and(|h| h.abs() <= 1e-9);
+    let mirror = laterally_symmetric(g);
     let flip = handedness == Handedness::Clockwise;
     let mut set = DirectionSet {
         label: format!("withheld {axis} angles of the Type {:?} grid", g.kind),
@@ -219,11 +219,8 @@ mod tests {
                 .flat_map(|ih| (0..vertical.len()).map(move |iv| (ih, iv)))
                 .map(|(ih, iv)| cell_solid_angle(&g, ih, iv, false))
                 .sum();
-            let r = |d: f64| d.to_radians();
-            let want = match kind {
-                PhotometricType::A => (r(90.0).sin() - r(-90.0).sin()) * r(180.0),
-                _ => (r(90.0).sin() - r(-90.0).sin()) * r(180.0),
-            };
+            // Both axes span -90..90: (sin 90° − sin −90°) · π for either type.
+            let want = 2.0 * std::f64::consts::PI;
             assert!((total - want).abs() < 1e-12, "{kind:?}: {total} vs {want}");
             // Laterally symmetric: H 0..90; each H > 0 reading has two images.
             let half = SourceGrid {

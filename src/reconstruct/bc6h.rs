@@ -87,6 +87,12 @@ pub fn decode(blocks: &[u8], width: usize, height: usize) -> Vec<f32> {
     out
 }
 
+/// Bytes of the BC6H blocks of a `width` × `height` texture: 16 per 4 × 4
+/// block, the sides rounded up to whole blocks (`None` on overflow).
+pub fn block_bytes(width: usize, height: usize) -> Option<usize> {
+    width.div_ceil(4).checked_mul(height.div_ceil(4))?.checked_mul(16)
+}
+
 /// `DXGI_FORMAT_BC6H_UF16` in the DXGI_FORMAT enumeration.
 pub const DXGI_FORMAT_BC6H_UF16: u32 = 95;
 
@@ -104,7 +110,7 @@ pub const DXGI_FORMAT_BC6H_UF16: u32 = 95;
 /// blocks are not exactly the ones the size needs.
 pub fn dds(blocks: &[u8], width: usize, height: usize) -> Option<Vec<u8>> {
     let (w, h) = (u32::try_from(width).ok()?, u32::try_from(height).ok()?);
-    let linear_size = width.div_ceil(4).checked_mul(height.div_ceil(4))?.checked_mul(16)?;
+    let linear_size = block_bytes(width, height)?;
     if width == 0 || height == 0 || blocks.len() != linear_size {
         return None;
     }
@@ -150,9 +156,8 @@ pub fn read_dds(bytes: &[u8]) -> Option<(Vec<u8>, usize, usize)> {
     if width == 0 || height == 0 {
         return None;
     }
-    let size = width.div_ceil(4).checked_mul(height.div_ceil(4))?.checked_mul(16)?;
     let blocks = bytes.get(4 + 124 + 20..)?;
-    (blocks.len() == size).then(|| (blocks.to_vec(), width, height))
+    (blocks.len() == block_bytes(width, height)?).then(|| (blocks.to_vec(), width, height))
 }
 
 /// How far the BC6H texels of a written texture are from the float texels,

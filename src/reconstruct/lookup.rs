@@ -267,7 +267,7 @@ impl StoredTexture {
     pub fn texel_bytes(&self) -> usize {
         match self.precision {
             // Whole 4 x 4 blocks of 16 bytes.
-            Precision::Bc6h => self.columns.div_ceil(4) * self.height.div_ceil(4) * 16,
+            Precision::Bc6h => super::bc6h::block_bytes(self.columns, self.height).unwrap_or(usize::MAX),
             p => self.data.len() * p.bytes(),
         }
     }

@@ -43,6 +43,12 @@ use crate::model::{Distribution, PhotometricType, SourceGrid, Symmetry};
 /// The target grid steps (degrees): divisors of 90, so C0/C90/C180 and γ 90 are grid lines.
 const STEPS: [f64; 8] = [0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.5, 5.0];
 
+/// Whether `grid` is laterally symmetric: its horizontal angles start at 0
+/// (I(H) = I(−H); the conversion mirrors d_y).
+pub fn laterally_symmetric(grid: &SourceGrid) -> bool {
+    grid.horizontal.first().is_some_and(|h| h.abs() <= 1e-9)
+}
+
 /// Target grid step (degrees) from the source spacing. See the module docs.
 pub fn target_step(grid: &SourceGrid) -> f64 {
     let min_gap = |a: &[f64]| {
@@ -451,7 +457,7 @@ pub fn to_type_c_at(grid: &SourceGrid, handedness: Handedness, step: f64) -> Res
             ),
         });
     }
-    let mirror = h0.abs() <= 1e-9;
+    let mirror = laterally_symmetric(grid);
     let n_gamma = (180.0 / step).round() as usize + 1;
     let gamma: Vec<f64> = (0..n_gamma).map(|i| (i as f64 * step).min(180.0)).collect();
     let (symmetry, n_c) = if mirror {
@@ -544,7 +550,7 @@ mod tests {
             };
             for hand in [Handedness::CounterClockwise, Handedness::Clockwise] {
                 let Ok(d) = to_type_c(&grid, hand) else { continue };
-                let mirror = grid.horizontal[0].abs() <= 1e-9;
+                let mirror = laterally_symmetric(&grid);
                 let flip = hand == Handedness::Clockwise;
                 for (ic, &c) in d.c_angles_deg().iter().enumerate() {
                     let (sc, ccos) = c.to_radians().sin_cos();
