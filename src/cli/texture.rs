@@ -129,7 +129,11 @@ pub fn run(a: TextureArgs) -> anyhow::Result<i32> {
                 },
             )?,
             Encoding::Dds => {
-                let e = write_dds(path, &rendered)?;
+                // The encoder's slowest, best settings take about 1 s per million texels.
+                let e = super::with_progress("BC6H blocks", |progress| {
+                    progress(0, 1, "encoding");
+                    write_dds(path, &rendered)
+                })?;
                 outln!(
                     "{}: BC6H_UF16, texels I / I_max (I_max {:.3} cd); decoded against the float texels: max {} %, RMS {} % of I_max",
                     path.display(),
