@@ -9,12 +9,10 @@
 //! f16, 16-bit and 8-bit normalised integers (`+u16`, `+u8`: steps of the
 //! largest texel), BC6H blocks (`+bc6h`, feature `bc6h`) and/or only in the symmetry's C sector; the fitted OpenGL lights with
 //! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
-//! Catmull–Rom reconstruction for L in [`SH_DEGREES`], and L =
-//! [`ROTATIONAL_SH_DEGREE`] for rotationally symmetric data
-//! ([`crate::reconstruct::sh`], Lanczos-windowed, named in `window`);
-//! mixtures of K cosine-power lobes `lobes:K` for K in [`LOBE_COUNTS`] (and
-//! K = [`ROTATIONAL_LOBE_COUNT`] for rotationally symmetric data)
-//! ([`crate::fit::lobes`]).
+//! Catmull–Rom reconstruction for L in [`SH_DEGREES`] and L =
+//! [`FRONT_SH_DEGREE`] ([`crate::reconstruct::sh`], Lanczos-windowed, named
+//! in `window`); mixtures of K cosine-power lobes `lobes:K` for K in
+//! [`LOBE_COUNTS`] and K = [`FRONT_LOBE_COUNT`] ([`crate::fit::lobes`]).
 //! Errors come from [`compare`](super::compare())
 //! (same metrics, same reference rules); a row is on the Pareto front
 //! (`pareto`) when no other row is at most as costly in time, bytes and
@@ -81,33 +79,36 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
         f16: false,
         gpu: false,
     }));
-    if symmetry == Symmetry::Rotational {
-        out.push(Recon::Sh {
-            degree: ROTATIONAL_SH_DEGREE,
-            f16: false,
-            gpu: false,
-        });
-    }
+    out.push(Recon::Sh {
+        degree: FRONT_SH_DEGREE,
+        f16: false,
+        gpu: false,
+    });
     out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count, gpu: false }));
-    if symmetry == Symmetry::Rotational {
-        out.push(Recon::Lobes {
-            count: ROTATIONAL_LOBE_COUNT,
-            gpu: false,
-        });
-    }
+    out.push(Recon::Lobes {
+        count: FRONT_LOBE_COUNT,
+        gpu: false,
+    });
     out
 }
 
-/// The degree of the extra `sh:L` row of rotationally symmetric data. Its
-/// series are zonal, L + 1 coefficients (`sh:16` is 68 bytes), so every
-/// default compact row is under 128 bytes; `sh:32` is 132 bytes and costs
-/// 33 terms a lookup: with [`ROTATIONAL_LOBE_COUNT`] it fills the bytes
-/// front between those rows and the one-column texture (144-720 bytes).
-pub const ROTATIONAL_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
+/// The degree of the trade table's extra `sh:L` row, beside [`SH_DEGREES`]:
+/// it fills the bytes front between the default compact rows and the
+/// textures. On asymmetric data `sh:32` is 4,356 bytes (1,089 terms a
+/// lookup) where `sh:16` is 1,156; on rotationally symmetric data the series
+/// are zonal, L + 1 coefficients, so every default compact row is under 128
+/// bytes and `sh:32` is 132 bytes (33 terms), below the one-column texture
+/// (144-720 bytes). Over the corpus it puts a compact row on the bytes front
+/// between 128 bytes and 10 kB on 12 more files than the default rows alone
+/// (docs/compact.md). Not among `batch --compact`'s or `plan`'s candidates.
+pub const FRONT_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
 
-/// The lobe count of the extra `lobes:K` row of rotationally symmetric data
-/// (160 bytes; a narrow spot is lobes', where 33 zonal bands still ring).
-pub const ROTATIONAL_LOBE_COUNT: usize = 8;
+/// The lobe count of the trade table's extra `lobes:K` row, beside
+/// [`LOBE_COUNTS`] (160 bytes, fitted in the same search as the default
+/// counts: the fit of K lobes is a stage of the fit of 8). A narrow spot is
+/// lobes', where 33 zonal bands still ring. Not among `batch --compact`'s or
+/// `plan`'s candidates.
+pub const FRONT_LOBE_COUNT: usize = 8;
 
 /// The lobe counts K of the default `lobes:K` rows.
 pub const LOBE_COUNTS: [usize; 4] = [1, 2, 3, 4];
