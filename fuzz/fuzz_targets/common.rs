@@ -64,7 +64,10 @@ pub fn parse_only(data: &[u8], format: Format) {
         };
         let d = lum.distribution();
         assert!(d.c_angles_deg().iter().all(|v| v.is_finite()), "non-finite C angle");
-        assert!(d.gamma_angles_deg().iter().all(|v| v.is_finite()), "non-finite gamma angle");
+        assert!(
+            d.gamma_angles_deg().iter().all(|v| v.is_finite()),
+            "non-finite gamma angle"
+        );
         assert!(
             d.intensities_cd().iter().all(|v| v.is_finite() && v.abs() <= MAX_CD),
             "intensity outside the model's range"

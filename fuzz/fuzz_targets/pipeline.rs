@@ -11,11 +11,11 @@ use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 use photosolid::compare::{compare, CompareOptions, Directions};
-use photosolid::model::Distribution;
-use photosolid::registry::Recon;
 use photosolid::fit::{fit, FitOptions};
 use photosolid::formats::roundtrip::non_finite_in_debug;
+use photosolid::model::Distribution;
 use photosolid::reconstruct::{render, Filter, LightTexture};
+use photosolid::registry::Recon;
 use photosolid::solid::{grid_solid, SolidGrid, Units};
 
 fn finite(what: &str, debug: String) {
