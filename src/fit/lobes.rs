@@ -22,7 +22,9 @@
 //! The error minimised is the solid-angle-weighted squared radial error
 //! `Σ ΔΩ_k (I_model − I_k)²` over the measured directions (relative to
 //! I_max): the quantity the trade table's radial RMS reports. Rotationally
-//! symmetric data keeps vertical axes (a tilted lobe is not rotational).
+//! symmetric data gets rings ([`Lobes::rings`]): each lobe swept about the
+//! vertical axis, its tilt the ring's polar angle (a tilted plain lobe is
+//! not rotational; a vertical ring is the plain lobe).
 //! Large grids are searched on a thinned copy (at most [`SEARCH_DIRECTIONS`]
 //! directions); the final weights come from all of them.
 //!
@@ -36,7 +38,7 @@ use super::objective::{ErrorMetric, Samples, DEFAULT_GUARD};
 use super::optimize::nelder_mead;
 use crate::error::ModelError;
 use crate::model::Distribution;
-use crate::reconstruct::lobes::lobe_factor;
+use crate::reconstruct::lobes::{lobe_factor, ring_cosine};
 pub use crate::reconstruct::lobes::{Lobe, Lobes, LOBE_BYTES, MAX_LOBE_EXPONENT};
 
 /// Largest lobe count accepted.
@@ -60,17 +62,35 @@ struct Data {
     mm: f64,
     /// Distinct directions a lobe's half-maximum cone must hold ([`Data::supported`]).
     support: usize,
+    /// Lobes are rings about the vertical axis ([`ring_cosine`]).
+    rings: bool,
 }
 
 impl Data {
     fn of(s: &Samples) -> Self {
         // One kept plane stands for a ring: two samples on it pin a vertical lobe's width.
         let support = if s.rotational { 2 } else { 3 };
-        Self::new(s.dir.clone(), s.m.clone(), s.omega.clone(), support)
+        Self::new(s.dir.clone(), s.m.clone(), s.omega.clone(), support, s.rotational)
     }
-    fn new(dir: Vec<DVec3>, m: Vec<f64>, w: Vec<f64>, support: usize) -> Self {
+    fn new(dir: Vec<DVec3>, m: Vec<f64>, w: Vec<f64>, support: usize, rings: bool) -> Self {
         let mm = w.iter().zip(&m).map(|(w, m)| w * m * m).sum();
-        Self { dir, m, w, mm, support }
+        Self {
+            dir,
+            m,
+            w,
+            mm,
+            support,
+            rings,
+        }
+    }
+    /// The cosine between a measured direction and a lobe's axis (of its ring
+    /// through `d`'s C-plane when the lobes are rings).
+    fn cosine(&self, d: DVec3, axis: DVec3) -> f64 {
+        if self.rings {
+            ring_cosine(d, axis)
+        } else {
+            d.dot(axis)
+        }
     }
     /// Every `k`-th direction (weights scaled by k), or `None` when small enough.
     fn thinned(&self, max: usize) -> Option<Self> {
@@ -89,6 +109,7 @@ impl Data {
             idx.iter().map(|&i| self.m[i]).collect(),
             idx.iter().map(|&i| self.w[i] * k as f64).collect(),
             self.support,
+            self.rings,
         ))
     }
     /// Exponent `p`, lowered until the lobe's half-maximum cone around `axis`
@@ -104,7 +125,7 @@ impl Data {
     fn supported(&self, axis: DVec3, p: f64) -> f64 {
         let mut near: Vec<(f64, DVec3)> = Vec::with_capacity(self.support + 1);
         for &d in &self.dir {
-            let t = d.dot(axis);
+            let t = self.cosine(d, axis);
             // Poles repeat once per plane: a direction already held is not a new sample.
             if near.len() == self.support && t <= near[self.support - 1].0
                 || near.iter().any(|(_, e)| e.distance_squared(d) < 1e-18)
@@ -130,40 +151,53 @@ impl Data {
     /// The lobe's values at every direction, its exponent [`Data::supported`].
     fn column(&self, axis: DVec3, p: f64) -> Vec<f64> {
         let p = self.supported(axis, p);
-        self.dir.iter().map(|d| lobe_factor(d.dot(axis), p)).collect()
+        self.dir.iter().map(|&d| lobe_factor(self.cosine(d, axis), p)).collect()
     }
 }
 
 /// One lobe's shape in search coordinates: a chart centred on `centre`.
+/// A ring's axis only tilts: its azimuth does not change the ring, so its
+/// chart is the one tangent in the vertical plane through the centre
+/// (`y` unused), which keeps the search two-dimensional.
 #[derive(Debug, Clone, Copy)]
 struct Shape {
     centre: DVec3,
     u: f64,
     x: f64,
     y: f64,
+    ring: bool,
 }
 
 impl Shape {
-    fn at(axis: DVec3, u: f64) -> Self {
+    fn at(axis: DVec3, u: f64, ring: bool) -> Self {
         Self {
             centre: axis,
             u,
             x: 0.0,
             y: 0.0,
+            ring,
         }
     }
     fn axis(&self) -> DVec3 {
-        let (t1, t2) = self.centre.any_orthonormal_pair();
-        (self.centre + self.x * t1 + self.y * t2)
-            .try_normalize()
-            .unwrap_or(self.centre)
+        let c = self.centre;
+        let moved = if self.ring {
+            // Tilt within the vertical plane through the centre (the x-z plane at a pole).
+            let h = c.truncate().try_normalize().unwrap_or(glam::DVec2::X);
+            let tilt = DVec3::new(h.x * c.z, h.y * c.z, -c.truncate().length());
+            let tilt = tilt.try_normalize().unwrap_or(DVec3::new(h.x, h.y, 0.0));
+            c + self.x * tilt
+        } else {
+            let (t1, t2) = c.any_orthonormal_pair();
+            c + self.x * t1 + self.y * t2
+        };
+        moved.try_normalize().unwrap_or(c)
     }
     fn exponent(&self) -> f64 {
         (self.u.exp() - 1.0).clamp(0.0, MAX_LOBE_EXPONENT)
     }
     /// The same shape in a chart centred on its own axis.
     fn recentred(&self) -> Self {
-        Self::at(self.axis(), self.u)
+        Self::at(self.axis(), self.u, self.ring)
     }
 }
 
@@ -262,7 +296,6 @@ struct Search<'a> {
     data: &'a Data,
     shapes: Vec<Shape>,
     cols: Vec<Vec<f64>>,
-    vertical: bool,
 }
 
 impl Search<'_> {
@@ -317,20 +350,22 @@ impl Search<'_> {
         let mut f = |v: &[f64]| {
             let s = Shape {
                 u: v[0].clamp(0.0, (1.0 + MAX_LOBE_EXPONENT).ln()),
-                x: if self.vertical { 0.0 } else { v[1] },
-                y: if self.vertical { 0.0 } else { v[2] },
+                x: v[1],
+                y: v.get(2).copied().unwrap_or(0.0),
                 ..best
             };
             self.eval(j, &s)
         };
+        let dims = if best.ring { 2 } else { 3 };
         let steps = [0.3 * scale, 0.1 * scale, 0.1 * scale];
         let ftol = 1e-15 + 1e-10 * best_e;
-        let (x, e, _) = nelder_mead(&mut f, &[best.u, best.x, best.y], &steps, max_evals, ftol, 1e-6);
+        let start = [best.u, best.x, best.y];
+        let (x, e, _) = nelder_mead(&mut f, &start[..dims], &steps[..dims], max_evals, ftol, 1e-6);
         if e < best_e {
             let s = Shape {
                 u: x[0].clamp(0.0, (1.0 + MAX_LOBE_EXPONENT).ln()),
-                x: if self.vertical { 0.0 } else { x[1] },
-                y: if self.vertical { 0.0 } else { x[2] },
+                x: x[1],
+                y: x.get(2).copied().unwrap_or(0.0),
                 ..best
             };
             return s.recentred();
@@ -378,12 +413,17 @@ pub fn fit_lobes(d: &Distribution, max_count: usize) -> Result<Vec<Lobes>, Model
         data,
         shapes: Vec::new(),
         cols: Vec::new(),
-        vertical: s.rotational,
     };
     let mut stages = Vec::with_capacity(max_count);
     for k in 0..max_count {
-        let start = Shape::at(start_axis(&search, s.rotational), 1.0);
-        let new = search.shape_search(k, start, true, 1.0, 150);
+        let new = start_axes(&search, s.rotational)
+            .into_iter()
+            .map(|axis| {
+                let found = search.shape_search(k, Shape::at(axis, 1.0, s.rotational), true, 1.0, 150);
+                (search.eval(k, &found), found)
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map_or_else(|| Shape::at(DVec3::NEG_Z, 1.0, s.rotational), |(_, found)| found);
         search.set(k, new);
         // Alternating refinement: every lobe with the others fixed, while it gains.
         let mut e = search.error_with(k, &search.cols[k]).0;
@@ -404,10 +444,12 @@ pub fn fit_lobes(d: &Distribution, max_count: usize) -> Result<Vec<Lobes>, Model
     Ok(stages)
 }
 
-/// The start axis of the next lobe: the direction of the largest residual
+/// The start axes of the next lobe: the direction of the largest residual
 /// (measured minus the lobes so far), the data's peak for the first lobe;
-/// vertical (towards the residual's hemisphere) for rotational data.
-fn start_axis(search: &Search<'_>, rotational: bool) -> DVec3 {
+/// for rotational data (rings) also the vertical towards the residual's
+/// hemisphere, a plain lobe, which a peak a grid step off the pole would
+/// otherwise start as a narrow ring.
+fn start_axes(search: &Search<'_>, rotational: bool) -> Vec<DVec3> {
     let d = search.data;
     let wts = if search.cols.is_empty() {
         Vec::new()
@@ -420,13 +462,9 @@ fn start_axis(search: &Search<'_>, rotational: bool) -> DVec3 {
         .max_by(|&a, &b| (d.m[a] - model(a)).total_cmp(&(d.m[b] - model(b))))
         .map_or(DVec3::NEG_Z, |i| d.dir[i]);
     if rotational {
-        if best.z > 0.0 {
-            DVec3::Z
-        } else {
-            DVec3::NEG_Z
-        }
+        vec![if best.z > 0.0 { DVec3::Z } else { DVec3::NEG_Z }, best]
     } else {
-        best
+        vec![best]
     }
 }
 
@@ -436,11 +474,11 @@ fn weighted(full: &Data, shapes: &[Shape], i_max: f64) -> Lobes {
         data: full,
         shapes: shapes.to_vec(),
         cols: shapes.iter().map(|s| full.column(s.axis(), s.exponent())).collect(),
-        vertical: false,
     };
     let last = shapes.len() - 1;
     let (_, wts) = search.error_with(last, &search.cols[last]);
-    Lobes::new(
+    let mixture = if full.rings { Lobes::rings } else { Lobes::new };
+    mixture(
         shapes
             .iter()
             .zip(&wts)

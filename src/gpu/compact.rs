@@ -49,7 +49,8 @@ fn shader_data(exact: &Compact) -> ([u32; 5], Vec<f32>, f64) {
                 .iter()
                 .flat_map(|l| [l.axis.x, l.axis.y, l.axis.z, l.exponent, l.weight_cd].map(|x| x as f32))
                 .collect();
-            ([1, m.lobes.len() as u32, 0, 0, 0], data, 1.0)
+            // `zonal` marks rings about the vertical axis (`Lobes::rings`).
+            ([1, m.lobes.len() as u32, 0, 0, u32::from(m.rings)], data, 1.0)
         }
     }
 }

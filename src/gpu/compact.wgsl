@@ -15,7 +15,9 @@
 //
 // kind 1, cosine-power lobes (`reconstruct::lobes::Lobes`): params.count
 // lobes of 5 floats (axis x, y, z, exponent p, weight in cd);
-// I = sum_k w_k max(0, d . a_k)^p_k, with max(0, t)^0 = 1 for t > 0.
+// I = sum_k w_k max(0, d . a_k)^p_k, with max(0, t)^0 = 1 for t > 0;
+// rings (params.zonal = 1, `Lobes::rings`): each axis turned about the
+// vertical into d's C-plane, t = d.z a.z + |d.xy| |a.xy|.
 // Output: cd.
 //
 // A zero direction (the CPU's zero or non-finite vector) gives 0.
@@ -87,7 +89,9 @@ fn lobes_eval(d: vec3<f32>) -> f32 {
     var sum = 0.0;
     for (var k = 0u; k < params.count; k++) {
         let at = 5u * k;
-        let t = min(dot(d, vec3<f32>(data[at], data[at + 1u], data[at + 2u])), 1.0);
+        let a = vec3<f32>(data[at], data[at + 1u], data[at + 2u]);
+        let ring = d.z * a.z + length(d.xy) * length(a.xy);
+        let t = min(select(dot(d, a), ring, params.zonal == 1u), 1.0);
         let p = data[at + 3u];
         if (t > 0.0) {
             // pow(t, 0) is 1 for t > 0; exp2(p log2 t) underflows to 0, never NaN, for tiny t.

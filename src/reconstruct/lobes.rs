@@ -7,6 +7,14 @@
 //! Purgathofer's OpenGL model (2005) is two. A lobe is 5 f32 (axis x, y, z,
 //! exponent, weight): [`LOBE_BYTES`]; the parameters are rounded to f32 as a
 //! shader's uniforms hold them.
+//!
+//! A rotationally symmetric mixture ([`Lobes::rings`]) sweeps each lobe
+//! about the vertical axis: in direction `u` the lobe's axis is turned into
+//! `u`'s own C-plane, so the cosine is `u_z a_z + |u_xy| |a_xy|`
+//! ([`ring_cosine`]), `cos(γ − γ_a)` for polar angles γ and γ_a. A lobe
+//! tilted by γ_a is then a ring of light at γ_a, the batwing of a
+//! rotationally symmetric luminaire, which no sum of vertical lobes makes;
+//! a vertical axis gives the plain lobe.
 
 use glam::DVec3;
 
@@ -34,6 +42,20 @@ impl Lobe {
     pub fn intensity_unit(&self, u: DVec3) -> f64 {
         lobe_factor(u.dot(self.axis), self.exponent) * self.weight_cd
     }
+    /// Intensity (cd) in unit direction `u` of the lobe swept about the
+    /// vertical axis (a ring, see the module docs).
+    #[inline]
+    pub fn ring_intensity_unit(&self, u: DVec3) -> f64 {
+        lobe_factor(ring_cosine(u, self.axis), self.exponent) * self.weight_cd
+    }
+}
+
+/// The cosine between unit direction `u` and unit `axis` turned about the
+/// vertical axis into `u`'s C-plane: `u_z a_z + |u_xy| |a_xy|` (= `u · a`
+/// for a vertical axis).
+#[inline]
+pub fn ring_cosine(u: DVec3, axis: DVec3) -> f64 {
+    u.z * axis.z + u.truncate().length() * axis.truncate().length()
 }
 
 /// `max(0, t)^p` (t a cosine, p ≥ 0), 1 at t > 0 for p = 0, finite for every input.
@@ -56,12 +78,25 @@ pub(crate) fn lobe_factor(t: f64, p: f64) -> f64 {
 pub struct Lobes {
     /// The lobes, parameters rounded to f32.
     pub lobes: Vec<Lobe>,
+    /// Whether each lobe is swept about the vertical axis into a ring
+    /// (rotationally symmetric data, [`Lobes::rings`]).
+    pub rings: bool,
 }
 
 impl Lobes {
     /// The mixture of `lobes`, parameters rounded to f32 (axes renormalised,
     /// exponents and weights clamped to their ranges, non-finite ones 0).
     pub fn new(lobes: Vec<Lobe>) -> Self {
+        Self::stored(lobes, false)
+    }
+
+    /// The rotationally symmetric mixture of `lobes`, each swept about the
+    /// vertical axis into a ring (module docs); rounded as [`Lobes::new`].
+    pub fn rings(lobes: Vec<Lobe>) -> Self {
+        Self::stored(lobes, true)
+    }
+
+    fn stored(lobes: Vec<Lobe>, rings: bool) -> Self {
         let f = |x: f64| if x.is_finite() { x as f32 as f64 } else { 0.0 };
         let lobes = lobes
             .into_iter()
@@ -74,13 +109,17 @@ impl Lobes {
                 }
             })
             .collect();
-        Self { lobes }
+        Self { lobes, rings }
     }
 
     /// Intensity (cd) in unit direction `u`.
     #[inline]
     pub fn intensity_unit(&self, u: DVec3) -> f64 {
-        self.lobes.iter().map(|l| l.intensity_unit(u)).sum()
+        if self.rings {
+            self.lobes.iter().map(|l| l.ring_intensity_unit(u)).sum()
+        } else {
+            self.lobes.iter().map(|l| l.intensity_unit(u)).sum()
+        }
     }
 }
 

@@ -159,18 +159,21 @@ fn lobes_on_the_gpu_match_the_cpu() {
         ("spot p=128", vec![lobe(DVec3::new(0.1, 0.2, -1.0), 128.0, 1e6)]),
         ("spot p=1024", vec![lobe(DVec3::NEG_Z, 1024.0, 1e-6)]),
     ] {
-        let m = Lobes::new(lobes);
-        let bound = lobes_bound(&m);
-        let gpu = GpuCompact::new(c, Compact::Lobes(m)).unwrap();
-        check(&gpu, &dirs, bound, name);
-        // On the first lobe's axis every lobe adds its share: the CPU's value, within the bound.
-        let axis = lobes_axis(&gpu);
-        let on_axis = gpu.sample_dirs_cd(&[axis]).unwrap()[0];
-        let want = gpu.exact().intensity_dir_cd(axis);
-        assert!(
-            (on_axis - want).abs() <= bound && want > 0.0,
-            "{name}: {on_axis} vs {want} on the axis"
-        );
+        // The same lobes as rings about the vertical (rotational data) as well.
+        for m in [Lobes::new(lobes.clone()), Lobes::rings(lobes)] {
+            let name = &format!("{name}{}", if m.rings { " (rings)" } else { "" });
+            let bound = lobes_bound(&m);
+            let gpu = GpuCompact::new(c, Compact::Lobes(m)).unwrap();
+            check(&gpu, &dirs, bound, name);
+            // On the first lobe's axis every lobe adds its share: the CPU's value, within the bound.
+            let axis = lobes_axis(&gpu);
+            let on_axis = gpu.sample_dirs_cd(&[axis]).unwrap()[0];
+            let want = gpu.exact().intensity_dir_cd(axis);
+            assert!(
+                (on_axis - want).abs() <= bound && want > 0.0,
+                "{name}: {on_axis} vs {want} on the axis"
+            );
+        }
     }
 }
 
