@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bounded fuzz smoke run: each cargo-fuzz target for FUZZ_SECONDS (default 45)
+# Bounded fuzz smoke run: each cargo-fuzz target for FUZZ_SECONDS (default 30)
 # seconds, FUZZ_JOBS (default 2) targets at a time, seeded from data/ and, when present, ../shared/corpus (copied at run
 # time into fuzz/corpus-smoke/, which git ignores, and recreated each run so the
 # time stays bounded; the long runs of RELIABILITY.md use fuzz/corpus/). Fails when a target crashes;
@@ -7,7 +7,7 @@
 # unavailable. See RELIABILITY.md for the long runs.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-SECONDS_PER_TARGET="${FUZZ_SECONDS:-45}"
+SECONDS_PER_TARGET="${FUZZ_SECONDS:-30}"
 TARGETS="${FUZZ_TARGETS:-ies_parse ldt_parse ies_reader ldt_reader pipeline}"
 
 skip() {

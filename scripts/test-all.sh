@@ -221,7 +221,7 @@ elif [ "$br_rc" != 0 ]; then
   exit 1
 fi
 
-section "fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 45) s, two at a time (scripts/fuzz-smoke.sh; RELIABILITY.md)"
+section "fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 30) s, two at a time (scripts/fuzz-smoke.sh; RELIABILITY.md)"
 bash scripts/fuzz-smoke.sh
 
 section "Python bindings: wheel (maturin), pytest over python/tests: bindings vs the CLI, Dask recipe (scripts/python.sh)"
