@@ -415,8 +415,9 @@ impl ShField {
 
     /// The series' sum (relative to the scale) at unit direction `u`, order
     /// by order: for each m ≤ `orders`, the recurrence of P̄_l^m over l = m..=L
-    /// (constants of [`recurrence`]), then the order's azimuthal factor. Each order's recurrence is a chain of dependent
-    /// multiply-adds: fastest for low degrees, where the chains are short.
+    /// (constants of [`recurrence`]), then the order's azimuthal factor.
+    /// Each order's recurrence is a chain of dependent multiply-adds:
+    /// fastest for low degrees, where the chains are short.
     pub(crate) fn sum_by_order(&self, u: DVec3, orders: usize) -> f64 {
         let (x, y, z) = (u.x, u.y, -u.z);
         let c = &self.coeffs;
