@@ -502,9 +502,11 @@ fn trial(s: &Samples, d: &Distribution, data_flux: f64, c: Combination, o: Optio
             .collect(),
     );
     let k = 1.0 / s.i_max;
-    let a = |dir: glam::DVec3| k * model.intensity_dir(dir);
-    let error = s.error_sq(a).sqrt();
-    let max_error = s.max_abs_error(a);
+    // The samples' directions are unit vectors: the renderer's form, axes computed once.
+    let prepared = model.prepare();
+    let a = |dir: glam::DVec3| k * prepared.intensity_unit(dir);
+    let (error_sq, max_error) = s.error_sq_and_max(a);
+    let error = error_sq.sqrt();
     let flux_ratio = model
         .sample_like(d)
         .ok()

@@ -256,12 +256,11 @@ impl FittedLights {
         } else {
             (c.to_vec(), Symmetry::None)
         };
-        let mut cd = Vec::with_capacity(c.len() * gamma.len());
-        for &cc in &c {
-            for &g in gamma {
-                cd.push(self.intensity(cc, g));
-            }
-        }
+        let prepared = self.prepare();
+        let cd = crate::model::frame::grid_directions(&c, gamma)
+            .into_iter()
+            .map(|d| prepared.intensity_unit(d))
+            .collect();
         Distribution::new(c, gamma.to_vec(), cd, sym)
     }
 

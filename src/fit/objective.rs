@@ -39,9 +39,8 @@ use serde::Serialize;
 
 use glam::DVec3;
 
-use super::model::spot_factor;
 use crate::error::ModelError;
-use crate::model::frame::direction;
+use crate::model::frame::grid_directions;
 use crate::model::{periodic_widths, Distribution, Symmetry};
 
 /// Default guard constant `C` of the error, relative to I_max (2 %).
@@ -51,6 +50,14 @@ pub const DEFAULT_GUARD: f64 = 0.02;
 /// axis points between measured directions could otherwise grow a huge,
 /// unmeasured spike; 10 I_max leaves any real fit free.
 pub const MAX_RELATIVE_WEIGHT: f64 = 10.0;
+
+/// Grids of at least this many directions get a thinned copy for the search's
+/// exploratory stage ([`Samples::thinned`]).
+const THIN_FROM: usize = 1500;
+/// About how many directions the thinned copy keeps: exploration needs the
+/// shape of the distribution, not every reading (a 360 × 181 grid, 65,160
+/// directions, is explored on 2,664; the refinement runs on the full grid).
+const THIN_TO: usize = 2000;
 
 /// Number of coarse cut-off bins over [0°, 90°].
 const N_BINS: usize = 900;
@@ -166,20 +173,22 @@ impl Samples {
         })
     }
 
-    /// Every other plane and every other γ angle (the last γ kept), for the
-    /// exploratory stage of the search on large grids; `None` when the grid
-    /// is small enough (under 2500 directions) to search on directly. The
-    /// weights keep their ratios, so the error is the full one's up to
-    /// sampling.
+    /// Every k-th plane and every k-th γ angle (the last γ kept; k ≥ 2, chosen so
+    /// that about [`THIN_TO`] directions remain), for the exploratory stage of the
+    /// search on large grids; `None` when the grid is small enough (under
+    /// [`THIN_FROM`] directions) to search on directly. The weights keep their
+    /// ratios, so the error is the full one's up to sampling.
     pub fn thinned(&self) -> Option<Samples> {
         let (np, ng) = self.shape;
-        if self.len() < 2500 {
+        if self.len() < THIN_FROM {
             return None;
         }
         let mut keep = Vec::new();
-        for i in (0..np).step_by(if np >= 8 { 2 } else { 1 }) {
+        // The same stride in planes and in γ, at least 2, so that about THIN_TO remain.
+        let stride = ((self.len() as f64 / THIN_TO as f64).sqrt().ceil() as usize).max(2);
+        for i in (0..np).step_by(if np >= 8 { stride } else { 1 }) {
             for j in 0..ng {
-                if j % 2 == 0 || j + 1 == ng {
+                if j % stride == 0 || j + 1 == ng {
                     keep.push(i * ng + j);
                 }
             }
@@ -225,13 +234,17 @@ impl Samples {
             .sum()
     }
 
-    /// Largest |a − m| (relative to I_max) of a model over the directions.
-    pub fn max_abs_error(&self, a: impl Fn(DVec3) -> f64) -> f64 {
+    /// err² and the largest |a − m| (relative to I_max) of a model giving magnitude
+    /// `a(d)`, in one pass over the directions.
+    pub fn error_sq_and_max(&self, a: impl Fn(DVec3) -> f64) -> (f64, f64) {
         self.dir
             .iter()
             .zip(&self.m)
-            .map(|(&d, &m)| (a(d) - m).abs())
-            .fold(0.0, f64::max)
+            .zip(&self.rho)
+            .fold((0.0, 0.0f64), |(sq, max), ((&d, &m), &r)| {
+                let e = a(d) - m;
+                (sq + r * e * e, max.max(e.abs()))
+            })
     }
 }
 
@@ -262,15 +275,15 @@ impl Directions {
         let ng = g.len();
         let band = gamma_bands(g);
         let n = planes.len() * ng;
-        let mut dir = Vec::with_capacity(n);
+        let c: Vec<f64> = planes.iter().map(|p| p.0).collect();
+        let dir = grid_directions(&c, g);
         let mut m = Vec::with_capacity(n);
         let mut omega = Vec::with_capacity(n);
         let mut measured = [false; 2];
         let mut lit = [false; 2];
-        for (&(c, ic), w) in planes.iter().zip(&widths) {
+        for (&(_, ic), w) in planes.iter().zip(&widths) {
             let v = d.plane_cd(ic);
             for j in 0..ng {
-                dir.push(direction(c, g[j]));
                 let mk = v[j].max(0.0) / i_max;
                 m.push(mk);
                 omega.push(w.to_radians() * band[j]);
@@ -369,6 +382,10 @@ pub(crate) struct Profiler<'a> {
     bin_n: Vec<u32>,
     // per candidate direction: (bin, q = sin(θ/2), ρs², ρsm, ρsb)
     cand: Vec<(u32, f64, f64, f64, f64)>,
+    /// The directions in front of the last axis profiled, with what does not depend on
+    /// the exponent: searches try many exponents at one axis (the coarse grid, the
+    /// golden-section polish, every evaluation of rotational data).
+    front: FrontOf,
     window: Vec<(f64, f64, f64, f64)>,
     /// Number of profile evaluations so far.
     pub evals: usize,
@@ -406,8 +423,17 @@ impl<'a> Profiler<'a> {
             bin_n: vec![0; N_BINS],
             cand: Vec::with_capacity(s.len()),
             window: Vec::new(),
+            front: FrontOf {
+                axis: None,
+                dirs: Vec::with_capacity(s.len()),
+            },
             evals: 0,
         }
+    }
+
+    /// Number of directions profiled.
+    pub fn len(&self) -> usize {
+        self.s.len()
     }
 
     /// Optimal (non-negative) weights and err² for the spot sums (Σρs², Σρsm, Σρsb).
@@ -465,27 +491,22 @@ impl<'a> Profiler<'a> {
     /// and exponent `p`, each binned by q = sin(θ/2) of its angle θ to the axis.
     fn bin_directions(&mut self, axis: DVec3, p: f64) {
         let s = self.s;
-        self.bin_s2.iter_mut().for_each(|x| *x = 0.0);
-        self.bin_sm.iter_mut().for_each(|x| *x = 0.0);
-        self.bin_sb.iter_mut().for_each(|x| *x = 0.0);
-        self.bin_n.iter_mut().for_each(|x| *x = 0);
+        self.front.aim(s, axis);
+        self.bin_s2.fill(0.0);
+        self.bin_sm.fill(0.0);
+        self.bin_sb.fill(0.0);
+        self.bin_n.fill(0);
         self.cand.clear();
         let shape = match &self.other {
             Other::Shape(b) => Some(b.as_slice()),
             _ => None,
         };
         let point = matches!(self.other, Other::Point);
-        let scale = N_BINS as f64 / Q_MAX;
-        for k in 0..s.dir.len() {
-            let d = s.dir[k];
-            let t = d.dot(axis);
-            // A cut-off of at most 90° never reaches directions behind the spot.
-            if t < 0.0 {
-                continue;
-            }
-            let t = t.min(1.0);
-            let q = (0.5 * (1.0 - t)).sqrt();
-            let sv = spot_factor(t, p, 0.0);
+        for f in &self.front.dirs {
+            let k = f.k as usize;
+            // t^p = exp(p ln t), with ln t kept per axis (spot_factor(t, p, 0) for t in
+            // [0, 1]: p = 0 lights every direction in front, t = 0 is dark for p > 0).
+            let sv = if p == 0.0 { 1.0 } else { (p * f.ln_t).exp() };
             let rs = s.rho[k] * sv;
             let b = match shape {
                 Some(b) => b[k],
@@ -493,12 +514,12 @@ impl<'a> Profiler<'a> {
                 None => 0.0,
             };
             let (a2, am, ab) = (rs * sv, rs * s.m[k], rs * b);
-            let bin = ((q * scale) as usize).min(N_BINS - 1);
+            let bin = f.bin as usize;
             self.bin_s2[bin] += a2;
             self.bin_sm[bin] += am;
             self.bin_sb[bin] += ab;
             self.bin_n[bin] += 1;
-            self.cand.push((bin as u32, q, a2, am, ab));
+            self.cand.push((f.bin, f.q, a2, am, ab));
         }
     }
 
@@ -581,6 +602,57 @@ impl<'a> Profiler<'a> {
             }
         }
         best
+    }
+}
+
+/// One direction in front of a spot's axis (t = cos θ ≥ 0), with what its
+/// factor t^p and its cut-off bin need that does not depend on the exponent.
+#[derive(Debug, Clone, Copy)]
+struct Front {
+    /// Index into the samples.
+    k: u32,
+    /// Cut-off bin of q.
+    bin: u32,
+    /// q = sin(θ/2) = sqrt((1 − t)/2).
+    q: f64,
+    /// ln t (−∞ at t = 0).
+    ln_t: f64,
+}
+
+/// The directions in front of one axis ([`Front`]), rebuilt when the axis changes.
+#[derive(Debug, Clone)]
+struct FrontOf {
+    /// The axis `dirs` belong to (`None` before the first profile).
+    axis: Option<DVec3>,
+    dirs: Vec<Front>,
+}
+
+impl FrontOf {
+    /// Make `dirs` the directions of `s` in front of unit `axis` (kept when it is
+    /// the axis they already belong to).
+    fn aim(&mut self, s: &Samples, axis: DVec3) {
+        if self.axis == Some(axis) {
+            return;
+        }
+        self.axis = Some(axis);
+        self.dirs.clear();
+        let scale = N_BINS as f64 / Q_MAX;
+        for (k, d) in s.dir.iter().enumerate() {
+            let t = d.dot(axis);
+            // A cut-off of at most 90° never reaches directions behind the spot.
+            if t < 0.0 {
+                continue;
+            }
+            let t = t.min(1.0);
+            let q = (0.5 * (1.0 - t)).sqrt();
+            let bin = ((q * scale) as usize).min(N_BINS - 1);
+            self.dirs.push(Front {
+                k: k as u32,
+                bin: bin as u32,
+                q,
+                ln_t: t.ln(),
+            });
+        }
     }
 }
 

@@ -61,6 +61,19 @@ pub fn direction(c_deg: f64, gamma_deg: f64) -> DVec3 {
     DVec3::new(sg * cc, sg * sc, -cg)
 }
 
+/// [`direction`] of every (C, γ) of a grid (degrees), plane-major (all γ of the first
+/// plane, then the next): the same bits as calling [`direction`] per pair, with one
+/// sine and cosine per angle instead of two per pair.
+pub fn grid_directions(c_deg: &[f64], gamma_deg: &[f64]) -> Vec<DVec3> {
+    let g: Vec<(f64, f64)> = gamma_deg.iter().map(|&a| sin_cos_deg(a)).collect();
+    let mut out = Vec::with_capacity(c_deg.len() * g.len());
+    for &c in c_deg {
+        let (sc, cc) = sin_cos_deg(c);
+        out.extend(g.iter().map(|&(sg, cg)| DVec3::new(sg * cc, sg * sc, -cg)));
+    }
+    out
+}
+
 /// [`direction`] in single precision (the shader's input).
 #[inline]
 pub fn direction_f32(c_deg: f64, gamma_deg: f64) -> Vec3 {
@@ -137,6 +150,19 @@ mod tests {
             let (s, c) = sin_cos_deg(a);
             assert!(s.abs() == 0.0 || s.abs() == 1.0);
             assert!(c.abs() == 0.0 || c.abs() == 1.0);
+        }
+    }
+
+    #[test]
+    fn grid_directions_are_direction_bit_for_bit() {
+        let c: Vec<f64> = (0..37).map(|k| k as f64 * 9.7).collect();
+        let g: Vec<f64> = (0..=60).map(|k| k as f64 * 3.0 + 0.25).collect();
+        let all = grid_directions(&c, &g);
+        assert_eq!(all.len(), c.len() * g.len());
+        for (i, &cc) in c.iter().enumerate() {
+            for (j, &gg) in g.iter().enumerate() {
+                assert_eq!(all[i * g.len() + j], direction(cc, gg));
+            }
         }
     }
 
