@@ -139,7 +139,10 @@ fn to_text(t: &TradeTable) -> String {
         let _ = writeln!(
             s,
             "{:<36} {:>10} {:>9.1} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>+9.4}  {:<6} {}",
-            r.representation,
+            match &r.form {
+                Some(f) => format!("{} ({f})", r.representation),
+                None => r.representation.clone(),
+            },
             r.bytes,
             r.ns_per_sample,
             r.hausdorff_pct,

@@ -84,7 +84,7 @@ fn measured_row(
         Some(&MAX_REFINEMENT),
     );
     let (ab, ba) = (h.a_to_b, h.b_to_a);
-    ReconResult::new(
+    let mut row = ReconResult::new(
         name.to_string(),
         field.bytes(),
         Distances {
@@ -100,7 +100,9 @@ fn measured_row(
         target.i_max,
         (!target.timing.is_empty()).then(|| time_per_sample_ns(field, target.timing, target.repeats)),
         triangles,
-    )
+    );
+    row.form = field.form();
+    row
 }
 
 /// The solid of reconstruction `r` of `a`: the measured solid itself, else

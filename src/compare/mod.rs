@@ -421,6 +421,10 @@ pub struct ReconResult {
     /// refinement: [`crate::solid::adaptive::Stop`]); absent with it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solid_tolerance_reached: Option<bool>,
+    /// How the representation was built when the data chose it
+    /// ([`IntensityField::form`]: `rings`, `zonal`); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub form: Option<String>,
     /// On the Pareto front of (time per sample, bytes, H).
     pub pareto: bool,
 }
@@ -475,6 +479,7 @@ impl ReconResult {
             withheld_distance: None,
             solid_deviation_cd: None,
             solid_tolerance_reached: None,
+            form: None,
             pareto: false,
         }
     }

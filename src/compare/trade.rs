@@ -170,6 +170,9 @@ pub struct TradeRow {
     pub flux_error_pct: f64,
     /// `sh:L` rows: the window applied to the bands (`lanczos`); null for other rows.
     pub window: Option<String>,
+    /// How the representation was built when the data chose it: `rings` (lobes
+    /// swept about the vertical axis), `zonal` (SH, m = 0 only); null otherwise.
+    pub form: Option<String>,
     /// On the Pareto front of (ns_per_sample, bytes, hausdorff_pct).
     pub pareto: bool,
     /// On the Pareto front of (bytes, radial_max_pct): no other row at most
@@ -303,6 +306,7 @@ pub fn trade_table(
             radial_rms_pct: r.radial_rms_pct,
             flux_error_pct: r.flux_error_pct,
             window: None,
+            form: r.form.clone(),
             pareto: r.pareto,
             pareto_bytes: false,
         })

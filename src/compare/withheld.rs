@@ -486,6 +486,7 @@ impl<'a> HoldOut<'a> {
         row.solid_tolerance_reached = deviation.zip(self.solid_tol_cd).map(|(d, t)| d <= t);
         row.profile_segments = segments;
         row.withheld_distance = Some(methods.join("+"));
+        row.form = field.form();
         Ok(row)
     }
 

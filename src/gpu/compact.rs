@@ -283,6 +283,9 @@ impl IntensityField for GpuCompact<'_> {
     fn name(&self) -> String {
         format!("{}+gpu", self.exact.field().name())
     }
+    fn form(&self) -> Option<String> {
+        self.exact.field().form()
+    }
     fn bytes(&self) -> usize {
         self.exact.field().bytes()
     }

@@ -80,6 +80,14 @@ pub trait IntensityField: Sync {
     /// `texture catmull-rom x5 / bilinear`, `fitted-gl`, `truth cosine p=5`).
     fn name(&self) -> String;
 
+    /// How the representation was built, when the data chose it and its name in
+    /// the registry does not say it: `rings` (a lobe mixture swept about the
+    /// vertical axis, for rotationally symmetric data), `zonal` (a spherical-harmonic
+    /// series with only its m = 0 terms). `None` (the default) for every other field.
+    fn form(&self) -> Option<String> {
+        None
+    }
+
     /// Bytes this representation holds to answer lookups (tables, texels,
     /// light parameters), not counting what it borrows from its source data
     /// when that data is needed anyway (documented per implementation).

@@ -36,6 +36,9 @@ impl IntensityField for Compact {
     fn name(&self) -> String {
         self.field().name()
     }
+    fn form(&self) -> Option<String> {
+        self.field().form()
+    }
     fn bytes(&self) -> usize {
         self.field().bytes()
     }

@@ -136,6 +136,10 @@ impl IntensityField for Lobes {
     fn name(&self) -> String {
         format!("lobes:{}", self.lobes.len())
     }
+    /// `rings` when every lobe is swept about the vertical axis ([`Lobes::rings`]).
+    fn form(&self) -> Option<String> {
+        self.rings.then(|| "rings".to_string())
+    }
     /// [`LOBE_BYTES`] per lobe.
     fn bytes(&self) -> usize {
         self.lobes.len() * LOBE_BYTES

@@ -531,6 +531,10 @@ impl IntensityField for ShField {
             if self.zonal { ", zonal" } else { "" }
         )
     }
+    /// `zonal` when only the m = 0 coefficients are stored ([`ShField::is_zonal`]).
+    fn form(&self) -> Option<String> {
+        self.zonal.then(|| "zonal".to_string())
+    }
     /// `(L + 1)²` coefficients (`L + 1` when zonal) × 4 bytes (f32), × 2
     /// (f16, u16) or × 1 (u8); the f64 scale is not counted (as a stored
     /// texture's I_max).

@@ -187,7 +187,12 @@ const COLS: [&str; 14] = [
 
 fn row(r: &ReconResult) -> Vec<String> {
     vec![
-        format!("{}{}", r.name, if r.pareto { " *" } else { "" }),
+        format!(
+            "{}{}{}",
+            r.name,
+            r.form.as_deref().map(|f| format!(" ({f})")).unwrap_or_default(),
+            if r.pareto { " *" } else { "" }
+        ),
         r.bytes.to_string(),
         num(r.hausdorff_cd),
         num(r.hausdorff_bound_cd),

@@ -122,6 +122,10 @@ pub struct Candidate {
     pub max_error_pct: f64,
     /// Mean error over the scene's points, %.
     pub mean_error_pct: f64,
+    /// How the data shaped the representation ([`crate::model::IntensityField::form`]:
+    /// `rings`, `zonal`); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub form: Option<String>,
 }
 
 /// A candidate that could not be built, and why.
@@ -463,6 +467,7 @@ impl Bench<'_> {
                 ns_per_eval: ns * n as f64,
                 max_error_pct: 100.0 * max,
                 mean_error_pct: 100.0 * mean,
+                form: field.form(),
             },
             values,
         )

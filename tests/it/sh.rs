@@ -496,6 +496,7 @@ fn row(name: &str, bytes: usize, max: f64) -> TradeRow {
         radial_rms_pct: max,
         flux_error_pct: 0.0,
         window: None,
+        form: None,
         pareto: false,
         pareto_bytes: false,
     }
@@ -521,6 +522,41 @@ fn bytes_front_and_smallest_within() {
     assert_eq!(front, ["a", "b", "e"]);
     assert_eq!(smallest_within(&rows, 1.0).as_deref(), Some("e"));
     assert_eq!(smallest_within(&rows, 0.1), None);
+}
+
+/// Every trade row says how the data shaped it (`form`, a key on every row): the
+/// lobes are `rings` exactly when the series are `zonal` (both follow the data's
+/// rotational symmetry), every other row has none; the rotational wiki-batwing
+/// gets them, the asymmetric ITALO does not.
+fn check_forms(name: &str, rows: &[TradeRow], json: &serde_json::Value) {
+    for r in json["rows"].as_array().unwrap() {
+        assert!(r.get("form").is_some(), "{name}: a row without the form key");
+    }
+    let form_of = |prefix: &str| -> Vec<Option<&str>> {
+        rows.iter()
+            .filter(|r| r.representation.starts_with(prefix))
+            .map(|r| r.form.as_deref())
+            .collect()
+    };
+    let (sh, lobes) = (form_of("sh:"), form_of("lobes:"));
+    let rotational = sh.first().copied().flatten() == Some("zonal");
+    assert!(sh.iter().all(|f| *f == rotational.then_some("zonal")), "{name}: {sh:?}");
+    assert!(
+        lobes.iter().all(|f| *f == rotational.then_some("rings")),
+        "{name}: {lobes:?}"
+    );
+    let others: Vec<_> = rows
+        .iter()
+        .filter(|r| !(r.representation.starts_with("sh:") || r.representation.starts_with("lobes:")))
+        .filter(|r| r.form.is_some())
+        .map(|r| r.representation.as_str())
+        .collect();
+    assert!(others.is_empty(), "{name}: {others:?}");
+    match name {
+        "eulumdat-rs/wiki-batwing.ldt" => assert!(rotational, "{name}"),
+        "eulumdat-rs/ITALO 1 5P5 S05 3.140-3M.IES" => assert!(!rotational, "{name}"),
+        _ => {}
+    }
 }
 
 /// The trade table (fixed x1 solids, 2000 directions) of the synthetic
@@ -596,6 +632,7 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
             assert!(r.radial_max_pct.is_finite() && r.ns_per_sample.is_finite());
         }
         eprintln!("{name}: smallest within 1 %: {:?}", t.smallest_within_1pct);
+        check_forms(&name, &t.rows, &json);
         for want in [
             "sh:2", "sh:4", "sh:8", "sh:16", "sh:32", "lobes:1", "lobes:2", "lobes:3", "lobes:4", "lobes:8",
         ] {
