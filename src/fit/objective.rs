@@ -56,7 +56,7 @@ pub const MAX_RELATIVE_WEIGHT: f64 = 10.0;
 const THIN_FROM: usize = 1500;
 /// About how many directions the thinned copy keeps: exploration needs the
 /// shape of the distribution, not every reading (a 360 × 181 grid, 65,160
-/// directions, is explored on 2,664; the refinement runs on the full grid).
+/// directions, is explored on 1,860; the refinement runs on the full grid).
 const THIN_TO: usize = 2000;
 
 /// Number of coarse cut-off bins over [0°, 90°].
