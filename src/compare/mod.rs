@@ -85,6 +85,7 @@ pub(crate) use measure::{measure_field, own_or_grid_solid, FieldTarget};
 pub(crate) use plot_data::plot_data;
 pub use plot_data::{ErrorMap, PlotData, PolarPlane};
 pub use view::{SampledSolid, SampledSolids, SolidSet};
+pub use withheld::SURFACE_SEARCH_MAX_POINTS;
 
 use crate::error::ModelError;
 use crate::metrics::profile::{self, Profile};
@@ -402,7 +403,7 @@ pub struct ReconResult {
     /// the rebuilt solid was measured: `surface` (searched on the solid of a
     /// continuous field, [`crate::metrics::nearest`]), `mesh` (exact to the
     /// adaptive mesh of a field that may jump, whose solid has walls, of a
-    /// fold with more than 6,000 searched points, where one mesh is cheaper,
+    /// fold with more than [`SURFACE_SEARCH_MAX_POINTS`] searched points, where one mesh is cheaper,
     /// or to the measured solid), `cells` (exact, in closed form, to the
     /// patches and walls of a field made of constant cells: a nearest
     /// texture lookup, [`crate::metrics::cells`]), `profile` (a solid of

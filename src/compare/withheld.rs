@@ -29,16 +29,19 @@ use crate::registry::{Recon, Reconstructions};
 use crate::solid::Refinement;
 
 /// Searched points of one fold up to which the distances are searched on the
-/// solid itself (`metrics::nearest`, about 130 µs a point on 2 cores; a field
+/// solid itself (`metrics::nearest`, 33-49 µs a point on 2 cores below; a field
 /// symmetric with the data searches each stored sample once, not each of its
-/// images: [`shared_images`]); above, one
+/// images, where the field is checked symmetric with the data); above, one
 /// adaptive mesh of the rebuilt solid is cheaper. A mesh costs what the solid
 /// needs, 0.6-7 s a row whatever the count, so the switch is where the search
 /// costs about as much (release build, 2 cores, one row of the default
-/// `compare`): `gldf-rs/lampsets.ldt` (3,250 points a fold) catmull-rom 7.2 s
-/// meshed, about 1.7 s searched; ITALO (6,400) 1.5 s meshed, 1.6 s searched;
-/// OutdoorRoadway (12,800) 3.6 s meshed, 5.6 s searched.
-pub const SURFACE_SEARCH_MAX_POINTS: usize = 6_000;
+/// `compare`). With a small cap's seeds only at local minima of its samples
+/// the search is about 1.5 times cheaper than when the switch sat at 6,000:
+/// ITALO (6,400 points a fold) catmull-rom 1.91 s meshed, 0.85 s searched,
+/// bilinear 0.85 / 0.75 s; OutdoorRoadway (12,800) catmull-rom 4.28 / 2.49 s,
+/// bilinear 3.48 / 2.47 s. Searched, H moved by -0.013 to +0.006 % of I_max
+/// on those two files (the meshes' 0.05 % tolerance).
+pub const SURFACE_SEARCH_MAX_POINTS: usize = 13_000;
 
 /// What one row gathers over the folds: each withheld point's
 /// reconstructed value and distance (cd), and how the distances were measured.

@@ -13,10 +13,21 @@
 //! [`distance_to_solid`] samples the cap ring by ring from ω_p outward
 //! ([`NearestSearch::rings`] rings across the starting cap, points on a ring
 //! as far apart as the rings), stops at the first ring outside the cap of the
-//! best distance so far, polishes every sample within one step's change of
-//! the best (at most 24, at least [`NearestSearch::seeds`]) by pattern search
-//! on the sphere to a sixteenth of the step, and the best
-//! [`NearestSearch::seeds`] of those down to [`NearestSearch::stop_rad`]. When U ≥ m (p at
+//! best distance so far, polishes the best [`NearestSearch::seeds`] samples
+//! and every other sample within one step's change of the best (at most 24
+//! in all) by pattern search on the sphere to a sixteenth of the step, and
+//! the best [`NearestSearch::seeds`] of those down to
+//! [`NearestSearch::stop_rad`]. In a small cap (U ≤ 0.1 m, nearly every
+//! point of a good reconstruction) the other samples are polished only when
+//! they are local minima of the samples (no nearer sample within 1.5
+//! steps): there a sample with a nearer neighbour lies on a slope into that
+//! neighbour's basin, and polishing it too cost 4.5 times the rough polishes
+//! for the same minima (without it no H moved by more than 6e-7 % of I_max
+//! and no mean distance by more than 3e-5 %, on eleven real comparisons and
+//! the 103 corpus files' default `compare`).
+//! In a larger cap a basin can hide behind a ridge, sampled only on its rim
+//! (every sample polished: one H 0.03 % of I_max lower on the corpus).
+//! When U ≥ m (p at
 //! or near the origin, or an error as large as the value) the cap is the
 //! whole sphere and a Fibonacci lattice seeds the search instead.
 //!
@@ -117,7 +128,9 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
     };
     // A sample is a seed when its basin may hold the minimum: within what
     // one step can change the distance (a surface point moves by about
-    // r · step, twice for a steep flank), the best `seeds` of them always.
+    // r · step, twice for a steep flank) and a local minimum of the samples
+    // in a small cap (there one with a nearer sample beside it is on a slope
+    // into that sample's basin); the best `seeds` of them always.
     // On the whole sphere (a point near the origin) the lattice is coarse
     // and the window would take every sample: the best `seeds` only.
     let r_max = samples.iter().map(|s| s.r).fold(m, f64::max);
@@ -128,22 +141,38 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
     };
     // Every seed to a sixteenth of the step (its basin's bottom, roughly),
     // then the best few to the end.
+    let seeds = search.seeds.max(1);
+    let near = (NEIGHBOUR_STEPS * step).min(std::f64::consts::PI).cos();
+    // Samples are sorted nearest first: a sample is a discrete local minimum
+    // when no nearer one lies within a neighbour's reach of it.
+    let local_min = |k: usize| samples[..k].iter().all(|o| o.w.dot(samples[k].w) < near);
     let mut rough: Vec<Candidate> = samples
         .iter()
         .enumerate()
-        .take_while(|&(k, s)| k < search.seeds.max(1) || (s.d <= window && k < MAX_SEEDS))
+        .take_while(|&(k, s)| k < seeds || s.d <= window)
+        .filter(|&(k, _)| k < seeds || (u < m && (u > SMALL_CAP * m || local_min(k))))
+        .take(MAX_SEEDS)
         .map(|(_, &s)| polish(s, step, step / 16.0, false, &at))
         .collect();
     rough.sort_by(|a, b| a.d.total_cmp(&b.d));
     rough
         .iter()
-        .take(search.seeds.max(1))
+        .take(seeds)
         .map(|&s| polish(s, step / 16.0, search.stop_rad, true, &at).d)
         .fold(u, f64::min)
 }
 
+/// The sine of the largest cap radius (U / m) whose extra seeds are only the
+/// local minima of its samples (module documentation).
+const SMALL_CAP: f64 = 0.1;
+
 /// At most this many samples are polished (the window's cap).
 const MAX_SEEDS: usize = 24;
+
+/// Samples within this many steps of each other are neighbours: the next
+/// sample on the ring and on the rings inside and outside (the rings are a
+/// step apart, the samples on a ring at most a step).
+const NEIGHBOUR_STEPS: f64 = 1.5;
 
 /// [`distance_to_solid`] of every point `(dir, m)`, in order (in parallel).
 pub fn distances_to_solid(field: &dyn IntensityField, points: &[(DVec3, f64)], search: &NearestSearch) -> Vec<f64> {

@@ -38,8 +38,9 @@ fn hausdorff_meaning(c: &Comparison) -> String {
             "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
              (no bound to certify; searched on the solid itself for continuous reconstructions, in closed form for \
              nearest texture lookups, to the mesh for the measured solid, other fields that jump, the GPU's and folds \
-             of over 6,000 searched points; each row's withheld_distance says which); radial max over the same points",
-            c.n_directions
+             of over {} searched points; each row's withheld_distance says which); radial max over the same points",
+            c.n_directions,
+            crate::compare::SURFACE_SEARCH_MAX_POINTS
         )
     }
 }
