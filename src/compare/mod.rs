@@ -297,6 +297,14 @@ pub struct CompareOptions {
     /// A Type A/B file's own readings: the `withheld` reference then
     /// withholds them instead of the converted grid's points. Default: none.
     pub source: Option<SourceMeasurements>,
+    /// Measure only the Hausdorff distance of the `withheld` reference:
+    /// a rebuilt solid searched on its surface is searched only from the
+    /// withheld points whose distance can be the largest
+    /// ([`crate::metrics::largest_distance_to_solid`]; at any point count,
+    /// never meshed), so the rows' mean and RMS distances and their
+    /// `ref_to_recon` are not measured (`None`). `tradeoff` sets it: its
+    /// table shows H alone. Other references ignore it. Default: false.
+    pub hausdorff_only: bool,
 }
 
 impl Default for CompareOptions {
@@ -320,6 +328,7 @@ impl Default for CompareOptions {
             timing_repeats: 5,
             plots: false,
             source: None,
+            hausdorff_only: false,
         }
     }
 }
@@ -355,12 +364,16 @@ pub struct ReconResult {
     pub hausdorff_pct: f64,
     /// One-sided h(reconstruction → reference) (null for `withheld`).
     pub recon_to_ref: Option<OneSided>,
-    /// One-sided h(reference → reconstruction); for `withheld`, the withheld points to the rebuilt solids.
-    pub ref_to_recon: OneSided,
-    /// Mean surface distance (mean of the one-sided area-weighted means; withheld: mean point distance).
-    pub mean_surface_distance_cd: f64,
-    /// RMS surface distance (both directions pooled; withheld: RMS point distance).
-    pub rms_surface_distance_cd: f64,
+    /// One-sided h(reference → reconstruction); for `withheld`, the withheld
+    /// points to the rebuilt solids (null when only H was measured:
+    /// [`CompareOptions::hausdorff_only`]).
+    pub ref_to_recon: Option<OneSided>,
+    /// Mean surface distance (mean of the one-sided area-weighted means;
+    /// withheld: mean point distance; null when only H was measured).
+    pub mean_surface_distance_cd: Option<f64>,
+    /// RMS surface distance (both directions pooled; withheld: RMS point
+    /// distance; null when only H was measured).
+    pub rms_surface_distance_cd: Option<f64>,
     /// The radial bound: max |r_recon(ω) − r_ref(ω)| of the two solids
     /// (meshes, ray cast) over the direction set (≥ H up to the set's
     /// density); for `withheld`, equal to `radial_max_cd`.
@@ -435,9 +448,9 @@ pub(crate) struct Distances {
     pub value: f64,
     pub bound: f64,
     pub recon_to_ref: Option<OneSided>,
-    pub ref_to_recon: OneSided,
-    pub mean: f64,
-    pub rms: f64,
+    pub ref_to_recon: Option<OneSided>,
+    pub mean: Option<f64>,
+    pub rms: Option<f64>,
     pub radial_bound: f64,
 }
 

@@ -279,6 +279,8 @@ pub fn trade_table(
         vs,
         &CompareOptions {
             recons: recons.clone(),
+            // The table shows H alone: no point is searched that cannot set it.
+            hausdorff_only: true,
             ..opts.compare.clone()
         },
         progress,

@@ -19,8 +19,8 @@ use crate::metrics::cells::distances_to_cells;
 use crate::metrics::hausdorff::distances;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
-    distances_to_solid, radial_errors, random_directions, time_per_sample_ns, Bvh, DirectionSet, NearestSearch,
-    OneSided,
+    distances_to_solid, largest_distance_to_solid, radial_errors, random_directions, time_per_sample_ns, Bvh,
+    DirectionSet, NearestSearch, OneSided,
 };
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField, Symmetry, ANGLE_EPS};
@@ -61,6 +61,12 @@ struct RowDistances {
     methods: Vec<&'static str>,
     /// Points searched on the solid (symmetric images share a search).
     searched: usize,
+    /// Only H is measured ([`CompareOptions::hausdorff_only`]): `dist` then
+    /// holds the distances of the folds measured point by point, and
+    /// `largest` the largest distance of the searched folds.
+    hausdorff_only: bool,
+    /// The largest distance of the folds searched for H alone, cd.
+    largest: f64,
 }
 
 impl RowDistances {
@@ -70,10 +76,44 @@ impl RowDistances {
         }
     }
 
+    /// The largest distance measured so far, cd.
+    fn h(&self) -> f64 {
+        self.dist.iter().copied().fold(self.largest, f64::max)
+    }
+
     fn deviate(&mut self, dev: Option<f64>) {
         if let Some(d) = dev {
             self.deviation = Some(self.deviation.map_or(d, |x| x.max(d)));
         }
+    }
+
+    /// Search the distances of the withheld points `polar` (one per stored
+    /// sample with `images`) on the solid of `field`: only those that can set
+    /// H when only H is measured (cheaper than a mesh at any count), else
+    /// every one up to [`SURFACE_SEARCH_MAX_POINTS`]. False when a mesh is cheaper.
+    fn add_searched(
+        &mut self,
+        field: &dyn IntensityField,
+        polar: Vec<(DVec3, f64)>,
+        images: Option<SharedImages>,
+    ) -> bool {
+        let searched = images.as_ref().map_or(polar.len(), |i| i.first.len());
+        if self.hausdorff_only {
+            let points = match images {
+                Some(i) => i.first.iter().map(|&k| polar[k]).collect(),
+                None => polar,
+            };
+            let l = largest_distance_to_solid(field, &points, &NearestSearch::default(), self.h());
+            self.searched += l.searched;
+            self.largest = self.largest.max(l.value_cd);
+        } else if searched <= SURFACE_SEARCH_MAX_POINTS {
+            self.searched += searched;
+            self.dist.extend(surface_distances(field, &polar, images.as_ref()));
+        } else {
+            return false;
+        }
+        self.method("surface");
+        true
     }
 
     /// Rebuild `r` from `fold`'s kept data and measure the `withheld`
@@ -129,11 +169,7 @@ impl RowDistances {
             let values = &self.recon[self.recon.len() - polar.len()..];
             let tol_cd = SYMMETRY_TOLERANCE * fold.kept.max_cd();
             let images = shared_images(&*field, fold.kept.symmetry(), values, &withheld.stored, tol_cd);
-            let searched = images.as_ref().map_or(polar.len(), |i| i.first.len());
-            if searched <= SURFACE_SEARCH_MAX_POINTS {
-                self.method("surface");
-                self.searched += searched;
-                self.dist.extend(surface_distances(&*field, &polar, images.as_ref()));
+            if self.add_searched(&*field, polar, images) {
                 return Ok(());
             }
         }
@@ -441,10 +477,14 @@ impl<'a> HoldOut<'a> {
     /// at them (the folds pooled), its bytes and lookup time from all the data.
     fn row(&self, r: Recon, progress: &Progress<'_>) -> Result<ReconResult, ModelError> {
         let i_max = self.i_max;
-        let mut row_acc = RowDistances::default();
+        let mut row_acc = RowDistances {
+            hausdorff_only: self.opts.hausdorff_only,
+            ..RowDistances::default()
+        };
         for (fold, points) in self.folds.iter().zip(&self.sets) {
             row_acc.add_fold(r, fold, points, self.rotational, &self.refinement, progress)?;
         }
+        let h = row_acc.h();
         let RowDistances {
             recon: recon_all,
             dist: dist_all,
@@ -453,12 +493,14 @@ impl<'a> HoldOut<'a> {
             segments,
             methods,
             searched: _,
+            hausdorff_only,
+            largest: _,
         } = row_acc;
         let rad = radial_errors(&self.pooled, &self.m_all, &recon_all, i_max, self.opts.zotti_c);
         let n = dist_all.len().max(1) as f64;
-        let h = dist_all.iter().copied().fold(0.0, f64::max);
-        let mean = dist_all.iter().sum::<f64>() / n;
-        let rms = (dist_all.iter().map(|d| d * d).sum::<f64>() / n).sqrt();
+        // With H alone, the searched folds' points have no distances: no mean.
+        let mean = (!hausdorff_only).then(|| dist_all.iter().sum::<f64>() / n);
+        let rms = (!hausdorff_only).then(|| (dist_all.iter().map(|d| d * d).sum::<f64>() / n).sqrt());
         let field = self.full.field(r)?;
         let mut row = ReconResult::new(
             r.to_string(),
@@ -467,7 +509,7 @@ impl<'a> HoldOut<'a> {
                 value: h,
                 bound: 0.0,
                 recon_to_ref: None,
-                ref_to_recon: OneSided {
+                ref_to_recon: mean.zip(rms).map(|(mean, rms)| OneSided {
                     value: h,
                     bound: 0.0,
                     mean,
@@ -475,7 +517,7 @@ impl<'a> HoldOut<'a> {
                     queries: dist_all.len(),
                     // Exact point-to-triangle distances: nothing left to refine.
                     converged: true,
-                },
+                }),
                 mean,
                 rms,
                 radial_bound: rad.max_abs_cd,

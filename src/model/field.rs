@@ -111,6 +111,16 @@ pub trait IntensityField: Sync {
         false
     }
 
+    /// The smallest spacing (degrees) between the grid knots the field
+    /// interpolates, when it interpolates measured values on a C × γ grid:
+    /// its solid can have a basin (a local minimum of the distance to a
+    /// point) about that narrow, between two knots of a noisy plane, so the
+    /// surface search of [`crate::metrics::nearest`] samples no coarser.
+    /// `None` (the default) for a field with no such grid.
+    fn knot_spacing_deg(&self) -> Option<f64> {
+        None
+    }
+
     /// The field as constant cells, when it is exactly that (a nearest
     /// lookup of a texture): its solid is then spherical patches joined by
     /// radial walls, and [`crate::metrics::cells`] measures distances to it
@@ -197,6 +207,9 @@ impl IntensityField for Borrowed<'_> {
     }
     fn constant_cells(&self) -> Option<ConstantCells> {
         self.0.constant_cells()
+    }
+    fn knot_spacing_deg(&self) -> Option<f64> {
+        self.0.knot_spacing_deg()
     }
 }
 

@@ -113,4 +113,7 @@ impl IntensityField for Sampler<'_> {
     fn is_continuous(&self) -> bool {
         !matches!(self.filter, Filter::Nearest)
     }
+    fn knot_spacing_deg(&self) -> Option<f64> {
+        self.texture.knot_spacing_deg()
+    }
 }

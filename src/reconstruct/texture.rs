@@ -269,6 +269,19 @@ impl LightTexture {
     pub fn gamma_rows(&self) -> &[f64] {
         &self.gamma
     }
+    /// The smallest spacing (degrees) between two stored γ rows or two
+    /// full-circle C-planes; `None` with a single row and a single plane.
+    pub fn knot_spacing_deg(&self) -> Option<f64> {
+        let c = &self.c_axis.knots;
+        let seam = (c.len() > 1).then(|| c[0] + 360.0 - c[c.len() - 1]);
+        self.gamma
+            .windows(2)
+            .chain(c.windows(2))
+            .map(|w| w[1] - w[0])
+            .chain(seam)
+            .filter(|&s| s > 0.0)
+            .min_by(f64::total_cmp)
+    }
     /// What the stored band continues with below and above.
     pub fn ghosts(&self) -> (GhostKind, GhostKind) {
         self.ghosts

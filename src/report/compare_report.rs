@@ -33,6 +33,16 @@ pub fn hausdorff_text(r: &ReconResult, unit: &str) -> String {
 fn hausdorff_meaning(c: &Comparison) -> String {
     if c.hausdorff_certified() {
         "H certified: the true Hausdorff distance lies in [H, H + bound]; radial max is the radial bound (>= H)".into()
+    } else if c.results.iter().any(|r| r.mean_surface_distance_cd.is_none()) {
+        // CompareOptions::hausdorff_only (tradeoff): no point was searched that could not set H.
+        format!(
+            "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
+             (searched on the solid itself for continuous reconstructions, only from the points whose distance along \
+             their own direction exceeds the largest found, so at any count; in closed form for nearest texture \
+             lookups, to the mesh for the measured solid, other fields that jump and the GPU's); only H was measured: \
+             h(ref->recon) and mean dist are - where no point's distance was; radial max over the same points",
+            c.n_directions
+        )
     } else {
         format!(
             "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
@@ -198,8 +208,8 @@ fn row(r: &ReconResult) -> Vec<String> {
         num(r.hausdorff_cd),
         num(r.hausdorff_bound_cd),
         r.recon_to_ref.map_or("-".into(), |h| num(h.value)),
-        num(r.ref_to_recon.value),
-        num(r.mean_surface_distance_cd),
+        r.ref_to_recon.map_or("-".into(), |h| num(h.value)),
+        r.mean_surface_distance_cd.map_or("-".into(), num),
         num(r.radial_bound_cd),
         num(r.radial_max_pct),
         num(r.radial_rms_pct),
@@ -255,7 +265,7 @@ pub fn to_text(c: &Comparison) -> String {
         hausdorff_meaning(c)
     );
     for r in &c.results {
-        let partial = r.recon_to_ref.is_some_and(|h| !h.converged) || !r.ref_to_recon.converged;
+        let partial = r.recon_to_ref.is_some_and(|h| !h.converged) || r.ref_to_recon.is_some_and(|h| !h.converged);
         if partial {
             let _ = writeln!(
                 s,

@@ -89,12 +89,16 @@ fn surface_search_agrees_with_a_fine_mesh_on_synthetic_luminaires() {
 #[test]
 fn surface_search_agrees_with_a_fine_mesh_on_real_files() {
     let Some(root) = corpus() else { return };
-    for name in ["lithonia-iesparser/PMO_2_32_9LS_ASY.ies", "ils20/NDNN74022.ies"] {
+    for (name, filter) in [
+        ("lithonia-iesparser/PMO_2_32_9LS_ASY.ies", Filter::CatmullRom),
+        ("ils20/NDNN74022.ies", Filter::CatmullRom),
+        ("photompy/LLIA001477-003.ies", Filter::Bilinear),
+    ] {
         let path = root.join(name);
         let lum = photosolid::formats::load(&path).unwrap();
         let d = lum.distribution();
         let tex = LightTexture::new(d).unwrap();
-        agrees(name, d, &tex.sampler(Filter::CatmullRom));
+        agrees(&format!("{name} {filter}"), d, &tex.sampler(filter));
     }
 }
 
@@ -245,4 +249,79 @@ fn constant_cells_are_the_nearest_lookup() {
             assert!(reduced.reduced().is_none() || reduced.constant_cells().is_none());
         }
     }
+}
+
+/// The largest distance searched only where it can be set equals, bit for
+/// bit, the largest of every point's search, on a real file's bilinear
+/// solid and a synthetic Catmull-Rom one, and searches fewer points; a
+/// floor above every distance searches none of those below it, and
+/// extreme points (the origin, negative and infinite |p|) stay finite.
+#[test]
+fn largest_distance_searches_only_points_that_can_set_it() {
+    use photosolid::metrics::largest_distance_to_solid;
+    let roadway = Synth::Roadway
+        .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 5000.0)
+        .unwrap()
+        .into_distribution();
+    let mut cases = vec![("Roadway".to_string(), roadway, Filter::CatmullRom)];
+    if let Some(root) = corpus() {
+        let lum = photosolid::formats::load(root.join("photompy/LLIA001477-003.ies")).unwrap();
+        cases.push(("LLIA001477-003".into(), lum.distribution().clone(), Filter::Bilinear));
+    }
+    for (name, d, filter) in cases {
+        let tex = LightTexture::new(&d).unwrap();
+        let field = tex.sampler(filter);
+        // Points near the solid (a good reconstruction's withheld points) and a few far off.
+        let mut polar: Vec<(DVec3, f64)> = points(&d)
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                (
+                    p.normalize_or(DVec3::NEG_Z),
+                    p.length() * if k % 97 == 0 { 1.0 } else { 0.98 },
+                )
+            })
+            .collect();
+        polar.truncate(3000);
+        let search = NearestSearch::default();
+        let all = distances_to_solid(&field, &polar, &search);
+        let want = all.iter().copied().fold(0.0, f64::max);
+        let got = largest_distance_to_solid(&field, &polar, &search, 0.0);
+        assert_eq!(got.value_cd.to_bits(), want.to_bits(), "{name}");
+        assert!(
+            got.searched < polar.len(),
+            "{name}: searched {} of {}",
+            got.searched,
+            polar.len()
+        );
+        eprintln!(
+            "{name}: H {want:.4} cd, searched {} of {} points",
+            got.searched,
+            polar.len()
+        );
+        // A floor: only points whose own distance exceeds it are searched.
+        let floor = 2.0 * want;
+        let above = largest_distance_to_solid(&field, &polar, &search, floor);
+        assert!(above.value_cd <= floor, "{name}");
+        let own_above = polar
+            .iter()
+            .filter(|&&(w, m)| (field.intensity_dir_cd(w) - m).abs() > floor)
+            .count();
+        assert!(above.searched <= own_above, "{name}: {} > {own_above}", above.searched);
+    }
+    let field = |_: f64, g: f64| if g < 90.0 { 100.0 } else { 0.0 };
+    let odd = [
+        (DVec3::ZERO, 0.0),
+        (DVec3::X, -50.0),
+        (DVec3::Z, f64::INFINITY),
+        (DVec3::new(f64::NAN, 0.0, 0.0), 10.0),
+    ];
+    let got = largest_distance_to_solid(&field, &odd, &NearestSearch::default(), 0.0);
+    let want = distances_to_solid(&field, &odd, &NearestSearch::default())
+        .into_iter()
+        .fold(0.0, f64::max);
+    assert!(
+        got.value_cd.is_finite() && got.value_cd.to_bits() == want.to_bits(),
+        "{got:?} vs {want}"
+    );
 }

@@ -625,3 +625,34 @@ proptest! {
         }
     }
 }
+
+/// The knot spacing the surface search samples no coarser than: the
+/// smallest step between stored γ rows or full-circle C-planes (the seam
+/// included), and what a filter on the texture reports.
+#[test]
+fn knot_spacing_is_the_smallest_step_between_rows_or_planes() {
+    use photosolid::model::IntensityField;
+    let full = grid(&steps(0.0, 345.0, 15.0), &steps(0.0, 90.0, 5.0), Symmetry::None, solid);
+    let tex = LightTexture::new(&full).unwrap();
+    assert_eq!(tex.knot_spacing_deg(), Some(5.0));
+    assert_eq!(tex.sampler(Filter::Bilinear).knot_spacing_deg(), Some(5.0));
+    // Planes 0-350 every 10° but the seam closes with 350 → 0 (10°); γ every 20°.
+    let coarse = grid(
+        &steps(0.0, 350.0, 10.0),
+        &steps(0.0, 180.0, 20.0),
+        Symmetry::None,
+        solid,
+    );
+    assert_eq!(LightTexture::new(&coarse).unwrap().knot_spacing_deg(), Some(10.0));
+    // An uneven grid: the narrowest step wins.
+    let uneven = nonuniform();
+    let g = uneven.gamma_angles_deg();
+    let want = g.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
+    let got = LightTexture::new(&uneven).unwrap().knot_spacing_deg().unwrap();
+    assert!(got <= want + 1e-12 && got > 0.0, "{got} vs {want}");
+    // Rotational symmetry: one plane, the γ spacing alone.
+    let rot = grid(&[0.0], &steps(0.0, 90.0, 2.5), Symmetry::Rotational, |_, g| {
+        solid(0.0, g)
+    });
+    assert_eq!(LightTexture::new(&rot).unwrap().knot_spacing_deg(), Some(2.5));
+}

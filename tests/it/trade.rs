@@ -381,3 +381,72 @@ fn cli_tradeoff_json_keys() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--factors"));
 }
+
+/// `tradeoff` measures H alone (`CompareOptions::hausdorff_only`): a
+/// withheld point is searched only when its distance along its own
+/// direction exceeds the largest found. Its H is the full comparison's,
+/// bit for bit, row by row (filters, a texture, harmonics and lobes with
+/// their large caps), and it says what it did not measure (no mean, no
+/// h(ref->recon)) instead of reporting one.
+#[test]
+fn hausdorff_only_gives_the_full_comparisons_h() {
+    let mut files = vec![Synth::Roadway
+        .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
+        .unwrap()
+        .into_distribution()];
+    if let Some(root) = common::corpus() {
+        let lum = photosolid::formats::load(root.join("cu-ies/3.IES")).unwrap();
+        files.push(lum.distribution().clone());
+    }
+    let full = CompareOptions {
+        recons: vec![
+            Recon::Filter(Filter::Bilinear),
+            Recon::Filter(Filter::CatmullRom),
+            representations(Symmetry::None, &[2])
+                .into_iter()
+                .find(|r| matches!(r, Recon::Texture(_)) && r.to_string().ends_with("/catmull-rom"))
+                .unwrap(),
+            Recon::Sh {
+                degree: 4,
+                f16: false,
+                gpu: false,
+            },
+            Recon::Lobes { count: 2, gpu: false },
+        ],
+        against: Some(Against::Withheld),
+        directions: Directions::Dense(2000),
+        timing_samples: 100,
+        timing_repeats: 1,
+        ..CompareOptions::default()
+    };
+    for d in &files {
+        let a = compare(d, None, &full).unwrap();
+        let b = compare(
+            d,
+            None,
+            &CompareOptions {
+                hausdorff_only: true,
+                ..full.clone()
+            },
+        )
+        .unwrap();
+        for (x, y) in a.results.iter().zip(&b.results) {
+            assert_eq!(x.hausdorff_cd.to_bits(), y.hausdorff_cd.to_bits(), "{}", x.name);
+            assert!(
+                x.mean_surface_distance_cd.is_some() && x.ref_to_recon.is_some(),
+                "{}",
+                x.name
+            );
+            let searched = y.withheld_distance.as_deref() == Some("surface");
+            assert!(
+                y.mean_surface_distance_cd.is_none() && y.ref_to_recon.is_none(),
+                "{}",
+                x.name
+            );
+            eprintln!(
+                "{}: H {:.4} cd, searched on the surface: {searched}",
+                x.name, x.hausdorff_cd
+            );
+        }
+    }
+}
