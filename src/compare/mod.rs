@@ -298,11 +298,11 @@ pub struct CompareOptions {
     /// withholds them instead of the converted grid's points. Default: none.
     pub source: Option<SourceMeasurements>,
     /// Measure only the Hausdorff distance of the `withheld` reference:
-    /// a rebuilt solid searched on its surface is searched only from the
-    /// withheld points whose distance can be the largest
-    /// ([`crate::metrics::largest_distance_to_solid`]; at any point count,
-    /// never meshed), so the rows' mean and RMS distances and their
-    /// `ref_to_recon` are not measured (`None`). `tradeoff` sets it: its
+    /// a rebuilt solid searched on its surface (at any point count, never
+    /// meshed) or made of constant cells is measured only from the withheld
+    /// points whose distance can be the largest ([`crate::metrics::largest`]),
+    /// so the rows' mean and RMS distances and their `ref_to_recon` are not
+    /// measured (`None`). `tradeoff` sets it: its
     /// table shows H alone. Other references ignore it. Default: false.
     pub hausdorff_only: bool,
 }

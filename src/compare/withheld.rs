@@ -15,7 +15,7 @@ use glam::DVec3;
 
 use super::{mark_pareto, own_or_grid_solid, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
-use crate::metrics::cells::distances_to_cells;
+use crate::metrics::cells::{distances_to_cells, largest_distance_to_cells};
 use crate::metrics::hausdorff::distances;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
@@ -154,11 +154,16 @@ impl RowDistances {
             self.dist.extend(profile::distances_3d(&points, &own));
             return Ok(());
         }
-        // Constant cells (a nearest texture lookup): exact distances to its
+        // Constant cells (a nearest lookup of a texture or of the data): exact distances to its
         // patches and walls in closed form (metrics::cells), no mesh.
         if let Some(cells) = field.constant_cells() {
             self.method("cells");
-            self.dist.extend(distances_to_cells(&cells, &polar));
+            if self.hausdorff_only {
+                let l = largest_distance_to_cells(&cells, &polar, self.h());
+                self.largest = self.largest.max(l.value_cd);
+            } else {
+                self.dist.extend(distances_to_cells(&cells, &polar));
+            }
             return Ok(());
         }
         // Any other continuous field: the distance to its solid, searched on

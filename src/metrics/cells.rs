@@ -29,6 +29,7 @@ use std::f64::consts::PI;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::largest::{largest_of, LargestDistance};
 use crate::model::frame::unit_angles;
 use crate::model::ConstantCells;
 
@@ -40,6 +41,25 @@ use crate::model::ConstantCells;
 pub fn distances_to_cells(cells: &ConstantCells, points: &[(DVec3, f64)]) -> Vec<f64> {
     let grid = Grid::new(cells);
     points.par_iter().map(|&(dir, m)| grid.distance(dir, m)).collect()
+}
+
+/// The largest of [`distances_to_cells`] over `points` when it exceeds
+/// `floor` (cd), bit for bit, searching only the points that can set it
+/// ([`largest_of`]): a point's distance is at most the distance to its own
+/// cell's patch along its own direction, one lookup.
+pub fn largest_distance_to_cells(cells: &ConstantCells, points: &[(DVec3, f64)], floor: f64) -> LargestDistance {
+    let grid = Grid::new(cells);
+    let bounds: Vec<f64> = points.par_iter().map(|&(dir, m)| grid.start(dir, m).0).collect();
+    largest_of(&bounds, floor, |k| grid.distance(points[k].0, points[k].1))
+}
+
+/// A point whose search is not over at its start: its unit direction, C and
+/// γ (radians) and |p| (cd).
+struct Query {
+    u: DVec3,
+    cu: f64,
+    gu: f64,
+    rho: f64,
 }
 
 /// The cells with their edges in radians.
@@ -78,22 +98,31 @@ impl<'a> Grid<'a> {
         edges[1..n].partition_point(|&e| e <= x)
     }
 
-    fn distance(&self, dir: DVec3, m: f64) -> f64 {
+    /// Where the search of [`Grid::distance`] starts: the distance to the
+    /// patch of the point's own cell along its own direction (never less
+    /// than the answer), and the point to search from; `None` when that
+    /// start is the answer.
+    fn start(&self, dir: DVec3, m: f64) -> (f64, Option<Query>) {
         if self.rows == 0 || self.cols == 0 || self.cells.values_cd.is_empty() {
-            return m.abs();
+            return (m.abs(), None);
         }
         let Some(u) = dir.try_normalize() else {
-            return self.cells.values_cd.iter().copied().fold(f64::INFINITY, f64::min);
+            return (self.cells.values_cd.iter().copied().fold(f64::INFINITY, f64::min), None);
         };
         debug_assert!(m.is_finite(), "a measured value is finite");
         let rho = m.max(0.0);
         let (c_deg, g_deg) = unit_angles(u);
         let (cu, gu) = (c_deg.to_radians(), g_deg.to_radians());
         let (iu, ju) = (Self::interval(&self.gamma, gu), Self::interval(&self.c, cu));
-        let mut best = (rho - self.cells.value(iu, ju)).abs();
-        if best == 0.0 {
-            return 0.0;
-        }
+        let best = (rho - self.cells.value(iu, ju)).abs();
+        (best, (best != 0.0).then_some(Query { u, cu, gu, rho }))
+    }
+
+    fn distance(&self, dir: DVec3, m: f64) -> f64 {
+        let (mut best, point) = self.start(dir, m);
+        let Some(Query { u, cu, gu, rho }) = point else {
+            return best;
+        };
         // The cap around u that can hold a nearer point, as rows and columns.
         let cap = if best < rho { (best / rho).asin() } else { PI };
         let (g_lo, g_hi) = (gu - cap, gu + cap);

@@ -4,6 +4,7 @@ pub mod bvh;
 pub mod cells;
 pub mod cost;
 pub mod hausdorff;
+pub mod largest;
 pub mod nearest;
 pub mod profile;
 pub mod radial;
@@ -12,7 +13,8 @@ mod refine;
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
 pub use hausdorff::{hausdorff, hausdorff_bvh, one_sided, Hausdorff, MeshRef, OneSided};
-pub use nearest::{distance_to_solid, distances_to_solid, largest_distance_to_solid, LargestDistance, NearestSearch};
+pub use largest::{largest_of, LargestDistance};
+pub use nearest::{distance_to_solid, distances_to_solid, largest_distance_to_solid, NearestSearch};
 pub use radial::{
     field_radial_errors, radial_errors, refine_max, DirectionSet, MaxRefinement, RadialErrors, RefinedMax,
     MAX_REFINEMENT, ZOTTI_C,

@@ -50,6 +50,7 @@ use rayon::prelude::*;
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
+use super::largest::{largest_of, LargestDistance};
 use super::radial::{tangents, DirectionSet};
 use crate::model::{frame, IntensityField};
 
@@ -192,67 +193,25 @@ fn own_distance(field: &dyn IntensityField, dir: DVec3, m: f64) -> f64 {
         0.0
     }
 }
-/// The largest distance over a set of points and how many were searched
-/// ([`largest_distance_to_solid`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LargestDistance {
-    /// The largest distance found, cd (0 when no point was searched): the
-    /// largest over all the points whenever it exceeds the floor.
-    pub value_cd: f64,
-    /// Points searched; the others could not exceed the largest distance.
-    pub searched: usize,
-}
-
 /// The largest [`distance_to_solid`] over `points`, when it exceeds `floor`
 /// (cd; a distance already found elsewhere, 0 for none), searching only the
-/// points that can set it.
-///
-/// A point's distance is at most U, the distance to the surface point in its
-/// own direction (the search starts there and never returns more), and U
-/// costs one lookup. So the points are searched in order of decreasing U,
-/// a batch at a time (in parallel), until the next U is no larger than the
-/// largest distance found or than `floor`: no point left can exceed it. The
-/// value is bit for bit the largest of [`distances_to_solid`] over the same
-/// points whenever that exceeds `floor`. For a good reconstruction nearly
-/// every point's U is below the largest distance, and few are searched.
+/// points that can set it ([`largest_of`]): a point's distance is at most U,
+/// the distance to the surface point in its own direction (the search starts
+/// there and never returns more), which costs one lookup. The value is bit
+/// for bit the largest of [`distances_to_solid`] over the same points
+/// whenever that exceeds `floor`. For a good reconstruction nearly every
+/// point's U is below the largest distance, and few are searched.
 pub fn largest_distance_to_solid(
     field: &dyn IntensityField,
     points: &[(DVec3, f64)],
     search: &NearestSearch,
     floor: f64,
 ) -> LargestDistance {
-    let mut order: Vec<(f64, usize)> = points
-        .par_iter()
-        .enumerate()
-        .map(|(k, &(dir, m))| (own_distance(field, dir, m), k))
-        .collect();
-    order.sort_by(|a, b| b.0.total_cmp(&a.0));
-    let mut best = 0.0_f64;
-    let mut searched = 0;
-    let batch = LARGEST_BATCH * rayon::current_num_threads().max(1);
-    while searched < order.len() && order[searched].0 > best.max(floor) {
-        let bar = best.max(floor);
-        let end = order[searched..]
-            .iter()
-            .take(batch)
-            .take_while(|&&(u, _)| u > bar)
-            .count()
-            + searched;
-        best = order[searched..end]
-            .par_iter()
-            .map(|&(_, k)| distance_to_solid(field, points[k].0, points[k].1, search))
-            .reduce(|| best, f64::max);
-        searched = end;
-    }
-    LargestDistance {
-        value_cd: best,
-        searched,
-    }
+    let bounds: Vec<f64> = points.par_iter().map(|&(dir, m)| own_distance(field, dir, m)).collect();
+    largest_of(&bounds, floor, |k| {
+        distance_to_solid(field, points[k].0, points[k].1, search)
+    })
 }
-
-/// Points searched at a time per thread by [`largest_distance_to_solid`]:
-/// enough to keep the threads busy, few enough that the bar rises soon.
-const LARGEST_BATCH: usize = 32;
 
 /// The sine of the largest cap radius (U / m) whose extra seeds are only the
 /// local minima of its samples (module documentation).

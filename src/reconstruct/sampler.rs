@@ -8,7 +8,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::model::frame::angles;
-use crate::model::IntensityField;
+use crate::model::{ConstantCells, IntensityField, ANGLE_EPS};
 
 use super::filter::Filter;
 use super::texture::LightTexture;
@@ -115,5 +115,61 @@ impl IntensityField for Sampler<'_> {
     }
     fn knot_spacing_deg(&self) -> Option<f64> {
         self.texture.knot_spacing_deg()
+    }
+    /// A nearest filter is constant between the midpoints of its knots
+    /// (`nearest_cells`); `None` for every other filter, and where a value
+    /// is negative (unclamped data below 0, which cells do not hold).
+    fn constant_cells(&self) -> Option<ConstantCells> {
+        if self.filter != Filter::Nearest {
+            return None;
+        }
+        let cells = nearest_cells(self);
+        cells.values_cd.iter().all(|&v| v >= 0.0).then_some(cells)
+    }
+}
+
+/// The cells of a nearest filter on its texture: C edges at the midpoints
+/// between neighbouring full-circle planes (the seam's included) and γ
+/// edges at the midpoints between stored rows, and where the stored band
+/// ends (ANGLE_EPS beyond its first and last row, where every lookup
+/// becomes 0), each cell valued by the sampler at its centre. The tap picks
+/// the nearer knot of the interval a query falls in, so the lookup is
+/// constant on each cell; which side a midpoint itself takes does not
+/// matter to a distance, since the wall between the two values is part of
+/// the solid either way.
+fn nearest_cells(sampler: &Sampler<'_>) -> ConstantCells {
+    let g = sampler.texture.gamma_rows();
+    let mut gamma_edges = vec![0.0];
+    if let (Some(&a), Some(&b)) = (g.first(), g.last()) {
+        gamma_edges.push(a - ANGLE_EPS);
+        gamma_edges.extend(g.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+        gamma_edges.push(b + ANGLE_EPS);
+    }
+    gamma_edges.push(180.0);
+    let c: Vec<f64> = sampler.texture.full_circle().map(|(c, _)| c).collect();
+    let mut c_edges = vec![0.0, 360.0];
+    if c.len() >= 2 {
+        c_edges.extend(c.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+        c_edges.push(crate::model::wrap360(0.5 * (c[c.len() - 1] + c[0] + 360.0)));
+    }
+    let edges = |mut e: Vec<f64>, hi: f64| {
+        e.retain(|x| (0.0..=hi).contains(x));
+        e.sort_by(f64::total_cmp);
+        e.dedup();
+        e
+    };
+    let (gamma_edges, c_edges) = (edges(gamma_edges, 180.0), edges(c_edges, 360.0));
+    let values_cd = gamma_edges
+        .windows(2)
+        .flat_map(|gw| {
+            let g = 0.5 * (gw[0] + gw[1]);
+            c_edges.windows(2).map(move |cw| (0.5 * (cw[0] + cw[1]), g))
+        })
+        .map(|(c, g)| sampler.cd(c, g))
+        .collect();
+    ConstantCells {
+        gamma_edges_deg: gamma_edges,
+        c_edges_deg: c_edges,
+        values_cd,
     }
 }

@@ -37,18 +37,20 @@ fn hausdorff_meaning(c: &Comparison) -> String {
         // CompareOptions::hausdorff_only (tradeoff): no point was searched that could not set H.
         format!(
             "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
-             (searched on the solid itself for continuous reconstructions, only from the points whose distance along \
-             their own direction exceeds the largest found, so at any count; in closed form for nearest texture \
-             lookups, to the mesh for the measured solid, other fields that jump and the GPU's); only H was measured: \
-             h(ref->recon) and mean dist are - where no point's distance was; radial max over the same points",
+             (searched on the solid itself for continuous reconstructions, only from the points whose distance \
+             along their own direction exceeds the largest found, so at any count; in closed form for nearest \
+             lookups, where a point on the wall between two cells is on the solid; to the mesh for the measured \
+             solid, other fields that jump and the GPU's); only H was measured: h(ref->recon) and mean dist are \
+             not (-); radial max over the same points",
             c.n_directions
         )
     } else {
         format!(
             "H: the exact one-sided distance from the {} withheld measured points to each solid rebuilt without them \
              (no bound to certify; searched on the solid itself for continuous reconstructions, in closed form for \
-             nearest texture lookups, to the mesh for the measured solid, other fields that jump, the GPU's and folds \
-             of over {} searched points; each row's withheld_distance says which); radial max over the same points",
+             nearest lookups, where a point on the wall between two cells is on the solid; to the mesh for the \
+             measured solid, other fields that jump, the GPU's and folds of over {} searched points; each row's \
+             withheld_distance says which); radial max over the same points",
             c.n_directions,
             crate::compare::SURFACE_SEARCH_MAX_POINTS
         )
