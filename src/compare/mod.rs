@@ -419,7 +419,7 @@ pub struct ReconResult {
     /// fold with more than [`SURFACE_SEARCH_MAX_POINTS`] searched points, where one mesh is cheaper,
     /// or to the measured solid), `cells` (exact, in closed form, to the
     /// patches and walls of a field made of constant cells: a nearest
-    /// texture lookup, [`crate::metrics::cells`]), `profile` (a solid of
+    /// lookup of a texture or of the data, [`crate::metrics::cells`]), `profile` (a solid of
     /// revolution's meridian), or `origin` (kept data all zero); several
     /// joined by `+` when folds differ.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -61,11 +61,11 @@ struct RowDistances {
     methods: Vec<&'static str>,
     /// Points searched on the solid (symmetric images share a search).
     searched: usize,
-    /// Only H is measured ([`CompareOptions::hausdorff_only`]): `dist` then
-    /// holds the distances of the folds measured point by point, and
-    /// `largest` the largest distance of the searched folds.
+    /// Only H is measured ([`CompareOptions::hausdorff_only`]): the folds
+    /// searched on the solid or in cells then add only to `largest`, and
+    /// `dist` holds the distances of the others (meshes, profiles).
     hausdorff_only: bool,
-    /// The largest distance of the folds searched for H alone, cd.
+    /// The largest distance of the folds measured for H alone, cd.
     largest: f64,
 }
 

@@ -1,5 +1,5 @@
 //! Exact distances to the solid of a field made of constant cells
-//! ([`ConstantCells`]: a nearest lookup of a texture).
+//! ([`ConstantCells`]: a nearest lookup of a texture or of the data).
 //!
 //! Such a solid is, per cell, a patch of the sphere of radius r_ij over the
 //! cell's C × γ rectangle, and, per edge between two cells of different

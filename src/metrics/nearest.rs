@@ -100,15 +100,7 @@ struct Candidate {
 pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search: &NearestSearch) -> f64 {
     let (own, m) = own_point(dir, m);
     let p = m * own;
-    let at = |w: DVec3| {
-        let r = field.intensity_dir_cd(w);
-        let r = if r.is_finite() { r } else { 0.0 };
-        Candidate {
-            w,
-            r,
-            d: p.distance(r * w),
-        }
-    };
+    let at = |w: DVec3| candidate(field, p, w);
     let first = at(own);
     let u = first.d;
     if u == 0.0 || !m.is_finite() {
@@ -118,7 +110,7 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
     let cap = (u / m).min(1.0).asin();
     let rings = rings_across(cap, field.knot_spacing_deg(), search);
     if u < m {
-        sample_cap(own, m, &at, rings, &mut samples);
+        sample_cap(own, m, &at, cap / rings as f64, rings, &mut samples);
     } else {
         for &(c, g) in &DirectionSet::fibonacci(search.sphere).directions {
             samples.push(at(frame::direction(c, g)));
@@ -178,21 +170,32 @@ fn own_point(dir: DVec3, m: f64) -> (DVec3, f64) {
     (own, if m.is_finite() { m } else { f64::INFINITY })
 }
 
+/// The surface point in unit direction `w` (a non-finite value read as 0)
+/// and its distance from `p`.
+fn candidate(field: &dyn IntensityField, p: DVec3, w: DVec3) -> Candidate {
+    let r = field.intensity_dir_cd(w);
+    let r = if r.is_finite() { r } else { 0.0 };
+    Candidate {
+        w,
+        r,
+        d: p.distance(r * w),
+    }
+}
+
 /// What [`distance_to_solid`] returns at most for the same point: U, the
 /// distance to the surface point in p's own direction (where the search
 /// starts, and what it returns for a point infinitely far, 0 when U is not
 /// finite), for one lookup.
 fn own_distance(field: &dyn IntensityField, dir: DVec3, m: f64) -> f64 {
     let (own, m) = own_point(dir, m);
-    let r = field.intensity_dir_cd(own);
-    let r = if r.is_finite() { r } else { 0.0 };
-    let u = (m * own).distance(r * own);
+    let u = candidate(field, m * own, own).d;
     if u.is_finite() {
         u
     } else {
         0.0
     }
 }
+
 /// The largest [`distance_to_solid`] over `points`, when it exceeds `floor`
 /// (cd; a distance already found elsewhere, 0 for none), searching only the
 /// points that can set it ([`largest_of`]): a point's distance is at most U,
@@ -249,11 +252,9 @@ pub fn distances_to_solid(field: &dyn IntensityField, points: &[(DVec3, f64)], s
 }
 
 /// Sample the cap around `own` (p's direction, |p| = `m`) with `rings`
-/// rings across it (`out[0]`, the sample at `own`, sets its radius),
-/// stopping at the first ring outside the cap of the best distance so far.
-fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, rings: usize, out: &mut Vec<Candidate>) {
-    let cap = (out[0].d / m).min(1.0).asin();
-    let step = cap / rings as f64;
+/// rings `step` radians apart (`out[0]` is the sample at `own`), stopping
+/// at the first ring outside the cap of the best distance so far.
+fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, step: f64, rings: usize, out: &mut Vec<Candidate>) {
     let (e1, e2) = own.any_orthonormal_pair();
     let mut best = out[0].d;
     for i in 1..=rings {

@@ -122,7 +122,7 @@ pub trait IntensityField: Sync {
     }
 
     /// The field as constant cells, when it is exactly that (a nearest
-    /// lookup of a texture): its solid is then spherical patches joined by
+    /// lookup of a texture or of the data): its solid is then spherical patches joined by
     /// radial walls, and [`crate::metrics::cells`] measures distances to it
     /// exactly instead of on a mesh. `None` (the default) for every other field.
     fn constant_cells(&self) -> Option<ConstantCells> {
