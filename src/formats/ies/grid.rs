@@ -178,9 +178,10 @@ pub(super) fn warn_negatives(cd: &[f64], warnings: &mut Vec<Warning>) {
 /// The nadir and zenith are one direction: values that differ between planes are warned about.
 pub(super) fn warn_pole_spread(distribution: &Distribution, warnings: &mut Vec<Warning>) {
     let (nadir, zenith) = distribution.pole_spread_cd();
-    let peak = distribution.max_cd().abs().max(f64::MIN_POSITIVE);
+    // The peak is one more pass over up to 65 k values: only asked for when a pole differs.
+    let peak = || distribution.max_cd().abs().max(f64::MIN_POSITIVE);
     for (name, spread) in [("nadir (gamma 0)", nadir), ("zenith (gamma 180)", zenith)] {
-        if spread > 1e-9 * peak {
+        if spread > 0.0 && spread > 1e-9 * peak() {
             warnings.push(Warning::new(
                 WarningCode::PoleMismatch,
                 format!(

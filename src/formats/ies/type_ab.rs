@@ -250,10 +250,11 @@ impl<'g> Resampler<'g> {
                 };
                 let ih1 = (ih + 1).min(hs.len() - 1);
                 let iv1 = (iv + 1).min(nv - 1);
+                // `to_type_c_at` refuses grids of u32::MAX / 4 values or more,
+                // so the index and the packed steps fit.
                 return Tap {
-                    base: ih * nv + iv,
-                    dh: (ih1 - ih) * nv,
-                    dv: iv1 - iv,
+                    base: (ih * nv + iv) as u32,
+                    steps: (((ih1 - ih) * nv) << 1 | (iv1 - iv)) as u32,
                     th,
                     tv,
                 };
@@ -265,12 +266,13 @@ impl<'g> Resampler<'g> {
 
 /// One target direction's bilinear lookup in a source grid: the corners
 /// `cd[base]`, `cd[base + dv]` (next V), `cd[base + dh]` (next H),
-/// `cd[base + dh + dv]` and the fractions along H and V.
+/// `cd[base + dh + dv]` and the fractions along H and V. Packed into 24
+/// bytes (`steps` = dh << 1 | dv, dv being 0 or 1): a 1° full target grid's
+/// table is read once per converted file, 1.6 MB instead of 2.6 MB.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Tap {
-    base: usize,
-    dh: usize,
-    dv: usize,
+    base: u32,
+    steps: u32,
     th: f64,
     tv: f64,
 }
@@ -278,30 +280,71 @@ struct Tap {
 impl Tap {
     /// No parametrisation of the direction lies in the grid: 0 cd.
     const OUTSIDE: Tap = Tap {
-        base: usize::MAX,
-        dh: 0,
-        dv: 0,
+        base: u32::MAX,
+        steps: 0,
         th: 0.0,
         tv: 0.0,
     };
 
-    /// The value (the reference lookup's expression, term for term).
+    /// The value of a tap inside the grid (the reference lookup's
+    /// expression, term for term).
     #[inline]
     fn apply(&self, cd: &[f64]) -> f64 {
-        if self.base == usize::MAX {
-            return 0.0;
-        }
-        let (i, tv, th) = (self.base, self.tv, self.th);
-        let a = cd[i] * (1.0 - tv) + cd[i + self.dv] * tv;
-        let b = cd[i + self.dh] * (1.0 - tv) + cd[i + self.dh + self.dv] * tv;
+        let (i, tv, th) = (self.base as usize, self.tv, self.th);
+        let dv = (self.steps & 1) as usize;
+        let dh = (self.steps >> 1) as usize;
+        let a = cd[i] * (1.0 - tv) + cd[i + dv] * tv;
+        let b = cd[i + dh] * (1.0 - tv) + cd[i + dh + dv] * tv;
         a * (1.0 - th) + b * th
+    }
+}
+
+/// The taps of every target direction, and the runs of consecutive ones
+/// inside the source grid (`[start, end)`): a floodlight's grid covers one
+/// hemisphere, so half the target is 0 cd and is never visited.
+struct TapTable {
+    taps: Vec<Tap>,
+    inside: Vec<(u32, u32)>,
+}
+
+impl TapTable {
+    fn new(taps: Vec<Tap>) -> Self {
+        let mut inside = Vec::new();
+        let mut start = None;
+        for (k, t) in taps.iter().enumerate() {
+            match (t.base == u32::MAX, start) {
+                (false, None) => start = Some(k),
+                (true, Some(s)) => {
+                    inside.push((s as u32, k as u32));
+                    start = None;
+                }
+                _ => {}
+            }
+        }
+        if let Some(s) = start {
+            inside.push((s as u32, taps.len() as u32));
+        }
+        TapTable { taps, inside }
+    }
+
+    /// The target values for the source values `cd`: 0 outside the grid.
+    fn apply(&self, cd: &[f64]) -> Vec<f64> {
+        // Filled in order, each value written once (no zeroing pass first).
+        let mut out = Vec::with_capacity(self.taps.len());
+        for &(start, end) in &self.inside {
+            let (start, end) = (start as usize, end as usize);
+            out.resize(start, 0.0);
+            out.extend(self.taps[start..end].iter().map(|t| t.apply(cd)));
+        }
+        out.resize(self.taps.len(), 0.0);
+        out
     }
 }
 
 /// The taps of every target direction for one source grid's angles: they
 /// depend on the angles, not on the candela values, and a catalogue's Type B
 /// files share a few goniometer grids, so the last few are kept per process.
-type Taps = Arc<Vec<Tap>>;
+type Taps = Arc<TapTable>;
 
 #[derive(Clone, PartialEq)]
 struct TapsKey {
@@ -311,7 +354,7 @@ struct TapsKey {
 }
 
 /// Tap tables kept, and the largest one kept (a 1° full target grid has 65,160
-/// taps, 2.6 MB; a 0.5° half grid 130,682).
+/// taps, 1.6 MB; a 0.5° half grid 130,682).
 const TAPS_CACHE: usize = 4;
 const TAPS_CACHED_MAX: usize = 140_000;
 
@@ -337,8 +380,8 @@ fn taps(key: TapsKey, grid: &SourceGrid, mirror: bool, hv: &[(f64, f64)]) -> Tap
     } else {
         fill(&mut t, hv);
     }
-    let t = Arc::new(t);
-    if t.len() <= TAPS_CACHED_MAX {
+    let t = Arc::new(TapTable::new(t));
+    if t.taps.len() <= TAPS_CACHED_MAX {
         let mut cache = cache.lock().unwrap_or_else(|e| e.into_inner());
         if lookup(&cache).is_none() {
             if cache.len() >= TAPS_CACHE {
@@ -457,6 +500,13 @@ pub fn to_type_c_at(grid: &SourceGrid, handedness: Handedness, step: f64) -> Res
             ),
         });
     }
+    if grid.cd.len() >= (u32::MAX / 4) as usize {
+        return Err(ModelError::Intensities(format!(
+            "{} values: a Type A/B grid converts up to {} values",
+            grid.cd.len(),
+            u32::MAX / 4
+        )));
+    }
     let mirror = laterally_symmetric(grid);
     let n_gamma = (180.0 / step).round() as usize + 1;
     let gamma: Vec<f64> = (0..n_gamma).map(|i| (i as f64 * step).min(180.0)).collect();
@@ -482,7 +532,7 @@ pub fn to_type_c_at(grid: &SourceGrid, handedness: Handedness, step: f64) -> Res
         horizontal: grid.horizontal.clone(),
     };
     let taps = taps(key, grid, mirror, &hv);
-    let cd: Vec<f64> = taps.iter().map(|t| t.apply(&grid.cd)).collect();
+    let cd = taps.apply(&grid.cd);
     Distribution::new(c, gamma, cd, symmetry)
 }
 
