@@ -222,6 +222,7 @@ impl<'a> FieldComparison<'a> {
             zotti_c: self.opts.zotti_c,
             timing: &self.timing,
             repeats: self.opts.timing_repeats,
+            hausdorff_only: self.opts.hausdorff_only,
         }
     }
 

@@ -21,6 +21,9 @@ pub(crate) struct FieldTarget<'a> {
     /// Unit directions to time lookups on (none: no timing).
     pub timing: &'a [glam::DVec3],
     pub repeats: usize,
+    /// Only H is measured between the solids (the triangles that cannot set
+    /// it are pruned, [`solid_hausdorff_bounded`]): no mean or RMS distance.
+    pub hausdorff_only: bool,
 }
 
 /// One row: `field` (whose solid is `solid`) against `target`, every metric.
@@ -30,8 +33,13 @@ pub(crate) fn measure_field(
     solid: &Mesh,
     target: &FieldTarget<'_>,
 ) -> ReconResult {
-    let h = solid_hausdorff(solid, target.solid, target.tol_cd);
-    let radial = radial_bound(&RadialMesh::new(solid), target.radial, &target.set.directions);
+    let own = RadialMesh::new(solid);
+    let h = if target.hausdorff_only {
+        solid_hausdorff_bounded((solid, &own), (target.solid, target.radial), target.tol_cd)
+    } else {
+        solid_hausdorff(solid, target.solid, target.tol_cd)
+    };
+    let radial = radial_bound(&own, target.radial, &target.set.directions);
     measured_row(name, field, field, &h, radial, target, solid.n_triangles())
 }
 
@@ -92,8 +100,8 @@ fn measured_row(
             bound: h.bound,
             recon_to_ref: Some(ab),
             ref_to_recon: Some(ba),
-            mean: Some(0.5 * (ab.mean + ba.mean)),
-            rms: Some((0.5 * (ab.rms * ab.rms + ba.rms * ba.rms)).sqrt()),
+            mean: ab.mean.zip(ba.mean).map(|(x, y)| 0.5 * (x + y)),
+            rms: ab.rms.zip(ba.rms).map(|(x, y)| (0.5 * (x * x + y * y)).sqrt()),
             radial_bound: radial,
         },
         &rad,

@@ -90,8 +90,8 @@ pub use withheld::SURFACE_SEARCH_MAX_POINTS;
 use crate::error::ModelError;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
-    field_radial_errors, hausdorff_bvh, pareto_front, random_directions, time_per_sample_ns, Bvh, DirectionSet,
-    Hausdorff, OneSided, MAX_REFINEMENT, ZOTTI_C,
+    field_radial_errors, hausdorff_bvh, hausdorff_bvh_bounded, pareto_front, random_directions, time_per_sample_ns,
+    Bvh, DirectionSet, Hausdorff, OneSided, MAX_REFINEMENT, ZOTTI_C,
 };
 pub use crate::model::Progress;
 use crate::model::{Distribution, IntensityField, Symmetry};
@@ -649,6 +649,54 @@ pub fn solid_hausdorff(a: &Mesh, b: &Mesh, tolerance: f64) -> Hausdorff {
         || Bvh::build_owned(b.positions_f64(), b.triangles()),
     );
     hausdorff_bvh((&ba, a.triangles()), (&bb, b.triangles()), tolerance)
+}
+
+/// [`solid_hausdorff`] searching only for H ([`hausdorff_bvh_bounded`]):
+/// each solid with its radial function, which bounds every vertex's
+/// distance to the other solid. No mean or RMS distance.
+pub fn solid_hausdorff_bounded(a: (&Mesh, &RadialMesh), b: (&Mesh, &RadialMesh), tolerance: f64) -> Hausdorff {
+    let (pa, pb) = (a.0.positions_f64(), b.0.positions_f64());
+    let scale = a.0.max_radius().max(b.0.max_radius());
+    let ((ua, ub), (ba, bb)) = rayon::join(
+        || {
+            rayon::join(
+                || vertex_bounds(&pa, (b.1, &pb), scale),
+                || vertex_bounds(&pb, (a.1, &pa), scale),
+            )
+        },
+        || {
+            rayon::join(
+                || Bvh::build_owned(pa.clone(), a.0.triangles()),
+                || Bvh::build_owned(pb.clone(), b.0.triangles()),
+            )
+        },
+    );
+    hausdorff_bvh_bounded((&ba, a.0.triangles(), &ua), (&bb, b.0.triangles(), &ub), tolerance)
+}
+
+/// An upper bound of each point's distance to the solid `other` (its
+/// radial function and vertex positions), `scale` the larger solid's radius (cd).
+///
+/// A point p ≠ 0 is |r − |p|| from the point r·p̂ where the ray along p̂
+/// leaves `other` (a point of one of its triangles); where the ray meets
+/// no triangle (r = 0: a zero-intensity region) or p is the origin, the
+/// triangle inequality through the origin gives |p| + the nearest vertex's
+/// radius. The margin (1e-9 relative plus 1e-7 of the scale) covers the
+/// ray test's tolerance and rounding: a bound, never an estimate.
+fn vertex_bounds(points: &[glam::DVec3], other: (&RadialMesh, &[glam::DVec3]), scale: f64) -> Vec<f64> {
+    use rayon::prelude::*;
+    let (radial, other_points) = other;
+    let nearest_vertex = other_points.iter().map(|q| q.length()).fold(f64::INFINITY, f64::min);
+    let margin = 1e-7 * scale;
+    points
+        .par_iter()
+        .map(|&p| {
+            let n = p.length();
+            let r = if n > 1e-9 * scale { radial.radius(p / n) } else { 0.0 };
+            let u = if r > 0.0 { (n - r).abs() } else { n + nearest_vertex };
+            u * (1.0 + 1e-9) + margin
+        })
+        .collect()
 }
 
 /// The polygon sag of a mesh whose vertices lie on the sphere of `radius` about the origin:

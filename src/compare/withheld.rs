@@ -517,8 +517,8 @@ impl<'a> HoldOut<'a> {
                 ref_to_recon: mean.zip(rms).map(|(mean, rms)| OneSided {
                     value: h,
                     bound: 0.0,
-                    mean,
-                    rms,
+                    mean: Some(mean),
+                    rms: Some(rms),
                     queries: dist_all.len(),
                     // Exact point-to-triangle distances: nothing left to refine.
                     converged: true,

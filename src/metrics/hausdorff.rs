@@ -48,10 +48,11 @@ pub struct OneSided {
     pub value: f64,
     /// Certified gap: the supremum is at most `value + bound`.
     pub bound: f64,
-    /// Area-weighted mean distance (estimate).
-    pub mean: f64,
-    /// Area-weighted RMS distance (estimate).
-    pub rms: f64,
+    /// Area-weighted mean distance (estimate); `None` when only the
+    /// supremum was searched ([`one_sided_bounded`]).
+    pub mean: Option<f64>,
+    /// Area-weighted RMS distance (estimate); `None` as `mean`.
+    pub rms: Option<f64>,
     /// Distance queries made (vertices plus refinement points).
     pub queries: usize,
     /// Whether refinement reached the requested tolerance; false when it
@@ -305,10 +306,195 @@ pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
     OneSided {
         value: refined.lb,
         bound: (refined.ub - refined.lb).max(0.0),
-        mean,
-        rms,
+        mean: Some(mean),
+        rms: Some(rms),
         queries: near.len() + a.triangles.len() + refined.queries,
         converged: refined.converged,
+    }
+}
+
+/// Triangles of A screened in the first round of [`one_sided_bounded`];
+/// each round screens twice the last (most files need one or two rounds,
+/// a smooth difference everywhere needs many), at most [`SCREEN_BATCH_MAX`].
+const SCREEN_BATCH: usize = 256;
+const SCREEN_BATCH_MAX: usize = 16_384;
+
+/// h(A, B) alone, to within `tolerance`, searching only the triangles of A
+/// that can set it: `upper[i]` is an upper bound of vertex i's distance to B
+/// (e.g. its distance to B's point along the same ray). Mean and RMS are
+/// not computed (`None`): they need every vertex.
+///
+/// Each triangle's Lipschitz bound from `upper` is an upper bound of
+/// `d(·, B)` over it. Triangles are screened from the largest such bound
+/// down, in batches: their vertices' and centroids' exact distances raise
+/// the lower bound, and screening stops at the first bound within the
+/// tolerance of it. Every triangle not screened is pruned with its bound
+/// (so the certified upper bound covers all of A); the screened ones are
+/// refined as [`one_sided`] refines every triangle.
+pub fn one_sided_bounded(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: &[f64]) -> OneSided {
+    let upper_of = |i: u32| upper.get(i as usize).copied().unwrap_or(f64::INFINITY);
+    let mut order: Vec<(f64, u32)> = a
+        .triangles
+        .par_iter()
+        .enumerate()
+        .map(|(k, t)| {
+            let v = t.map(|i| a.positions[i as usize]);
+            (lipschitz_bound(&v, &t.map(upper_of)), k as u32)
+        })
+        .collect();
+    // Largest bound first; ties by index, so the screening order is the same on every run.
+    order.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+    let s = screen(a, b, tolerance.max(0.0), &order, upper_of);
+    let cells = MeshCells { a, near: &s.near, b };
+    let mut refinement = Refinement::new(s.lb, tolerance);
+    let kept: Vec<(Option<ByUpper<u32>>, f64)> = order[..s.screened]
+        .par_iter()
+        .zip(s.centroid_nearest.par_iter())
+        .map(|(&(_, k), &kc)| {
+            let t = &a.triangles[k as usize];
+            let cand = [
+                s.near[t[0] as usize].1,
+                s.near[t[1] as usize].1,
+                s.near[t[2] as usize].1,
+                kc,
+            ];
+            let ub = upper_bound(&cells.vertices(t), &cells.distances(t), &cand, b);
+            if refinement.needs_refining(ub) {
+                (Some(ByUpper { ub, item: k }), 0.0)
+            } else {
+                (None, ub)
+            }
+        })
+        .collect();
+    let unscreened = order.get(s.screened).map_or(0.0, |x| x.0);
+    let pruned = kept.iter().map(|x| x.1).fold(unscreened, f64::max);
+    refinement.add_seeds(kept.into_iter().filter_map(|x| x.0).collect(), pruned);
+    let refined = refinement.run(&cells, MAX_REFINEMENT_QUERIES);
+    OneSided {
+        value: refined.lb,
+        bound: (refined.ub - refined.lb).max(0.0),
+        mean: None,
+        rms: None,
+        queries: s.queries + refined.queries,
+        converged: refined.converged,
+    }
+}
+
+/// What the screening of [`one_sided_bounded`] found.
+struct Screened {
+    /// Each vertex's distance and nearest B triangle: exact for the screened
+    /// triangles' vertices, the upper bound and none (`u32::MAX`) for the rest.
+    near: Vec<(f64, u32)>,
+    /// Largest distance evaluated.
+    lb: f64,
+    /// Distance queries made.
+    queries: usize,
+    /// How many triangles of the order were screened (a prefix).
+    screened: usize,
+    /// The nearest B triangle of each screened triangle's centroid, in order.
+    centroid_nearest: Vec<u32>,
+}
+
+/// Screens the triangles of A in `order` (largest upper bound first), in
+/// doubling batches, until the next one's bound is within `tol` of the
+/// largest distance found.
+fn screen(a: MeshRef<'_>, b: &Bvh, tol: f64, order: &[(f64, u32)], upper_of: impl Fn(u32) -> f64 + Sync) -> Screened {
+    let n = a.positions.len();
+    let mut s = Screened {
+        near: (0..n).map(|i| (upper_of(i as u32), u32::MAX)).collect(),
+        lb: 0.0,
+        queries: 0,
+        screened: 0,
+        centroid_nearest: Vec::new(),
+    };
+    let mut exact = vec![false; n];
+    let mut batch_len = SCREEN_BATCH;
+    while s.screened < order.len() && order[s.screened].0 > s.lb + tol {
+        let batch = &order[s.screened..(s.screened + batch_len).min(order.len())];
+        batch_len = (2 * batch_len).min(SCREEN_BATCH_MAX);
+        let mut fresh: Vec<u32> = batch
+            .iter()
+            .flat_map(|&(_, k)| a.triangles[k as usize])
+            .filter(|&i| !exact[i as usize])
+            .collect();
+        fresh.sort_unstable();
+        fresh.dedup();
+        let found: Vec<(f64, u32)> = fresh
+            .par_iter()
+            .map(|&i| nearest_within(b, a.positions[i as usize], upper_of(i)))
+            .collect();
+        for (&i, &d) in fresh.iter().zip(&found) {
+            s.near[i as usize] = d;
+            exact[i as usize] = true;
+            s.lb = s.lb.max(d.0);
+        }
+        let near = &s.near;
+        let centroids: Vec<(f64, u32)> = batch
+            .par_iter()
+            .map(|&(_, k)| {
+                let t = &a.triangles[k as usize];
+                let v = t.map(|i| a.positions[i as usize]);
+                let c = (v[0] + v[1] + v[2]) / 3.0;
+                let hint = (0..3)
+                    .map(|i| near[t[i] as usize].0 + c.distance(v[i]))
+                    .fold(f64::INFINITY, f64::min);
+                nearest_within(b, c, hint)
+            })
+            .collect();
+        s.queries += fresh.len() + centroids.len();
+        s.lb = centroids.iter().fold(s.lb, |m, c| m.max(c.0));
+        s.centroid_nearest.extend(centroids.iter().map(|c| c.1));
+        s.screened += batch.len();
+    }
+    s
+}
+
+/// Distance and nearest triangle of `b` from `p`, whose distance is at most
+/// `hint`: the search skips everything farther. Should nothing lie within
+/// the hint (a bound that was not one), the search is repeated unbounded, so
+/// the distance returned is always attained.
+fn nearest_within(b: &Bvh, p: DVec3, hint: f64) -> (f64, u32) {
+    let (d2, t) = if hint.is_finite() {
+        b.nearest_below(p, (hint * (1.0 + 1e-12) + 1e-300).powi(2))
+    } else {
+        (f64::INFINITY, u32::MAX)
+    };
+    if t == u32::MAX {
+        let (d2, t) = b.nearest_below(p, f64::INFINITY);
+        return (d2.sqrt(), t);
+    }
+    (d2.sqrt(), t)
+}
+
+/// [`hausdorff_bvh`] searching only for the supremum on each side
+/// ([`one_sided_bounded`], with `upper_a` bounding A's vertices' distances
+/// to B and `upper_b` B's to A): no mean or RMS.
+pub fn hausdorff_bvh_bounded(
+    a: (&Bvh, &[[u32; 3]], &[f64]),
+    b: (&Bvh, &[[u32; 3]], &[f64]),
+    tolerance: f64,
+) -> Hausdorff {
+    let (ma, mb) = (
+        MeshRef {
+            positions: a.0.positions(),
+            triangles: a.1,
+        },
+        MeshRef {
+            positions: b.0.positions(),
+            triangles: b.1,
+        },
+    );
+    let (ab, bab) = rayon::join(
+        || one_sided_bounded(ma, b.0, tolerance, a.2),
+        || one_sided_bounded(mb, a.0, tolerance, b.2),
+    );
+    let value = ab.value.max(bab.value);
+    let ub = (ab.value + ab.bound).max(bab.value + bab.bound);
+    Hausdorff {
+        value,
+        bound: (ub - value).max(0.0),
+        a_to_b: ab,
+        b_to_a: bab,
     }
 }
 
@@ -411,6 +597,59 @@ mod tests {
         // Issue 15: a mesh's own triangles wait as 16-byte seeds, not 120-byte cells.
         assert_eq!(std::mem::size_of::<ByUpper<u32>>(), 16);
         assert_eq!(std::mem::size_of::<ByUpper<Cell>>(), 120);
+    }
+
+    /// The pruned search certifies the same H as the full one: on meshes
+    /// that differ in one place (a bump) and everywhere (offset spheres),
+    /// with tight vertex bounds, loose ones and none (every triangle
+    /// screened), both intervals [value, value + bound] overlap, the bound
+    /// is within the tolerance, and a tight bound queries far less.
+    #[test]
+    fn bounded_search_certifies_the_full_searchs_h() {
+        let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
+        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
+        // A bump on the second sphere: a few vertices pushed out along their rays.
+        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
+            *p *= 1.3;
+        }
+        let (p3, t3) = sphere(11.0, [0.4, -0.2, 0.1], 30, 60);
+        let tol = 1e-3;
+        for (pb, tb) in [(&p2, &t2), (&p3, &t3)] {
+            let (ma, mb) = (
+                MeshRef {
+                    positions: &p1,
+                    triangles: &t1,
+                },
+                MeshRef {
+                    positions: pb,
+                    triangles: tb,
+                },
+            );
+            let bvh_b = Bvh::build(mb.positions, mb.triangles);
+            let full = one_sided(ma, &bvh_b, tol);
+            let exact = distances(&p1, &bvh_b);
+            let tight: Vec<f64> = exact.iter().map(|d| d * (1.0 + 1e-9) + 1e-9).collect();
+            let loose: Vec<f64> = exact.iter().map(|d| 2.0 * d + 1.0).collect();
+            let none = vec![f64::INFINITY; p1.len()];
+            let bump = std::ptr::eq(pb, &p2);
+            for (name, upper) in [("tight", &tight), ("loose", &loose), ("none", &none)] {
+                let b = one_sided_bounded(ma, &bvh_b, tol, upper);
+                assert!(b.converged && b.bound <= tol + 1e-12, "{name}: {b:?}");
+                assert!(
+                    b.value <= full.value + full.bound + 1e-12 && full.value <= b.value + b.bound + 1e-12,
+                    "{name}: bounded {b:?} vs full {full:?}"
+                );
+                assert!(b.mean.is_none() && b.rms.is_none());
+                if bump && name == "tight" {
+                    assert!(
+                        b.queries * 4 < full.queries,
+                        "{name}: {} vs {} queries",
+                        b.queries,
+                        full.queries
+                    );
+                }
+            }
+        }
     }
 
     #[test]

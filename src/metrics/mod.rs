@@ -12,7 +12,9 @@ mod refine;
 
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
-pub use hausdorff::{hausdorff, hausdorff_bvh, one_sided, Hausdorff, MeshRef, OneSided};
+pub use hausdorff::{
+    hausdorff, hausdorff_bvh, hausdorff_bvh_bounded, one_sided, one_sided_bounded, Hausdorff, MeshRef, OneSided,
+};
 pub use largest::{largest_of, LargestDistance};
 pub use nearest::{distance_to_solid, distances_to_solid, largest_distance_to_solid, NearestSearch};
 pub use radial::{

@@ -231,8 +231,8 @@ pub fn one_sided(a: &Profile, b: &Profile, tolerance: f64) -> OneSided {
         return OneSided {
             value: inf,
             bound: 0.0,
-            mean: inf,
-            rms: inf,
+            mean: Some(inf),
+            rms: Some(inf),
             queries: 0,
             converged: true,
         };
@@ -251,8 +251,8 @@ pub fn one_sided(a: &Profile, b: &Profile, tolerance: f64) -> OneSided {
     OneSided {
         value: refined.lb,
         bound: (refined.ub - refined.lb).max(0.0),
-        mean,
-        rms,
+        mean: Some(mean),
+        rms: Some(rms),
         queries: near.len() + mids.len() + refined.queries,
         converged: refined.converged,
     }
