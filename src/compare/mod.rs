@@ -677,12 +677,14 @@ pub fn solid_hausdorff_bounded(a: (&Mesh, &RadialMesh), b: (&Mesh, &RadialMesh),
 /// An upper bound of each point's distance to the solid `other` (its
 /// radial function and vertex positions), `scale` the larger solid's radius (cd).
 ///
-/// A point p ≠ 0 is |r − |p|| from the point r·p̂ where the ray along p̂
-/// leaves `other` (a point of one of its triangles); where the ray meets
-/// no triangle (r = 0: a zero-intensity region) or p is the origin, the
+/// A point p ≠ 0 is bounded by its distance to the triangles `other`
+/// indexes around p's direction ([`RadialMesh::distance_bound`]: they hold
+/// the one the ray along p leaves through, so the bound is at most the
+/// radial difference, and less where the solid is oblique to the ray).
+/// Where there are none (a zero-intensity region) or p is the origin, the
 /// triangle inequality through the origin gives |p| + the nearest vertex's
-/// radius. The margin (1e-9 relative plus 1e-7 of the scale) covers the
-/// ray test's tolerance and rounding: a bound, never an estimate.
+/// radius. The margin (1e-9 relative plus 1e-7 of the scale) covers
+/// rounding: a bound, never an estimate.
 fn vertex_bounds(points: &[glam::DVec3], other: (&RadialMesh, &[glam::DVec3]), scale: f64) -> Vec<f64> {
     use rayon::prelude::*;
     let (radial, other_points) = other;
@@ -691,9 +693,7 @@ fn vertex_bounds(points: &[glam::DVec3], other: (&RadialMesh, &[glam::DVec3]), s
     points
         .par_iter()
         .map(|&p| {
-            let n = p.length();
-            let r = if n > 1e-9 * scale { radial.radius(p / n) } else { 0.0 };
-            let u = if r > 0.0 { (n - r).abs() } else { n + nearest_vertex };
+            let u = radial.distance_bound(p).unwrap_or(p.length() + nearest_vertex);
             u * (1.0 + 1e-9) + margin
         })
         .collect()

@@ -114,6 +114,26 @@ impl RadialMesh {
         best.unwrap_or(0.0)
     }
 
+    /// The distance (same unit as the mesh) from `p` to the nearest of the
+    /// triangles indexed around the direction of `p` (its bucket): an upper
+    /// bound of `p`'s distance to the mesh, and near it when the mesh is
+    /// close to `p` (the triangle the ray along `p` leaves through is one of
+    /// them). `None` for `p` at the origin or a bucket without triangles.
+    pub fn distance_bound(&self, p: DVec3) -> Option<f64> {
+        let n = p.length();
+        if n <= 0.0 || !n.is_finite() {
+            return None;
+        }
+        let (c, g) = unit_angles(p / n);
+        let b = bucket(c, g);
+        let (s, e) = (self.bucket_start[b] as usize, self.bucket_start[b + 1] as usize);
+        let d2 = self.bucket_tris[s..e]
+            .iter()
+            .map(|&k| crate::metrics::bvh::point_triangle_dist2(p, &self.triangle(k)))
+            .fold(f64::INFINITY, f64::min);
+        d2.is_finite().then(|| d2.sqrt())
+    }
+
     /// r at (C, γ) in degrees.
     pub fn radius_at(&self, c_deg: f64, gamma_deg: f64) -> f64 {
         self.radius(direction(c_deg, gamma_deg))

@@ -500,3 +500,71 @@ fn normals_are_unit_and_outward() {
         }
     }
 }
+
+/// The H-only search between two solids certifies the full search's H, and
+/// the per-vertex bound it starts from is a bound: on pairs of synthetic
+/// solids (near each other, far apart, one with a dark band), every vertex's
+/// `RadialMesh::distance_bound` is at least its exact distance to the other
+/// solid (BVH) and at most the radial difference along its ray, and the
+/// intervals [H, H + bound] of both searches overlap.
+#[test]
+fn bounded_solid_hausdorff_certifies_the_full_one() {
+    use photosolid::compare::{solid_hausdorff, solid_hausdorff_bounded};
+    use photosolid::metrics::{hausdorff::distances, Bvh};
+    use photosolid::solid::RadialMesh;
+    let grid = SolidGrid::uniform(72, 36).unwrap();
+    let solid = |s: Synth| {
+        let f = move |c: f64, g: f64| 1000.0 * s.relative(c, g);
+        grid_solid(&f, &grid, Units::Candela).unwrap()
+    };
+    let pairs = [
+        (Synth::CosinePower { p: 5.0 }, Synth::CosinePower { p: 6.0 }),
+        (Synth::Lambertian, Synth::Batwing),
+        (
+            Synth::Spot {
+                p: 4.0,
+                cutoff_deg: 40.0,
+            },
+            Synth::Roadway,
+        ),
+    ];
+    for (sa, sb) in pairs {
+        let (a, b) = (solid(sa.clone()), solid(sb.clone()));
+        let (ra, rb) = (RadialMesh::new(&a), RadialMesh::new(&b));
+        let exact = distances(&a.positions_f64(), &Bvh::build_owned(b.positions_f64(), b.triangles()));
+        let mut bounded = 0;
+        for (p, d) in a.positions_f64().iter().zip(&exact) {
+            let Some(u) = rb.distance_bound(*p) else { continue };
+            bounded += 1;
+            assert!(
+                u >= d - 1e-9 * (1.0 + d),
+                "{sa:?} vs {sb:?}: bound {u} below the distance {d} at {p}"
+            );
+            let n = p.length();
+            let r = rb.radius(*p / n);
+            if r > 0.0 {
+                assert!(
+                    u <= (n - r).abs() + 1e-9 * n,
+                    "{sa:?}: bound {u} above the radial difference {}",
+                    (n - r).abs()
+                );
+            }
+        }
+        assert!(
+            bounded > a.n_vertices() / 2,
+            "{sa:?}: {bounded} of {} vertices bounded",
+            a.n_vertices()
+        );
+        let tol = 1e-3 * a.max_radius().max(b.max_radius());
+        let full = solid_hausdorff(&a, &b, tol);
+        let fast = solid_hausdorff_bounded((&a, &ra), (&b, &rb), tol);
+        assert!(
+            fast.value <= full.value + full.bound + 1e-9 && full.value <= fast.value + fast.bound + 1e-9,
+            "{sa:?} vs {sb:?}: bounded {:?} vs full {:?}",
+            (fast.value, fast.bound),
+            (full.value, full.bound)
+        );
+        assert!(fast.a_to_b.mean.is_none() && full.a_to_b.mean.is_some());
+        assert!(fast.a_to_b.queries + fast.b_to_a.queries <= full.a_to_b.queries + full.b_to_a.queries);
+    }
+}
