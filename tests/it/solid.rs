@@ -529,7 +529,7 @@ fn bounded_solid_hausdorff_certifies_the_full_one() {
         ),
     ];
     for (sa, sb) in pairs {
-        let (a, b) = (solid(sa.clone()), solid(sb.clone()));
+        let (a, b) = (solid(sa), solid(sb));
         let (ra, rb) = (RadialMesh::new(&a), RadialMesh::new(&b));
         let exact = distances(&a.positions_f64(), &Bvh::build_owned(b.positions_f64(), b.triangles()));
         let mut bounded = 0;
