@@ -291,31 +291,54 @@ fn solve(g: &[Vec<f64>], r: &[f64], idx: &[usize]) -> Vec<f64> {
     x
 }
 
-/// The search state: the data, the lobes' shapes and their columns.
+/// The search state: the data, the lobes' shapes and their columns, and
+/// the normal equations of those columns (`gram[a][b]` = Σ w·c_a·c_b for
+/// a ≤ b, mirrored; `rhs[a]` = Σ w·c_a·m): a trial changes one column, so
+/// only that column's row is recomputed per evaluation (K + 1 sums of the
+/// K (K + 3) / 2 a full rebuild takes), with the same sums in the same order.
 struct Search<'a> {
     data: &'a Data,
     shapes: Vec<Shape>,
     cols: Vec<Vec<f64>>,
+    gram: Vec<Vec<f64>>,
+    rhs: Vec<f64>,
 }
 
-impl Search<'_> {
+/// Σ w·x·y over the directions, x from the lower-numbered column (the
+/// order every entry of the normal equations is summed in).
+fn weighted_dot(x: &[f64], y: &[f64], w: &[f64]) -> f64 {
+    x.iter().zip(y).zip(w).map(|((x, y), w)| w * x * y).sum()
+}
+
+impl<'a> Search<'a> {
     /// err² and weights with lobe `j`'s column replaced by `col` (or appended when j = len).
     #[allow(clippy::needless_range_loop)] // the Gram matrix is filled symmetrically
     fn error_with(&self, j: usize, col: &[f64]) -> (f64, Vec<f64>) {
         let n = self.cols.len().max(j + 1);
-        let column = |k: usize| if k == j { col } else { &self.cols[k][..] };
         let d = self.data;
         let mut g = vec![vec![0.0; n]; n];
         let mut r = vec![0.0; n];
         for a in 0..n {
-            let ca = column(a);
-            r[a] = ca.iter().zip(&d.m).zip(&d.w).map(|((s, m), w)| w * s * m).sum();
-            for b in a..n {
-                let cb = column(b);
-                let v: f64 = ca.iter().zip(cb).zip(&d.w).map(|((x, y), w)| w * x * y).sum();
-                g[a][b] = v;
-                g[b][a] = v;
+            if a == j {
+                continue;
             }
+            r[a] = self.rhs[a];
+            for b in a..n {
+                if b != j {
+                    g[a][b] = self.gram[a][b];
+                    g[b][a] = g[a][b];
+                }
+            }
+        }
+        r[j] = weighted_dot(col, &d.m, &d.w);
+        for b in 0..n {
+            let v = match b.cmp(&j) {
+                std::cmp::Ordering::Less => weighted_dot(&self.cols[b], col, &d.w),
+                std::cmp::Ordering::Equal => weighted_dot(col, col, &d.w),
+                std::cmp::Ordering::Greater => weighted_dot(col, &self.cols[b], &d.w),
+            };
+            g[j][b] = v;
+            g[b][j] = v;
         }
         let wts = nnls(&g, &r);
         let mut e = d.mm;
@@ -388,6 +411,43 @@ impl Search<'_> {
             self.shapes[j] = s;
             self.cols[j] = col;
         }
+        self.update_normal_equations(j);
+    }
+
+    /// A search over `shapes` whose columns are `cols`, its normal equations built.
+    fn new(data: &'a Data, shapes: Vec<Shape>, cols: Vec<Vec<f64>>) -> Self {
+        let mut s = Self {
+            data,
+            shapes,
+            cols,
+            gram: Vec::new(),
+            rhs: Vec::new(),
+        };
+        for j in 0..s.cols.len() {
+            s.update_normal_equations(j);
+        }
+        s
+    }
+
+    /// Column `j`'s row of the normal equations, after it changed or was appended.
+    fn update_normal_equations(&mut self, j: usize) {
+        let n = self.cols.len();
+        self.gram.resize(n, Vec::new());
+        for row in &mut self.gram {
+            row.resize(n, 0.0);
+        }
+        self.rhs.resize(n, 0.0);
+        let (d, col) = (self.data, &self.cols[j]);
+        self.rhs[j] = weighted_dot(col, &d.m, &d.w);
+        for b in 0..n {
+            let v = if b <= j {
+                weighted_dot(&self.cols[b], col, &d.w)
+            } else {
+                weighted_dot(col, &self.cols[b], &d.w)
+            };
+            self.gram[j][b] = v;
+            self.gram[b][j] = v;
+        }
     }
 }
 
@@ -409,11 +469,7 @@ pub fn fit_lobes(d: &Distribution, max_count: usize) -> Result<Vec<Lobes>, Model
     let full = Data::of(&s);
     let thin = full.thinned(SEARCH_DIRECTIONS);
     let data = thin.as_ref().unwrap_or(&full);
-    let mut search = Search {
-        data,
-        shapes: Vec::new(),
-        cols: Vec::new(),
-    };
+    let mut search = Search::new(data, Vec::new(), Vec::new());
     let mut stages = Vec::with_capacity(max_count);
     for k in 0..max_count {
         let new = start_axes(&search, s.rotational)
@@ -470,11 +526,8 @@ fn start_axes(search: &Search<'_>, rotational: bool) -> Vec<DVec3> {
 
 /// The mixture of `shapes` with weights solved on all of `full`, in cd.
 fn weighted(full: &Data, shapes: &[Shape], i_max: f64) -> Lobes {
-    let search = Search {
-        data: full,
-        shapes: shapes.to_vec(),
-        cols: shapes.iter().map(|s| full.column(s.axis(), s.exponent())).collect(),
-    };
+    let cols = shapes.iter().map(|s| full.column(s.axis(), s.exponent())).collect();
+    let search = Search::new(full, shapes.to_vec(), cols);
     let last = shapes.len() - 1;
     let (_, wts) = search.error_with(last, &search.cols[last]);
     let mixture = if full.rings { Lobes::rings } else { Lobes::new };

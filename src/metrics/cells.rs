@@ -53,6 +53,17 @@ pub fn largest_distance_to_cells(cells: &ConstantCells, points: &[(DVec3, f64)],
     largest_of(&bounds, floor, |k| grid.distance(points[k].0, points[k].1))
 }
 
+/// A searched point as each cell sees it: its unit direction, |p| (cd),
+/// C and γ (radians) and the C where u·ω peaks along a parallel.
+#[derive(Clone, Copy)]
+struct Probe {
+    u: DVec3,
+    rho: f64,
+    cu: f64,
+    gu: f64,
+    c_peak: f64,
+}
+
 /// A point whose search is not over at its start: its unit direction, C and
 /// γ (radians) and |p| (cd).
 struct Query {
@@ -62,13 +73,52 @@ struct Query {
     rho: f64,
 }
 
-/// The cells with their edges in radians.
+/// The cells with their edges in radians, and the edges' sines and cosines
+/// (a search visits each edge many times).
 struct Grid<'a> {
     cells: &'a ConstantCells,
     gamma: Vec<f64>,
     c: Vec<f64>,
+    /// (sin, cos) of each γ edge.
+    gamma_trig: Vec<(f64, f64)>,
+    /// (sin, cos) of each C edge.
+    c_trig: Vec<(f64, f64)>,
     rows: usize,
     cols: usize,
+}
+
+/// One query's view of a meridian edge C = c: u·ω(γ) = A sin γ + B cos γ,
+/// peaking at γ* = atan2(A, B) (computed once per edge and query, not once
+/// per cell beside it).
+#[derive(Clone, Copy)]
+struct Meridian {
+    a: f64,
+    b: f64,
+    peak: f64,
+    at_peak: f64,
+}
+
+impl Meridian {
+    fn new(u: DVec3, (sc, cc): (f64, f64)) -> Self {
+        let (a, b) = (u.x * cc + u.y * sc, -u.z);
+        let peak = a.atan2(b);
+        Self {
+            a,
+            b,
+            peak,
+            at_peak: a * peak.sin() + b * peak.cos(),
+        }
+    }
+
+    /// Largest u·ω over γ in [g0, g1] (radians) with their (sin, cos).
+    fn max_dot(&self, (g0, t0): (f64, (f64, f64)), (g1, t1): (f64, (f64, f64))) -> f64 {
+        let at = |(s, c): (f64, f64)| self.a * s + self.b * c;
+        let mut best = at(t0).max(at(t1));
+        if (g0..=g1).contains(&self.peak) {
+            best = best.max(self.at_peak);
+        }
+        best
+    }
 }
 
 impl<'a> Grid<'a> {
@@ -87,6 +137,8 @@ impl<'a> Grid<'a> {
             cells,
             gamma: cells.gamma_edges_deg.iter().map(|g| g.to_radians()).collect(),
             c: cells.c_edges_deg.iter().map(|c| c.to_radians()).collect(),
+            gamma_trig: cells.gamma_edges_deg.iter().map(|g| g.to_radians().sin_cos()).collect(),
+            c_trig: cells.c_edges_deg.iter().map(|c| c.to_radians().sin_cos()).collect(),
             rows,
             cols,
         }
@@ -133,9 +185,16 @@ impl<'a> Grid<'a> {
             let half = (cap.sin() / gu.sin()).min(1.0).asin();
             self.columns_between(cu - half, cu + half)
         };
+        // Each column's two meridian edges, once for all its rows; the
+        // parallels' peak C (where u·ω is largest along any parallel).
+        let meridians: Vec<(Meridian, Meridian)> = cols
+            .iter()
+            .map(|&j| (Meridian::new(u, self.c_trig[j]), Meridian::new(u, self.c_trig[j + 1])))
+            .collect();
+        let c_peak = u.y.atan2(u.x).rem_euclid(2.0 * PI);
         for i in rows {
-            for &j in &cols {
-                best = best.min(self.cell_distance(u, rho, (cu, gu), i, j));
+            for (&j, m) in cols.iter().zip(&meridians) {
+                best = best.min(self.cell_distance(Probe { u, rho, cu, gu, c_peak }, i, j, m));
             }
         }
         best
@@ -162,16 +221,32 @@ impl<'a> Grid<'a> {
         out
     }
 
-    /// The distance from p = ρ u to cell (i, j)'s patch and to the walls on its four edges.
-    fn cell_distance(&self, u: DVec3, rho: f64, (cu, gu): (f64, f64), i: usize, j: usize) -> f64 {
+    /// The largest u·ω over the parallel γ = edge `i`, C from edge `j` to
+    /// edge `j + 1`: u·ω(C) = sin γ (u_x cos C + u_y sin C) − u_z cos γ,
+    /// peaking at `c_peak` = atan2(u_y, u_x).
+    fn max_dot_parallel(&self, u: DVec3, c_peak: f64, i: usize, j: usize) -> f64 {
+        let (sg, cg) = self.gamma_trig[i];
+        let at = |(sc, cc): (f64, f64)| u.dot(DVec3::new(sg * cc, sg * sc, -cg));
+        let mut best = at(self.c_trig[j]).max(at(self.c_trig[j + 1]));
+        if (self.c[j]..=self.c[j + 1]).contains(&c_peak) {
+            best = best.max(at(c_peak.sin_cos()));
+        }
+        best
+    }
+
+    /// The distance from p = ρ u to cell (i, j)'s patch and to the walls on
+    /// its four edges; `m` the cell's west and east meridian edges for `u`.
+    fn cell_distance(&self, q: Probe, i: usize, j: usize, m: &(Meridian, Meridian)) -> f64 {
+        let Probe { u, rho, cu, gu, c_peak } = q;
         let (g0, g1) = (self.gamma[i], self.gamma[i + 1]);
         let (c0, c1) = (self.c[j], self.c[j + 1]);
         let r = self.cells.value(i, j);
         // The four edges: their largest u·ω, and the neighbour across each.
-        let west = max_dot_meridian(u, c0, g0, g1);
-        let east = max_dot_meridian(u, c1, g0, g1);
-        let north = max_dot_parallel(u, g0, c0, c1);
-        let south = max_dot_parallel(u, g1, c0, c1);
+        let (top, bottom) = ((g0, self.gamma_trig[i]), (g1, self.gamma_trig[i + 1]));
+        let west = m.0.max_dot(top, bottom);
+        let east = m.1.max_dot(top, bottom);
+        let north = self.max_dot_parallel(u, c_peak, i, j);
+        let south = self.max_dot_parallel(u, c_peak, i + 1, j);
         let inside = (g0..=g1).contains(&gu) && (c0..=c1).contains(&cu);
         let cos_patch = if inside {
             1.0
@@ -212,39 +287,6 @@ fn wall_distance(rho: f64, lo: f64, hi: f64, cos: f64) -> f64 {
     } else {
         rho * (1.0 - cos * cos).max(0.0).sqrt()
     }
-}
-
-/// The direction of (C, γ) radians (`frame::direction`).
-fn dir_rad(c: f64, g: f64) -> DVec3 {
-    let (sg, cg) = g.sin_cos();
-    let (sc, cc) = c.sin_cos();
-    DVec3::new(sg * cc, sg * sc, -cg)
-}
-
-/// Largest u·ω over the meridian arc C = `c`, γ in [g0, g1] (radians):
-/// u·ω(γ) = A sin γ + B cos γ, a sinusoid peaking at γ* = atan2(A, B).
-fn max_dot_meridian(u: DVec3, c: f64, g0: f64, g1: f64) -> f64 {
-    let (sc, cc) = c.sin_cos();
-    let (a, b) = (u.x * cc + u.y * sc, -u.z);
-    let at = |g: f64| a * g.sin() + b * g.cos();
-    let peak = a.atan2(b);
-    let mut best = at(g0).max(at(g1));
-    if (g0..=g1).contains(&peak) {
-        best = best.max(at(peak));
-    }
-    best
-}
-
-/// Largest u·ω over the parallel γ = `g`, C in [c0, c1] (radians, c0 ≤ c1 ≤ 2π):
-/// u·ω(C) = sin γ (u_x cos C + u_y sin C) − u_z cos γ, peaking at C* = atan2(u_y, u_x).
-fn max_dot_parallel(u: DVec3, g: f64, c0: f64, c1: f64) -> f64 {
-    let at = |c: f64| u.dot(dir_rad(c, g));
-    let peak = u.y.atan2(u.x).rem_euclid(2.0 * PI);
-    let mut best = at(c0).max(at(c1));
-    if (c0..=c1).contains(&peak) {
-        best = best.max(at(peak));
-    }
-    best
 }
 
 #[cfg(test)]
