@@ -344,7 +344,7 @@ pub fn one_sided_bounded(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: &[f64])
         .collect();
     // Largest bound first; ties by index, so the screening order is the same on every run.
     order.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
-    let s = screen(a, b, tolerance.max(0.0), &order, upper_of);
+    let s = screen(a, b, tolerance.max(0.0), &mut order, upper_of);
     let cells = MeshCells { a, near: &s.near, b };
     let mut refinement = Refinement::new(s.lb, tolerance);
     let kept: Vec<(Option<ByUpper<u32>>, f64)> = order[..s.screened]
@@ -398,7 +398,13 @@ struct Screened {
 /// Screens the triangles of A in `order` (largest upper bound first), in
 /// doubling batches, until the next one's bound is within `tol` of the
 /// largest distance found.
-fn screen(a: MeshRef<'_>, b: &Bvh, tol: f64, order: &[(f64, u32)], upper_of: impl Fn(u32) -> f64 + Sync) -> Screened {
+fn screen(
+    a: MeshRef<'_>,
+    b: &Bvh,
+    tol: f64,
+    order: &mut [(f64, u32)],
+    upper_of: impl Fn(u32) -> f64 + Sync,
+) -> Screened {
     let n = a.positions.len();
     let mut s = Screened {
         near: (0..n).map(|i| (upper_of(i as u32), u32::MAX)).collect(),
@@ -410,7 +416,8 @@ fn screen(a: MeshRef<'_>, b: &Bvh, tol: f64, order: &[(f64, u32)], upper_of: imp
     let mut exact = vec![false; n];
     let mut batch_len = SCREEN_BATCH;
     while s.screened < order.len() && order[s.screened].0 > s.lb + tol {
-        let batch = &order[s.screened..(s.screened + batch_len).min(order.len())];
+        let end = (s.screened + batch_len).min(order.len());
+        let batch = &order[s.screened..end];
         batch_len = (2 * batch_len).min(SCREEN_BATCH_MAX);
         let mut fresh: Vec<u32> = batch
             .iter()
@@ -445,6 +452,16 @@ fn screen(a: MeshRef<'_>, b: &Bvh, tol: f64, order: &[(f64, u32)], upper_of: imp
         s.lb = centroids.iter().fold(s.lb, |m, c| m.max(c.0));
         s.centroid_nearest.extend(centroids.iter().map(|c| c.1));
         s.screened += batch.len();
+        // The vertices just measured tighten the bounds of the triangles
+        // around them: the rest are bounded again and re-sorted.
+        let near = &s.near;
+        let rest = &mut order[s.screened..];
+        rest.par_iter_mut().for_each(|(ub, k)| {
+            let t = &a.triangles[*k as usize];
+            let v = t.map(|i| a.positions[i as usize]);
+            *ub = lipschitz_bound(&v, &t.map(|i| near[i as usize].0));
+        });
+        rest.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     }
     s
 }
