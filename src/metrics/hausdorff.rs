@@ -491,27 +491,34 @@ pub fn hausdorff_bvh_bounded(
     b: (&Bvh, &[[u32; 3]], &[f64]),
     tolerance: f64,
 ) -> Hausdorff {
-    let (ma, mb) = (
-        MeshRef {
-            positions: a.0.positions(),
-            triangles: a.1,
-        },
-        MeshRef {
-            positions: b.0.positions(),
-            triangles: b.1,
-        },
-    );
-    let (ab, bab) = rayon::join(
+    let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
+    let (ab, ba) = rayon::join(
         || one_sided_bounded(ma, b.0, tolerance, a.2),
         || one_sided_bounded(mb, a.0, tolerance, b.2),
     );
-    let value = ab.value.max(bab.value);
-    let ub = (ab.value + ab.bound).max(bab.value + bab.bound);
-    Hausdorff {
-        value,
-        bound: (ub - value).max(0.0),
-        a_to_b: ab,
-        b_to_a: bab,
+    Hausdorff::of_sides(ab, ba)
+}
+
+/// The mesh a BVH holds, with the triangles it was built from.
+fn mesh_of<'a>(b: &'a Bvh, triangles: &'a [[u32; 3]]) -> MeshRef<'a> {
+    MeshRef {
+        positions: b.positions(),
+        triangles,
+    }
+}
+
+impl Hausdorff {
+    /// The symmetric distance of two one-sided ones: the larger attained
+    /// value, and the gap to the larger certified upper bound.
+    pub(crate) fn of_sides(a_to_b: OneSided, b_to_a: OneSided) -> Self {
+        let value = a_to_b.value.max(b_to_a.value);
+        let ub = (a_to_b.value + a_to_b.bound).max(b_to_a.value + b_to_a.bound);
+        Hausdorff {
+            value,
+            bound: (ub - value).max(0.0),
+            a_to_b,
+            b_to_a,
+        }
     }
 }
 
@@ -553,25 +560,8 @@ pub fn hausdorff(a: MeshRef<'_>, b: MeshRef<'_>, tolerance: f64) -> Hausdorff {
 /// [`hausdorff`] over meshes already held by their BVHs (positions from
 /// [`Bvh::positions`], triangles as given to the build).
 pub fn hausdorff_bvh(a: (&Bvh, &[[u32; 3]]), b: (&Bvh, &[[u32; 3]]), tolerance: f64) -> Hausdorff {
-    let (ma, mb) = (
-        MeshRef {
-            positions: a.0.positions(),
-            triangles: a.1,
-        },
-        MeshRef {
-            positions: b.0.positions(),
-            triangles: b.1,
-        },
-    );
-    let (ab, bab) = (one_sided(ma, b.0, tolerance), one_sided(mb, a.0, tolerance));
-    let value = ab.value.max(bab.value);
-    let ub = (ab.value + ab.bound).max(bab.value + bab.bound);
-    Hausdorff {
-        value,
-        bound: (ub - value).max(0.0),
-        a_to_b: ab,
-        b_to_a: bab,
-    }
+    let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
+    Hausdorff::of_sides(one_sided(ma, b.0, tolerance), one_sided(mb, a.0, tolerance))
 }
 
 #[cfg(test)]

@@ -305,14 +305,7 @@ fn mean_rms(a: &Profile, near: &[(f64, u32)], mids: &[(f64, u32)]) -> (f64, f64)
 /// Symmetric Hausdorff distance of the solids of revolution of `a` and `b`, to within `tolerance` (cd).
 pub fn hausdorff(a: &Profile, b: &Profile, tolerance: f64) -> Hausdorff {
     let (ab, ba) = rayon::join(|| one_sided(a, b, tolerance), || one_sided(b, a, tolerance));
-    let value = ab.value.max(ba.value);
-    let ub = (ab.value + ab.bound).max(ba.value + ba.bound);
-    Hausdorff {
-        value,
-        bound: (ub - value).max(0.0),
-        a_to_b: ab,
-        b_to_a: ba,
-    }
+    Hausdorff::of_sides(ab, ba)
 }
 
 #[cfg(test)]
