@@ -320,9 +320,10 @@ const SCREEN_BATCH: usize = 256;
 const SCREEN_BATCH_MAX: usize = 16_384;
 
 /// h(A, B) alone, to within `tolerance`, searching only the triangles of A
-/// that can set it: `upper[i]` is an upper bound of vertex i's distance to B
-/// (e.g. its distance to B's point along the same ray). Mean and RMS are
-/// not computed (`None`): they need every vertex.
+/// that can set it: `upper[i]` must be an upper bound of vertex i's
+/// distance to B (e.g. its distance to some triangles of B near it; the
+/// certificate is only as good as these bounds). Mean and RMS are not
+/// computed (`None`): they need every vertex.
 ///
 /// Each triangle's Lipschitz bound from `upper` is an upper bound of
 /// `d(·, B)` over it. Triangles are screened from the largest such bound
@@ -484,8 +485,8 @@ fn nearest_within(b: &Bvh, p: DVec3, hint: f64) -> (f64, u32) {
 }
 
 /// [`hausdorff_bvh`] searching only for the supremum on each side
-/// ([`one_sided_bounded`], with `upper_a` bounding A's vertices' distances
-/// to B and `upper_b` B's to A): no mean or RMS.
+/// ([`one_sided_bounded`]): each side is (BVH, triangles, upper bounds of
+/// its vertices' distances to the other mesh). No mean or RMS.
 pub fn hausdorff_bvh_bounded(
     a: (&Bvh, &[[u32; 3]], &[f64]),
     b: (&Bvh, &[[u32; 3]], &[f64]),
