@@ -53,19 +53,9 @@ pub fn largest_distance_to_cells(cells: &ConstantCells, points: &[(DVec3, f64)],
     largest_of(&bounds, floor, |k| grid.distance(points[k].0, points[k].1))
 }
 
-/// A searched point as each cell sees it: its unit direction, |p| (cd),
-/// C and γ (radians) and the C where u·ω peaks along a parallel.
-#[derive(Clone, Copy)]
-struct Probe {
-    u: DVec3,
-    rho: f64,
-    cu: f64,
-    gu: f64,
-    c_peak: f64,
-}
-
 /// A point whose search is not over at its start: its unit direction, C and
 /// γ (radians) and |p| (cd).
+#[derive(Clone, Copy)]
 struct Query {
     u: DVec3,
     cu: f64,
@@ -172,9 +162,10 @@ impl<'a> Grid<'a> {
 
     fn distance(&self, dir: DVec3, m: f64) -> f64 {
         let (mut best, point) = self.start(dir, m);
-        let Some(Query { u, cu, gu, rho }) = point else {
+        let Some(q) = point else {
             return best;
         };
+        let Query { u, cu, gu, rho } = q;
         // The cap around u that can hold a nearer point, as rows and columns.
         let cap = if best < rho { (best / rho).asin() } else { PI };
         let (g_lo, g_hi) = (gu - cap, gu + cap);
@@ -194,7 +185,7 @@ impl<'a> Grid<'a> {
         let c_peak = u.y.atan2(u.x).rem_euclid(2.0 * PI);
         for i in rows {
             for (&j, m) in cols.iter().zip(&meridians) {
-                best = best.min(self.cell_distance(Probe { u, rho, cu, gu, c_peak }, i, j, m));
+                best = best.min(self.cell_distance(&q, c_peak, (i, j), m));
             }
         }
         best
@@ -236,8 +227,8 @@ impl<'a> Grid<'a> {
 
     /// The distance from p = ρ u to cell (i, j)'s patch and to the walls on
     /// its four edges; `m` the cell's west and east meridian edges for `u`.
-    fn cell_distance(&self, q: Probe, i: usize, j: usize, m: &(Meridian, Meridian)) -> f64 {
-        let Probe { u, rho, cu, gu, c_peak } = q;
+    fn cell_distance(&self, q: &Query, c_peak: f64, (i, j): (usize, usize), m: &(Meridian, Meridian)) -> f64 {
+        let Query { u, cu, gu, rho } = *q;
         let (g0, g1) = (self.gamma[i], self.gamma[i + 1]);
         let (c0, c1) = (self.c[j], self.c[j + 1]);
         let r = self.cells.value(i, j);
