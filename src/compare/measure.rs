@@ -34,11 +34,12 @@ pub(crate) fn measure_field(
     target: &FieldTarget<'_>,
 ) -> ReconResult {
     let own = RadialMesh::new(solid);
-    let h = if target.hausdorff_only {
-        solid_hausdorff_bounded((solid, &own), (target.solid, target.radial), target.tol_cd)
+    let search = if target.hausdorff_only {
+        SurfaceSearch::SupremumOnly
     } else {
-        solid_hausdorff(solid, target.solid, target.tol_cd)
+        SurfaceSearch::Full
     };
+    let h = solid_hausdorff_radial((solid, &own), (target.solid, target.radial), target.tol_cd, search);
     let radial = radial_bound(&own, target.radial, &target.set.directions);
     measured_row(name, field, field, &h, radial, target, solid.n_triangles())
 }

@@ -131,24 +131,39 @@ pub fn distances(points: &[DVec3], b: &Bvh) -> Vec<f64> {
 
 /// Distance and nearest triangle of `b` for every point (see [`distances`]).
 pub fn nearest(points: &[DVec3], b: &Bvh) -> Vec<(f64, u32)> {
+    nearest_below_bounds(points, b, &[])
+}
+
+/// [`nearest`] with `upper[k]` an upper bound of point k's distance to `b`
+/// (empty: none): each search starts below the smaller of it and the warm
+/// start of [`distances`], so a tight bound prunes all but a few boxes. The
+/// answers are those of [`nearest`], the triangle's index included: the
+/// search visits the boxes in the same order and only skips boxes that hold
+/// nothing nearer than the bound.
+pub fn nearest_below_bounds(points: &[DVec3], b: &Bvh, upper: &[f64]) -> Vec<(f64, u32)> {
     let mut out = vec![(0.0, u32::MAX); points.len()];
-    out.par_chunks_mut(512).zip(points.par_chunks(512)).for_each(|(o, p)| {
-        let mut prev: Option<(usize, f64)> = None;
-        for k in 0..p.len() {
-            let hint = match prev {
-                Some((j, d)) => {
-                    let h = d + p[k].distance(p[j]);
-                    // Slightly above the hint so the triangle at exactly that distance is kept.
-                    (h * (1.0 + 1e-12) + 1e-300).powi(2)
-                }
-                None => f64::INFINITY,
-            };
-            let (d2, t) = b.nearest_below(p[k], hint);
-            let d = d2.sqrt();
-            o[k] = (d, t);
-            prev = Some((k, d));
-        }
-    });
+    let upper_of = |k: usize| upper.get(k).copied().unwrap_or(f64::INFINITY);
+    out.par_chunks_mut(512)
+        .zip(points.par_chunks(512))
+        .enumerate()
+        .for_each(|(chunk, (o, p))| {
+            let first = chunk * 512;
+            let mut prev: Option<(usize, f64)> = None;
+            for k in 0..p.len() {
+                let warm = prev.map_or(f64::INFINITY, |(j, d)| d + p[k].distance(p[j]));
+                let bound = warm.min(upper_of(first + k));
+                // Slightly above the bound so the triangle at exactly that distance is kept.
+                let hint = if bound.is_finite() {
+                    (bound * (1.0 + 1e-12) + 1e-300).powi(2)
+                } else {
+                    f64::INFINITY
+                };
+                let (d2, t) = b.nearest_below(p[k], hint);
+                let d = d2.sqrt();
+                o[k] = (d, t);
+                prev = Some((k, d));
+            }
+        });
     out
 }
 
@@ -188,6 +203,26 @@ impl MeshCells<'_> {
         t.map(|i| self.near[i as usize].0)
     }
 
+    /// An upper bound of the distance to B of centroid `c` of triangle `t`
+    /// (vertices `v` at distances `f`): its distance to the B triangle
+    /// nearest to each vertex, and each vertex's distance plus the way to the
+    /// centroid. The first is near the centroid's own distance on a smooth
+    /// pair of solids, where the second exceeds it by a third of the triangle,
+    /// and a loose start makes the search visit every box within it.
+    fn centroid_hint(&self, t: &[u32; 3], v: &[DVec3; 3], f: &[f64; 3], c: DVec3) -> f64 {
+        (0..3)
+            .map(|i| {
+                let k = self.near[t[i] as usize].1;
+                let via_triangle = if k == u32::MAX {
+                    f64::INFINITY
+                } else {
+                    super::bvh::point_triangle_dist2(c, &self.b.triangle(k)).sqrt()
+                };
+                via_triangle.min(f[i] + c.distance(v[i]))
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// Each chunk's [`Moments`] and the nearest B triangle of each of its
     /// triangles' centroids.
     ///
@@ -207,7 +242,7 @@ impl MeshCells<'_> {
                 for t in chunk {
                     let (v, f) = (self.vertices(t), self.distances(t));
                     let c = (v[0] + v[1] + v[2]) / 3.0;
-                    let hint = (0..3).map(|i| f[i] + c.distance(v[i])).fold(f64::INFINITY, f64::min);
+                    let hint = self.centroid_hint(t, &v, &f, c);
                     let (d2, kc) = self.b.nearest_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2));
                     let d = d2.sqrt();
                     centroid_nearest.push(kc);
@@ -284,7 +319,14 @@ impl Refine for MeshCells<'_> {
 
 /// One-sided Hausdorff distance h(A, B) to within `tolerance` (same unit as positions).
 pub fn one_sided(a: MeshRef<'_>, b: &Bvh, tolerance: f64) -> OneSided {
-    let near = nearest(a.positions, b);
+    one_sided_below_bounds(a, b, tolerance, &[])
+}
+
+/// [`one_sided`], the same numbers, with `upper[i]` an upper bound of vertex
+/// i's distance to B (empty: none) to start its nearest-triangle search
+/// below ([`nearest_below_bounds`]).
+pub fn one_sided_below_bounds(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: &[f64]) -> OneSided {
+    let near = nearest_below_bounds(a.positions, b, upper);
     let cells = MeshCells { a, near: &near, b };
     let moments = cells.centroid_pass();
     let mut total = Moments::default();
@@ -484,14 +526,15 @@ fn nearest_within(b: &Bvh, p: DVec3, hint: f64) -> (f64, u32) {
     (d2.sqrt(), t)
 }
 
+/// One side of a two-sided search: a mesh held by its BVH, the triangles it was
+/// built from, and upper bounds of its vertices' distances to the other mesh
+/// (same unit as the mesh; empty where a search takes none).
+pub type Side<'a> = (&'a Bvh, &'a [[u32; 3]], &'a [f64]);
+
 /// [`hausdorff_bvh`] searching only for the supremum on each side
 /// ([`one_sided_bounded`]): each side is (BVH, triangles, upper bounds of
 /// its vertices' distances to the other mesh). No mean or RMS.
-pub fn hausdorff_bvh_bounded(
-    a: (&Bvh, &[[u32; 3]], &[f64]),
-    b: (&Bvh, &[[u32; 3]], &[f64]),
-    tolerance: f64,
-) -> Hausdorff {
+pub fn hausdorff_bvh_bounded(a: Side<'_>, b: Side<'_>, tolerance: f64) -> Hausdorff {
     let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
     let (ab, ba) = rayon::join(
         || one_sided_bounded(ma, b.0, tolerance, a.2),
@@ -561,8 +604,19 @@ pub fn hausdorff(a: MeshRef<'_>, b: MeshRef<'_>, tolerance: f64) -> Hausdorff {
 /// [`hausdorff`] over meshes already held by their BVHs (positions from
 /// [`Bvh::positions`], triangles as given to the build).
 pub fn hausdorff_bvh(a: (&Bvh, &[[u32; 3]]), b: (&Bvh, &[[u32; 3]]), tolerance: f64) -> Hausdorff {
+    hausdorff_bvh_below_bounds((a.0, a.1, &[]), (b.0, b.1, &[]), tolerance)
+}
+
+/// [`hausdorff_bvh`], the same numbers, each side with upper bounds of its
+/// vertices' distances to the other mesh (empty: none) to start the searches
+/// below ([`one_sided_below_bounds`]).
+pub fn hausdorff_bvh_below_bounds(a: Side<'_>, b: Side<'_>, tolerance: f64) -> Hausdorff {
     let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
-    Hausdorff::of_sides(one_sided(ma, b.0, tolerance), one_sided(mb, a.0, tolerance))
+    let (ab, ba) = rayon::join(
+        || one_sided_below_bounds(ma, b.0, tolerance, a.2),
+        || one_sided_below_bounds(mb, a.0, tolerance, b.2),
+    );
+    Hausdorff::of_sides(ab, ba)
 }
 
 #[cfg(test)]

@@ -568,3 +568,50 @@ fn bounded_solid_hausdorff_certifies_the_full_one() {
         assert!(fast.a_to_b.queries + fast.b_to_a.queries <= full.a_to_b.queries + full.b_to_a.queries);
     }
 }
+
+/// A solid of over 32,400 triangles gets a finer bucket grid in its
+/// `RadialMesh` (fewer triangles per `distance_bound`): the bound stays a
+/// bound on such a pair, and the full search started below the bounds
+/// (`solid_hausdorff_radial`, `SurfaceSearch::Full`) gives the numbers of
+/// the plain one (`solid_hausdorff`) to the bit, on a fine and a coarse pair.
+#[test]
+fn full_search_below_the_radial_bounds_gives_the_same_numbers() {
+    use photosolid::compare::{solid_hausdorff, solid_hausdorff_radial, SurfaceSearch};
+    use photosolid::metrics::{hausdorff::distances, Bvh};
+    use photosolid::solid::RadialMesh;
+    for (nc, ng) in [(240, 120), (72, 36)] {
+        let grid = SolidGrid::uniform(nc, ng).unwrap();
+        let solid = |s: Synth| {
+            let f = move |c: f64, g: f64| 1000.0 * s.relative(c, g);
+            grid_solid(&f, &grid, Units::Candela).unwrap()
+        };
+        let (a, b) = (
+            solid(Synth::CosinePower { p: 5.0 }),
+            solid(Synth::Spot {
+                p: 4.0,
+                cutoff_deg: 60.0,
+            }),
+        );
+        let (ra, rb) = (RadialMesh::new(&a), RadialMesh::new(&b));
+        let exact = distances(&a.positions_f64(), &Bvh::build_owned(b.positions_f64(), b.triangles()));
+        for (p, d) in a.positions_f64().iter().zip(&exact) {
+            if let Some(u) = rb.distance_bound(*p) {
+                assert!(
+                    u >= d - 1e-9 * (1.0 + d),
+                    "{nc}x{ng}: bound {u} below the distance {d} at {p}"
+                );
+            }
+        }
+        let tol = 1e-3 * a.max_radius().max(b.max_radius());
+        let plain = solid_hausdorff(&a, &b, tol);
+        let hinted = solid_hausdorff_radial((&a, &ra), (&b, &rb), tol, SurfaceSearch::Full);
+        for (x, y) in [(&plain.a_to_b, &hinted.a_to_b), (&plain.b_to_a, &hinted.b_to_a)] {
+            assert_eq!(x.value.to_bits(), y.value.to_bits(), "{nc}x{ng}");
+            assert_eq!(x.bound.to_bits(), y.bound.to_bits(), "{nc}x{ng}");
+            assert_eq!(x.mean.map(f64::to_bits), y.mean.map(f64::to_bits), "{nc}x{ng}");
+            assert_eq!(x.rms.map(f64::to_bits), y.rms.map(f64::to_bits), "{nc}x{ng}");
+            assert_eq!(x.queries, y.queries, "{nc}x{ng}");
+        }
+        assert!(plain.value > 0.01 * a.max_radius(), "{nc}x{ng}: the pair differs");
+    }
+}
