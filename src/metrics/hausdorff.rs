@@ -129,6 +129,13 @@ pub fn distances(points: &[DVec3], b: &Bvh) -> Vec<f64> {
     nearest(points, b).into_iter().map(|x| x.0).collect()
 }
 
+/// The squared distance a nearest-triangle search below the distance bound
+/// `bound` starts from: slightly above it, so the triangle at exactly that
+/// distance is kept (infinite for an infinite bound).
+fn search_limit2(bound: f64) -> f64 {
+    (bound * (1.0 + 1e-12) + 1e-300).powi(2)
+}
+
 /// Distance and nearest triangle of `b` for every point (see [`distances`]).
 pub fn nearest(points: &[DVec3], b: &Bvh) -> Vec<(f64, u32)> {
     nearest_below_bounds(points, b, &[])
@@ -152,13 +159,7 @@ pub fn nearest_below_bounds(points: &[DVec3], b: &Bvh, upper: &[f64]) -> Vec<(f6
             for k in 0..p.len() {
                 let warm = prev.map_or(f64::INFINITY, |(j, d)| d + p[k].distance(p[j]));
                 let bound = warm.min(upper_of(first + k));
-                // Slightly above the bound so the triangle at exactly that distance is kept.
-                let hint = if bound.is_finite() {
-                    (bound * (1.0 + 1e-12) + 1e-300).powi(2)
-                } else {
-                    f64::INFINITY
-                };
-                let (d2, t) = b.nearest_below(p[k], hint);
+                let (d2, t) = b.nearest_below(p[k], search_limit2(bound));
                 let d = d2.sqrt();
                 o[k] = (d, t);
                 prev = Some((k, d));
@@ -243,7 +244,7 @@ impl MeshCells<'_> {
                     let (v, f) = (self.vertices(t), self.distances(t));
                     let c = (v[0] + v[1] + v[2]) / 3.0;
                     let hint = self.centroid_hint(t, &v, &f, c);
-                    let (d2, kc) = self.b.nearest_below(c, (hint * (1.0 + 1e-12) + 1e-300).powi(2));
+                    let (d2, kc) = self.b.nearest_below(c, search_limit2(hint));
                     let d = d2.sqrt();
                     centroid_nearest.push(kc);
                     let ar = area(&v);
@@ -515,7 +516,7 @@ fn screen(
 /// the distance returned is always attained.
 fn nearest_within(b: &Bvh, p: DVec3, hint: f64) -> (f64, u32) {
     let (d2, t) = if hint.is_finite() {
-        b.nearest_below(p, (hint * (1.0 + 1e-12) + 1e-300).powi(2))
+        b.nearest_below(p, search_limit2(hint))
     } else {
         (f64::INFINITY, u32::MAX)
     };
@@ -535,10 +536,21 @@ pub type Side<'a> = (&'a Bvh, &'a [[u32; 3]], &'a [f64]);
 /// ([`one_sided_bounded`]): each side is (BVH, triangles, upper bounds of
 /// its vertices' distances to the other mesh). No mean or RMS.
 pub fn hausdorff_bvh_bounded(a: Side<'_>, b: Side<'_>, tolerance: f64) -> Hausdorff {
+    both_sides(a, b, tolerance, one_sided_bounded)
+}
+
+/// H from `one_sided` run on each side in parallel (A against B's BVH with
+/// A's bounds, and B against A's).
+fn both_sides(
+    a: Side<'_>,
+    b: Side<'_>,
+    tolerance: f64,
+    one_sided: impl Fn(MeshRef<'_>, &Bvh, f64, &[f64]) -> OneSided + Sync,
+) -> Hausdorff {
     let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
     let (ab, ba) = rayon::join(
-        || one_sided_bounded(ma, b.0, tolerance, a.2),
-        || one_sided_bounded(mb, a.0, tolerance, b.2),
+        || one_sided(ma, b.0, tolerance, a.2),
+        || one_sided(mb, a.0, tolerance, b.2),
     );
     Hausdorff::of_sides(ab, ba)
 }
@@ -578,7 +590,7 @@ fn split_cell(c: &Cell, b: &Bvh, lb: &mut f64) -> [([DVec3; 3], [f64; 3], [u32; 
         let hint = (0..3)
             .map(|i| c.f[i] + m[j].distance(c.v[i]))
             .fold(f64::INFINITY, f64::min);
-        let (d2, t) = b.nearest_below(m[j], (hint * (1.0 + 1e-12) + 1e-300).powi(2));
+        let (d2, t) = b.nearest_below(m[j], search_limit2(hint));
         fm[j] = d2.sqrt();
         km[j] = t;
         *lb = lb.max(fm[j]);
@@ -611,12 +623,7 @@ pub fn hausdorff_bvh(a: (&Bvh, &[[u32; 3]]), b: (&Bvh, &[[u32; 3]]), tolerance: 
 /// vertices' distances to the other mesh (empty: none) to start the searches
 /// below ([`one_sided_below_bounds`]).
 pub fn hausdorff_bvh_below_bounds(a: Side<'_>, b: Side<'_>, tolerance: f64) -> Hausdorff {
-    let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
-    let (ab, ba) = rayon::join(
-        || one_sided_below_bounds(ma, b.0, tolerance, a.2),
-        || one_sided_below_bounds(mb, a.0, tolerance, b.2),
-    );
-    Hausdorff::of_sides(ab, ba)
+    both_sides(a, b, tolerance, one_sided_below_bounds)
 }
 
 #[cfg(test)]
