@@ -17,7 +17,7 @@
 //! as far apart as the rings), stops at the first ring outside the cap of the
 //! best distance so far, polishes the best [`NearestSearch::seeds`] samples
 //! and every other sample within one step's change of the best (at most 24
-//! in all) by pattern search on the sphere to a sixteenth of the step, and
+//! in all; fewer in a small cap, below) by pattern search on the sphere to a sixteenth of the step, and
 //! the best [`NearestSearch::seeds`] of those down to
 //! [`NearestSearch::stop_rad`]. In a small cap (U ≤ 0.1 m, nearly every
 //! point of a good reconstruction) only the nearest sample and the samples
@@ -30,8 +30,8 @@
 //! second and third nearest samples are no exception: they are nearly
 //! always the nearest one's neighbours. Polishing them as well took 40 % of
 //! the lookups of a real roadway file's search (28.5 against 17.1 million
-//! for its 51,337 withheld points; its default `compare` 17.2 against
-//! 12.8 s), and without it no H of the 103 corpus files' default `compare`
+//! for its 51,337 withheld points; its default `compare` 19.5 against
+//! 13.0 s, BENCHMARKS.md), and without it no H of the 103 corpus files' default `compare`
 //! (721 rows) moved by more than 5.6e-6 % of I_max, no mean surface distance
 //! by more than 4.2e-5 % and no RMS by more than 1.5e-5 %, each upwards (a
 //! basin those neighbours reached and the nearest sample's polish did not).
@@ -69,8 +69,11 @@ pub struct NearestSearch {
     pub rings: usize,
     /// Directions of the Fibonacci lattice when the cap is the whole sphere.
     pub sphere: usize,
-    /// Samples polished to the end by pattern search (every sample within one
-    /// step's change of the best, at most 24, is first polished roughly).
+    /// Samples polished to the end by pattern search, the best of those
+    /// polished roughly first: in a large cap the best `seeds` samples and
+    /// every other within one step's change of the best (at most 24); in a
+    /// small cap the nearest sample and the local minima among those; on
+    /// the whole sphere the best `seeds` (module documentation).
     pub seeds: usize,
     /// The pattern search stops when its step is below this, radians.
     pub stop_rad: f64,
@@ -159,8 +162,13 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
         .enumerate()
         .take_while(|&(k, s)| k < seeds || s.d <= window)
         .filter(|&(k, _)| {
-            let small_cap = u <= SMALL_CAP * m;
-            k == 0 || (k < seeds && !small_cap) || (u < m && (!small_cap || local_min(k)))
+            if u >= m {
+                k < seeds // the whole sphere
+            } else if u <= SMALL_CAP * m {
+                k == 0 || local_min(k)
+            } else {
+                true // a larger cap: the whole window
+            }
         })
         .take(MAX_SEEDS)
         .map(|(_, &s)| polish(s, step, step / 16.0, false, &at))
