@@ -2,6 +2,7 @@
 # Runs the browser tests of the HTML reports' interactive 3D view (tests/browser/test_viewer.py) in headless
 # Chromium, driven by Playwright; WebGL on SwiftShader (software), so no GPU is needed.
 # Usage: bash scripts/browser-tests.sh        (from anywhere)
+#        bash scripts/browser-tests.sh --setup  (only create/update the virtual environment; no Chromium needed)
 #
 # - creates/updates the virtual environment .venv-browser/ from tests/browser/requirements.txt (pinned); the
 #   install is skipped when the requirements did not change since the last one (stamp file);
@@ -16,6 +17,8 @@ cd "$(dirname "$0")/.."
 ROOT="$(pwd)"
 VENV="$ROOT/.venv-browser"
 REQ="$ROOT/tests/browser/requirements.txt"
+SETUP_ONLY=0
+[ "${1:-}" = "--setup" ] && SETUP_ONLY=1
 
 exe="${CHROMIUM:-}"
 if [ -z "$exe" ]; then
@@ -26,7 +29,7 @@ if [ -z "$exe" ]; then
     fi
   done
 fi
-[ -n "$exe" ] || { echo "browser tests: no chromium, chromium-browser or google-chrome on PATH"; exit 3; }
+[ -n "$exe" ] || [ "$SETUP_ONLY" = 1 ] || { echo "browser tests: no chromium, chromium-browser or google-chrome on PATH"; exit 3; }
 
 if [ ! -x "$VENV/bin/python" ]; then
   echo "== browser tests: creating $VENV"
@@ -40,6 +43,7 @@ if [ "$(cat "$STAMP" 2>/dev/null || true)" != "$WANT" ]; then
     || { echo "browser tests: pip install -r tests/browser/requirements.txt failed"; exit 3; }
   echo "$WANT" > "$STAMP"
 fi
+[ "$SETUP_ONLY" = 1 ] && exit 0
 
 if [ -z "${PHOTOSOLID_BIN:-}" ]; then
   cargo build --quiet --bin photosolid

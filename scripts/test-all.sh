@@ -147,21 +147,54 @@ python3 scripts/check_layers.py
 section "functions a reader can hold: none over 80 lines in src/ beyond the shrinking allow list (scripts/check_fn_length.py)"
 python3 scripts/check_fn_length.py
 
-section "build (all targets: library, binary, tests, benches; dev profile = test profile, one build)"
+# The set-up that waits on the network and the disk (apt packages, the Python environments of the
+# notebooks, the bindings and the browser tests) runs beside the build, which keeps the cores busy;
+# what it printed comes out in the install section. Each step is idempotent and is checked again
+# where it is used (the probe below; notebooks.sh, python.sh and browser-tests.sh set up what is
+# still missing and exit 3 when they cannot), so a step that failed here is reported there.
+install_chromium() {
+  if ! chromium_exe >/dev/null; then
+    if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
+      (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) || echo "chromium could not be installed"
+    else
+      echo "no root/apt to install chromium"
+    fi
+  fi
+}
+SETUP_LOG="$(mktemp)"
+(
+  set +e
+  install_chromium
+  bash scripts/install-gpu-drivers.sh
+  bash scripts/notebooks.sh --setup
+  bash scripts/browser-tests.sh --setup
+  true
+) >"$SETUP_LOG" 2>&1 &
+SETUP_PID=$!
+# kill_tree PID: the set-up and what it started, when the script stops before waiting for it.
+kill_tree() {
+  local child
+  for child in $(pgrep -P "$1" 2>/dev/null); do kill_tree "$child"; done
+  kill "$1" 2>/dev/null || true
+}
+trap '[ -z "${SETUP_PID:-}" ] || kill_tree "$SETUP_PID"' EXIT
+
+section "build (all targets: library, binary, tests, benches; dev profile = test profile, one build; the set-up of the optional groups runs beside it)"
 build_start=$SECONDS
 cargo build --all-targets --locked 2>&1 | tail -n 3
 echo "build: $((SECONDS - build_start)) s, target/ $(du -sh target 2>/dev/null | cut -f1)"
 PHOTOSOLID_BIN="$(pwd)/target/debug/photosolid"
 export PHOTOSOLID_BIN
 
-section "install what the optional groups need (headless Chromium, Mesa's software GPU drivers)"
-if ! chromium_exe >/dev/null; then
-  if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
-    (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) || echo "chromium could not be installed"
-  else
-    echo "no root/apt to install chromium"
-  fi
-fi
+section "install what the optional groups need (headless Chromium, Mesa's software GPU drivers, the Python environments; started beside the build)"
+wait_start=$SECONDS
+wait "$SETUP_PID" || true
+SETUP_PID=""
+cat "$SETUP_LOG"
+rm -f "$SETUP_LOG"
+echo "set-up: waited $((SECONDS - wait_start)) s after the build"
+# Again in the foreground: a no-op when the background set-up did it, the reason when it could not.
+install_chromium
 bash scripts/install-gpu-drivers.sh || true
 probe
 if [ "${#MISSING_REQUIRED[@]}" -gt 0 ]; then
