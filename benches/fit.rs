@@ -149,6 +149,27 @@ fn median_ms(set: &[(impl AsRef<str>, Distribution)], opts: &FitOptions) -> f64 
     t[t.len() / 2]
 }
 
+/// True under `cargo bench` (cargo passes `--bench`); under `cargo test` criterion runs each
+/// benchmark once as a check that it runs, and the medians (six more fits of every file,
+/// about 10 s of the test command) would measure nothing.
+fn measuring() -> bool {
+    std::env::args().any(|a| a == "--bench")
+}
+
+/// Print the median fit times of `set` (parallel and serial), when measuring.
+fn print_medians(label: &str, set: &[(impl AsRef<str>, Distribution)], par: &FitOptions, serial: &FitOptions) {
+    if measuring() {
+        eprintln!(
+            "{label} ({}): median fit {:.2} ms parallel, {:.2} ms serial",
+            set.len(),
+            median_ms(set, par),
+            median_ms(set, serial)
+        );
+    } else {
+        eprintln!("{label} ({}): medians only under cargo bench", set.len());
+    }
+}
+
 fn bench(c: &mut Criterion) {
     let synth = synthetic();
     let serial = FitOptions {
@@ -156,12 +177,7 @@ fn bench(c: &mut Criterion) {
         ..Default::default()
     };
     let par = FitOptions::default();
-    eprintln!(
-        "synthetic set ({}): median fit {:.2} ms parallel, {:.2} ms serial",
-        synth.len(),
-        median_ms(&synth, &par),
-        median_ms(&synth, &serial)
-    );
+    print_medians("synthetic set", &synth, &par, &serial);
     let mut g = c.benchmark_group("fit");
     g.sample_size(10);
     for (name, d) in &synth {
@@ -177,12 +193,7 @@ fn bench(c: &mut Criterion) {
     if corpus.is_empty() {
         eprintln!("corpus: no loadable files (readers missing or ../shared/corpus absent)");
     } else {
-        eprintln!(
-            "corpus ({} files): median fit {:.2} ms parallel, {:.2} ms serial",
-            corpus.len(),
-            median_ms(&corpus, &par),
-            median_ms(&corpus, &serial)
-        );
+        print_medians("corpus files", &corpus, &par, &serial);
         let mut g = c.benchmark_group("fit-corpus");
         g.sample_size(10);
         g.bench_function("all-files/parallel", |b| {
