@@ -13,7 +13,8 @@
 #
 # One build: the dev and test profiles share their settings (Cargo.toml), so `cargo build --all-targets`
 # compiles the dependencies once, and the smoke run, data/ regeneration and notebooks use that binary
-# (target/debug/photosolid) instead of building a release one.
+# (target/debug/photosolid) instead of building a release one. The apt packages and the Python
+# environments are set up in the background while that build runs (see "set-up" below).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PROBE_ONLY=0
@@ -177,7 +178,7 @@ kill_tree() {
   for child in $(pgrep -P "$1" 2>/dev/null); do kill_tree "$child"; done
   kill "$1" 2>/dev/null || true
 }
-trap '[ -z "${SETUP_PID:-}" ] || kill_tree "$SETUP_PID"' EXIT
+trap '[ -z "${SETUP_PID:-}" ] || kill_tree "$SETUP_PID"; rm -f "$SETUP_LOG"' EXIT
 
 section "build (all targets: library, binary, tests, benches; dev profile = test profile, one build; the set-up of the optional groups runs beside it)"
 build_start=$SECONDS
