@@ -123,18 +123,19 @@ pub(crate) fn grid_angles(c_deg: &[f64], gamma_deg: &[f64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Upload `data` and `params` (8 words: `n`, a word of the shader's, its
-/// own, then the dispatch's x size, which is written here, then four more)
-/// into the buffers of a batch, labelled `label`.
+/// Upload `data` and `params` (N >= 4 words: `n`, a word of the shader's, its
+/// own, then the dispatch's x size, which is written here, then the shader's
+/// own) into the buffers of a batch, labelled `label`.
 ///
 /// # Errors
 /// [`GpuError::TooLarge`] when the batch exceeds the device's binding or dispatch limits.
-pub(crate) fn upload(
+pub(crate) fn upload<const N: usize>(
     ctx: &GpuContext,
     label: &str,
     data: &[[f32; 4]],
-    mut params: [u32; 8],
+    mut params: [u32; N],
 ) -> Result<BatchBuffers, GpuError> {
+    const { assert!(N >= 4, "the first four words are the batch's") };
     let n = data.len();
     let max_dim = ctx.max_workgroups_per_dim().max(1) as usize;
     let groups = n.div_ceil(WORKGROUP).max(1);
@@ -162,7 +163,8 @@ pub(crate) fn upload(
     ctx.queue.write_buffer(&input, 0, bytemuck::cast_slice(data));
     let output = buf("output", (n * 4) as u64, U::STORAGE | U::COPY_SRC);
     let staging = buf("staging", (n * 4) as u64, U::MAP_READ | U::COPY_DST);
-    let uniform = buf("params", 32, U::UNIFORM | U::COPY_DST);
+    // A uniform block is a whole number of 16-byte vectors.
+    let uniform = buf("params", (N * 4).next_multiple_of(16) as u64, U::UNIFORM | U::COPY_DST);
     ctx.queue.write_buffer(&uniform, 0, bytemuck::cast_slice(&params));
     Ok(BatchBuffers {
         n,

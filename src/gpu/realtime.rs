@@ -6,7 +6,10 @@
 //! [`crate::reconstruct::StoredTexture`] (a render of the LDT,
 //! I / I_max, whole or only its symmetry's C sector) as an `R32Float`
 //! texture when the adapter can filter it (`FLOAT32_FILTERABLE`), else as
-//! `R16Float` (values rounded to f16), with a sampler, and evaluates a
+//! `R16Float` (values rounded to f16); a quantised or BC6H store as
+//! `R16Unorm`, `R8Unorm` or `Bc6hRgbUfloat` (its blocks padded to whole
+//! 4 × 4, a padding the shader never reads: it applies the address modes
+//! itself), with a sampler, and evaluates a
 //! [`HardwareLookup`] in a compute shader (`realtime.wgsl`: Wallner's (2008)
 //! texture-coordinate mapping, equations 1–3, `textureSampleLevel`).
 //!
@@ -183,6 +186,9 @@ pub struct RealtimeTexture<'a> {
     lookup: HardwareLookup,
     /// Shader parameters after `n`, `mode`, `dispatch_x`: fold code, then sizes.
     fold: u32,
+    /// The device texture's (width, height), texels: the stored texels, padded
+    /// to whole 4 × 4 blocks for BC6H.
+    texture_size: (usize, usize),
     exact: StoredTexture,
 }
 
@@ -276,15 +282,8 @@ impl<'a> RealtimeTexture<'a> {
             Precision::Bc6h if !ctx.bc_compression() => Precision::F16,
             p => p,
         };
-        // A BC6H texture on the device must be whole 4 x 4 blocks: padding would move
-        // the texel centres the lookup's coordinates address and break the periodic seam.
-        // The sizes come from an f16 store (cheap), before the slow encoder runs.
+        // The sizes come from an f16 store (cheap), checked before the slow BC6H encoder runs.
         let mut exact = StoredTexture::new(rendered, reduced, Precision::F16, lookup.exact());
-        let (rows, (_, columns)) = (exact.height(), exact.stored_columns());
-        let whole_blocks = rows % 4 == 0 && columns % 4 == 0;
-        if precision != Precision::F16 && (precision != Precision::Bc6h || whole_blocks) {
-            exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
-        }
         let (h, (_, cols)) = (exact.height(), exact.stored_columns());
         if h == 0 || cols == 0 {
             return Err(GpuError::InvalidJob {
@@ -292,15 +291,24 @@ impl<'a> RealtimeTexture<'a> {
                 reason: "empty texture".into(),
             });
         }
+        // A BC6H texture is whole 4 x 4 blocks on the device; the shader addresses
+        // the stored texels inside it and never reads the padding.
+        let texture_size = match precision {
+            Precision::Bc6h => (cols.next_multiple_of(4), h.next_multiple_of(4)),
+            _ => (cols, h),
+        };
         let max = ctx.limits.max_texture_dimension_2d as usize;
-        if h > max || cols > max {
+        if texture_size.0 > max || texture_size.1 > max {
+            let (w, th) = texture_size;
             return Err(GpuError::TooLarge {
                 index: 0,
-                reason: format!("a {cols} x {h} texture exceeds the device's {max} texels per side"),
+                reason: format!("a {w} x {th} texture exceeds the device's {max} texels per side"),
             });
         }
+        if precision != Precision::F16 {
+            exact = StoredTexture::new(rendered, reduced, precision, lookup.exact());
+        }
         let (format, bytes) = upload_texels(&exact)?;
-        let mirror = exact.reduced().is_some();
         let fold = exact.reduced().map_or(0, |s| s.isym() as u32);
         Pipelines::of(ctx)?;
         let filter = if lookup == HardwareLookup::Nearest {
@@ -308,8 +316,9 @@ impl<'a> RealtimeTexture<'a> {
         } else {
             wgpu::FilterMode::Linear
         };
-        let (view, sampler) = upload(ctx, format, &bytes, (cols, h), mirror, filter);
+        let (view, sampler) = upload(ctx, format, &bytes, texture_size, filter);
         Ok(RealtimeTexture {
+            texture_size,
             ctx,
             view,
             sampler,
@@ -352,14 +361,13 @@ impl<'a> RealtimeTexture<'a> {
 
     pub(crate) fn prepare_raw(&self, data: &[[f32; 4]], mode: u32) -> Result<LookupBatch, GpuError> {
         let (h, (first, cols)) = (self.exact.height(), self.exact.stored_columns());
-        let mut params = [0u32; 8];
+        let (texture_width, texture_height) = self.texture_size;
+        let mut params = [0u32; 12];
         params[1] = mode;
         params[2] = self.fold;
-        for (p, v) in params[4..]
-            .iter_mut()
-            .zip([h as f32, self.exact.full_width() as f32, first as f32, cols as f32])
-        {
-            *p = v.to_bits();
+        let sizes = [h, self.exact.full_width(), first, cols, texture_width, texture_height];
+        for (p, v) in params[4..10].iter_mut().zip(sizes) {
+            *p = (v as f32).to_bits();
         }
         let buffers = super::batch::upload(self.ctx, "realtime", data, params)?;
         let pipes = Pipelines::of(self.ctx)?;
@@ -425,7 +433,6 @@ fn upload(
     format: wgpu::TextureFormat,
     bytes: &[u8],
     (cols, rows): (usize, usize),
-    mirror: bool,
     filter: wgpu::FilterMode,
 ) -> (wgpu::TextureView, wgpu::Sampler) {
     let size = wgpu::Extent3d {
@@ -461,14 +468,11 @@ fn upload(
         },
         size,
     );
-    let u_mode = if mirror {
-        wgpu::AddressMode::MirrorRepeat
-    } else {
-        wgpu::AddressMode::Repeat
-    };
+    // The shader applies the address modes itself (`texel_fetch` in realtime.wgsl)
+    // and samples inside the stored texels only.
     let sampler = ctx.device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("light distribution texture"),
-        address_mode_u: u_mode,
+        address_mode_u: wgpu::AddressMode::ClampToEdge,
         address_mode_v: wgpu::AddressMode::ClampToEdge,
         mag_filter: filter,
         min_filter: filter,

@@ -16,8 +16,12 @@
 //
 // A symmetry-reduced texture stores columns first_column .. first_column +
 // columns of the full render; C = 360 t is folded into the sector
-// (`Symmetry::fold`) and the sampler mirrors at the sector's edges
-// (MIRROR_REPEAT in u); rows clamp (CLAMP_TO_EDGE in v), as the CPU lookup does.
+// (`Symmetry::fold`) and the columns mirror at the sector's edges (as
+// MIRROR_REPEAT would); a whole circle's columns repeat (REPEAT); rows clamp
+// (CLAMP_TO_EDGE), as the CPU lookup does. These address modes are applied
+// here, not by the sampler (`texel_fetch`): a BC6H texture is padded to whole
+// 4 x 4 blocks, so the device texture can be larger than the stored texels,
+// and the sampler's own wrap would read the padding.
 //
 // Lookups (`params.mode`):
 //   0 nearest: one fetch (the texture's sampler is then a nearest one);
@@ -43,6 +47,12 @@ struct Params {
     full_width: f32,
     first_column: f32,
     columns: f32,
+    // The device texture's size, texels: height x columns padded to whole
+    // 4 x 4 blocks for BC6H, else the same.
+    texture_width: f32,
+    texture_height: f32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 @group(0) @binding(0) var ldt: texture_2d<f32>;
@@ -101,14 +111,48 @@ fn catmull_rom(f: f32) -> vec4<f32> {
     );
 }
 
-// Three (coordinate, weight) pairs along one axis of n texels at texel-space
-// position x (texel k centred at x = k): outer texels exact, middle merged.
-fn axis3(x: f32, n: f32, c: ptr<function, vec3<f32>>, w: ptr<function, vec3<f32>>) {
+// Three (texel-space coordinate, weight) pairs along one axis at position x
+// (texel k centred at x = k): outer texels exact, middle merged. The
+// coordinates are those of `texel_fetch` (texel k centred at k + 1/2).
+fn axis3(x: f32, c: ptr<function, vec3<f32>>, w: ptr<function, vec3<f32>>) {
     let x0 = floor(x);
     let k = catmull_rom(x - x0);
     let w12 = k.y + k.z;
-    *c = vec3<f32>(x0 - 0.5, x0 + k.z / w12 + 0.5, x0 + 2.5) / n;
+    *c = vec3<f32>(x0 - 0.5, x0 + k.z / w12 + 0.5, x0 + 2.5);
     *w = vec3<f32>(k.x, w12, k.w);
+}
+
+// Stored column j (any integer) addressed into 0 .. columns - 1: repeated
+// over a whole circle, mirrored at a sector's edges (edge texel repeated).
+fn column(j: f32) -> f32 {
+    let n = params.columns;
+    if (params.fold == 0u) {
+        return j - n * floor(j / n);
+    }
+    let m = j - 2.0 * n * floor(j / (2.0 * n));
+    return select(m, 2.0 * n - 1.0 - m, m >= n);
+}
+
+// The stored texels read at texel-space (x, y) (texel (j, i) centred at
+// (j + 1/2, i + 1/2)) with the header's address modes. Rows clamp exactly:
+// at the clamped coordinate the row beyond the edge has weight 0. Columns:
+// one hardware fetch when the pair it blends lies inside the stored
+// columns; at an edge (the 0/360 seam, a sector's mirror) two fetches at
+// the pair's column centres, blended here with the same fraction.
+fn texel_fetch(x: f32, y: f32) -> f32 {
+    let yc = clamp(y, 0.5, params.height - 0.5);
+    if (params.mode == 0u) {
+        // Nearest: the texel containing (x, y), read at its centre.
+        return fetch((column(floor(x)) + 0.5) / params.texture_width, (floor(yc) + 0.5) / params.texture_height);
+    }
+    let v = yc / params.texture_height;
+    let j0 = floor(x - 0.5);
+    if (j0 >= 0.0 && j0 + 1.0 <= params.columns - 1.0) {
+        return fetch(x / params.texture_width, v);
+    }
+    let a = fetch((column(j0) + 0.5) / params.texture_width, v);
+    let b = fetch((column(j0 + 1.0) + 0.5) / params.texture_width, v);
+    return mix(a, b, x - 0.5 - j0);
 }
 
 @compute @workgroup_size(64, 1, 1)
@@ -129,23 +173,23 @@ fn main(@builtin(workgroup_id) wg: vec3<u32>, @builtin(local_invocation_index) l
     }
     let st = seed_st(q.xyz);
     let c = fold_c(st.y * 360.0, params.fold);
-    // Normalised coordinates in the stored texture.
-    let u = (c / 360.0 * params.full_width - params.first_column) / params.columns;
-    let v = st.x;
+    // Texel-space coordinates in the stored texels.
+    let x = c / 360.0 * params.full_width - params.first_column;
+    let y = st.x * params.height;
     var r = 0.0;
     if (params.mode <= 1u) {
-        r = fetch(u, v);
+        r = texel_fetch(x, y);
     } else {
         var cu: vec3<f32>;
         var wu: vec3<f32>;
         var cv: vec3<f32>;
         var wv: vec3<f32>;
-        axis3(u * params.columns - 0.5, params.columns, &cu, &wu);
-        axis3(v * params.height - 0.5, params.height, &cv, &wv);
+        axis3(x - 0.5, &cu, &wu);
+        axis3(y - 0.5, &cv, &wv);
         for (var a = 0; a < 3; a++) {
             var row = 0.0;
             for (var b = 0; b < 3; b++) {
-                row += wu[b] * fetch(cu[b], cv[a]);
+                row += wu[b] * texel_fetch(cu[b], cv[a]);
             }
             r += wv[a] * row;
         }
