@@ -171,15 +171,19 @@ impl Bvh {
         if self.tris.is_empty() {
             return (f64::INFINITY, best_t);
         }
-        let mut stack: [u32; 64] = [0; 64];
+        // Each entry carries its box's squared distance, computed once when its
+        // parent was opened: a popped node is pruned against the best distance
+        // found since without recomputing it.
+        let mut stack: [(u32, f64); 64] = [(0, 0.0); 64];
+        stack[0] = (0, self.nodes[0].bounds.dist2(p));
         let mut sp = 1usize;
-        stack[0] = 0;
         while sp > 0 {
             sp -= 1;
-            let n = &self.nodes[stack[sp] as usize];
-            if n.bounds.dist2(p) >= best2 {
+            let (ni, box2) = stack[sp];
+            if box2 >= best2 {
                 continue;
             }
+            let n = &self.nodes[ni as usize];
             if n.count > 0 {
                 for t in n.start..n.start + n.count {
                     let d2 = point_triangle_dist2(p, &self.triangle(t));
@@ -192,15 +196,24 @@ impl Bvh {
                 let (l, r) = (n.start, n.start + 1);
                 let dl = self.nodes[l as usize].bounds.dist2(p);
                 let dr = self.nodes[r as usize].bounds.dist2(p);
-                // Push the farther child first so the nearer one is searched first.
-                let (first, second) = if dl <= dr { (r, l) } else { (l, r) };
-                if sp + 2 <= stack.len() {
-                    stack[sp] = first;
-                    stack[sp + 1] = second;
-                    sp += 2;
+                // Push the farther child first so the nearer one is searched first;
+                // a child already beyond the best distance is not pushed.
+                let (near, far) = if dl <= dr {
+                    ((l, dl), (r, dr))
                 } else {
+                    ((r, dr), (l, dl))
+                };
+                if sp + 2 > stack.len() {
                     // Depth beyond 64 cannot happen with median splits below 2^32 triangles.
                     unreachable!("BVH deeper than its stack");
+                }
+                if far.1 < best2 {
+                    stack[sp] = far;
+                    sp += 1;
+                }
+                if near.1 < best2 {
+                    stack[sp] = near;
+                    sp += 1;
                 }
             }
         }

@@ -124,7 +124,7 @@ fn area(v: &[DVec3; 3]) -> f64 {
 }
 
 /// Distances from every point of `points` to `b`, in parallel; consecutive
-/// points warm-start each other's search (d(p_k) ≤ d(p_{k−1}) + |p_k − p_{k−1}|).
+/// points warm-start each other's search (p_k's distance to p_{k−1}'s nearest triangle).
 pub fn distances(points: &[DVec3], b: &Bvh) -> Vec<f64> {
     nearest(points, b).into_iter().map(|x| x.0).collect()
 }
@@ -155,14 +155,22 @@ pub fn nearest_below_bounds(points: &[DVec3], b: &Bvh, upper: &[f64]) -> Vec<(f6
         .enumerate()
         .for_each(|(chunk, (o, p))| {
             let first = chunk * 512;
-            let mut prev: Option<(usize, f64)> = None;
+            // The previous point's nearest triangle: p_k's distance to it bounds
+            // p_k's distance to B, never looser than the Lipschitz bound
+            // d(p_{k-1}) + |p_k - p_{k-1}|, and far tighter between neighbours.
+            let mut prev = u32::MAX;
             for k in 0..p.len() {
-                let warm = prev.map_or(f64::INFINITY, |(j, d)| d + p[k].distance(p[j]));
+                let warm = if prev == u32::MAX {
+                    f64::INFINITY
+                } else {
+                    super::bvh::point_triangle_dist2(p[k], &b.triangle(prev)).sqrt()
+                };
                 let bound = warm.min(upper_of(first + k));
                 let (d2, t) = b.nearest_below(p[k], search_limit2(bound));
-                let d = d2.sqrt();
-                o[k] = (d, t);
-                prev = Some((k, d));
+                o[k] = (d2.sqrt(), t);
+                if t != u32::MAX {
+                    prev = t;
+                }
             }
         });
     out
