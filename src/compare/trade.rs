@@ -10,7 +10,8 @@
 //! largest texel), BC6H blocks (`+bc6h`, feature `bc6h`) and/or only in the symmetry's C sector; the fitted OpenGL lights with
 //! precomputed axes and cut-off cosines; spherical harmonics `sh:L` of the
 //! Catmull–Rom reconstruction for L in [`SH_DEGREES`] and L =
-//! [`FRONT_SH_DEGREE`] ([`crate::reconstruct::sh`], Lanczos-windowed, named
+//! [`FRONT_SH_DEGREE`], and on data the same in every C-plane L in
+//! [`ZONAL_FRONT_SH_DEGREES`] ([`crate::reconstruct::sh`], Lanczos-windowed, named
 //! in `window`); mixtures of K cosine-power lobes `lobes:K` for K in
 //! [`LOBE_COUNTS`] and K = [`FRONT_LOBE_COUNT`] ([`crate::fit::lobes`]).
 //! Errors come from [`compare`](super::compare())
@@ -102,6 +103,34 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
 /// between 128 bytes and 10 kB on 12 more files than the default rows alone
 /// (docs/compact.md). Not among `batch --compact`'s or `plan`'s candidates.
 pub const FRONT_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
+
+/// The representations of the trade table for `file`: [`representations`]
+/// of its declared symmetry, and `sh:L` for L in [`ZONAL_FRONT_SH_DEGREES`]
+/// where every C-plane holds the same values, whatever symmetry the file
+/// declares (its series are zonal).
+pub fn representations_of(file: &Distribution, factors: &[u32]) -> Vec<Recon> {
+    let mut out = representations(file.symmetry(), factors);
+    if file.detect_symmetry(0.0) == Symmetry::Rotational {
+        out.extend(ZONAL_FRONT_SH_DEGREES.map(|degree| Recon::Sh {
+            degree,
+            f16: false,
+            gpu: false,
+        }));
+    }
+    out
+}
+
+/// The degrees of the trade table's extra `sh:L` rows on data the same in
+/// every C-plane (whatever symmetry the file declares), where a series is
+/// zonal: 260 and 516 bytes (L + 1
+/// coefficients, as many terms a lookup). There every default compact row
+/// is under 128 bytes and the one-column texture (144-1,100 bytes) was the
+/// front above them; a profile with a sharp edge needs these degrees to
+/// come within a few % of it (the Lanczos window blurs an edge over about
+/// 180° / (L + 1)). Over the corpus's rotational files they put an `sh:L`
+/// row on the bytes front between 128 bytes and 10 kB where none was
+/// (docs/compact.md, "Rotational data: zonal series to L = 128").
+pub const ZONAL_FRONT_SH_DEGREES: [usize; 2] = [64, 128];
 
 /// The lobe count of the trade table's extra `lobes:K` row, beside
 /// [`LOBE_COUNTS`] (160 bytes, fitted in the same search as the default
@@ -266,7 +295,7 @@ pub fn trade_table(
     opts: &TradeOptions,
     progress: &Progress<'_>,
 ) -> Result<TradeTable, ModelError> {
-    let mut recons = representations(file.symmetry(), &opts.factors);
+    let mut recons = representations_of(file, &opts.factors);
     if opts.gpu {
         recons.extend(gpu_representations());
     }

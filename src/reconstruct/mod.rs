@@ -42,7 +42,7 @@ pub use holdout::{holdout, holdout_split, kfold, Fold, HoldoutReport, HoldoutSpe
 pub use lobes::{Lobe, Lobes};
 pub use lookup::{Lookup, Precision, StoredTexture};
 pub use sampler::Sampler;
-pub use sh::{ShField, ShWindow, MAX_SH_DEGREE};
+pub use sh::{ShField, ShWindow, MAX_SH_DEGREE, MAX_ZONAL_SH_DEGREE};
 pub use spec::TextureSpec;
 pub use texture::{
     render, render_planned, render_with, GhostKind, LightTexture, RenderOptions, RenderPlan, Rendered, TexelMapping,

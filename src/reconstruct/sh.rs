@@ -53,8 +53,14 @@ use crate::model::IntensityField;
 
 use super::lookup::Precision;
 
-/// Largest degree L accepted (`(L + 1)² = 1089` coefficients).
+/// Largest degree L of a series with non-zonal terms (`(L + 1)² = 1089`
+/// coefficients, as many terms a lookup).
 pub const MAX_SH_DEGREE: usize = 32;
+/// Largest degree L of a zonal series (a rotationally symmetric field:
+/// `L + 1 = 129` coefficients and terms a lookup, the cost of an
+/// asymmetric `sh:10`). A profile's sharp edge needs such degrees: the
+/// Lanczos-windowed series blurs an edge over about 180° / (L + 1).
+pub const MAX_ZONAL_SH_DEGREE: usize = 128;
 /// Gauss–Legendre nodes per hemisphere at least (`n = max(L + 1, QUAD_RINGS / 2)`).
 pub const QUAD_RINGS: usize = 180;
 /// Azimuths of the quadrature at least (`max(2L + 2, QUAD_AZIMUTHS)`), 1° apart.
@@ -177,7 +183,7 @@ fn legendre_scaled(degree: usize, z: f64, rec: &[(f64, f64)], out: &mut [f64]) {
 /// largest |sample| (cd).
 ///
 /// # Errors
-/// [`ModelError::Parameter`] (`sh`) for a degree above [`MAX_SH_DEGREE`].
+/// [`ModelError::Parameter`] (`sh`) for a degree above [`MAX_ZONAL_SH_DEGREE`].
 pub fn project(field: &dyn IntensityField, degree: usize) -> Result<(Vec<f64>, f64), ModelError> {
     check_degree(degree)?;
     let n = (degree + 1).max(QUAD_RINGS / 2);
@@ -266,11 +272,13 @@ fn zonal_only(coeffs: &mut [f64], degree: usize) -> bool {
 }
 
 fn check_degree(degree: usize) -> Result<(), ModelError> {
-    if degree > MAX_SH_DEGREE {
+    if degree > MAX_ZONAL_SH_DEGREE {
         return Err(ModelError::Parameter {
             name: "sh",
             value: degree.to_string(),
-            reason: format!("the degree L must be 0 to {MAX_SH_DEGREE}"),
+            reason: format!(
+                "the degree L must be 0 to {MAX_SH_DEGREE} ({MAX_ZONAL_SH_DEGREE} for rotationally symmetric data)"
+            ),
         });
     }
     Ok(())
@@ -298,7 +306,9 @@ impl ShField {
     /// The series of degree `degree` of `field`, windowed and stored in `precision`.
     ///
     /// # Errors
-    /// [`ModelError::Parameter`] (`sh`) for a degree above [`MAX_SH_DEGREE`], (`precision`) for [`Precision::Bc6h`].
+    /// [`ModelError::Parameter`] (`sh`) for a degree above [`MAX_SH_DEGREE`]
+    /// unless the series is zonal (then up to [`MAX_ZONAL_SH_DEGREE`]),
+    /// (`precision`) for [`Precision::Bc6h`].
     pub fn new(
         field: &dyn IntensityField,
         degree: usize,
@@ -315,13 +325,36 @@ impl ShField {
             });
         }
         let (c, scale_cd) = project(field, degree)?;
-        Ok(Self::from_coefficients(&c, scale_cd, degree, window, precision))
+        let sh = Self::from_coefficients(&c, scale_cd, degree, window, precision);
+        if sh.degree < degree {
+            return Err(ModelError::Parameter {
+                name: "sh",
+                value: degree.to_string(),
+                reason: format!(
+                    "a degree above {MAX_SH_DEGREE} needs a rotationally symmetric distribution \
+                     (a zonal series, L + 1 coefficients); this one depends on C"
+                ),
+            });
+        }
+        Ok(sh)
     }
 
     /// The series of orthonormal coefficients `c` (cd, at `l² + l + m`) of
     /// degree `degree`, relative to `scale_cd` (> 0; else the field is 0).
+    /// A degree above [`MAX_SH_DEGREE`] is kept only for a zonal series (up
+    /// to [`MAX_ZONAL_SH_DEGREE`]); a series with non-zonal terms is cut
+    /// there ([`ShField::degree`] says which was kept).
     pub fn from_coefficients(c: &[f64], scale_cd: f64, degree: usize, window: ShWindow, precision: Precision) -> Self {
-        let degree = degree.min(MAX_SH_DEGREE);
+        let degree = degree.min(MAX_ZONAL_SH_DEGREE);
+        let sh = Self::from_coefficients_at(c, scale_cd, degree, window, precision);
+        if sh.zonal || degree <= MAX_SH_DEGREE {
+            sh
+        } else {
+            Self::from_coefficients_at(c, scale_cd, MAX_SH_DEGREE, window, precision)
+        }
+    }
+
+    fn from_coefficients_at(c: &[f64], scale_cd: f64, degree: usize, window: ShWindow, precision: Precision) -> Self {
         let ok = scale_cd.is_finite() && scale_cd > 0.0;
         let norm = if ok { 1.0 / ((4.0 * PI).sqrt() * scale_cd) } else { 0.0 };
         let windowed: Vec<f64> = (0..=degree)

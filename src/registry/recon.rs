@@ -12,6 +12,7 @@ use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{
     render, Compact, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec, MAX_SH_DEGREE,
+    MAX_ZONAL_SH_DEGREE,
 };
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
@@ -63,7 +64,8 @@ pub enum Recon {
     /// ([`ShField`]); written `sh:L`, `sh:L+f16` for half-float coefficients,
     /// with `+gpu` evaluated by the GPU in f32 (`gpu::compact`, feature `gpu`).
     Sh {
-        /// The degree L (0 to [`MAX_SH_DEGREE`]).
+        /// The degree L (0 to [`MAX_SH_DEGREE`]; to [`MAX_ZONAL_SH_DEGREE`]
+        /// for rotationally symmetric data, whose series is zonal).
         degree: usize,
         /// Coefficients stored as f16 (2 bytes) instead of f32 (4 bytes).
         f16: bool,
@@ -215,7 +217,8 @@ fn parse_regridded(s: &str) -> Result<Recon, ModelError> {
     }
 }
 
-/// `sh:L[+f16][+gpu]`, L in 0..=[`MAX_SH_DEGREE`].
+/// `sh:L[+f16][+gpu]`, L in 0..=[`MAX_ZONAL_SH_DEGREE`] (above
+/// [`MAX_SH_DEGREE`] only rotationally symmetric data builds, see [`ShField::new`]).
 fn parse_sh(x: &str) -> Result<Recon, ModelError> {
     let body = x.strip_prefix(SH_PREFIX).unwrap_or(x);
     let (body, gpu) = strip_gpu(body);
@@ -224,11 +227,14 @@ fn parse_sh(x: &str) -> Result<Recon, ModelError> {
         None => (body, false),
     };
     match digits.parse::<usize>() {
-        Ok(degree) if degree <= MAX_SH_DEGREE => Ok(Recon::Sh { degree, f16, gpu }),
+        Ok(degree) if degree <= MAX_ZONAL_SH_DEGREE => Ok(Recon::Sh { degree, f16, gpu }),
         _ => Err(ModelError::Parameter {
             name: "recon",
             value: x.to_string(),
-            reason: format!("expected sh:L[+f16][+gpu] with the degree L from 0 to {MAX_SH_DEGREE}"),
+            reason: format!(
+                "expected sh:L[+f16][+gpu] with the degree L from 0 to {MAX_SH_DEGREE} \
+                 ({MAX_ZONAL_SH_DEGREE} for rotationally symmetric data)"
+            ),
         }),
     }
 }
@@ -500,7 +506,7 @@ mod tests {
             "sh:8+gpu+f16",
             "lobes:3+gpu+gpu",
             "lobes:0+gpu",
-            "sh:33+gpu",
+            "sh:129+gpu",
             "lobes:+gpu",
         ] {
             assert!(bad.parse::<Recon>().is_err(), "{bad}");

@@ -523,7 +523,7 @@ fn degree_figure(c: &Comparison) -> Result<Option<Figure>, Error> {
     );
     let png = plot::line_chart(&LineSpec {
         title: &title,
-        x_label: "degree L (sh:L holds (L+1)^2 coefficients)",
+        x_label: "degree L (sh:L holds (L+1)^2 coefficients, L+1 when zonal)",
         y_label: "error (% of I_max)",
         series: &series,
         ..LineSpec::default()

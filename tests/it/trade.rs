@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use photosolid::compare::trade::{representations, trade_table, TradeOptions};
+use photosolid::compare::trade::{representations, representations_of, trade_table, TradeOptions};
 use photosolid::compare::{compare, Against, CompareOptions, Directions};
 use photosolid::metrics::{radial_errors, DirectionSet};
 use photosolid::model::{Distribution, IntensityField, Symmetry};
@@ -227,7 +227,7 @@ fn extremes_give_finite_rows() {
             if truth.is_some() { "truth" } else { "withheld" },
             "{name}"
         );
-        assert_eq!(t.rows.len(), representations(d.symmetry(), &o.factors).len(), "{name}");
+        assert_eq!(t.rows.len(), representations_of(&d, &o.factors).len(), "{name}");
         for r in &t.rows {
             for (k, v) in [
                 ("hausdorff", r.hausdorff_pct),
@@ -241,7 +241,7 @@ fn extremes_give_finite_rows() {
         }
         // No representation answers a negative or NaN intensity anywhere.
         let dirs = DirectionSet::fibonacci(3000);
-        for r in representations(d.symmetry(), &o.factors) {
+        for r in representations_of(&d, &o.factors) {
             let recs = photosolid::registry::Reconstructions::new(d.clone(), &[r]).unwrap();
             let v = eval_all(&*recs.field(r).unwrap(), &dirs.directions);
             assert!(v.iter().all(|x| x.is_finite() && *x >= 0.0), "{name} {r}");
