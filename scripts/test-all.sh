@@ -244,7 +244,12 @@ if git rev-parse --git-dir >/dev/null 2>&1; then
 fi
 
 section "CLI smoke: demo and validate on the project's own data/"
+rm -rf target/demo-smoke
 "$PHOTOSOLID_BIN" demo --output target/demo-smoke
+[ -f target/demo-smoke/index.html ] || { echo "demo --output target/demo-smoke wrote no index.html"; exit 1; }
+# The browser tests open this demo report instead of running the demo again (about 25 s).
+PHOTOSOLID_DEMO_DIR="$(pwd)/target/demo-smoke"
+export PHOTOSOLID_DEMO_DIR
 "$PHOTOSOLID_BIN" validate data
 
 section "browser: the HTML reports' interactive 3D view in headless Chromium (scripts/browser-tests.sh, tests/browser/)"

@@ -26,11 +26,12 @@ pub fn ok(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-/// One `photosolid demo --output d` run shared by the tests that only read
-/// what it wrote (a demo run takes about 25 s of a test thread; two tests
-/// each ran their own). Runs once per test process in a fresh directory
-/// under `CARGO_TARGET_TMPDIR`; returns (that directory, the run's stdout).
-/// Its output is in `dir/d`, and `dir/out/demo` must not exist.
+/// One `photosolid demo` run, with the default output directory, shared by
+/// the tests that only read what it wrote (a demo run takes about 25 s of a
+/// test thread; three tests each ran their own). Runs once per test process
+/// in a fresh directory under `CARGO_TARGET_TMPDIR`; returns (that
+/// directory, the run's stdout). Its output is in `dir/out/demo`, where the
+/// README says `demo` writes.
 pub fn shared_demo() -> &'static (PathBuf, String) {
     static DEMO: OnceLock<(PathBuf, String)> = OnceLock::new();
     DEMO.get_or_init(|| {
@@ -38,7 +39,39 @@ pub fn shared_demo() -> &'static (PathBuf, String) {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shared-demo-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
-        let out = ok(&run(&["demo", "--output", "d"], &dir));
+        let out = ok(&run(&["demo"], &dir));
+        (dir, out)
+    })
+}
+
+/// One `photosolid compare road.ldt --json --directions dense:3000 --report rep`
+/// run on a synthetic roadway (10° x 5° grid, 9,000 cd peak, written by the
+/// library, so its reference is the closed form), shared by the tests that
+/// only read its JSON and report (about 25 s of a test thread each).
+/// Returns (the directory holding `road.ldt` and `rep/`, the run's stdout).
+pub fn shared_road_compare() -> &'static (PathBuf, String) {
+    static RUN: OnceLock<(PathBuf, String)> = OnceLock::new();
+    RUN.get_or_init(|| {
+        use photosolid::synth::{GridSpec, Synth};
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shared-compare-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let road = Synth::Roadway
+            .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
+            .unwrap();
+        photosolid::save(&road.into(), &dir.join("road.ldt"), &Default::default()).unwrap();
+        let out = ok(&run(
+            &[
+                "compare",
+                "road.ldt",
+                "--json",
+                "--directions",
+                "dense:3000",
+                "--report",
+                "rep",
+            ],
+            &dir,
+        ));
         (dir, out)
     })
 }

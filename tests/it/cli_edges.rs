@@ -416,10 +416,10 @@ fn readme_says_where_demo_writes_and_how_to_install() {
         "test command cost missing"
     );
     assert!(readme.contains("`out/demo/`"), "demo output directory missing");
-    let t = tempfile::tempdir().unwrap();
-    ok(&run(&["demo"], t.path()));
+    // The demo run the README tests share runs without --output.
+    let (dir, _) = crate::common::cli::shared_demo();
     assert!(
-        t.path().join("out/demo/index.html").is_file(),
+        dir.join("out/demo/index.html").is_file(),
         "demo did not write out/demo/"
     );
 }

@@ -229,27 +229,9 @@ fn bin() -> std::process::Command {
 
 #[test]
 fn cli_json_has_the_contract_keys_and_report_is_self_contained() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("road.ldt");
-    photosolid::save(
-        &Synth::Roadway
-            .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
-            .unwrap()
-            .into(),
-        &file,
-        &Default::default(),
-    )
-    .unwrap();
-    let rep = dir.path().join("rep");
-    let o = bin()
-        .arg("compare")
-        .arg(&file)
-        .args(["--json", "--directions", "dense:3000", "--report"])
-        .arg(&rep)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (dir, stdout) = common::cli::shared_road_compare();
+    let rep = dir.join("rep");
+    let v: serde_json::Value = serde_json::from_str(stdout).unwrap();
     assert_eq!(v["directions"], "fibonacci 3000");
     assert_eq!(v["units"], "cd");
     let rows = v["results"].as_array().unwrap();
@@ -328,10 +310,11 @@ fn cli_json_has_the_contract_keys_and_report_is_self_contained() {
     assert!(html.contains(&format!("radial max: {method}")) && md.contains(&format!("radial max: {method}")));
     assert_eq!(json["radial_max_method"], method);
     assert_eq!(json["results"][3]["radial_max_pct"], v["results"][3]["radial_max_pct"]);
+    // The text output states it too (one reconstruction is enough to print the line).
     let text = bin()
         .arg("compare")
-        .arg(&file)
-        .args(["--directions", "dense:3000"])
+        .arg(dir.join("road.ldt"))
+        .args(["--directions", "dense:3000", "--recon", "bilinear"])
         .output()
         .unwrap();
     assert!(String::from_utf8_lossy(&text.stdout).contains(&format!("radial max: {method}")));

@@ -895,14 +895,24 @@ fn web_engines_are_linear_in_candela() {
     }
 }
 
+/// The engines table of cosine_p5.ldt with every engine (the default set) at
+/// the quick settings, timed (the Pareto front needs the timing column: a row
+/// without a time is never on it). One run shared by the tests that read it
+/// (about 16 s of a test thread each).
+fn cosine_every_engine() -> &'static photosolid::engines::EnginesReport {
+    static RUN: std::sync::OnceLock<photosolid::engines::EnginesReport> = std::sync::OnceLock::new();
+    RUN.get_or_init(|| {
+        let mut o = quick(Engine::ALL.to_vec());
+        o.timing_samples = 2000;
+        measure(&load("cosine_p5.ldt"), &o).unwrap()
+    })
+}
+
 /// Issue 25 item 4: defect rows are measured against the engine without the defect, so
 /// they are never on the Pareto front of the layouts.
 #[test]
 fn defect_rows_are_not_on_the_pareto_front() {
-    // The front needs the timing column (rows without a time are never on it).
-    let mut o = quick(Engine::ALL.to_vec());
-    o.timing_samples = 2000;
-    let r = measure(&load("cosine_p5.ldt"), &o).unwrap();
+    let r = cosine_every_engine();
     let defects: Vec<_> = r.rows.iter().filter(|x| x.kind == "defect").collect();
     assert!(!defects.is_empty());
     // On this rotational file the single-plane row is exactly 0 error: with the defect rows
@@ -938,7 +948,8 @@ fn read_exr_channels(path: &Path) -> (usize, usize, Vec<(String, Vec<f32>)>) {
 fn godot_row_is_present_by_default() {
     assert!(EnginesOptions::default().engines.contains(&Engine::Godot));
     assert_eq!("godot".parse::<Engine>().unwrap(), Engine::Godot);
-    let r = measure(&load("cosine_p5.ldt"), &quick(EnginesOptions::default().engines)).unwrap();
+    assert_eq!(EnginesOptions::default().engines, Engine::ALL.to_vec());
+    let r = cosine_every_engine();
     let row = r.rows.iter().find(|x| x.name == "godot").expect("a godot row");
     assert_eq!(row.kind, "layout");
     assert_eq!(row.resolution, Some(256));

@@ -75,7 +75,10 @@ fn compare_report(extra: &[&str]) -> (String, serde_json::Value) {
 
 #[test]
 fn compare_report_has_the_viewer_and_stays_under_a_megabyte() {
-    let (html, v) = compare_report(&[]);
+    // The same defaults as compare_report(&[]) but 3,000 directions: the run the compare
+    // contract test reads too.
+    let (dir, _) = common::cli::shared_road_compare();
+    let (html, v) = viewer_data(&dir.join("rep/index.html"));
     assert!(
         v["reference"].as_str().unwrap().starts_with("truth (roadway"),
         "{}",
@@ -101,9 +104,15 @@ fn withheld_compare_states_what_the_colours_are_against() {
 fn tradeoff_and_engines_reports_have_the_viewer() {
     let dir = tempfile::tempdir().unwrap();
     let f = road(dir.path());
-    for cmd in ["tradeoff", "engines"] {
+    // tradeoff at a fixed grid and two texture factors: the viewer is the same, and the
+    // defaults against the closed form took about 50 s of a test thread (BENCHMARKS.md).
+    let quick: &[(&str, &[&str])] = &[
+        ("tradeoff", &["--factor", "1", "--factors", "1,2", "--repeats", "1"]),
+        ("engines", &[]),
+    ];
+    for &(cmd, args) in quick {
         let rep = dir.path().join(cmd);
-        run(bin().arg(cmd).arg(&f).arg("--report").arg(&rep));
+        run(bin().arg(cmd).arg(&f).args(args).arg("--report").arg(&rep));
         let (html, v) = viewer_data(&rep.join("index.html"));
         check_solids(&v, 2);
         eprintln!(
@@ -117,7 +126,7 @@ fn tradeoff_and_engines_reports_have_the_viewer() {
 #[test]
 fn demo_report_has_the_viewer() {
     let (dir, _) = common::cli::shared_demo();
-    let (html, v) = viewer_data(&dir.join("d/index.html"));
+    let (html, v) = viewer_data(&dir.join("out/demo/index.html"));
     assert!(v["reference"].as_str().unwrap().starts_with("truth"));
     check_solids(&v, 6);
     assert!(html.len() < 1_000_000, "{} bytes", html.len());
