@@ -22,11 +22,7 @@ if ! cargo fuzz --version >/dev/null 2>&1; then
 fi
 # libFuzzer instrumentation needs nightly flags; RUSTC_BOOTSTRAP=1 enables them on stable.
 export RUSTC_BOOTSTRAP=1
-# 16 codegen units instead of cargo-fuzz's 1: the build is about 20 s shorter on a 2-core
-# machine for a somewhat slower run (BENCHMARKS.md); `cargo fuzz run` gets the same flags,
-# or it would build again. The long runs of RELIABILITY.md keep the default.
-BUILD_FLAGS=(-s none --codegen-units 16 --fuzz-dir fuzz)
-if ! cargo fuzz build "${BUILD_FLAGS[@]}" >/tmp/fuzz-smoke-build.log 2>&1; then
+if ! cargo fuzz build -s none --fuzz-dir fuzz >/tmp/fuzz-smoke-build.log 2>&1; then
     tail -5 /tmp/fuzz-smoke-build.log
     # Our own code failing to compile is a failure, never a skip.
     if grep -q "could not compile \`photosolid" /tmp/fuzz-smoke-build.log; then
@@ -65,7 +61,7 @@ run_target() {
     echo "fuzz smoke: $t for ${SECONDS_PER_TARGET} s ($(ls "fuzz/corpus-smoke/$t" | wc -l) seeds)"
     # libFuzzer finishes its pass over the seeds before it looks at the clock;
     # `timeout` bounds that pass too (exit 124 = stopped at the limit, not a crash).
-    timeout $((SECONDS_PER_TARGET + 30)) cargo fuzz run "${BUILD_FLAGS[@]}" "$t" "fuzz/corpus-smoke/$t" -- \
+    timeout $((SECONDS_PER_TARGET + 30)) cargo fuzz run -s none --fuzz-dir fuzz "$t" "fuzz/corpus-smoke/$t" -- \
         -dict=fuzz/dict/photometric.dict -max_total_time="$SECONDS_PER_TARGET" \
         -max_len=65536 -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 >"$log" 2>&1
     rc=$?
