@@ -138,6 +138,8 @@ struct FieldComparison<'a> {
     recs: Reconstructions,
     /// The reference solid's radial function.
     ref_rm: RadialMesh,
+    /// The reference solid's BVH, once a row is measured on solids.
+    ref_bvh: std::sync::OnceLock<crate::metrics::Bvh>,
     /// The reference's I_max, cd.
     i_max: f64,
     /// The Hausdorff tolerance, cd.
@@ -196,6 +198,7 @@ impl<'a> FieldComparison<'a> {
             opts,
             recs,
             ref_rm,
+            ref_bvh: std::sync::OnceLock::new(),
             i_max,
             tol_cd,
             set,
@@ -215,6 +218,7 @@ impl<'a> FieldComparison<'a> {
             field: self.reference.field,
             solid: &self.reference.solid,
             radial: &self.ref_rm,
+            bvh: &self.ref_bvh,
             set: &self.set,
             values: &self.values,
             i_max: self.i_max,

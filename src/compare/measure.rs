@@ -2,6 +2,7 @@
 //! against the reference's solid, profile and values.
 
 use super::*;
+use std::sync::OnceLock;
 
 /// What a field is measured against: the reference's solid, its radial
 /// function, its values on the direction set, and the measurement settings.
@@ -10,6 +11,9 @@ pub(crate) struct FieldTarget<'a> {
     pub field: &'a dyn IntensityField,
     pub solid: &'a Mesh,
     pub radial: &'a RadialMesh,
+    /// The BVH of `solid`, built by the first row measured on solids and
+    /// kept for the others (rows on profiles never build it).
+    pub bvh: &'a OnceLock<Bvh>,
     pub set: &'a DirectionSet,
     /// The reference's intensity (cd) at every direction of `set`.
     pub values: &'a [f64],
@@ -39,7 +43,10 @@ pub(crate) fn measure_field(
     } else {
         SurfaceSearch::Full
     };
-    let h = solid_hausdorff_radial((solid, &own), (target.solid, target.radial), target.tol_cd, search);
+    let bvh = target
+        .bvh
+        .get_or_init(|| Bvh::build_owned(target.solid.positions_f64(), target.solid.triangles()));
+    let h = solid_hausdorff_indexed((solid, &own), (target.solid, target.radial, bvh), target.tol_cd, search);
     let radial = radial_bound(&own, target.radial, &target.set.directions);
     measured_row(name, field, field, &h, radial, target, solid.n_triangles())
 }

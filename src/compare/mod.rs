@@ -674,25 +674,35 @@ pub fn solid_hausdorff_radial(
     tolerance: f64,
     search: SurfaceSearch,
 ) -> Hausdorff {
-    let (pa, pb) = (a.0.positions_f64(), b.0.positions_f64());
+    let bb = Bvh::build_owned(b.0.positions_f64(), b.0.triangles());
+    solid_hausdorff_indexed(a, (b.0, b.1, &bb), tolerance, search)
+}
+
+/// [`solid_hausdorff_radial`] against a solid whose BVH is already built
+/// (`b.2`, over `b.0`'s positions and triangles): the reference of a
+/// comparison is the same for every row, so its BVH is built once, not once
+/// a row (on a synthetic file's truth, 434 k triangles, about 0.1 s a row).
+pub fn solid_hausdorff_indexed(
+    a: (&Mesh, &RadialMesh),
+    b: (&Mesh, &RadialMesh, &Bvh),
+    tolerance: f64,
+    search: SurfaceSearch,
+) -> Hausdorff {
+    let pa = a.0.positions_f64();
+    let pb = b.2.positions();
     let scale = a.0.max_radius().max(b.0.max_radius());
-    let ((ua, ub), (ba, bb)) = rayon::join(
+    let ((ua, ub), ba) = rayon::join(
         || {
             rayon::join(
-                || vertex_bounds(&pa, (b.1, &pb), scale),
-                || vertex_bounds(&pb, (a.1, &pa), scale),
+                || vertex_bounds(&pa, (b.1, pb), scale),
+                || vertex_bounds(pb, (a.1, &pa), scale),
             )
         },
-        || {
-            rayon::join(
-                || Bvh::build_owned(pa.clone(), a.0.triangles()),
-                || Bvh::build_owned(pb.clone(), b.0.triangles()),
-            )
-        },
+        || Bvh::build_owned(pa.clone(), a.0.triangles()),
     );
     let sides = (
         (&ba, a.0.triangles(), ua.as_slice()),
-        (&bb, b.0.triangles(), ub.as_slice()),
+        (b.2, b.0.triangles(), ub.as_slice()),
     );
     match search {
         SurfaceSearch::Full => hausdorff_bvh_below_bounds(sides.0, sides.1, tolerance),

@@ -177,6 +177,8 @@ struct Reference<'f> {
     field: &'f dyn IntensityField,
     solid: Mesh,
     radial: RadialMesh,
+    /// The solid's BVH, built by the first row and kept for the others.
+    bvh: std::sync::OnceLock<crate::metrics::Bvh>,
     values: Vec<f64>,
     i_max: f64,
 }
@@ -194,6 +196,7 @@ impl<'f> Reference<'f> {
         Ok(Self {
             field,
             radial: RadialMesh::new(&solid),
+            bvh: std::sync::OnceLock::new(),
             values: eval_all(field, &s.set.directions),
             solid,
             i_max,
@@ -217,6 +220,7 @@ fn metrics(
             field: r.field,
             solid: &r.solid,
             radial: &r.radial,
+            bvh: &r.bvh,
             set: s.set,
             values: &r.values,
             i_max: r.i_max,
