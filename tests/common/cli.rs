@@ -26,6 +26,16 @@ pub fn ok(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
+/// An empty directory `NAME-PID` under `CARGO_TARGET_TMPDIR` for a shared
+/// run: one per test process, so two test processes at once do not remove
+/// each other's.
+fn fresh_dir(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 /// One `photosolid demo` run, with the default output directory, shared by
 /// the tests that only read what it wrote (a demo run takes about 25 s of a
 /// test thread; three tests each ran their own). Runs once per test process
@@ -35,10 +45,7 @@ pub fn ok(o: &Output) -> String {
 pub fn shared_demo() -> &'static (PathBuf, String) {
     static DEMO: OnceLock<(PathBuf, String)> = OnceLock::new();
     DEMO.get_or_init(|| {
-        // One directory per test process: two runs at once must not remove each other's.
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shared-demo-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = fresh_dir("shared-demo");
         let out = ok(&run(&["demo"], &dir));
         (dir, out)
     })
@@ -53,9 +60,7 @@ pub fn shared_road_compare() -> &'static (PathBuf, String) {
     static RUN: OnceLock<(PathBuf, String)> = OnceLock::new();
     RUN.get_or_init(|| {
         use photosolid::synth::{GridSpec, Synth};
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shared-compare-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = fresh_dir("shared-compare");
         let road = Synth::Roadway
             .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
             .unwrap();
