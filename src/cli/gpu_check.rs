@@ -74,30 +74,13 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
     let mut summary = CheckSummary::start();
     for (path, tex) in &inputs.textures {
         let f = check_file(ctx, path, tex, &opts)?;
-        for m in &f.clamp_mismatches {
-            outln!(
-                "{}: [{}] clamped texels differ: gpu {} cpu {}",
-                path.display(),
-                m.filter,
-                m.gpu,
-                m.cpu
-            );
-        }
-        outln!(
-            "{}: {} x {} texels, max |gpu - cpu| = {:.3e} ({}){}",
-            path.display(),
-            f.height,
-            f.width,
-            f.max_diff,
-            f.max_filter,
-            if f.max_diff > opts.tolerance { "  FAIL" } else { "" }
-        );
+        print_file(path, &f, &a.tolerance, opts.tolerance)?;
         summary.add(&f);
     }
     let (worst, at) = summary.worst.clone().unwrap_or((0.0, "-".into()));
     outln!(
         "overall: {} files x {} filters = {} renders at factor {} on {}: max |gpu - cpu| = {:.3e} \
-         (at {}; fractions of I_max), tolerance {} of I_max; {} over tolerance; {} clamped-count mismatches; {} \
+         (at {}; fractions of I_max), tolerance {} of I_max; {} over tolerance; {} clamped-count mismatches ({} more within rounding of 0); {} \
          files skipped; {:.1?}",
         inputs.textures.len(),
         opts.filters.len(),
@@ -109,9 +92,47 @@ pub fn run(a: GpuCheckArgs) -> anyhow::Result<i32> {
         a.tolerance,
         summary.failed,
         summary.clamp_mismatches,
+        summary.clamp_rounding,
         inputs.skipped.len(),
         summary.elapsed
     );
     let passed = summary.passed().map_err(|e| anyhow::anyhow!("gpu-check {e}"))?;
     Ok(if passed { 0 } else { 1 })
+}
+
+/// One file's lines: each clamped-count difference and the file's largest difference.
+#[cfg(feature = "gpu")]
+fn print_file(
+    path: &std::path::Path,
+    f: &photosolid::gpu::check::FileCheck,
+    tolerance: &super::parse::PctOfPeak,
+    tolerance_fraction: f64,
+) -> std::io::Result<()> {
+    for m in &f.clamp_mismatches {
+        outln!(
+            "{}: [{}] clamped texels differ: gpu {} cpu {} ({}: {}..={} texels are below 0 or within {} of it)",
+            path.display(),
+            m.filter,
+            m.gpu,
+            m.cpu,
+            if m.within_rounding() {
+                "within rounding of 0"
+            } else {
+                "FAIL"
+            },
+            m.within_tolerance.0,
+            m.within_tolerance.1,
+            tolerance
+        );
+    }
+    outln!(
+        "{}: {} x {} texels, max |gpu - cpu| = {:.3e} ({}){}",
+        path.display(),
+        f.height,
+        f.width,
+        f.max_diff,
+        f.max_filter,
+        if f.max_diff > tolerance_fraction { "  FAIL" } else { "" }
+    );
+    Ok(())
 }

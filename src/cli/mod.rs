@@ -80,7 +80,7 @@ enum Command {
     Demo(demo::DemoArgs),
     /// Approximate the luminaire by at most 2 OpenGL lights (spot / point; Zotti et al. 2005).
     Fit(fit::FitArgs),
-    /// Render every file with every filter on the GPU and the CPU; exit 1 if any texel differs by more than 1e-5.
+    /// Render every file with every filter on the GPU and the CPU; exit 1 if any texel differs by more than 1e-5 of I_max or the clamped texels differ beyond those within that of 0.
     GpuCheck(gpu_check::GpuCheckArgs),
     /// Compare reconstructions (and other files): Hausdorff distance, radial errors, speed; HTML report.
     Compare(compare::CompareArgs),

@@ -178,18 +178,31 @@ fn to_text(t: &TradeTable) -> String {
             );
         }
     }
+    gpu_rows_text(t, &mut s);
+    s
+}
+
+/// The `+gpu` rows' lines: what ran where and how far it is from the CPU.
+fn gpu_rows_text(t: &TradeTable, out: &mut String) {
+    use std::fmt::Write as _;
     for r in t.rows.iter().filter(|r| r.adapter.is_some()) {
+        // A texture row is read through the sampler; a series (sh:L, lobes:K) is evaluated in the shader.
+        let how = match (r.texture_format.as_deref(), r.subtexel_bits) {
+            (Some(format), Some(bits)) => format!(
+                "{format} on {}; sub-texel weights {bits:.1} bits; max |hardware - exact lookup, same texels|",
+                r.adapter.as_deref().unwrap_or("?")
+            ),
+            _ => format!(
+                "evaluated in a compute shader on {}, no texture; max |GPU - CPU evaluation|",
+                r.adapter.as_deref().unwrap_or("?")
+            ),
+        };
         let _ = writeln!(
-            s,
-            "{}: GPU dispatch {:.2} ns/sample (ns/sample above: batch upload + dispatch + read-back); {} on {}; \
-             sub-texel weights {:.1} bits; max |hardware - exact lookup, same texels| {:.2e} % of I_max",
+            out,
+            "{}: GPU dispatch {:.2} ns/sample (ns/sample above: batch upload + dispatch + read-back); {how} {:.2e} % of I_max",
             r.representation,
             r.ns_per_sample_gpu.unwrap_or(f64::NAN),
-            r.texture_format.as_deref().unwrap_or("?"),
-            r.adapter.as_deref().unwrap_or("?"),
-            r.subtexel_bits.unwrap_or(f64::NAN),
             r.hardware_vs_exact_max_pct.unwrap_or(f64::NAN),
         );
     }
-    s
 }

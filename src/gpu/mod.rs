@@ -41,6 +41,8 @@ mod batch;
 pub mod compact;
 pub mod precision;
 pub mod realtime;
-pub use resample::{jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings};
+pub use resample::{
+    clamp_count_range, jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings,
+};
 
 pub use crate::error::GpuError;

@@ -172,6 +172,29 @@ pub fn render_cpu(job: &RenderJob<'_>) -> Rendered {
     reconstruct::render_planned(job.texture, job.plan, job.clamp, true)
 }
 
+/// The clamped-texel counts a device may report for `job` when each of its
+/// texels is within `tolerance` (fraction of I_max) of the CPU's: a texel
+/// whose unclamped CPU value is below −`tolerance` is clamped on any device,
+/// one below +`tolerance` may be (a cubic's overshoot that ends within
+/// rounding of 0 takes either sign under FMA contraction), one outside the
+/// measured band never is. `0..=0` for a job that does not clamp.
+pub fn clamp_count_range(job: &RenderJob<'_>, tolerance: f32) -> std::ops::RangeInclusive<usize> {
+    if !job.clamp {
+        return 0..=0;
+    }
+    let unclamped = reconstruct::render_planned(job.texture, job.plan, false, true);
+    let width = job.plan.mapping.width.max(1);
+    let (mut surely, mut maybe) = (0, 0);
+    for (row, weights) in unclamped.data.chunks(width).zip(&job.plan.gamma.weight) {
+        if *weights == [0.0; 4] {
+            continue;
+        }
+        surely += row.iter().filter(|&&v| v < -tolerance).count();
+        maybe += row.iter().filter(|&&v| v < tolerance).count();
+    }
+    surely..=maybe
+}
+
 /// Which compute kernel renders a batch on the GPU. Both give the CPU's
 /// numbers (to FMA contraction); they differ in speed only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
