@@ -9,7 +9,8 @@
 //! Both render kernels (`RenderKernel::TwoPass`, the default, and the fused
 //! one) in the same run; and the real-time lookups (`gpu::realtime`,
 //! hardware bilinear and Catmull-Rom from linear fetches) over 1,048,576
-//! random directions on the single texture. Throughput (criterion's
+//! random directions on the single texture; on a hardware adapter, 1,000
+//! textures at 5x from tap tables to read-back. Throughput (criterion's
 //! `thrpt`) is texels or samples per second; `scripts/bench-gpu.sh` prints it.
 //!
 //! `cargo bench --bench gpu` (honours `WGPU_BACKEND=vulkan|gl`). Without an
@@ -160,6 +161,30 @@ fn bench(c: &mut Criterion) {
                 b.iter(|| ctx.render_jobs_with(black_box(set), kernel).unwrap())
             });
         }
+    }
+
+    // The goal's case: 1,000 luminaires at 5x end to end, tap tables to read-back
+    // (textures cycled). Hardware adapters only: a software driver needs about 20 s an iteration.
+    if ctx.adapter().software {
+        eprintln!(
+            "gpu/two-pass/batch1000 skipped: {} is a software adapter",
+            ctx.adapter()
+        );
+    } else {
+        let items: Vec<(&LightTexture, RenderOptions)> = (0..1000).map(|k| (&texs[k % texs.len()], opts)).collect();
+        let total: usize = gpu::plans(&items)
+            .unwrap()
+            .iter()
+            .map(|p| p.mapping.height * p.mapping.width)
+            .sum();
+        g.throughput(Throughput::Elements(total as u64));
+        g.bench_function("gpu/two-pass/batch1000/plans + end-to-end", |b| {
+            b.iter(|| {
+                let plans = gpu::plans(black_box(&items)).unwrap();
+                ctx.render_jobs(&gpu::jobs(&items, &plans)).unwrap().len()
+            })
+        });
+        eprintln!("batch1000: {total} texels");
     }
 
     // Real-time lookups: the single texture's render, read by the texture hardware.
