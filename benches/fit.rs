@@ -203,6 +203,14 @@ fn bench(c: &mut Criterion) {
                 }
             })
         });
+        // What `batch` runs per file.
+        g.bench_function("all-files/serial", |b| {
+            b.iter(|| {
+                for (_, d) in &corpus {
+                    black_box(fit(d, &serial).unwrap());
+                }
+            })
+        });
         g.finish();
     }
 }

@@ -376,12 +376,10 @@ pub(crate) struct Profiler<'a> {
     other: Other,
     b2: f64,
     bm: f64,
-    bin_s2: Vec<f64>,
-    bin_sm: Vec<f64>,
-    bin_sb: Vec<f64>,
-    bin_n: Vec<u32>,
-    // per candidate direction: (bin, q = sin(θ/2), ρs², ρsm, ρsb)
-    cand: Vec<(u32, f64, f64, f64, f64)>,
+    /// The cut-off bins' sums of the last profile, one cache line's half per bin.
+    bins: Vec<Bin>,
+    /// The exponent of the last profile (the window of its exact split recomputes t^p).
+    p: f64,
     /// The directions in front of the last axis profiled, with what does not depend on
     /// the exponent: searches try many exponents at one axis (the coarse grid, the
     /// golden-section polish, every evaluation of rotational data).
@@ -417,11 +415,8 @@ impl<'a> Profiler<'a> {
             other,
             b2,
             bm,
-            bin_s2: vec![0.0; N_BINS],
-            bin_sm: vec![0.0; N_BINS],
-            bin_sb: vec![0.0; N_BINS],
-            bin_n: vec![0; N_BINS],
-            cand: Vec::with_capacity(s.len()),
+            bins: vec![Bin::default(); N_BINS],
+            p: 0.0,
             window: Vec::new(),
             front: FrontOf {
                 axis: None,
@@ -486,40 +481,25 @@ impl<'a> Profiler<'a> {
         self.best_split_near(boundary).into_profile()
     }
 
-    /// Fills the bins (`bin_s2`, `bin_sm`, `bin_sb`, `bin_n`) and the candidates
-    /// (`cand`) with the directions in front of a unit-weight spot with unit `axis`
-    /// and exponent `p`, each binned by q = sin(θ/2) of its angle θ to the axis.
+    /// Fills the bins ([`Bin`]) with the directions in front of a unit-weight spot
+    /// with unit `axis` and exponent `p`, each binned by q = sin(θ/2) of its angle θ
+    /// to the axis.
     fn bin_directions(&mut self, axis: DVec3, p: f64) {
-        let s = self.s;
-        self.front.aim(s, axis);
-        self.bin_s2.fill(0.0);
-        self.bin_sm.fill(0.0);
-        self.bin_sb.fill(0.0);
-        self.bin_n.fill(0);
-        self.cand.clear();
-        let shape = match &self.other {
-            Other::Shape(b) => Some(b.as_slice()),
-            _ => None,
+        let other = match &self.other {
+            Other::Shape(b) => OtherFactor::Shape(b.as_slice()),
+            Other::Point => OtherFactor::One,
+            Other::None => OtherFactor::Zero,
         };
-        let point = matches!(self.other, Other::Point);
+        self.front.aim(self.s, axis, other);
+        self.p = p;
+        self.bins.fill(Bin::default());
         for f in &self.front.dirs {
-            let k = f.k as usize;
-            // t^p = exp(p ln t), with ln t kept per axis (spot_factor(t, p, 0) for t in
-            // [0, 1]: p = 0 lights every direction in front, t = 0 is dark for p > 0).
-            let sv = if p == 0.0 { 1.0 } else { (p * f.ln_t).exp() };
-            let rs = s.rho[k] * sv;
-            let b = match shape {
-                Some(b) => b[k],
-                None if point => 1.0,
-                None => 0.0,
-            };
-            let (a2, am, ab) = (rs * sv, rs * s.m[k], rs * b);
-            let bin = f.bin as usize;
-            self.bin_s2[bin] += a2;
-            self.bin_sm[bin] += am;
-            self.bin_sb[bin] += ab;
-            self.bin_n[bin] += 1;
-            self.cand.push((f.bin, f.q, a2, am, ab));
+            let sv = f.factor(p);
+            let bin = &mut self.bins[f.bin as usize];
+            bin.s2 += f.rho * sv * sv;
+            bin.sm += f.rho_m * sv;
+            bin.sb += f.rho_b * sv;
+            bin.n += 1;
         }
     }
 
@@ -529,13 +509,13 @@ impl<'a> Profiler<'a> {
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
         let mut best_j = 0;
         let mut best_e = self.solve(0.0, 0.0, 0.0).0;
-        for j in 0..N_BINS {
-            if self.bin_n[j] == 0 {
+        for (j, bin) in self.bins.iter().enumerate() {
+            if bin.n == 0 {
                 continue;
             }
-            s2 += self.bin_s2[j];
-            sm += self.bin_sm[j];
-            sb += self.bin_sb[j];
+            s2 += bin.s2;
+            sm += bin.sm;
+            sb += bin.sb;
             let e = self.solve(s2, sm, sb).0;
             if e < best_e {
                 best_e = e;
@@ -551,22 +531,24 @@ impl<'a> Profiler<'a> {
         let lo = best_j.saturating_sub(2);
         let hi = (best_j + 1).min(N_BINS - 1);
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
-        for j in 0..lo {
-            s2 += self.bin_s2[j];
-            sm += self.bin_sm[j];
-            sb += self.bin_sb[j];
+        for bin in &self.bins[..lo] {
+            s2 += bin.s2;
+            sm += bin.sm;
+            sb += bin.sb;
         }
         let mut q_in = f64::NEG_INFINITY; // largest lit q below the window
         let mut q_after = f64::INFINITY; // smallest dark q above the window
         self.window.clear();
-        for &(bin, q, a2, am, ab) in &self.cand {
-            let b = bin as usize;
+        for f in &self.front.dirs {
+            let b = f.bin as usize;
             if b < lo {
-                q_in = q_in.max(q);
+                q_in = q_in.max(f.q);
             } else if b > hi {
-                q_after = q_after.min(q);
+                q_after = q_after.min(f.q);
             } else {
-                self.window.push((q, a2, am, ab));
+                // The window's few directions: their terms again, as the bins summed them.
+                let sv = f.factor(self.p);
+                self.window.push((f.q, f.rho * sv * sv, f.rho_m * sv, f.rho_b * sv));
             }
         }
         self.window.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
@@ -609,14 +591,51 @@ impl<'a> Profiler<'a> {
 /// factor t^p and its cut-off bin need that does not depend on the exponent.
 #[derive(Debug, Clone, Copy)]
 struct Front {
-    /// Index into the samples.
-    k: u32,
     /// Cut-off bin of q.
     bin: u32,
     /// q = sin(θ/2) = sqrt((1 − t)/2).
     q: f64,
     /// ln t (−∞ at t = 0).
     ln_t: f64,
+    /// The direction's weight ρ.
+    rho: f64,
+    /// ρ m: its weight times its measured magnitude.
+    rho_m: f64,
+    /// ρ b: its weight times the other light's unit-weight factor.
+    rho_b: f64,
+}
+
+impl Front {
+    /// The unit-weight spot's factor t^p = exp(p ln t) (`spot_factor(t, p, 0)` for t in
+    /// [0, 1]: p = 0 lights every direction in front, t = 0 is dark for p > 0).
+    #[inline]
+    fn factor(&self, p: f64) -> f64 {
+        if p == 0.0 {
+            1.0
+        } else {
+            (p * self.ln_t).exp()
+        }
+    }
+}
+
+/// The other light's unit-weight factor at each direction, as [`FrontOf::aim`] reads it.
+#[derive(Clone, Copy)]
+enum OtherFactor<'a> {
+    /// No other light: 0 everywhere.
+    Zero,
+    /// A point light: 1 everywhere.
+    One,
+    /// Another spot's factor per direction.
+    Shape(&'a [f64]),
+}
+
+/// One cut-off bin's sums over its directions (ρs², ρsm, ρsb) and their number.
+#[derive(Debug, Clone, Copy, Default)]
+struct Bin {
+    s2: f64,
+    sm: f64,
+    sb: f64,
+    n: u32,
 }
 
 /// The directions in front of one axis ([`Front`]), rebuilt when the axis changes.
@@ -630,7 +649,7 @@ struct FrontOf {
 impl FrontOf {
     /// Make `dirs` the directions of `s` in front of unit `axis` (kept when it is
     /// the axis they already belong to).
-    fn aim(&mut self, s: &Samples, axis: DVec3) {
+    fn aim(&mut self, s: &Samples, axis: DVec3, other: OtherFactor<'_>) {
         if self.axis == Some(axis) {
             return;
         }
@@ -646,11 +665,19 @@ impl FrontOf {
             let t = t.min(1.0);
             let q = (0.5 * (1.0 - t)).sqrt();
             let bin = ((q * scale) as usize).min(N_BINS - 1);
+            let b = match other {
+                OtherFactor::Zero => 0.0,
+                OtherFactor::One => 1.0,
+                OtherFactor::Shape(b) => b[k],
+            };
+            let rho = s.rho[k];
             self.dirs.push(Front {
-                k: k as u32,
                 bin: bin as u32,
                 q,
                 ln_t: t.ln(),
+                rho,
+                rho_m: rho * s.m[k],
+                rho_b: rho * b,
             });
         }
     }
