@@ -36,6 +36,7 @@
 //! assert!((s.exponent - 6.0).abs() < 0.01 && (s.cutoff_deg - 40.0).abs() <= 0.5);
 //! ```
 
+mod fastmath;
 pub mod lobes;
 pub mod model;
 pub mod objective;

@@ -39,6 +39,7 @@ use serde::Serialize;
 
 use glam::DVec3;
 
+use super::fastmath;
 use crate::error::ModelError;
 use crate::model::frame::grid_directions;
 use crate::model::{periodic_widths, Distribution, Symmetry};
@@ -378,12 +379,12 @@ pub(crate) struct Profiler<'a> {
     bm: f64,
     /// The cut-off bins' sums of the last profile, one cache line's half per bin.
     bins: Vec<Bin>,
-    /// The exponent of the last profile (the window of its exact split recomputes t^p).
-    p: f64,
     /// The directions in front of the last axis profiled, with what does not depend on
     /// the exponent: searches try many exponents at one axis (the coarse grid, the
     /// golden-section polish, every evaluation of rotational data).
     front: FrontOf,
+    /// t^p of each direction in front, for the last profile's exponent.
+    factor: Vec<f64>,
     window: Vec<(f64, f64, f64, f64)>,
     /// Number of profile evaluations so far.
     pub evals: usize,
@@ -416,12 +417,9 @@ impl<'a> Profiler<'a> {
             b2,
             bm,
             bins: vec![Bin::default(); N_BINS],
-            p: 0.0,
             window: Vec::new(),
-            front: FrontOf {
-                axis: None,
-                dirs: Vec::with_capacity(s.len()),
-            },
+            front: FrontOf::with_capacity(s.len()),
+            factor: Vec::with_capacity(s.len()),
             evals: 0,
         }
     }
@@ -491,14 +489,23 @@ impl<'a> Profiler<'a> {
             Other::None => OtherFactor::Zero,
         };
         self.front.aim(self.s, axis, other);
-        self.p = p;
+        let front = &self.front;
+        // t^p = exp(p ln t) (`spot_factor(t, p, 0)` for t in [0, 1]: p = 0 lights every
+        // direction in front, t = 0 is dark for p > 0), in one pass that runs in vector lanes.
+        self.factor.clear();
+        if p == 0.0 {
+            self.factor.resize(front.ln_t.len(), 1.0);
+        } else {
+            self.factor
+                .extend(front.ln_t.iter().map(|&l| fastmath::exp_nonpositive(p * l)));
+        }
         self.bins.fill(Bin::default());
-        for f in &self.front.dirs {
-            let sv = f.factor(p);
-            let bin = &mut self.bins[f.bin as usize];
-            bin.s2 += f.rho * sv * sv;
-            bin.sm += f.rho_m * sv;
-            bin.sb += f.rho_b * sv;
+        let terms = front.rho.iter().zip(&front.rho_m).zip(&front.rho_b);
+        for ((&bin, &sv), ((&rho, &rho_m), &rho_b)) in front.bin.iter().zip(&self.factor).zip(terms) {
+            let bin = &mut self.bins[bin as usize];
+            bin.s2 += rho * sv * sv;
+            bin.sm += rho_m * sv;
+            bin.sb += rho_b * sv;
             bin.n += 1;
         }
     }
@@ -539,16 +546,18 @@ impl<'a> Profiler<'a> {
         let mut q_in = f64::NEG_INFINITY; // largest lit q below the window
         let mut q_after = f64::INFINITY; // smallest dark q above the window
         self.window.clear();
-        for f in &self.front.dirs {
-            let b = f.bin as usize;
+        let front = &self.front;
+        for (i, (&bin, &q)) in front.bin.iter().zip(&front.q).enumerate() {
+            let b = bin as usize;
             if b < lo {
-                q_in = q_in.max(f.q);
+                q_in = q_in.max(q);
             } else if b > hi {
-                q_after = q_after.min(f.q);
+                q_after = q_after.min(q);
             } else {
-                // The window's few directions: their terms again, as the bins summed them.
-                let sv = f.factor(self.p);
-                self.window.push((f.q, f.rho * sv * sv, f.rho_m * sv, f.rho_b * sv));
+                // The window's few directions: their terms, as the bins summed them.
+                let sv = self.factor[i];
+                self.window
+                    .push((q, front.rho[i] * sv * sv, front.rho_m[i] * sv, front.rho_b[i] * sv));
             }
         }
         self.window.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
@@ -587,37 +596,6 @@ impl<'a> Profiler<'a> {
     }
 }
 
-/// One direction in front of a spot's axis (t = cos θ ≥ 0), with what its
-/// factor t^p and its cut-off bin need that does not depend on the exponent.
-#[derive(Debug, Clone, Copy)]
-struct Front {
-    /// Cut-off bin of q.
-    bin: u32,
-    /// q = sin(θ/2) = sqrt((1 − t)/2).
-    q: f64,
-    /// ln t (−∞ at t = 0).
-    ln_t: f64,
-    /// The direction's weight ρ.
-    rho: f64,
-    /// ρ m: its weight times its measured magnitude.
-    rho_m: f64,
-    /// ρ b: its weight times the other light's unit-weight factor.
-    rho_b: f64,
-}
-
-impl Front {
-    /// The unit-weight spot's factor t^p = exp(p ln t) (`spot_factor(t, p, 0)` for t in
-    /// [0, 1]: p = 0 lights every direction in front, t = 0 is dark for p > 0).
-    #[inline]
-    fn factor(&self, p: f64) -> f64 {
-        if p == 0.0 {
-            1.0
-        } else {
-            (p * self.ln_t).exp()
-        }
-    }
-}
-
 /// The other light's unit-weight factor at each direction, as [`FrontOf::aim`] reads it.
 #[derive(Clone, Copy)]
 enum OtherFactor<'a> {
@@ -638,47 +616,78 @@ struct Bin {
     n: u32,
 }
 
-/// The directions in front of one axis ([`Front`]), rebuilt when the axis changes.
-#[derive(Debug, Clone)]
+/// The directions in front of one axis (t = cos θ ≥ 0), with what their factor t^p
+/// and their cut-off bins need that does not depend on the exponent; rebuilt when
+/// the axis changes. One array per quantity, so the passes over them run in
+/// vector lanes.
+#[derive(Debug, Clone, Default)]
 struct FrontOf {
-    /// The axis `dirs` belong to (`None` before the first profile).
+    /// The axis these directions belong to (`None` before the first profile).
     axis: Option<DVec3>,
-    dirs: Vec<Front>,
+    /// Cut-off bin of q.
+    bin: Vec<u32>,
+    /// q = sin(θ/2) = sqrt((1 − t)/2).
+    q: Vec<f64>,
+    /// ln t (−∞ at t = 0).
+    ln_t: Vec<f64>,
+    /// The direction's weight ρ.
+    rho: Vec<f64>,
+    /// ρ m: its weight times its measured magnitude.
+    rho_m: Vec<f64>,
+    /// ρ b: its weight times the other light's unit-weight factor.
+    rho_b: Vec<f64>,
 }
 
 impl FrontOf {
-    /// Make `dirs` the directions of `s` in front of unit `axis` (kept when it is
+    fn with_capacity(n: usize) -> Self {
+        Self {
+            axis: None,
+            bin: Vec::with_capacity(n),
+            q: Vec::with_capacity(n),
+            ln_t: Vec::with_capacity(n),
+            rho: Vec::with_capacity(n),
+            rho_m: Vec::with_capacity(n),
+            rho_b: Vec::with_capacity(n),
+        }
+    }
+
+    /// Make these the directions of `s` in front of unit `axis` (kept when it is
     /// the axis they already belong to).
     fn aim(&mut self, s: &Samples, axis: DVec3, other: OtherFactor<'_>) {
         if self.axis == Some(axis) {
             return;
         }
         self.axis = Some(axis);
-        self.dirs.clear();
-        let scale = N_BINS as f64 / Q_MAX;
+        self.rho.clear();
+        self.rho_m.clear();
+        self.rho_b.clear();
+        // t first, in `ln_t`; the passes below turn it into q, the bin and ln t.
+        self.ln_t.clear();
         for (k, d) in s.dir.iter().enumerate() {
             let t = d.dot(axis);
             // A cut-off of at most 90° never reaches directions behind the spot.
             if t < 0.0 {
                 continue;
             }
-            let t = t.min(1.0);
-            let q = (0.5 * (1.0 - t)).sqrt();
-            let bin = ((q * scale) as usize).min(N_BINS - 1);
             let b = match other {
                 OtherFactor::Zero => 0.0,
                 OtherFactor::One => 1.0,
                 OtherFactor::Shape(b) => b[k],
             };
             let rho = s.rho[k];
-            self.dirs.push(Front {
-                bin: bin as u32,
-                q,
-                ln_t: t.ln(),
-                rho,
-                rho_m: rho * s.m[k],
-                rho_b: rho * b,
-            });
+            self.ln_t.push(t.min(1.0));
+            self.rho.push(rho);
+            self.rho_m.push(rho * s.m[k]);
+            self.rho_b.push(rho * b);
+        }
+        let scale = N_BINS as f64 / Q_MAX;
+        self.q.clear();
+        self.q.extend(self.ln_t.iter().map(|&t| (0.5 * (1.0 - t)).sqrt()));
+        self.bin.clear();
+        self.bin
+            .extend(self.q.iter().map(|&q| ((q * scale) as u32).min(N_BINS as u32 - 1)));
+        for t in &mut self.ln_t {
+            *t = fastmath::ln_unit(*t);
         }
     }
 }
