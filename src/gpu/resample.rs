@@ -27,6 +27,8 @@
 //! division rounding (well below 1e-5 of I_max; `photosolid gpu-check`).
 
 use std::sync::mpsc;
+
+use rayon::prelude::*;
 use std::time::{Duration, Instant};
 
 use crate::reconstruct::{self, LightTexture, RenderOptions, RenderPlan, Rendered};
@@ -749,16 +751,26 @@ impl GpuContext {
                     .map_err(|e| GpuError::BufferMap(format!("read-back buffer: {e}")))?;
                 let counts: &[u32] = bytemuck::try_cast_slice(&view[out_bytes..out_bytes + c.jobs.len() * 4])
                     .map_err(|e| GpuError::BufferMap(format!("read-back buffer: {e}")))?;
-                for (k, j) in c.jobs.clone().enumerate() {
-                    let m = &batch.meta[j];
-                    let n = m.mapping.height * m.mapping.width;
-                    let off = c.out_offsets[k];
-                    let mut r = m.clone();
-                    r.data = all[off..off + n].to_vec();
-                    // The kernel counts only where the job clamps.
-                    r.clamped = counts[k] as usize;
-                    out.push(r);
-                }
+                // The copies out of the mapped range in parallel: a large batch's read-back
+                // is bound by them (and by the new vectors' first touch), not by the transfer.
+                let rendered: Vec<Rendered> = c
+                    .jobs
+                    .clone()
+                    .enumerate()
+                    .collect::<Vec<_>>()
+                    .into_par_iter()
+                    .map(|(k, j)| {
+                        let m = &batch.meta[j];
+                        let n = m.mapping.height * m.mapping.width;
+                        let off = c.out_offsets[k];
+                        let mut r = m.clone();
+                        r.data = all[off..off + n].to_vec();
+                        // The kernel counts only where the job clamps.
+                        r.clamped = counts[k] as usize;
+                        r
+                    })
+                    .collect();
+                out.extend(rendered);
             }
             c.staging.unmap();
         }
