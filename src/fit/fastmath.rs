@@ -22,6 +22,28 @@ const SQRT_HALF_BITS: u64 = 0x3fe6_a09e_667f_3bcd;
 /// The mantissa bits of an f64.
 const MANTISSA: u64 = 0x000f_ffff_ffff_ffff;
 
+/// 1 / k! for k = 0, 1, …, N − 1: the Taylor coefficients of e^r.
+const fn inverse_factorials<const N: usize>() -> [f64; N] {
+    let mut c = [1.0; N];
+    let mut k = 1;
+    while k < N {
+        c[k] = c[k - 1] / k as f64;
+        k += 1;
+    }
+    c
+}
+
+/// 1 / (2k + 1) for k = 0, 1, …, N − 1: the coefficients of atanh(s) / s in s².
+const fn inverse_odd_numbers<const N: usize>() -> [f64; N] {
+    let mut c = [1.0; N];
+    let mut k = 1;
+    while k < N {
+        c[k] = 1.0 / (2 * k + 1) as f64;
+        k += 1;
+    }
+    c
+}
+
 /// e^x for x ≤ 0 (−∞ gives 0), within a few ulp of [`f64::exp`]; 0 from −708
 /// down, where e^x ≤ 3.3e-308 is at the edge of the subnormals. Branch-free.
 #[inline(always)]
@@ -31,21 +53,7 @@ pub(crate) fn exp_nonpositive(x: f64) -> f64 {
     let n = shifted - ROUND_SHIFT;
     let r = (xc - n * LN2_HI) - n * LN2_LO;
     // e^r, |r| ≤ 0.347: the Taylor series to r^12 (remainder below 2e-16 relative).
-    const C: [f64; 13] = [
-        1.0,
-        1.0,
-        1.0 / 2.0,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5_040.0,
-        1.0 / 40_320.0,
-        1.0 / 362_880.0,
-        1.0 / 3_628_800.0,
-        1.0 / 39_916_800.0,
-        1.0 / 479_001_600.0,
-    ];
+    const C: [f64; 13] = inverse_factorials();
     // Estrin's scheme in r² and r⁴: a shorter dependency chain than Horner's.
     let r2 = r * r;
     let r4 = r2 * r2;
@@ -84,18 +92,7 @@ pub(crate) fn ln_unit(x: f64) -> f64 {
     let f = m - 1.0;
     let s = f / (2.0 + f);
     let z = s * s;
-    const C: [f64; 10] = [
-        1.0,
-        1.0 / 3.0,
-        1.0 / 5.0,
-        1.0 / 7.0,
-        1.0 / 9.0,
-        1.0 / 11.0,
-        1.0 / 13.0,
-        1.0 / 15.0,
-        1.0 / 17.0,
-        1.0 / 19.0,
-    ];
+    const C: [f64; 10] = inverse_odd_numbers();
     let z2 = z * z;
     let z4 = z2 * z2;
     let z8 = z4 * z4;
