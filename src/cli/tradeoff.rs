@@ -187,12 +187,14 @@ fn gpu_rows_text(t: &TradeTable, out: &mut String) {
     use std::fmt::Write as _;
     for r in t.rows.iter().filter(|r| r.adapter.is_some()) {
         // A texture row is read through the sampler; a series (sh:L, lobes:K) is evaluated in the shader.
-        let how = match (r.texture_format.as_deref(), r.subtexel_bits) {
-            (Some(format), Some(bits)) => format!(
-                "{format} on {}; sub-texel weights {bits:.1} bits; max |hardware - exact lookup, same texels|",
-                r.adapter.as_deref().unwrap_or("?")
+        let how = match r.texture_format.as_deref() {
+            Some(format) => format!(
+                "{format} on {}; sub-texel weights {}; max |hardware - exact lookup, same texels|",
+                r.adapter.as_deref().unwrap_or("?"),
+                r.subtexel_bits
+                    .map_or("not probed".into(), |bits| format!("{bits:.1} bits"))
             ),
-            _ => format!(
+            None => format!(
                 "evaluated in a compute shader on {}, no texture; max |GPU - CPU evaluation|",
                 r.adapter.as_deref().unwrap_or("?")
             ),

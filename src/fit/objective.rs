@@ -483,12 +483,7 @@ impl<'a> Profiler<'a> {
     /// with unit `axis` and exponent `p`, each binned by q = sin(θ/2) of its angle θ
     /// to the axis.
     fn bin_directions(&mut self, axis: DVec3, p: f64) {
-        let other = match &self.other {
-            Other::Shape(b) => OtherFactor::Shape(b.as_slice()),
-            Other::Point => OtherFactor::One,
-            Other::None => OtherFactor::Zero,
-        };
-        self.front.aim(self.s, axis, other);
+        self.front.aim(self.s, axis, &self.other);
         let front = &self.front;
         // t^p = exp(p ln t) (`spot_factor(t, p, 0)` for t in [0, 1]: p = 0 lights every
         // direction in front, t = 0 is dark for p > 0), in one pass that runs in vector lanes.
@@ -596,17 +591,6 @@ impl<'a> Profiler<'a> {
     }
 }
 
-/// The other light's unit-weight factor at each direction, as [`FrontOf::aim`] reads it.
-#[derive(Clone, Copy)]
-enum OtherFactor<'a> {
-    /// No other light: 0 everywhere.
-    Zero,
-    /// A point light: 1 everywhere.
-    One,
-    /// Another spot's factor per direction.
-    Shape(&'a [f64]),
-}
-
 /// One cut-off bin's sums over its directions (ρs², ρsm, ρsb) and their number.
 #[derive(Debug, Clone, Copy, Default)]
 struct Bin {
@@ -620,7 +604,7 @@ struct Bin {
 /// and their cut-off bins need that does not depend on the exponent; rebuilt when
 /// the axis changes. One array per quantity, so the passes over them run in
 /// vector lanes.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 struct FrontOf {
     /// The axis these directions belong to (`None` before the first profile).
     axis: Option<DVec3>,
@@ -653,7 +637,7 @@ impl FrontOf {
 
     /// Make these the directions of `s` in front of unit `axis` (kept when it is
     /// the axis they already belong to).
-    fn aim(&mut self, s: &Samples, axis: DVec3, other: OtherFactor<'_>) {
+    fn aim(&mut self, s: &Samples, axis: DVec3, other: &Other) {
         if self.axis == Some(axis) {
             return;
         }
@@ -669,10 +653,11 @@ impl FrontOf {
             if t < 0.0 {
                 continue;
             }
+            // The other light's unit-weight factor here.
             let b = match other {
-                OtherFactor::Zero => 0.0,
-                OtherFactor::One => 1.0,
-                OtherFactor::Shape(b) => b[k],
+                Other::None => 0.0,
+                Other::Point => 1.0,
+                Other::Shape(b) => b[k],
             };
             let rho = s.rho[k];
             self.ln_t.push(t.min(1.0));

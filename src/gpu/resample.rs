@@ -756,9 +756,8 @@ impl GpuContext {
                 let rendered: Vec<Rendered> = c
                     .jobs
                     .clone()
-                    .enumerate()
-                    .collect::<Vec<_>>()
                     .into_par_iter()
+                    .enumerate()
                     .map(|(k, j)| {
                         let m = &batch.meta[j];
                         let n = m.mapping.height * m.mapping.width;
