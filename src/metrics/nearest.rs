@@ -19,7 +19,9 @@
 //! and every other sample within one step's change of the best (at most 24
 //! in all; fewer in a small cap, below) by pattern search on the sphere to a sixteenth of the step, and
 //! the best [`NearestSearch::seeds`] of those down to
-//! [`NearestSearch::stop_rad`]. In a small cap (U ≤ 0.1 m, nearly every
+//! [`NearestSearch::stop_rad`], leaving out any in the basin of one already
+//! polished and any too far to come nearer than the best so far
+//! (`final_polish`). In a small cap (U ≤ 0.1 m, nearly every
 //! point of a good reconstruction) only the nearest sample and the samples
 //! that are local minima of the samples (no nearer sample within 1.5
 //! steps) are polished: there a sample with a nearer neighbour lies on a
@@ -174,12 +176,49 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
         .map(|(_, &s)| polish(s, step, step / 16.0, false, &at))
         .collect();
     rough.sort_by(|a, b| a.d.total_cmp(&b.d));
-    rough
-        .iter()
-        .take(seeds)
-        .map(|&s| polish(s, step / 16.0, search.stop_rad, true, &at).d)
-        .fold(u, f64::min)
+    final_polish(&rough, seeds, step / 16.0, r_max, search.stop_rad, u, &at)
 }
+
+/// The best distance (at most `best`, cd) of the final polishes, to
+/// `stop_rad`, of the `seeds` nearest `rough` results (sorted nearest first,
+/// each polished to `fine` radians), leaving out the ones that cannot
+/// change it: a result beside one already polished (within
+/// [`SAME_BASIN_STEPS`] × `fine`: the rough polish stopped there in the
+/// same basin, and the final polish of either ends at its bottom) and a
+/// result further than the nearest distance found so far plus the most a
+/// polish within `fine` of it can gain (the surface point moves by about
+/// r · `fine`, twice for a steep flank: the window rule of the seeds). On
+/// a real roadway file's default `compare` these two rules leave one final
+/// polish a point where there were 1.3-1.9 (BENCHMARKS.md, "The surface
+/// search's final polish").
+fn final_polish(
+    rough: &[Candidate],
+    seeds: usize,
+    fine: f64,
+    r_max: f64,
+    stop_rad: f64,
+    mut best: f64,
+    at: &dyn Fn(DVec3) -> Candidate,
+) -> f64 {
+    let same_basin = (SAME_BASIN_STEPS * fine).min(std::f64::consts::PI).cos();
+    let gain = 2.0 * fine * r_max;
+    let mut polished: Vec<DVec3> = Vec::with_capacity(seeds);
+    for s in rough.iter().take(seeds) {
+        if s.d - gain > best {
+            break; // sorted: every later one is further still
+        }
+        if polished.iter().any(|w| w.dot(s.w) >= same_basin) {
+            continue;
+        }
+        best = best.min(polish(*s, fine, stop_rad, true, at).d);
+        polished.push(s.w);
+    }
+    best
+}
+
+/// Rough results within this many rough polish steps of each other share
+/// a basin ([`final_polish`]).
+const SAME_BASIN_STEPS: f64 = 2.0;
 
 /// p's unit direction and |p| (cd) as the search takes them: a zero or
 /// non-finite direction is straight down, a negative m the point on the
@@ -297,7 +336,9 @@ fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, step: f64, ri
 /// Pattern search on the sphere from `start`: try the eight tangent
 /// neighbours at `step` radians (and, with `newton`, the minimum of the
 /// quadratic through them), move to the best that is closer, else halve the
-/// step; stop below `stop_rad`. Returns the nearest point found.
+/// step; stop below `stop_rad`, or when no neighbour is nearer and the
+/// quadratic model's minimum is within `stop_rad` (converged). Returns the
+/// nearest point found.
 ///
 /// The eight neighbours and the centre determine a quadratic model of d² in
 /// the tangent plane (central differences along C and γ, the mixed term from
@@ -325,10 +366,14 @@ fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn
         let (s, c) = step.sin_cos();
         let n = [ec, -ec, eg, -eg, d1, -d1, d2, -d2].map(|e| at_dir((at.w * c + e * s).normalize()));
         let neighbour = n.iter().fold(at, |b, &x| if x.d < b.d { x } else { b });
-        let newton = newton
-            .then(|| newton_move(at, &n, step, (ec, eg)))
-            .flatten()
-            .map(|(t, len)| (at_dir((at.w * len.cos() + t * len.sin()).normalize()), len));
+        let model = newton.then(|| newton_move(at, &n, step, (ec, eg))).flatten();
+        // Converged: no neighbour is nearer and the model's minimum is
+        // within `stop_rad` of `at` (moving there would change the distance
+        // by about r · stop_rad², far below an f64's resolution of it).
+        if neighbour.d >= at.d && model.is_some_and(|(_, len)| len < stop_rad) {
+            break;
+        }
+        let newton = model.map(|(t, len)| (at_dir((at.w * len.cos() + t * len.sin()).normalize()), len));
         match newton {
             // `neighbour` is never further than `at`: nearer than it is nearer than both.
             Some((x, len)) if x.d < neighbour.d => {
