@@ -289,7 +289,13 @@ fn single_plane_row_is_zero_when_rotational_and_large_on_a_roadway() {
             .find(|x| x.name == "threejs: single C-plane")
             .expect("the single-plane row")
     };
-    let sym = row("cosine_p5.ldt");
+    // The rotational file's row from the run every-engine tests share.
+    let sym = cosine_every_engine()
+        .rows
+        .iter()
+        .find(|x| x.name == "threejs: single C-plane")
+        .expect("the single-plane row")
+        .clone();
     assert_eq!(sym.kind, "defect");
     assert!(sym.source.as_deref().unwrap().contains("DataTexture( data, 180, 1"));
     // Identical fields: the radial difference is exactly 0, the certified
@@ -311,7 +317,8 @@ fn squared_candela_rows_and_reference_choice() {
     assert!(o.truth.is_some(), "data/ files are written by `photosolid synth`");
     let t = measure(&lum, &o).unwrap();
     assert_eq!(t.reference_kind, "truth");
-    let r = measure(&lum, &quick(vec![Engine::Babylon, Engine::Blender])).unwrap();
+    // The default reference, from the run every-engine tests share (Babylon and Blender among them).
+    let r = cosine_every_engine();
     assert_eq!(r.reference_kind, "reconstruction");
     let sq = r
         .rows
@@ -783,12 +790,13 @@ fn blender_render_matches_the_emulation() {
 /// Issue 25 item 4: every row names what it emulates; a defect row names the versions with the defect.
 #[test]
 fn every_row_names_its_engine_version() {
-    let r = measure(&load("roadway.ldt"), &quick(Engine::ALL.to_vec())).unwrap();
+    // The versions are the engines', whatever the file: the run every-engine tests share.
+    let r = cosine_every_engine();
     assert!(r.rows.iter().any(|x| x.kind == "defect"));
     for row in &r.rows {
         assert!(!row.engine_version.trim().is_empty(), "{}: no engine_version", row.name);
     }
-    let json = serde_json::to_value(&r).unwrap();
+    let json = serde_json::to_value(r).unwrap();
     for row in json["rows"].as_array().unwrap() {
         let v = row["engine_version"].as_str().expect("engine_version is a string");
         assert!(!v.trim().is_empty(), "{row}");
@@ -898,7 +906,7 @@ fn web_engines_are_linear_in_candela() {
 /// The engines table of cosine_p5.ldt with every engine (the default set) at
 /// the quick settings, timed (the Pareto front needs the timing column: a row
 /// without a time is never on it). One run shared by the tests that read it
-/// (about 16 s of a test thread each).
+/// (about 16 s of a test thread each; five tests read it).
 fn cosine_every_engine() -> &'static photosolid::engines::EnginesReport {
     static RUN: std::sync::OnceLock<photosolid::engines::EnginesReport> = std::sync::OnceLock::new();
     RUN.get_or_init(|| {
