@@ -458,6 +458,44 @@ mod tests {
         assert!(newton_move(cand(&far, 0.0, 0.0), &stencil(&far, h), h, (ec, eg)).is_none());
     }
 
+    /// The final polish runs once a basin: a rough result beside one already
+    /// polished costs no lookup, nor does one too far to come nearer, while
+    /// a distinct basin as near as the best is polished too.
+    #[test]
+    fn final_polish_skips_a_polished_basin_and_far_results() {
+        // From the centre of the isotropic solid every direction is as near
+        // (100 cd): every rough result is a basin's bottom.
+        let iso = |_: f64, _: f64| 100.0;
+        let p = DVec3::ZERO;
+        let lookups = std::cell::Cell::new(0usize);
+        let at = |w: DVec3| {
+            lookups.set(lookups.get() + 1);
+            candidate(&iso, p, w)
+        };
+        let (fine, r_max, stop) = (1e-3, 100.0, 1e-7);
+        let near = |deg: f64| candidate(&iso, p, frame::direction(0.0, deg));
+        let cost = |rough: &[Candidate]| {
+            lookups.set(0);
+            let d = final_polish(rough, 3, fine, r_max, stop, f64::INFINITY, &at);
+            assert!((d - 100.0).abs() < 1e-9, "{d}");
+            lookups.get()
+        };
+        let one = cost(&[near(0.0)]);
+        assert!(one > 0);
+        // 0.05° is under two fine steps (0.11°): the same basin.
+        assert_eq!(cost(&[near(0.0), near(0.05)]), one);
+        // 10° away and as near: another basin, polished (rounding of the
+        // 100 cd moves the two polishes a little differently).
+        let two = cost(&[near(0.0), near(10.0)]);
+        assert!(two > 3 * one / 2, "{two} lookups against {one} for one polish");
+        // Further than the best plus what a fine step can gain (0.2 cd): left out.
+        let far = Candidate {
+            d: 100.0 + 1.0,
+            ..near(10.0)
+        };
+        assert_eq!(cost(&[near(0.0), far]), one);
+    }
+
     /// The isotropic source: S is the sphere of radius I0, d = | |p| − I0 |.
     #[test]
     fn sphere_distances_are_exact() {
