@@ -8,7 +8,8 @@
 # - hands the binary PHOTOSOLID_BIN to the notebooks; when unset, builds the release binary
 #   (cargo build --release) and uses ${CARGO_TARGET_DIR:-target}/release/photosolid;
 # - executes each notebook with nbclient (no network needed at run time) and writes the executed copy to
-#   target/notebooks/<name>.ipynb; the notebooks write their scratch files and speed.json there too.
+#   target/notebooks/<name>.ipynb, NB_JOBS (default 2) at a time; the notebooks write their scratch files and
+#   speed.json there too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT="$(pwd)"
@@ -49,12 +50,13 @@ export MPLBACKEND=module://matplotlib_inline.backend_inline
 
 mkdir -p "$OUT"
 if [ "$#" -gt 0 ]; then NBS=("$@"); else NBS=(notebooks/*.ipynb); fi
-status=0
-for nb in "${NBS[@]}"; do
+# One notebook: executed with nbclient, its summary cells' output and its errors in $OUT/<name>.log,
+# its exit status in $OUT/<name>.status.
+run_notebook() {
+  local nb="$1" name
   name="$(basename "$nb")"
-  echo "== notebook $name"
-  start=$SECONDS
-  if "$VENV/bin/python" - "$nb" "$OUT/$name" <<'PY'
+  local start=$SECONDS rc=0
+  "$VENV/bin/python" - "$nb" "$OUT/$name" >"$OUT/$name.log" 2>&1 <<'PY' || rc=$?
 import sys, os, nbformat
 from nbclient import NotebookClient
 from nbclient.exceptions import CellExecutionError
@@ -78,10 +80,34 @@ for cell in nb.cells:
                 sys.stdout.write(o.get("text", ""))
 sys.exit(0 if ok else 1)
 PY
-  then
-    echo "   ok ($((SECONDS - start)) s; executed copy: target/notebooks/$name)"
+  echo "$rc $((SECONDS - start))" >"$OUT/$name.status"
+}
+
+# NB_JOBS notebooks at a time (default 2, one per core of CI's machine: a notebook's kernel runs
+# Python on one core, and the notebooks write to their own folders under $OUT); their output is
+# printed in order when all have run.
+JOBS="${NB_JOBS:-2}"
+running=0
+for nb in "${NBS[@]}"; do
+  rm -f "$OUT/$(basename "$nb").status"
+  run_notebook "$nb" &
+  running=$((running + 1))
+  if [ "$running" -ge "$JOBS" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait
+status=0
+for nb in "${NBS[@]}"; do
+  name="$(basename "$nb")"
+  echo "== notebook $name"
+  cat "$OUT/$name.log" 2>/dev/null || true
+  read -r rc secs <"$OUT/$name.status" 2>/dev/null || { rc=1; secs=0; }
+  if [ "$rc" = 0 ]; then
+    echo "   ok ($secs s; executed copy: target/notebooks/$name)"
   else
-    echo "   FAILED ($((SECONDS - start)) s; executed copy: target/notebooks/$name)"
+    echo "   FAILED ($secs s; executed copy: target/notebooks/$name)"
     status=1
   fi
 done
