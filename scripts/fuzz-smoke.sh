@@ -5,13 +5,8 @@
 # time stays bounded; the long runs of RELIABILITY.md use fuzz/corpus/). Fails when a target crashes;
 # prints one visible SKIP line and exits 0 when the toolchain or cargo-fuzz is
 # unavailable. See RELIABILITY.md for the long runs.
-# Usage: bash scripts/fuzz-smoke.sh [--build-only]
-#   --build-only: install cargo-fuzz when missing and build the targets, nothing else (scripts/test-all.sh
-#   runs this in the background beside other test groups; the run that follows finds them built).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-BUILD_ONLY=0
-[ "${1:-}" = "--build-only" ] && BUILD_ONLY=1
 SECONDS_PER_TARGET="${FUZZ_SECONDS:-30}"
 # The order deals `pipeline` (the slowest seed pass) into the lane of two targets (below).
 TARGETS="${FUZZ_TARGETS:-ies_parse ldt_parse ies_reader pipeline ldt_reader}"
@@ -36,10 +31,6 @@ if ! cargo fuzz build -s none --fuzz-dir fuzz >/tmp/fuzz-smoke-build.log 2>&1; t
         exit 1
     fi
     skip "the fuzz targets do not build with this toolchain ($(rustc --version)); see /tmp/fuzz-smoke-build.log"
-fi
-if [ "$BUILD_ONLY" = 1 ]; then
-    echo "fuzz smoke: targets built"
-    exit 0
 fi
 
 seed() { # seed TARGET MAX_SIZE EXTENSIONS...

@@ -178,9 +178,7 @@ kill_tree() {
   for child in $(pgrep -P "$1" 2>/dev/null); do kill_tree "$child"; done
   kill "$1" 2>/dev/null || true
 }
-FUZZ_BUILD_PID=""
-FUZZ_BUILD_LOG="$(mktemp)"
-trap '[ -z "${SETUP_PID:-}" ] || kill_tree "$SETUP_PID"; [ -z "${FUZZ_BUILD_PID:-}" ] || kill_tree "$FUZZ_BUILD_PID"; rm -f "$SETUP_LOG" "$FUZZ_BUILD_LOG"' EXIT
+trap '[ -z "${SETUP_PID:-}" ] || kill_tree "$SETUP_PID"; rm -f "$SETUP_LOG"' EXIT
 
 section "build (all targets: library, binary, tests, benches; dev profile = test profile, one build; the set-up of the optional groups runs beside it)"
 build_start=$SECONDS
@@ -210,13 +208,6 @@ rm -rf "$PHOTOSOLID_SKIPPED_CORPUS_DIR"
 # third time, on the default adapter).
 cargo test --lib --bins --test it --benches --examples --locked
 cargo test --doc --locked
-
-# The fuzz targets' build (cargo-fuzz's release build, one codegen unit a crate, so long stretches
-# on one core) runs in the background from here, beside the groups below that leave a core idle
-# part of the time (rustdoc, the library alone, GPU, browser, notebooks); the fuzz section at the
-# end waits for it and reports what it printed. It builds into fuzz/target, apart from target/.
-bash scripts/fuzz-smoke.sh --build-only >"$FUZZ_BUILD_LOG" 2>&1 &
-FUZZ_BUILD_PID=$!
 
 section "rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --locked 2>&1 | tail -n 3
@@ -271,6 +262,9 @@ elif [ "$br_rc" != 0 ]; then
   exit 1
 fi
 
+section "fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 30) s on average, in two lanes side by side (scripts/fuzz-smoke.sh; RELIABILITY.md)"
+bash scripts/fuzz-smoke.sh
+
 section "Python bindings: wheel (maturin), pytest over python/tests: bindings vs the CLI, Dask recipe (scripts/python.sh)"
 py_rc=0
 bash scripts/python.sh || py_rc=$?
@@ -290,16 +284,6 @@ elif [ "$nb_rc" != 0 ]; then
   echo "notebooks failed"
   exit 1
 fi
-
-section "fuzz smoke: each cargo-fuzz target for FUZZ_SECONDS (default 30) s on average, in two lanes side by side (scripts/fuzz-smoke.sh; RELIABILITY.md; built in the background since the cargo tests)"
-wait_start=$SECONDS
-fuzz_build_rc=0
-wait "$FUZZ_BUILD_PID" || fuzz_build_rc=$?
-FUZZ_BUILD_PID=""
-cat "$FUZZ_BUILD_LOG"
-echo "fuzz build: waited $((SECONDS - wait_start)) s after the notebooks (exit $fuzz_build_rc)"
-# Runs the build again (a no-op when the background one finished) and reports a failure of it itself.
-bash scripts/fuzz-smoke.sh
 
 section "done in $((SECONDS - start_all)) s; target/ uses $(du -sh target 2>/dev/null | cut -f1)"
 echo "== time per section"
