@@ -15,6 +15,8 @@ skip() {
     echo "SKIP fuzz smoke: $*"
     exit 0
 }
+read -r -a ALL <<<"$TARGETS"
+[ "${#ALL[@]}" -gt 0 ] || skip "FUZZ_TARGETS names no target"
 
 if ! cargo fuzz --version >/dev/null 2>&1; then
     echo "fuzz smoke: cargo-fuzz not found; trying cargo install cargo-fuzz --locked"
@@ -84,7 +86,6 @@ run_target() {
 # every lane gets the same time, SECONDS_PER_TARGET x targets / JOBS, shared among its targets:
 # no core waits while a lone last target runs (5 targets at 30 s took 3 rounds, 90 s; now 75 s).
 JOBS="${FUZZ_JOBS:-2}"
-read -r -a ALL <<<"$TARGETS"
 [ "$JOBS" -ge 1 ] || JOBS=1
 [ "$JOBS" -le "${#ALL[@]}" ] || JOBS=${#ALL[@]}
 LANE_SECONDS=$((SECONDS_PER_TARGET * ${#ALL[@]} / JOBS))
