@@ -27,10 +27,10 @@
 //! # Cut-off profile
 //! For one spot of fixed axis and exponent, every cut-off is tried at once:
 //! the directions are binned by their angle to the axis (900 bins, about
-//! 0.1° each), prefix
+//! 0.1° each; only the occupied ones are summed and walked), prefix
 //! sums of `ρ s²`, `ρ s m`, `ρ s b` give the optimal weights (2×2
 //! non-negative least squares with the other light `b`) for every bin
-//! boundary in O(N + bins), and the best boundary is refined exactly among
+//! boundary in O(N), and the best boundary is refined exactly among
 //! the data's own breakpoints (the directions in the neighbouring bins,
 //! sorted). The cut-off reported is the midpoint between the last lit and the
 //! first dark direction: the data cannot place it better than that.
@@ -377,7 +377,8 @@ pub(crate) struct Profiler<'a> {
     other: Other,
     b2: f64,
     bm: f64,
-    /// The cut-off bins' sums of the last profile, one cache line's half per bin.
+    /// The sums of the last profile's occupied cut-off bins ([`FrontOf::slot_bin`]),
+    /// 24 bytes per bin.
     bins: Vec<Bin>,
     /// The directions in front of the last axis profiled, with what does not depend on
     /// the exponent: searches try many exponents at one axis (the coarse grid, the
@@ -416,7 +417,7 @@ impl<'a> Profiler<'a> {
             other,
             b2,
             bm,
-            bins: vec![Bin::default(); N_BINS],
+            bins: Vec::new(),
             window: Vec::new(),
             front: FrontOf::with_capacity(s.len()),
             factor: Vec::with_capacity(s.len()),
@@ -494,14 +495,17 @@ impl<'a> Profiler<'a> {
             self.factor
                 .extend(front.ln_t.iter().map(|&l| fastmath::exp_nonpositive(p * l)));
         }
-        self.bins.fill(Bin::default());
+        // Only the bins some direction falls in: an axis near the grid's own lights a
+        // few rings (19 at 5° steps for a vertical axis), and clearing and walking all
+        // 900 bins cost more than the directions on grids of a few thousand readings.
+        self.bins.clear();
+        self.bins.resize(front.slot_bin.len(), Bin::default());
         let terms = front.rho.iter().zip(&front.rho_m).zip(&front.rho_b);
-        for ((&bin, &sv), ((&rho, &rho_m), &rho_b)) in front.bin.iter().zip(&self.factor).zip(terms) {
-            let bin = &mut self.bins[bin as usize];
+        for ((&slot, &sv), ((&rho, &rho_m), &rho_b)) in front.slot.iter().zip(&self.factor).zip(terms) {
+            let bin = &mut self.bins[slot as usize];
             bin.s2 += rho * sv * sv;
             bin.sm += rho_m * sv;
             bin.sb += rho_b * sv;
-            bin.n += 1;
         }
     }
 
@@ -511,17 +515,14 @@ impl<'a> Profiler<'a> {
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
         let mut best_j = 0;
         let mut best_e = self.solve(0.0, 0.0, 0.0).0;
-        for (j, bin) in self.bins.iter().enumerate() {
-            if bin.n == 0 {
-                continue;
-            }
+        for (bin, &j) in self.bins.iter().zip(&self.front.slot_bin) {
             s2 += bin.s2;
             sm += bin.sm;
             sb += bin.sb;
             let e = self.solve(s2, sm, sb).0;
             if e < best_e {
                 best_e = e;
-                best_j = j + 1;
+                best_j = j as usize + 1;
             }
         }
         best_j
@@ -533,7 +534,8 @@ impl<'a> Profiler<'a> {
         let lo = best_j.saturating_sub(2);
         let hi = (best_j + 1).min(N_BINS - 1);
         let (mut s2, mut sm, mut sb) = (0.0, 0.0, 0.0);
-        for bin in &self.bins[..lo] {
+        let below = self.front.slot_bin.partition_point(|&j| (j as usize) < lo);
+        for bin in &self.bins[..below] {
             s2 += bin.s2;
             sm += bin.sm;
             sb += bin.sb;
@@ -591,13 +593,12 @@ impl<'a> Profiler<'a> {
     }
 }
 
-/// One cut-off bin's sums over its directions (ρs², ρsm, ρsb) and their number.
+/// One cut-off bin's sums over its directions (ρs², ρsm, ρsb).
 #[derive(Debug, Clone, Copy, Default)]
 struct Bin {
     s2: f64,
     sm: f64,
     sb: f64,
-    n: u32,
 }
 
 /// The directions in front of one axis (t = cos θ ≥ 0), with what their factor t^p
@@ -610,6 +611,12 @@ struct FrontOf {
     axis: Option<DVec3>,
     /// Cut-off bin of q.
     bin: Vec<u32>,
+    /// Index of the direction's bin among the occupied ones ([`FrontOf::slot_bin`]).
+    slot: Vec<u32>,
+    /// The occupied cut-off bins, ascending.
+    slot_bin: Vec<u32>,
+    /// Scratch: the slot of each of the [`N_BINS`] bins while the slots are numbered.
+    slot_of_bin: Vec<u32>,
     /// q = sin(θ/2) = sqrt((1 − t)/2).
     q: Vec<f64>,
     /// ln t (−∞ at t = 0).
@@ -627,6 +634,9 @@ impl FrontOf {
         Self {
             axis: None,
             bin: Vec::with_capacity(n),
+            slot: Vec::with_capacity(n),
+            slot_bin: Vec::new(),
+            slot_of_bin: vec![0; N_BINS],
             q: Vec::with_capacity(n),
             ln_t: Vec::with_capacity(n),
             rho: Vec::with_capacity(n),
@@ -674,6 +684,26 @@ impl FrontOf {
         for t in &mut self.ln_t {
             *t = fastmath::ln_unit(*t);
         }
+        self.number_slots();
+    }
+
+    /// Number the occupied bins in ascending order ([`FrontOf::slot_bin`]) and give
+    /// each direction its bin's number ([`FrontOf::slot`]).
+    fn number_slots(&mut self) {
+        const EMPTY: u32 = u32::MAX;
+        self.slot_of_bin.fill(EMPTY);
+        for &b in &self.bin {
+            self.slot_of_bin[b as usize] = 0;
+        }
+        self.slot_bin.clear();
+        for (b, slot) in self.slot_of_bin.iter_mut().enumerate() {
+            if *slot != EMPTY {
+                *slot = self.slot_bin.len() as u32;
+                self.slot_bin.push(b as u32);
+            }
+        }
+        self.slot.clear();
+        self.slot.extend(self.bin.iter().map(|&b| self.slot_of_bin[b as usize]));
     }
 }
 

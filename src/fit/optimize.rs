@@ -17,16 +17,17 @@
 //! the coarse exponent grid at several start axes (vertical, the peak
 //! direction, the flux-weighted mean direction of the hemisphere, warm starts
 //! from other combinations, one seeded random axis), then Nelder–Mead in
-//! `(u, x, y)` from the two best starts until the simplex is 0.05 wide, then
-//! one local Nelder–Mead from a small simplex and a golden-section polish of
-//! the exponent: a multi-start local search in the spirit of the
+//! `(u, x, y)` from the two best starts until the simplex is 0.05 wide (at most
+//! 40 evaluations), then one local Nelder–Mead from a small simplex and a
+//! golden-section polish of the exponent: a multi-start local search in the spirit of the
 //! Zotti et al.'s nested directional search (Zotti et al. 2005, §4, Figure 1), with a fixed seed.
 //! Grids of 1,500 directions and more are explored, and refined first, on a
 //! thinned copy of about 2,000 directions; the last refinement and the polish
 //! run on every direction.
 //!
-//! The stopping rules were set on the corpus (issue 26 item 3): against the fit
-//! before them, the corpus's median fit is 2.6x faster and no combination's
+//! The stopping rules and the evaluation caps were set on the corpus (issue 26
+//! item 3): against the fit before them, the corpus's median fit is 2.6x faster
+//! (and the caps took a catalogue's fits 1.5x further) and no combination's
 //! error on any file grew by more than 2 % (`tests/it/fit.rs`,
 //! `corpus_files_fit`, against `tests/snapshots/fit_errors_2026-12-03.txt`).
 //! Two spots in opposite hemispheres are independent when their cones do
@@ -231,6 +232,22 @@ const U_GRID: usize = 17;
 /// `u = ln(1 + p)` and in degrees of tilt. Tighter stops cost evaluations that the local
 /// refinement repeats anyway (issue 26 item 3: the corpus errors stay within 2 %).
 const EXPLORE_XTOL: f64 = 0.05;
+
+/// The most evaluations of one exploratory Nelder–Mead run. The runs from a coarse
+/// start took about 55 on average to reach [`EXPLORE_XTOL`]; past 30-40 they only
+/// narrow a basin the refinement narrows again (BENCHMARKS.md, "Fewer evaluations
+/// where the refinement repeats them": with the caps below, no corpus error grew by
+/// more than 1.5 %; with every cap lower, 20 here, one grew by 18 %).
+const EXPLORE_MAX_EVALS: usize = 40;
+
+/// The most evaluations of the local Nelder–Mead on a thinned copy (it stops at a
+/// simplex of 1e-4 before that on most files; the full-data run follows).
+const LOCAL_THIN_MAX_EVALS: usize = 40;
+
+/// The most evaluations of the local Nelder–Mead on every direction: from a thinned
+/// optimum (each evaluation there is the expensive one) and on a grid small enough to
+/// search directly.
+const LOCAL_FULL_MAX_EVALS: [usize; 2] = [12, 25];
 
 /// The other light of a combination, held fixed while a spot is searched.
 #[derive(Debug, Clone, Copy)]
@@ -440,7 +457,7 @@ impl<'a> SpotSearch<'a> {
         let mut explored: Vec<SpotFit> = cands
             .iter()
             .take(2)
-            .map(|c| self.nm(*c, 1.0, 150, EXPLORE_XTOL))
+            .map(|c| self.nm(*c, 1.0, EXPLORE_MAX_EVALS, EXPLORE_XTOL))
             .collect();
         explored.sort_by(|p, q| p.prof.e.total_cmp(&q.prof.e));
         // Refinement from the best explored point.
@@ -460,7 +477,7 @@ impl<'a> SpotSearch<'a> {
         if !full && self.thin.is_some() {
             self.use_thin = true;
             let t = self.eval(start.u, start.x, start.y);
-            let r = self.nm(t, 0.1, 150, 1e-3);
+            let r = self.nm(t, 0.1, LOCAL_THIN_MAX_EVALS, 1e-3);
             self.use_thin = false;
             let r = self.eval(r.u, r.x, r.y);
             return if r.prof.e < e.prof.e { r } else { e };
@@ -496,7 +513,7 @@ impl<'a> SpotSearch<'a> {
         if self.thin.is_some() {
             self.use_thin = true;
             let e = self.eval(best.u, best.x, best.y);
-            let r = self.nm(e, 0.1, 150, 1e-4);
+            let r = self.nm(e, 0.1, LOCAL_THIN_MAX_EVALS, 1e-4);
             self.use_thin = false;
             best = self.eval(r.u, r.x, r.y);
         }
@@ -504,9 +521,9 @@ impl<'a> SpotSearch<'a> {
         // (On a thinned grid each full evaluation is the expensive one: the exponent
         // polish stops at 1e-3 in u there, 0.1 % of 1 + p.)
         let (scale, max_evals, u_tol) = if self.thin.is_some() {
-            (0.02, 20, 1e-3)
+            (0.02, LOCAL_FULL_MAX_EVALS[0], 1e-3)
         } else {
-            (0.1, 40, 1e-4)
+            (0.1, LOCAL_FULL_MAX_EVALS[1], 1e-4)
         };
         best = self.nm(best, scale, max_evals, 1e-2);
         let r = self.golden(best.u - 0.02, best.u + 0.02, best.x, best.y, u_tol);

@@ -323,6 +323,32 @@ impl LightTexture {
         let Some((gt, ct)) = self.taps(filter, c, gamma) else {
             return 0.0;
         };
+        self.eval_taps_cd(filter, &gt, &ct)
+    }
+
+    /// Unclamped reconstruction in cd at every (C, γ) of `c_deg` × `gamma_deg`
+    /// (degrees), C-major (`out[i * gamma_deg.len() + j]` at `c_deg[i]`, `gamma_deg[j]`):
+    /// the same numbers as [`LightTexture::eval_cd`] at each pair, with each axis's
+    /// taps found once per position instead of once per pair.
+    pub(crate) fn eval_grid_cd(&self, filter: Filter, c_deg: &[f64], gamma_deg: &[f64]) -> Vec<f64> {
+        let gamma_taps: Vec<Tap> = gamma_deg.iter().map(|&g| self.gamma_axis.tap(filter, g)).collect();
+        let mut out = Vec::with_capacity(c_deg.len() * gamma_deg.len());
+        for &c in c_deg {
+            let ct = self.c_axis.tap(filter, c);
+            out.extend(gamma_taps.iter().map(|gt| {
+                if gt.weight == [0.0; 4] {
+                    0.0
+                } else {
+                    self.eval_taps_cd(filter, gt, &ct)
+                }
+            }));
+        }
+        out
+    }
+
+    /// Unclamped reconstruction in cd from a γ tap row and a C tap row.
+    #[inline]
+    fn eval_taps_cd(&self, filter: Filter, gt: &Tap, ct: &Tap) -> f64 {
         let pchip = filter.is_data_dependent();
         let mut v = [0.0; 4];
         for (k, vk) in v.iter_mut().enumerate() {
