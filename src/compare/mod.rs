@@ -688,6 +688,9 @@ pub fn solid_hausdorff_indexed(
     tolerance: f64,
     search: SurfaceSearch,
 ) -> Hausdorff {
+    if a.0.positions() == b.0.positions() && a.0.triangles() == b.0.triangles() {
+        return same_surface(search);
+    }
     let pa = a.0.positions_f64();
     let pb = b.2.positions();
     let scale = a.0.max_radius().max(b.0.max_radius());
@@ -707,6 +710,31 @@ pub fn solid_hausdorff_indexed(
     match search {
         SurfaceSearch::Full => hausdorff_bvh_below_bounds(sides.0, sides.1, tolerance),
         SurfaceSearch::SupremumOnly => hausdorff_bvh_bounded(sides.0, sides.1, tolerance),
+    }
+}
+
+/// The distances between two solids with the same vertices and triangles: one
+/// surface, so every distance is 0 exactly, found without a query (an engine
+/// row whose defect does not change the file, such as a single C-plane of
+/// rotational data, is its reference's own solid).
+fn same_surface(search: SurfaceSearch) -> Hausdorff {
+    let zero = match search {
+        SurfaceSearch::Full => Some(0.0),
+        SurfaceSearch::SupremumOnly => None,
+    };
+    let side = OneSided {
+        value: 0.0,
+        bound: 0.0,
+        mean: zero,
+        rms: zero,
+        queries: 0,
+        converged: true,
+    };
+    Hausdorff {
+        value: 0.0,
+        bound: 0.0,
+        a_to_b: side,
+        b_to_a: side,
     }
 }
 

@@ -298,10 +298,18 @@ fn single_plane_row_is_zero_when_rotational_and_large_on_a_roadway() {
         .clone();
     assert_eq!(sym.kind, "defect");
     assert!(sym.source.as_deref().unwrap().contains("DataTexture( data, 180, 1"));
-    // Identical fields: the radial difference is exactly 0, the certified
-    // Hausdorff distance 0 up to the point-triangle arithmetic.
+    // Identical fields: the radial difference is exactly 0, and the two solids are one
+    // surface (the same vertices and triangles), so H is 0 exactly with its bound,
+    // found without a distance query.
     assert_eq!(sym.metrics.radial_max_cd, 0.0);
-    assert!(sym.metrics.hausdorff_cd < 1e-9 * 1000.0, "{}", sym.metrics.hausdorff_cd);
+    assert_eq!((sym.metrics.hausdorff_cd, sym.metrics.hausdorff_bound_cd), (0.0, 0.0));
+    for side in [&sym.metrics.recon_to_ref, &sym.metrics.ref_to_recon] {
+        let side = side.as_ref().expect("both sides measured");
+        assert_eq!(
+            (side.value, side.bound, side.queries, side.converged),
+            (0.0, 0.0, 0, true)
+        );
+    }
     let road = row("roadway.ldt");
     assert!(road.metrics.hausdorff_pct > 10.0, "{}", road.metrics.hausdorff_pct);
     assert!(road.metrics.misplaced_flux > 0.05, "{}", road.metrics.misplaced_flux);

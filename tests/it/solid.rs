@@ -615,3 +615,51 @@ fn full_search_below_the_radial_bounds_gives_the_same_numbers() {
         assert!(plain.value > 0.01 * a.max_radius(), "{nc}x{ng}: the pair differs");
     }
 }
+
+/// Two solids with the same vertices and triangles are one surface: the radial
+/// search (`compare`, `tradeoff`, `engines`) gives H, its bound, the mean and the RMS
+/// as 0 exactly, with no distance query, for both searches; the plain search that
+/// queries every vertex finds the same up to its point-triangle arithmetic. A solid
+/// that differs in one vertex is searched as before.
+#[test]
+fn one_surface_is_zero_apart_without_a_query() {
+    use photosolid::compare::{solid_hausdorff, solid_hausdorff_radial, SurfaceSearch};
+    use photosolid::solid::RadialMesh;
+    let grid = SolidGrid::uniform(72, 36).unwrap();
+    let f = |c: f64, g: f64| {
+        1000.0
+            * Synth::Spot {
+                p: 4.0,
+                cutoff_deg: 60.0,
+            }
+            .relative(c, g)
+    };
+    let (a, b) = (
+        grid_solid(&f, &grid, Units::Candela).unwrap(),
+        grid_solid(&f, &grid, Units::Candela).unwrap(),
+    );
+    let (ra, rb) = (RadialMesh::new(&a), RadialMesh::new(&b));
+    let tol = 1e-3 * a.max_radius();
+    for search in [SurfaceSearch::Full, SurfaceSearch::SupremumOnly] {
+        let h = solid_hausdorff_radial((&a, &ra), (&b, &rb), tol, search);
+        assert_eq!((h.value, h.bound), (0.0, 0.0));
+        for side in [h.a_to_b, h.b_to_a] {
+            assert_eq!(
+                (side.value, side.bound, side.queries, side.converged),
+                (0.0, 0.0, 0, true)
+            );
+            let zero = (search == SurfaceSearch::Full).then_some(0.0);
+            assert_eq!((side.mean, side.rms), (zero, zero));
+        }
+    }
+    let plain = solid_hausdorff(&a, &b, tol);
+    assert!(plain.value <= 1e-9 * a.max_radius(), "{}", plain.value);
+    assert!(plain.a_to_b.queries > 0);
+    // One vertex moved outward by 1 cd: no longer one surface.
+    let bump = |c: f64, gam: f64| c.abs() < 1e-9 && (gam - 30.0).abs() < 1e-9;
+    let g = |c: f64, gam: f64| f(c, gam) + if bump(c, gam) { 1.0 } else { 0.0 };
+    let c = grid_solid(&g, &grid, Units::Candela).unwrap();
+    assert_ne!(c.positions(), a.positions());
+    let h = solid_hausdorff_radial((&a, &ra), (&c, &RadialMesh::new(&c)), tol, SurfaceSearch::SupremumOnly);
+    assert!(h.value > 0.0 && h.a_to_b.queries + h.b_to_a.queries > 0, "{h:?}");
+}
