@@ -90,8 +90,9 @@ pub use withheld::SURFACE_SEARCH_MAX_POINTS;
 use crate::error::ModelError;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
-    field_radial_errors, hausdorff_bvh, hausdorff_bvh_below_bounds, hausdorff_bvh_bounded, pareto_front,
-    random_directions, time_per_sample_ns, Bvh, DirectionSet, Hausdorff, OneSided, MAX_REFINEMENT, ZOTTI_C,
+    corresponding_bounds, field_radial_errors, hausdorff_bvh, hausdorff_bvh_below_bounds, hausdorff_bvh_bounded,
+    hausdorff_bvh_bounded_within, pareto_front, random_directions, time_per_sample_ns, Bvh, DirectionSet, Hausdorff,
+    OneSided, MAX_REFINEMENT, ZOTTI_C,
 };
 pub use crate::model::Progress;
 use crate::model::{Distribution, IntensityField, Symmetry};
@@ -709,6 +710,12 @@ pub fn solid_hausdorff_indexed(
     );
     match search {
         SurfaceSearch::Full => hausdorff_bvh_below_bounds(sides.0, sides.1, tolerance),
+        // Solids on one grid with the same triangles: each triangle is within its
+        // vertices' largest displacement of the other solid (`corresponding_bounds`).
+        SurfaceSearch::SupremumOnly if a.0.triangles() == b.0.triangles() => {
+            let within = corresponding_bounds(&pa, pb, a.0.triangles(), scale);
+            hausdorff_bvh_bounded_within(sides.0, sides.1, tolerance, (&within, &within))
+        }
         SurfaceSearch::SupremumOnly => hausdorff_bvh_bounded(sides.0, sides.1, tolerance),
     }
 }

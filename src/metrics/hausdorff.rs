@@ -384,19 +384,28 @@ const SCREEN_BATCH_MAX: usize = 16_384;
 /// (so the certified upper bound covers all of A); the screened ones are
 /// refined as [`one_sided`] refines every triangle.
 pub fn one_sided_bounded(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: &[f64]) -> OneSided {
+    one_sided_bounded_within(a, b, tolerance, upper, &[])
+}
+
+/// [`one_sided_bounded`] with an upper bound of `d(·, B)` over each whole triangle
+/// of A as well (`within[k]` for triangle k; empty: none), taken where it is lower
+/// than the Lipschitz bound, in the screening order and for the screened triangles.
+/// Two meshes with the same triangles give one ([`corresponding_bounds`]).
+pub fn one_sided_bounded_within(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: &[f64], within: &[f64]) -> OneSided {
     let upper_of = |i: u32| upper.get(i as usize).copied().unwrap_or(f64::INFINITY);
+    let within_of = |k: u32| within.get(k as usize).copied().unwrap_or(f64::INFINITY);
     let mut order: Vec<(f64, u32)> = a
         .triangles
         .par_iter()
         .enumerate()
         .map(|(k, t)| {
             let v = t.map(|i| a.positions[i as usize]);
-            (lipschitz_bound(&v, &t.map(upper_of)), k as u32)
+            (lipschitz_bound(&v, &t.map(upper_of)).min(within_of(k as u32)), k as u32)
         })
         .collect();
     // Largest bound first; ties by index, so the screening order is the same on every run.
     order.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
-    let s = screen(a, b, tolerance.max(0.0), &mut order, upper_of);
+    let s = screen(a, b, tolerance.max(0.0), &mut order, upper_of, within_of);
     let cells = MeshCells { a, near: &s.near, b };
     let mut refinement = Refinement::new(s.lb, tolerance);
     let kept: Vec<(Option<ByUpper<u32>>, f64)> = order[..s.screened]
@@ -411,7 +420,11 @@ pub fn one_sided_bounded(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: &[f64])
                 kc,
             ];
             let ub = upper_bound(&cells.vertices(t), &cells.distances(t), &cand, b);
-            if refinement.needs_refining(ub) {
+            let whole = within_of(k);
+            if whole < ub && !refinement.needs_refining(whole) {
+                // The whole triangle's bound clears it: no piece needs refining.
+                (None, whole)
+            } else if refinement.needs_refining(ub) {
                 (Some(ByUpper { ub, item: k }), 0.0)
             } else {
                 (None, ub)
@@ -456,6 +469,7 @@ fn screen(
     tol: f64,
     order: &mut [(f64, u32)],
     upper_of: impl Fn(u32) -> f64 + Sync,
+    within_of: impl Fn(u32) -> f64 + Sync,
 ) -> Screened {
     let n = a.positions.len();
     let mut s = Screened {
@@ -511,7 +525,7 @@ fn screen(
         rest.par_iter_mut().for_each(|(ub, k)| {
             let t = &a.triangles[*k as usize];
             let v = t.map(|i| a.positions[i as usize]);
-            *ub = lipschitz_bound(&v, &t.map(|i| near[i as usize].0));
+            *ub = lipschitz_bound(&v, &t.map(|i| near[i as usize].0)).min(within_of(*k));
         });
         rest.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     }
@@ -561,6 +575,39 @@ fn both_sides(
         || one_sided(mb, a.0, tolerance, b.2),
     );
     Hausdorff::of_sides(ab, ba)
+}
+
+/// [`hausdorff_bvh_bounded`] with an upper bound of each triangle's distance to the
+/// other mesh (`within.0` for A's triangles, `within.1` for B's;
+/// [`one_sided_bounded_within`]).
+pub fn hausdorff_bvh_bounded_within(a: Side<'_>, b: Side<'_>, tolerance: f64, within: (&[f64], &[f64])) -> Hausdorff {
+    let (ma, mb) = (mesh_of(a.0, a.1), mesh_of(b.0, b.1));
+    let (ab, ba) = rayon::join(
+        || one_sided_bounded_within(ma, b.0, tolerance, a.2, within.0),
+        || one_sided_bounded_within(mb, a.0, tolerance, b.2, within.1),
+    );
+    Hausdorff::of_sides(ab, ba)
+}
+
+/// Upper bounds of each triangle's distance to the other mesh for two meshes with
+/// the same triangles (vertex i of one corresponds to vertex i of the other; the
+/// caller checks the triangle lists are equal): a point Σ λ_i a_i of triangle
+/// (a_1, a_2, a_3) is within |Σ λ_i (a_i − b_i)| ≤ max_i |a_i − b_i| of the point
+/// Σ λ_i b_i of the other mesh's triangle (b_1, b_2, b_3), whatever the shapes. The
+/// bound holds for both meshes' triangles alike; the margin (1e-9 relative plus
+/// 1e-7 of `scale`, the larger mesh's radius) covers rounding.
+pub fn corresponding_bounds(a: &[DVec3], b: &[DVec3], triangles: &[[u32; 3]], scale: f64) -> Vec<f64> {
+    let margin = 1e-7 * scale;
+    triangles
+        .par_iter()
+        .map(|t| {
+            let d = t
+                .map(|i| a[i as usize].distance(b[i as usize]))
+                .into_iter()
+                .fold(0.0, f64::max);
+            d * (1.0 + 1e-9) + margin
+        })
+        .collect()
 }
 
 /// The mesh a BVH holds, with the triangles it was built from.
@@ -727,6 +774,60 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Two meshes with the same triangles: the corresponding-vertex bound of each
+    /// triangle holds over it (sampled at many barycentric points), and the search
+    /// that takes it certifies the full search's h, with no more queries than
+    /// without it and fewer where the meshes differ only in a bump.
+    #[test]
+    fn corresponding_bounds_certify_the_full_searchs_h() {
+        let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
+        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
+        assert_eq!(t1, t2);
+        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
+            *p *= 1.3;
+        }
+        // A twist too: every vertex moved sideways a little, so no vertex keeps its ray.
+        for p in p2.iter_mut() {
+            *p += DVec3::new(0.02 * p.y, -0.02 * p.x, 0.01);
+        }
+        let within = corresponding_bounds(&p1, &p2, &t1, 13.0);
+        let (ma, mb) = (
+            MeshRef {
+                positions: &p1,
+                triangles: &t1,
+            },
+            MeshRef {
+                positions: &p2,
+                triangles: &t2,
+            },
+        );
+        let bvh_b = Bvh::build(mb.positions, mb.triangles);
+        for (k, t) in t1.iter().enumerate().step_by(97) {
+            for (l1, l2) in [(0.2, 0.3), (0.6, 0.1), (1.0 / 3.0, 1.0 / 3.0), (0.05, 0.9)] {
+                let q = p1[t[0] as usize] * l1 + p1[t[1] as usize] * l2 + p1[t[2] as usize] * (1.0 - l1 - l2);
+                let d = distances(&[q], &bvh_b)[0];
+                assert!(d <= within[k], "triangle {k}: {d} > {}", within[k]);
+            }
+        }
+        let tol = 1e-3;
+        let full = one_sided(ma, &bvh_b, tol);
+        let exact = distances(&p1, &bvh_b);
+        let upper: Vec<f64> = exact.iter().map(|d| 2.0 * d + 1.0).collect();
+        let plain = one_sided_bounded(ma, &bvh_b, tol, &upper);
+        let with = one_sided_bounded_within(ma, &bvh_b, tol, &upper, &within);
+        assert!(with.converged && with.bound <= tol + 1e-12, "{with:?}");
+        assert!(
+            with.value <= full.value + full.bound + 1e-12 && full.value <= with.value + with.bound + 1e-12,
+            "with the triangle bounds {with:?} vs full {full:?}"
+        );
+        assert!(
+            with.queries < plain.queries,
+            "{} vs {} queries",
+            with.queries,
+            plain.queries
+        );
     }
 
     #[test]

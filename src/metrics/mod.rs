@@ -13,8 +13,9 @@ mod refine;
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};
 pub use hausdorff::{
-    hausdorff, hausdorff_bvh, hausdorff_bvh_below_bounds, hausdorff_bvh_bounded, one_sided, one_sided_below_bounds,
-    one_sided_bounded, Hausdorff, MeshRef, OneSided, Side,
+    corresponding_bounds, hausdorff, hausdorff_bvh, hausdorff_bvh_below_bounds, hausdorff_bvh_bounded,
+    hausdorff_bvh_bounded_within, one_sided, one_sided_below_bounds, one_sided_bounded, one_sided_bounded_within,
+    Hausdorff, MeshRef, OneSided, Side,
 };
 pub use largest::{largest_of, LargestDistance};
 pub use nearest::{distance_to_solid, distances_to_solid, largest_distance_to_solid, NearestSearch};
