@@ -244,10 +244,13 @@ const EXPLORE_MAX_EVALS: usize = 40;
 /// simplex of 1e-4 before that on most files; the full-data run follows).
 const LOCAL_THIN_MAX_EVALS: usize = 40;
 
-/// The most evaluations of the local Nelder–Mead on every direction: from a thinned
-/// optimum (each evaluation there is the expensive one) and on a grid small enough to
-/// search directly.
-const LOCAL_FULL_MAX_EVALS: [usize; 2] = [12, 25];
+/// The most evaluations of the local Nelder–Mead on every direction after a thinned
+/// one (each evaluation there is the expensive one, and it starts at the thinned optimum).
+const LOCAL_FULL_AFTER_THIN_MAX_EVALS: usize = 12;
+
+/// The most evaluations of the local Nelder–Mead on a grid small enough to search
+/// directly (no thinned copy).
+const LOCAL_FULL_MAX_EVALS: usize = 25;
 
 /// The other light of a combination, held fixed while a spot is searched.
 #[derive(Debug, Clone, Copy)]
@@ -521,9 +524,9 @@ impl<'a> SpotSearch<'a> {
         // (On a thinned grid each full evaluation is the expensive one: the exponent
         // polish stops at 1e-3 in u there, 0.1 % of 1 + p.)
         let (scale, max_evals, u_tol) = if self.thin.is_some() {
-            (0.02, LOCAL_FULL_MAX_EVALS[0], 1e-3)
+            (0.02, LOCAL_FULL_AFTER_THIN_MAX_EVALS, 1e-3)
         } else {
-            (0.1, LOCAL_FULL_MAX_EVALS[1], 1e-4)
+            (0.1, LOCAL_FULL_MAX_EVALS, 1e-4)
         };
         best = self.nm(best, scale, max_evals, 1e-2);
         let r = self.golden(best.u - 0.02, best.u + 0.02, best.x, best.y, u_tol);

@@ -776,10 +776,10 @@ mod tests {
         }
     }
 
-    /// Two meshes with the same triangles: the corresponding-vertex bound of each
-    /// triangle holds over it (sampled at many barycentric points), and the search
-    /// that takes it certifies the full search's h, with no more queries than
-    /// without it and fewer where the meshes differ only in a bump.
+    /// Two meshes with the same triangles, the second bumped and twisted: the
+    /// corresponding-vertex bound of each triangle holds over it (sampled at
+    /// barycentric points), and the search that takes it certifies the full search's
+    /// h with fewer queries than the search without it.
     #[test]
     fn corresponding_bounds_certify_the_full_searchs_h() {
         let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
