@@ -21,7 +21,9 @@
 //! the best [`NearestSearch::seeds`] of those down to
 //! [`NearestSearch::stop_rad`], leaving out any in the basin of one already
 //! polished and any too far to come nearer than the best so far
-//! (`final_polish`). In a small cap (U ≤ 0.1 m, nearly every
+//! (`final_polish`). A small cap (below) whose only seed is its nearest
+//! sample skips the rough polish, which only ranks seeds: its final polish
+//! starts from the sample at a quarter step. In a small cap (U ≤ 0.1 m, nearly every
 //! point of a good reconstruction) only the nearest sample and the samples
 //! that are local minima of the samples (no nearer sample within 1.5
 //! steps) are polished: there a sample with a nearer neighbour lies on a
@@ -84,7 +86,11 @@ pub struct NearestSearch {
 impl Default for NearestSearch {
     /// 8 rings (a 1° step on an 8° cap), 1,024 directions on the whole
     /// sphere, 3 seeds, a final step of 1e-7 rad (a relative distance error
-    /// of order 1e-14 near a smooth minimum).
+    /// of order 1e-14 near a smooth minimum). At 1e-6 a real roadway file's
+    /// default `compare` made 8 % fewer lookups, but where the minimum lies
+    /// on a crease the pattern search stops a step short: one H of the
+    /// corpus (a bilinear lookup of `rpr-sdk/ies_light_1.ies`) rose by
+    /// 1.3e-4 % of I_max (BENCHMARKS.md, "The surface search's lone seeds").
     fn default() -> Self {
         Self {
             rings: 8,
@@ -138,45 +144,67 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
     } else {
         (4.0 * std::f64::consts::PI / search.sphere.max(1) as f64).sqrt()
     };
-    // A sample is a seed when its basin may hold the minimum: within what
-    // one step can change the distance (a surface point moves by about
-    // r · step, twice for a steep flank) and a local minimum of the samples
-    // in a small cap (there one with a nearer sample beside it is on a slope
-    // into that sample's basin; the nearest sample always); in a larger cap
-    // every sample of the window, the best `seeds` always.
-    // On the whole sphere (a point near the origin) the lattice is coarse
-    // and the window would take every sample: the best `seeds` only.
     let r_max = samples.iter().map(|s| s.r).fold(m, f64::max);
+    let seeds = search.seeds.max(1);
+    let small_cap = u < m && u <= SMALL_CAP * m;
+    let picked = pick_seeds(&samples, (u, m), step, r_max, seeds);
+    // A small cap whose samples have one local minimum, the nearest: the rough
+    // polish ranks seeds, and there is none to rank it against, so the final
+    // polish starts from it (a quarter step: its first Newton moves stay
+    // within half a step, in the sample's basin). This is 74 % of a real
+    // roadway file's withheld points and 16 % of its lookups.
+    if small_cap && picked.len() == 1 {
+        return polish(picked[0], step / LONE_SEED_STEP_DIV, search.stop_rad, true, &at)
+            .d
+            .min(u);
+    }
+    // Every seed to a sixteenth of the step (its basin's bottom, roughly),
+    // then the best few to the end.
+    let mut rough: Vec<Candidate> = picked
+        .into_iter()
+        .map(|s| polish(s, step, step / 16.0, false, &at))
+        .collect();
+    rough.sort_by(|a, b| a.d.total_cmp(&b.d));
+    final_polish(&rough, seeds, step / 16.0, r_max, search.stop_rad, u, &at)
+}
+
+/// The samples (sorted nearest first) whose basins may hold the minimum, at
+/// most [`MAX_SEEDS`]: within what one step can change the distance (a
+/// surface point moves by about r · step, twice for a steep flank, `r_max`
+/// the largest radius seen, cd) and a local minimum of the samples in a small
+/// cap (there one with a nearer sample beside it is on a slope into that
+/// sample's basin; the nearest sample always); in a larger cap every sample
+/// of the window, the best `seeds` always. On the whole sphere (`u ≥ m`: a
+/// point near the origin) the lattice is coarse and the window would take
+/// every sample: the best `seeds` only. `(u, m)`: the distance in p's own
+/// direction and |p|, cd.
+fn pick_seeds(samples: &[Candidate], (u, m): (f64, f64), step: f64, r_max: f64, seeds: usize) -> Vec<Candidate> {
     let window = if u < m {
         samples[0].d + 2.0 * step * r_max
     } else {
         samples[0].d
     };
-    // Every seed to a sixteenth of the step (its basin's bottom, roughly),
-    // then the best few to the end.
-    let seeds = search.seeds.max(1);
     let near = (NEIGHBOUR_STEPS * step).min(std::f64::consts::PI).cos();
     // Samples are sorted nearest first: a sample is a discrete local minimum
     // when no nearer one lies within a neighbour's reach of it.
     let local_min = |k: usize| samples[..k].iter().all(|o| o.w.dot(samples[k].w) < near);
-    let mut rough: Vec<Candidate> = samples
+    let small_cap = u < m && u <= SMALL_CAP * m;
+    samples
         .iter()
         .enumerate()
         .take_while(|&(k, s)| k < seeds || s.d <= window)
         .filter(|&(k, _)| {
             if u >= m {
                 k < seeds // the whole sphere
-            } else if u <= SMALL_CAP * m {
+            } else if small_cap {
                 k == 0 || local_min(k)
             } else {
                 true // a larger cap: the whole window
             }
         })
         .take(MAX_SEEDS)
-        .map(|(_, &s)| polish(s, step, step / 16.0, false, &at))
-        .collect();
-    rough.sort_by(|a, b| a.d.total_cmp(&b.d));
-    final_polish(&rough, seeds, step / 16.0, r_max, search.stop_rad, u, &at)
+        .map(|(_, &s)| s)
+        .collect()
 }
 
 /// The best distance (at most `best`, cd) of the final polishes, to
@@ -215,6 +243,9 @@ fn final_polish(
     }
     best
 }
+
+/// A lone seed's final polish starts at the sample step over this ([`distance_to_solid`]).
+const LONE_SEED_STEP_DIV: f64 = 4.0;
 
 /// Rough results within this many rough polish steps of each other share
 /// a basin ([`final_polish`]).

@@ -250,6 +250,12 @@ impl Symmetry {
 /// Wrap an angle in degrees into [0, 360). Values within [`ANGLE_EPS`] of 360 become 0.
 #[inline]
 pub fn wrap360(c: f64) -> f64 {
+    // Nearly every caller passes an angle already in range (an atan2 wrapped
+    // once, then a lookup's tap wraps it again): `rem_euclid` returns it
+    // unchanged there, without its `fmod`.
+    if (0.0..360.0 - ANGLE_EPS).contains(&c) {
+        return c;
+    }
     let mut w = c.rem_euclid(360.0);
     if w >= 360.0 - ANGLE_EPS {
         w = 0.0;
@@ -734,6 +740,38 @@ pub fn periodic_widths(c: &[f64]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The in-range shortcut of `wrap360` gives the bits of the general rule
+    /// (`rem_euclid`, then the seam) everywhere: in range, at both ends, just
+    /// below the seam's band, negative, past 360, signed zeros, NaN and ±∞.
+    #[test]
+    fn wrap360_shortcut_is_the_general_rule() {
+        let general = |c: f64| {
+            let w = c.rem_euclid(360.0);
+            if w >= 360.0 - ANGLE_EPS {
+                0.0
+            } else {
+                w
+            }
+        };
+        let edge = 360.0 - ANGLE_EPS;
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            360.0,
+            -360.0,
+            720.5,
+            -1e-300,
+            1e-300,
+            f64::NAN,
+            f64::INFINITY,
+        ];
+        xs.extend([edge, edge.next_down(), edge.next_up(), 359.999_999, 180.0, 1e9, -1e9]);
+        xs.extend((-2000..=2000).map(|k| k as f64 * 0.37));
+        for c in xs {
+            assert_eq!(wrap360(c).to_bits(), general(c).to_bits(), "{c}");
+        }
+    }
 
     /// The vectorised passes agree with the plain loops on every length
     /// around the lane count, with the odd value anywhere (chunks and tail):
