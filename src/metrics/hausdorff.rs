@@ -403,8 +403,6 @@ pub fn one_sided_bounded_within(a: MeshRef<'_>, b: &Bvh, tolerance: f64, upper: 
             (lipschitz_bound(&v, &t.map(upper_of)).min(within_of(k as u32)), k as u32)
         })
         .collect();
-    // Largest bound first; ties by index, so the screening order is the same on every run.
-    order.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
     let s = screen(a, b, tolerance.max(0.0), &mut order, upper_of, within_of);
     let cells = MeshCells { a, near: &s.near, b };
     let mut refinement = Refinement::new(s.lb, tolerance);
@@ -460,9 +458,23 @@ struct Screened {
     centroid_nearest: Vec<u32>,
 }
 
-/// Screens the triangles of A in `order` (largest upper bound first), in
-/// doubling batches, until the next one's bound is within `tol` of the
-/// largest distance found.
+/// Screens the triangles of A in `order` (each with an upper bound of its
+/// distance to B, in any order) from the largest bound down, in doubling
+/// batches, until the next one's bound is within `tol` of the largest
+/// distance found. On return `order` starts with the screened triangles in
+/// the order they were screened, then the largest bound of the rest (with
+/// the vertices' final distances), then the others.
+///
+/// Every batch tightens the bounds of the triangles around the vertices it
+/// measured, so the rest are bounded again and ordered again: largest
+/// bound first, ties by index, so the order is the same on every run. Only
+/// the triangles still above the stop (bound > largest distance + `tol`)
+/// can be screened, and a bound only falls while the largest distance only
+/// rises: those are bounded and sorted after each batch, the others when a
+/// batch reaches past them (the last) and at the end. The screened triangles and
+/// the bound returned are those of a full sort after every batch (a full
+/// sort and bound of every triangle after each batch was most of the
+/// screening's time on a 434,000-triangle truth solid: BENCHMARKS.md).
 fn screen(
     a: MeshRef<'_>,
     b: &Bvh,
@@ -479,57 +491,124 @@ fn screen(
         screened: 0,
         centroid_nearest: Vec::new(),
     };
+    let bound = |near: &[(f64, u32)], k: u32| {
+        let t = &a.triangles[k as usize];
+        let v = t.map(|i| a.positions[i as usize]);
+        lipschitz_bound(&v, &t.map(|i| near[i as usize].0)).min(within_of(k))
+    };
     let mut exact = vec![false; n];
     let mut batch_len = SCREEN_BATCH;
+    // order = [screened | above the stop, sorted | the rest]
+    let mut above = sort_above(order, s.lb + tol);
+    let mut rebounded = false;
     while s.screened < order.len() && order[s.screened].0 > s.lb + tol {
         let end = (s.screened + batch_len).min(order.len());
+        if end > above {
+            // The batch reaches past the triangles above the stop: it takes
+            // the largest of the rest, bounded now. The others stay below the
+            // stop (their bounds only fall, the stop only rises), so this is
+            // the last batch.
+            let near = &s.near;
+            order[above..].par_iter_mut().for_each(|(ub, k)| *ub = bound(near, *k));
+            top_sorted(&mut order[above..], end - above);
+            above = end;
+        }
         let batch = &order[s.screened..end];
         batch_len = (2 * batch_len).min(SCREEN_BATCH_MAX);
-        let mut fresh: Vec<u32> = batch
-            .iter()
-            .flat_map(|&(_, k)| a.triangles[k as usize])
-            .filter(|&i| !exact[i as usize])
-            .collect();
-        fresh.sort_unstable();
-        fresh.dedup();
-        let found: Vec<(f64, u32)> = fresh
-            .par_iter()
-            .map(|&i| nearest_within(b, a.positions[i as usize], upper_of(i)))
-            .collect();
-        for (&i, &d) in fresh.iter().zip(&found) {
-            s.near[i as usize] = d;
-            exact[i as usize] = true;
-            s.lb = s.lb.max(d.0);
-        }
-        let near = &s.near;
-        let centroids: Vec<(f64, u32)> = batch
-            .par_iter()
-            .map(|&(_, k)| {
-                let t = &a.triangles[k as usize];
-                let v = t.map(|i| a.positions[i as usize]);
-                let c = (v[0] + v[1] + v[2]) / 3.0;
-                let hint = (0..3)
-                    .map(|i| near[t[i] as usize].0 + c.distance(v[i]))
-                    .fold(f64::INFINITY, f64::min);
-                nearest_within(b, c, hint)
-            })
-            .collect();
-        s.queries += fresh.len() + centroids.len();
-        s.lb = centroids.iter().fold(s.lb, |m, c| m.max(c.0));
-        s.centroid_nearest.extend(centroids.iter().map(|c| c.1));
+        measure_batch(a, b, batch, &mut s, &mut exact, &upper_of);
         s.screened += batch.len();
-        // The vertices just measured tighten the bounds of the triangles
-        // around them: the rest are bounded again and re-sorted.
+        // The vertices just measured tighten the bounds of the triangles above the stop.
         let near = &s.near;
-        let rest = &mut order[s.screened..];
-        rest.par_iter_mut().for_each(|(ub, k)| {
-            let t = &a.triangles[*k as usize];
-            let v = t.map(|i| a.positions[i as usize]);
-            *ub = lipschitz_bound(&v, &t.map(|i| near[i as usize].0)).min(within_of(*k));
-        });
-        rest.par_sort_unstable_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+        order[s.screened..above]
+            .par_iter_mut()
+            .for_each(|(ub, k)| *ub = bound(near, *k));
+        above = s.screened + sort_above(&mut order[s.screened..above], s.lb + tol);
+        rebounded = true;
     }
+    // The rest's largest bound, with the final distances, next in the order.
+    if rebounded {
+        let near = &s.near;
+        order[above..].par_iter_mut().for_each(|(ub, k)| *ub = bound(near, *k));
+    }
+    top_sorted(&mut order[s.screened..], 1);
     s
+}
+
+/// Measures the vertices of `batch` not measured before (`exact`) and its
+/// triangles' centroids against `b`, into `s` (distances, largest distance,
+/// queries, the centroids' nearest triangles); `upper_of` bounds a vertex's
+/// distance.
+fn measure_batch(
+    a: MeshRef<'_>,
+    b: &Bvh,
+    batch: &[(f64, u32)],
+    s: &mut Screened,
+    exact: &mut [bool],
+    upper_of: &(impl Fn(u32) -> f64 + Sync),
+) {
+    let mut fresh: Vec<u32> = batch
+        .iter()
+        .flat_map(|&(_, k)| a.triangles[k as usize])
+        .filter(|&i| !exact[i as usize])
+        .collect();
+    fresh.sort_unstable();
+    fresh.dedup();
+    let found: Vec<(f64, u32)> = fresh
+        .par_iter()
+        .map(|&i| nearest_within(b, a.positions[i as usize], upper_of(i)))
+        .collect();
+    for (&i, &d) in fresh.iter().zip(&found) {
+        s.near[i as usize] = d;
+        exact[i as usize] = true;
+        s.lb = s.lb.max(d.0);
+    }
+    let near = &s.near;
+    let centroids: Vec<(f64, u32)> = batch
+        .par_iter()
+        .map(|&(_, k)| {
+            let t = &a.triangles[k as usize];
+            let v = t.map(|i| a.positions[i as usize]);
+            let c = (v[0] + v[1] + v[2]) / 3.0;
+            let hint = (0..3)
+                .map(|i| near[t[i] as usize].0 + c.distance(v[i]))
+                .fold(f64::INFINITY, f64::min);
+            nearest_within(b, c, hint)
+        })
+        .collect();
+    s.queries += fresh.len() + centroids.len();
+    s.lb = centroids.iter().fold(s.lb, |m, c| m.max(c.0));
+    s.centroid_nearest.extend(centroids.iter().map(|c| c.1));
+}
+
+/// Largest bound first; ties by index, so the screening order is the same on every run.
+fn by_bound(x: &(f64, u32), y: &(f64, u32)) -> std::cmp::Ordering {
+    y.0.total_cmp(&x.0).then(x.1.cmp(&y.1))
+}
+
+/// Moves the entries of `order` whose bound is above `stop` to its front,
+/// sorted [`by_bound`], and returns how many there are.
+fn sort_above(order: &mut [(f64, u32)], stop: f64) -> usize {
+    let mut n = 0;
+    for i in 0..order.len() {
+        if order[i].0 > stop {
+            order.swap(i, n);
+            n += 1;
+        }
+    }
+    order[..n].par_sort_unstable_by(by_bound);
+    n
+}
+
+/// Puts the first `m` entries of `order` [`by_bound`] at its front, sorted.
+fn top_sorted(order: &mut [(f64, u32)], m: usize) {
+    let m = m.min(order.len());
+    if m == 0 {
+        return;
+    }
+    if m < order.len() {
+        order.select_nth_unstable_by(m - 1, by_bound);
+    }
+    order[..m].par_sort_unstable_by(by_bound);
 }
 
 /// Distance and nearest triangle of `b` from `p`, whose distance is at most
@@ -774,6 +853,139 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The screening as it was: every triangle bounded again and the whole
+    /// rest sorted after each batch. [`screen`] must screen the same
+    /// triangles in the same order, find the same distances and return the
+    /// same largest bound of the rest.
+    fn screen_by_full_sorts(
+        a: MeshRef<'_>,
+        b: &Bvh,
+        tol: f64,
+        order: &mut [(f64, u32)],
+        upper: &[f64],
+        within: &[f64],
+    ) -> Screened {
+        let n = a.positions.len();
+        let mut s = Screened {
+            near: (0..n).map(|i| (upper[i], u32::MAX)).collect(),
+            lb: 0.0,
+            queries: 0,
+            screened: 0,
+            centroid_nearest: Vec::new(),
+        };
+        order.sort_by(by_bound);
+        let mut batch_len = SCREEN_BATCH;
+        while s.screened < order.len() && order[s.screened].0 > s.lb + tol {
+            let end = (s.screened + batch_len).min(order.len());
+            batch_len = (2 * batch_len).min(SCREEN_BATCH_MAX);
+            let mut fresh: Vec<u32> = order[s.screened..end]
+                .iter()
+                .flat_map(|&(_, k)| a.triangles[k as usize])
+                .filter(|&i| s.near[i as usize].1 == u32::MAX)
+                .collect();
+            fresh.sort_unstable();
+            fresh.dedup();
+            for i in fresh {
+                s.near[i as usize] = nearest_within(b, a.positions[i as usize], upper[i as usize]);
+                s.lb = s.lb.max(s.near[i as usize].0);
+                s.queries += 1;
+            }
+            for &(_, k) in &order[s.screened..end] {
+                let t = &a.triangles[k as usize];
+                let v = t.map(|i| a.positions[i as usize]);
+                let c = (v[0] + v[1] + v[2]) / 3.0;
+                let hint = (0..3)
+                    .map(|i| s.near[t[i] as usize].0 + c.distance(v[i]))
+                    .fold(f64::INFINITY, f64::min);
+                let d = nearest_within(b, c, hint);
+                s.centroid_nearest.push(d.1);
+                s.lb = s.lb.max(d.0);
+                s.queries += 1;
+            }
+            s.screened = end;
+            for (ub, k) in order[s.screened..].iter_mut() {
+                let t = &a.triangles[*k as usize];
+                let v = t.map(|i| a.positions[i as usize]);
+                *ub = lipschitz_bound(&v, &t.map(|i| s.near[i as usize].0)).min(within[*k as usize]);
+            }
+            order[s.screened..].sort_by(by_bound);
+        }
+        s
+    }
+
+    /// [`screen`] bounds and sorts only the triangles that can still be
+    /// screened, and gives what the full bound and sort after every batch
+    /// gave: the same screened triangles in the same order, the same
+    /// distances and nearest triangles, queries and largest distance, and
+    /// the same bounds of the rest, the largest next. Bumped and shifted spheres, with
+    /// tight, loose and no vertex bounds and with and without whole-triangle
+    /// bounds, at tolerances that stop at once, early and late.
+    #[test]
+    fn screening_is_the_full_sorts_screening() {
+        let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
+        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
+        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
+            *p *= 1.3;
+        }
+        let (p3, t3) = sphere(11.0, [0.4, -0.2, 0.1], 30, 60);
+        let ma = MeshRef {
+            positions: &p1,
+            triangles: &t1,
+        };
+        let mut screened_any = false;
+        for (pb, tb) in [(&p2, &t2), (&p3, &t3)] {
+            let bvh_b = Bvh::build(pb, tb);
+            let exact = distances(&p1, &bvh_b);
+            let tight: Vec<f64> = exact.iter().map(|d| d * (1.0 + 1e-9) + 1e-9).collect();
+            let loose: Vec<f64> = exact.iter().map(|d| 2.0 * d + 1.0).collect();
+            let none = vec![f64::INFINITY; p1.len()];
+            let sampled: Vec<f64> = (0..t1.len()).map(|k| 0.5 + (k % 7) as f64).collect();
+            let no_within = vec![f64::INFINITY; t1.len()];
+            for upper in [&tight, &loose, &none] {
+                for within in [&no_within, &sampled] {
+                    for tol in [1e-3, 0.05, 0.5, 100.0] {
+                        let start: Vec<(f64, u32)> = t1
+                            .iter()
+                            .enumerate()
+                            .map(|(k, t)| {
+                                let v = t.map(|i| p1[i as usize]);
+                                (
+                                    lipschitz_bound(&v, &t.map(|i| upper[i as usize])).min(within[k]),
+                                    k as u32,
+                                )
+                            })
+                            .collect();
+                        let (mut got_order, mut want_order) = (start.clone(), start);
+                        let got = screen(
+                            ma,
+                            &bvh_b,
+                            tol,
+                            &mut got_order,
+                            |i| upper[i as usize],
+                            |k| within[k as usize],
+                        );
+                        let want = screen_by_full_sorts(ma, &bvh_b, tol, &mut want_order, upper, within);
+                        assert_eq!(got.screened, want.screened, "tol {tol}");
+                        assert_eq!(got_order[..got.screened], want_order[..want.screened], "tol {tol}");
+                        assert_eq!(got_order.get(got.screened), want_order.get(want.screened), "tol {tol}");
+                        // Every bound of the rest, with the final distances, as the full sort left them.
+                        let mut rest = got_order[got.screened..].to_vec();
+                        rest.sort_by(by_bound);
+                        assert_eq!(rest, want_order[want.screened..], "tol {tol}");
+                        assert_eq!(got.near, want.near, "tol {tol}");
+                        assert_eq!(got.centroid_nearest, want.centroid_nearest, "tol {tol}");
+                        assert_eq!((got.lb, got.queries), (want.lb, want.queries), "tol {tol}");
+                        screened_any |= got.screened > SCREEN_BATCH && got.screened < t1.len();
+                    }
+                }
+            }
+        }
+        assert!(
+            screened_any,
+            "no case screened past the first batch and stopped before the end"
+        );
     }
 
     /// Two meshes with the same triangles, the second bumped and twisted: the
