@@ -802,6 +802,30 @@ mod tests {
         assert_eq!(std::mem::size_of::<ByUpper<Cell>>(), 120);
     }
 
+    type Solid = (Vec<DVec3>, Vec<[u32; 3]>);
+
+    /// A sphere of radius 10 and the two solids it is searched against: the
+    /// same sphere with a bump (a few vertices pushed out along their rays),
+    /// and a larger, shifted sphere (different everywhere).
+    fn sphere_bumped_and_shifted() -> (Solid, [Solid; 2]) {
+        let a = sphere(10.0, [0.0; 3], 40, 80);
+        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
+        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
+            *p *= 1.3;
+        }
+        (a, [(p2, t2), sphere(11.0, [0.4, -0.2, 0.1], 30, 60)])
+    }
+
+    /// Upper bounds of each vertex's distance to `b` (`exact`, the distances
+    /// themselves): tight, loose and none.
+    fn vertex_bounds(exact: &[f64]) -> [(&'static str, Vec<f64>); 3] {
+        [
+            ("tight", exact.iter().map(|d| d * (1.0 + 1e-9) + 1e-9).collect()),
+            ("loose", exact.iter().map(|d| 2.0 * d + 1.0).collect()),
+            ("none", vec![f64::INFINITY; exact.len()]),
+        ]
+    }
+
     /// The pruned search certifies the same H as the full one: on meshes
     /// that differ in one place (a bump) and everywhere (offset spheres),
     /// with tight vertex bounds, loose ones and none (every triangle
@@ -809,15 +833,9 @@ mod tests {
     /// is within the tolerance, and a tight bound queries far less.
     #[test]
     fn bounded_search_certifies_the_full_searchs_h() {
-        let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
-        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
-        // A bump on the second sphere: a few vertices pushed out along their rays.
-        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
-            *p *= 1.3;
-        }
-        let (p3, t3) = sphere(11.0, [0.4, -0.2, 0.1], 30, 60);
+        let ((p1, t1), others) = sphere_bumped_and_shifted();
         let tol = 1e-3;
-        for (pb, tb) in [(&p2, &t2), (&p3, &t3)] {
+        for (bump, (pb, tb)) in [true, false].into_iter().zip(&others) {
             let (ma, mb) = (
                 MeshRef {
                     positions: &p1,
@@ -830,13 +848,8 @@ mod tests {
             );
             let bvh_b = Bvh::build(mb.positions, mb.triangles);
             let full = one_sided(ma, &bvh_b, tol);
-            let exact = distances(&p1, &bvh_b);
-            let tight: Vec<f64> = exact.iter().map(|d| d * (1.0 + 1e-9) + 1e-9).collect();
-            let loose: Vec<f64> = exact.iter().map(|d| 2.0 * d + 1.0).collect();
-            let none = vec![f64::INFINITY; p1.len()];
-            let bump = std::ptr::eq(pb, &p2);
-            for (name, upper) in [("tight", &tight), ("loose", &loose), ("none", &none)] {
-                let b = one_sided_bounded(ma, &bvh_b, tol, upper);
+            for (name, upper) in vertex_bounds(&distances(&p1, &bvh_b)) {
+                let b = one_sided_bounded(ma, &bvh_b, tol, &upper);
                 assert!(b.converged && b.bound <= tol + 1e-12, "{name}: {b:?}");
                 assert!(
                     b.value <= full.value + full.bound + 1e-12 && full.value <= b.value + b.bound + 1e-12,
@@ -924,26 +937,17 @@ mod tests {
     /// bounds, at tolerances that stop at once, early and late.
     #[test]
     fn screening_is_the_full_sorts_screening() {
-        let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
-        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
-        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
-            *p *= 1.3;
-        }
-        let (p3, t3) = sphere(11.0, [0.4, -0.2, 0.1], 30, 60);
+        let ((p1, t1), others) = sphere_bumped_and_shifted();
         let ma = MeshRef {
             positions: &p1,
             triangles: &t1,
         };
         let mut screened_any = false;
-        for (pb, tb) in [(&p2, &t2), (&p3, &t3)] {
+        for (pb, tb) in &others {
             let bvh_b = Bvh::build(pb, tb);
-            let exact = distances(&p1, &bvh_b);
-            let tight: Vec<f64> = exact.iter().map(|d| d * (1.0 + 1e-9) + 1e-9).collect();
-            let loose: Vec<f64> = exact.iter().map(|d| 2.0 * d + 1.0).collect();
-            let none = vec![f64::INFINITY; p1.len()];
             let sampled: Vec<f64> = (0..t1.len()).map(|k| 0.5 + (k % 7) as f64).collect();
             let no_within = vec![f64::INFINITY; t1.len()];
-            for upper in [&tight, &loose, &none] {
+            for (_, upper) in vertex_bounds(&distances(&p1, &bvh_b)) {
                 for within in [&no_within, &sampled] {
                     for tol in [1e-3, 0.05, 0.5, 100.0] {
                         let start: Vec<(f64, u32)> = t1
@@ -966,7 +970,7 @@ mod tests {
                             |i| upper[i as usize],
                             |k| within[k as usize],
                         );
-                        let want = screen_by_full_sorts(ma, &bvh_b, tol, &mut want_order, upper, within);
+                        let want = screen_by_full_sorts(ma, &bvh_b, tol, &mut want_order, &upper, within);
                         assert_eq!(got.screened, want.screened, "tol {tol}");
                         assert_eq!(got_order[..got.screened], want_order[..want.screened], "tol {tol}");
                         assert_eq!(got_order.get(got.screened), want_order.get(want.screened), "tol {tol}");
@@ -994,12 +998,8 @@ mod tests {
     /// h with fewer queries than the search without it.
     #[test]
     fn corresponding_bounds_certify_the_full_searchs_h() {
-        let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
-        let (mut p2, t2) = sphere(10.0, [0.0; 3], 40, 80);
+        let ((p1, t1), [(mut p2, t2), _]) = sphere_bumped_and_shifted();
         assert_eq!(t1, t2);
-        for p in p2.iter_mut().filter(|p| p.z > 9.5) {
-            *p *= 1.3;
-        }
         // A twist too: every vertex moved sideways a little, so no vertex keeps its ray.
         for p in p2.iter_mut() {
             *p += DVec3::new(0.02 * p.y, -0.02 * p.x, 0.01);

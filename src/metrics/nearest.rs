@@ -147,7 +147,7 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
     let r_max = samples.iter().map(|s| s.r).fold(m, f64::max);
     let seeds = search.seeds.max(1);
     let small_cap = u < m && u <= SMALL_CAP * m;
-    let picked = pick_seeds(&samples, (u, m), step, r_max, seeds);
+    let picked = pick_seeds(&samples, (u, m), small_cap, step, r_max, seeds);
     // A small cap whose samples have one local minimum, the nearest: the rough
     // polish ranks seeds, and there is none to rank it against, so the final
     // polish starts from it (a quarter step: its first Newton moves stay
@@ -177,8 +177,15 @@ pub fn distance_to_solid(field: &dyn IntensityField, dir: DVec3, m: f64, search:
 /// of the window, the best `seeds` always. On the whole sphere (`u ≥ m`: a
 /// point near the origin) the lattice is coarse and the window would take
 /// every sample: the best `seeds` only. `(u, m)`: the distance in p's own
-/// direction and |p|, cd.
-fn pick_seeds(samples: &[Candidate], (u, m): (f64, f64), step: f64, r_max: f64, seeds: usize) -> Vec<Candidate> {
+/// direction and |p|, cd; `small_cap`: U ≤ [`SMALL_CAP`] · m.
+fn pick_seeds(
+    samples: &[Candidate],
+    (u, m): (f64, f64),
+    small_cap: bool,
+    step: f64,
+    r_max: f64,
+    seeds: usize,
+) -> Vec<Candidate> {
     let window = if u < m {
         samples[0].d + 2.0 * step * r_max
     } else {
@@ -188,7 +195,6 @@ fn pick_seeds(samples: &[Candidate], (u, m): (f64, f64), step: f64, r_max: f64, 
     // Samples are sorted nearest first: a sample is a discrete local minimum
     // when no nearer one lies within a neighbour's reach of it.
     let local_min = |k: usize| samples[..k].iter().all(|o| o.w.dot(samples[k].w) < near);
-    let small_cap = u < m && u <= SMALL_CAP * m;
     samples
         .iter()
         .enumerate()
