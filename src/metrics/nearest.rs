@@ -468,9 +468,9 @@ fn pattern_moves(mut at: Candidate, along: DVec3, at_dir: &dyn Fn(DVec3) -> Cand
 }
 
 /// The longest pattern move, in chords of the two neighbour moves before it
-/// ([`pattern_moves`]): 15 of them in all at most. Longer (64) changed no
-/// distance of a real roadway file's default `compare` by more than 6e-8 cd
-/// and saved 0.1 % of its lookups.
+/// ([`pattern_moves`]): 15 of them in all at most. Doubling up to 64 (127
+/// in all) moved a real roadway file's catmull-rom mean surface distance by
+/// 1.4e-9 cd and saved 0.05 % of its lookups.
 const MAX_PATTERN_MOVE: f64 = 8.0;
 
 /// The Newton move of the quadratic model of d² through the centre `at`
