@@ -458,8 +458,8 @@ fn pattern_moves(mut at: Candidate, along: DVec3, at_dir: &dyn Fn(DVec3) -> Cand
             break;
         };
         let x = at_dir(w);
-        if !(x.d < at.d) {
-            break;
+        if x.d.partial_cmp(&at.d) != Some(std::cmp::Ordering::Less) {
+            break; // not nearer
         }
         at = x;
         k *= 2.0;
