@@ -389,15 +389,16 @@ fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, step: f64, ri
 /// could leave a seed's basin for a shallower one (measured: up to 0.03 % of
 /// I_max on a real file when the rough polish took it too).
 ///
-/// Two neighbour moves in a row are followed by pattern moves (Hooke and
+/// A neighbour move that follows another with no halving between them
+/// (a Newton move may lie between) is followed by pattern moves (Hooke and
 /// Jeeves 1961): along the sum of the two, doubling while nearer
 /// ([`pattern_moves`]). A narrow valley that runs across the eight
 /// directions (where the model has no minimum: its curvature along the
 /// valley is not positive) is otherwise followed in a zigzag of single
 /// steps, each halving shrinking them further: on a real roadway file 255
-/// polishes of one row stopped at the round limit still moving, 0.4 cd
-/// from where the valley led (BENCHMARKS.md, "The surface search's
-/// pattern moves").
+/// polishes of one row stopped at the round limit still moving (one from
+/// 13.22 to 12.80 cd in its 400 rounds, still falling; BENCHMARKS.md,
+/// "The surface search's pattern moves").
 fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn Fn(DVec3) -> Candidate) -> Candidate {
     let mut at = start;
     let mut step = step.max(stop_rad);
@@ -446,7 +447,7 @@ fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn
     at
 }
 
-/// The pattern moves after two neighbour moves in a row: from `at`, steps
+/// The pattern moves after two neighbour moves: from `at`, steps
 /// of 1, 2, 4 and 8 times `along` (a chord of the unit sphere: the two moves
 /// together), each from where the last one landed, while each comes nearer.
 /// A move is only taken when it is nearer, so a basin is only left for a
