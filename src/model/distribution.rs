@@ -765,6 +765,7 @@ mod tests {
             1e-300,
             f64::NAN,
             f64::INFINITY,
+            f64::NEG_INFINITY,
         ];
         xs.extend([edge, edge.next_down(), edge.next_up(), 359.999_999, 180.0, 1e9, -1e9]);
         xs.extend((-2000..=2000).map(|k| k as f64 * 0.37));
