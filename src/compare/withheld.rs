@@ -12,6 +12,7 @@
 //! its images are equally far from its solid.)
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::{mark_pareto, own_or_grid_solid, CompareOptions, Comparison, Distances, Progress, ReconResult};
 use crate::error::ModelError;
@@ -79,6 +80,22 @@ impl RowDistances {
     /// The largest distance measured so far, cd.
     fn h(&self) -> f64 {
         self.dist.iter().copied().fold(self.largest, f64::max)
+    }
+
+    /// `self` followed by `next` (the fold after it): values in order, the
+    /// largest of the maxima, methods in order of first use.
+    fn merge(mut self, next: RowDistances) -> RowDistances {
+        self.recon.extend(next.recon);
+        self.dist.extend(next.dist);
+        self.triangles = self.triangles.max(next.triangles);
+        self.deviate(next.deviation);
+        self.segments = self.segments.max(next.segments);
+        for m in next.methods {
+            self.method(m);
+        }
+        self.searched += next.searched;
+        self.largest = self.largest.max(next.largest);
+        self
     }
 
     fn deviate(&mut self, dev: Option<f64>) {
@@ -478,17 +495,39 @@ impl<'a> HoldOut<'a> {
         })
     }
 
+    /// Every fold of the row of `r`, merged in fold order.
+    ///
+    /// The folds run side by side: each one's serial steps (rebuilding the
+    /// reconstruction, meshing, a BVH) then overlap another's parallel search
+    /// instead of leaving cores idle (`compare` on 8.IES used 1.4 of 2 cores
+    /// with the folds one after the other; BENCHMARKS.md). Every fold's values
+    /// are its own, so the merged row equals the sequential one. With H alone
+    /// a fold no longer prunes its points with the largest distance of the
+    /// folds before it, only with its own: more points are searched, H is the
+    /// same, and `tradeoff` was still faster (projector 4.3 → 3.8 s).
+    fn row_distances(&self, r: Recon, progress: &Progress<'_>) -> Result<RowDistances, ModelError> {
+        let fresh = || RowDistances {
+            hausdorff_only: self.opts.hausdorff_only,
+            ..RowDistances::default()
+        };
+        let folds = self
+            .folds
+            .par_iter()
+            .zip(self.sets.par_iter())
+            .map(|(fold, points)| {
+                let mut acc = fresh();
+                acc.add_fold(r, fold, points, self.rotational, &self.refinement, progress)?;
+                Ok(acc)
+            })
+            .collect::<Result<Vec<_>, ModelError>>()?;
+        Ok(folds.into_iter().fold(fresh(), RowDistances::merge))
+    }
+
     /// The row of `r`: rebuilt without each fold's withheld points and measured
     /// at them (the folds pooled), its bytes and lookup time from all the data.
     fn row(&self, r: Recon, progress: &Progress<'_>) -> Result<ReconResult, ModelError> {
         let i_max = self.i_max;
-        let mut row_acc = RowDistances {
-            hausdorff_only: self.opts.hausdorff_only,
-            ..RowDistances::default()
-        };
-        for (fold, points) in self.folds.iter().zip(&self.sets) {
-            row_acc.add_fold(r, fold, points, self.rotational, &self.refinement, progress)?;
-        }
+        let row_acc = self.row_distances(r, progress)?;
         let h = row_acc.h();
         let RowDistances {
             recon: recon_all,
@@ -650,6 +689,90 @@ mod tests {
             }
         }
         assert!(shared > 0);
+    }
+
+    /// The folds of a row run side by side; merged in fold order they give
+    /// the row of the folds one after the other, value for value, with the
+    /// largest mesh, deviation and the methods in order of first use, and
+    /// the same H when only H is measured. The
+    /// rows cover the three ways a fold is measured: searched on the solid
+    /// (a filter), in cells (nearest) and on a mesh (the measured solid).
+    #[test]
+    fn folds_side_by_side_give_the_sequential_row() {
+        let a = quadrant();
+        for hausdorff_only in [false, true] {
+            let opts = CompareOptions {
+                hausdorff_only,
+                ..CompareOptions::default()
+            };
+            let h = HoldOut::new(&a, 1.0, &opts).unwrap();
+            assert!(h.folds.len() > 1, "one fold shows no merge");
+            for r in [
+                Recon::Filter(Filter::CatmullRom),
+                Recon::Filter(Filter::Nearest),
+                Recon::Measured,
+            ] {
+                let side_by_side = h.row_distances(r, &|_, _, _| {}).unwrap();
+                let mut sequential = RowDistances {
+                    hausdorff_only,
+                    ..RowDistances::default()
+                };
+                for (fold, points) in h.folds.iter().zip(&h.sets) {
+                    sequential
+                        .add_fold(r, fold, points, h.rotational, &h.refinement, &|_, _, _| {})
+                        .unwrap();
+                }
+                let what = format!("{r}, H only: {hausdorff_only}");
+                assert_eq!(side_by_side.recon, sequential.recon, "{what}");
+                assert_eq!(side_by_side.dist, sequential.dist, "{what}");
+                assert_eq!(side_by_side.h(), sequential.h(), "{what}");
+                assert!(side_by_side.h() > 0.0, "{what}");
+                assert_eq!(side_by_side.methods, sequential.methods, "{what}");
+                assert_eq!(side_by_side.triangles, sequential.triangles, "{what}");
+                assert_eq!(side_by_side.deviation, sequential.deviation, "{what}");
+                if !hausdorff_only {
+                    // With H alone a fold prunes with its own largest distance only: more searches.
+                    assert_eq!(side_by_side.searched, sequential.searched, "{what}");
+                }
+            }
+        }
+    }
+
+    /// Merging keeps the first fold's values first and takes the larger of
+    /// the per-fold maxima; a method used by both is listed once.
+    #[test]
+    fn merge_keeps_fold_order_and_maxima() {
+        let first = RowDistances {
+            recon: vec![1.0, 2.0],
+            dist: vec![0.5, 0.25],
+            triangles: 10,
+            deviation: Some(0.3),
+            segments: None,
+            methods: vec!["surface"],
+            searched: 2,
+            hausdorff_only: false,
+            largest: 0.0,
+        };
+        let second = RowDistances {
+            recon: vec![3.0],
+            dist: vec![0.75],
+            triangles: 4,
+            deviation: Some(0.1),
+            segments: Some(7),
+            methods: vec!["mesh", "surface"],
+            searched: 1,
+            hausdorff_only: false,
+            largest: 2.0,
+        };
+        let m = first.merge(second);
+        assert_eq!(m.recon, [1.0, 2.0, 3.0]);
+        assert_eq!(m.dist, [0.5, 0.25, 0.75]);
+        assert_eq!(
+            (m.triangles, m.deviation, m.segments, m.searched),
+            (10, Some(0.3), Some(7), 3)
+        );
+        assert_eq!(m.methods, ["surface", "mesh"]);
+        assert_eq!(m.largest, 2.0);
     }
 
     /// 100 cd plus a term in sin C: not quadrant-symmetric (C and 180 + C differ).
