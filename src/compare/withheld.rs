@@ -184,10 +184,12 @@ impl RowDistances {
             return Ok(());
         }
         // Any other continuous field: the distance to its solid, searched on
-        // the solid itself (metrics::nearest). The measured solid is a mesh,
-        // and a field that may jump has walls only a mesh holds.
+        // the solid itself (metrics::nearest), with the walls along its rims
+        // (a lobe mixture's hemisphere steps) searched beside it (metrics::walls).
+        // The measured solid is a mesh, and a field that may jump elsewhere
+        // has walls only a mesh holds.
         // A field that answers only in batches (the GPU's) is meshed: the search asks one direction at a time.
-        if r != Recon::Measured && field.is_continuous() && !field.prefers_batches() {
+        if r != Recon::Measured && field.rims().is_some() && !field.prefers_batches() {
             let values = &self.recon[self.recon.len() - polar.len()..];
             let tol_cd = SYMMETRY_TOLERANCE * fold.kept.max_cd();
             let images = shared_images(&*field, fold.kept.symmetry(), values, &withheld.stored, tol_cd);

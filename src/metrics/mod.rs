@@ -9,6 +9,7 @@ pub mod nearest;
 pub mod profile;
 pub mod radial;
 mod refine;
+mod walls;
 
 pub use bvh::Bvh;
 pub use cost::{pareto_front, random_directions, time_per_sample_ns};

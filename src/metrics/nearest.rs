@@ -64,7 +64,8 @@ use std::f64::consts::FRAC_1_SQRT_2;
 
 use super::largest::{largest_of, LargestDistance};
 use super::radial::{tangents, DirectionSet};
-use crate::model::{frame, IntensityField};
+use super::walls::distance_to_walls;
+use crate::model::{frame, IntensityField, Rim};
 
 /// The sampling of [`distance_to_solid`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -308,9 +309,24 @@ pub fn largest_distance_to_solid(
     floor: f64,
 ) -> LargestDistance {
     let bounds: Vec<f64> = points.par_iter().map(|&(dir, m)| own_distance(field, dir, m)).collect();
+    let rims = field.rims().unwrap_or_default();
     largest_of(&bounds, floor, |k| {
-        distance_to_solid(field, points[k].0, points[k].1, search)
+        distance_with_walls(field, &rims, points[k].0, points[k].1, search)
     })
+}
+
+/// [`distance_to_solid`], or the distance to a wall of the solid along one
+/// of `rims` (the field's, [`IntensityField::rims`]) when that is nearer.
+fn distance_with_walls(field: &dyn IntensityField, rims: &[Rim], dir: DVec3, m: f64, search: &NearestSearch) -> f64 {
+    let d = distance_to_solid(field, dir, m, search);
+    if rims.is_empty() {
+        return d;
+    }
+    let (own, m) = own_point(dir, m);
+    if !m.is_finite() {
+        return d;
+    }
+    distance_to_walls(field, rims, m * own, d)
 }
 
 /// The sine of the largest cap radius (U / m) whose extra seeds are only the
@@ -340,11 +356,15 @@ fn rings_across(cap: f64, knot_spacing_deg: Option<f64>, search: &NearestSearch)
     by_knots.max(search.rings).max(1)
 }
 
-/// [`distance_to_solid`] of every point `(dir, m)`, in order (in parallel).
+/// The distance (cd) to the solid of `field` of every point `(dir, m)`, in
+/// order (in parallel): [`distance_to_solid`], and for a field with rims
+/// ([`IntensityField::rims`]: a lobe of exponent 0) the nearer of that and
+/// the walls along them (`metrics::walls`).
 pub fn distances_to_solid(field: &dyn IntensityField, points: &[(DVec3, f64)], search: &NearestSearch) -> Vec<f64> {
+    let rims = field.rims().unwrap_or_default();
     points
         .par_iter()
-        .map(|&(dir, m)| distance_to_solid(field, dir, m, search))
+        .map(|&(dir, m)| distance_with_walls(field, &rims, dir, m, search))
         .collect()
 }
 

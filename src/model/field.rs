@@ -15,6 +15,26 @@ use super::frame;
 /// of a zero: I0 cos 90° = 6e-17 I0), in the grid solids and the profiles alike.
 pub const ZERO_FRACTION: f64 = 1e-9;
 
+/// A circle on the sphere across which a field jumps (the great circle
+/// bounding a lobe of exponent 0, a hemisphere's step): the directions at
+/// angle acos(`cos_angle`) from `axis`. Inside
+/// it the field is `jump_cd` more than the field without the part that
+/// jumps ([`IntensityField::intensity_outside_rim_cd`]), so the solid has a
+/// wall along it: in each rim direction u, the points t · u for t from the
+/// value outside to that plus `jump_cd`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rim {
+    /// The circle's centre, a unit direction of the luminaire frame.
+    pub axis: DVec3,
+    /// The cosine of its angular radius, in [0, 1] (1: the axis alone).
+    pub cos_angle: f64,
+    /// The jump (cd, > 0) from just outside the rim to on it.
+    pub jump_cd: f64,
+    /// Which part of the field jumps here, passed back to
+    /// [`IntensityField::intensity_outside_rim_cd`] (a lobe mixture: the lobe).
+    pub source: usize,
+}
+
 /// An intensity distribution on the whole sphere, in candela.
 ///
 /// Implemented by every reconstruction in the crate and by every
@@ -100,6 +120,25 @@ pub trait IntensityField: Sync {
     /// to it are measured on a mesh of the solid instead.
     fn is_continuous(&self) -> bool {
         false
+    }
+
+    /// The rims across which the field jumps, when it is continuous
+    /// everywhere else: `Some` of an empty list for a continuous field (the
+    /// default answers [`IntensityField::is_continuous`] so), the edges of
+    /// its exponent-0 lobes for a lobe mixture, `None` for a field that may
+    /// jump elsewhere. The solid then has a wall along each rim, which
+    /// [`crate::metrics::nearest`] measures in closed form beside its search
+    /// on the surface.
+    fn rims(&self) -> Option<Vec<Rim>> {
+        self.is_continuous().then(Vec::new)
+    }
+
+    /// The field (cd) in unit direction `u` without the part that jumps at
+    /// rim `source` ([`Rim::source`]): the outer end of the rim's wall
+    /// where `u` lies on the rim. The default is the field itself (no rims).
+    fn intensity_outside_rim_cd(&self, source: usize, u: DVec3) -> f64 {
+        let _ = source;
+        self.intensity_dir_cd(u)
     }
 
     /// Whether evaluating one direction is a round trip (a GPU dispatch,
@@ -201,6 +240,12 @@ impl IntensityField for Borrowed<'_> {
     }
     fn is_continuous(&self) -> bool {
         self.0.is_continuous()
+    }
+    fn rims(&self) -> Option<Vec<Rim>> {
+        self.0.rims()
+    }
+    fn intensity_outside_rim_cd(&self, source: usize, u: DVec3) -> f64 {
+        self.0.intensity_outside_rim_cd(source, u)
     }
     fn prefers_batches(&self) -> bool {
         self.0.prefers_batches()

@@ -10,7 +10,7 @@ pub use distribution::{
     check_intensities, flush_round_off, periodic_widths, wrap360, Distribution, GammaRange, Symmetry, ANGLE_EPS,
     MAX_CD, MIN_PEAK_CD,
 };
-pub use field::{Borrowed, ConstantCells, IntensityField, ZERO_FRACTION};
+pub use field::{Borrowed, ConstantCells, IntensityField, Rim, ZERO_FRACTION};
 /// A progress report: `(done, total, what is being measured now)`.
 pub type Progress<'a> = dyn Fn(usize, usize, &str) + Sync + 'a;
 

@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::{Lobes, ShField};
-use crate::model::IntensityField;
+use crate::model::{IntensityField, Rim};
 
 /// A spherical-harmonic series or a mixture of cosine-power lobes.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,5 +44,11 @@ impl IntensityField for Compact {
     }
     fn is_continuous(&self) -> bool {
         self.field().is_continuous()
+    }
+    fn rims(&self) -> Option<Vec<Rim>> {
+        self.field().rims()
+    }
+    fn intensity_outside_rim_cd(&self, source: usize, u: DVec3) -> f64 {
+        self.field().intensity_outside_rim_cd(source, u)
     }
 }

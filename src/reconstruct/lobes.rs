@@ -18,7 +18,7 @@
 
 use glam::DVec3;
 
-use crate::model::IntensityField;
+use crate::model::{IntensityField, Rim};
 
 /// Largest exponent of a lobe (a beam of about 3° half width at half maximum).
 pub const MAX_LOBE_EXPONENT: f64 = 1024.0;
@@ -147,5 +147,41 @@ impl IntensityField for Lobes {
     /// `max(0, t)^p` is continuous for p > 0; p = 0 is a hemisphere's step.
     fn is_continuous(&self) -> bool {
         self.lobes.iter().all(|l| l.exponent > 0.0 || l.weight_cd == 0.0)
+    }
+    /// A lobe of exponent 0 steps by its weight across the great circle
+    /// perpendicular to its axis; the field is continuous elsewhere. A
+    /// ring of exponent 0 steps across a cone about the vertical (`None`:
+    /// such a mixture is meshed; rotationally symmetric data is measured
+    /// on profiles anyway).
+    fn rims(&self) -> Option<Vec<Rim>> {
+        let steps = || {
+            self.lobes
+                .iter()
+                .enumerate()
+                .filter(|(_, l)| l.exponent == 0.0 && l.weight_cd > 0.0)
+        };
+        if self.rings && steps().next().is_some() {
+            return None;
+        }
+        Some(
+            steps()
+                .map(|(k, l)| Rim {
+                    axis: l.axis,
+                    cos_angle: 0.0,
+                    jump_cd: l.weight_cd,
+                    source: k,
+                })
+                .collect(),
+        )
+    }
+    /// The mixture without lobe `source`.
+    fn intensity_outside_rim_cd(&self, source: usize, u: DVec3) -> f64 {
+        let u = u.try_normalize().unwrap_or(DVec3::NEG_Z);
+        let others = self.lobes.iter().enumerate().filter(|&(k, _)| k != source);
+        if self.rings {
+            others.map(|(_, l)| l.ring_intensity_unit(u)).sum()
+        } else {
+            others.map(|(_, l)| l.intensity_unit(u)).sum()
+        }
     }
 }
