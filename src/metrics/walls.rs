@@ -13,8 +13,9 @@
 //! form (`P · u` clamped to the segment); over the rim it is a function of
 //! one angle `t`, searched on the arc of the rim that can hold a nearer
 //! point than the bound already known (a point of the rim whose ray lies at
-//! angle θ from `P`'s is at least `|P| sin θ` away), sampled and then
-//! polished by golden-section search around the best samples. Every value
+//! angle θ from `P`'s is at least `|P| sin θ` away), sampled at most 0.5°
+//! apart (64 to 1,024 samples) and then polished by golden-section search
+//! around the best samples. Every value
 //! is the distance to a point of a wall, so the result never falls below
 //! the true distance.
 
@@ -22,8 +23,15 @@ use glam::DVec3;
 
 use crate::model::{IntensityField, Rim};
 
-/// Samples across the searched arc of a rim.
+/// Samples across the searched arc of a rim, at least.
 const ARC_SAMPLES: usize = 64;
+/// Samples across the searched arc of a rim, at most.
+const MAX_ARC_SAMPLES: usize = 1024;
+/// The largest angle (radians, 0.5°) between neighbouring samples on the
+/// sphere, as far as [`MAX_ARC_SAMPLES`] allow: a lobe of the largest
+/// exponent is about 3° wide at half maximum, so its dip in the wall's
+/// outer edge spans several samples.
+const ARC_STEP: f64 = 0.5 * std::f64::consts::PI / 180.0;
 /// Golden-section steps polishing each of the best samples (the bracket
 /// shrinks by 0.618 a step: 40 steps leave 4e-9 of a sample spacing).
 const POLISH_STEPS: usize = 40;
@@ -53,8 +61,9 @@ fn distance_to_wall(field: &dyn IntensityField, rim: &Rim, p: DVec3, upper: f64)
             f64::INFINITY
         }
     };
-    let h = arc.width / ARC_SAMPLES as f64;
-    let ts: Vec<f64> = (0..=ARC_SAMPLES).map(|k| arc.start + k as f64 * h).collect();
+    let n = ((arc.width * arc.sin_r / ARC_STEP).ceil() as usize).clamp(ARC_SAMPLES, MAX_ARC_SAMPLES);
+    let h = arc.width / n as f64;
+    let ts: Vec<f64> = (0..=n).map(|k| arc.start + k as f64 * h).collect();
     let ds: Vec<f64> = ts.iter().map(|&t| dist(t)).collect();
     let mut best = ds.iter().copied().fold(upper, f64::min);
     // The local minima of the samples, best first.
