@@ -40,7 +40,7 @@ mod fastmath;
 pub mod lobes;
 pub mod model;
 pub mod objective;
-mod optimize;
+pub(crate) mod optimize;
 pub mod report;
 
 use rayon::prelude::*;

@@ -333,43 +333,16 @@ impl<'a> SpotSearch<'a> {
 
     /// Golden-section search in u on [a, b] at axis (x, y), to `tol` in u.
     fn golden(&mut self, a: f64, b: f64, x: f64, y: f64, tol: f64) -> SpotFit {
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut a, mut b) = (a.max(0.0), b.min(u_max()));
-        let mut c = b - g * (b - a);
-        let mut d = a + g * (b - a);
-        let mut fc = self.eval(c, x, y);
-        let mut fd = self.eval(d, x, y);
-        let ea = self.eval(a, x, y);
-        let eb = self.eval(b, x, y);
-        while b - a > tol {
-            if fc.prof.e <= fd.prof.e {
-                b = d;
-                d = c;
-                fd = fc;
-                c = b - g * (b - a);
-                fc = self.eval(c, x, y);
-            } else {
-                a = c;
-                c = d;
-                fc = fd;
-                d = a + g * (b - a);
-                fd = self.eval(d, x, y);
-            }
-        }
+        let (a, b) = (a.max(0.0), b.min(u_max()));
         // The ends matter when the optimum is on the bound (p = 0 or 128).
-        [fd, ea, eb].into_iter().fold(fc, lower_error)
+        golden_section(|u| self.eval(u, x, y), |f| f.prof.e, a, b, tol)
     }
 
     /// Polish the exponent at fixed axis around the best local minima of a coarse grid.
     fn polish_u(&mut self, grid: &[SpotFit], keep: usize) -> SpotFit {
         let n = grid.len();
-        let mut minima: Vec<usize> = (0..n)
-            .filter(|&i| {
-                (i == 0 || grid[i].prof.e <= grid[i - 1].prof.e) && (i + 1 == n || grid[i].prof.e <= grid[i + 1].prof.e)
-            })
-            .collect();
-        minima.sort_by(|&a, &b| grid[a].prof.e.total_cmp(&grid[b].prof.e));
-        minima.truncate(keep);
+        let errors: Vec<f64> = grid.iter().map(|g| g.prof.e).collect();
+        let minima = best_local_minima(&errors, keep);
         let mut best = grid[minima[0]];
         for i in minima {
             let a = if i == 0 { grid[0].u } else { grid[i - 1].u };
@@ -538,6 +511,60 @@ impl<'a> SpotSearch<'a> {
 }
 
 /// The fit with the lower error; the first on a tie (as `min_by` picks).
+/// Golden-section search for a minimum of `f` on `[a, b]`, until the
+/// bracket is narrower than `tol`: of the last two interior points and the
+/// two ends, the one whose `value` is least (the first of equals). `f` is
+/// called twice plus once per step, and at both ends.
+pub(crate) fn golden_section<T>(
+    mut f: impl FnMut(f64) -> T,
+    value: impl Fn(&T) -> f64,
+    mut a: f64,
+    mut b: f64,
+    tol: f64,
+) -> T {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let mut c = b - g * (b - a);
+    let mut d = a + g * (b - a);
+    let mut fc = f(c);
+    let mut fd = f(d);
+    let ea = f(a);
+    let eb = f(b);
+    while b - a > tol {
+        if value(&fc) <= value(&fd) {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    [fd, ea, eb].into_iter().fold(fc, |best, next| {
+        if value(&next).total_cmp(&value(&best)).is_lt() {
+            next
+        } else {
+            best
+        }
+    })
+}
+
+/// The indices of the local minima of `values` (no larger than their
+/// neighbours; the ends count), the `keep` least first.
+pub(crate) fn best_local_minima(values: &[f64], keep: usize) -> Vec<usize> {
+    let n = values.len();
+    let mut minima: Vec<usize> = (0..n)
+        .filter(|&i| (i == 0 || values[i] <= values[i - 1]) && (i + 1 == n || values[i] <= values[i + 1]))
+        .collect();
+    minima.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
+    minima.truncate(keep);
+    minima
+}
+
 fn lower_error(best: SpotFit, next: SpotFit) -> SpotFit {
     if next.prof.e.total_cmp(&best.prof.e).is_lt() {
         next

@@ -28,7 +28,7 @@ pub struct Rim {
     pub axis: DVec3,
     /// The cosine of its angular radius, in [0, 1] (1: the axis alone).
     pub cos_angle: f64,
-    /// The jump (cd, > 0) from just outside the rim to on it.
+    /// The jump (cd, > 0) from just outside the rim (and on it) to just inside.
     pub jump_cd: f64,
     /// Which part of the field jumps here, passed back to
     /// [`IntensityField::intensity_outside_rim_cd`] (a lobe mixture: the lobe).
