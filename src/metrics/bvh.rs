@@ -166,10 +166,23 @@ impl Bvh {
     /// Squared distance to the closest triangle and its index (in leaf
     /// order, for [`Bvh::triangle`]), searching only below `best2`. The index
     /// is `u32::MAX` when nothing lies below `best2`.
-    pub fn nearest_below(&self, p: DVec3, mut best2: f64) -> (f64, u32) {
+    pub fn nearest_below(&self, p: DVec3, best2: f64) -> (f64, u32) {
+        let (d2, t, _) = self.nearest_below_or_within(p, best2, f64::NEG_INFINITY);
+        (d2, t)
+    }
+
+    /// [`Bvh::nearest_below`] that stops at the first triangle whose squared
+    /// distance is at most `accept2`: the third value says whether the search
+    /// ran to the end (`true`: the distance and nearest triangle) or stopped
+    /// there (`false`: a triangle within `accept2`, so an upper bound of the
+    /// distance). A caller that only needs to know the distance is below some
+    /// radius saves the rest of the search, most of it where the mesh is nearly
+    /// equidistant from `p` (a point deep inside a solid: every box around it
+    /// is about as near as the nearest triangle).
+    pub fn nearest_below_or_within(&self, p: DVec3, mut best2: f64, accept2: f64) -> (f64, u32, bool) {
         let mut best_t = u32::MAX;
         if self.tris.is_empty() {
-            return (f64::INFINITY, best_t);
+            return (f64::INFINITY, best_t, true);
         }
         // Each entry carries its box's squared distance, computed once when its
         // parent was opened: a popped node is pruned against the best distance
@@ -191,6 +204,9 @@ impl Bvh {
                         best2 = d2;
                         best_t = t;
                     }
+                }
+                if best2 <= accept2 && best_t != u32::MAX {
+                    return (best2, best_t, false);
                 }
             } else {
                 let (l, r) = (n.start, n.start + 1);
@@ -217,7 +233,7 @@ impl Bvh {
                 }
             }
         }
-        (best2, best_t)
+        (best2, best_t, true)
     }
 }
 
@@ -284,6 +300,34 @@ pub fn point_triangle_dist2(p: DVec3, t: &[DVec3; 3]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A search stopped within a radius returns a triangle at the distance it
+    /// returns, within that radius; one that ran to the end returns what
+    /// [`Bvh::nearest_below`] returns. Points inside, on and outside a sphere.
+    #[test]
+    fn stopped_search_returns_a_triangle_within_its_radius() {
+        let (p, t) = crate::metrics::hausdorff::tests::sphere(10.0, [0.0; 3], 20, 40);
+        let bvh = Bvh::build(&p, &t);
+        let mut stopped = 0;
+        for k in 0..200 {
+            let x = k as f64;
+            let q = DVec3::new((0.37 * x).sin(), (0.71 * x).cos(), (0.13 * x).sin()) * (0.1 * x);
+            let (exact2, exact_t) = bvh.nearest_below(q, f64::INFINITY);
+            for accept in [0.5 * exact2.sqrt(), exact2.sqrt() + 0.5, exact2.sqrt() + 5.0] {
+                let (d2, tri, ran_to_end) = bvh.nearest_below_or_within(q, f64::INFINITY, accept * accept);
+                assert_eq!(point_triangle_dist2(q, &bvh.triangle(tri)), d2, "point {k}");
+                if ran_to_end {
+                    assert_eq!((d2, tri), (exact2, exact_t), "point {k}");
+                } else {
+                    assert!(d2 <= accept * accept && d2 >= exact2, "point {k}: {d2} vs {exact2}");
+                    stopped += 1;
+                }
+            }
+            // A radius below the distance never stops the search.
+            assert!(bvh.nearest_below_or_within(q, f64::INFINITY, 0.25 * exact2).2);
+        }
+        assert!(stopped > 100, "only {stopped} searches stopped early");
+    }
 
     #[test]
     fn point_triangle_regions() {
