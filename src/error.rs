@@ -635,6 +635,18 @@ pub enum WarningCode {
     SeamMismatch,
     /// `single-plane`.
     SinglePlane,
+    /// `symmetry-repaired`: a declared symmetry code that the angles do not fit, read by the angles (`--repair`).
+    SymmetryRepaired,
+    /// `efficacy-above-limit`: luminous efficacy above 683 lm/W, the theoretical maximum.
+    EfficacyAboveLimit,
+    /// `beam-angle-undefined`: no beam or field angle (the peak is not downward, or the angle would pass 180°).
+    BeamAngleUndefined,
+    /// `front-mismatch`: the downward light leans away from the front BUG rates with.
+    FrontMismatch,
+    /// `front-differs`: a conversion whose target format's convention puts the front elsewhere.
+    FrontDiffers,
+    /// `field-not-kept`: a conversion whose target format cannot hold a field as the source has it.
+    FieldNotKept,
     /// `tilt-extra-values`.
     TiltExtraValues,
     /// `tilt-file-keyword`.
@@ -679,6 +691,12 @@ impl WarningCode {
             WarningCode::RangeSnapped => "range-snapped",
             WarningCode::SeamMismatch => "seam-mismatch",
             WarningCode::SinglePlane => "single-plane",
+            WarningCode::SymmetryRepaired => "symmetry-repaired",
+            WarningCode::EfficacyAboveLimit => "efficacy-above-limit",
+            WarningCode::BeamAngleUndefined => "beam-angle-undefined",
+            WarningCode::FrontMismatch => "front-mismatch",
+            WarningCode::FrontDiffers => "front-differs",
+            WarningCode::FieldNotKept => "field-not-kept",
             WarningCode::TiltExtraValues => "tilt-extra-values",
             WarningCode::TiltFileKeyword => "tilt-file-keyword",
             WarningCode::UnknownVersion => "unknown-version",

@@ -11,12 +11,18 @@
 //! | `spot` | I0 cos^p γ inside the cut-off, 0 outside (an OpenGL spotlight) | 2π I0 (1 − cos^{p+1} c) / (p + 1) |
 //! | `batwing` | I0 (3.3 u − 3 u³)/k, u = cos γ, k = max (peak at γ ≈ 52.7°) | 2π I0 · 0.9 / k |
 //! | `roadway` | asymmetric: two cos^8 lobes at (C 60°, γ 65°) and (C 120°, γ 65°), house side 0.15 I0 cos γ | numeric |
+//!
+//! The roadway's street side is C90 in this table's frame. [`Synth::build_for`]
+//! turns it onto the front of the format it is written in ([`crate::model::front`]:
+//! C90 for EULUMDAT, C0 for IES and TM-33), so every reader finds its front
+//! where its light goes; the recorded [`Truth`] carries the turn, so the
+//! closed form stays the truth of the file.
 
 use std::f64::consts::PI;
 
 use crate::error::ModelError;
 use crate::model::frame::direction;
-use crate::model::{Distribution, IntensityField, LampSet, Luminaire, Symmetry};
+use crate::model::{Distribution, Format, Front, IntensityField, LampSet, Luminaire, Symmetry};
 
 /// An analytic distribution kind.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -150,9 +156,30 @@ impl Synth {
         }
     }
 
+    /// The C angle of the roadway kind's street side in the table's frame, degrees.
+    pub const ROADWAY_STREET_SIDE_C_DEG: f64 = 90.0;
+
     /// Sample the kind on `grid` with peak `intensity_cd` (cd). Rotational
     /// kinds store one plane (C = 0); `roadway` stores all of `grid.c`.
     pub fn build(&self, grid: &GridSpec, intensity_cd: f64) -> Result<Luminaire, ModelError> {
+        self.build_turned(grid, intensity_cd, 0.0)
+    }
+
+    /// [`Synth::build`] for a file of `format`: the roadway turned so that its
+    /// street side lies at that format's front (module docs); other kinds as built.
+    pub fn build_for(&self, format: Format, grid: &GridSpec, intensity_cd: f64) -> Result<Luminaire, ModelError> {
+        let turn = match self {
+            Synth::Roadway => Front::convention_c_deg(format) - Self::ROADWAY_STREET_SIDE_C_DEG,
+            _ => 0.0,
+        };
+        let mut lum = self.build_turned(grid, intensity_cd, turn)?;
+        lum.set_front(Front::convention(format));
+        Ok(lum)
+    }
+
+    /// [`Synth::build`] with the closed form turned by `turn_c_deg` about the
+    /// vertical axis: I(C, γ) = I_kind(C − turn, γ).
+    fn build_turned(&self, grid: &GridSpec, intensity_cd: f64, turn_c_deg: f64) -> Result<Luminaire, ModelError> {
         self.check()?;
         if !(intensity_cd.is_finite() && intensity_cd > 0.0) {
             return Err(ModelError::Parameter {
@@ -170,7 +197,7 @@ impl Synth {
         let mut cd = Vec::with_capacity(c.len() * grid.gamma.len());
         for &cc in &c {
             for &g in &grid.gamma {
-                cd.push(intensity_cd * self.relative(cc, g));
+                cd.push(intensity_cd * self.relative(crate::model::wrap360(cc - turn_c_deg), g));
             }
         }
         let d = Distribution::new(c, grid.gamma.clone(), cd, sym)?;
@@ -178,7 +205,11 @@ impl Synth {
         let flux_lm = self.exact_flux(intensity_cd);
         let md = lum.metadata_mut();
         md.manufacturer = "photosolid".into();
-        md.luminaire = format!("{}{}", Truth::PREFIX, self.truth(intensity_cd));
+        let truth = Truth {
+            turn_c_deg,
+            ..self.truth(intensity_cd)
+        };
+        md.luminaire = format!("{}{}", Truth::PREFIX, truth);
         md.catalogue = format!("SYNTH-{}", self.name().to_uppercase());
         md.lamp = "analytic".into();
         lum.declared_mut().luminaire_flux_lm = flux_lm;
@@ -216,12 +247,20 @@ pub struct Truth {
     pub kind: Synth,
     /// The peak intensity I0 (cd) the relative distribution is scaled by.
     pub peak_cd: f64,
+    /// The angle the closed form is turned by about the vertical axis,
+    /// degrees: I(C, γ) = I_kind(C − turn, γ) (0 but for a roadway written
+    /// as IES or TM-33, [`Synth::build_for`]).
+    pub turn_c_deg: f64,
 }
 
 impl Synth {
     /// The closed-form distribution of this kind with peak `peak_cd` (cd).
     pub fn truth(&self, peak_cd: f64) -> Truth {
-        Truth { kind: *self, peak_cd }
+        Truth {
+            kind: *self,
+            peak_cd,
+            turn_c_deg: 0.0,
+        }
     }
 
     /// The kind from its [`Synth::describe`] text (`cosine-power p=5`,
@@ -268,7 +307,11 @@ impl Truth {
 
 impl std::fmt::Display for Truth {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{} peak={}cd", self.kind.describe(), self.peak_cd)
+        write!(f, "{} peak={}cd", self.kind.describe(), self.peak_cd)?;
+        if self.turn_c_deg != 0.0 {
+            write!(f, " turn={}deg", self.turn_c_deg)?;
+        }
+        Ok(())
     }
 }
 
@@ -280,13 +323,27 @@ impl std::str::FromStr for Truth {
             value: s.to_string(),
             reason: "expected a synth description such as `cosine-power p=5 peak=1000cd`".into(),
         };
-        let (kind, peak) = s.trim().rsplit_once(" peak=").ok_or_else(bad)?;
+        let (rest, turn_c_deg) = match s.trim().rsplit_once(" turn=") {
+            Some((rest, turn)) => {
+                let turn: f64 = turn.trim_end_matches("deg").parse().map_err(|_| bad())?;
+                if !turn.is_finite() {
+                    return Err(bad());
+                }
+                (rest, turn)
+            }
+            None => (s.trim(), 0.0),
+        };
+        let (kind, peak) = rest.rsplit_once(" peak=").ok_or_else(bad)?;
         let peak_cd: f64 = peak.trim_end_matches("cd").parse().map_err(|_| bad())?;
         let kind = Synth::from_description(kind).ok_or_else(bad)?;
         if !(peak_cd.is_finite() && peak_cd > 0.0) {
             return Err(bad());
         }
-        Ok(Truth { kind, peak_cd })
+        Ok(Truth {
+            kind,
+            peak_cd,
+            turn_c_deg,
+        })
     }
 }
 
@@ -296,7 +353,12 @@ impl IntensityField for Truth {
         if !(c_deg.is_finite() && gamma_deg.is_finite()) {
             return 0.0;
         }
-        self.peak_cd * self.kind.relative(c_deg, gamma_deg.clamp(0.0, 180.0))
+        let c = if self.turn_c_deg == 0.0 {
+            c_deg
+        } else {
+            crate::model::wrap360(c_deg - self.turn_c_deg)
+        };
+        self.peak_cd * self.kind.relative(c, gamma_deg.clamp(0.0, 180.0))
     }
     fn name(&self) -> String {
         format!("truth {}", self.kind.describe())

@@ -62,3 +62,14 @@ impl From<IesVersionArg> for IesWriteVersion {
         }
     }
 }
+
+/// An angle in degrees given on the command line (`--front`): any finite number, negative
+/// ones included (wrapped into [0, 360) by the library).
+pub fn parse_angle_deg(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err(format!(
+            "{s:?}: expected an angle in degrees, a finite number such as 90 or -90"
+        )),
+    }
+}

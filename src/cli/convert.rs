@@ -7,7 +7,11 @@
 //! counter-clockwise seen from above, so the default keeps the C angles as
 //! they are. `--rotate-c` and `--mirror` change the convention when a pair
 //! of files disagrees (a lab that mounted the luminaire turned, or measured
-//! clockwise): each plane at C moves to (mirror ? −C : C) + rotate.
+//! clockwise): each plane at C moves to (mirror ? −C : C) + rotate, and the
+//! luminaire's front with it. When the target format's convention puts the
+//! front elsewhere than this luminaire's (an IES road luminaire, front C0,
+//! written as EULUMDAT, whose readers take C90), a `front-differs` warning
+//! names the `--front` / `street_side_c_deg` to use with the converted file.
 
 use std::path::PathBuf;
 
@@ -26,7 +30,7 @@ pub struct ConvertArgs {
     #[arg(long, value_enum, default_value = "2002")]
     ies_version: super::choice::IesVersionArg,
     /// Rotate the C angles by this many degrees (counter-clockwise seen from above).
-    #[arg(long, default_value_t = 0.0, value_parser = super::parse::finite)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = super::parse::finite)]
     rotate_c: f64,
     /// Mirror C -> -C (before rotating).
     #[arg(long)]
@@ -44,6 +48,14 @@ pub fn run(a: ConvertArgs) -> anyhow::Result<i32> {
         let turned = doc.distribution().reoriented(a.rotate_c, a.mirror)?;
         doc.luminaire.set_distribution(turned);
         doc.header = photosolid::formats::Header::None;
+        // The front turns with the planes.
+        let front = doc.luminaire.front().reoriented(a.rotate_c, a.mirror);
+        doc.luminaire.set_front(front);
+    }
+    if let Some(target) = photosolid::model::Format::from_extension(&a.output) {
+        for w in photosolid::formats::conversion_warnings(&doc.luminaire, target) {
+            eprintln!("warning: {w}");
+        }
     }
     let opts = WriteOptions {
         ies_version: a.ies_version.into(),

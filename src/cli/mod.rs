@@ -108,6 +108,11 @@ pub struct ReadArgs {
     /// EULUMDAT with several lamp sets: cd/klm refer to the first set's flux (default) or the sum.
     #[arg(long, value_enum, default_value = "first")]
     lamp_sets: choice::LampSetsArg,
+    /// The luminaire's front: the C angle (degrees, the file's own frame) at the middle of its
+    /// forward half, instead of its format's convention (IES and TM-33: C0; EULUMDAT: C90).
+    /// BUG's forward half, `road`'s street side and `convert`'s warnings use it.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = choice::parse_angle_deg)]
+    front: Option<f64>,
 }
 
 impl ReadArgs {
@@ -125,6 +130,7 @@ impl ReadArgs {
             repair: self.repair,
             handedness: self.handedness.into(),
             lamp_set_flux: self.lamp_sets.into(),
+            front_c_deg: self.front,
         }
     }
 }

@@ -66,7 +66,11 @@ pub fn run(a: SynthArgs) -> anyhow::Result<i32> {
     if let Some(g) = a.gamma_list {
         grid.gamma = g;
     }
-    let lum = kind.build(&grid, a.intensity).context("building the distribution")?;
+    // The roadway's street side goes where the output format's readers take its front.
+    let format = photosolid::model::Format::from_extension(&a.output).unwrap_or(photosolid::model::Format::Ldt);
+    let lum = kind
+        .build_for(format, &grid, a.intensity)
+        .context("building the distribution")?;
     photosolid::save(&lum.clone().into(), &a.output, &Default::default())?;
     if let Some(f) = kind.exact_flux(a.intensity) {
         eprintln!("wrote {} (exact flux {f:.4} lm)", a.output.display());

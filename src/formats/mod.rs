@@ -150,6 +150,20 @@ pub struct ReadOptions {
     pub handedness: Handedness,
     /// Which lamp flux EULUMDAT cd/klm values refer to. Default: set 1.
     pub lamp_set_flux: LampSetFlux,
+    /// The luminaire's front, C degrees in the file's frame (`--front`),
+    /// instead of its format's convention ([`crate::model::front`]). A
+    /// value that is not finite is ignored (the CLI refuses it first).
+    pub front_c_deg: Option<f64>,
+}
+
+impl ReadOptions {
+    /// Give `doc` the front these options name, if any.
+    fn apply_front(&self, mut doc: Document) -> Document {
+        if let Some(front) = self.front_c_deg.and_then(crate::model::Front::flag) {
+            doc.luminaire.set_front(front);
+        }
+        doc
+    }
 }
 
 /// Read a photometric file, format from its extension (or, failing that,
@@ -172,7 +186,11 @@ pub fn load_document(path: impl AsRef<Path>) -> Result<Document> {
 
 /// [`load_document`] with options.
 pub fn load_document_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<Document> {
-    let path = path.as_ref();
+    load_document_as_read(path.as_ref(), opts).map(|doc| opts.apply_front(doc))
+}
+
+/// [`load_document_with`] before the options' front is applied.
+fn load_document_as_read(path: &Path, opts: &ReadOptions) -> Result<Document> {
     if let Some((container, id)) = gldf::split_reference(path) {
         return gldf::load(&container, id.as_deref(), opts);
     }
@@ -262,6 +280,7 @@ pub fn parse(bytes: &[u8], path: &Path, format: Format, opts: &ReadOptions) -> R
         Format::Ldt => ldt::read(bytes, path, opts),
         Format::Tm33 => tm33::read(bytes, path, opts),
     }
+    .map(|doc| opts.apply_front(doc))
 }
 
 /// Guess the format of content with no telling extension: TM-33 documents
@@ -275,6 +294,25 @@ pub fn sniff(bytes: &[u8]) -> Format {
     } else {
         Format::Ldt
     }
+}
+
+/// What writing `lum` as `target` cannot keep as the file says it: the
+/// front (`front-differs`, [`crate::model::Front::differs_in`]) and an
+/// opening shape the target has no term for (`field-not-kept`,
+/// [`crate::model::opening::Opening::to_ldt`] / `to_ies`). `convert` prints them.
+pub fn conversion_warnings(lum: &Luminaire, target: Format) -> Vec<crate::error::Warning> {
+    let mut out: Vec<crate::error::Warning> = lum.front().differs_in(target).into_iter().collect();
+    if target != lum.format() {
+        let note = crate::model::opening::Opening::of_luminaire(lum)
+            .ok()
+            .and_then(|shape| match target {
+                Format::Ldt => shape.to_ldt().3,
+                Format::Ies => shape.to_ies().3,
+                Format::Tm33 => None,
+            });
+        out.extend(note.map(|n| crate::error::Warning::new(crate::error::WarningCode::FieldNotKept, n)));
+    }
+    out
 }
 
 /// Options of the writers.

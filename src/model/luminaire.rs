@@ -17,6 +17,7 @@ use serde::Serialize;
 
 use crate::error::{ModelError, Warning};
 use crate::model::distribution::Distribution;
+use crate::model::front::Front;
 
 /// File format of a photometric file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -227,6 +228,8 @@ pub struct LuminaireParts {
     pub source_grid: Option<SourceGrid>,
     /// Recoverable oddities found while reading.
     pub warnings: Vec<Warning>,
+    /// The luminaire's front (its format's convention unless the user gave one).
+    pub front: Front,
 }
 
 /// A loaded luminaire. See the module docs for what is guaranteed.
@@ -266,6 +269,7 @@ impl Luminaire {
                 distribution,
                 source_grid: None,
                 warnings: Vec::new(),
+                front: Front::convention(Format::Ldt),
             },
         }
     }
@@ -373,6 +377,15 @@ impl Luminaire {
     /// [`Luminaire::set_distribution`]).
     pub fn source_grid(&self) -> Option<&SourceGrid> {
         self.parts.source_grid.as_ref()
+    }
+    /// The luminaire's front: the C angle (degrees, file frame) at the middle
+    /// of its forward half, and where that came from ([`crate::model::front`]).
+    pub fn front(&self) -> Front {
+        self.parts.front
+    }
+    /// Replace the front (a user's `--front`, or a conversion's).
+    pub fn set_front(&mut self, front: Front) {
+        self.parts.front = front;
     }
     /// Recoverable oddities found while reading.
     pub fn warnings(&self) -> &[Warning] {

@@ -3,6 +3,7 @@
 pub mod distribution;
 pub mod field;
 pub mod frame;
+pub mod front;
 pub mod luminaire;
 pub mod opening;
 
@@ -11,6 +12,7 @@ pub use distribution::{
     MAX_CD, MIN_PEAK_CD,
 };
 pub use field::{Borrowed, ConstantCells, IntensityField, Rim, ZERO_FRACTION};
+pub use front::{Front, FrontSource};
 /// A progress report: `(done, total, what is being measured now)`.
 pub type Progress<'a> = dyn Fn(usize, usize, &str) + Sync + 'a;
 

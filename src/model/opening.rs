@@ -233,6 +233,112 @@ impl Opening {
         })
     }
 
+    /// The opening in EULUMDAT's terms: luminous length and width (width 0 for
+    /// a disk) and the luminous heights on the C0, C90, C180 and C270 sides,
+    /// metres; with a note naming what EULUMDAT cannot hold (an ellipse, a
+    /// cylinder lying down, an ellipsoid, a vertical disk), written then as
+    /// its footprint: a disk of the same area for an upright ellipse or
+    /// elliptic cylinder, else the bounding rectangle with the height as
+    /// luminous sides.
+    pub fn to_ldt(&self) -> (f64, f64, [f64; 4], Option<String>) {
+        let footprint = |what: &str, l: f64, w: f64, h: f64| {
+            (
+                l,
+                w,
+                [h; 4],
+                Some(format!(
+                    "EULUMDAT holds rectangles and disks with luminous sides: the {what} is written as its \
+                     bounding {} x {} mm rectangle{}",
+                    crate::numfmt::trimmed(1000.0 * l, 1),
+                    crate::numfmt::trimmed(1000.0 * w, 1),
+                    if h > 0.0 {
+                        format!(" with {} mm luminous sides", crate::numfmt::trimmed(1000.0 * h, 1))
+                    } else {
+                        String::new()
+                    }
+                )),
+            )
+        };
+        let disk_of_area = |what: &str, a: f64, b: f64, h: f64| {
+            let d = (a * b).sqrt();
+            (
+                d,
+                0.0,
+                [h; 4],
+                Some(format!(
+                    "EULUMDAT holds disks, not ellipses: the {what} ({} x {} mm) is written as a disk of the same \
+                     area ({} mm)",
+                    crate::numfmt::trimmed(1000.0 * a, 1),
+                    crate::numfmt::trimmed(1000.0 * b, 1),
+                    crate::numfmt::trimmed(1000.0 * d, 1)
+                )),
+            )
+        };
+        match *self {
+            Opening::Point => (0.0, 0.0, [0.0; 4], None),
+            Opening::Rectangle { length_m, width_m } => (length_m, width_m, [0.0; 4], None),
+            Opening::Ellipse { length_m, width_m } if length_m == width_m => (length_m, 0.0, [0.0; 4], None),
+            Opening::Ellipse { length_m, width_m } => disk_of_area("ellipse", length_m, width_m, 0.0),
+            Opening::Box(e) => (e.length_m, e.width_m, [e.height_m; 4], None),
+            Opening::Cylinder(c) if c.axis == 2 && c.diameter_a_m == c.diameter_b_m => {
+                (c.diameter_a_m, 0.0, [c.length_m; 4], None)
+            }
+            Opening::Cylinder(c) if c.axis == 2 => {
+                disk_of_area("elliptic cylinder", c.diameter_a_m, c.diameter_b_m, c.length_m)
+            }
+            Opening::Cylinder(c) if c.axis == 0 => {
+                footprint("horizontal cylinder", c.length_m, c.diameter_a_m, c.diameter_b_m)
+            }
+            Opening::Cylinder(c) => footprint("horizontal cylinder", c.diameter_a_m, c.length_m, c.diameter_b_m),
+            Opening::Ellipsoid(e) => footprint("ellipsoid", e.length_m, e.width_m, e.height_m),
+            Opening::VerticalEllipse { width_m, height_m } => footprint("vertical disk", 0.0, width_m, height_m),
+            Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            } => (length_m, width_m, heights_m, None),
+        }
+    }
+
+    /// The opening in LM-63-2002/2019's signed width, length and height
+    /// (metres), with a note naming what LM-63 cannot hold (an EULUMDAT area
+    /// whose luminous sides differ in height: written with the tallest).
+    pub fn to_ies(&self) -> (f64, f64, f64, Option<String>) {
+        match *self {
+            Opening::Point => (0.0, 0.0, 0.0, None),
+            Opening::Rectangle { length_m, width_m } => (width_m, length_m, 0.0, None),
+            Opening::Ellipse { length_m, width_m } => (-width_m, -length_m, 0.0, None),
+            Opening::Box(e) => (e.width_m, e.length_m, e.height_m, None),
+            Opening::Ellipsoid(e) => (-e.width_m, -e.length_m, -e.height_m, None),
+            Opening::VerticalEllipse { width_m, height_m } => (-width_m, 0.0, -height_m, None),
+            Opening::Cylinder(c) => match c.axis {
+                2 => (-c.diameter_b_m, -c.diameter_a_m, c.length_m, None),
+                0 => (-c.diameter_a_m, c.length_m, -c.diameter_b_m, None),
+                _ => (c.length_m, -c.diameter_a_m, -c.diameter_b_m, None),
+            },
+            Opening::LdtArea {
+                length_m,
+                width_m,
+                heights_m,
+            } => {
+                let h = heights_m.iter().fold(0.0f64, |a, &b| a.max(b));
+                let note = heights_m.iter().any(|&x| x != h).then(|| {
+                    format!(
+                        "LM-63 holds one luminous height: the EULUMDAT heights {:?} mm (C0, C90, C180, C270) are \
+                         written as {} mm",
+                        heights_m.map(|x| 1000.0 * x),
+                        crate::numfmt::trimmed(1000.0 * h, 1)
+                    )
+                });
+                if width_m == 0.0 {
+                    (-length_m, -length_m, h, note)
+                } else {
+                    (width_m, length_m, h, note)
+                }
+            }
+        }
+    }
+
     /// Check an opening given in a scene: every size finite and ≥ 0, a cylinder axis 0, 1 or 2.
     pub fn check(&self) -> Result<(), ModelError> {
         let sizes: Vec<f64> = match *self {

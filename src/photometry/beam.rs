@@ -49,8 +49,54 @@ pub fn plane_profile(d: &Distribution, c: f64) -> Vec<f64> {
 /// the measured γ range the intensity is zero, so a profile still above the
 /// threshold at its last measured γ crosses there. `None` when the reference
 /// is not positive, when no crossing exists on a side (e.g. isotropic
-/// full-sphere data), or when γ = 0 is not measured (CIE).
+/// full-sphere data), when γ = 0 is not measured (CIE), when the maximum the
+/// IES walk starts from is not downward (γ > 90° on its side), or when the
+/// angle would pass 180° (a globe: the spread is not a beam);
+/// [`undefined_reason`] says which.
 pub fn spread_angle(d: &Distribution, c: f64, fraction: f64, of_max: bool) -> Option<f64> {
+    spread(d, c, fraction, of_max).ok()
+}
+
+/// Why [`spread_angle`] has no value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Undefined {
+    /// No positive reference intensity, no crossing on a side, or no γ = 0 (CIE).
+    NoCrossing,
+    /// The maximum lies above the horizontal, at this γ (degrees).
+    PeakNotDownward(f64),
+    /// The spread would be this many degrees, past 180°.
+    PastHalfTurn(f64),
+}
+
+impl std::fmt::Display for Undefined {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Undefined::NoCrossing => {
+                f.write_str("the intensity does not fall to the threshold on both sides of the peak")
+            }
+            Undefined::PeakNotDownward(g) => write!(f, "the peak lies at gamma {g:.1} degrees, above the horizontal"),
+            Undefined::PastHalfTurn(a) => write!(f, "the angle would be {a:.2} degrees, past 180"),
+        }
+    }
+}
+
+/// Why the IES angle at `fraction` of I_max in the plane pair (C, C + 180)
+/// is undefined, `None` when it is defined.
+pub fn undefined_reason(d: &Distribution, c: f64, fraction: f64) -> Option<Undefined> {
+    spread(d, c, fraction, true).err()
+}
+
+/// [`spread_angle`], with the reason when there is none.
+fn spread(d: &Distribution, c: f64, fraction: f64, of_max: bool) -> Result<f64, Undefined> {
+    let angle = raw_spread(d, c, fraction, of_max)?;
+    if angle > 180.0 + ANGLE_EPS {
+        return Err(Undefined::PastHalfTurn(angle));
+    }
+    Ok(angle)
+}
+
+/// The spread, degrees, without the half-turn check of [`spread`].
+fn raw_spread(d: &Distribution, c: f64, fraction: f64, of_max: bool) -> Result<f64, Undefined> {
     let g = d.gamma_angles_deg();
     let a = plane_profile(d, c);
     let b = plane_profile(d, c + 180.0);
@@ -70,17 +116,27 @@ pub fn spread_angle(d: &Distribution, c: f64, fraction: f64, of_max: bool) -> Op
         val.push(if i == 0 && has_zero { 0.5 * (a[0] + b[0]) } else { a[i] });
     }
     let (start, reference) = if of_max {
-        let (k, &m) = val.iter().enumerate().max_by(|x, y| x.1.total_cmp(y.1))?;
+        let (k, &m) = val
+            .iter()
+            .enumerate()
+            .max_by(|x, y| x.1.total_cmp(y.1))
+            .ok_or(Undefined::NoCrossing)?;
         (k, m)
     } else {
         if !has_zero {
-            return None;
+            return Err(Undefined::NoCrossing);
         }
-        let k = theta.iter().position(|&t| t == g[0])?;
+        let k = theta.iter().position(|&t| t == g[0]).ok_or(Undefined::NoCrossing)?;
         (k, val[k])
     };
     if reference <= 0.0 || !reference.is_finite() {
-        return None;
+        return Err(Undefined::NoCrossing);
+    }
+    // The peak is downward when any direction holding the maximum is (an isotropic
+    // source holds it everywhere).
+    let downward = |t: f64| t.abs() <= 90.0 + ANGLE_EPS;
+    if !downward(theta[start]) && !val.iter().zip(&theta).any(|(&v, &t)| v == reference && downward(t)) {
+        return Err(Undefined::PeakNotDownward(theta[start].abs()));
     }
     let thr = fraction * reference;
     let walk = |dir: isize| -> Option<f64> {
@@ -107,9 +163,9 @@ pub fn spread_angle(d: &Distribution, c: f64, fraction: f64, of_max: bool) -> Op
             k = next;
         }
     };
-    let left = walk(-1)?;
-    let right = walk(1)?;
-    Some(right - left)
+    let left = walk(-1).ok_or(Undefined::NoCrossing)?;
+    let right = walk(1).ok_or(Undefined::NoCrossing)?;
+    Ok(right - left)
 }
 
 /// Beam (50 %) and field (10 %) angles in the C0-C180 and C90-C270 planes, degrees.
@@ -156,6 +212,17 @@ mod tests {
         let exact = 2.0 * 0.5f64.powf(1.0 / p).acos().to_degrees();
         assert!((beam_angles(&lobe).ies_beam_deg[0].unwrap() - exact).abs() < 0.01);
         // Isotropic: no crossing anywhere.
-        assert_eq!(beam_angles(&rot(g, |_| 1.0)).ies_beam_deg[0], None);
+        assert_eq!(beam_angles(&rot(g.clone(), |_| 1.0)).ies_beam_deg[0], None);
+        assert_eq!(
+            undefined_reason(&rot(g.clone(), |_| 1.0), 0.0, 0.5),
+            Some(Undefined::NoCrossing)
+        );
+        // A globe brighter sideways than down: the 50 % crossing lies past 180° of spread.
+        let globe = rot(g.clone(), |x| 1.0 + 0.9 * x.sin() - 0.6 * (x / 2.0).sin().powi(8));
+        assert_eq!(beam_angles(&globe).ies_beam_deg[0], None);
+        assert!(matches!(undefined_reason(&globe, 0.0, 0.5), Some(Undefined::PastHalfTurn(a)) if a > 180.0));
+        // An uplight: its peak is at the zenith.
+        let up = rot(g, |x| if x >= PI / 2.0 { (-x.cos()).powi(4) } else { 0.0 });
+        assert_eq!(undefined_reason(&up, 0.0, 0.5), Some(Undefined::PeakNotDownward(180.0)));
     }
 }

@@ -50,7 +50,7 @@
 use serde::Serialize;
 
 use super::flux::zone_flux;
-use crate::model::Distribution;
+use crate::model::{Distribution, Front};
 
 /// Lumens in the ten TM-15 secondary solid angles, lm.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
@@ -112,10 +112,10 @@ const GLARE: [(f64, f64, f64, f64); 5] = [
     (750.0, 750.0, 12000.0, 5000.0),
 ];
 
-/// The ten zone lumens of `d`.
-pub fn bug_zones(d: &Distribution) -> BugZones {
-    let f = |a: f64, b: f64| zone_flux(d, (a, b), (-90.0, 90.0));
-    let bk = |a: f64, b: f64| zone_flux(d, (a, b), (90.0, 270.0));
+/// The ten zone lumens of `d`, forward being `front` ± 90°.
+pub fn bug_zones(d: &Distribution, front: Front) -> BugZones {
+    let f = |a: f64, b: f64| zone_flux(d, (a, b), front.forward_c_deg());
+    let bk = |a: f64, b: f64| zone_flux(d, (a, b), front.back_c_deg());
     let all = |a: f64, b: f64| zone_flux(d, (a, b), (0.0, 360.0));
     BugZones {
         fl: f(0.0, 30.0),
@@ -128,6 +128,50 @@ pub fn bug_zones(d: &Distribution) -> BugZones {
         bvh: bk(80.0, 90.0),
         ul: all(90.0, 100.0),
         uh: all(100.0, 180.0),
+    }
+}
+
+/// Every zone limit of the tables, lm.
+fn all_limits() -> impl Iterator<Item = f64> {
+    BACKLIGHT
+        .iter()
+        .flat_map(|&(a, b, c)| [a, b, c])
+        .chain(UPLIGHT.iter().flat_map(|&(a, b)| [a, b]))
+        .chain(GLARE.iter().flat_map(|&(a, b, c, d)| [a, b, c, d]))
+}
+
+/// `lm` with the fewest decimals (0 to 9) at which the printed number sits on
+/// the same side of every zone limit as the value the rating compared: a
+/// floodlight's 0.34 lm of uplight (U1) prints as "0.3", not "0".
+pub fn zone_lumens_text(lm: f64) -> String {
+    let same_side = |k: usize| {
+        let printed: f64 = format!("{lm:.k$}").parse().unwrap_or(lm);
+        all_limits().all(|limit| (printed <= limit) == (lm <= limit))
+    };
+    match (0..=9).find(|&k| same_side(k)) {
+        Some(k) => format!("{lm:.k$}"),
+        None => format!("{lm:e}"),
+    }
+}
+
+impl BugZones {
+    /// The zones as `info` prints them: "BL 1 BM 2 BH 3 BVH 4 / FL ... / UL ... UH ... lm",
+    /// each with [`zone_lumens_text`]'s digits.
+    pub fn to_text(&self) -> String {
+        let t = zone_lumens_text;
+        format!(
+            "BL {} BM {} BH {} BVH {} / FL {} FM {} FH {} FVH {} / UL {} UH {} lm",
+            t(self.bl),
+            t(self.bm),
+            t(self.bh),
+            t(self.bvh),
+            t(self.fl),
+            t(self.fm),
+            t(self.fh),
+            t(self.fvh),
+            t(self.ul),
+            t(self.uh)
+        )
     }
 }
 
@@ -164,24 +208,32 @@ fn rate(z: &BugZones, noise_lm: f64) -> BugRating {
 }
 
 /// Whether `d` sends the same lumens (within 2 %) forward and back in each
-/// of the four downward BUG bands, and left (C 0-180) and right (C 180-360)
-/// in each: the quadrilateral symmetry of a Type V luminaire.
-fn is_quadrilateral_symmetric(d: &Distribution, z: &BugZones, noise_lm: f64) -> bool {
+/// of the four downward BUG bands, and left (front to front + 180) and right
+/// (front + 180 to front + 360) in each: the quadrilateral symmetry of a
+/// Type V luminaire.
+fn is_quadrilateral_symmetric(d: &Distribution, front: Front, z: &BugZones, noise_lm: f64) -> bool {
     let bands = [(0.0, 30.0), (30.0, 60.0), (60.0, 80.0), (80.0, 90.0)];
     let front_back = [(z.fl, z.bl), (z.fm, z.bm), (z.fh, z.bh), (z.fvh, z.bvh)];
-    let left_right = bands.map(|g| (zone_flux(d, g, (0.0, 180.0)), zone_flux(d, g, (180.0, 360.0))));
+    let f0 = front.c_deg;
+    let left_right = bands.map(|g| {
+        (
+            zone_flux(d, g, (f0, f0 + 180.0)),
+            zone_flux(d, g, (f0 + 180.0, f0 + 360.0)),
+        )
+    });
     let same = |(a, b): (f64, f64)| (a - b).abs() <= 0.02 * a.max(b).max(noise_lm);
     let lit = front_back.iter().any(|&(f, b)| f.max(b) > noise_lm);
     lit && front_back.into_iter().chain(left_right).all(same)
 }
 
-/// BUG rating of `d` (absolute candela: the limits are absolute lumens).
-pub fn bug_rating(d: &Distribution) -> BugRating {
-    let z = bug_zones(d);
+/// BUG rating of `d` (absolute candela: the limits are absolute lumens),
+/// its forward half centred on `front` ([`crate::model::front`]).
+pub fn bug_rating(d: &Distribution, front: Front) -> BugRating {
+    let z = bug_zones(d, front);
     let total = z.fl + z.fm + z.fh + z.fvh + z.bl + z.bm + z.bh + z.bvh + z.ul + z.uh;
     let noise_lm = 1e-9 * total.abs();
     let mut r = rate(&z, noise_lm);
-    r.quadrilateral_symmetric = is_quadrilateral_symmetric(d, &z, noise_lm);
+    r.quadrilateral_symmetric = is_quadrilateral_symmetric(d, front, &z, noise_lm);
     r.glare_caveat = r.quadrilateral_symmetric.then(|| {
         "quadrilateral-symmetric (Type V) distribution rated with the Type I-IV glare limits: TM-15-11 Addendum A's \
          Type V glare table is not applied (no public source), so G may be higher than it gives"
@@ -196,6 +248,11 @@ mod tests {
     use crate::model::Symmetry;
     use std::f64::consts::PI;
 
+    /// The LM-63 front: forward = C 270-90.
+    fn c0() -> Front {
+        Front::convention(crate::model::Format::Ies)
+    }
+
     fn iso(cd: f64, to: f64) -> Distribution {
         let g: Vec<f64> = (0..=18).map(|i| to * i as f64 / 18.0).collect();
         let v = vec![cd; g.len()];
@@ -206,7 +263,7 @@ mod tests {
     /// each half-circle zone and 2π I (cos a − cos b) in each uplight ring.
     #[test]
     fn isotropic_zones_are_closed_form() {
-        let z = bug_zones(&iso(1000.0, 180.0));
+        let z = bug_zones(&iso(1000.0, 180.0), c0());
         let half = |a: f64, b: f64| PI * 1000.0 * (a.to_radians().cos() - b.to_radians().cos());
         for (got, want) in [
             (z.fl, half(0.0, 30.0)),
@@ -294,20 +351,38 @@ mod tests {
         }
     }
 
+    /// Zone lumens print with the digits their class needs: 0.34 lm of
+    /// uplight (U1, above U0's 0) is not rounded to 0, 110.3 lm of backlight
+    /// (above B0's 110) is not rounded to 110.
+    #[test]
+    fn zone_lumens_print_on_the_side_of_their_limits() {
+        assert_eq!(zone_lumens_text(0.34), "0.3");
+        assert_eq!(zone_lumens_text(0.0), "0");
+        assert_eq!(zone_lumens_text(110.3), "110.3");
+        assert_eq!(zone_lumens_text(110.0), "110");
+        assert_eq!(zone_lumens_text(1234.4), "1234");
+        assert_eq!(zone_lumens_text(0.004), "0.004");
+        let z = BugZones {
+            ul: 0.34,
+            ..BugZones::default()
+        };
+        assert!(z.to_text().contains("UL 0.3 UH 0 lm"), "{}", z.to_text());
+    }
+
     /// A 1 cd isotropic lower-hemisphere source: every zone far below the
     /// class-0 limits except FVH/BVH (π·0.1736 = 0.545 lm ≤ 10): B0 U0 G0.
     /// At 1000 cd: BVH = 545 lm puts G at 4 (≤ 750), BM = 1150 lm puts B at 2
     /// (≤ 2500 and BH = 1160 lm > 1000 makes it B3), no uplight U0.
     #[test]
     fn isotropic_ratings() {
-        assert_eq!(bug_rating(&iso(1.0, 90.0)).rating, "B0 U0 G0");
-        let r = bug_rating(&iso(1000.0, 90.0));
+        assert_eq!(bug_rating(&iso(1.0, 90.0), c0()).rating, "B0 U0 G0");
+        let r = bug_rating(&iso(1000.0, 90.0), c0());
         let bh = PI * 1000.0 * (60f64.to_radians().cos() - 80f64.to_radians().cos());
         assert!((r.zones.bh - bh).abs() < 1e-9 * bh);
         assert!(bh > 1000.0 && bh <= 2500.0);
         assert_eq!(r.rating, "B3 U0 G4");
         // All-zero data: nothing anywhere.
-        assert_eq!(bug_rating(&iso(0.0, 180.0)).rating, "B0 U0 G0");
+        assert_eq!(bug_rating(&iso(0.0, 180.0), c0()).rating, "B0 U0 G0");
     }
 
     /// A rotationally symmetric lamp is quadrilateral symmetric and says that
@@ -316,12 +391,12 @@ mod tests {
     fn type_v_distributions_carry_the_glare_caveat() {
         let grid = crate::synth::GridSpec::uniform(5.0, 2.5).unwrap();
         let round = crate::synth::Synth::Lambertian.build(&grid, 10_000.0).unwrap();
-        let r = bug_rating(round.distribution());
+        let r = bug_rating(round.distribution(), c0());
         assert!(r.quadrilateral_symmetric, "{r:?}");
         assert!(r.glare_caveat.as_deref().unwrap().contains("Type V"), "{r:?}");
         assert_eq!(r.glare_table, "type-i-iv");
         let road = crate::synth::Synth::Roadway.build(&grid, 10_000.0).unwrap();
-        let r = bug_rating(road.distribution());
+        let r = bug_rating(road.distribution(), road.front());
         assert!(!r.quadrilateral_symmetric && r.glare_caveat.is_none(), "{:?}", r.zones);
         let dark = Distribution::new(
             vec![0.0],
@@ -330,6 +405,9 @@ mod tests {
             crate::model::Symmetry::Rotational,
         )
         .unwrap();
-        assert!(!bug_rating(&dark).quadrilateral_symmetric, "no light is no symmetry");
+        assert!(
+            !bug_rating(&dark, c0()).quadrilateral_symmetric,
+            "no light is no symmetry"
+        );
     }
 }

@@ -129,7 +129,7 @@ impl Derived {
     /// Compute the UGR, BUG and luminance tables of `lum` (the same luminaire).
     pub fn add_tables(&mut self, lum: &Luminaire, options: &DerivedOptions) {
         self.ugr_table = Some(Derivation::from_result(ugr_table_at(lum, options.ugr_spacing_h)));
-        self.bug_rating = Some(bug_rating(lum.distribution()));
+        self.bug_rating = Some(bug_rating(lum.distribution(), lum.front()));
         self.luminance_table = Some(Derivation::from_result(luminance_table(lum)));
     }
 
@@ -182,10 +182,7 @@ impl Derived {
             text_row(
                 o,
                 "BUG rating (TM-15-11, outdoor)",
-                format!(
-                    "{} (BL {:.0} BM {:.0} BH {:.0} BVH {:.0} / FL {:.0} FM {:.0} FH {:.0} FVH {:.0} / UL {:.0} UH {:.0} lm)",
-                    b.rating, b.zones.bl, b.zones.bm, b.zones.bh, b.zones.bvh, b.zones.fl, b.zones.fm, b.zones.fh, b.zones.fvh, b.zones.ul, b.zones.uh
-                ),
+                format!("{} ({})", b.rating, b.zones.to_text()),
             );
             if let Some(caveat) = &b.glare_caveat {
                 text_row(o, "  BUG glare", caveat.clone());

@@ -14,6 +14,7 @@ pub mod derived;
 pub mod floodlight;
 pub mod flux;
 pub mod luminance;
+pub mod throw;
 pub mod ugr;
 pub mod zonal;
 
@@ -83,11 +84,40 @@ pub const LOR_PHYSICAL_MAX: f64 = 1.005;
 
 /// Codes of the warnings [`summary`] gives for declarations no luminaire can
 /// have (the batch catalogue lists such files among its first outliers).
-pub const IMPOSSIBLE_DECLARATIONS: [&str; 3] = [
+pub const IMPOSSIBLE_DECLARATIONS: [&str; 4] = [
     "lor-above-100",
     "flux-above-lamp",
     "luminous-area-larger-than-luminaire",
+    "efficacy-above-limit",
 ];
+
+/// The luminous efficacy of radiation at 555 nm, lm/W: no luminaire's
+/// flux per input watt can exceed it (CIE S 017, the definition of K_m).
+pub const MAX_EFFICACY_LM_PER_W: f64 = 683.0;
+
+/// The input power a file declares, and where it says so.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InputWatts {
+    /// Input power, W (finite, positive).
+    pub watts: f64,
+    /// Where it came from, for messages.
+    pub source: &'static str,
+}
+
+/// The input power of `lum`, W: IES the input watts field, EULUMDAT the sum
+/// of the lamp sets' wattage, TM-33 `InputWattage`; `None` when the file
+/// gives none (or 0, or a value that is not a positive number).
+pub fn input_watts(lum: &Luminaire) -> Option<InputWatts> {
+    let (watts, source) = match lum.format() {
+        crate::model::Format::Ldt => (
+            lum.lamp_sets().iter().map(|s| s.watts).sum(),
+            "the sum of the EULUMDAT lamp sets' wattage (line 26f)",
+        ),
+        crate::model::Format::Ies => (lum.declared().input_watts?, "the IES input watts field"),
+        crate::model::Format::Tm33 => (lum.declared().input_watts?, "TM-33 InputWattage"),
+    };
+    (watts.is_finite() && watts > 0.0).then_some(InputWatts { watts, source })
+}
 
 /// Declarations no luminaire can have: a light output ratio above 100 %
 /// (declared or computed, relative photometry only: a luminaire cannot emit
@@ -97,6 +127,20 @@ pub const IMPOSSIBLE_DECLARATIONS: [&str; 3] = [
 /// (EULUMDAT, which declares both).
 fn impossible_declarations(lum: &Luminaire, computed_lm: f64) -> Vec<Warning> {
     let mut out = Vec::new();
+    if let Some(w) = input_watts(lum) {
+        let efficacy = computed_lm / w.watts;
+        if efficacy > MAX_EFFICACY_LM_PER_W {
+            out.push(Warning::new(
+                WarningCode::EfficacyAboveLimit,
+                format!(
+                    "luminous efficacy {efficacy:.2} lm/W ({computed_lm:.1} lm / {} W, the watts from {}) is above \
+                     {MAX_EFFICACY_LM_PER_W} lm/W, the most any light source can give: the input watts are wrong",
+                    crate::error::Num(w.watts),
+                    w.source
+                ),
+            ));
+        }
+    }
     let dcl = lum.declared();
     let pct = |x: f64| format!("{:.1} %", 100.0 * x);
     if !dcl.absolute {
@@ -156,6 +200,31 @@ fn impossible_declarations(lum: &Luminaire, computed_lm: f64) -> Vec<Warning> {
         }
     }
     out
+}
+
+/// `beam-angle-undefined` when a lit distribution has no IES beam or field
+/// angle in the C0-C180 plane, with the reason ([`beam::undefined_reason`]).
+fn beam_angle_undefined(d: &crate::model::Distribution, beams: &BeamAngles, max_cd: f64) -> Option<Warning> {
+    if max_cd <= 0.0 {
+        return None;
+    }
+    let undefined = [
+        ("beam", 0.5, beams.ies_beam_deg[0]),
+        ("field", 0.1, beams.ies_field_deg[0]),
+    ]
+    .into_iter()
+    .filter(|(_, _, v)| v.is_none())
+    .filter_map(|(what, f, _)| beam::undefined_reason(d, 0.0, f).map(|why| format!("{what} angle: {why}")))
+    .collect::<Vec<_>>();
+    (!undefined.is_empty()).then(|| {
+        Warning::new(
+            WarningCode::BeamAngleUndefined,
+            format!(
+                "no IES beam/field angle in the C0-C180 plane ({}); beam_angle_deg / field_angle_deg are null",
+                undefined.join("; ")
+            ),
+        )
+    })
 }
 
 /// Compute the summary of `lum` (untilted).
@@ -221,6 +290,8 @@ pub fn summary(lum: &Luminaire) -> Summary {
         }
     }
     warnings.extend(impossible_declarations(lum, flux.total_lm));
+    let beams = beam_angles(d);
+    warnings.extend(beam_angle_undefined(d, &beams, max_cd));
     Summary {
         max_cd,
         max_direction_deg: (mc, mg),
@@ -231,7 +302,7 @@ pub fn summary(lum: &Luminaire) -> Summary {
         dlor: ratio(flux.downward_lm),
         ulor: ratio(flux.upward_lm),
         dff: (flux.total_lm > 0.0).then(|| flux.downward_lm / flux.total_lm),
-        beams: beam_angles(d),
+        beams,
         warnings,
     }
 }
@@ -273,6 +344,29 @@ mod impossible_tests {
             absolute,
             input_watts: None,
         }
+    }
+
+    /// 1 W of input for 4π klm (12,566 lm/W) is past 683 lm/W: flagged with the watts
+    /// and where they came from; 20 W (628 lm/W) is not.
+    #[test]
+    fn efficacy_above_the_theoretical_limit_is_flagged() {
+        let with_watts = |w: f64| {
+            let mut parts = luminaire(declared(1.0, None, None, true), dims(0.6, 0.3), dims(0.6, 0.3)).into_parts();
+            parts.format = Format::Ies;
+            parts.declared.input_watts = Some(w);
+            Luminaire::from_parts(parts).unwrap()
+        };
+        let w = summary(&with_watts(1.0))
+            .warnings
+            .into_iter()
+            .find(|w| w.code == WarningCode::EfficacyAboveLimit)
+            .unwrap();
+        assert!(
+            w.message.contains("1 W") && w.message.contains("IES input watts"),
+            "{}",
+            w.message
+        );
+        assert!(!codes(&with_watts(20.0)).contains(&"efficacy-above-limit"));
     }
 
     /// Each impossible declaration is flagged by its code, and only it:

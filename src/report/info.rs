@@ -9,7 +9,9 @@
 //! `declared_flux_lm`, `lamp_flux_lm` (declared bare-lamp flux; `null` when absolute), `flux_ratio`, `lor`, `dlor`, `ulor`, `dff` (fractions,
 //! not percent), `beam_angle_deg` / `field_angle_deg` (IES definition, of
 //! I_max, in the C0-C180 plane; `null` when undefined), `beam_angles` (all
-//! four definitions x two planes), `tilt`, `absolute`, and `warnings`, an
+//! four definitions x two planes), `tilt`, `absolute`, `front_c_deg` (the C angle at the middle
+//! of the luminaire's forward half, [`crate::model::front`]) and `front_source` (`format` or
+//! `flag`), and `warnings`, an
 //! array of `{line, code, message}` (reader warnings first, then photometric
 //! consistency warnings). `lamp_color` (when the file states a colour
 //! temperature): `{cct_k, xy, srgb, srgb8}` (see `report::color`).
@@ -107,6 +109,11 @@ pub struct InfoReport {
     pub tilt: &'static str,
     /// Absolute photometry.
     pub absolute: bool,
+    /// The luminaire's front: the C angle (degrees, the file's frame, [0, 360)) at the middle of
+    /// its forward half ([`crate::model::front`]).
+    pub front_c_deg: f64,
+    /// Where the front came from: `format` (its format's convention) or `flag` (`--front`).
+    pub front_source: &'static str,
     /// Manufacturer.
     pub manufacturer: String,
     /// Catalogue number.
@@ -170,22 +177,21 @@ impl LuminousDimensions {
             Opening::Ellipsoid(_) => "ellipsoid",
             Opening::LdtArea { .. } => "ldt-area",
         });
+        // A EULUMDAT disk writes its width as 0: report its diameter both ways, as an
+        // LM-63 circle does, so one luminaire reads the same in either format.
+        let circle = lum.format() == crate::model::Format::Ldt && o.width_m == 0.0;
         LuminousDimensions {
             length_m: o.length_m.abs(),
-            width_m: o.width_m.abs(),
+            width_m: if circle { o.length_m.abs() } else { o.width_m.abs() },
             height_m: o.height_m.abs(),
             shape,
         }
     }
 }
 
-/// Input watts as `info` and `batch` report them, W: the sum over EULUMDAT lamp sets, else the declared value.
+/// Input watts as `info` and `batch` report them, W ([`photometry::input_watts`]).
 pub fn input_watts(lum: &Luminaire) -> Option<f64> {
-    let w = match lum.format() {
-        crate::model::Format::Ldt => lum.lamp_sets().iter().map(|s| s.watts).sum(),
-        _ => lum.declared().input_watts?,
-    };
-    (w.is_finite() && w > 0.0).then_some(w)
+    photometry::input_watts(lum).map(|w| w.watts)
 }
 
 impl InfoReport {
@@ -260,6 +266,8 @@ impl InfoReport {
                 crate::model::Tilt::File { .. } => "file",
             },
             absolute: lum.declared().absolute,
+            front_c_deg: lum.front().c_deg,
+            front_source: lum.front().source.as_str(),
             manufacturer: lum.metadata().manufacturer.clone(),
             catalogue: lum.metadata().catalogue.clone(),
             lamp_color: lum
@@ -282,6 +290,12 @@ impl InfoReport {
         let compare_tables = gldf.is_some_and(|g| g.ugr_4h8h_70_50_20.is_some() || g.bug_rating.is_some());
         if tables == Tables::Compute || compare_tables {
             report.derived.add_tables(lum, options);
+        }
+        if tables == Tables::Compute {
+            // BUG's forward half is the front: say when the light goes elsewhere.
+            report
+                .warnings
+                .extend(photometry::throw::front_mismatch(lum.distribution(), lum.front()));
         }
         report.gldf_comparison =
             gldf.map(|g| crate::report::declared::declared_vs_computed(g, &report, lum.declared().input_watts));
@@ -327,6 +341,18 @@ impl InfoReport {
             ("catalogue", self.catalogue.clone()),
             ("photometric type", format!("{:?}", self.photometric_type)),
             ("symmetry", self.symmetry.describe().to_string()),
+            (
+                "front (forward half's middle)",
+                format!(
+                    "C{} ({})",
+                    crate::error::Num(self.front_c_deg),
+                    if self.front_source == "flag" {
+                        "--front"
+                    } else {
+                        "the format's convention"
+                    }
+                ),
+            ),
             (
                 "grid",
                 format!(

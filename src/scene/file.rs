@@ -262,7 +262,8 @@ fn luminaire(
         ));
     }
     let position = vec3(l.position);
-    let aim = luminaire_aim(l, position, at)?;
+    let luminaire = load_luminaire(l, base, at)?;
+    let aim = luminaire_aim(l, &luminaire, position, at)?;
     let mf = l.maintenance_factor.unwrap_or(1.0);
     if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
         return Err(at.key_error(
@@ -285,7 +286,6 @@ fn luminaire(
         Some("area") => Some(SourceKind::Area),
         Some(s) => return Err(at.key_error("source", format!("source = {s:?}: expected \"point\" or \"area\""))),
     };
-    let luminaire = load_luminaire(l, base, at)?;
     let opening = luminaire_opening(l, &luminaire, at)?;
     let name = l.name.clone().unwrap_or_else(|| l.file.display().to_string());
     Ok(SceneLuminaire {
@@ -300,8 +300,15 @@ fn luminaire(
 }
 
 /// The aim of a luminaire at `position` (m): its `aim` angles (degrees),
-/// towards its `aim_at` point, or straight down.
-fn luminaire_aim(l: &LuminaireSpec, position: DVec3, at: &TableAt<'_>) -> Result<Aim, SceneError> {
+/// towards its `aim_at` point (the nadir on the point, the luminaire's front
+/// in the vertical plane through both, [`crate::model::front`]), or straight
+/// down.
+fn luminaire_aim(
+    l: &LuminaireSpec,
+    luminaire: &Luminaire,
+    position: DVec3,
+    at: &TableAt<'_>,
+) -> Result<Aim, SceneError> {
     Ok(match (&l.aim, &l.aim_at) {
         (Some(_), Some(_)) => return Err(at.error("give either aim or aim_at, not both".into())),
         (Some(a), None) => {
@@ -319,8 +326,13 @@ fn luminaire_aim(l: &LuminaireSpec, position: DVec3, at: &TableAt<'_>) -> Result
             if !finite3(t) {
                 return Err(at.key_error("aim_at", format!("aim_at {t:?}: expected 3 finite numbers (m)")));
             }
-            Aim::at(position, vec3(*t))
-                .ok_or_else(|| at.key_error("aim_at", "aim_at is the luminaire's own position: no direction".into()))?
+            let towards = Aim::at(position, vec3(*t))
+                .ok_or_else(|| at.key_error("aim_at", "aim_at is the luminaire's own position: no direction".into()))?;
+            // Spin first turns the front onto the local +x the tilt swings the nadir towards.
+            Aim {
+                spin: -luminaire.front().c_deg,
+                ..towards
+            }
         }
         (None, None) => Aim::default(),
     })

@@ -71,7 +71,7 @@ fn symmetric_files_have_equal_front_and_back_zones() {
     let Some(root) = corpus() else { return };
     for name in ["wiki-batwing.ldt", "ABSOLUTE_LED.ies"] {
         let lum = photosolid::load(root.join("eulumdat-rs").join(name)).unwrap();
-        let z = bug_zones(lum.distribution());
+        let z = bug_zones(lum.distribution(), lum.front());
         let total = z.fl + z.fm + z.fh + z.fvh + z.bl + z.bm + z.bh + z.bvh + z.ul + z.uh;
         let flux = photosolid::photometry::flux(lum.distribution()).total_lm;
         assert_close!(total, flux, rel = 1e-9, "{name}: zones {total} vs flux {flux}");
@@ -103,7 +103,7 @@ fn declared_bug_ratings_of_manufacturer_files() {
         let printed: String = line.split("BUG RATING:").nth(1).unwrap().replace(" - ", " ");
         assert_eq!(printed.trim(), declared, "{file}: {line}");
         let lum = photosolid::load(&path).unwrap();
-        let r = photosolid::photometry::bug::bug_rating(lum.distribution());
+        let r = photosolid::photometry::bug::bug_rating(lum.distribution(), lum.front());
         eprintln!("{file}: ours {} declared {declared} zones {:?}", r.rating, r.zones);
         assert_eq!(r.rating, declared, "{file}: zones {:?}", r.zones);
     }

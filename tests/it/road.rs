@@ -46,6 +46,7 @@ fn road(lum: Luminaire, arrangement: Arrangement) -> Road {
         overhang_m: 1.0,
         tilt_deg: 5.0,
         setback_m: 1.0,
+        street_side_c_deg: 90.0,
     }
 }
 

@@ -511,8 +511,12 @@ impl<'s, 'a> Reader<'s, 'a> {
             color: header
                 .keyword("COLORTEMP")
                 .or_else(|| header.keyword("CCT"))
+                .or_else(|| header.keyword("_COLORTEMP"))
                 .unwrap_or_default(),
-            cri: header.keyword("CRI").unwrap_or_default(),
+            cri: header
+                .keyword("CRI")
+                .or_else(|| header.keyword("_CRI"))
+                .unwrap_or_default(),
             watts: header.input_watts,
         };
         let parts = LuminaireParts {
@@ -538,6 +542,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             distribution,
             source_grid,
             warnings,
+            front: crate::model::Front::convention(Format::Ies),
         };
         crate::formats::document(path, parts, crate::formats::Header::Ies(header))
     }

@@ -140,8 +140,19 @@ fn keywords(doc: &Document) -> Vec<(String, String)> {
             } else {
                 md.lamp.clone()
             };
-            for (k, v) in [("LUMCAT", &md.catalogue), ("LUMINAIRE", &md.luminaire), ("LAMP", &lamp)] {
-                if !v.is_empty() {
+            // Lamp colour and colour rendering have no LM-63 keyword: user keywords (LM-63-2002
+            // §5.2, a leading underscore) keep them, and the reader reads them back.
+            let first = lum.lamp_sets().first();
+            let colour = first.map(|s| s.color.clone()).unwrap_or_default();
+            let cri = first.map(|s| s.cri.clone()).unwrap_or_default();
+            for (k, v) in [
+                ("LUMCAT", &md.catalogue),
+                ("LUMINAIRE", &md.luminaire),
+                ("LAMP", &lamp),
+                ("_COLORTEMP", &colour),
+                ("_CRI", &cri),
+            ] {
+                if !v.trim().is_empty() {
                     kws.push((k.into(), v.clone()));
                 }
             }
@@ -255,12 +266,7 @@ impl HeaderRecords {
         } else {
             (1.0, flux)
         };
-        let o = lum.luminous_opening();
-        let dims = if o.length_m != 0.0 || o.width_m != 0.0 || o.height_m != 0.0 {
-            o
-        } else {
-            lum.dimensions()
-        };
+        let dims = ies_opening(lum);
         let watts = lum
             .declared()
             .input_watts
@@ -280,6 +286,33 @@ impl HeaderRecords {
             },
             // Summed lamp-set wattages can overflow; an unknown wattage is written as 0.
             input_watts: if watts.is_finite() { watts } else { 0.0 },
+        }
+    }
+}
+
+/// The luminous opening in LM-63's signs, metres: an IES luminaire's as it
+/// is; another format's through its shape ([`Opening::to_ies`]), so a
+/// EULUMDAT disk becomes LM-63's circle; with no opening, the luminaire's
+/// own dimensions stand for it.
+fn ies_opening(lum: &crate::model::Luminaire) -> crate::model::Dimensions {
+    use crate::model::opening::Opening;
+    let o = lum.luminous_opening();
+    let declared = o.length_m != 0.0 || o.width_m != 0.0 || o.height_m != 0.0;
+    let signed = |(w, l, h, _): (f64, f64, f64, Option<String>)| crate::model::Dimensions {
+        length_m: l,
+        width_m: w,
+        height_m: h,
+    };
+    match (lum.format(), declared) {
+        (crate::model::Format::Ies, true) => o,
+        (_, true) => Opening::of_luminaire(lum).map_or(o, |op| signed(op.to_ies())),
+        (_, false) => {
+            let b = lum.dimensions();
+            if lum.format() == crate::model::Format::Ldt {
+                Opening::ldt(b.length_m, b.width_m, [b.height_m; 4]).map_or(b, |op| signed(op.to_ies()))
+            } else {
+                b
+            }
         }
     }
 }

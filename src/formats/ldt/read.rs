@@ -442,6 +442,7 @@ impl<'s, 'a> Reader<'s, 'a> {
             distribution: dist,
             source_grid: None,
             warnings: self.warnings,
+            front: crate::model::Front::convention(Format::Ldt),
         };
         crate::formats::document(self.src.path, parts, crate::formats::Header::Ldt(header))
     }

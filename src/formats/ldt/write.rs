@@ -183,12 +183,10 @@ fn write_header(out: &mut Lines, doc: &Document, grid: &Grid, rel: &Relative) {
     for v in [dims.length_m, dims.width_m, dims.height_m] {
         out.num(v * 1000.0);
     }
-    let opening = lum.luminous_opening();
-    out.num(opening.length_m * 1000.0);
-    out.num(opening.width_m * 1000.0);
-    let heights_mm = lum
-        .luminous_heights_m()
-        .map_or([opening.height_m * 1000.0; 4], |h| h.map(|v| v * 1000.0));
+    let (length_m, width_m, heights_m) = ldt_opening(lum);
+    out.num(length_m * 1000.0);
+    out.num(width_m * 1000.0);
+    let heights_mm = heights_m.map(|v| v * 1000.0);
     for v in header.map_or(heights_mm, |h| h.luminous_heights_mm) {
         out.num(v);
     }
@@ -368,6 +366,29 @@ fn push_sig_with(out: &mut String, v: f64, max_decimals: usize) {
     let mag = v.abs().log10().floor() as i32;
     let decimals = (SIGNIFICANT_DIGITS as i32 - 1 - mag).clamp(0, max_decimals as i32) as usize;
     crate::numfmt::push_fixed_trimmed(out, v, decimals);
+}
+
+/// The luminous area in EULUMDAT's terms (length, width with 0 for a disk,
+/// the four side heights; metres): a EULUMDAT luminaire's as it is, another
+/// format's through its shape ([`crate::model::opening::Opening::to_ldt`]),
+/// so an LM-63 circle (negative width and length) becomes a disk.
+fn ldt_opening(lum: &crate::model::Luminaire) -> (f64, f64, [f64; 4]) {
+    let o = lum.luminous_opening();
+    let as_is = (
+        o.length_m,
+        o.width_m,
+        lum.luminous_heights_m().unwrap_or([o.height_m; 4]),
+    );
+    if lum.format() == crate::model::Format::Ldt {
+        return as_is;
+    }
+    match crate::model::opening::Opening::of_luminaire(lum) {
+        Ok(shape) => {
+            let (l, w, h, _) = shape.to_ldt();
+            (l, w, h)
+        }
+        Err(_) => (o.length_m.abs(), o.width_m.abs(), [o.height_m.abs(); 4]),
+    }
 }
 
 #[cfg(test)]

@@ -43,7 +43,7 @@ pub fn read_emitter(
     bytes: &[u8],
     path: &Path,
     emitter: Option<&str>,
-    _opts: &ReadOptions,
+    opts: &ReadOptions,
 ) -> Result<crate::formats::Document, ParseError> {
     let text = xml::decode(bytes, path)?;
     let doc = xml::parse(text, path, "a TM-33 document")?;
@@ -55,7 +55,7 @@ pub fn read_emitter(
     check_type_and_metric(path, block)?;
     let multiplier = multiplier_of(path, block)?;
     let declared_symmetry = symmetry_code(path, block)?;
-    let distribution = grid(path, block, multiplier, declared_symmetry, &mut warnings)?;
+    let distribution = grid(path, block, multiplier, declared_symmetry, opts.repair, &mut warnings)?;
 
     let quantity = child_number(path, emitter, &["Quantity"])?.unwrap_or(1.0);
     let rated = child_number(path, emitter, &["RatedLumens"])?;
@@ -96,6 +96,7 @@ pub fn read_emitter(
         distribution,
         source_grid: None,
         warnings,
+        front: crate::model::Front::convention(Format::Tm33),
     };
     crate::formats::document(path, parts, crate::formats::Header::None)
 }
@@ -417,12 +418,13 @@ fn grid(
     block: Node<'_, '_>,
     multiplier: f64,
     declared: Option<(Symmetry, Location)>,
+    repair: bool,
     warnings: &mut Vec<Warning>,
 ) -> Result<Distribution, ParseError> {
     let points = points(path, block, multiplier)?;
     let hs = distinct(points.iter().map(|p| p.c).collect());
     let vs = distinct(points.iter().map(|p| p.gamma).collect());
-    let (nh, nv) = (hs.len(), vs.len());
+    let nv = vs.len();
     let mut cd = complete_grid(path, block, &points, &hs, &vs)?;
     if let Some(note) = crate::formats::negative_intensities(&cd, "cd") {
         let first = points.iter().find(|p| p.cd < 0.0).map_or(block, |p| p.node);
@@ -453,14 +455,63 @@ fn grid(
         Some((s, _)) => s,
         None => inferred(&hs),
     };
-    let (mut hs, mut cd) = (hs, cd);
+    match layout(path, block, &hs, &vs, &cd, symmetry, declared, warnings) {
+        Err(_) if repair && declared.is_some() && inferred(&hs) != symmetry => {
+            // `--repair`: the angles the document has, not its code, say the layout.
+            let by_angles = inferred(&hs);
+            let d = layout(path, block, &hs, &vs, &cd, by_angles, None, warnings)?;
+            let line = declared.map(|(_, l)| l.line);
+            warnings.push(Warning {
+                line,
+                code: WarningCode::SymmetryRepaired,
+                message: format!(
+                    "the <SymmType> code says {} symmetry, which its horz angles ({}) do not fit; read as {} symmetry \
+                     by the angles it has (--repair)",
+                    symmetry.describe(),
+                    angle_list(&hs),
+                    by_angles.describe()
+                ),
+            });
+            Ok(d)
+        }
+        other => other,
+    }
+}
+
+/// `hs` as a short list for messages: every angle up to eight, else the first and last three.
+fn angle_list(hs: &[f64]) -> String {
+    let f = |v: &[f64]| v.iter().map(|&x| Num(x).to_string()).collect::<Vec<_>>().join(", ");
+    if hs.len() <= 8 {
+        f(hs)
+    } else {
+        format!("{}, ..., {}", f(&hs[..3]), f(&hs[hs.len() - 3..]))
+    }
+}
+
+/// The grid laid out with `symmetry`; `declared` is the code it came from (`None`: from the
+/// angles), for the error's location and wording.
+#[allow(clippy::too_many_arguments, reason = "the grid's parts, as `grid` holds them")]
+fn layout(
+    path: &Path,
+    block: Node<'_, '_>,
+    hs: &[f64],
+    vs: &[f64],
+    cd: &[f64],
+    symmetry: Symmetry,
+    declared: Option<(Symmetry, Location)>,
+    warnings: &mut Vec<Warning>,
+) -> Result<Distribution, ParseError> {
+    let (nh, nv) = (hs.len(), vs.len());
+    let (mut hs, mut cd) = (hs.to_vec(), cd.to_vec());
     if symmetry == Symmetry::Rotational && nh > 1 {
         let at = declared.map_or_else(|| xml::location(block), |(_, l)| l);
         return Err(ParseError {
             path: path.to_path_buf(),
             location: at,
             kind: ErrorKind::Invalid,
-            expected: "one horz angle for Symm _ Full (rotational symmetry)".into(),
+            expected: "one horz angle for Symm _ Full (rotational symmetry); --repair reads the document by the \
+                       angles it has"
+                .into(),
             found: format!("{nh} horz angles"),
         });
     }
@@ -470,7 +521,7 @@ fn grid(
     if symmetry == Symmetry::None && nh > 1 && (hs[nh - 1] - 360.0).abs() <= ANGLE_EPS {
         crate::formats::angles::drop_360_plane(&mut hs, &mut cd, nv, warnings);
     }
-    Distribution::new(hs, vs, cd, symmetry).map_err(|e| {
+    Distribution::new(hs, vs.to_vec(), cd, symmetry).map_err(|e| {
         let at = declared.map_or_else(|| xml::location(block), |(_, l)| l);
         ParseError {
             path: path.to_path_buf(),
@@ -478,7 +529,8 @@ fn grid(
             kind: ErrorKind::Invalid,
             expected: match declared {
                 Some(_) => format!(
-                    "horz angles that fit the <SymmType> code ({} symmetry)",
+                    "horz angles that fit the <SymmType> code ({} symmetry); --repair reads the document by the \
+                     angles it has",
                     symmetry.describe()
                 ),
                 None => "horz angles of a Type C layout (0..90, 0..180, 90..270 or up to 360)".to_string(),

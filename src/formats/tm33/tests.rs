@@ -312,3 +312,28 @@ fn file_xml_hash_id_loads_one_emitter() {
     std::fs::write(&one, multi(&[(None, 100.0)])).unwrap();
     assert_eq!(crate::formats::photometries_in(&one), vec![one.clone()]);
 }
+
+/// A document whose angles (C 0 and 90) do not fit its `Symm _ Bi _ 90`
+/// code: refused with a hint at `--repair`; with it, read by the angles it
+/// has (quadrant symmetry) with a `symmetry-repaired` warning at the code's line.
+#[test]
+fn repair_reads_a_symmetry_code_the_angles_do_not_fit_by_the_angles() {
+    let vs = [0.0, 45.0, 90.0];
+    let text = doc23(
+        "<SymmType>Symm _ Bi _ 90</SymmType>\n",
+        &grid(&[0.0, 90.0], &vs, |h, v| 100.0 + h - v),
+    );
+    let e = parse(&text).unwrap_err();
+    assert!(e.expected.contains("--repair"), "{e}");
+    let repair = ReadOptions {
+        repair: true,
+        ..ReadOptions::default()
+    };
+    let lum = read(text.as_bytes(), Path::new("t.xml"), &repair).unwrap();
+    assert_eq!(lum.distribution().symmetry(), Symmetry::Quadrant);
+    assert_eq!(lum.distribution().value_cd(1, 0), 190.0);
+    let w = lum.warnings().iter().find(|w| w.code == "symmetry-repaired").unwrap();
+    let code_line = text.lines().position(|l| l.contains("<SymmType>")).unwrap() + 1;
+    assert_eq!(w.line, Some(code_line), "{w}");
+    assert!(w.message.contains("0, 90"), "{w}");
+}

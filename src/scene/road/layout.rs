@@ -8,11 +8,13 @@
 //! - a pole stands `setback_m` outside a kerb, its arm reaches `overhang_m`
 //!   towards the road: a near-side luminaire hangs at y = −setback + overhang,
 //!   a far-side one at y = width + setback − overhang;
-//! - each luminaire's C0 runs along the road and C90 points across the road
-//!   (the street side of a road luminaire); far-side luminaires are turned
-//!   180° about z; `tilt_deg` swings the nadir towards the road (a roll
-//!   about C0, positive upwards towards the road, as the tilt of a road
-//!   luminaire's arm);
+//! - each luminaire's street side, the file's C angle `street_side_c_deg`
+//!   (default: the luminaire's front, [`crate::model::front`]: C90 for
+//!   EULUMDAT, C0 for IES and TM-33), points across the road from its pole
+//!   (near side towards +y, far side towards −y, twin-central away from the
+//!   centre line), so the file's C(street side − 90) runs along the road;
+//!   `tilt_deg` swings the nadir towards the street side (a roll, positive
+//!   upwards towards the road, as the tilt of a road luminaire's arm);
 //! - arrangements: `single-sided` (near row), `opposite` (near and far rows
 //!   at the same x), `staggered` (far row shifted by half a spacing),
 //!   `twin-central` (one pole on the centre line, y = width/2, two arms
@@ -62,6 +64,9 @@ pub struct RoadSpec {
     pub tilt_deg: Option<f64>,
     /// Distance of the pole outside the kerb, m (default 0).
     pub setback_m: Option<f64>,
+    /// The file's C angle (degrees) that points from the pole across its own side of the
+    /// carriageway; default the luminaire's front.
+    pub street_side_c_deg: Option<f64>,
 }
 
 /// How the luminaires stand.
@@ -159,6 +164,8 @@ pub struct Road {
     pub tilt_deg: f64,
     /// Setback, m.
     pub setback_m: f64,
+    /// The file's C angle that points across the road from the pole, degrees, [0, 360).
+    pub street_side_c_deg: f64,
 }
 
 fn finite_key(key: &'static str, v: f64, unit: &str) -> Result<f64, RoadError> {
@@ -322,6 +329,10 @@ impl Road {
             file: file.clone(),
             message: e.to_string(),
         })?;
+        let street_side_c_deg = match spec.street_side_c_deg {
+            Some(c) => crate::model::wrap360(finite_key("street_side_c_deg", c, "degrees")?),
+            None => luminaire.front().c_deg,
+        };
         Ok(Road {
             path: Some(scene_path.to_path_buf()),
             file,
@@ -337,6 +348,7 @@ impl Road {
             overhang_m: dims.overhang_m,
             tilt_deg: dims.tilt_deg,
             setback_m: dims.setback_m,
+            street_side_c_deg,
         })
     }
 
@@ -386,9 +398,11 @@ impl Road {
             let last = ((x_to - row.x0_m) / s).floor() as i64;
             for i in first..=last {
                 let x = row.x0_m + i as f64 * s;
+                // Spin first turns the street side onto the local +y the roll tilts towards.
                 let aim = Aim {
                     orient: row.orient_deg,
                     roll: self.tilt_deg,
+                    spin: 90.0 - self.street_side_c_deg,
                     ..Default::default()
                 };
                 out.push(Placed {
@@ -509,6 +523,7 @@ mod tests {
             overhang_m: 0.0,
             tilt_deg: 0.0,
             setback_m: 0.0,
+            street_side_c_deg: 90.0,
         }
     }
 }

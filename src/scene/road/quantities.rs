@@ -174,6 +174,8 @@ pub struct RoadResult {
     pub q0: f64,
     /// Arrangement.
     pub arrangement: &'static str,
+    /// The file's C angle pointing across the road from the pole, degrees (`street_side_c_deg`).
+    pub street_side_c_deg: f64,
     /// Field length (= spacing) and width, m.
     pub field_m: [f64; 2],
     /// Per observer lane.
@@ -501,6 +503,26 @@ fn road_warnings(lanes: &[LaneResult], counts: &WarningCounts) -> Vec<String> {
     warnings
 }
 
+/// `street-side-mismatch`: the luminaire's downward light leans more than
+/// 45° away from the street side it is installed with
+/// ([`crate::photometry::throw`]).
+fn street_side_mismatch(road: &Road) -> Option<String> {
+    let s = road.street_side_c_deg;
+    crate::photometry::throw::leans_away_from(road.luminaire.distribution(), s).map(|t| {
+        format!(
+            "street-side-mismatch: the luminaire's downward light leans towards C{:.0} ({:.0} % of its downward \
+             flux), {:.0} degrees from the street side C{} it is installed with: if C{:.0} is its street side, set \
+             street_side_c_deg = {:.0} in [road]",
+            t.azimuth_c_deg,
+            100.0 * t.fraction,
+            crate::model::front::c_separation_deg(t.azimuth_c_deg, s),
+            crate::error::Num(s),
+            t.azimuth_c_deg,
+            t.azimuth_c_deg
+        )
+    })
+}
+
 /// The installation's figures from the lanes', R_EI, the field's average
 /// and smallest illuminance and its average hemispherical illuminance (lx).
 fn overall_figures(lanes: &[LaneResult], r_ei: f64, e_av: f64, e_min: f64, e_hs_av: f64) -> Overall {
@@ -562,7 +584,8 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
     if lanes.iter().all(|l| l.l_av_cd_m2 <= 0.0) && e_av <= 0.0 {
         return Err(RoadError::NothingInView);
     }
-    let warnings = road_warnings(&lanes, &counts);
+    let mut warnings = road_warnings(&lanes, &counts);
+    warnings.extend(street_side_mismatch(road));
     let overall = overall_figures(&lanes, r_ei, e_av, e_min, ehs_grid.mean());
     let ch = road.surface.characteristics();
     Ok(RoadResult {
@@ -572,6 +595,7 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
         surface: road.surface.name.clone(),
         q0: super::surface::published(&road.surface.name).map_or(ch.q0, |p| p.0) * road.surface.scale(),
         arrangement: road.arrangement.as_str(),
+        street_side_c_deg: road.street_side_c_deg,
         field_m: [s, w],
         lanes,
         overall,

@@ -1,0 +1,76 @@
+//! Conversions keep what the file says: opening shapes both ways (LM-63's
+//! signs <-> EULUMDAT's disk and rectangle), lamp colour, and a warning for
+//! what the target cannot hold.
+
+use crate::common::cli::{ok, run};
+
+/// A 2002 IES downlight (cos γ, 1000 cd, 5 planes x 19 γ) with this luminous
+/// opening line `W L H` (metres) and `[COLORTEMP]`.
+fn ies_with_opening(dir: &std::path::Path, name: &str, w: f64, l: f64, h: f64) {
+    let g: Vec<f64> = (0..=18).map(|i| 5.0 * i as f64).collect();
+    let c = [0.0, 22.5, 45.0, 67.5, 90.0];
+    let plane: Vec<String> = g
+        .iter()
+        .map(|x| format!("{:.3}", 1000.0 * x.to_radians().cos()))
+        .collect();
+    let list = |v: &[f64]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(" ");
+    let mut text = format!(
+        "IESNA:LM-63-2002\n[TEST] t\n[MANUFAC] m\n[COLORTEMP] 3000K\nTILT=NONE\n1 3142 1 {} {} 1 2 {w} {l} {h}\n1 1 10\n{}\n{}\n",
+        g.len(),
+        c.len(),
+        list(&g),
+        list(&c)
+    );
+    for _ in c {
+        text.push_str(&plane.join(" "));
+        text.push('\n');
+    }
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+fn info(dir: &std::path::Path, file: &str) -> serde_json::Value {
+    serde_json::from_str(&ok(&run(&["info", file, "--json"], dir))).unwrap()
+}
+
+/// An IES circle (negative width and length) becomes a EULUMDAT disk (width 0,
+/// positive diameter), keeps its UGR table and its colour temperature, and comes back as the
+/// same LM-63 circle.
+#[test]
+fn a_circular_opening_and_the_lamp_colour_survive_ies_ldt_ies() {
+    let dir = tempfile::tempdir().unwrap();
+    ies_with_opening(dir.path(), "disk.ies", -0.225, -0.225, 0.0);
+    ok(&run(&["convert", "disk.ies", "disk.ldt"], dir.path()));
+    ok(&run(&["convert", "disk.ldt", "back.ies"], dir.path()));
+    let (a, b, c) = (
+        info(dir.path(), "disk.ies"),
+        info(dir.path(), "disk.ldt"),
+        info(dir.path(), "back.ies"),
+    );
+    for v in [&a, &b, &c] {
+        let d = &v["luminous_dimensions_m"];
+        assert_eq!(d["shape"], "ellipse", "{d}");
+        assert!((d["length_m"].as_f64().unwrap() - 0.225).abs() < 1e-9, "{d}");
+        assert!((d["width_m"].as_f64().unwrap() - 0.225).abs() < 1e-9, "{d}");
+        assert_eq!(v["lamp_color"]["cct_k"], 3000.0, "{}", v["lamp_color"]);
+        assert!(v["ugr_table"].get("undefined").is_none(), "{}", v["ugr_table"]);
+    }
+    // The same UGR table in every format.
+    let row = |v: &serde_json::Value| v["ugr_table"].to_string();
+    assert_eq!(row(&a), row(&b));
+    assert_eq!(row(&a), row(&c));
+    let ldt = std::fs::read_to_string(dir.path().join("disk.ldt")).unwrap();
+    assert!(!ldt.contains("-225"), "no negative dimensions in the EULUMDAT file");
+}
+
+/// An IES ellipse EULUMDAT cannot hold: written as a disk of the same area, with a warning.
+#[test]
+fn an_ellipse_is_named_when_eulumdat_cannot_hold_it() {
+    let dir = tempfile::tempdir().unwrap();
+    ies_with_opening(dir.path(), "ell.ies", -0.2, -0.8, 0.0);
+    let o = run(&["convert", "ell.ies", "ell.ldt"], dir.path());
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("field-not-kept") && err.contains("400 mm"), "{err}");
+    let v = info(dir.path(), "ell.ldt");
+    assert!((v["luminous_dimensions_m"]["length_m"].as_f64().unwrap() - 0.4).abs() < 1e-9);
+}
