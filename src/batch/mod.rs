@@ -135,6 +135,11 @@ pub struct BatchRecord {
     pub smallest_within_1pct: Option<String>,
     /// Time of the compact candidates (`--compact`), ms; null when not measured.
     pub compact_ms: Option<f64>,
+    /// The luminaire's front used: the C angle, degrees in the file's frame,
+    /// [0, 360), from the format's convention or `batch --front` (`info --json`
+    /// `front_c_deg`; schema 4).
+    #[serde(default)]
+    pub front_c_deg: Option<f64>,
 }
 
 impl BatchRecord {
@@ -180,6 +185,7 @@ impl BatchRecord {
             fit_ms: 0.0,
             smallest_within_1pct: None,
             compact_ms: None,
+            front_c_deg: None,
         }
     }
 
@@ -200,7 +206,7 @@ impl BatchRecord {
 /// What [`analyse`] does besides loading.
 #[derive(Debug, Clone, Default)]
 pub struct BatchOptions {
-    /// Reader options (the CLI uses the defaults).
+    /// Reader options (`batch --repair`, `--front`, ...).
     pub read: ReadOptions,
     /// Measure the compact candidates and fill `smallest_within_1pct`
     /// (`batch --compact`; off by default: tens of ms a file).
@@ -292,6 +298,7 @@ fn add_summary(row: &mut BatchRecord, l: &Luminaire, s: &Summary) {
     row.catalogue = Some(l.metadata().catalogue.clone());
     row.input_watts = finite(watts);
     row.efficacy_lm_per_w = finite(watts.map(|w| s.flux.total_lm / w));
+    row.front_c_deg = finite(Some(l.front().c_deg));
 }
 
 /// Fills the hold-out columns of `row` for `d`: the filter of the smallest RMS

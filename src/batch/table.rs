@@ -30,7 +30,8 @@ use crate::error::{Error, ErrorKind, Location, ParseError, Result};
 /// after `field_angle_c90_deg`; a schema-1 table still reads (those columns null).
 /// 3 (issue 30): `smallest_within_1pct` and `compact_ms` at the end (`batch --compact`);
 /// an older table reads with them null.
-pub const SCHEMA_VERSION: &str = "3";
+/// 4: `front_c_deg` at the end (the luminaire's front used); an older table reads it null.
+pub const SCHEMA_VERSION: &str = "4";
 
 /// Rows per Parquet row group.
 pub const ROW_GROUP: usize = 65_536;
@@ -112,6 +113,7 @@ fn columns(rows: &[BatchRecord]) -> Vec<(&'static str, ArrayRef, bool)> {
             true,
         ),
         ("compact_ms", floats(rows, |r| r.compact_ms), true),
+        ("front_c_deg", floats(rows, |r| r.front_c_deg), true),
     ]
 }
 
@@ -360,6 +362,7 @@ struct ColumnValues<'a> {
     catalogue: Vec<Option<String>>,
     smallest: Vec<Option<String>>,
     compact_ms: Vec<Option<f64>>,
+    front: Vec<Option<f64>>,
 }
 
 impl<'a> ColumnValues<'a> {
@@ -390,6 +393,7 @@ impl<'a> ColumnValues<'a> {
             c.strings_if_present("smallest_within_1pct")?,
             c.floats_if_present("compact_ms")?,
         );
+        let front = c.floats_if_present("front_c_deg")?;
         Ok(Self {
             ok,
             path,
@@ -412,6 +416,7 @@ impl<'a> ColumnValues<'a> {
             catalogue,
             smallest,
             compact_ms,
+            front,
         })
     }
 
@@ -458,6 +463,7 @@ impl<'a> ColumnValues<'a> {
             fit_ms: x(18).unwrap_or(0.0),
             smallest_within_1pct: self.smallest[i].clone(),
             compact_ms: self.compact_ms[i],
+            front_c_deg: self.front[i],
         }
     }
 }

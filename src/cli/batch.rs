@@ -37,6 +37,8 @@ pub struct BatchArgs {
     /// `smallest_within_1pct` column (tens of ms a file; null without this flag).
     #[arg(long)]
     compact: bool,
+    #[command(flatten)]
+    read: super::ReadArgs,
 }
 
 /// A note when resumed rows were measured with another `--compact` choice
@@ -126,7 +128,7 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
         .collect();
     let options = BatchOptions {
         compact: a.compact,
-        ..BatchOptions::default()
+        read: a.read.options(),
     };
     let bar = super::progress_bar("files");
     bar.set_length(todo.len() as u64);

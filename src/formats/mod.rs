@@ -296,21 +296,105 @@ pub fn sniff(bytes: &[u8]) -> Format {
     }
 }
 
-/// What writing `lum` as `target` cannot keep as the file says it: the
-/// front (`front-differs`, [`crate::model::Front::differs_in`]) and an
-/// opening shape the target has no term for (`field-not-kept`,
-/// [`crate::model::opening::Opening::to_ldt`] / `to_ies`). `convert` prints them.
+/// What a conversion of `lum` to `target` cannot keep as the file says it,
+/// one [`WarningCode::FieldNotKept`] each (plus `front-differs`, [`Front::differs_in`]),
+/// each message ending with the `info --json` keys whose values change, so a
+/// check of a conversion knows which keys to leave out:
+/// - the luminous opening a target cannot hold ([`Opening::to_ldt`] / [`Opening::to_ies`]),
+///   or one whose LM-63 signs match no shape;
+/// - the light output ratio: EULUMDAT requires one (written as the computed
+///   flux over the lamp flux when the file declares none), LM-63 holds none;
+/// - the tilt table: EULUMDAT and TM-33-23 hold none, LM-63 writes a
+///   `TILT=<file>` table inline;
+/// - Type B measurements, which EULUMDAT and TM-33-23 hold only resampled to
+///   C-γ, and with them the floodlight spreads measured on the Type B planes;
+/// - a lamp flux of 0 lm, which cannot scale EULUMDAT's or TM-33's relative
+///   values (written as absolute photometry).
+///
+/// [`Front::differs_in`]: crate::model::Front::differs_in
+/// [`Opening::to_ldt`]: crate::model::opening::Opening::to_ldt
+/// [`Opening::to_ies`]: crate::model::opening::Opening::to_ies
 pub fn conversion_warnings(lum: &Luminaire, target: Format) -> Vec<crate::error::Warning> {
-    let mut out: Vec<crate::error::Warning> = lum.front().differs_in(target).into_iter().collect();
+    use crate::error::{Warning, WarningCode};
+    use crate::model::opening::Opening;
+    const OPENING_KEYS: &str = "luminous_dimensions_m, luminance_table, ugr_table";
+    let mut out: Vec<Warning> = lum.front().differs_in(target).into_iter().collect();
+    let mut not_kept = |note: String, keys: &str| {
+        out.push(Warning::new(
+            WarningCode::FieldNotKept,
+            format!("{note} (changes info keys: {keys})"),
+        ));
+    };
+    let name = match target {
+        Format::Ies => "LM-63",
+        Format::Ldt => "EULUMDAT",
+        Format::Tm33 => "TM-33-23",
+    };
     if target != lum.format() {
-        let note = crate::model::opening::Opening::of_luminaire(lum)
-            .ok()
-            .and_then(|shape| match target {
-                Format::Ldt => shape.to_ldt().3,
-                Format::Ies => shape.to_ies().3,
-                Format::Tm33 => None,
-            });
-        out.extend(note.map(|n| crate::error::Warning::new(crate::error::WarningCode::FieldNotKept, n)));
+        match Opening::of_luminaire(lum) {
+            Ok(shape) => {
+                let note = match target {
+                    Format::Ldt => shape.to_ldt().3,
+                    Format::Ies => shape.to_ies().3,
+                    Format::Tm33 => None,
+                };
+                if let Some(n) = note {
+                    not_kept(n, OPENING_KEYS);
+                }
+            }
+            Err(e) if target != Format::Tm33 || lum.format() == Format::Ldt => {
+                not_kept(format!("{e}: {name} is given its absolute dimensions"), OPENING_KEYS);
+            }
+            Err(_) => {}
+        }
+    }
+    let d = lum.declared();
+    let lor_keys = "declared_lor, declared_flux_lm, flux_ratio";
+    match (target, d.lor) {
+        (Format::Ldt, None) if lum.format() != Format::Ldt => not_kept(
+            "EULUMDAT requires a light output ratio and this file declares none: the computed one is written, \
+             and the converted file declares it"
+                .into(),
+            lor_keys,
+        ),
+        (Format::Ies, Some(lor)) => not_kept(
+            format!(
+                "LM-63 holds no light output ratio: the declared {} % is not kept",
+                crate::numfmt::trimmed(100.0 * lor, 4)
+            ),
+            lor_keys,
+        ),
+        _ => {}
+    }
+    match (lum.tilt(), target) {
+        (crate::model::Tilt::None, _) => {}
+        (crate::model::Tilt::File { name: file, .. }, Format::Ies) => not_kept(
+            format!("the TILT={file} table is written into the file (TILT=INCLUDE)"),
+            "tilt",
+        ),
+        (_, Format::Ies) => {}
+        (_, _) => not_kept(
+            format!("{name} holds no tilt table: the file's tilt table is not kept"),
+            "tilt",
+        ),
+    }
+    let type_b = lum
+        .source_grid()
+        .is_some_and(|g| g.kind == crate::model::PhotometricType::B);
+    if type_b && target != Format::Ies {
+        not_kept(
+            format!(
+                "{name} holds C-γ photometry: the Type B measurements are written resampled to C-γ planes, and \
+                 the floodlight spreads measured on the Type B planes are not reported for the converted file"
+            ),
+            "beam_spread_deg, field_spread_deg, nema_type",
+        );
+    }
+    if target != Format::Ies && !d.absolute && d.lamp_flux_lm.is_some_and(|f| f.is_nan() || f <= 0.0) {
+        not_kept(
+            format!("a lamp flux of 0 lm cannot scale {name}'s relative values: written as absolute photometry"),
+            "lamp_flux_lm, absolute",
+        );
     }
     out
 }

@@ -108,13 +108,11 @@ pub struct InputWatts {
 /// of the lamp sets' wattage, TM-33 `InputWattage`; `None` when the file
 /// gives none (or 0, or a value that is not a positive number).
 pub fn input_watts(lum: &Luminaire) -> Option<InputWatts> {
-    let (watts, source) = match lum.format() {
-        crate::model::Format::Ldt => (
-            lum.lamp_sets().iter().map(|s| s.watts).sum(),
-            "the sum of the EULUMDAT lamp sets' wattage (line 26f)",
-        ),
-        crate::model::Format::Ies => (lum.declared().input_watts?, "the IES input watts field"),
-        crate::model::Format::Tm33 => (lum.declared().input_watts?, "TM-33 InputWattage"),
+    let watts = lum.declared().input_watts?;
+    let source = match lum.format() {
+        crate::model::Format::Ldt => "the sum of the EULUMDAT lamp sets' wattage (line 26f)",
+        crate::model::Format::Ies => "the IES input watts field",
+        crate::model::Format::Tm33 => "TM-33 InputWattage",
     };
     (watts.is_finite() && watts > 0.0).then_some(InputWatts { watts, source })
 }

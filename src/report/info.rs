@@ -157,8 +157,9 @@ pub struct LuminousDimensions {
     /// Height, m.
     pub height_m: f64,
     /// `point`, `rectangle`, `ellipse`, `vertical-ellipse`, `box`, `cylinder`, `ellipsoid` or
-    /// `ldt-area` ([`crate::scene::opening::Opening`]); `None` for a sign combination no LM-63
-    /// version defines.
+    /// `ldt-area` ([`crate::scene::opening::Opening`]; a EULUMDAT area whose luminous sides are
+    /// all 0 or all equal is the rectangle, disk, box or cylinder it equals, `ldt-area` only when
+    /// they differ); `None` for a sign combination no LM-63 version defines.
     pub shape: Option<&'static str>,
 }
 
@@ -167,7 +168,11 @@ impl LuminousDimensions {
     pub fn of(lum: &Luminaire) -> Self {
         use crate::scene::opening::Opening;
         let o = lum.luminous_opening();
-        let shape = Opening::of_luminaire(lum).ok().map(|o| match o {
+        let opening = Opening::of_luminaire(lum).ok();
+        // Words for the geometry, whatever format declared it: a EULUMDAT area whose sides
+        // are all dark or all as tall is the LM-63 rectangle, disk, box or cylinder it
+        // equals, so one luminaire reads the same in either format.
+        let shape = opening.map(|o| match o {
             Opening::Point => "point",
             Opening::Rectangle { .. } => "rectangle",
             Opening::Ellipse { .. } => "ellipse",
@@ -175,15 +180,42 @@ impl LuminousDimensions {
             Opening::Box(_) => "box",
             Opening::Cylinder(_) => "cylinder",
             Opening::Ellipsoid(_) => "ellipsoid",
-            Opening::LdtArea { .. } => "ldt-area",
+            Opening::LdtArea { .. } if o.is_point() => "point",
+            Opening::LdtArea { width_m, heights_m, .. } => match (width_m == 0.0, heights_m) {
+                (true, [0.0, 0.0, 0.0, 0.0]) => "ellipse",
+                (false, [0.0, 0.0, 0.0, 0.0]) => "rectangle",
+                (true, [h, ..]) if heights_m.iter().all(|x| *x == h) => "cylinder",
+                (false, [h, ..]) if heights_m.iter().all(|x| *x == h) => "box",
+                _ => "ldt-area",
+            },
         });
-        // A EULUMDAT disk writes its width as 0: report its diameter both ways, as an
-        // LM-63 circle does, so one luminaire reads the same in either format.
-        let circle = lum.format() == crate::model::Format::Ldt && o.width_m == 0.0;
+        // The geometry's extent along x (C0), y (C90) and z, whatever format and
+        // version encoded it: a EULUMDAT disk (width 0) and an LM-63-1986 disk (length
+        // 0) report their diameter both ways, so one luminaire reads the same in
+        // every format. A EULUMDAT area keeps its declared (mean) height.
+        let (length_m, width_m, height_m) = match opening {
+            Some(Opening::Point) => (0.0, 0.0, 0.0),
+            Some(Opening::Rectangle { length_m, width_m } | Opening::Ellipse { length_m, width_m }) => {
+                (length_m, width_m, 0.0)
+            }
+            Some(Opening::VerticalEllipse { width_m, height_m }) => (0.0, width_m, height_m),
+            Some(Opening::Box(e) | Opening::Ellipsoid(e)) => (e.length_m, e.width_m, e.height_m),
+            Some(Opening::Cylinder(c)) => match c.axis {
+                0 => (c.length_m, c.diameter_a_m, c.diameter_b_m),
+                1 => (c.diameter_a_m, c.length_m, c.diameter_b_m),
+                _ => (c.diameter_a_m, c.diameter_b_m, c.length_m),
+            },
+            Some(Opening::LdtArea { length_m, width_m, .. }) => (
+                length_m,
+                if width_m == 0.0 { length_m } else { width_m },
+                o.height_m.abs(),
+            ),
+            None => (o.length_m.abs(), o.width_m.abs(), o.height_m.abs()),
+        };
         LuminousDimensions {
-            length_m: o.length_m.abs(),
-            width_m: if circle { o.length_m.abs() } else { o.width_m.abs() },
-            height_m: o.height_m.abs(),
+            length_m,
+            width_m,
+            height_m,
             shape,
         }
     }

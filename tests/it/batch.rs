@@ -103,8 +103,8 @@ fn table_equals_the_per_file_commands() {
         .key_value_metadata()
         .and_then(|kv| kv.iter().find(|kv| kv.key == "photosolid.batch.schema"))
         .and_then(|kv| kv.value.clone());
-    assert_eq!(schema.as_deref(), Some("3"));
-    assert_eq!(photosolid::batch::table::SCHEMA_VERSION, "3");
+    assert_eq!(schema.as_deref(), Some("4"));
+    assert_eq!(photosolid::batch::table::SCHEMA_VERSION, "4");
     // Schema 3: the compact columns exist and, without --compact, say nothing was measured.
     for r in &table {
         assert_eq!(r["smallest_within_1pct"], serde_json::Value::Null, "{r:?}");
@@ -151,6 +151,8 @@ fn table_equals_the_per_file_commands() {
             "catalogue",
             "input_watts",
             "efficacy_lm_per_w",
+            // Schema 4.
+            "front_c_deg",
         ] {
             close(&row[k], &info[k], &format!("{path} {k}"));
         }
@@ -332,4 +334,34 @@ fn compact_names_the_smallest_within_1pct() {
         let name = r["smallest_within_1pct"].as_str().unwrap_or("none");
         eprintln!("{}: smallest within 1 %: {name}", r["path"]);
     }
+}
+
+/// `batch --front DEG` reads every file with that front, as `info --front DEG` does, and
+/// the `front_c_deg` column says which front each row used (negative angles wrap).
+#[test]
+fn batch_takes_the_reader_options_and_records_the_front() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let data = data();
+    let files = [data.join("roadway.ies"), data.join("roadway.ldt")];
+    let names: Vec<&str> = files.iter().map(|p| p.to_str().unwrap()).collect();
+    ok(&run(&[&["batch"], &names[..], &["-o", "plain.parquet"]].concat(), d));
+    ok(&run(
+        &[&["batch"], &names[..], &["-o", "front.parquet", "--front", "-45"]].concat(),
+        d,
+    ));
+    let plain = rows(&read(&d.join("plain.parquet")));
+    let turned = rows(&read(&d.join("front.parquet")));
+    let fronts = |t: &[serde_json::Map<String, serde_json::Value>]| -> Vec<f64> {
+        t.iter().map(|r| r["front_c_deg"].as_f64().unwrap()).collect()
+    };
+    assert_eq!(
+        fronts(&plain),
+        [0.0, 90.0],
+        "the formats' conventions: IES C0, EULUMDAT C90"
+    );
+    assert_eq!(fronts(&turned), [315.0, 315.0]);
+    let info = serde_json::from_str::<serde_json::Value>(&ok(&run(&["info", names[1], "--json", "--front", "-45"], d)))
+        .unwrap();
+    assert_eq!(info["front_c_deg"], 315.0);
 }

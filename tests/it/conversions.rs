@@ -98,3 +98,141 @@ fn assert_numbers_close(a: &serde_json::Value, b: &serde_json::Value, what: &str
         _ => assert_eq!(a, b, "{what}"),
     }
 }
+
+/// Every corpus file that loads, with its front given as `--front` would: `info`'s JSON of
+/// the original and of its IES 2002, IES 2019, EULUMDAT and TM-33-23 conversions agree on
+/// every key but `format`, `version`, `photometric_type`, `path`, `warnings` and the fields a
+/// conversion warning named; numbers to 1e-6 relative (the EULUMDAT writer keeps 8
+/// significant digits), the UGR table included.
+#[test]
+fn every_corpus_file_gives_the_same_info_through_every_format() {
+    use photosolid::formats::ies::IesWriteVersion;
+    use photosolid::formats::{ReadOptions, WriteOptions};
+    use photosolid::report::info::{InfoReport, Tables};
+    let Some(root) = crate::common::corpus() else { return };
+    let dir = tempfile::tempdir().unwrap();
+    let mut diffs: std::collections::BTreeMap<String, Vec<String>> = Default::default();
+    let mut checked = 0;
+    let info_of = |doc: &photosolid::formats::Document| {
+        let r = InfoReport::of_document_with(doc, Tables::Compute, &Default::default());
+        serde_json::to_value(&r).unwrap()
+    };
+    for e in crate::common::manifest(&root)
+        .iter()
+        .filter(|e| e.photometric() && !e.malformed())
+    {
+        let Ok(first) = photosolid::formats::load_document(&e.path) else {
+            continue;
+        };
+        let opts = ReadOptions {
+            front_c_deg: Some(first.luminaire.front().c_deg),
+            ..Default::default()
+        };
+        let original = photosolid::formats::load_document_with(&e.path, &opts).unwrap();
+        let a = info_of(&original);
+        for (name, ext, version) in [
+            ("ies2002", "ies", IesWriteVersion::Lm63_2002),
+            ("ies2019", "ies", IesWriteVersion::Lm63_2019),
+            ("ldt", "ldt", IesWriteVersion::Lm63_2002),
+            ("tm33", "xml", IesWriteVersion::Lm63_2002),
+        ] {
+            let out = dir.path().join(format!("c.{ext}"));
+            let target = photosolid::model::Format::from_extension(&out).unwrap();
+            let named: Vec<String> = photosolid::formats::conversion_warnings(&original.luminaire, target)
+                .iter()
+                .map(|w| w.message.clone())
+                .collect();
+            photosolid::formats::save(&original, &out, &WriteOptions { ies_version: version }).unwrap();
+            let back = match photosolid::formats::load_document_with(&out, &opts) {
+                Ok(d) => d,
+                Err(err) => {
+                    diffs
+                        .entry("(read back)".into())
+                        .or_default()
+                        .push(format!("{} -> {name}: {err}", e.rel));
+                    continue;
+                }
+            };
+            let b = info_of(&back);
+            let mut found = Vec::new();
+            json_differences(&a, &b, "", &mut found);
+            for key in found {
+                let top = key
+                    .trim_start_matches('.')
+                    .split(['.', '[', ':'])
+                    .next()
+                    .unwrap_or("")
+                    .to_string();
+                if ["format", "version", "photometric_type", "path", "warnings"].contains(&top.as_str()) {
+                    continue;
+                }
+                // A conversion warning ends with the info keys it changes.
+                let changes = |m: &String| {
+                    m.rsplit_once("(changes info keys: ")
+                        .is_some_and(|(_, keys)| keys.trim_end_matches(')').split(", ").any(|k| k == top))
+                };
+                if named.iter().any(changes) {
+                    continue;
+                }
+                diffs
+                    .entry(format!("{top} -> {name}"))
+                    .or_default()
+                    .push(format!("{}: {key}", e.rel));
+            }
+        }
+        checked += 1;
+    }
+    let mut report = String::new();
+    for (k, v) in &diffs {
+        report.push_str(&format!(
+            "{k}: {} cases, e.g. {}\n",
+            v.len(),
+            v.iter()
+                .map(|x| x.split(": ").next().unwrap_or("").to_string())
+                .collect::<std::collections::BTreeSet<_>>()
+                .into_iter()
+                .take(6)
+                .collect::<Vec<_>>()
+                .join("; ")
+        ));
+    }
+    assert!(checked >= 100, "only {checked} files");
+    assert!(diffs.is_empty(), "{report}");
+}
+
+/// Paths (`.key[i]`) where `a` and `b` differ; numbers to 1e-6 relative (absolute below 1e-9).
+fn json_differences(a: &serde_json::Value, b: &serde_json::Value, at: &str, out: &mut Vec<String>) {
+    use serde_json::Value;
+    match (a, b) {
+        (Value::Number(x), Value::Number(y)) => {
+            let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+            if (x - y).abs() > 1e-6 * x.abs().max(y.abs()) && (x - y).abs() > 1e-9 {
+                out.push(format!("{at}: {x} vs {y}"));
+            }
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            for (i, (p, q)) in x.iter().zip(y).enumerate() {
+                json_differences(p, q, &format!("{at}[{i}]"), out);
+            }
+        }
+        (Value::Object(x), Value::Object(y)) => {
+            for k in x.keys().chain(y.keys().filter(|k| !x.contains_key(*k))) {
+                match (x.get(k), y.get(k)) {
+                    (Some(p), Some(q)) => json_differences(p, q, &format!("{at}.{k}"), out),
+                    _ => out.push(format!("{at}.{k}: present in one only")),
+                }
+            }
+        }
+        _ if a == b => {}
+        _ => out.push(format!("{at}: {} vs {}", short(a), short(b))),
+    }
+}
+
+fn short(v: &serde_json::Value) -> String {
+    let s = v.to_string();
+    if s.len() > 60 {
+        format!("{}…", &s[..60])
+    } else {
+        s
+    }
+}

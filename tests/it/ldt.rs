@@ -322,7 +322,9 @@ fn two_lamp_sets_in_field_groups() {
     // Set 1 is the reference by default.
     assert_eq!(l.distribution().plane_cd(0), &[100.0, 10.0]);
     assert_eq!(l.declared().lamp_flux_lm, Some(1000.0));
-    assert_eq!(l.declared().input_watts, Some(10.0));
+    // The input power is the luminaire's: every set's wattage, whichever set the cd/klm
+    // refer to (`info`'s `input_watts`, and what a conversion writes).
+    assert_eq!(l.declared().input_watts, Some(40.0));
     let sum = ReadOptions {
         lamp_set_flux: LampSetFlux::Sum,
         ..ReadOptions::default()

@@ -93,20 +93,29 @@ fn symmetric_files_have_equal_front_and_back_zones() {
 #[test]
 fn declared_bug_ratings_of_manufacturer_files() {
     let Some(root) = corpus() else { return };
-    for (file, declared) in [
-        ("luxcore/ASA_15M_R2.ies", "B2 U0 G2"),
-        ("appleseed/test_iesparser_3.ies", "B2 U3 G2"),
-    ] {
-        let path = root.join(file);
-        let text = std::fs::read_to_string(&path).unwrap();
-        let line = text.lines().find(|l| l.contains("BUG RATING")).unwrap();
+    // Every corpus file that prints its rating (`BUG RATING: B2 - U0 - G2`), found by
+    // content, so a file added to the corpus is checked too.
+    let mut checked = Vec::new();
+    for e in manifest(&root).iter().filter(|e| e.photometric() && !e.malformed()) {
+        let Ok(bytes) = std::fs::read(&e.path) else { continue };
+        let text = String::from_utf8_lossy(&bytes);
+        let Some(line) = text.lines().find(|l| l.contains("BUG RATING")) else {
+            continue;
+        };
         let printed: String = line.split("BUG RATING:").nth(1).unwrap().replace(" - ", " ");
-        assert_eq!(printed.trim(), declared, "{file}: {line}");
-        let lum = photosolid::load(&path).unwrap();
+        let declared = printed.trim().to_string();
+        let lum = photosolid::load(&e.path).unwrap();
         let r = photosolid::photometry::bug::bug_rating(lum.distribution(), lum.front());
-        eprintln!("{file}: ours {} declared {declared} zones {:?}", r.rating, r.zones);
-        assert_eq!(r.rating, declared, "{file}: zones {:?}", r.zones);
+        eprintln!("{}: ours {} declared {declared} zones {:?}", e.rel, r.rating, r.zones);
+        assert_eq!(r.rating, declared, "{}: zones {:?}", e.rel, r.zones);
+        checked.push(e.rel.clone());
     }
+    checked.sort();
+    assert_eq!(
+        checked,
+        ["appleseed/test_iesparser_3.ies", "luxcore/ASA_15M_R2.ies"],
+        "the corpus files that load and declare a BUG rating (test_iesparser_4.ies, a damaged copy of _3, does not load)"
+    );
 }
 
 /// Golden table of the derived scalars of every eulumdat-rs corpus file

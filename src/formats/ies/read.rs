@@ -14,7 +14,7 @@ use super::grid::{check_or_repair, type_c, warn_negatives, warn_pole_spread};
 use super::tilt::{read_tilt_file, read_tilt_table};
 use super::{type_ab, IesHeader, IesLabel};
 
-const FEET_TO_M: f64 = 0.3048;
+pub(super) const FEET_TO_M: f64 = 0.3048;
 
 /// LM-63 version of a file, from its first line.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

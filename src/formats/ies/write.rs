@@ -239,14 +239,28 @@ impl HeaderRecords {
                 IesWriteVersion::Lm63_2019 if lum.version() == "LM-63-2019" => h.future_use,
                 IesWriteVersion::Lm63_2019 => 1.00001,
             };
+            // LM-63-1986/1991/1995 encode some shapes with other signs than the
+            // 2002/2019 line this file gets: write the shape in the new signs.
+            let (width, length, height) = match crate::model::opening::Opening::of_luminaire(lum) {
+                Ok(shape) if matches!(lum.version(), "LM-63-1986" | "LM-63-1991" | "LM-63-1995") => {
+                    let per_metre = if h.units == 1 {
+                        1.0 / super::read::FEET_TO_M
+                    } else {
+                        1.0
+                    };
+                    let (w, l, ht, _) = shape.to_ies();
+                    (w * per_metre, l * per_metre, ht * per_metre)
+                }
+                _ => (h.width, h.length, h.height),
+            };
             return HeaderRecords {
                 lamps: h.lamps,
                 lumens_per_lamp: h.lumens_per_lamp,
                 multiplier: h.multiplier,
                 units: h.units as f64,
-                width: h.width,
-                length: h.length,
-                height: h.height,
+                width,
+                length,
+                height,
                 ballast_factor: h.ballast_factor,
                 future_use,
                 input_watts: h.input_watts,
@@ -292,8 +306,7 @@ impl HeaderRecords {
 
 /// The luminous opening in LM-63's signs, metres: an IES luminaire's as it
 /// is; another format's through its shape ([`Opening::to_ies`]), so a
-/// EULUMDAT disk becomes LM-63's circle; with no opening, the luminaire's
-/// own dimensions stand for it.
+/// EULUMDAT disk becomes LM-63's circle; no opening stays a point.
 fn ies_opening(lum: &crate::model::Luminaire) -> crate::model::Dimensions {
     use crate::model::opening::Opening;
     let o = lum.luminous_opening();
@@ -306,14 +319,9 @@ fn ies_opening(lum: &crate::model::Luminaire) -> crate::model::Dimensions {
     match (lum.format(), declared) {
         (crate::model::Format::Ies, true) => o,
         (_, true) => Opening::of_luminaire(lum).map_or(o, |op| signed(op.to_ies())),
-        (_, false) => {
-            let b = lum.dimensions();
-            if lum.format() == crate::model::Format::Ldt {
-                Opening::ldt(b.length_m, b.width_m, [b.height_m; 4]).map_or(b, |op| signed(op.to_ies()))
-            } else {
-                b
-            }
-        }
+        // No opening is a point source in every format: not the luminaire's own
+        // dimensions, which would give the converted file a UGR table the source has not.
+        (_, false) => crate::model::Dimensions::default(),
     }
 }
 

@@ -381,11 +381,7 @@ impl<'s, 'a> Reader<'s, 'a> {
         dist: Distribution,
     ) -> Result<crate::formats::Document, ParseError> {
         let Units {
-            absolute,
-            flux_ok,
-            phi,
-            watts,
-            ..
+            absolute, flux_ok, phi, ..
         } = *units;
         let (mm, lorl, dff) = (head.mm, head.lorl, head.dff);
         let finite = |v: f64| v.is_finite().then_some(v);
@@ -400,7 +396,9 @@ impl<'s, 'a> Reader<'s, 'a> {
             lor: Some(lorl / 100.0),
             dff: Some(dff / 100.0),
             absolute,
-            input_watts: (watts > 0.0).then_some(watts),
+            // The luminaire's input power is every lamp set's wattage, whichever
+            // set the cd/klm values refer to (`info`, `batch` and the writers read this).
+            input_watts: Some(lamp_sets.iter().map(|s| s.watts).sum::<f64>()).filter(|w| *w > 0.0 && w.is_finite()),
         };
         let lamp = lamp_sets[0].lamp_type.clone();
         let (company, catalogue, luminaire_name, test_report, date) = (

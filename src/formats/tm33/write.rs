@@ -156,6 +156,10 @@ fn declarations(s: &mut String, lum: &crate::model::Luminaire) {
 /// (their heights go with them and select the EULUMDAT convention).
 fn normalised_opening(lum: &crate::model::Luminaire) -> crate::model::Dimensions {
     let mut o = lum.luminous_opening();
+    // Signs that match no shape stay as they are (they then read back as no shape).
+    if crate::model::opening::Opening::of_luminaire(lum).is_err() {
+        return o;
+    }
     let old = matches!(lum.version(), "LM-63-1986" | "LM-63-1991" | "LM-63-1995");
     if lum.format() == crate::model::Format::Ies && old && o.width_m < 0.0 && o.length_m == 0.0 {
         o.length_m = o.width_m;

@@ -224,12 +224,9 @@ impl<'s, 'a> Reader<'s, 'a> {
     ) -> Result<Units, ParseError> {
         let (cfli, ng) = (head.cfli, head.ng);
         let absolute = lamp_sets[0].count < 0.0;
-        let (mut phi, watts) = match opts.lamp_set_flux {
-            LampSetFlux::First => (lamp_sets[0].flux_lm, lamp_sets[0].watts),
-            LampSetFlux::Sum => (
-                lamp_sets.iter().map(|s| s.flux_lm).sum(),
-                lamp_sets.iter().map(|s| s.watts).sum(),
-            ),
+        let mut phi = match opts.lamp_set_flux {
+            LampSetFlux::First => lamp_sets[0].flux_lm,
+            LampSetFlux::Sum => lamp_sets.iter().map(|s| s.flux_lm).sum(),
         };
         // A subnormal flux would scale every intensity to 0 (or overflow cd/klm × flux).
         let flux_ok = phi.is_normal() && phi > 0.0;
@@ -272,7 +269,6 @@ impl<'s, 'a> Reader<'s, 'a> {
             absolute,
             flux_ok,
             phi,
-            watts,
             scale,
         })
     }
@@ -389,8 +385,6 @@ pub(super) struct Units {
     pub(super) flux_ok: bool,
     /// Reference flux Φ_ref, lm.
     pub(super) phi: f64,
-    /// Input watts of the lamp sets used.
-    pub(super) watts: f64,
     /// cd per cd/klm: CFLI × Φ_ref / 1000.
     pub(super) scale: f64,
 }
