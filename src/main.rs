@@ -6,10 +6,8 @@
 
 mod cli;
 
-use clap::Parser;
-
 fn main() {
-    let args = cli::Cli::parse();
+    let args = cli::parse();
     // Mesa's drivers print "error: XDG_RUNTIME_DIR is invalid or not set" on every
     // GPU run without one: give them a private directory, removed at exit.
     let runtime_dir = cli::runtime_dir::ensure();

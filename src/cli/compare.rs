@@ -45,10 +45,10 @@ pub struct CompareArgs {
     /// Folds of the withheld reference (k >= 2).
     #[arg(long, default_value_t = 2)]
     folds: usize,
-    /// Normalisation: cd (absolute), peak (I_max = 1), klm (cd per 1000 lm of the file's lamp flux,
-    /// as in EULUMDAT; not for absolute photometry), flux (equal luminaire flux: cd per 1000 lm of
-    /// the computed flux).
-    #[arg(long, default_value = "cd")]
+    /// Units the files are compared in (as `mesh --units`): cd (absolute), peak (I_max = 1), klm
+    /// (cd per 1000 lm of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux
+    /// (equal luminaire flux: cd per 1000 lm of the computed flux). `--normalize` is the older name.
+    #[arg(long = "units", alias = "normalize", value_name = "UNIT", default_value = "cd")]
     normalize: Normalize,
     /// Search the best C rotation and mirror of FILE onto OTHER (with --vs).
     #[arg(long)]

@@ -1,4 +1,4 @@
-//! `photosolid engines FILE [--engines ...] [--reference ...] [--json] [--report DIR] [--tolerance PCT%]`:
+//! `photosolid engines FILE [--engines ...] [--against ...] [--json] [--report DIR] [--tolerance PCT%]`:
 //! each engine's emulated lookup against the reference, with the trade-table metrics; one row per
 //! documented loader defect. JSON keys: `photosolid::engines::EnginesReport`.
 
@@ -22,8 +22,11 @@ pub struct EnginesArgs {
     engines: Option<Vec<Engine>>,
     /// The reference: truth (the closed form a synth file records) or a reconstruction of FILE
     /// (a filter, measured, fitted-gl). Default: catmull-rom on the native grid.
-    #[arg(long, default_value = "catmull-rom")]
-    reference: Against,
+    #[arg(long)]
+    against: Option<Against>,
+    /// Deprecated spelling of --against.
+    #[arg(long, hide = true, conflicts_with = "against")]
+    reference: Option<Against>,
     /// Resolution search: for each engine whose resolution is a choice, the smallest power of two
     /// whose certified Hausdorff distance (plus its bound) is within PCT, a percent of I_max with
     /// its sign (`1%`; a bare number is refused).
@@ -46,10 +49,18 @@ pub struct EnginesArgs {
 }
 
 pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
+    let reference = match (a.against, a.reference) {
+        (Some(r), _) => r,
+        (None, Some(r)) => {
+            eprintln!("warning: [deprecated-option] engines --reference is deprecated: write --against {r}");
+            r
+        }
+        (None, None) => Against::Recon(photosolid::registry::Recon::Filter(Filter::CatmullRom)),
+    };
     let lum = super::load(&a.file, &a.read)?;
     let opts = EnginesOptions {
         engines: a.engines.clone().unwrap_or_else(|| Engine::ALL.to_vec()),
-        reference: a.reference,
+        reference,
         truth: Truth::of_luminaire(&lum),
         layout: EngineOptions {
             resolution: a.resolution,

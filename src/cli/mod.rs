@@ -42,10 +42,12 @@ use photosolid::formats::ReadOptions;
     version,
     about,
     propagate_version = true,
-    after_help = "Tolerances relative to I_max (mesh/compare/engines/plan --tolerance, compare --solid-tolerance, \
-                  fit --guard, gpu-check --tolerance) are percents written with their sign, e.g. 0.1%; a bare \
-                  number is refused. Until issue 27 compare, engines, fit --guard and gpu-check took fractions \
-                  (0.001 = 0.1%). hausdorff --tolerance is a length in the meshes' unit."
+    after_help = "Tolerances are percents written with their sign, e.g. 0.1%; a bare number is refused. \
+                  Relative to I_max: mesh/compare/engines/plan/gpu-check --tolerance, compare/tradeoff \
+                  --solid-tolerance, fit --guard. fit --tolerance is in percentage points of the fit's error. \
+                  hausdorff --tolerance is a length in the meshes' unit. Every numeric option takes negative \
+                  values as written (--rotate-c -90). compare, tradeoff and engines name the reference the \
+                  same way: --against truth|withheld|RECON, and --vs FILE for a second measurement."
 )]
 pub struct Cli {
     #[command(subcommand)]
@@ -56,7 +58,7 @@ pub struct Cli {
 enum Command {
     /// Print the photometric summary of one file (flux, LOR, beam angles, ...).
     Info(info::InfoArgs),
-    /// Analyse every .ies/.ldt file under the paths into one table (Parquet, JSON Lines) and a catalogue page.
+    /// Analyse every photometry under the paths (.ies, .ldt, TM-33 .xml, .gldf, and files read by content) into one table (Parquet, JSON Lines) and a catalogue page.
     Batch(batch::BatchArgs),
     /// Check files and directories (recursive); exit 1 if any file fails to load.
     Validate(validate::ValidateArgs),
@@ -90,10 +92,35 @@ enum Command {
     Plan(scene::PlanArgs),
     /// Road lighting of a scene's [road] table (EN 13201-3): luminance, U_o, U_l, TI, R_EI, illuminance per lane.
     Road(road::RoadArgs),
-    /// Write one renderer's light-profile layout (pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf).
+    /// Write one renderer's light-profile layout (pbrt, ue5, ue4, unity-point, unity-spot, threejs, babylon, blender, gltf, godot).
     Export(export::ExportArgs),
     /// How far each renderer's lookup is from the file: trade-table metrics per engine, defect rows.
     Engines(engines::EnginesArgs),
+}
+
+/// The command line: [`Cli`] with every option that takes a value accepting a
+/// value that starts with `-` when it is a number (`--rotate-c -90`,
+/// `--tilt -5`, `--front -45`), on every subcommand, so no option needs the
+/// `=` form for a negative number.
+pub fn command() -> clap::Command {
+    fn negatives(cmd: clap::Command) -> clap::Command {
+        cmd.mut_args(|a| {
+            if a.get_action().takes_values() && !a.is_positional() {
+                a.allow_negative_numbers(true)
+            } else {
+                a
+            }
+        })
+        .mut_subcommands(negatives)
+    }
+    negatives(<Cli as clap::CommandFactory>::command())
+}
+
+/// Parse the process's arguments with [`command`] (usage errors exit 2).
+pub fn parse() -> Cli {
+    use clap::FromArgMatches;
+    let matches = command().get_matches();
+    Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
 }
 
 /// Reader options shared by every command that loads files.
@@ -416,6 +443,27 @@ pub(crate) mod parse {
     pub fn pct_of_peak_or_zero(s: &str) -> Result<PctOfPeak, String> {
         pct(s, true)
     }
+    /// A percent >= 0 of a quantity other than I_max (`fit --tolerance 1%`: percentage
+    /// points of the fit's error), as the percent; a bare number is refused with a hint.
+    pub fn percentage_points(s: &str) -> Result<f64, String> {
+        let t = s.trim();
+        let Some(body) = t.strip_suffix('%') else {
+            return Err(match t.parse::<f64>() {
+                Ok(x) if x.is_finite() => format!(
+                    "`{s}` has no unit: write a percent with its sign, such as {}% (or {}% if {} was meant as \
+                     a fraction)",
+                    short(x),
+                    short(100.0 * x),
+                    short(x)
+                ),
+                _ => format!("`{s}` is not a percent such as 1%"),
+            });
+        };
+        match body.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+            _ => Err(format!("`{s}` is not a finite percent >= 0%")),
+        }
+    }
     /// A finite number (an angle, an offset).
     pub fn finite(s: &str) -> Result<f64, String> {
         let x = number::<f64>(s)?;
@@ -482,5 +530,30 @@ pub(crate) mod runtime_dir {
             drop(guard);
             assert!(!dir.exists());
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Every option that takes a value, on every subcommand, reads `-90` as a value.
+    #[test]
+    fn every_option_takes_negative_numbers() {
+        fn check(cmd: &clap::Command, path: &str, missing: &mut Vec<String>) {
+            for a in cmd.get_arguments() {
+                if a.get_action().takes_values() && !a.is_positional() && !a.is_allow_negative_numbers_set() {
+                    missing.push(format!("{path} --{}", a.get_id()));
+                }
+            }
+            for sub in cmd.get_subcommands() {
+                check(sub, &format!("{path} {}", sub.get_name()), missing);
+            }
+        }
+        let cmd = super::command();
+        cmd.clone().debug_assert();
+        let mut missing = Vec::new();
+        check(&cmd, "photosolid", &mut missing);
+        assert!(missing.is_empty(), "{missing:?}");
+        let m = cmd.try_get_matches_from(["photosolid", "convert", "a.ies", "b.ldt", "--rotate-c", "-90"]);
+        assert!(m.is_ok(), "{m:?}");
     }
 }

@@ -1,4 +1,4 @@
-//! `photosolid tradeoff FILE [--reference truth|withheld|FILE] [--gpu] [--json] [--report DIR]`:
+//! `photosolid tradeoff FILE [--against truth|withheld|RECON] [--vs FILE] [--gpu] [--json] [--report DIR]`:
 //! every representation a renderer could hold (filters on the native grid,
 //! rendered textures at several factors with each lookup, f16 and
 //! symmetry-reduced storage, the fitted lights, spherical harmonics `sh:L`,
@@ -19,10 +19,19 @@ use super::{ReadArgs, ReportArgs};
 pub struct TradeoffArgs {
     /// A photometric file: .ies, .ldt, TM-33 .xml, or a GLDF photometry (FILE.gldf#ID; FILE.gldf when it holds one).
     file: PathBuf,
+    /// A denser measurement of the same luminaire: the reference is its
+    /// catmull-rom reconstruction unless --against names another (as `compare --vs`).
+    #[arg(long, value_name = "FILE")]
+    vs: Option<PathBuf>,
     /// What errors are measured against: truth (the closed form a synth file
     /// records), withheld (k-fold hold-out of FILE's measurements), or a
-    /// denser measurement FILE. Default: truth when FILE records it, else withheld.
+    /// reconstruction (of the --vs file, else of FILE). Default: truth when FILE
+    /// records it, else withheld; with --vs, catmull-rom of that file.
     #[arg(long)]
+    against: Option<Against>,
+    /// Deprecated spelling: `--reference FILE` is `--vs FILE`, `--reference truth|withheld`
+    /// is `--against truth|withheld`.
+    #[arg(long, hide = true, conflicts_with_all = ["vs", "against"])]
     reference: Option<Reference>,
     /// Texture render factors (comma separated).
     #[arg(long, value_delimiter = ',', default_value = "1,2,5,10", value_parser = super::parse::texture_factor, allow_negative_numbers = true)]
@@ -48,7 +57,7 @@ pub struct TradeoffArgs {
     read: ReadArgs,
 }
 
-/// `--reference truth|withheld|FILE`.
+/// The deprecated `--reference truth|withheld|FILE`.
 #[derive(Clone, Debug, PartialEq)]
 enum Reference {
     /// The closed form the file records.
@@ -70,14 +79,27 @@ impl std::str::FromStr for Reference {
     }
 }
 
+/// `--vs` and `--against`, from the deprecated `--reference` when that was given
+/// (with a warning naming the new spelling).
+fn reference_of(a: &TradeoffArgs) -> (Option<PathBuf>, Option<Against>) {
+    match &a.reference {
+        None => (a.vs.clone(), a.against),
+        Some(r) => {
+            let (vs, against, new) = match r {
+                Reference::Truth => (None, Some(Against::Truth), "--against truth".to_string()),
+                Reference::Withheld => (None, Some(Against::Withheld), "--against withheld".to_string()),
+                Reference::File(p) => (Some(p.clone()), None, format!("--vs {}", p.display())),
+            };
+            eprintln!("warning: [deprecated-option] tradeoff --reference is deprecated: write {new}");
+            (vs, against)
+        }
+    }
+}
+
 pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
+    let (vs, against) = reference_of(&a);
     let lum = super::load(&a.file, &a.read)?;
-    let (against, other) = match &a.reference {
-        None => (None, None),
-        Some(Reference::Truth) => (Some(Against::Truth), None),
-        Some(Reference::Withheld) => (Some(Against::Withheld), None),
-        Some(Reference::File(path)) => (None, Some(super::load(path, &a.read)?)),
-    };
+    let other = vs.as_ref().map(|p| super::load(p, &a.read)).transpose()?;
     let opts = TradeOptions {
         factors: a.factors.clone(),
         compare: CompareOptions {
@@ -107,10 +129,7 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
     })?;
     t.file = a.file.display().to_string();
     t.comparison.file = t.file.clone();
-    t.comparison.vs = match &a.reference {
-        Some(Reference::File(path)) => Some(path.display().to_string()),
-        _ => None,
-    };
+    t.comparison.vs = vs.as_ref().map(|p| p.display().to_string());
     a.out.emit(&t, &to_text(&t), |t, dir| {
         compare_report::write_report(&t.comparison, dir)
     })?;

@@ -519,6 +519,7 @@ fn tolerances_relative_to_i_max_are_percents_with_their_sign() {
         (vec!["engines", "missing.ies", "--tolerance", "0.01"], "write 1%"),
         (vec!["plan", "missing.toml", "--tolerance", "5"], "did you mean 5%?"),
         (vec!["fit", "missing.ies", "--guard", "0.02"], "write 2%"),
+        (vec!["fit", "missing.ies", "--tolerance", "0.01"], "or 1% if"),
         (vec!["gpu-check", "missing.ies", "--tolerance", "1e-5"], "write 0.001%"),
     ] {
         let e = fails(&run(&args, t.path()), 2);
@@ -602,10 +603,12 @@ fn tolerances_relative_to_i_max_are_percents_with_their_sign() {
         help.contains("[default: 0.1%]") && help.contains("percent of I_max"),
         "{help}"
     );
-    // The contract change is stated in the top-level help.
+    // The rule, and what each percent is of, is stated in the top-level help.
     let help = ok(&run(&["--help"], t.path()));
     assert!(
-        help.contains("percents written with their sign") && help.contains("issue 27"),
+        help.contains("percents written with their sign")
+            && help.contains("Relative to I_max")
+            && help.contains("percentage points of the fit's error"),
         "{help}"
     );
 }
@@ -758,4 +761,62 @@ fn numbers_are_printed_once_with_sensible_precision() {
     assert_eq!(photosolid::numfmt::trimmed(-0.31699200000000005, 6), "-0.316992");
     assert_eq!(photosolid::numfmt::trimmed(1.5e-7, 4), "1.5e-7");
     assert_eq!(photosolid::error::percent_of(0.001), 0.1);
+}
+
+/// One vocabulary: `--vs FILE` and `--against REF` on compare, tradeoff and engines (the old
+/// `--reference` still works, with a deprecation warning); `--units` on mesh and compare
+/// (`--normalize` an alias); `fit --tolerance` a percent; negative numbers as option values.
+#[test]
+fn one_vocabulary_across_commands() {
+    let t = tempfile::tempdir().unwrap();
+    // Parsed (the missing file is the error, exit 1, not a usage error).
+    for args in [
+        vec!["compare", "missing.ies", "--vs", "other.ies", "--against", "withheld"],
+        vec!["compare", "missing.ies", "--units", "peak"],
+        vec!["compare", "missing.ies", "--normalize", "peak"],
+        vec!["tradeoff", "missing.ies", "--vs", "other.ies", "--against", "bilinear"],
+        vec!["tradeoff", "missing.ies", "--against", "withheld"],
+        vec!["engines", "missing.ies", "--against", "truth"],
+        vec!["fit", "missing.ies", "--tolerance", "1%"],
+        vec!["info", "missing.ies", "--tilt", "-5", "--front", "-90"],
+        vec!["convert", "missing.ies", "out.ldt", "--rotate-c", "-90"],
+    ] {
+        let e = fails(&run(&args, t.path()), 1);
+        assert!(e.contains("missing.ies") && !e.contains("deprecated"), "{args:?}: {e}");
+    }
+    for (args, new) in [
+        (
+            vec!["tradeoff", "missing.ies", "--reference", "withheld"],
+            "write --against withheld",
+        ),
+        (
+            vec!["tradeoff", "missing.ies", "--reference", "other.ies"],
+            "write --vs other.ies",
+        ),
+        (
+            vec!["engines", "missing.ies", "--reference", "truth"],
+            "write --against truth",
+        ),
+    ] {
+        let e = fails(&run(&args, t.path()), 1);
+        assert!(e.contains("[deprecated-option]") && e.contains(new), "{args:?}: {e}");
+    }
+    // The old and the new spelling cannot be mixed.
+    fails(
+        &run(
+            &[
+                "tradeoff",
+                "missing.ies",
+                "--reference",
+                "truth",
+                "--against",
+                "withheld",
+            ],
+            t.path(),
+        ),
+        2,
+    );
+    // Complete help lists.
+    let help = ok(&run(&["--help"], t.path()));
+    assert!(help.contains("gltf, godot)") && help.contains("TM-33"), "{help}");
 }

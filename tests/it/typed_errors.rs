@@ -142,7 +142,7 @@ fn help_lists_the_enum_values() {
     for (cmd, flag, values) in [
         ("texture", "--backend", &["auto", "gpu", "cpu"][..]),
         ("mesh", "--units", &["cd", "peak", "klm", "flux"][..]),
-        ("compare", "--normalize", &["cd", "peak", "klm", "flux"][..]),
+        ("compare", "--units", &["cd", "peak", "klm", "flux"][..]),
         ("fit", "--error", &["relative", "solid-angle"][..]),
         ("convert", "--ies-version", &["2002", "2019"][..]),
         ("info", "--handedness", &["ccw", "cw"][..]),
