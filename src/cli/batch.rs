@@ -111,6 +111,9 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
     if let Some(j) = &a.jsonl {
         super::check_output("--jsonl", j)?;
     }
+    if let Some(dir) = &a.report {
+        super::check_report_dir("--report", dir)?;
+    }
     let walked = photosolid::formats::collect(&a.paths)?;
     let mut notes = walked.summary();
     let files = walked.files;

@@ -75,6 +75,7 @@ pub struct CompareArgs {
 }
 
 pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
+    a.out.check()?;
     let lum = super::load(&a.file, &a.read)?;
     let other = a.vs.as_ref().map(|p| super::load(p, &a.read)).transpose()?;
     if a.align && other.is_none() {

@@ -37,6 +37,7 @@ pub struct DemoArgs {
 }
 
 pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
+    super::check_report_dir("-o", &a.output)?;
     std::fs::create_dir_all(&a.output).map_err(|e| photosolid::Error::io(&a.output, e))?;
     let grid = GridSpec::uniform(5.0, 2.5)?;
     let lum = Synth::Roadway.build(&grid, 12_000.0)?;

@@ -49,6 +49,7 @@ pub struct EnginesArgs {
 }
 
 pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
+    a.out.check()?;
     let reference = match (a.against, a.reference) {
         (Some(r), _) => r,
         (None, Some(r)) => {

@@ -175,6 +175,13 @@ pub struct ReportArgs {
 }
 
 impl ReportArgs {
+    /// Check `--report DIR` before any work ([`check_report_dir`]).
+    fn check(&self) -> anyhow::Result<()> {
+        self.report
+            .as_deref()
+            .map_or(Ok(()), |d| check_report_dir("--report", d))
+    }
+
     /// Print `value` as JSON or `text`; then, with `--report DIR`, write the
     /// report folder with `write` and say where it is.
     fn emit<T: serde::Serialize, R>(
@@ -247,7 +254,54 @@ fn check_output(flag: &str, path: &std::path::Path) -> anyhow::Result<()> {
             dir.display()
         );
     }
-    Ok(())
+    check_writable(flag, path, dir)
+}
+
+/// Check, before any work, that a report folder can be written: `dir` is a
+/// folder or does not exist yet, and the nearest folder that exists above it
+/// (where it will be created) is a folder this process can write in.
+fn check_report_dir(flag: &str, dir: &std::path::Path) -> anyhow::Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        anyhow::bail!(
+            "{flag} {}: is a file, and a report is a folder; give a folder name (nothing was computed)",
+            dir.display()
+        );
+    }
+    let mut existing = dir;
+    while !existing.exists() {
+        existing = match existing.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p,
+            _ => std::path::Path::new("."),
+        };
+    }
+    if !existing.is_dir() {
+        anyhow::bail!(
+            "{flag} {}: {} is not a folder (nothing was computed)",
+            dir.display(),
+            existing.display()
+        );
+    }
+    check_writable(flag, dir, existing)
+}
+
+/// Whether a file can be created in the existing folder `dir` (for `path`,
+/// named by `flag` in the message): a probe file is created and removed, so
+/// permissions, read-only mounts and full disks all show before the work.
+fn check_writable(flag: &str, path: &std::path::Path, dir: &std::path::Path) -> anyhow::Result<()> {
+    let probe = dir.join(format!(".photosolid-write-check-{}", std::process::id()));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        // Left over by a crashed run with this process id: the folder is writable.
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => anyhow::bail!(
+            "{flag} {}: cannot write in {}: {e} (nothing was computed)",
+            path.display(),
+            dir.display()
+        ),
+    }
 }
 
 /// A walk that found nothing photometric (`validate`, `batch`): say so on

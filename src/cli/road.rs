@@ -23,6 +23,9 @@ pub struct RoadArgs {
 }
 
 pub fn run_road(a: RoadArgs) -> anyhow::Result<i32> {
+    if let Some(dir) = &a.report {
+        super::check_report_dir("--report", dir)?;
+    }
     let road = Road::load(&a.scene)?;
     let result = evaluate(&road, &RoadOptions::default())?;
     if let Some(dir) = &a.report {

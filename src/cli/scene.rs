@@ -43,6 +43,9 @@ pub struct PlanArgs {
 }
 
 pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
+    if let Some(dir) = &a.report {
+        super::check_report_dir("--report", dir)?;
+    }
     let scene = Scene::load(&a.scene)?;
     let result = super::with_progress("points", |progress| evaluate(&scene, Some(progress)))?;
     if let Some(dir) = &a.report {
@@ -62,6 +65,9 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
 }
 
 pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
+    if let Some(dir) = &a.report {
+        super::check_report_dir("--report", dir)?;
+    }
     if let Some(road) = Road::load_if_road(&a.scene)? {
         let result = super::with_progress("candidates", |progress| {
             plan_road(&road, a.tolerance.fraction(), Some(progress))

@@ -97,6 +97,7 @@ fn reference_of(a: &TradeoffArgs) -> (Option<PathBuf>, Option<Against>) {
 }
 
 pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
+    a.out.check()?;
     let (vs, against) = reference_of(&a);
     let lum = super::load(&a.file, &a.read)?;
     let other = vs.as_ref().map(|p| super::load(p, &a.read)).transpose()?;

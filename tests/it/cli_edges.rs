@@ -820,3 +820,50 @@ fn one_vocabulary_across_commands() {
     let help = ok(&run(&["--help"], t.path()));
     assert!(help.contains("gltf, godot)") && help.contains("TM-33"), "{help}");
 }
+
+/// Fail before the work: a report folder that is a file, or under a folder that cannot be
+/// written, is refused before anything is computed, on every command that writes one.
+#[test]
+fn report_folders_are_checked_before_the_work() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    std::fs::write(d.join("afile"), "x").unwrap();
+    ok(&run(&["synth", "cosine-power", "--p", "5", "-o", "c.ies"], d));
+    let road = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/road_en13201.toml");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("data/office_scene.toml");
+    let (road, scene) = (road.to_str().unwrap(), scene.to_str().unwrap());
+    let commands: Vec<Vec<&str>> = vec![
+        vec!["compare", "c.ies"],
+        vec!["tradeoff", "c.ies"],
+        vec!["engines", "c.ies"],
+        vec!["road", road],
+        vec!["scene", scene],
+        vec!["plan", scene],
+        vec!["batch", "c.ies", "-o", "t.parquet"],
+    ];
+    for cmd in &commands {
+        let args: Vec<&str> = cmd.iter().copied().chain(["--report", "afile"]).collect();
+        let e = fails(&run(&args, d), 1);
+        assert!(
+            e.contains("afile: is a file") && e.contains("nothing was computed"),
+            "{args:?}: {e}"
+        );
+    }
+    let e = fails(&run(&["demo", "-o", "afile"], d), 1);
+    assert!(e.contains("afile: is a file"), "{e}");
+    // A folder this process cannot write in: /proc refuses new files even to root.
+    for cmd in &commands {
+        let args: Vec<&str> = cmd
+            .iter()
+            .copied()
+            .chain(["--report", "/proc/photosolid-report"])
+            .collect();
+        let e = fails(&run(&args, d), 1);
+        assert!(
+            e.contains("cannot write in /proc") && e.contains("nothing was computed"),
+            "{args:?}: {e}"
+        );
+    }
+    let e = fails(&run(&["convert", "c.ies", "/proc/c.ldt"], d), 1);
+    assert!(e.contains("cannot write in /proc"), "{e}");
+}

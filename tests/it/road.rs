@@ -317,7 +317,17 @@ fn bad_input_gives_clear_errors_never_nan() {
     );
     assert_eq!(code(GOOD.replace("single-sided", "zigzag")), "road-invalid");
     let e = load(&GOOD.replace("spacing_m = 30.0", "spacing_m = 0.0")).unwrap_err();
-    assert!(e.to_string().contains("spacing_m"), "{e}");
+    // At the key's line and column, not the table's.
+    assert!(e.to_string().contains("road.toml:7:1: [road] spacing_m"), "{e}");
+    let e = load(&GOOD.replace("surface = ", "  surface = ").replace("\"R3\"", "\"R9\"")).unwrap_err();
+    assert!(e.to_string().contains("road.toml:5:3: [road] surface"), "{e}");
+    // A luminaire at or below the observers' eyes (1.5 m) is refused, naming the key.
+    let e = load(&GOOD.replace("mounting_height_m = 10.0", "mounting_height_m = 1.0")).unwrap_err();
+    assert_eq!(e.code(), "road-luminaire-below-road");
+    assert!(
+        e.to_string().contains("road.toml:8:1: [road] mounting_height_m = 1 m") && e.to_string().contains("1.5 m"),
+        "{e}"
+    );
     // a user table that is not one
     std::fs::write(t.path().join("bad.txt"), "0 0 180\n0 1\n").unwrap();
     assert_eq!(code(GOOD.replace("\"R3\"", "\"bad.txt\"")), "road-bad-table");

@@ -208,7 +208,7 @@ impl RoadDimensions {
             ));
         }
         let h = finite_key("mounting_height_m", spec.mounting_height_m, "m")?;
-        if h <= 0.0 {
+        if h <= super::quantities::EYE_HEIGHT_M {
             return Err(RoadError::LuminaireBelowRoad { height_m: h });
         }
         let overhang_m = finite_key("overhang_m", spec.overhang_m.unwrap_or(0.0), "m")?;
@@ -290,7 +290,7 @@ impl Road {
                 message: "a scene with [road] holds no [[luminaire]] tables: the road generates its luminaires".into(),
             });
         }
-        Road::from_spec(road, path)
+        Road::from_spec(road, path).map_err(|e| e.at_key(path, &text))
     }
 
     /// Check a parsed `[road]` table; files resolve relative to `scene_path`'s directory.

@@ -66,8 +66,13 @@ pub enum RoadError {
         /// What is wrong.
         reason: String,
     },
-    /// The luminaires hang at or below the road surface.
-    #[error("[road] mounting_height_m = {height_m} m: the luminaires must hang above the road (> 0 m)")]
+    /// The luminaires hang at or below the observers' eye height (1.5 m,
+    /// [`quantities::EYE_HEIGHT_M`]), where luminance and TI are undefined.
+    #[error(
+        "[road] mounting_height_m = {height_m} m: the luminaires must hang above the observers' eyes \
+         ({} m, EN 13201-3) for luminance and TI to be defined",
+        quantities::EYE_HEIGHT_M
+    )]
     LuminaireBelowRoad {
         /// The mounting height given.
         height_m: f64,
@@ -89,6 +94,18 @@ pub enum RoadError {
          file, its aiming (tilt_deg) and that it emits downwards"
     )]
     NothingInView,
+    /// An error of one `[road]` key, at the key's line and column (1-based) in the scene file.
+    #[error("{path}:{line}:{column}: {source}", path = .path.display())]
+    AtKey {
+        /// The scene file.
+        path: PathBuf,
+        /// Line of the key, 1-based.
+        line: usize,
+        /// Column of the key, 1-based.
+        column: usize,
+        /// The key's error.
+        source: Box<RoadError>,
+    },
     /// The luminaire file could not be read or its representation built.
     #[error("luminaire {file}: {message}", file = .file.display())]
     Luminaire {
@@ -111,6 +128,55 @@ impl RoadError {
             RoadError::ObserverInField { .. } => "road-observer-in-field",
             RoadError::NothingInView => "road-nothing-in-view",
             RoadError::Luminaire { .. } => "road-luminaire",
+            RoadError::AtKey { source, .. } => source.code(),
         }
     }
+
+    /// The `[road]` key this error is about, if it is about one.
+    pub fn key(&self) -> Option<&'static str> {
+        match self {
+            RoadError::Invalid { key, .. } => Some(key),
+            RoadError::LuminaireBelowRoad { .. } => Some("mounting_height_m"),
+            RoadError::UnknownSurface { .. } => Some("surface"),
+            RoadError::Luminaire { .. } => Some("file"),
+            _ => None,
+        }
+    }
+
+    /// This error at its key's line and column in the scene file `text` read
+    /// from `path` ([`RoadError::AtKey`]); unchanged when it names no key or
+    /// the key is not written in the `[road]` table (a default).
+    pub fn at_key(self, path: &std::path::Path, text: &str) -> RoadError {
+        let Some((line, column)) = self.key().and_then(|k| key_position(text, "road", k)) else {
+            return self;
+        };
+        RoadError::AtKey {
+            path: path.to_path_buf(),
+            line,
+            column,
+            source: Box::new(self),
+        }
+    }
+}
+
+/// The 1-based line and column of `key` in the TOML table `[table]` of `text`
+/// (the first `key =` line after the table's header and before the next header).
+fn key_position(text: &str, table: &str, key: &str) -> Option<(usize, usize)> {
+    let header = format!("[{table}]");
+    let mut inside = false;
+    for (i, line) in text.lines().enumerate() {
+        let t = line.trim_start();
+        if t.starts_with('[') {
+            inside = t.split('#').next().is_some_and(|h| h.trim() == header);
+            continue;
+        }
+        if inside {
+            if let Some(rest) = t.strip_prefix(key) {
+                if rest.trim_start().starts_with('=') {
+                    return Some((i + 1, line.len() - t.len() + 1));
+                }
+            }
+        }
+    }
+    None
 }
