@@ -657,9 +657,73 @@ pub enum WarningCode {
     UnsortedAngles,
     /// `zero-lamp-flux`.
     ZeroLampFlux,
+    /// `receiver-unlit`: a scene receiver gets no light at any of its points.
+    ReceiverUnlit,
+    /// `deprecated-spelling`: a scene or road value written in an old spelling (the message names the one to use).
+    DeprecatedSpelling,
+    /// `observer-sees-nothing`: a road observer sees no luminance on the field.
+    ObserverSeesNothing,
+    /// `r-table-blank-cells`: r-table look-ups read cells the CIE table leaves blank.
+    RTableBlankCells,
+    /// `ti-luminaires-left-out`: luminaires within 1.5° of a TI line of sight were left out of TI.
+    TiLuminairesLeftOut,
+    /// `street-side-mismatch`: a road luminaire's downward light leans away from its street side.
+    StreetSideMismatch,
+    /// `layout-limit`: an engine's layout cannot hold the file within 5 % radial max.
+    LayoutLimit,
 }
 
 impl WarningCode {
+    /// Every code, in declaration order (the table in docs/warnings.md lists each).
+    pub const ALL: [WarningCode; 46] = [
+        WarningCode::AnglesRepaired,
+        WarningCode::BlankNumber,
+        WarningCode::C360Plane,
+        WarningCode::Cfli,
+        WarningCode::DcMismatch,
+        WarningCode::DffMismatch,
+        WarningCode::DgMismatch,
+        WarningCode::ExtraValues,
+        WarningCode::FluxAboveLamp,
+        WarningCode::FluxMismatch,
+        WarningCode::HeaderJunk,
+        WarningCode::InvalidBallastFactor,
+        WarningCode::InvalidBlpf,
+        WarningCode::InvalidLumens,
+        WarningCode::Ityp,
+        WarningCode::LampSetLayout,
+        WarningCode::LorAbove100,
+        WarningCode::LorMismatch,
+        WarningCode::LuminousAreaLargerThanLuminaire,
+        WarningCode::McDivisibility,
+        WarningCode::MissingBallastLine,
+        WarningCode::NegativeIntensity,
+        WarningCode::NotANumber,
+        WarningCode::PlaneCount,
+        WarningCode::PoleMismatch,
+        WarningCode::RangeSnapped,
+        WarningCode::SeamMismatch,
+        WarningCode::SinglePlane,
+        WarningCode::SymmetryRepaired,
+        WarningCode::EfficacyAboveLimit,
+        WarningCode::BeamAngleUndefined,
+        WarningCode::FrontMismatch,
+        WarningCode::FrontDiffers,
+        WarningCode::FieldNotKept,
+        WarningCode::TiltExtraValues,
+        WarningCode::TiltFileKeyword,
+        WarningCode::UnknownVersion,
+        WarningCode::UnsortedAngles,
+        WarningCode::ZeroLampFlux,
+        WarningCode::ReceiverUnlit,
+        WarningCode::DeprecatedSpelling,
+        WarningCode::ObserverSeesNothing,
+        WarningCode::RTableBlankCells,
+        WarningCode::TiLuminairesLeftOut,
+        WarningCode::StreetSideMismatch,
+        WarningCode::LayoutLimit,
+    ];
+
     /// The code as written in JSON and text (kebab-case).
     pub fn as_str(self) -> &'static str {
         match self {
@@ -702,6 +766,13 @@ impl WarningCode {
             WarningCode::UnknownVersion => "unknown-version",
             WarningCode::UnsortedAngles => "unsorted-angles",
             WarningCode::ZeroLampFlux => "zero-lamp-flux",
+            WarningCode::ReceiverUnlit => "receiver-unlit",
+            WarningCode::DeprecatedSpelling => "deprecated-spelling",
+            WarningCode::ObserverSeesNothing => "observer-sees-nothing",
+            WarningCode::RTableBlankCells => "r-table-blank-cells",
+            WarningCode::TiLuminairesLeftOut => "ti-luminaires-left-out",
+            WarningCode::StreetSideMismatch => "street-side-mismatch",
+            WarningCode::LayoutLimit => "layout-limit",
         }
     }
 }

@@ -350,6 +350,10 @@ impl Luminaire {
             .map_err(model_err)?;
         c.file = self.path.clone();
         c.vs = vs.as_ref().map(|o| o.path.clone());
+        c.warnings = photosolid::compare::file_warnings(
+            &self.lum.luminaire,
+            vs.as_ref().map(|o| (o.path.as_str(), &o.lum.luminaire)),
+        );
         to_py(py, &c)
     }
 

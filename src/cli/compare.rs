@@ -113,6 +113,7 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         )
     })?;
     c.file = a.file.display().to_string();
+    c.warnings = super::file_warnings(&lum, a.vs.as_deref().zip(other.as_ref()));
     c.vs = a.vs.as_ref().map(|p| p.display().to_string());
     c.photometry_side_by_side = other
         .as_ref()

@@ -74,6 +74,16 @@ pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
     };
     let mut r = measure(&lum, &opts)?;
     r.file = a.file.display().to_string();
+    let mut warnings = super::file_warnings(&lum, None);
+    warnings.append(&mut r.warnings);
+    r.warnings = warnings;
+    for w in r
+        .warnings
+        .iter()
+        .filter(|w| w.code == photosolid::error::WarningCode::LayoutLimit)
+    {
+        eprintln!("warning: {w}");
+    }
     a.out
         .emit(&r, &text(&r), photosolid::report::engines_report::write_report)?;
     Ok(0)

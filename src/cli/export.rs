@@ -56,5 +56,19 @@ pub fn run(a: ExportArgs) -> anyhow::Result<i32> {
         print!("; 4 pi x mean = {phi:.6} lm");
     }
     println!();
+    // What the written layout costs in accuracy: the engines measurement of this
+    // engine alone, and `layout-limit` when it is above 5 % radial max.
+    let measured = photosolid::engines::measure(
+        &lum,
+        &photosolid::engines::EnginesOptions {
+            engines: vec![a.engine],
+            truth: photosolid::synth::Truth::of_luminaire(&lum),
+            layout: opts,
+            ..Default::default()
+        },
+    )?;
+    for w in &measured.warnings {
+        eprintln!("warning: {w}");
+    }
     Ok(0)
 }

@@ -205,6 +205,15 @@ fn load(path: &PathBuf, read: &ReadArgs) -> anyhow::Result<photosolid::formats::
     Ok(photosolid::formats::load_document_with(path, &read.options())?)
 }
 
+/// [`photosolid::compare::file_warnings`] of FILE and of the `--vs` file (its path as given).
+fn file_warnings(
+    file: &photosolid::formats::Document,
+    other: Option<(&std::path::Path, &photosolid::formats::Document)>,
+) -> Vec<photosolid::error::Warning> {
+    let other = other.map(|(p, d)| (p.display().to_string(), &d.luminaire));
+    photosolid::compare::file_warnings(&file.luminaire, other.as_ref().map(|(p, l)| (p.as_str(), *l)))
+}
+
 /// Run a parsed command line; returns the exit code.
 pub fn run(cli: Cli) -> anyhow::Result<i32> {
     match cli.command {

@@ -294,6 +294,7 @@ impl<'a> FieldComparison<'a> {
             results,
             plots,
             photometry_side_by_side: None,
+            warnings: Vec::new(),
         }
     }
 }

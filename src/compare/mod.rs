@@ -541,6 +541,24 @@ impl PartialEq<&str> for ReferenceKind {
     }
 }
 
+/// The `warnings` of a comparison (and of the trade and engines tables): the
+/// reader warnings of FILE, then those of OTHER (`--vs`), each message
+/// prefixed with OTHER's path so the two files' warnings stay apart.
+pub fn file_warnings(
+    file: &crate::model::Luminaire,
+    other: Option<(&str, &crate::model::Luminaire)>,
+) -> Vec<crate::error::Warning> {
+    let mut out = file.warnings().to_vec();
+    if let Some((path, lum)) = other {
+        out.extend(lum.warnings().iter().map(|w| {
+            let mut w = w.clone();
+            w.message = format!("{path}: {}", w.message);
+            w
+        }));
+    }
+    out
+}
+
 /// The result of [`compare`].
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Comparison {
@@ -609,6 +627,9 @@ pub struct Comparison {
     /// `photometry::derived::side_by_side`). Absent from the JSON when unset.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub photometry_side_by_side: Option<Vec<crate::photometry::derived::SideRow>>,
+    /// The files' reader warnings, coded (`{line, code, message}`; codes in
+    /// docs/warnings.md), OTHER's prefixed with its path (set by the caller).
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// The name with the fewest bytes among `rows` (name, bytes, radial max

@@ -235,6 +235,8 @@ pub struct TradeTable {
     /// The comparison the rows come from (plots, full metrics), not in the JSON.
     #[serde(skip)]
     pub comparison: Comparison,
+    /// The file's reader warnings, coded (set by the caller; docs/warnings.md).
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// Options of [`trade_table`].
@@ -361,16 +363,16 @@ pub fn trade_table(
         }
     }
     mark_pareto_bytes(&mut rows);
-    let smallest_within_1pct = smallest_within(&rows, WITHIN_PCT);
     Ok(TradeTable {
         file: String::new(),
         reference: c.reference.clone(),
         reference_kind: c.reference_kind,
         directions: c.directions.clone(),
         radial_max_method: c.radial_max_method.clone(),
+        smallest_within_1pct: smallest_within(&rows, WITHIN_PCT),
         rows,
-        smallest_within_1pct,
         comparison: c,
+        warnings: Vec::new(),
     })
 }
 

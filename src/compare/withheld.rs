@@ -262,6 +262,7 @@ pub(super) fn compare_withheld(
         results,
         plots,
         photometry_side_by_side: None,
+        warnings: Vec::new(),
     })
 }
 

@@ -170,6 +170,10 @@ pub struct EnginesReport {
     /// The reference itself over the error maps' C x γ cells, % of I_max (with `plots`), not in the JSON.
     #[serde(skip)]
     pub reference_map: Option<ErrorMap>,
+    /// Coded warnings: the file's reader warnings (set by the caller) and a
+    /// `layout-limit` per engine whose layout cannot hold the file within 5 %
+    /// radial max (docs/warnings.md).
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// A field reference with what every row's metrics need.
@@ -417,7 +421,7 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
     let reference_map = plots
         .as_ref()
         .and_then(|p| reference_over_cells(p, &label, ref_field, i_max));
-    Ok(EnginesReport {
+    let mut report = EnginesReport {
         file: String::new(),
         reference: label,
         reference_kind: kind,
@@ -433,7 +437,10 @@ pub fn measure(lum: &Luminaire, opts: &EnginesOptions) -> Result<EnginesReport, 
         skipped,
         plots,
         reference_map,
-    })
+        warnings: Vec::new(),
+    };
+    report.warnings = layout_limits(&report);
+    Ok(report)
 }
 
 /// With a tolerance in `opts`, the resolution search of each of its engines
@@ -505,4 +512,61 @@ fn search(
         resolution: found,
         tried,
     })
+}
+
+/// The largest radial error an engine's layout may add before `engines` and
+/// `export` warn `layout-limit`, % of I_max.
+pub const LAYOUT_LIMIT_PCT: f64 = 5.0;
+
+/// One `layout-limit` warning per layout row of `r` whose radial max error
+/// is above [`LAYOUT_LIMIT_PCT`]: the figure, the resolution, whether a
+/// finer resolution can help (not for Godot, whose layout puts the nadir on
+/// a seam, `docs/engines.md`; not where the resolution search found none),
+/// and the way out (the engines of this table within the limit, or
+/// `photosolid engines` when only one engine was measured, as `export` does).
+pub fn layout_limits(r: &EnginesReport) -> Vec<crate::error::Warning> {
+    let layouts: Vec<&EngineRow> = r.rows.iter().filter(|row| row.kind == "layout").collect();
+    let within: Vec<String> = layouts
+        .iter()
+        .filter(|row| row.metrics.radial_max_pct <= LAYOUT_LIMIT_PCT)
+        .map(|row| row.engine.to_string())
+        .collect();
+    let way_out = match (layouts.len(), within.is_empty()) {
+        (0 | 1, _) => "photosolid engines FILE measures every engine's layout on this file".to_string(),
+        (_, true) => "no engine measured here holds it; photosolid tradeoff FILE measures the file's own \
+                      representations"
+            .to_string(),
+        (_, false) => format!("engines within {LAYOUT_LIMIT_PCT} % here: {}", within.join(", ")),
+    };
+    layouts
+        .iter()
+        .filter(|row| row.metrics.radial_max_pct > LAYOUT_LIMIT_PCT)
+        .map(|row| {
+            let at = row.resolution.map_or(String::new(), |n| format!(" at resolution {n}"));
+            let search = r.resolutions.iter().find(|s| s.engine == row.engine);
+            let why = match (row.engine, row.engine.resolution_range(), search) {
+                (super::Engine::Godot, ..) => "the layout cannot hold this file: Godot's dual paraboloid puts the \
+                                               nadir on the seam of its two halves, where the lookup mixes in the \
+                                               zenith, which a finer resolution does not remove"
+                    .to_string(),
+                (_, _, Some(s)) if s.resolution.is_none() => format!(
+                    "no resolution up to {} holds it within {} %",
+                    s.tried.last().map_or(0, |t| t.resolution),
+                    crate::error::Num(s.tolerance_pct)
+                ),
+                (_, Some((_, _, max)), _) => format!(
+                    "a finer --resolution (up to {max}) may hold it: engines --tolerance {LAYOUT_LIMIT_PCT}% finds \
+                     the smallest that does"
+                ),
+                _ => "the layout cannot hold this file".to_string(),
+            };
+            crate::error::Warning::new(
+                crate::error::WarningCode::LayoutLimit,
+                format!(
+                    "{}{at}: radial max {:.1} % of I_max, above {LAYOUT_LIMIT_PCT} %: {why}; {way_out}",
+                    row.engine, row.metrics.radial_max_pct
+                ),
+            )
+        })
+        .collect()
 }

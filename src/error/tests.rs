@@ -182,3 +182,23 @@ fn numbers_print_short_and_read_back() {
     }
     assert_eq!(Nums(&[0.0, 1e-300, 90.0]).to_string(), "[0, 1e-300, 90]");
 }
+
+/// docs/warnings.md lists every warning code exactly once, and nothing else, and each
+/// code's JSON spelling is its `as_str`.
+#[test]
+fn every_warning_code_is_documented() {
+    let doc = include_str!("../../docs/warnings.md");
+    let rows: Vec<&str> = doc
+        .lines()
+        .filter_map(|l| l.strip_prefix("| `"))
+        .filter_map(|l| l.split('`').next())
+        .collect();
+    let mut codes: Vec<&str> = WarningCode::ALL.iter().map(|c| c.as_str()).collect();
+    for c in WarningCode::ALL {
+        assert_eq!(serde_json::to_value(c).unwrap(), c.as_str(), "{c:?}");
+    }
+    let mut listed = rows.clone();
+    listed.sort_unstable();
+    codes.sort_unstable();
+    assert_eq!(listed, codes, "docs/warnings.md rows vs WarningCode::ALL");
+}

@@ -316,8 +316,6 @@ pub fn sniff(bytes: &[u8]) -> Format {
 /// [`Opening::to_ies`]: crate::model::opening::Opening::to_ies
 pub fn conversion_warnings(lum: &Luminaire, target: Format) -> Vec<crate::error::Warning> {
     use crate::error::{Warning, WarningCode};
-    use crate::model::opening::Opening;
-    const OPENING_KEYS: &str = "luminous_dimensions_m, luminance_table, ugr_table";
     let mut out: Vec<Warning> = lum.front().differs_in(target).into_iter().collect();
     let mut not_kept = |note: String, keys: &str| {
         out.push(Warning::new(
@@ -330,23 +328,8 @@ pub fn conversion_warnings(lum: &Luminaire, target: Format) -> Vec<crate::error:
         Format::Ldt => "EULUMDAT",
         Format::Tm33 => "TM-33-23",
     };
-    if target != lum.format() {
-        match Opening::of_luminaire(lum) {
-            Ok(shape) => {
-                let note = match target {
-                    Format::Ldt => shape.to_ldt().3,
-                    Format::Ies => shape.to_ies().3,
-                    Format::Tm33 => None,
-                };
-                if let Some(n) = note {
-                    not_kept(n, OPENING_KEYS);
-                }
-            }
-            Err(e) if target != Format::Tm33 || lum.format() == Format::Ldt => {
-                not_kept(format!("{e}: {name} is given its absolute dimensions"), OPENING_KEYS);
-            }
-            Err(_) => {}
-        }
+    if let Some(note) = opening_not_kept(lum, target, name) {
+        not_kept(note, "luminous_dimensions_m, luminance_table, ugr_table");
     }
     let d = lum.declared();
     let lor_keys = "declared_lor, declared_flux_lm, flux_ratio";
@@ -397,6 +380,25 @@ pub fn conversion_warnings(lum: &Luminaire, target: Format) -> Vec<crate::error:
         );
     }
     out
+}
+
+/// What `target` (named `name`) cannot hold of `lum`'s luminous opening, in
+/// words: a shape it has no term for, or LM-63 signs that match no shape.
+fn opening_not_kept(lum: &Luminaire, target: Format, name: &str) -> Option<String> {
+    if target == lum.format() {
+        return None;
+    }
+    match crate::model::opening::Opening::of_luminaire(lum) {
+        Ok(shape) => match target {
+            Format::Ldt => shape.to_ldt().3,
+            Format::Ies => shape.to_ies().3,
+            Format::Tm33 => None,
+        },
+        Err(e) if target != Format::Tm33 || lum.format() == Format::Ldt => {
+            Some(format!("{e}: {name} is given its absolute dimensions"))
+        }
+        Err(_) => None,
+    }
 }
 
 /// Options of the writers.

@@ -42,6 +42,7 @@ pub fn to_comparison(r: &EnginesReport) -> Comparison {
         results,
         plots: r.plots.clone(),
         photometry_side_by_side: None,
+        warnings: r.warnings.clone(),
     }
 }
 

@@ -242,7 +242,23 @@ fn road_parts(
             "a scene with [road] holds no [[luminaire]] tables: the road generates its luminaires".into(),
         ));
     }
-    let road = Road::from_spec(road, file.path).map_err(|e| file.road_error(e.to_string()))?;
+    let road = Road::from_spec(road, file.path).map_err(|e| {
+        // At the key's line and column when the error is about one key.
+        match e
+            .key()
+            .and_then(|k| crate::scene::road::key_position(file.text, "road", k))
+        {
+            Some((line, column)) => SceneError::Invalid {
+                path: file.path.to_path_buf(),
+                location: Location {
+                    line,
+                    column: Some(column),
+                },
+                message: e.to_string(),
+            },
+            None => file.road_error(e.to_string()),
+        }
+    })?;
     Ok(road.scene_parts())
 }
 
@@ -253,7 +269,7 @@ fn luminaire(
     l: &LuminaireSpec,
     at: &TableAt<'_>,
     base: &Path,
-    warnings: &mut Vec<String>,
+    warnings: &mut Vec<crate::error::Warning>,
 ) -> Result<SceneLuminaire, SceneError> {
     if !finite3(&l.position) {
         return Err(at.key_error(
@@ -276,7 +292,14 @@ fn luminaire(
         Some(r) => {
             let (rep, deprecated) = parse_representation(r)
                 .map_err(|e| at.key_error("representation", format!("representation = {r:?}: {e}")))?;
-            warnings.extend(deprecated.map(|w| format!("[[luminaire]] #{}: {w}", at.k + 1)));
+            warnings.extend(deprecated.map(|w| {
+                let mut w = crate::error::Warning::new(
+                    crate::error::WarningCode::DeprecatedSpelling,
+                    format!("[[luminaire]] #{}: {w}", at.k + 1),
+                );
+                w.line = Some(key_line(at.file.text, at.table, at.k, "representation")).filter(|l| *l > 0);
+                w
+            }));
             Some(rep)
         }
     };

@@ -313,7 +313,7 @@ pub struct SceneResult {
     /// What a reader must know: each receiver that no luminaire lights, by
     /// name, with why (it faces away, it lies behind the luminaires, outside
     /// every beam, or in the occluders' shadow). Empty when all is lit.
-    pub warnings: Vec<String>,
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// Per luminaire: the illuminance (lx) at every scene point with the
@@ -456,11 +456,14 @@ pub fn evaluate(scene: &Scene, progress: Option<&Progress<'_>>) -> Result<SceneR
     for (k, r) in receivers.iter().enumerate() {
         if r.e_max_lux <= 0.0 && !r.points.is_empty() {
             let these: Vec<&ScenePoint> = points.iter().filter(|p| p.receiver == k).collect();
-            warnings.push(format!(
-                "receiver {:?} gets no light (0 lx at all {} points): {}",
-                r.name,
-                these.len(),
-                why_unlit(scene, &scene.receivers[k], &these)?
+            warnings.push(crate::error::Warning::new(
+                crate::error::WarningCode::ReceiverUnlit,
+                format!(
+                    "receiver {:?} gets no light (0 lx at all {} points): {}",
+                    r.name,
+                    these.len(),
+                    why_unlit(scene, &scene.receivers[k], &these)?
+                ),
             ));
         }
     }

@@ -273,8 +273,8 @@ pub struct Scene {
     /// Opaque polygons.
     pub occluders: Vec<Occluder>,
     /// What the scene file says that still works but should change (an old
-    /// representation spelling); reported with every result.
-    pub warnings: Vec<String>,
+    /// representation spelling); reported with every result, coded.
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// One calculation point: where, which way it faces, whose it is.

@@ -190,6 +190,8 @@ pub struct PlanResult {
     pub combined_max_error_pct: f64,
     /// Mean of the same, %.
     pub combined_mean_error_pct: f64,
+    /// The scene's warnings, coded (docs/warnings.md).
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// What [`plan`] writes in `error_definition`.
@@ -602,6 +604,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&Progress<'_>
         luminaires: plans,
         combined_max_error_pct: 100.0 * cmax,
         combined_mean_error_pct: 100.0 * cmean,
+        warnings: scene.warnings.clone(),
     })
 }
 

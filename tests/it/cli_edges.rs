@@ -867,3 +867,52 @@ fn report_folders_are_checked_before_the_work() {
     let e = fails(&run(&["convert", "c.ies", "/proc/c.ldt"], d), 1);
     assert!(e.contains("cannot write in /proc"), "{e}");
 }
+
+/// compare, tradeoff and plan carry coded warnings in their JSON: the file's reader
+/// warnings (here an unknown LM-63 version line), as info has them.
+#[test]
+fn comparisons_carry_the_files_coded_warnings() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    ok(&run(&["synth", "cosine-power", "--p", "5", "-o", "c.ies"], d));
+    let text = std::fs::read_to_string(d.join("c.ies")).unwrap();
+    let first = text.lines().next().unwrap().to_string();
+    std::fs::write(d.join("odd.ies"), text.replacen(&first, "IESNA:LM-63-2077", 1)).unwrap();
+    let json = |args: &[&str]| -> serde_json::Value { serde_json::from_str(&ok(&run(args, d))).unwrap() };
+    let info = json(&["info", "odd.ies", "--json"]);
+    let codes = |v: &serde_json::Value| -> Vec<String> {
+        v["warnings"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|w| w["code"].as_str().unwrap().to_string())
+            .collect()
+    };
+    assert!(
+        codes(&info).contains(&"unknown-version".to_string()),
+        "{}",
+        info["warnings"]
+    );
+    let c = json(&["compare", "odd.ies", "--recon", "bilinear", "--factor", "1", "--json"]);
+    assert_eq!(codes(&c), ["unknown-version"], "{}", c["warnings"]);
+    let c = json(&[
+        "compare", "c.ies", "--vs", "odd.ies", "--recon", "bilinear", "--factor", "1", "--json",
+    ]);
+    let w = &c["warnings"][0];
+    assert!(
+        w["code"] == "unknown-version" && w["message"].as_str().unwrap().starts_with("odd.ies: "),
+        "{w}"
+    );
+    let tr = json(&[
+        "tradeoff",
+        "odd.ies",
+        "--factors",
+        "1",
+        "--factor",
+        "1",
+        "--repeats",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(codes(&tr), ["unknown-version"], "{}", tr["warnings"]);
+}

@@ -1075,3 +1075,51 @@ fn godot_srgb_view_defect_row() {
     // cos^5 read as about cos^11: the flux drops by roughly half.
     assert!(d.metrics.flux_error_pct < -30.0, "{}", d.metrics.flux_error_pct);
 }
+
+/// Limits said out loud: Godot's layout on a downlight (its nadir on the layout's seam) is
+/// 75 % off; `engines` and `export` say so with code `layout-limit`, the figure and the way
+/// out, and an engine within 5 % gets no such warning.
+#[test]
+fn layout_limits_are_warned_with_the_figure_and_the_way_out() {
+    use crate::common::cli::{ok, run};
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    ok(&run(&["synth", "lambertian", "-o", "down.ies"], d));
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(
+        &["engines", "down.ies", "--engines", "godot,ue5", "--json"],
+        d,
+    )))
+    .unwrap();
+    let warnings = v["warnings"].as_array().unwrap();
+    let limits: Vec<&str> = warnings
+        .iter()
+        .filter(|w| w["code"] == "layout-limit")
+        .map(|w| w["message"].as_str().unwrap())
+        .collect();
+    assert_eq!(limits.len(), 1, "{warnings:?}");
+    let godot_max = v["rows"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["name"] == "godot")
+        .unwrap()["metrics"]["radial_max_pct"]
+        .as_f64()
+        .unwrap();
+    assert!(godot_max > 5.0, "{godot_max}");
+    let m = limits[0];
+    assert!(
+        m.starts_with("godot at resolution 256") && m.contains(&format!("{godot_max:.1} %")) && m.contains("seam"),
+        "{m}"
+    );
+    assert!(m.contains("engines within 5 % here: ue5"), "{m}");
+    let o = run(&["export", "down.ies", "--engine", "godot", "-o", "g.exr"], d);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("[layout-limit] godot") && err.contains("photosolid engines FILE"),
+        "{err}"
+    );
+    let o = run(&["export", "down.ies", "--engine", "ue5", "-o", "u.exr"], d);
+    ok(&o);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("layout-limit"));
+}

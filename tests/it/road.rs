@@ -412,6 +412,20 @@ fn the_cli_writes_the_contract_keys_and_scene_computes_the_field() {
         assert!(v["overall"][key].as_f64().unwrap().is_finite(), "overall.{key}");
     }
     assert!(t.path().join("road.json").is_file() && t.path().join("illuminance.png").is_file());
+    // Coded warnings, as every command writes them (docs/warnings.md): this layout reads
+    // blank r-table cells.
+    let warnings = v["warnings"].as_array().unwrap();
+    assert!(!warnings.is_empty());
+    for w in warnings {
+        assert!(
+            w["code"].is_string() && w["message"].is_string() && w.get("line").is_some(),
+            "{w}"
+        );
+    }
+    assert!(
+        warnings.iter().any(|w| w["code"] == "r-table-blank-cells"),
+        "{warnings:?}"
+    );
     // `scene` on the same file: the field's illuminance grid (12 x 5 for 36 m x 7 m)
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_photosolid"))
         .args(["scene", scene.to_str().unwrap(), "--json"])

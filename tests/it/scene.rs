@@ -671,9 +671,9 @@ fn unlit_receivers_are_named_and_empty_scenes_refused() {
     assert_eq!(r.warnings.len(), 3, "{:?}", r.warnings);
     let says = |name: &str, why: &str| {
         assert!(
-            r.warnings
-                .iter()
-                .any(|w| w.contains(&format!("receiver {name:?}")) && w.contains(why)),
+            r.warnings.iter().any(|w| w.code == "receiver-unlit"
+                && w.message.contains(&format!("receiver {name:?}"))
+                && w.message.contains(why)),
             "{name}: {why}: {:?}",
             r.warnings
         )
@@ -689,9 +689,14 @@ fn unlit_receivers_are_named_and_empty_scenes_refused() {
         .unwrap();
     assert!(o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("warning: receiver \"floor\" gets no light"), "{err}");
+    assert!(
+        err.contains("warning: [receiver-unlit] receiver \"floor\" gets no light"),
+        "{err}"
+    );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["warnings"].as_array().unwrap().len(), 3);
+    let warnings = v["warnings"].as_array().unwrap();
+    assert_eq!(warnings.len(), 3);
+    assert!(warnings.iter().all(|w| w["code"] == "receiver-unlit"), "{warnings:?}");
 
     // No receivers, no luminaires: errors (exit 1), not 0 lx.
     for (text, word) in [

@@ -161,7 +161,7 @@ impl RoadError {
 
 /// The 1-based line and column of `key` in the TOML table `[table]` of `text`
 /// (the first `key =` line after the table's header and before the next header).
-fn key_position(text: &str, table: &str, key: &str) -> Option<(usize, usize)> {
+pub(crate) fn key_position(text: &str, table: &str, key: &str) -> Option<(usize, usize)> {
     let header = format!("[{table}]");
     let mut inside = false;
     for (i, line) in text.lines().enumerate() {

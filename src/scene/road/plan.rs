@@ -79,6 +79,8 @@ pub struct RoadPlan {
     pub candidates: Vec<RoadCandidate>,
     /// Candidates that could not be built, and why.
     pub unavailable: Vec<crate::scene::plan::Unavailable>,
+    /// The reference calculation's warnings, coded (docs/warnings.md).
+    pub warnings: Vec<crate::error::Warning>,
 }
 
 /// Signed change of largest magnitude over the lanes.
@@ -215,6 +217,7 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&Progress<'_>>) -
         reference_overall: reference.overall,
         candidates,
         unavailable,
+        warnings: reference.warnings.clone(),
     })
 }
 

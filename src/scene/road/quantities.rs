@@ -29,6 +29,7 @@ use serde::Serialize;
 
 use super::layout::{Placed, Road};
 use super::RoadError;
+use crate::error::{Warning, WarningCode};
 use crate::model::IntensityField;
 use crate::scene::plan::{Models, REFERENCE};
 
@@ -190,8 +191,8 @@ pub struct RoadResult {
     pub illuminance: Grid,
     /// Hemispherical illuminance grid, lx.
     pub hemispherical: Grid,
-    /// Recoverable oddities.
-    pub warnings: Vec<String>,
+    /// Recoverable oddities, coded (`{line, code, message}`; codes in docs/warnings.md).
+    pub warnings: Vec<Warning>,
 }
 
 /// Cell-centre positions of `n` points over [a, a + w].
@@ -478,26 +479,32 @@ fn max_ti(ctx: &Ctx<'_>, v: &Views, y_obs: f64, l_init: f64, too_close: &mut usi
 
 /// The warnings of a calculation: an observer that sees no luminance, and
 /// the `counts` of blank r-table cells read and of luminaires left out of TI.
-fn road_warnings(lanes: &[LaneResult], counts: &WarningCounts) -> Vec<String> {
+fn road_warnings(lanes: &[LaneResult], counts: &WarningCounts) -> Vec<Warning> {
     let mut warnings = Vec::new();
     if lanes.iter().any(|l| l.l_av_cd_m2 <= 0.0) {
-        warnings.push(
-            "an observer sees no luminance on the field (L_av = 0): its U_o, U_l are 0 and its TI is not defined (0)"
-                .into(),
-        );
+        warnings.push(Warning::new(
+            WarningCode::ObserverSeesNothing,
+            "an observer sees no luminance on the field (L_av = 0): its U_o, U_l are 0 and its TI is not defined (0)",
+        ));
     }
     let blank = counts.blank;
     if blank > 0 {
-        warnings.push(format!(
-            "{blank} r-table look-ups read cells the CIE table leaves blank (filled with the last tabulated value \
-             of their row)"
+        warnings.push(Warning::new(
+            WarningCode::RTableBlankCells,
+            format!(
+                "{blank} r-table look-ups read cells the CIE table leaves blank (filled with the last tabulated \
+                 value of their row)"
+            ),
         ));
     }
     let too_close = counts.too_close;
     if too_close > 0 {
-        warnings.push(format!(
-            "{too_close} luminaire positions within 1.5 degrees of the line of sight were left out of TI (the \
-             formula holds from 1.5 to 60 degrees)"
+        warnings.push(Warning::new(
+            WarningCode::TiLuminairesLeftOut,
+            format!(
+                "{too_close} luminaire positions within 1.5 degrees of the line of sight were left out of TI (the \
+                 formula holds from 1.5 to 60 degrees)"
+            ),
         ));
     }
     warnings
@@ -506,19 +513,22 @@ fn road_warnings(lanes: &[LaneResult], counts: &WarningCounts) -> Vec<String> {
 /// `street-side-mismatch`: the luminaire's downward light leans more than
 /// 45° away from the street side it is installed with
 /// ([`crate::photometry::throw`]).
-fn street_side_mismatch(road: &Road) -> Option<String> {
+fn street_side_mismatch(road: &Road) -> Option<Warning> {
     let s = road.street_side_c_deg;
     crate::photometry::throw::leans_away_from(road.luminaire.distribution(), s).map(|t| {
-        format!(
-            "street-side-mismatch: the luminaire's downward light leans towards C{:.0} ({:.0} % of its downward \
-             flux), {:.0} degrees from the street side C{} it is installed with: if C{:.0} is its street side, set \
-             street_side_c_deg = {:.0} in [road]",
-            t.azimuth_c_deg,
-            100.0 * t.fraction,
-            crate::model::front::c_separation_deg(t.azimuth_c_deg, s),
-            crate::error::Num(s),
-            t.azimuth_c_deg,
-            t.azimuth_c_deg
+        Warning::new(
+            WarningCode::StreetSideMismatch,
+            format!(
+                "the luminaire's downward light leans towards C{:.0} ({:.0} % of its downward flux), {:.0} degrees \
+                 from the street side C{} it is installed with: if C{:.0} is its street side, set \
+                 street_side_c_deg = {:.0} in [road]",
+                t.azimuth_c_deg,
+                100.0 * t.fraction,
+                crate::model::front::c_separation_deg(t.azimuth_c_deg, s),
+                crate::error::Num(s),
+                t.azimuth_c_deg,
+                t.azimuth_c_deg
+            ),
         )
     })
 }
