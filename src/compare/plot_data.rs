@@ -80,6 +80,7 @@ pub(crate) fn plot_data(
         recons,
         i_max,
         note: None,
+        error_domain: None,
     }));
     PlotData {
         planes,

@@ -53,6 +53,49 @@ pub struct SolidSet<'a> {
     /// A note on what the colours mean when that differs from the report's
     /// reference (e.g. a withheld-measurement report colours by the measured solid).
     pub note: Option<String>,
+    /// The directions the errors are measured over, when the reconstructions
+    /// hold only some (a cropped representation: elsewhere it is 0 by
+    /// construction, not an error of the directions it keeps); `None`: all.
+    pub error_domain: Option<ErrorDomain>,
+}
+
+/// A set of directions: a γ band, and optionally a C sector (from, to; from >
+/// to wraps through C0), degrees, ends included.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ErrorDomain {
+    /// First and last γ, degrees.
+    pub gamma_deg: (f64, f64),
+    /// First and last C, degrees; `None`: every C.
+    pub c_deg: Option<(f64, f64)>,
+}
+
+impl ErrorDomain {
+    /// Whether (C, γ) (degrees) lies in the set (1e-9° tolerance at the ends).
+    pub fn contains(&self, c_deg: f64, gamma_deg: f64) -> bool {
+        const EPS: f64 = 1e-9;
+        let (g0, g1) = self.gamma_deg;
+        let in_gamma = gamma_deg >= g0 - EPS && gamma_deg <= g1 + EPS;
+        let in_c = self.c_deg.is_none_or(|(c0, c1)| {
+            let c = c_deg.rem_euclid(360.0);
+            if c0 <= c1 {
+                c >= c0 - EPS && c <= c1 + EPS
+            } else {
+                c >= c0 - EPS || c <= c1 + EPS
+            }
+        });
+        in_gamma && in_c
+    }
+}
+
+impl std::fmt::Display for ErrorDomain {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = crate::error::Num;
+        write!(f, "γ {}–{}°", n(self.gamma_deg.0), n(self.gamma_deg.1))?;
+        if let Some((c0, c1)) = self.c_deg {
+            write!(f, ", C {}–{}°", n(c0), n(c1))?;
+        }
+        Ok(())
+    }
 }
 
 /// Where the errors are sampled around each vertex, in grid steps: −φ, 0
@@ -66,7 +109,8 @@ const ERR_OFFSET: f64 = 0.37;
 /// Per vertex of the grid `cs` × `gs` (steps `(dc, dg)`), the signed error of
 /// `recon` against `reference` (% of `i_max`) of largest magnitude among the
 /// nine points at offsets {−φ, 0, +φ} × {−φ, 0, +φ} steps around it
-/// ([`ERR_OFFSET`]; γ clamped to 0–180°).
+/// ([`ERR_OFFSET`]; γ clamped to 0–180°), counting only the points in
+/// `domain` when one is given.
 fn vertex_errors(
     reference: &dyn IntensityField,
     recon: &dyn IntensityField,
@@ -74,6 +118,7 @@ fn vertex_errors(
     gs: &[f64],
     (dc, dg): (f64, f64),
     i_max: f64,
+    domain: Option<&ErrorDomain>,
 ) -> Vec<f64> {
     let mut worst = vec![0.0f64; cs.len() * gs.len()];
     let (mut a, mut b) = (vec![0.0; worst.len()], vec![0.0; worst.len()]);
@@ -83,7 +128,11 @@ fn vertex_errors(
             let g: Vec<f64> = gs.iter().map(|&g| (g + og * dg).clamp(0.0, 180.0)).collect();
             reference.sample_grid(&c, &g, &mut a);
             recon.sample_grid(&c, &g, &mut b);
-            for ((w, x), y) in worst.iter_mut().zip(&b).zip(&a) {
+            for (k, ((w, x), y)) in worst.iter_mut().zip(&b).zip(&a).enumerate() {
+                // Vertex k is (C-plane k / ng, γ row k % ng).
+                if domain.is_some_and(|d| !d.contains(c[k / gs.len()], g[k % gs.len()])) {
+                    continue;
+                }
                 let e = 100.0 * (x - y) / i_max;
                 if e.is_finite() && e.abs() > w.abs() {
                     *w = e;
@@ -102,6 +151,8 @@ pub struct SampledSolids {
     pub reference_label: String,
     /// A note on what the colours mean ([`SolidSet::note`]).
     pub note: Option<String>,
+    /// The directions the errors are measured over ([`SolidSet::error_domain`]).
+    pub error_domain: Option<ErrorDomain>,
     /// The reference's I_max, the 100 % of the errors (1 when not finite and positive).
     pub i_max: f64,
     /// C step of the grid, degrees.
@@ -153,11 +204,12 @@ impl SampledSolids {
         let errors: Vec<Vec<f64>> = set
             .recons
             .iter()
-            .map(|(_, f)| vertex_errors(set.reference, *f, &cs, &gs, (dc, dg), i_max))
+            .map(|(_, f)| vertex_errors(set.reference, *f, &cs, &gs, (dc, dg), i_max, set.error_domain.as_ref()))
             .collect();
         SampledSolids {
             reference_label: set.reference_label.to_string(),
             note: set.note.clone(),
+            error_domain: set.error_domain,
             i_max,
             c_step_deg: dc,
             gamma_step_deg: dg,

@@ -624,6 +624,7 @@ fn measured_viewer(
              so the colours show the difference from the measured solid."
                 .into(),
         ),
+        error_domain: None,
     }))
 }
 

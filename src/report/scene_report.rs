@@ -130,12 +130,27 @@ pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Recon>) -> R
         "{reference_rep} on the native grid of {} (the scene's reference)",
         lum.name
     );
+    // A cropped representation holds only the directions the scene sees: its
+    // error is measured over those, and the legend says so.
+    let error_domain = match shown {
+        Some(Recon::Cropped {
+            gamma_from,
+            gamma_to,
+            c,
+            ..
+        }) => Some(crate::compare::view::ErrorDomain {
+            gamma_deg: (*gamma_from, *gamma_to),
+            c_deg: *c,
+        }),
+        _ => None,
+    };
     Ok(ViewerData::new(&SolidSet {
         reference_label: &label,
         reference: &*reference,
         recons: &recons,
         i_max: lum.luminaire.distribution().max_cd(),
         note: None,
+        error_domain,
     }))
 }
 
@@ -286,13 +301,20 @@ pub fn scene_text(r: &SceneResult) -> String {
         let ff = &l.far_field;
         let _ = writeln!(
             s,
-            "luminaire {:?}: {}, {} source ({}{}), {} bytes; point-source error max {:.3} % (largest \
+            "luminaire {:?}: {}, {} source{}, {} bytes; point-source error max {:.3} % (largest \
              dimension {:.3} m, under 1 % from {} x it, five-times rule {})",
             l.name,
             l.representation,
             l.source,
-            crate::error::count(l.area.patches, "patch", "patches"),
-            if l.area.converged { "" } else { ", NOT converged" },
+            // The patches are the area source's: a point source has none to count.
+            match l.source {
+                crate::scene::SourceKind::Area => format!(
+                    " ({}{})",
+                    crate::error::count(l.area.patches, "patch", "patches"),
+                    if l.area.converged { "" } else { ", NOT converged" }
+                ),
+                crate::scene::SourceKind::Point => String::new(),
+            },
             l.bytes,
             ff.max_error_pct,
             ff.largest_dimension_m,

@@ -3,7 +3,8 @@
 //!
 //! **Reference** per luminaire: Catmull-Rom on the native grid, as a
 //! directional area source refined to convergence when the file (or the
-//! scene) declares an opening with a size, as a point source otherwise.
+//! scene) declares an opening with a size, as a point source otherwise or
+//! where the scene sets `source = "point"`.
 //!
 //! **Candidates** ([`Recon`], the one registry's names): every filter on the native grid,
 //! every filter rendered at factors 1, 2 and 5 read bilinearly (the trade
@@ -167,9 +168,14 @@ pub struct LuminairePlan {
     pub reference: String,
     /// The reference area source's refinement.
     pub area: AreaRefinement,
-    /// Candidates tried.
+    /// Candidates measured: cheapest first (bytes, then time per evaluation),
+    /// up to the chosen one, the first within the tolerance.
     pub candidates: usize,
-    /// Candidates over the tolerance, with their errors (cheapest first).
+    /// Dearer candidates not measured: a cheaper one is within the tolerance,
+    /// so none of them could be chosen.
+    pub candidates_not_measured: usize,
+    /// Candidates over the tolerance, with their errors (cheapest first): every
+    /// candidate measured before the chosen one.
     pub rejected: Vec<Candidate>,
     /// Candidates that could not be built.
     pub unavailable: Vec<Unavailable>,
@@ -197,7 +203,8 @@ pub struct PlanResult {
 /// What [`plan`] writes in `error_definition`.
 pub const ERROR_DEFINITION: &str = "per receiver point: |E(candidate in place of its luminaire's reference) - \
      E(all references)| / max(E(all references), 1e-3 x the receiver's largest reference E); reference: catmull-rom \
-     on the native grid, area source refined to convergence when the opening has a size, else point source";
+     on the native grid, area source refined to convergence when the opening has a size, else point source (a \
+     point source also where the scene sets source = \"point\")";
 
 /// Options of [`plan`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -347,15 +354,17 @@ impl Reference {
         let point_lux = point.lux_all(points, &scene.occluders, None);
         let (area, area_lux, refinement) = area_source(&*field, lum, points, &scene.occluders);
         let far_field = FarField::measure(lum, points, &point_lux, &area_lux);
-        let kind = if lum.opening.is_point() {
-            SourceKind::Point
-        } else {
-            SourceKind::Area
+        // The scene's `source` decides, as `scene` does: a luminaire the scene
+        // models as a point source is measured against its point source.
+        let kind = lum.source_kind();
+        let (lux, patches) = match kind {
+            SourceKind::Point => (point_lux.clone(), vec![(DVec3::ZERO, 1.0)]),
+            SourceKind::Area => (area_lux, area.patches),
         };
         Ok(Self {
-            lux: area_lux,
+            lux,
             point_lux,
-            patches: area.patches,
+            patches,
             refinement,
             far_field,
             name: format!("{}, {kind} source", field.name()),
@@ -401,21 +410,22 @@ struct Bench<'a> {
 type Measured = (Candidate, Vec<f64>);
 
 impl Bench<'_> {
-    /// Every representation of `reps` built from `models` and measured (as a
-    /// point source and, where the opening has a size, as the area source);
-    /// those that cannot be built, with the reason. `say` gets a line per
-    /// representation.
-    fn measure_all(
+    /// The representations of `reps` built from `models` (those that cannot
+    /// be built, with the reason), each as a point source and, where the scene
+    /// models the luminaire as an area source, as the area source; measured
+    /// cheapest first (bytes, then time per evaluation), up to the first
+    /// within the tolerance: a dearer candidate cannot be chosen, so it is not
+    /// measured (the count of those is the third value). `progress` gets a
+    /// line per candidate measured.
+    fn measure_cheapest_first(
         &self,
         models: &Models,
         reps: Vec<Recon>,
         progress: &Progress<'_>,
-    ) -> (Vec<Measured>, Vec<Unavailable>) {
-        let mut measured = Vec::new();
+    ) -> (Vec<Measured>, Vec<Unavailable>, usize) {
         let mut unavailable = Vec::new();
-        let n = reps.len();
-        for (k, rep) in reps.into_iter().enumerate() {
-            progress(k, n, &format!("{}: {rep}", self.lum.name));
+        let mut pending = Vec::new();
+        for rep in reps {
             let field = match models.field(&rep) {
                 Ok(f) => f,
                 Err(e) => {
@@ -427,15 +437,38 @@ impl Bench<'_> {
                 }
             };
             let ns = time_per_sample_ns(&*field, self.dirs, self.options.timing_repeats);
-            let mut kinds = vec![SourceKind::Point];
-            if !self.lum.opening.is_point() {
-                kinds.push(SourceKind::Area);
-            }
-            for kind in kinds {
-                measured.push(self.measure(rep, &*field, ns, kind));
+            let field = std::rc::Rc::new(field);
+            pending.push((rep, field.clone(), ns, SourceKind::Point));
+            if self.lum.source_kind() == SourceKind::Area {
+                pending.push((rep, field, ns, SourceKind::Area));
             }
         }
-        (measured, unavailable)
+        let n_patches = self.reference.patches.len();
+        let cost = |(_, field, ns, kind): &(Recon, std::rc::Rc<Box<dyn IntensityField + '_>>, f64, SourceKind)| {
+            let n = if *kind == SourceKind::Area { n_patches } else { 1 };
+            (
+                field.bytes() + if *kind == SourceKind::Area { n * 32 } else { 0 },
+                ns * n as f64,
+            )
+        };
+        pending.sort_by(|a, b| {
+            let (ca, cb) = (cost(a), cost(b));
+            ca.0.cmp(&cb.0).then(ca.1.total_cmp(&cb.1))
+        });
+        let tol_pct = 100.0 * self.options.tolerance;
+        let total = pending.len();
+        let mut measured = Vec::new();
+        for (k, (rep, field, ns, kind)) in pending.iter().enumerate() {
+            progress(k, total, &format!("{}: {rep} ({kind} source)", self.lum.name));
+            let m = self.measure(*rep, &***field, *ns, *kind);
+            let within = m.0.max_error_pct <= tol_pct;
+            measured.push(m);
+            if within {
+                break;
+            }
+        }
+        let not_measured = total - measured.len();
+        (measured, unavailable, not_measured)
     }
 
     /// `field` (representation `rep`, `ns` per lookup) as a source of `kind`
@@ -527,6 +560,7 @@ impl Bench<'_> {
             reference: r.name.clone(),
             area: r.refinement,
             candidates: measured.len(),
+            candidates_not_measured: 0,
             rejected: measured
                 .iter()
                 .filter(|(c, _)| c.max_error_pct > tol_pct)
@@ -586,8 +620,9 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&Progress<'_>
             vec![REFERENCE] // all-zero: every representation is the same dark field
         };
         let slot = shared_models(&mut models_cache, &scene.luminaires, li, &reps).map_err(model_err(lum))?;
-        let (measured, unavailable) = bench.measure_all(&models_cache[slot].1, reps, &say);
-        let (plan, values) = bench.choose(measured, unavailable)?;
+        let (measured, unavailable, not_measured) = bench.measure_cheapest_first(&models_cache[slot].1, reps, &say);
+        let (mut plan, values) = bench.choose(measured, unavailable)?;
+        plan.candidates_not_measured = not_measured;
         for (t, v) in total_chosen.iter_mut().zip(&values) {
             *t += v;
         }

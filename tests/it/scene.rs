@@ -335,6 +335,33 @@ fn a_receiver_at_one_luminaire_size_forces_the_area_source() {
     assert!(l.far_field.five_times_rule_holds);
 }
 
+/// `source = "point"` is honoured by `plan` as by `scene`: the same close receiver that
+/// forces the area source above is measured against the point source, and only point
+/// sources are candidates.
+#[test]
+fn plan_honours_a_point_source_the_scene_asks_for() {
+    let mut lum = cos5_square_opening(3.0, 0.6);
+    lum.source = Some(SourceKind::Point);
+    let size = lum.opening.largest_dimension_m();
+    let s = scene(
+        vec![lum],
+        vec![Receiver::point("close", DVec3::new(0.0, 0.0, 3.0 - size), DVec3::Z)],
+    );
+    let p = plan_timed(&s, 512);
+    let l = &p.luminaires[0];
+    assert!(l.reference.ends_with("point source"), "{}", l.reference);
+    assert_eq!(l.source, SourceKind::Point, "{}", l.chosen);
+    assert!(
+        l.rejected.iter().all(|c| c.source == SourceKind::Point),
+        "{:?}",
+        l.rejected
+    );
+    // The scene's own result with the chosen representation is what plan measured.
+    assert!(l.max_error_pct <= 1.0, "{}", l.max_error_pct);
+    let e = evaluate(&s, None).unwrap();
+    assert_eq!(e.luminaires[0].source, SourceKind::Point);
+}
+
 #[test]
 fn extremes_never_give_nan() {
     let iso = || synth(Synth::Isotropic, 1000.0);
@@ -730,4 +757,48 @@ fn unlit_receivers_are_named_and_empty_scenes_refused() {
         "{e}"
     );
     assert_eq!(e.matches("nothere.ldt").count(), 2, "{e}");
+}
+
+/// The panel office at working scale (data/office_panels.toml: six 600 x 600 mm panels as area
+/// sources, 343 points): `scene` names the patches of area sources only, and `plan` measures
+/// candidates cheapest first up to the first within the tolerance (timed in BENCHMARKS.md).
+#[test]
+fn the_panel_office_is_planned_cheapest_first() {
+    use crate::common::cli::{ok, run};
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    for f in ["office_panels.toml", "batwing.ldt"] {
+        std::fs::copy(root().join("data").join(f), d.join(f)).unwrap();
+    }
+    let text = ok(&run(&["scene", "office_panels.toml"], d));
+    assert!(
+        text.contains("area source (4096 patches)") && text.contains("343"),
+        "{text}"
+    );
+    let toml = std::fs::read_to_string(d.join("office_panels.toml")).unwrap();
+    std::fs::write(
+        d.join("points.toml"),
+        toml.replace("source = \"area\"", "source = \"point\""),
+    )
+    .unwrap();
+    let text = ok(&run(&["scene", "points.toml"], d));
+    assert!(text.contains("point source, ") && !text.contains("patches"), "{text}");
+    let v: serde_json::Value = serde_json::from_str(&ok(&run(&["plan", "office_panels.toml", "--json"], d))).unwrap();
+    let lums = v["luminaires"].as_array().unwrap();
+    assert_eq!(lums.len(), 6);
+    for l in lums {
+        let (bytes, max) = (l["bytes"].as_u64().unwrap(), l["max_error_pct"].as_f64().unwrap());
+        assert!(max <= 1.0, "{l}");
+        // Every candidate measured before the chosen one is over the tolerance and no dearer.
+        let rejected = l["rejected"].as_array().unwrap();
+        assert_eq!(rejected.len() + 1, l["candidates"].as_u64().unwrap() as usize);
+        for c in rejected {
+            assert!(
+                c["max_error_pct"].as_f64().unwrap() > 1.0 && c["bytes"].as_u64().unwrap() <= bytes,
+                "{c}"
+            );
+        }
+        assert!(l["candidates_not_measured"].as_u64().unwrap() > 0, "{l}");
+    }
+    assert!(v["warnings"].as_array().unwrap().is_empty());
 }

@@ -183,6 +183,13 @@ fn max_abs(e: &[f64]) -> f64 {
 /// show another difference) `max |diff from <the reference shown>|`.
 fn legend_quantity(samples: &SampledSolids) -> String {
     match samples.note {
+        // A cropped representation's error, over the directions it keeps.
+        None if samples.error_domain.is_some() => {
+            format!(
+                "max |err| over {}",
+                samples.error_domain.as_ref().map_or(String::new(), |d| d.to_string())
+            )
+        }
         None => "max |err|".into(),
         Some(_) => format!(
             "max |diff from {}|",

@@ -69,6 +69,7 @@ fn positions_and_errors_decode_to_the_fields() {
         recons: &recons,
         i_max: 1000.0,
         note: None,
+        error_domain: None,
     });
     assert_eq!((d.c_step_deg, d.gamma_step_deg), grid_step(2));
     assert_eq!(d.solids.len(), 3);
@@ -128,6 +129,7 @@ fn colours_are_blue_below_and_red_above_the_reference() {
         recons: &[],
         i_max: 1000.0,
         note: None,
+        error_domain: None,
     });
     let (lo, mid, hi) = (d.lut[0], d.lut[d.lut.len() / 2], d.lut[d.lut.len() - 1]);
     assert!(lo[2] > lo[0] + 50, "negative end is blue: {lo:?}");
@@ -156,6 +158,7 @@ fn extremes_give_finite_data() {
             recons: &recons,
             i_max,
             note: None,
+            error_domain: None,
         });
         for x in [d.i_max, d.radius, d.err_max_pct, d.solids[1].scale_pct] {
             assert!(x.is_finite() && x > 0.0, "{x}");
@@ -184,6 +187,7 @@ fn the_fragment_is_self_contained_escaped_and_small() {
         recons: &recons,
         i_max: 1000.0,
         note: None,
+        error_domain: None,
     });
     let h = html(&d, "the figures");
     assert_eq!(
@@ -208,4 +212,47 @@ fn the_fragment_is_self_contained_escaped_and_small() {
     let v: serde_json::Value = serde_json::from_str(&h[start..end]).unwrap();
     assert_eq!(v["solids"][1]["name"], "</script><b>x</b>");
     assert_eq!(v["nc"], 72);
+}
+
+/// A cropped representation's error is measured over the directions it keeps, and the
+/// legend says so: 0 outside the crop is not an error of the crop.
+#[test]
+fn a_cropped_recon_is_measured_over_the_directions_it_keeps() {
+    use crate::compare::view::ErrorDomain;
+    let full = |_c: f64, g: f64| 100.0 + g;
+    let cropped = |_c: f64, g: f64| if g <= 44.0 { 100.0 + g } else { 0.0 };
+    let recons: Vec<(String, &dyn IntensityField)> = vec![("catmull-rom+gamma:0-44".into(), &cropped)];
+    let view = |error_domain| {
+        ViewerData::new(&SolidSet {
+            reference_label: "full",
+            reference: &full,
+            recons: &recons,
+            i_max: 280.0,
+            note: None,
+            error_domain,
+        })
+    };
+    let everywhere = view(None);
+    assert!(
+        everywhere.solids[1].max_abs_err_pct > 50.0,
+        "{}",
+        everywhere.solids[1].max_abs_err_pct
+    );
+    assert_eq!(everywhere.legend_quantity, "max |err|");
+    let kept = view(Some(ErrorDomain {
+        gamma_deg: (0.0, 44.0),
+        c_deg: None,
+    }));
+    assert!(
+        kept.solids[1].max_abs_err_pct < 1e-9,
+        "{}",
+        kept.solids[1].max_abs_err_pct
+    );
+    assert_eq!(kept.legend_quantity, "max |err| over γ 0–44°");
+    let sector = ErrorDomain {
+        gamma_deg: (0.0, 90.0),
+        c_deg: Some((300.0, 60.0)),
+    };
+    assert!(sector.contains(0.0, 10.0) && sector.contains(330.0, 10.0) && !sector.contains(180.0, 10.0));
+    assert_eq!(sector.to_string(), "γ 0–90°, C 300–60°");
 }
