@@ -21,21 +21,14 @@ import dask
 import dask.bag as db
 import pyarrow.parquet as pq
 
-CATALOGUE_SUFFIXES = (".ies", ".ldt")
-
 
 def list_files(paths: Iterable[str | os.PathLike]) -> List[str]:
-    """Every .ies/.ldt file (any case) under ``paths``, directories walked in sorted order, as
-    ``photosolid batch`` collects them; listing happens on the client, once."""
-    out: List[str] = []
-    for p in map(Path, paths):
-        if p.is_dir():
-            for root, dirs, names in os.walk(p):
-                dirs.sort()
-                out.extend(str(Path(root) / n) for n in sorted(names) if n.lower().endswith(CATALOGUE_SUFFIXES))
-        else:
-            out.append(str(p))
-    return out
+    """Every photometry ``photosolid batch`` reads under ``paths``, in its order: the binding's own list (every
+    format, extension-less files read by content, one ``FILE#ID`` per photometry of a GLDF container or TM-33
+    document), so the dataset holds exactly the rows of ``photosolid batch``; listing happens on the client, once."""
+    import photosolid
+
+    return photosolid.list_files([os.fspath(p) for p in paths])
 
 
 def write_shard(paths: Sequence[str], out_dir: str, index: int) -> int:

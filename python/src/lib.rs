@@ -416,6 +416,17 @@ fn batch_parquet<'py>(py: Python<'py>, paths: Vec<PathBuf>, compact: bool) -> Py
     Ok(PyBytes::new(py, &bytes))
 }
 
+/// Every photometry `photosolid batch PATHS` reads, in its order: files named
+/// explicitly whatever their extension, and below each directory the .ies,
+/// .ldt, TM-33 .xml and .gldf files and the extension-less files read by
+/// content; a GLDF container or a TM-33 document with several photometries as
+/// one `FILE#ID` path each. The one list of `batch`, for recipes that shard it.
+#[pyfunction]
+fn list_files(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<Vec<String>> {
+    let files = py.detach(|| photosolid::batch::collect(&paths)).map_err(py_err)?;
+    Ok(files.iter().map(|p| p.display().to_string()).collect())
+}
+
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -423,6 +434,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Luminaire>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
+    m.add_function(wrap_pyfunction!(list_files, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -66,8 +66,8 @@ pub fn run(a: DemoArgs) -> anyhow::Result<i32> {
     let scene = scene_and_plan(&a.output)?;
 
     let (mut md, mut html) = (
-        compare_report::to_markdown(&c, &figs),
-        compare_report::to_html(&c, &figs),
+        compare_report::to_markdown(&c, &figs, compare_report::COMPARE_TITLE),
+        compare_report::to_html(&c, &figs, compare_report::COMPARE_TITLE),
     );
     // The report ends with the scene and the plan (README, `demo`).
     let tail =

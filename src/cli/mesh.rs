@@ -199,7 +199,11 @@ impl Written<'_> {
             },
             if topo.manifold { "manifold" } else { "NOT manifold" },
             count(topo.components, "component", "components"),
-            u = self.units.name(),
+            // A compound unit in parentheses: (cd/klm)³, not cd/klm³.
+            u = match self.units.name() {
+                n if n.contains('/') => format!("({n})"),
+                n => n.to_string(),
+            },
         );
         if let Some(f) = self.adaptive {
             outln!(

@@ -133,9 +133,7 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
     t.warnings = super::file_warnings(&lum, vs.as_deref().zip(other.as_ref()));
     t.comparison.warnings = t.warnings.clone();
     t.comparison.vs = vs.as_ref().map(|p| p.display().to_string());
-    a.out.emit(&t, &to_text(&t), |t, dir| {
-        compare_report::write_report(&t.comparison, dir)
-    })?;
+    a.out.emit(&t, &to_text(&t), compare_report::write_trade_report)?;
     Ok(0)
 }
 

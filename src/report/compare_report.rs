@@ -66,9 +66,12 @@ fn header(c: &Comparison) -> Vec<String> {
     }
     l.push(reference_line(c));
     l.push(format!(
-        "normalisation: {:?} (unit {}); {}; Hausdorff tolerance {}% of I_max = {} {}{}",
-        c.normalize,
+        "units: {} (--units {}); {}; Hausdorff tolerance {}% of I_max = {} {}{}",
         c.units,
+        serde_json::to_value(c.normalize)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default(),
         solids_text(c),
         c.tolerance_pct,
         num(c.tolerance_cd),
@@ -181,11 +184,12 @@ fn solids_short(c: &Comparison) -> Vec<String> {
         .collect()
 }
 
-const COLS: [&str; 14] = [
+const COLS: [&str; 15] = [
     "reconstruction",
     "bytes",
     "H",
     "+bound",
+    "H %",
     "h(recon->ref)",
     "h(ref->recon)",
     "mean dist",
@@ -209,6 +213,8 @@ fn row(r: &ReconResult) -> Vec<String> {
         r.bytes.to_string(),
         num(r.hausdorff_cd),
         num(r.hausdorff_bound_cd),
+        // The percent the terminal tables of tradeoff and engines print.
+        num(r.hausdorff_pct),
         r.recon_to_ref.map_or("-".into(), |h| num(h.value)),
         r.ref_to_recon.map_or("-".into(), |h| num(h.value)),
         r.mean_surface_distance_cd.map_or("-".into(), num),
@@ -342,7 +348,7 @@ fn polar_figure(c: &Comparison, k: usize, plane: &PolarPlane) -> Result<Figure, 
             style: if name.ends_with("(reference)") {
                 SeriesStyle::Dashed
             } else {
-                SeriesStyle::Line
+                plot::style_of(i)
             },
         })
         .collect();
@@ -419,7 +425,6 @@ fn scatter_figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
                 label: r.name.clone(),
                 x: t,
                 y: r.hausdorff_pct,
-                pareto: r.pareto,
             })
         })
         .collect();
@@ -446,7 +451,6 @@ fn scatter_figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
             label: r.name.clone(),
             x: r.bytes as f64,
             y: r.hausdorff_pct,
-            pareto: r.pareto,
         })
         .collect();
     if !by_bytes.is_empty() {
@@ -460,7 +464,7 @@ fn scatter_figures(c: &Comparison) -> Result<Vec<Figure>, Error> {
         })?;
         out.push(Figure {
             file: "scatter_bytes.png".into(),
-            caption: "Bytes held vs Hausdorff distance; Pareto front over time, bytes and error".into(),
+            caption: "Bytes held vs Hausdorff distance; the Pareto front of these two axes is marked".into(),
             png,
         });
     }
@@ -538,9 +542,14 @@ fn degree_figure(c: &Comparison) -> Result<Option<Figure>, Error> {
     }))
 }
 
-/// `report.md`: the header, the table and the figures by file name.
-pub fn to_markdown(c: &Comparison, figs: &[Figure]) -> String {
-    let mut s = String::from("# Photometric solid comparison\n\n");
+/// The title of `compare`'s report.
+pub const COMPARE_TITLE: &str = "Photometric solid comparison";
+/// The title of `tradeoff`'s report.
+pub const TRADE_TITLE: &str = "Representations: bytes, time and error";
+
+/// `report.md` titled `title`: the header, the table and the figures by file name.
+pub fn to_markdown(c: &Comparison, figs: &[Figure], title: &str) -> String {
+    let mut s = format!("# {title}\n\n");
     for l in header(c) {
         let _ = writeln!(s, "- {l}");
     }
@@ -573,9 +582,9 @@ pub fn to_markdown(c: &Comparison, figs: &[Figure]) -> String {
 }
 
 /// `index.html`: self-contained, images inline.
-pub fn to_html(c: &Comparison, figs: &[Figure]) -> String {
+pub fn to_html(c: &Comparison, figs: &[Figure], title: &str) -> String {
     let mut s = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>Photometric solid comparison</title>\n<style>\n\
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>TITLE</title>\n<style>\n\
 body{font-family:sans-serif;margin:2em;max-width:1200px;color:#222}\n\
 table{border-collapse:collapse;font-size:0.9em}\n\
 th,td{border:1px solid #bbb;padding:3px 6px;text-align:right}\n\
@@ -583,8 +592,9 @@ th:first-child,td:first-child{text-align:left}\n\
 tr.pareto td:first-child{font-weight:bold}\n\
 figure{display:inline-block;margin:1em;vertical-align:top}\n\
 img{max-width:100%;border:1px solid #ddd}\n\
-</style>\n</head>\n<body>\n<h1>Photometric solid comparison</h1>\n<ul>\n",
-    );
+</style>\n</head>\n<body>\n<h1>TITLE</h1>\n<ul>\n",
+    )
+    .replace("TITLE", &esc(title));
     for l in header(c) {
         let _ = writeln!(s, "<li>{}</li>", esc(&l));
     }
@@ -649,7 +659,28 @@ img{max-width:100%;border:1px solid #ddd}\n\
 /// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir` (created); returns the paths written.
 pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
     let figs = figures(c)?;
-    write_files(dir, &figs, c, &to_markdown(c, &figs), &to_html(c, &figs))
+    write_files(
+        dir,
+        &figs,
+        c,
+        &to_markdown(c, &figs, COMPARE_TITLE),
+        &to_html(c, &figs, COMPARE_TITLE),
+    )
+}
+
+/// `tradeoff --report DIR`: the comparison's figures and pages under the
+/// trade table's title, and `report.json` the trade table itself (what
+/// `tradeoff --json` prints, `pareto` and `pareto_bytes` included).
+pub fn write_trade_report(t: &crate::compare::trade::TradeTable, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    let c = &t.comparison;
+    let figs = figures(c)?;
+    write_files(
+        dir,
+        &figs,
+        t,
+        &to_markdown(c, &figs, TRADE_TITLE),
+        &to_html(c, &figs, TRADE_TITLE),
+    )
 }
 
 /// Write a report's files into `dir` (created), each atomically: the

@@ -111,16 +111,15 @@ fn notes(r: &EnginesReport) -> Vec<String> {
     lines
 }
 
+/// The title of `engines`' report.
+pub const ENGINES_TITLE: &str = "Engines: lookup errors";
+
 /// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir`; returns the paths written.
 pub fn write_report(r: &EnginesReport, dir: &Path) -> Result<Vec<PathBuf>, Error> {
     let figs = figures(r)?;
     let c = to_comparison(r);
     let notes = notes(r);
-    let mut md = compare_report::to_markdown(&c, &figs).replacen(
-        "# Photometric solid comparison",
-        "# Engines: lookup errors",
-        1,
-    );
+    let mut md = compare_report::to_markdown(&c, &figs, ENGINES_TITLE);
     md.push_str("\n## Layouts, defects and resolutions\n\n");
     for l in &notes {
         let _ = writeln!(md, "- {l}");
@@ -130,11 +129,6 @@ pub fn write_report(r: &EnginesReport, dir: &Path) -> Result<Vec<PathBuf>, Error
         let _ = writeln!(section, "<li>{}</li>", esc(l));
     }
     section.push_str("</ul>\n</body>");
-    let html = compare_report::to_html(&c, &figs)
-        .replace(
-            "<h1>Photometric solid comparison</h1>",
-            "<h1>Engines: lookup errors</h1>",
-        )
-        .replacen("</body>", &section, 1);
+    let html = compare_report::to_html(&c, &figs, ENGINES_TITLE).replacen("</body>", &section, 1);
     compare_report::write_files(dir, &figs, r, &md, &html)
 }

@@ -150,13 +150,17 @@ fn lane_table(r: &RoadResult) -> String {
     t
 }
 
+/// The road pages' style: long text lines wrap inside the page, images fit it.
+const PAGE_STYLE: &str = "<style>body{font-family:sans-serif;margin:2em;max-width:1200px;color:#222}\
+pre{white-space:pre-wrap;overflow-wrap:anywhere}img{max-width:100%}</style>";
+
 /// Write `road.json`, `illuminance.png`, `luminance_lane{k}.png` (one per
 /// observer lane) and `index.html` into `dir`; returns the paths.
 pub fn write_road_report(dir: &Path, r: &RoadResult) -> Result<Vec<PathBuf>, RoadError> {
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     let json = serde_json::to_string_pretty(r).map_err(|e| io(&dir.join("road.json"), e))?;
     let mut paths = vec![write_atomic(dir, "road.json", json.as_bytes())?];
-    let mut html = String::from("<!doctype html><meta charset=\"utf-8\"><title>road</title>\n");
+    let mut html = format!("<!doctype html><meta charset=\"utf-8\"><title>road</title>\n{PAGE_STYLE}\n");
     let _ = writeln!(html, "<h1>Road lighting</h1><pre>{}</pre>", esc(&road_text(r)));
     let _ = writeln!(html, "<h2>Per observer lane</h2>{}", lane_table(r));
     for (k, (grid, lane)) in r.luminance.iter().zip(&r.lanes).enumerate() {
@@ -193,7 +197,7 @@ pub fn write_road_plan_report(dir: &Path, p: &RoadPlan, text: &str) -> Result<Ve
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     let json = serde_json::to_string_pretty(p).map_err(|e| io(&dir.join("plan.json"), e))?;
     let html = format!(
-        "<!doctype html><meta charset=\"utf-8\"><title>road plan</title>\n<h1>Road plan</h1><pre>{}</pre>\n",
+        "<!doctype html><meta charset=\"utf-8\"><title>road plan</title>\n{PAGE_STYLE}\n<h1>Road plan</h1><pre>{}</pre>\n",
         esc(text)
     );
     Ok(vec![

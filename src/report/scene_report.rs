@@ -169,6 +169,7 @@ pub fn to_html(
 body{{font-family:sans-serif;margin:2em;max-width:1200px;color:#222}}\n\
 figure{{display:inline-block;margin:1em;vertical-align:top}}\n\
 img{{max-width:100%;border:1px solid #ddd}}\n\
+pre{{white-space:pre-wrap;overflow-wrap:anywhere}}\n\
 </style>\n</head>\n<body>\n<h1>{t}</h1>\n<pre>{}</pre>\n",
         esc(summary),
         t = esc(title)

@@ -913,6 +913,19 @@ fn comparisons_carry_the_files_coded_warnings() {
         "--repeats",
         "1",
         "--json",
+        "--report",
+        "rep",
     ]);
     assert_eq!(codes(&tr), ["unknown-version"], "{}", tr["warnings"]);
+    // The report's report.json is what --json printed (the same run: timings equal too), and
+    // the pages carry the command's own title.
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("rep/report.json")).unwrap()).unwrap();
+    assert_eq!(written, tr);
+    assert!(tr["rows"][0].get("pareto").is_some() && tr["rows"][0].get("pareto_bytes").is_some());
+    let html = std::fs::read_to_string(d.join("rep/index.html")).unwrap();
+    assert!(
+        html.contains("<h1>Representations: bytes, time and error</h1>"),
+        "title"
+    );
 }

@@ -357,12 +357,7 @@ fn methods() -> Vec<ScatterPoint> {
         ("texture 64", 2.0, 5.8, false),
     ]
     .into_iter()
-    .map(|(l, x, y, p)| ScatterPoint {
-        label: l.into(),
-        x,
-        y,
-        pareto: p,
-    })
+    .map(|(l, x, y, _)| ScatterPoint { label: l.into(), x, y })
     .collect()
 }
 
@@ -391,11 +386,10 @@ fn scatter_renders_for_all_inputs() {
     .unwrap();
     keep("scatter_linear.png", &png);
 
-    let p = |x: f64, y: f64, pareto: bool| ScatterPoint {
+    let p = |x: f64, y: f64, _pareto: bool| ScatterPoint {
         label: format!("p{x}"),
         x,
         y,
-        pareto,
     };
     let cases: Vec<(&str, Vec<ScatterPoint>, bool)> = vec![
         ("empty", vec![], true),

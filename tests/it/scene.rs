@@ -553,14 +553,23 @@ fn the_cli_writes_the_contract_keys_and_isolux_maps() {
         (MAP_LEFT + map_w + 150, MAP_TOP + 160 + 88)
     );
     let walk = tiny_skia::Pixmap::decode_png(&std::fs::read(t.path().join("isolux_2_sidewalk.png")).unwrap()).unwrap();
-    let (x, y) = (MAP_LEFT + map_w / 8, MAP_TOP);
+    // A map shorter than its vertical axis title is centred in a band as tall as the title:
+    // its top is the first coloured row under MAP_TOP.
+    let top = (MAP_TOP..walk.height())
+        .find(|&y| {
+            let p = walk.pixel(MAP_LEFT + map_w / 2, y).unwrap();
+            (p.red(), p.green(), p.blue()) != (255, 255, 255)
+        })
+        .unwrap()
+        + 1;
+    let (x, y) = (MAP_LEFT + map_w / 8, top);
     let px = walk.pixel(x, y).unwrap();
     assert!(
         px.red() < 30 && px.green() < 30 && px.blue() < 30,
         "{px:?} at ({x}, {y})"
     );
     // Away from the marks the map is false colour (viridis has no grey).
-    let px = walk.pixel(MAP_LEFT + map_w / 2, MAP_TOP + 20).unwrap();
+    let px = walk.pixel(MAP_LEFT + map_w / 2, top + 20).unwrap();
     assert!(px.red() != px.green() || px.green() != px.blue(), "{px:?}");
     assert!(t.path().join("scene.json").is_file());
     // plan --tolerance 1% --json: the contract keys.

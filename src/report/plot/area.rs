@@ -67,7 +67,14 @@ pub(super) fn x_axis_over(xs: &[f64], log_x: bool) -> Axis {
         (xa, xb) = (xa - d, xb + d);
     }
     let pad = (xb - xa) * 0.08;
-    let (xa, xb) = (xa - pad, xb + pad);
+    // The padding never takes a linear axis of non-negative data below 0
+    // (degrees 2..32 would otherwise start at -10).
+    let floor = if !log_x && xs.iter().all(|&x| x >= 0.0) {
+        0.0
+    } else {
+        f64::NEG_INFINITY
+    };
+    let (xa, xb) = ((xa - pad).max(floor), xb + pad);
     if log_x {
         Axis {
             lo: xa,
@@ -148,5 +155,26 @@ pub(super) fn draw_grid(cv: &mut Canvas, area: &Area, y_ticks: Vec<(f64, String)
         if major {
             cv.text(left - 10.0, y, &lab, 2, Align::Right, INK, false);
         }
+    }
+}
+
+#[cfg(test)]
+mod axis_tests {
+    use super::*;
+
+    /// A linear axis of non-negative data starts at 0 at the lowest, never below.
+    #[test]
+    fn a_linear_axis_of_non_negative_data_does_not_start_below_zero() {
+        for xs in [vec![2.0, 4.0, 8.0, 16.0, 32.0], vec![0.0, 1.0], vec![2.0, 3.0]] {
+            let a = x_axis_over(&xs, false);
+            assert!(
+                a.lo >= 0.0 && a.lo <= xs[0] && a.hi >= *xs.last().unwrap(),
+                "{xs:?}: {} .. {}",
+                a.lo,
+                a.hi
+            );
+        }
+        let a = x_axis_over(&[-5.0, 5.0], false);
+        assert!(a.lo < -5.0);
     }
 }

@@ -227,6 +227,23 @@ impl Canvas {
     }
 }
 
+/// `text` at scale 2 within `room` px: as it is when it fits, else cut at a
+/// character boundary and ended with "...".
+pub(super) fn fit_text(text: &str, room: f32) -> String {
+    if font::text_width(text, 2) as f32 <= room {
+        return text.to_string();
+    }
+    let mut out = String::new();
+    for ch in text.chars() {
+        let next = format!("{out}{ch}...");
+        if font::text_width(&next, 2) as f32 > room {
+            break;
+        }
+        out.push(ch);
+    }
+    format!("{}...", out.trim_end())
+}
+
 /// Legend entries laid out left to right from (x, y), wrapping at `max_x`;
 /// returns the height used. `dry` measures without drawing.
 pub(super) fn legend(cv: &mut Canvas, series: &[Series], x: f32, y: f32, max_x: f32, dry: bool) -> f32 {
@@ -236,8 +253,11 @@ pub(super) fn legend(cv: &mut Canvas, series: &[Series], x: f32, y: f32, max_x: 
         return 0.0;
     }
     let (mut cx, mut cy) = (x, y + ROW / 2.0);
+    // A label longer than a whole row is shortened to fit it, ending in "...".
+    let room = (max_x - x - SWATCH - 8.0).max(0.0);
     for s in series {
-        let item = SWATCH + 8.0 + font::text_width(&s.label, 2) as f32 + 24.0;
+        let label = fit_text(&s.label, room);
+        let item = SWATCH + 8.0 + font::text_width(&label, 2) as f32 + 24.0;
         if cx > x && cx + item - 24.0 > max_x {
             cx = x;
             cy += ROW;
@@ -265,9 +285,25 @@ pub(super) fn legend(cv: &mut Canvas, series: &[Series], x: f32, y: f32, max_x: 
                     }
                 }
             }
-            cv.text(cx + SWATCH + 8.0, cy, &s.label, 2, Align::Left, INK, false);
+            cv.text(cx + SWATCH + 8.0, cy, &label, 2, Align::Left, INK, false);
         }
         cx += item;
     }
     cy + ROW / 2.0 - y
+}
+
+#[cfg(test)]
+mod fit_tests {
+    use super::*;
+
+    /// A legend label keeps its text when it fits, else is cut to fit and says so.
+    #[test]
+    fn labels_longer_than_a_row_are_cut_to_fit() {
+        assert_eq!(fit_text("pbrt", 400.0), "pbrt");
+        let long = "babylon: squared candela x file-generation type (Babylon.js < 9.23.0, before PR #18833)";
+        let cut = fit_text(long, 500.0);
+        assert!(cut.ends_with("...") && cut.len() < long.len(), "{cut}");
+        assert!(font::text_width(&cut, 2) as f32 <= 500.0, "{cut}");
+        assert!(long.starts_with(cut.trim_end_matches("...")));
+    }
 }

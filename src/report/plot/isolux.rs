@@ -19,8 +19,9 @@ use super::{Plot, AXIS, INK};
 pub const MAP_PIXELS: u32 = 800;
 /// Left edge of the map area in the image, px.
 pub const MAP_LEFT: u32 = 84;
-/// Top edge of the map area in the image, px.
-pub const MAP_TOP: u32 = 64;
+/// Top edge of the map area in the image, px: room for the title, the
+/// statistics line and, under it, the colour bar's unit.
+pub const MAP_TOP: u32 = 76;
 /// Room right of the map (colour bar and its ticks), px.
 const RIGHT: u32 = 150;
 /// Room under the map (tick labels, axis title, contour line), px.
@@ -163,9 +164,12 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
 
     // The texts under the title and under the map, to size the image.
     let stats = stats_line(spec, emin, emax);
+    // A map shorter than its vertical axis title is centred in a band as
+    // tall as the title, so the title stays beside the map, inside the image.
+    let band = h.max(font::text_width(&spec.v_axis.title, 2) + 16);
     let map = MapArea {
         l: MAP_LEFT as f32,
-        t: MAP_TOP as f32,
+        t: (MAP_TOP + (band - h) / 2) as f32,
         w,
         h,
     };
@@ -179,7 +183,7 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
         .unwrap_or(0)
         + 2 * 12;
     let width = (MAP_LEFT + w + RIGHT).max(text_w).max(font::text_width(&title, 2) + 24);
-    let height = MAP_TOP + h.max(MIN_BAR) + BOTTOM;
+    let height = MAP_TOP + band.max(MIN_BAR) + BOTTOM;
     let mut cv = Canvas::new(width.min(8192), height.min(8192), "isolux")?;
     cv.title(&title);
     cv.text(12.0, 42.0, &stats, 2, Align::Left, INK, false);
@@ -190,7 +194,15 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     let (l, t) = (map.l, map.t);
     cv.frame(l - 1.0, t - 1.0, l + w as f32 + 1.0, t + h as f32 + 1.0, AXIS);
     draw_map_axes(&mut cv, &map, &spec.u_axis, &spec.v_axis);
-    cv.text(12.0, t + h as f32 + 64.0, &footer, 2, Align::Left, INK, false);
+    cv.text(
+        12.0,
+        (MAP_TOP + band.max(MIN_BAR)) as f32 + 64.0,
+        &footer,
+        2,
+        Align::Left,
+        INK,
+        false,
+    );
     draw_colour_bar(&mut cv, &map, emax, &levels, spec.quantity.unit);
     draw_luminaires(&mut cv, &groups);
     cv.finish()
@@ -323,7 +335,7 @@ fn draw_false_colour(cv: &mut Canvas, map: &MapArea, field: &Field, emax: f64) {
             );
             let val = field.at(s, tt);
             let c = ColorMap::Viridis.rgb8(if emax > 0.0 && val.is_finite() { val / emax } else { 0.0 });
-            let (x, y) = ((MAP_LEFT + px) as i32, (MAP_TOP + py) as i32);
+            let (x, y) = ((map.l as u32 + px) as i32, (map.t as u32 + py) as i32);
             cv.rect(x, y, x + 1, y + 1, c);
         }
     }

@@ -98,8 +98,6 @@ pub struct ScatterPoint {
     pub x: f64,
     /// Ordinate (e.g. RMS error in % of I_max).
     pub y: f64,
-    /// Whether the point is Pareto-optimal (highlighted, joined by the front).
-    pub pareto: bool,
 }
 
 /// Default size of [`polar_diagram`].
@@ -117,9 +115,32 @@ pub(crate) const NO_DATA: [u8; 3] = [238, 238, 238];
 pub(crate) const PARETO: [u8; 3] = [214, 39, 40];
 pub(crate) const OTHER: [u8; 3] = [70, 120, 180];
 
-/// A distinct colour for series `k` (d3's category10, which reads well on
-/// white); `k` wraps around after 10.
+/// A distinct colour for series `k`: d3's category10 (which reads well on
+/// white) for the first 10, the same ten at 60 % brightness for the next 10
+/// (drawn dashed by the plots, [`style_of`]), so 20 curves stay apart; wraps
+/// after 20.
 pub fn palette(k: usize) -> [u8; 3] {
+    let base = category10(k % 10);
+    if (k / 10).is_multiple_of(2) {
+        base
+    } else {
+        base.map(|c| (f64::from(c) * 0.6).round() as u8)
+    }
+}
+
+/// The line style of curve `k` beside [`palette`]: solid for the first ten,
+/// dashed for the next ten (the darker colours), so colour and dash tell 20
+/// curves apart.
+pub fn style_of(k: usize) -> SeriesStyle {
+    if (k / 10).is_multiple_of(2) {
+        SeriesStyle::Line
+    } else {
+        SeriesStyle::Dashed
+    }
+}
+
+/// d3's category10 colour `k` (0-9).
+fn category10(k: usize) -> [u8; 3] {
     const P: [[u8; 3]; 10] = [
         [31, 119, 180],
         [255, 127, 14],
