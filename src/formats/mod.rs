@@ -297,7 +297,7 @@ pub fn sniff(bytes: &[u8]) -> Format {
 }
 
 /// What a conversion of `lum` to `target` cannot keep as the file says it,
-/// one [`WarningCode::FieldNotKept`] each (plus `front-differs`, [`Front::differs_in`]),
+/// one [`WarningCode::FieldNotKept`](crate::error::WarningCode::FieldNotKept) each (plus `front-differs`, [`Front::differs_in`]),
 /// each message ending with the `info --json` keys whose values change, so a
 /// check of a conversion knows which keys to leave out:
 /// - the luminous opening a target cannot hold ([`Opening::to_ldt`] / [`Opening::to_ies`]),
