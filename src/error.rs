@@ -345,10 +345,10 @@ pub enum Error {
 
 /// `:line` for a location with a line, else nothing.
 pub(crate) fn line_suffix(l: Location) -> String {
-    if l.line > 0 {
-        format!(":{}", l.line)
-    } else {
-        String::new()
+    match (l.line, l.column) {
+        (0, _) => String::new(),
+        (line, Some(column)) => format!(":{line}:{column}"),
+        (line, None) => format!(":{line}"),
     }
 }
 

@@ -144,25 +144,26 @@ fn table_line(text: &str, table: &str, k: usize) -> usize {
         .map_or(0, |(i, _)| i + 1)
 }
 
-/// The 1-based line of `key = ...` inside the `k`-th (0-based) `[[table]]`
-/// of `text` (the table's own lines, up to the next table header); the
-/// table's header line when the key is not written there (a default).
-fn key_line(text: &str, table: &str, k: usize, key: &str) -> usize {
+/// The 1-based line and column of `key = ...` inside the `k`-th (0-based)
+/// `[[table]]` of `text` (the table's own lines, up to the next table
+/// header); the table's header line when the key is not written there (a
+/// default).
+fn key_location(text: &str, table: &str, k: usize, key: &str) -> Location {
     let start = table_line(text, table, k);
     if start == 0 {
-        return 0;
+        return Location::line(0);
     }
-    for (i, l) in text.lines().enumerate().skip(start) {
-        let l = l.trim_start();
+    for (i, line) in text.lines().enumerate().skip(start) {
+        let l = line.trim_start();
         if l.starts_with('[') {
             break;
         }
         let name = l.split('=').next().unwrap_or("").trim().trim_matches('"');
         if l.contains('=') && name == key {
-            return i + 1;
+            return Location::at(i + 1, line.len() - l.len() + 1);
         }
     }
-    start
+    Location::line(start)
 }
 
 fn vec3(a: [f64; 3]) -> DVec3 {
@@ -225,7 +226,7 @@ impl TableAt<'_> {
     fn key_error(&self, key: &str, message: String) -> SceneError {
         SceneError::Invalid {
             path: self.file.path.to_path_buf(),
-            location: Location::line(key_line(self.file.text, self.table, self.k, key)),
+            location: key_location(self.file.text, self.table, self.k, key),
             message: format!("{} #{}: {message}", self.table, self.k + 1),
         }
     }
@@ -297,7 +298,7 @@ fn luminaire(
                     crate::error::WarningCode::DeprecatedSpelling,
                     format!("[[luminaire]] #{}: {w}", at.k + 1),
                 );
-                w.line = Some(key_line(at.file.text, at.table, at.k, "representation")).filter(|l| *l > 0);
+                w.line = Some(key_location(at.file.text, at.table, at.k, "representation").line).filter(|l| *l > 0);
                 w
             }));
             Some(rep)

@@ -513,6 +513,14 @@ fn the_example_scene_loads_and_bad_files_name_the_line() {
             "{text:?}: {e}"
         );
     }
+    // A key's error names its column too (here an indented key).
+    let e = Scene::from_toml(
+        "[[luminaire]]\nfile = \"roadway.ldt\"\nposition = [0.0, 0.0, 8.0]\n  maintenance_factor = 1.5\n",
+        &dir.join("bad.toml"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("bad.toml:4:3: luminaire #1: maintenance_factor"), "{e}");
 }
 
 #[test]
