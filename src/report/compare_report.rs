@@ -658,13 +658,18 @@ img{max-width:100%;border:1px solid #ddd}\n\
 
 /// Write `index.html`, `report.md`, `report.json` and the PNGs into `dir` (created); returns the paths written.
 pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
+    write_titled(c, c, COMPARE_TITLE, dir)
+}
+
+/// The report of `c` under `title`, with `value` as `report.json`.
+fn write_titled(c: &Comparison, value: &impl serde::Serialize, title: &str, dir: &Path) -> Result<Vec<PathBuf>, Error> {
     let figs = figures(c)?;
     write_files(
         dir,
         &figs,
-        c,
-        &to_markdown(c, &figs, COMPARE_TITLE),
-        &to_html(c, &figs, COMPARE_TITLE),
+        value,
+        &to_markdown(c, &figs, title),
+        &to_html(c, &figs, title),
     )
 }
 
@@ -672,15 +677,7 @@ pub fn write_report(c: &Comparison, dir: &Path) -> Result<Vec<PathBuf>, Error> {
 /// trade table's title, and `report.json` the trade table itself (what
 /// `tradeoff --json` prints, `pareto` and `pareto_bytes` included).
 pub fn write_trade_report(t: &crate::compare::trade::TradeTable, dir: &Path) -> Result<Vec<PathBuf>, Error> {
-    let c = &t.comparison;
-    let figs = figures(c)?;
-    write_files(
-        dir,
-        &figs,
-        t,
-        &to_markdown(c, &figs, TRADE_TITLE),
-        &to_html(c, &figs, TRADE_TITLE),
-    )
+    write_titled(&t.comparison, t, TRADE_TITLE, dir)
 }
 
 /// Write a report's files into `dir` (created), each atomically: the

@@ -180,14 +180,16 @@ impl LuminousDimensions {
             Opening::Box(_) => "box",
             Opening::Cylinder(_) => "cylinder",
             Opening::Ellipsoid(_) => "ellipsoid",
-            Opening::LdtArea { .. } if o.is_point() => "point",
-            Opening::LdtArea { width_m, heights_m, .. } => match (width_m == 0.0, heights_m) {
-                (true, [0.0, 0.0, 0.0, 0.0]) => "ellipse",
-                (false, [0.0, 0.0, 0.0, 0.0]) => "rectangle",
-                (true, [h, ..]) if heights_m.iter().all(|x| *x == h) => "cylinder",
-                (false, [h, ..]) if heights_m.iter().all(|x| *x == h) => "box",
-                _ => "ldt-area",
-            },
+            // `Opening::ldt` already reads an area with no luminous sides as a
+            // rectangle or disk; one whose sides are all as tall is a box or cylinder.
+            Opening::LdtArea { width_m, heights_m, .. } if heights_m.iter().all(|h| *h == heights_m[0]) => {
+                if width_m == 0.0 {
+                    "cylinder"
+                } else {
+                    "box"
+                }
+            }
+            Opening::LdtArea { .. } => "ldt-area",
         });
         // The geometry's extent along x (C0), y (C90) and z, whatever format and
         // version encoded it: a EULUMDAT disk (width 0) and an LM-63-1986 disk (length

@@ -105,3 +105,13 @@ pub fn write_ies(dir: &Path, name: &str, lumens: f64, gamma: &[f64], cd: &[f64])
     );
     std::fs::write(dir.join(name), text).unwrap();
 }
+
+/// The `code` of every warning of a command's JSON (`{line, code, message}`, docs/warnings.md).
+pub fn warning_codes(v: &serde_json::Value) -> Vec<String> {
+    v["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w["code"].as_str().unwrap().to_string())
+        .collect()
+}

@@ -880,14 +880,7 @@ fn comparisons_carry_the_files_coded_warnings() {
     std::fs::write(d.join("odd.ies"), text.replacen(&first, "IESNA:LM-63-2077", 1)).unwrap();
     let json = |args: &[&str]| -> serde_json::Value { serde_json::from_str(&ok(&run(args, d))).unwrap() };
     let info = json(&["info", "odd.ies", "--json"]);
-    let codes = |v: &serde_json::Value| -> Vec<String> {
-        v["warnings"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|w| w["code"].as_str().unwrap().to_string())
-            .collect()
-    };
+    let codes = crate::common::cli::warning_codes;
     assert!(
         codes(&info).contains(&"unknown-version".to_string()),
         "{}",

@@ -234,14 +234,7 @@ fn info_reports_the_front_and_warns_when_the_light_goes_elsewhere() {
     let base = json(&[]);
     assert_eq!(base["front_c_deg"], 90.0);
     assert_eq!(base["front_source"], "format");
-    let codes = |v: &serde_json::Value| -> Vec<String> {
-        v["warnings"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|w| w["code"].as_str().unwrap().to_string())
-            .collect()
-    };
+    let codes = crate::common::cli::warning_codes;
     assert!(
         !codes(&base).contains(&"front-mismatch".to_string()),
         "{:?}",

@@ -446,14 +446,7 @@ fn impossible_declarations_are_warned_in_validate_and_info() {
     assert_eq!(lines[15], "600", "line 16 is the luminous length");
     lines[15] = "700".into();
     std::fs::write(t.path().join("area.ldt"), lines.join("\r\n")).unwrap();
-    let codes = |v: &serde_json::Value| -> Vec<String> {
-        v["warnings"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|w| w["code"].as_str().unwrap().to_string())
-            .collect()
-    };
+    let codes = crate::common::cli::warning_codes;
     for (file, code) in [
         ("lor.ldt", Some("lor-above-100")),
         ("area.ldt", Some("luminous-area-larger-than-luminaire")),
