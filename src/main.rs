@@ -2,7 +2,7 @@
 //!
 //! `run()` matches on the subcommand; the exit code is decided here only:
 //! 0 success (also when stdout is closed early, e.g. `| head`), 1 a file failed (validate)
-//! or a command failed, 2 usage errors (clap).
+//! or a command failed, 2 usage errors (clap's, and [`cli::UsageError`]).
 
 mod cli;
 
@@ -15,6 +15,11 @@ fn main() {
         Ok(code) => code,
         // A closed stdout (e.g. `| head`) is not a failure: stop quietly, as Unix tools do.
         Err(e) if is_broken_pipe(&e) => 0,
+        // A value clap could not check alone (a range outside its key's values): a usage error.
+        Err(e) if e.downcast_ref::<cli::UsageError>().is_some() => {
+            eprintln!("photosolid: error: {}", error_message(&e));
+            2
+        }
         Err(e) => {
             eprintln!("photosolid: error: {}", error_message(&e));
             1

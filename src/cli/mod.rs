@@ -333,6 +333,13 @@ fn list_paths(paths: &[PathBuf]) -> String {
         .join(", ")
 }
 
+/// A usage error found after parsing (a value valid alone but not with
+/// another argument, e.g. a `--range` outside its `--maximize` key's
+/// values): `main` exits 2 on it, as on clap's.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
+
 /// Print `value` as pretty JSON, or `text` as it is.
 fn emit(json: bool, value: &impl serde::Serialize, text: &str) -> anyhow::Result<()> {
     use std::io::Write;

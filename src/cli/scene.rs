@@ -34,6 +34,10 @@ pub struct PlanArgs {
     /// largest illuminance: a percent with its sign (`1%`; a bare number is refused).
     #[arg(long, value_name = "PCT%", default_value = "1%", value_parser = super::parse::pct_of_peak_or_zero, allow_hyphen_values = true)]
     tolerance: super::parse::PctOfPeak,
+    /// On a road: a candidate is within only when each criterion of this EN 13201-2:2015
+    /// lighting class (M1-M6, C0-C5, P1-P6) passes or fails as with the reference.
+    #[arg(long, value_name = "CLASS", value_parser = super::road::parse_class)]
+    class: Option<photosolid::scene::road::classes::LightingClass>,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -70,9 +74,17 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
     }
     if let Some(road) = Road::load_if_road(&a.scene)? {
         let result = super::with_progress("candidates", |progress| {
-            plan_road(&road, a.tolerance.fraction(), Some(progress))
+            plan_road(&road, a.tolerance.fraction(), a.class.as_ref(), Some(progress))
         });
         return write_road_plan(&a, &result?);
+    }
+    if let Some(class) = &a.class {
+        return Err(super::UsageError(format!(
+            "--class {}: {} has no [road] table, and lighting classes judge roads (docs/road.md)",
+            class.name,
+            a.scene.display()
+        ))
+        .into());
     }
     let scene = Scene::load(&a.scene)?;
     let options = PlanOptions {

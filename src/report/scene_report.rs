@@ -76,6 +76,7 @@ pub fn isolux_map(scene: &Scene, result: &SceneResult, index: usize) -> crate::R
         u_axis: map_axis(origin, u, "u"),
         v_axis: map_axis(origin, v, "v"),
         marks: &marks,
+        limits: &[],
     })
     .map(Some)
 }

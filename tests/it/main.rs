@@ -40,6 +40,7 @@ mod public_api;
 mod reader_errors;
 mod reconstruct;
 mod road;
+mod road_design;
 mod roundtrip_props;
 mod scene;
 mod scripts;

@@ -218,6 +218,7 @@ fn isolux_maps_are_legible() {
             title: "z (m)".into(),
         },
         marks: &marks,
+        limits: &[],
     })
     .unwrap();
     std::fs::write(std::env::temp_dir().join("photosolid_isolux_wall.png"), &wall.png).unwrap();
@@ -255,6 +256,7 @@ fn isolux_maps_are_legible() {
             title: "y (m)".into(),
         },
         marks: &[(0.125, -1.0 / 7.0), (0.875, -1.0 / 7.0)],
+        limits: &[],
     })
     .unwrap();
     assert_legible(&plot, "road map");

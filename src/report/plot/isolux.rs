@@ -89,7 +89,22 @@ pub struct IsoluxSpec<'a> {
     /// Each luminaire's centre in plane coordinates (s, t), [0, 1] on the
     /// plane; `marks[k]` is labelled `L{k+1}`; non-finite ones are skipped.
     pub marks: &'a [(f64, f64)],
+    /// Limits to mark (a lighting class's): each drawn as a red contour on
+    /// the map and a red line on the colour bar, and named under the map.
+    pub limits: &'a [MapLimit],
 }
+
+/// A limit marked on a map: a value in the map quantity's unit and what it is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MapLimit {
+    /// The value, in the map quantity's unit.
+    pub value: f64,
+    /// What it is, e.g. "M3: L >= 0.4 L_av".
+    pub label: String,
+}
+
+/// The colour of limits on a map.
+const LIMIT_RGB: [u8; 3] = [230, 40, 30];
 
 /// Contour levels (lx): the 1–2–5 × 10^k values strictly between `lo` and
 /// `hi`, from hi / 200 up, the highest 8 of them.
@@ -175,22 +190,25 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
     };
     let (groups, off) = group_marks(spec.marks, &map);
     let footer = footer_line(&levels, spec.quantity.unit, &off);
+    let limits_line = limits_line(spec.limits, emin, emax);
     let title = format!("{}: {}", spec.quantity.title, spec.name);
-    let text_w = [&stats, &footer]
+    let text_w = [&stats, &footer, &limits_line]
         .iter()
         .map(|s| font::text_width(s, 2))
         .max()
         .unwrap_or(0)
         + 2 * 12;
     let width = (MAP_LEFT + w + RIGHT).max(text_w).max(font::text_width(&title, 2) + 24);
-    let height = MAP_TOP + band.max(MIN_BAR) + BOTTOM;
+    let height = MAP_TOP + band.max(MIN_BAR) + BOTTOM + if limits_line.is_empty() { 0 } else { 24 };
     let mut cv = Canvas::new(width.min(8192), height.min(8192), "isolux")?;
     cv.title(&title);
     cv.text(12.0, 42.0, &stats, 2, Align::Left, INK, false);
 
     let field = Field { e, nu, nv };
     draw_false_colour(&mut cv, &map, &field, emax);
-    draw_contours(&mut cv, &map, &field, &levels);
+    draw_contours(&mut cv, &map, &field, &levels, [255, 255, 255], 1.5);
+    let limit_values: Vec<f64> = spec.limits.iter().map(|l| l.value).collect();
+    draw_contours(&mut cv, &map, &field, &limit_values, LIMIT_RGB, 3.0);
     let (l, t) = (map.l, map.t);
     cv.frame(l - 1.0, t - 1.0, l + w as f32 + 1.0, t + h as f32 + 1.0, AXIS);
     draw_map_axes(&mut cv, &map, &spec.u_axis, &spec.v_axis);
@@ -203,7 +221,19 @@ pub fn isolux_plot(spec: &IsoluxSpec) -> Result<Plot, Error> {
         INK,
         false,
     );
+    if !limits_line.is_empty() {
+        cv.text(
+            12.0,
+            (MAP_TOP + band.max(MIN_BAR)) as f32 + 88.0,
+            &limits_line,
+            2,
+            Align::Left,
+            LIMIT_RGB,
+            false,
+        );
+    }
     draw_colour_bar(&mut cv, &map, emax, &levels, spec.quantity.unit);
+    draw_bar_limits(&mut cv, &map, emax, &limit_values);
     draw_luminaires(&mut cv, &groups);
     cv.finish()
 }
@@ -342,7 +372,7 @@ fn draw_false_colour(cv: &mut Canvas, map: &MapArea, field: &Field, emax: f64) {
 }
 
 /// Contours at `levels`: marching squares between the cell centres.
-fn draw_contours(cv: &mut Canvas, map: &MapArea, field: &Field, levels: &[f64]) {
+fn draw_contours(cv: &mut Canvas, map: &MapArea, field: &Field, levels: &[f64], rgb: [u8; 3], width: f32) {
     let (nu, nv, e) = (field.nu, field.nv, field.e);
     for &level in levels {
         for j in 0..nv.saturating_sub(1) {
@@ -360,7 +390,7 @@ fn draw_contours(cv: &mut Canvas, map: &MapArea, field: &Field, levels: &[f64]) 
                 }
                 for pair in crossings.chunks_exact(2) {
                     let (p0, p1) = (map.to_px(pair[0].0, pair[0].1), map.to_px(pair[1].0, pair[1].1));
-                    cv.line(p0.0, p0.1, p1.0, p1.1, [255, 255, 255], 1.5);
+                    cv.line(p0.0, p0.1, p1.0, p1.1, rgb, width);
                 }
             }
         }
@@ -439,6 +469,44 @@ fn draw_colour_bar(cv: &mut Canvas, map: &MapArea, emax: f64, levels: &[f64], un
         cv.text(bx1 + 9.0, y, &fmt_tick(v, sb), 2, Align::Left, INK, false);
     }
     cv.text((bx0 + bx1) / 2.0, t - 12.0, unit, 2, Align::Center, INK, false);
+}
+
+/// The line naming the limits, and where each lies against the map's values
+/// (`emin`..`emax`): one that no point reaches or every point exceeds has no
+/// contour, so the line says so.
+fn limits_line(limits: &[MapLimit], emin: f64, emax: f64) -> String {
+    if limits.is_empty() {
+        return String::new();
+    }
+    let parts: Vec<String> = limits
+        .iter()
+        .map(|l| {
+            let side = if l.value > emax {
+                " (above every point)"
+            } else if l.value < emin {
+                " (below every point)"
+            } else {
+                ""
+            };
+            format!("{}{side}", l.label)
+        })
+        .collect();
+    format!("limits (red): {}", parts.join("; "))
+}
+
+/// A red line across the colour bar at each limit (clamped to the bar).
+fn draw_bar_limits(cv: &mut Canvas, map: &MapArea, emax: f64, values: &[f64]) {
+    let (l, t, w, h) = (map.l, map.t, map.w, map.h);
+    let bar_h = h.max(MIN_BAR) as f32;
+    let (bx0, bx1) = (l + w as f32 + 26.0, l + w as f32 + 56.0);
+    let top = if emax > 0.0 { emax } else { 1.0 };
+    for &v in values {
+        if !v.is_finite() {
+            continue;
+        }
+        let y = (t + bar_h - ((v / top) as f32).clamp(0.0, 1.0) * bar_h).round() + 0.5;
+        cv.line(bx0, y, bx1, y, LIMIT_RGB, 3.0);
+    }
 }
 
 /// Luminaires: a white-ringed black dot per group, its label (`L1/L2`) on a

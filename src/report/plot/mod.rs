@@ -35,7 +35,7 @@ pub mod scatter;
 pub mod texture;
 
 pub use heatmap::{heatmap, heatmap_plot, ColorScale, HeatmapSpec};
-pub use isolux::{contour_levels, isolux_plot, IsoluxSpec, MapAxis, MapQuantity};
+pub use isolux::{contour_levels, isolux_plot, IsoluxSpec, MapAxis, MapLimit, MapQuantity};
 pub use lines::{line_chart, line_chart_plot, LineSpec};
 pub use polar::{polar_diagram, PolarSpec};
 pub use scatter::{scatter, scatter_plot, ScatterSpec};

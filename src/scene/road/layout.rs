@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-use super::surface::RTable;
+use super::surface::{RInterpolation, RTable};
 use super::RoadError;
 use crate::model::Luminaire;
 use crate::scene::aim::{Aim, Pose};
@@ -67,6 +67,163 @@ pub struct RoadSpec {
     /// The file's C angle (degrees) that points from the pole across its own side of the
     /// carriageway; default the luminaire's front.
     pub street_side_c_deg: Option<f64>,
+    /// `quadratic` (default) or `bilinear`: how r is interpolated between the table's nodes.
+    pub r_interpolation: Option<String>,
+    /// `horizontal` (default) or `line-of-sight`: what the 20° car-roof screening angle is measured from.
+    pub ti_screening: Option<String>,
+}
+
+/// What the 20° car-roof screening angle of TI is measured from (`[road] ti_screening`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TiScreening {
+    /// Luminaires up to 20° above the horizontal count (the default).
+    #[default]
+    Horizontal,
+    /// Luminaires up to 20° above the 1°-down line of sight (19° above the horizontal) count.
+    LineOfSight,
+}
+
+impl TiScreening {
+    /// Parse the `ti_screening` key.
+    pub fn parse(s: &str) -> Result<TiScreening, RoadError> {
+        match s.trim() {
+            "horizontal" => Ok(TiScreening::Horizontal),
+            "line-of-sight" => Ok(TiScreening::LineOfSight),
+            other => Err(RoadError::Invalid {
+                key: "ti_screening",
+                reason: format!("{other:?}: expected \"horizontal\" or \"line-of-sight\""),
+            }),
+        }
+    }
+
+    /// The name as written in the scene file.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            TiScreening::Horizontal => "horizontal",
+            TiScreening::LineOfSight => "line-of-sight",
+        }
+    }
+
+    /// The largest elevation above the horizontal (degrees) of a luminaire TI counts.
+    pub fn max_elevation_deg(self) -> f64 {
+        use super::quantities::{TI_SCREEN_DEG, TI_SIGHT_DOWN_DEG};
+        match self {
+            TiScreening::Horizontal => TI_SCREEN_DEG,
+            TiScreening::LineOfSight => TI_SCREEN_DEG - TI_SIGHT_DOWN_DEG,
+        }
+    }
+}
+
+/// A numeric `[road]` key that `road --maximize` and `--grid` may vary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RoadKey {
+    /// `spacing_m`.
+    SpacingM,
+    /// `mounting_height_m`.
+    MountingHeightM,
+    /// `overhang_m`.
+    OverhangM,
+    /// `tilt_deg`.
+    TiltDeg,
+    /// `setback_m`.
+    SetbackM,
+    /// `lane_width_m`.
+    LaneWidthM,
+    /// `maintenance_factor`.
+    MaintenanceFactor,
+}
+
+impl RoadKey {
+    /// Every key, in the order `docs/road.md` lists them.
+    pub const ALL: [RoadKey; 7] = [
+        RoadKey::SpacingM,
+        RoadKey::MountingHeightM,
+        RoadKey::OverhangM,
+        RoadKey::TiltDeg,
+        RoadKey::SetbackM,
+        RoadKey::LaneWidthM,
+        RoadKey::MaintenanceFactor,
+    ];
+
+    /// The key as written in `[road]`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            RoadKey::SpacingM => "spacing_m",
+            RoadKey::MountingHeightM => "mounting_height_m",
+            RoadKey::OverhangM => "overhang_m",
+            RoadKey::TiltDeg => "tilt_deg",
+            RoadKey::SetbackM => "setback_m",
+            RoadKey::LaneWidthM => "lane_width_m",
+            RoadKey::MaintenanceFactor => "maintenance_factor",
+        }
+    }
+
+    /// The key named `s`, if it is one of [`RoadKey::ALL`].
+    pub fn parse(s: &str) -> Option<RoadKey> {
+        RoadKey::ALL.into_iter().find(|k| k.as_str() == s.trim())
+    }
+
+    /// The key's unit (`m`, `deg`, or empty for the maintenance factor).
+    pub fn unit(self) -> &'static str {
+        match self {
+            RoadKey::TiltDeg => "deg",
+            RoadKey::MaintenanceFactor => "",
+            _ => "m",
+        }
+    }
+
+    /// `v` if it is a valid value of this key (the same checks as reading the
+    /// scene file), else the key's error.
+    pub fn check(self, v: f64) -> Result<f64, RoadError> {
+        let key = self.as_str();
+        let invalid = |reason: String| RoadError::Invalid { key, reason };
+        let v = finite_key(key, v, self.unit())?;
+        match self {
+            RoadKey::LaneWidthM if !(v > 0.0 && v <= 50.0) => Err(invalid(format!("{v} m: expected (0, 50] m"))),
+            RoadKey::SpacingM if !(v > 0.0 && v <= 1000.0) => Err(invalid(format!(
+                "{v} m: expected a spacing in (0, 1000] m between two luminaires of a row"
+            ))),
+            RoadKey::MountingHeightM if v <= super::quantities::EYE_HEIGHT_M => {
+                Err(RoadError::LuminaireBelowRoad { height_m: v })
+            }
+            RoadKey::TiltDeg if v.abs() >= 90.0 => Err(invalid(format!("{v}: expected |tilt| < 90 degrees"))),
+            RoadKey::MaintenanceFactor if !(v > 0.0 && v <= 1.0) => {
+                Err(invalid(format!("{v}: expected a number in (0, 1]")))
+            }
+            _ => Ok(v),
+        }
+    }
+
+    /// This key's value in `road`.
+    pub fn get(self, road: &Road) -> f64 {
+        match self {
+            RoadKey::SpacingM => road.spacing_m,
+            RoadKey::MountingHeightM => road.mounting_height_m,
+            RoadKey::OverhangM => road.overhang_m,
+            RoadKey::TiltDeg => road.tilt_deg,
+            RoadKey::SetbackM => road.setback_m,
+            RoadKey::LaneWidthM => road.lane_width_m,
+            RoadKey::MaintenanceFactor => road.maintenance_factor,
+        }
+    }
+
+    /// `road` with this key set to `v`, checked as [`RoadKey::check`].
+    pub fn set(self, road: &Road, v: f64) -> Result<Road, RoadError> {
+        let v = self.check(v)?;
+        let mut r = road.clone();
+        match self {
+            RoadKey::SpacingM => r.spacing_m = v,
+            RoadKey::MountingHeightM => r.mounting_height_m = v,
+            RoadKey::OverhangM => r.overhang_m = v,
+            RoadKey::TiltDeg => r.tilt_deg = v,
+            RoadKey::SetbackM => r.setback_m = v,
+            RoadKey::LaneWidthM => r.lane_width_m = v,
+            RoadKey::MaintenanceFactor => r.maintenance_factor = v,
+        }
+        Ok(r)
+    }
 }
 
 /// How the luminaires stand.
@@ -166,6 +323,10 @@ pub struct Road {
     pub setback_m: f64,
     /// The file's C angle that points across the road from the pole, degrees, [0, 360).
     pub street_side_c_deg: f64,
+    /// How r is interpolated between the r-table's nodes.
+    pub r_interpolation: RInterpolation,
+    /// What TI's screening angle is measured from.
+    pub ti_screening: TiScreening,
 }
 
 fn finite_key(key: &'static str, v: f64, unit: &str) -> Result<f64, RoadError> {
@@ -192,38 +353,19 @@ struct RoadDimensions {
 impl RoadDimensions {
     /// The lanes and dimensions of `spec`, each checked in turn.
     fn check(spec: &RoadSpec) -> Result<Self, RoadError> {
-        let invalid = |key: &'static str, reason: String| RoadError::Invalid { key, reason };
         if spec.lanes == 0 || spec.lanes > 64 {
-            return Err(invalid("lanes", format!("{}: expected 1 to 64 lanes", spec.lanes)));
-        }
-        let lane_width_m = finite_key("lane_width_m", spec.lane_width_m, "m")?;
-        if !(lane_width_m > 0.0 && lane_width_m <= 50.0) {
-            return Err(invalid("lane_width_m", format!("{lane_width_m} m: expected (0, 50] m")));
-        }
-        let spacing_m = finite_key("spacing_m", spec.spacing_m, "m")?;
-        if !(spacing_m > 0.0 && spacing_m <= 1000.0) {
-            return Err(invalid(
-                "spacing_m",
-                format!("{spacing_m} m: expected a spacing in (0, 1000] m between two luminaires of a row"),
-            ));
-        }
-        let h = finite_key("mounting_height_m", spec.mounting_height_m, "m")?;
-        if h <= super::quantities::EYE_HEIGHT_M {
-            return Err(RoadError::LuminaireBelowRoad { height_m: h });
-        }
-        let overhang_m = finite_key("overhang_m", spec.overhang_m.unwrap_or(0.0), "m")?;
-        let setback_m = finite_key("setback_m", spec.setback_m.unwrap_or(0.0), "m")?;
-        let tilt_deg = finite_key("tilt_deg", spec.tilt_deg.unwrap_or(0.0), "degrees")?;
-        if tilt_deg.abs() >= 90.0 {
-            return Err(invalid("tilt_deg", format!("{tilt_deg}: expected |tilt| < 90 degrees")));
+            return Err(RoadError::Invalid {
+                key: "lanes",
+                reason: format!("{}: expected 1 to 64 lanes", spec.lanes),
+            });
         }
         Ok(Self {
-            lane_width_m,
-            spacing_m,
-            mounting_height_m: h,
-            overhang_m,
-            setback_m,
-            tilt_deg,
+            lane_width_m: RoadKey::LaneWidthM.check(spec.lane_width_m)?,
+            spacing_m: RoadKey::SpacingM.check(spec.spacing_m)?,
+            mounting_height_m: RoadKey::MountingHeightM.check(spec.mounting_height_m)?,
+            overhang_m: RoadKey::OverhangM.check(spec.overhang_m.unwrap_or(0.0))?,
+            setback_m: RoadKey::SetbackM.check(spec.setback_m.unwrap_or(0.0))?,
+            tilt_deg: RoadKey::TiltDeg.check(spec.tilt_deg.unwrap_or(0.0))?,
         })
     }
 }
@@ -298,13 +440,15 @@ impl Road {
         let base = scene_path.parent().map(Path::to_path_buf).unwrap_or_default();
         let invalid = |key: &'static str, reason: String| RoadError::Invalid { key, reason };
         let dims = RoadDimensions::check(spec)?;
-        let mf = spec.maintenance_factor.unwrap_or(1.0);
-        if !(mf.is_finite() && mf > 0.0 && mf <= 1.0) {
-            return Err(invalid(
-                "maintenance_factor",
-                format!("{mf}: expected a number in (0, 1]"),
-            ));
-        }
+        let mf = RoadKey::MaintenanceFactor.check(spec.maintenance_factor.unwrap_or(1.0))?;
+        let r_interpolation = spec
+            .r_interpolation
+            .as_deref()
+            .map_or(Ok(RInterpolation::default()), RInterpolation::parse)?;
+        let ti_screening = spec
+            .ti_screening
+            .as_deref()
+            .map_or(Ok(TiScreening::default()), TiScreening::parse)?;
         let arrangement = Arrangement::parse(&spec.arrangement)?;
         if arrangement == Arrangement::TwinCentral && !spec.lanes.is_multiple_of(2) {
             return Err(invalid(
@@ -349,6 +493,8 @@ impl Road {
             tilt_deg: dims.tilt_deg,
             setback_m: dims.setback_m,
             street_side_c_deg,
+            r_interpolation,
+            ti_screening,
         })
     }
 
@@ -524,6 +670,8 @@ mod tests {
             tilt_deg: 0.0,
             setback_m: 0.0,
             street_side_c_deg: 90.0,
+            r_interpolation: RInterpolation::Quadratic,
+            ti_screening: TiScreening::Horizontal,
         }
     }
 }

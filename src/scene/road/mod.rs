@@ -8,6 +8,10 @@
 //!   generates, the calculation field, its grids and the observers;
 //! - [`quantities`]: luminance, illuminance, hemispherical illuminance,
 //!   U_o, U_l, TI, R_EI per observer lane and overall;
+//! - [`classes`]: the lighting classes of EN 13201-2 (M, C, P) and a
+//!   road's verdict against one;
+//! - [`design`]: the verdict of a layout, and the largest value of a key
+//!   (the spacing) that meets a class;
 //! - [`plan`]: the cheapest representation that keeps those quantities
 //!   within their limits of the reference.
 //!
@@ -23,6 +27,8 @@
 //! println!("L_av {} cd/m², TI {} %", result.overall.l_av_cd_m2, result.overall.ti_pct);
 //! ```
 
+pub mod classes;
+pub mod design;
 pub mod layout;
 pub mod plan;
 pub mod quantities;
@@ -106,6 +112,16 @@ pub enum RoadError {
         /// The key's error.
         source: Box<RoadError>,
     },
+    /// A figure the lighting class needs is undefined for this road.
+    #[error("class {class} needs {criterion}, which this road cannot compute: {reason}")]
+    CannotJudge {
+        /// The class.
+        class: &'static str,
+        /// The criterion (an `overall` key).
+        criterion: &'static str,
+        /// Why.
+        reason: String,
+    },
     /// The luminaire file could not be read or its representation built.
     #[error("luminaire {file}: {message}", file = .file.display())]
     Luminaire {
@@ -128,6 +144,7 @@ impl RoadError {
             RoadError::ObserverInField { .. } => "road-observer-in-field",
             RoadError::NothingInView => "road-nothing-in-view",
             RoadError::Luminaire { .. } => "road-luminaire",
+            RoadError::CannotJudge { .. } => "road-class-not-computable",
             RoadError::AtKey { source, .. } => source.code(),
         }
     }

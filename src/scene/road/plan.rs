@@ -9,12 +9,15 @@
 //! - L_av of every observer lane and E_av of the field change by at most the
 //!   relative tolerance,
 //! - U_o and U_l of every lane by at most [`UNIFORMITY_LIMIT`] (absolute),
-//! - TI of every lane by at most [`TI_LIMIT_PP`] percentage points.
+//! - TI of every lane by at most [`TI_LIMIT_PP`] percentage points;
+//! - with a lighting class (`plan --class`), every criterion's verdict
+//!   (pass or fail) equals the reference's.
 //!
 //! The cheapest is the fewest bytes, then the fewest ns per evaluation.
 
 use serde::Serialize;
 
+use super::classes::{ClassVerdict, LightingClass};
 use super::layout::Road;
 use super::quantities::{evaluate, Overall, RoadOptions, RoadResult};
 use super::RoadError;
@@ -48,7 +51,13 @@ pub struct RoadCandidate {
     pub u_l_change: f64,
     /// TI change, percentage points.
     pub ti_change_pp: f64,
-    /// Whether every change is within its limit.
+    /// With a class: whether each criterion's verdict (pass or fail) is the reference's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub verdicts_match: Option<bool>,
+    /// With a class: whether the class passes with this candidate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub class_pass: Option<bool>,
+    /// Whether every change is within its limit (and, with a class, the verdicts match).
     pub within: bool,
     /// The candidate's installation values.
     pub overall: Overall,
@@ -69,6 +78,12 @@ pub struct RoadPlan {
     pub uniformity_limit: f64,
     /// Tolerance on TI, percentage points.
     pub ti_limit_pp: f64,
+    /// The lighting class whose verdicts a candidate must keep (`plan --class`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub class: Option<&'static str>,
+    /// The reference's verdict against that class.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference_verdict: Option<super::classes::ClassVerdict>,
     /// The chosen (cheapest within) representation.
     pub chosen: String,
     /// Its bytes.
@@ -117,16 +132,22 @@ fn measure(
     dirs: &[glam::DVec3],
     reference: &RoadResult,
     tolerance: f64,
+    class: Option<(&LightingClass, &ClassVerdict)>,
 ) -> Result<RoadCandidate, RoadError> {
     let mut with = road.clone();
     with.representation = Some(rep);
     let result = evaluate(&with, &RoadOptions::default())?;
     let [l, e, uo, ul, ti] = compare(&result, reference);
+    let verdict = class.map(|(c, _)| c.verdict(&result.overall));
+    let verdicts_match = class
+        .zip(verdict.as_ref())
+        .map(|((_, r), v)| r.criteria.iter().zip(&v.criteria).all(|(a, b)| a.pass == b.pass));
     let within = l.abs() <= 100.0 * tolerance
         && e.abs() <= 100.0 * tolerance
         && uo.abs() <= UNIFORMITY_LIMIT
         && ul.abs() <= UNIFORMITY_LIMIT
-        && ti.abs() <= TI_LIMIT_PP;
+        && ti.abs() <= TI_LIMIT_PP
+        && verdicts_match != Some(false);
     Ok(RoadCandidate {
         representation: rep.to_string(),
         bytes: field.bytes(),
@@ -136,27 +157,49 @@ fn measure(
         u_o_change: uo,
         u_l_change: ul,
         ti_change_pp: ti,
+        verdicts_match,
+        class_pass: verdict.map(|v| v.pass),
         within,
         overall: result.overall,
     })
 }
 
+/// The road computed with the reference representation and, with a class, its verdict.
+fn reference_of(road: &Road, class: Option<&LightingClass>) -> Result<(RoadResult, Option<ClassVerdict>), RoadError> {
+    let mut base = road.clone();
+    base.representation = None;
+    Ok(match class {
+        Some(c) => {
+            let judged = super::design::judge(&base, c, &RoadOptions::default())?;
+            (judged.result, Some(judged.verdict))
+        }
+        None => (evaluate(&base, &RoadOptions::default())?, None),
+    })
+}
+
 /// Plan `road` with the relative `tolerance` (a fraction: 0.01 = 1 %) on
-/// L_av and E_av. `progress(done, candidates, "road: CANDIDATE")` is called before each candidate.
+/// L_av and E_av; with a `class`, a candidate must also keep every
+/// criterion's verdict of the reference. `progress(done, candidates, "road:
+/// CANDIDATE")` is called before each candidate.
 ///
 /// # Errors
 /// [`RoadError::Invalid`] for a tolerance that is not a finite fraction
-/// ≥ 0; any error of [`evaluate`] on the reference.
-pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&Progress<'_>>) -> Result<RoadPlan, RoadError> {
+/// ≥ 0; any error of [`evaluate`] on the reference, or of
+/// [`super::design::judge`] when the class cannot be judged.
+pub fn plan_road(
+    road: &Road,
+    tolerance: f64,
+    class: Option<&LightingClass>,
+    progress: Option<&Progress<'_>>,
+) -> Result<RoadPlan, RoadError> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         return Err(RoadError::Invalid {
             key: "tolerance",
             reason: format!("expected a finite fraction >= 0, found {tolerance}"),
         });
     }
-    let mut base = road.clone();
-    base.representation = None;
-    let reference = evaluate(&base, &RoadOptions::default())?;
+    let (reference, reference_verdict) = reference_of(road, class)?;
+    let judged_by = class.zip(reference_verdict.as_ref());
     let template = road.scene_luminaire("road luminaire", road.luminaires(0.0, 0.0)[0].pose);
     let texture = template.texture().map_err(|e| RoadError::Luminaire {
         file: road.file.clone(),
@@ -180,7 +223,7 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&Progress<'_>>) -
             say(k, n, &format!("road: {rep}"));
         }
         match models.field(&rep) {
-            Ok(field) => candidates.push(measure(road, rep, &*field, &dirs, &reference, tolerance)?),
+            Ok(field) => candidates.push(measure(road, rep, &*field, &dirs, &reference, tolerance, judged_by)?),
             Err(e) => unavailable.push(crate::scene::plan::Unavailable {
                 representation: rep.to_string(),
                 reason: e.to_string(),
@@ -212,6 +255,8 @@ pub fn plan_road(road: &Road, tolerance: f64, progress: Option<&Progress<'_>>) -
         tolerance_pct: 100.0 * tolerance,
         uniformity_limit: UNIFORMITY_LIMIT,
         ti_limit_pp: TI_LIMIT_PP,
+        class: class.map(|c| c.name),
+        reference_verdict,
         chosen: chosen.0,
         bytes: chosen.1,
         reference_overall: reference.overall,
@@ -230,6 +275,13 @@ pub fn road_plan_text(p: &RoadPlan) -> String {
         "road plan: {} ({}), reference {}; limits: L_av and E_av {} %, U_o and U_l {}, TI {} pp",
         p.scene, p.luminaire, p.reference, p.tolerance_pct, p.uniformity_limit, p.ti_limit_pp
     );
+    if let (Some(class), Some(v)) = (p.class, &p.reference_verdict) {
+        let _ = writeln!(
+            s,
+            "class {class}: the reference {}; a candidate is within only when every criterion's verdict is the reference's",
+            if v.pass { "passes" } else { "fails" }
+        );
+    }
     let _ = writeln!(s, "chosen: {} ({} bytes)", p.chosen, p.bytes);
     let _ = writeln!(
         s,
@@ -248,7 +300,11 @@ pub fn road_plan_text(p: &RoadPlan) -> String {
             c.u_o_change,
             c.u_l_change,
             c.ti_change_pp,
-            if c.within { "yes" } else { "no" }
+            match (c.within, c.verdicts_match) {
+                (true, _) => "yes",
+                (false, Some(false)) => "no (class verdict changes)",
+                (false, _) => "no",
+            }
         );
     }
     for u in &p.unavailable {

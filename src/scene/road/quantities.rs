@@ -27,7 +27,8 @@
 use glam::DVec3;
 use serde::Serialize;
 
-use super::layout::{Placed, Road};
+use super::layout::{Placed, Road, TiScreening};
+use super::surface::RInterpolation;
 use super::RoadError;
 use crate::error::{Warning, WarningCode};
 use crate::model::IntensityField;
@@ -177,6 +178,10 @@ pub struct RoadResult {
     pub arrangement: &'static str,
     /// The file's C angle pointing across the road from the pole, degrees (`street_side_c_deg`).
     pub street_side_c_deg: f64,
+    /// How r was interpolated between the r-table's nodes (`r_interpolation`).
+    pub r_interpolation: RInterpolation,
+    /// What TI's screening angle was measured from (`ti_screening`).
+    pub ti_screening: TiScreening,
     /// Field length (= spacing) and width, m.
     pub field_m: [f64; 2],
     /// Per observer lane.
@@ -243,7 +248,7 @@ impl Ctx<'_> {
                     .acos()
                     .to_degrees()
             };
-            let (r, b) = self.road.surface.lookup(beta, rho / h);
+            let (r, b) = self.road.surface.lookup_with(self.road.r_interpolation, beta, rho / h);
             if r == 0.0 {
                 continue;
             }
@@ -292,7 +297,7 @@ impl Ctx<'_> {
                 continue;
             }
             let horizontal = (v.x * v.x + v.y * v.y).sqrt();
-            if v.z.atan2(horizontal).to_degrees() > TI_SCREEN_DEG {
+            if !screening_counts(self.road.ti_screening, v.z.atan2(horizontal).to_degrees()) {
                 continue;
             }
             let d = v.length();
@@ -310,6 +315,13 @@ impl Ctx<'_> {
         }
         veiling_constant() * sum
     }
+}
+
+/// Whether TI counts a luminaire at `elevation_deg` above the horizontal
+/// under `screening`: at most the screening angle, with 1e-9° to spare so
+/// that a luminaire placed on the angle is counted whatever the rounding.
+pub fn screening_counts(screening: TiScreening, elevation_deg: f64) -> bool {
+    elevation_deg <= screening.max_elevation_deg() + 1e-9
 }
 
 /// Where the luminance and TI are calculated (module docs).
@@ -606,6 +618,8 @@ pub fn evaluate(road: &Road, options: &RoadOptions) -> Result<RoadResult, RoadEr
         q0: super::surface::published(&road.surface.name).map_or(ch.q0, |p| p.0) * road.surface.scale(),
         arrangement: road.arrangement.as_str(),
         street_side_c_deg: road.street_side_c_deg,
+        r_interpolation: road.r_interpolation,
+        ti_screening: road.ti_screening,
         field_m: [s, w],
         lanes,
         overall,

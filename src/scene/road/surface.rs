@@ -225,13 +225,22 @@ impl RTable {
     /// 0 beyond the table's last tan ε. The flag says whether the value came
     /// (at least partly) from a blank cell of the source table.
     pub fn lookup(&self, beta_deg: f64, tan_eps: f64) -> (f64, bool) {
+        self.lookup_with(RInterpolation::Quadratic, beta_deg, tan_eps)
+    }
+
+    /// [`RTable::lookup`] with the interpolation between the table's nodes chosen.
+    pub fn lookup_with(&self, interpolation: RInterpolation, beta_deg: f64, tan_eps: f64) -> (f64, bool) {
         if !(beta_deg.is_finite() && tan_eps.is_finite()) || tan_eps < 0.0 || tan_eps > self.tan_max() * (1.0 + 1e-12) {
             return (0.0, false);
         }
         let b = beta_deg.abs().rem_euclid(360.0);
         let b = if b > 180.0 { 360.0 - b } else { b };
-        let (it, wt) = lagrange3(&self.tan, tan_eps);
-        let (ib, wb) = lagrange3(&self.beta, b);
+        let weights = match interpolation {
+            RInterpolation::Quadratic => lagrange3,
+            RInterpolation::Bilinear => linear2,
+        };
+        let (it, wt) = weights(&self.tan, tan_eps);
+        let (ib, wb) = weights(&self.beta, b);
         let mut v = 0.0;
         let mut blank = false;
         for (a, &w1) in wt.iter().enumerate() {
@@ -278,6 +287,50 @@ impl RTable {
         };
         Characteristics { q0, s1, s2: q0 / r00 }
     }
+}
+
+/// How r is interpolated between the table's nodes (`[road] r_interpolation`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RInterpolation {
+    /// Three-point Lagrange (quadratic) in β and in tan ε, as CIE 140 describes (the default).
+    #[default]
+    Quadratic,
+    /// Linear in β and in tan ε between the two enclosing nodes.
+    Bilinear,
+}
+
+impl RInterpolation {
+    /// Parse the `r_interpolation` key.
+    pub fn parse(s: &str) -> Result<RInterpolation, RoadError> {
+        match s.trim() {
+            "quadratic" => Ok(RInterpolation::Quadratic),
+            "bilinear" => Ok(RInterpolation::Bilinear),
+            other => Err(RoadError::Invalid {
+                key: "r_interpolation",
+                reason: format!("{other:?}: expected \"quadratic\" or \"bilinear\""),
+            }),
+        }
+    }
+
+    /// The name as written in the scene file.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            RInterpolation::Quadratic => "quadratic",
+            RInterpolation::Bilinear => "bilinear",
+        }
+    }
+}
+
+/// The first of the two nodes enclosing `x` and their linear weights (the
+/// third weight 0, so the result reads as [`lagrange3`]'s); `x` outside the
+/// nodes is clamped to the end node.
+fn linear2(nodes: &[f64], x: f64) -> (usize, [f64; 3]) {
+    let n = nodes.len();
+    let x = x.clamp(nodes[0], nodes[n - 1]);
+    let k = nodes.partition_point(|&v| v <= x).saturating_sub(1).min(n - 2);
+    let f = (x - nodes[k]) / (nodes[k + 1] - nodes[k]);
+    (k, [1.0 - f, f, 0.0])
 }
 
 /// The first of the three nodes nearest to `x` and the Lagrange weights of
