@@ -35,10 +35,15 @@ def long_functions(root):
     """{`src/FILE::NAME`: lines} of every function over LIMIT outside #[cfg(test)] code.
     Two functions of one name in one file are told apart by a `#2`, `#3` suffix."""
     found = {}
-    src = os.path.join(root, "src")
+    # the root package's src/ and every layer crate's crates/NAME/src/
+    srcs = [os.path.join(root, "src")]
+    crates = os.path.join(root, "crates")
+    if os.path.isdir(crates):
+        srcs += [os.path.join(crates, c, "src") for c in sorted(os.listdir(crates))]
     files_ = []
-    for dirpath, _, files in os.walk(src):
-        files_ += [os.path.join(dirpath, f) for f in sorted(files) if f.endswith(".rs")]
+    for src in srcs:
+        for dirpath, _, files in os.walk(src):
+            files_ += [os.path.join(dirpath, f) for f in sorted(files) if f.endswith(".rs")]
     parsed = {}
     test_files = set()
     for path in files_:

@@ -203,7 +203,7 @@ def group_heads(text, i):
     return heads, len(text)
 
 
-PATH = re.compile(r"(?<![A-Za-z0-9_:$])(\$?crate\s*::\s*|(?:super\s*::\s*)+)")
+PATH = re.compile(r"(?<![A-Za-z0-9_:$])(\$?crate\s*::\s*|photosolid_core\s*::\s*|(?:super\s*::\s*)+)")
 
 
 def chain(text, j):
@@ -221,7 +221,7 @@ def references(text):
     for m in PATH.finditer(text):
         word = m.group(1)
         j = m.end()
-        if "crate" in word:
+        if "crate" in word or "photosolid_core" in word:
             kind, climb = "crate", 0
         else:
             kind, climb = "super", word.count("super")
@@ -246,7 +246,8 @@ def root_reexports(src):
     for m in re.finditer(rf"pub\s+use\s+({IDENT})\s*::\s*(\{{[^}}]*\}}|{IDENT})", text):
         module, names = m.group(1), m.group(2)
         for name in re.findall(IDENT, names):
-            out[name] = module
+            # `pub use photosolid_core::{model, ..}`: the layer crate's module of the same name
+            out[name] = name if module == "photosolid_core" else module
     return out
 
 
@@ -265,13 +266,24 @@ def check(root):
     rank = {m: i for i, m in enumerate(order)}
     src = os.path.join(root, "src")
     reexports = root_reexports(src)
-    files = []
-    for dirpath, _, names in os.walk(src):
-        for name in names:
-            if name.endswith(".rs"):
-                files.append(os.path.relpath(os.path.join(dirpath, name), src).replace(os.sep, "/"))
+    # The root package's src/ and each layer crate's crates/NAME/src/: a file's module is
+    # its path under its own src/ (the layer crates hold modules of the same order).
+    roots = [src]
+    crates = os.path.join(root, "crates")
+    if os.path.isdir(crates):
+        roots += [os.path.join(crates, c, "src") for c in sorted(os.listdir(crates))
+                  if os.path.isdir(os.path.join(crates, c, "src"))]
+    files, rel_of = [], {}
+    for base in roots:
+        for dirpath, _, names in os.walk(base):
+            for name in names:
+                if name.endswith(".rs"):
+                    full = os.path.join(dirpath, name)
+                    key = os.path.relpath(full, root).replace(os.sep, "/")
+                    files.append(key)
+                    rel_of[key] = os.path.relpath(full, base).replace(os.sep, "/")
     files.sort()
-    raws = {f: open(os.path.join(src, f), encoding="utf-8").read() for f in files}
+    raws = {f: open(os.path.join(root, f), encoding="utf-8").read() for f in files}
     texts = {f: blank(raws[f]) for f in files}
     # Files declared `#[cfg(test)] mod x;` are test code as a whole.
     test_files = set()
@@ -288,7 +300,7 @@ def check(root):
                 test_files.add(f"{own}/{m}.rs".lstrip("/"))
                 test_files.add(f"{own}/{m}/mod.rs".lstrip("/"))
     violations = []
-    tops = sorted({module_path(f)[0] for f in files if f != "lib.rs"})
+    tops = sorted({module_path(rel_of[f])[0] for f in files if rel_of[f] != "lib.rs"})
     for top in tops:
         if top not in rank:
             violations.append(f"src/{top}: module {top} is not in the layer order (ARCHITECTURE.md)")
@@ -296,9 +308,9 @@ def check(root):
         if name not in tops:
             violations.append(f"ARCHITECTURE.md: layer {name} is no module of src/")
     for f in files:
-        if f == "lib.rs" or f in test_files:
+        if rel_of[f] == "lib.rs" or f in test_files:
             continue
-        path = module_path(f)
+        path = module_path(rel_of[f])
         top = path[0]
         if top not in rank:
             continue
@@ -316,7 +328,7 @@ def check(root):
                 target = head
             if target in ("self", "super", "crate") or target == top:
                 continue
-            where = f"src/{f}:{text.count(chr(10), 0, off) + 1}"
+            where = f"{f}:{text.count(chr(10), 0, off) + 1}"
             if target not in rank:
                 violations.append(f"{where}: {top} -> {target} ({shown}): {target} is not in the layer order")
             elif rank[target] > rank[top]:

@@ -22,21 +22,17 @@
 pub mod batch;
 pub mod compare;
 pub mod engines;
-pub mod error;
 pub mod fit;
-pub mod formats;
 #[cfg(feature = "gpu")]
 pub mod gpu;
 pub mod metrics;
-pub mod model;
-pub mod numfmt;
-pub mod photometry;
 pub mod reconstruct;
 pub mod registry;
 pub mod report;
 pub mod scene;
 pub mod solid;
-pub mod synth;
+
+pub use photosolid_core::{error, formats, model, numfmt, photometry, synth};
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 pub use formats::{load, load_with, save, ReadOptions};

@@ -188,8 +188,18 @@ fn layer_check_passes_here_and_catches_planted_upward_paths() {
     let t = tempfile::tempdir().unwrap();
     std::fs::copy(here.join("ARCHITECTURE.md"), t.path().join("ARCHITECTURE.md")).unwrap();
     copy_tree(&here.join("src"), &t.path().join("src"));
+    copy_tree(&here.join("crates"), &t.path().join("crates"));
+    // The core layers live in the core crate, the rest in the root package's src/.
+    let file_of = |file: &str| {
+        let core = std::path::Path::new("crates/photosolid-core/src").join(file);
+        if t.path().join(&core).exists() {
+            core
+        } else {
+            std::path::Path::new("src").join(file)
+        }
+    };
     let plant = |file: &str, text: &str| -> usize {
-        let p = t.path().join("src").join(file);
+        let p = t.path().join(file_of(file));
         let mut s = std::fs::read_to_string(&p).unwrap();
         let line = s.lines().count() + 1;
         s.push_str(text);
@@ -206,7 +216,8 @@ fn layer_check_passes_here_and_catches_planted_upward_paths() {
          // crate::cli::x in a comment\nconst _S: &str = \"crate::report::x\";\n",
     );
     std::fs::write(
-        t.path().join("src/model/planted_t.rs"),
+        t.path()
+            .join(file_of("model/mod.rs").parent().unwrap().join("planted_t.rs")),
         "use crate::report::significant;\n",
     )
     .unwrap();
@@ -226,18 +237,25 @@ fn layer_check_passes_here_and_catches_planted_upward_paths() {
     let super_line = plant("reconstruct/filter.rs", "use super::super::solid::Mesh;\n");
     let (code, out) = check_layers(t.path());
     assert_eq!(code, Some(1), "{out}");
+    let at = |file: &str| file_of(file).display().to_string();
     for want in [
-        format!("src/model/mod.rs:{use_line}: model -> report (crate::report::significant)"),
-        format!("src/photometry/flux.rs:{group_line}: photometry -> compare"),
-        format!("src/formats/angles.rs:{inline_line}: formats -> report (crate::report::significant)"),
+        format!(
+            "{}:{use_line}: model -> report (crate::report::significant)",
+            at("model/mod.rs")
+        ),
+        format!("{}:{group_line}: photometry -> compare", at("photometry/flux.rs")),
+        format!(
+            "{}:{inline_line}: formats -> report (crate::report::significant)",
+            at("formats/angles.rs")
+        ),
         format!("src/reconstruct/filter.rs:{super_line}: reconstruct -> solid (super::super::solid::Mesh)"),
         // The root's re-export counts as the module it re-exports.
-        format!("src/error.rs:{root_line}: error -> model (crate::Luminaire)"),
+        format!("{}:{root_line}: error -> model (crate::Luminaire)", at("error.rs")),
     ] {
         assert!(out.contains(&want), "{want} not in:\n{out}");
     }
     // `crate::Error` is the root's re-export of error, the lowest layer: allowed.
-    assert!(!out.contains(&format!("src/synth.rs:{allowed_line}")), "{out}");
+    assert!(!out.contains(&format!("{}:{allowed_line}", at("synth.rs"))), "{out}");
     assert!(out.contains("5 path(s) point up the layer order"), "{out}");
 }
 

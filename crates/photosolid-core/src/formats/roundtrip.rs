@@ -160,7 +160,7 @@ mod tests {
 
     #[test]
     fn every_data_file_round_trips() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data");
         let mut n = 0;
         let mut files = Vec::new();
         crate::formats::collect_files(&dir, &mut files).unwrap();

@@ -9,7 +9,7 @@ use super::*;
 use crate::formats::{collect_files, load, load_with};
 
 fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("data").join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data").join(name)
 }
 
 /// A zip archive of `(member, bytes)` (deflated) at `path`.

@@ -1,5 +1,5 @@
 //! Luminous openings as files declare them, and their directional area
-//! source (equal-share patches; see [`crate::scene::near_field`] for the models).
+//! source (equal-share patches; see `photosolid::scene::near_field` for the models).
 
 use std::f64::consts::PI;
 

@@ -187,7 +187,7 @@ fn numbers_print_short_and_read_back() {
 /// code's JSON spelling is its `as_str`.
 #[test]
 fn every_warning_code_is_documented() {
-    let doc = include_str!("../../docs/warnings.md");
+    let doc = include_str!("../../../../docs/warnings.md");
     let rows: Vec<&str> = doc
         .lines()
         .filter_map(|l| l.strip_prefix("| `"))

@@ -116,7 +116,7 @@ pub trait IntensityField: Sync {
     /// Whether the field is known to be continuous on the sphere. A field
     /// that may jump (a nearest lookup, a spot's cut-off, a crop's edge: the
     /// default, `false`) has a solid with walls at its jumps, which a search
-    /// on the surface ([`crate::metrics::nearest`]) does not see: distances
+    /// on the surface (`photosolid::metrics::nearest`) does not see: distances
     /// to it are measured on a mesh of the solid instead.
     fn is_continuous(&self) -> bool {
         false
@@ -127,7 +127,7 @@ pub trait IntensityField: Sync {
     /// default answers [`IntensityField::is_continuous`] so), the edges of
     /// its exponent-0 lobes for a lobe mixture, `None` for a field that may
     /// jump elsewhere. The solid then has a wall along each rim, which
-    /// [`crate::metrics::nearest`] measures in closed form beside its search
+    /// `photosolid::metrics::nearest` measures in closed form beside its search
     /// on the surface.
     fn rims(&self) -> Option<Vec<Rim>> {
         self.is_continuous().then(Vec::new)
@@ -143,7 +143,7 @@ pub trait IntensityField: Sync {
 
     /// Whether evaluating one direction is a round trip (a GPU dispatch,
     /// upload and read-back each): algorithms that ask one direction at a
-    /// time (the surface search of [`crate::metrics::nearest`]) then use a
+    /// time (the surface search of `photosolid::metrics::nearest`) then use a
     /// batched alternative (an adaptive mesh, built from batches). `false`
     /// (the default) for every field evaluated in place.
     fn prefers_batches(&self) -> bool {
@@ -154,7 +154,7 @@ pub trait IntensityField: Sync {
     /// interpolates, when it interpolates measured values on a C × γ grid:
     /// its solid can have a basin (a local minimum of the distance to a
     /// point) about that narrow, between two knots of a noisy plane, so the
-    /// surface search of [`crate::metrics::nearest`] samples no coarser.
+    /// surface search of `photosolid::metrics::nearest` samples no coarser.
     /// `None` (the default) for a field with no such grid.
     fn knot_spacing_deg(&self) -> Option<f64> {
         None
@@ -162,7 +162,7 @@ pub trait IntensityField: Sync {
 
     /// The field as constant cells, when it is exactly that (a nearest
     /// lookup of a texture or of the data): its solid is then spherical patches joined by
-    /// radial walls, and [`crate::metrics::cells`] measures distances to it
+    /// radial walls, and `photosolid::metrics::cells` measures distances to it
     /// exactly instead of on a mesh. `None` (the default) for every other field.
     fn constant_cells(&self) -> Option<ConstantCells> {
         None

@@ -190,7 +190,8 @@ fn malformed_documents_name_line_and_element() {
 /// root, the version and one IntensityData per stored grid point.
 #[test]
 fn written_document_structure() {
-    let lum = crate::formats::load_document(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
+    let lum =
+        crate::formats::load_document(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/roadway.ldt")).unwrap();
     let text = write(&lum);
     let doc = roxmltree::Document::parse(&text).unwrap();
     let root = doc.root_element();
