@@ -246,8 +246,13 @@ def root_reexports(src):
     for m in re.finditer(rf"pub\s+use\s+({IDENT})\s*::\s*(\{{[^}}]*\}}|{IDENT})", text):
         module, names = m.group(1), m.group(2)
         for name in re.findall(IDENT, names):
-            # `pub use photosolid_core::{model, ..}`: the layer crate's module of the same name
-            out[name] = name if module == "photosolid_core" else module
+            # `pub use photosolid_core::{model, ..}`: a layer crate's module of the same name;
+            # its other re-exports (`Error`, `Luminaire`) resolve as the root's own do
+            if module.startswith("photosolid_"):
+                if name[:1].islower():
+                    out[name] = name
+            else:
+                out[name] = module
     return out
 
 

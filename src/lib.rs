@@ -22,17 +22,14 @@
 pub mod batch;
 pub mod compare;
 pub mod engines;
-pub mod fit;
-#[cfg(feature = "gpu")]
-pub mod gpu;
-pub mod metrics;
-pub mod reconstruct;
 pub mod registry;
 pub mod report;
 pub mod scene;
-pub mod solid;
 
 pub use photosolid_core::{error, formats, model, numfmt, photometry, synth};
+#[cfg(feature = "gpu")]
+pub use photosolid_fields::gpu;
+pub use photosolid_fields::{fit, metrics, reconstruct, solid};
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 pub use formats::{load, load_with, save, ReadOptions};

@@ -191,12 +191,16 @@ fn layer_check_passes_here_and_catches_planted_upward_paths() {
     copy_tree(&here.join("crates"), &t.path().join("crates"));
     // The core layers live in the core crate, the rest in the root package's src/.
     let file_of = |file: &str| {
-        let core = std::path::Path::new("crates/photosolid-core/src").join(file);
-        if t.path().join(&core).exists() {
-            core
-        } else {
-            std::path::Path::new("src").join(file)
-        }
+        // the module's own directory: a layer crate's src/, else the root package's
+        let module = std::path::Path::new(file).iter().next().unwrap();
+        ["crates/photosolid-core/src", "crates/photosolid-fields/src"]
+            .iter()
+            .map(|c| std::path::Path::new(c).join(file))
+            .find(|p| {
+                let top = t.path().join(p.parent().unwrap()).join(module);
+                t.path().join(p).exists() || top.exists() || top.with_extension("rs").exists()
+            })
+            .unwrap_or_else(|| std::path::Path::new("src").join(file))
     };
     let plant = |file: &str, text: &str| -> usize {
         let p = t.path().join(file_of(file));
@@ -248,7 +252,10 @@ fn layer_check_passes_here_and_catches_planted_upward_paths() {
             "{}:{inline_line}: formats -> report (crate::report::significant)",
             at("formats/angles.rs")
         ),
-        format!("src/reconstruct/filter.rs:{super_line}: reconstruct -> solid (super::super::solid::Mesh)"),
+        format!(
+            "{}:{super_line}: reconstruct -> solid (super::super::solid::Mesh)",
+            at("reconstruct/filter.rs")
+        ),
         // The root's re-export counts as the module it re-exports.
         format!("{}:{root_line}: error -> model (crate::Luminaire)", at("error.rs")),
     ] {

@@ -1,6 +1,6 @@
 //! The crate's one colour map module: perceptual colour maps from [0, 1] to
 //! sRGB, used for per-vertex mesh colours and every plot
-//! ([`crate::report::plot`]); and the sRGB transfer function ([`srgb_encode`],
+//! (`photosolid::report::plot`); and the sRGB transfer function ([`srgb_encode`],
 //! the one copy: lamp colours in the reports, Godot's `*_SRGB` textures).
 
 /// The sRGB transfer function (linear → encoded), for values in [0, 1].

@@ -97,7 +97,7 @@ pub fn write_exr(path: impl AsRef<Path>, tex: &Rendered, meta: &ExrMeta) -> Resu
 /// Write one layer with one channel (`samples`, row-major, `size` = (width,
 /// height)) and the layer attributes `attrs` to `path`, atomically (a
 /// temporary file next to it, renamed over it). The one EXR writer of the
-/// crate: light textures and the engines' layouts ([`crate::engines`]) go through it.
+/// crate: light textures and the engines' layouts (`photosolid::engines`) go through it.
 ///
 /// # Errors
 /// [`Error::Io`] when the file cannot be written, [`Error::Encode`] when the

@@ -1,7 +1,7 @@
 //! `exp` and `ln` on the fit's ranges, without branches, so a loop over a
 //! slice of them compiles to vector instructions (the C library's functions
 //! are calls the compiler cannot vectorise, and they were a third of the fit's
-//! time: BENCHMARKS.md, "The profile's t^p in vector lanes").
+//! time: docs/history/benchmarks-to-2026-12-07.md, "The profile's t^p in vector lanes").
 //!
 //! Both follow the classic reductions (Cody and Waite 1980; the argument
 //! reductions of Sun's fdlibm, 1993): exp(x) = 2^n exp(r) with |r| ≤ ln 2 / 2,

@@ -91,7 +91,7 @@ impl Default for NearestSearch {
     /// default `compare` made 8 % fewer lookups, but where the minimum lies
     /// on a crease the pattern search stops a step short: one H of the
     /// corpus (a bilinear lookup of `rpr-sdk/ies_light_1.ies`) rose by
-    /// 1.3e-4 % of I_max (BENCHMARKS.md, "The surface search's lone seeds").
+    /// 1.3e-4 % of I_max (docs/history/benchmarks-to-2026-12-07.md, "The surface search's lone seeds").
     fn default() -> Self {
         Self {
             rings: 8,
@@ -225,7 +225,7 @@ fn pick_seeds(
 /// polish within `fine` of it can gain (the surface point moves by about
 /// r · `fine`, twice for a steep flank: the window rule of the seeds). On
 /// a real roadway file's default `compare` these two rules leave one final
-/// polish a point where there were 1.3-1.9 (BENCHMARKS.md, "The surface
+/// polish a point where there were 1.3-1.9 (docs/history/benchmarks-to-2026-12-07.md, "The surface
 /// search's final polish").
 fn final_polish(
     rough: &[Candidate],
@@ -418,7 +418,7 @@ fn sample_cap(own: DVec3, m: f64, at: &dyn Fn(DVec3) -> Candidate, step: f64, ri
 /// valley is not positive) is otherwise followed in a zigzag of single
 /// steps, each halving shrinking them further: on a real roadway file 255
 /// polishes of one row stopped at the round limit still moving (one from
-/// 13.22 to 12.80 cd in its 400 rounds, still falling; BENCHMARKS.md,
+/// 13.22 to 12.80 cd in its 400 rounds, still falling; docs/history/benchmarks-to-2026-12-07.md,
 /// "The surface search's pattern moves").
 fn polish(start: Candidate, step: f64, stop_rad: f64, newton: bool, at_dir: &dyn Fn(DVec3) -> Candidate) -> Candidate {
     let mut at = start;

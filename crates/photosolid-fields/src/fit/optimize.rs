@@ -235,7 +235,7 @@ const EXPLORE_XTOL: f64 = 0.05;
 
 /// The most evaluations of one exploratory Nelder–Mead run. The runs from a coarse
 /// start took about 55 on average to reach [`EXPLORE_XTOL`]; past 30-40 they only
-/// narrow a basin the refinement narrows again (BENCHMARKS.md, "Fewer evaluations
+/// narrow a basin the refinement narrows again (docs/history/benchmarks-to-2026-12-07.md, "Fewer evaluations
 /// where the refinement repeats them": with the caps below, no corpus error grew by
 /// more than 1.5 %; with every cap lower, 20 here, one grew by 18 %).
 const EXPLORE_MAX_EVALS: usize = 40;

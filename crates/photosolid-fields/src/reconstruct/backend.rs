@@ -1,5 +1,5 @@
 //! `--backend auto|gpu|cpu`: where a texture is rendered
-//! ([`crate::registry::render_on`] is the one function that renders on the
+//! (`photosolid::registry::render_on` is the one function that renders on the
 //! chosen backend).
 //!
 //! The selection lives here, not in `crate::gpu`, so that a build without

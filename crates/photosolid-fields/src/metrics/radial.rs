@@ -511,19 +511,17 @@ mod tests {
     /// (260.998 cd at C 90.0, γ 66.3), 0.6 % higher.
     #[test]
     fn refined_max_matches_a_dense_brute_force_max() {
-        use crate::reconstruct::Filter;
-        use crate::registry::{Recon, Reconstructions};
+        use crate::reconstruct::{Filter, LightTexture};
         use crate::synth::{GridSpec, Synth};
         let lum = Synth::Roadway
             .build(&GridSpec::uniform(10.0, 5.0).unwrap(), 9000.0)
             .unwrap();
         let truth = Synth::Roadway.truth(9000.0);
-        let r = Recon::Filter(Filter::Mitchell {
+        let texture = LightTexture::new(lum.distribution()).unwrap();
+        let field = Box::new(texture.sampler(Filter::Mitchell {
             b: 1.0 / 3.0,
             c: 1.0 / 3.0,
-        });
-        let recs = Reconstructions::new(lum.distribution().clone(), &[r]).unwrap();
-        let field = recs.field(r).unwrap();
+        }));
         let set = DirectionSet::fibonacci(20_000);
         let m = truth.intensity_batch_cd(&set.directions);
         let i_max = lum.distribution().max_cd();

@@ -1,0 +1,24 @@
+//! The middle layers of photosolid, above [`photosolid_core`]:
+//! [`reconstruct`] (filters, light textures, stored lookups, compact
+//! forms) < [`gpu`] (feature `gpu`: the headless wgpu renderer and
+//! real-time lookups) < [`fit`] (fitted OpenGL lights, lobe mixtures) <
+//! [`metrics`] (certified Hausdorff distance, profiles, radial errors,
+//! costs) < [`solid`] (meshes of any field, adaptive grids, the measured
+//! solid, exports). Each module only uses the ones before it and the core.
+//!
+//! The `photosolid` crate re-exports every module here at its own root.
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub use photosolid_core::{error, formats, model, numfmt, photometry, synth};
+pub use photosolid_core::{load, load_with, save, ReadOptions};
+pub use photosolid_core::{Distribution, Luminaire, Symmetry};
+pub use photosolid_core::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
+
+pub mod fit;
+#[cfg(feature = "gpu")]
+pub mod gpu;
+pub mod metrics;
+pub mod reconstruct;
+pub mod solid;
