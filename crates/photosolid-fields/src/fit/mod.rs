@@ -27,7 +27,7 @@
 //! pays only for the lights it needs.
 //!
 //! ```
-//! use photosolid::fit::{fit, FitOptions, Hemisphere, Spot, Light, FittedLights};
+//! use photosolid_fields::fit::{fit, FitOptions, Hemisphere, Spot, Light, FittedLights};
 //! let truth = FittedLights::new(vec![Light::Spot(Spot::vertical(Hemisphere::Down, 800.0, 6.0, 40.0))]);
 //! let gamma: Vec<f64> = (0..=180).map(f64::from).collect();
 //! let d = truth.sample(&[0.0], &gamma).unwrap();

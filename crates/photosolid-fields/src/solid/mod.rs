@@ -42,8 +42,8 @@
 //! the default) or on [`SolidGrid::refined`]`(d, factor)` with `--factor`),
 //! optionally [`Mesh::colorize`], then [`export::write`] (format from the extension).
 //! ```
-//! use photosolid::solid::{self, export, ColorMap, SolidGrid, Units};
-//! use photosolid::synth::{GridSpec, Synth};
+//! use photosolid_fields::solid::{self, export, ColorMap, SolidGrid, Units};
+//! use photosolid_fields::synth::{GridSpec, Synth};
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! let d = Synth::Lambertian.build(&GridSpec::uniform(15.0, 5.0)?, 1000.0)?.into_distribution();
 //! // --measured --units klm --color
