@@ -28,7 +28,7 @@ def list_files(paths: Iterable[str | os.PathLike]) -> List[str]:
     document), so the dataset holds exactly the rows of ``photosolid batch``; listing happens on the client, once."""
     import photosolid
 
-    return photosolid.list_files([os.fspath(p) for p in paths])
+    return photosolid.list_inputs([os.fspath(p) for p in paths])
 
 
 def write_shard(paths: Sequence[str], out_dir: str, index: int) -> int:

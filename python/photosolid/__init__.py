@@ -6,8 +6,9 @@ Python bindings over the photosolid Rust library (the same numbers as the ``phot
   (cd, shape (n_c, n_gamma)), ``photometry()`` (the dict of ``photosolid info --json``), ``sample``,
   ``sample_dirs``, ``texture``, ``mesh``, ``compare``, ``fit``;
 - ``batch(paths)`` -> ``pyarrow.Table`` with the columns of ``photosolid batch`` (docs/batch.md);
-- ``list_files(paths)`` -> the paths ``batch`` reads, in its order (every format, files read by content,
-  one ``FILE#ID`` per photometry of a GLDF container or TM-33 document), for recipes that shard them;
+- ``list_inputs(paths)`` -> the paths ``batch`` reads, in its order (every format, files read by content,
+  one ``FILE#ID`` per photometry of a GLDF container or TM-33 document), for recipes that shard them
+  (``list_files`` is the same function under its earlier name);
 - errors raise ``PhotosolidError`` with ``path``, ``line``, ``column``, ``code`` and ``message``.
 
 The GIL is released while Rust works, so threads (e.g. Dask's) run files in parallel.
@@ -18,16 +19,18 @@ from __future__ import annotations
 import os
 from typing import Iterable, Union
 
-from ._native import Luminaire, PhotosolidError, __version__, batch_parquet, list_files, load
+from ._native import Luminaire, PhotosolidError, __version__, batch_parquet, list_inputs, load
 
-__all__ = ["Luminaire", "PhotosolidError", "__version__", "batch", "list_files", "load"]
+__all__ = ["Luminaire", "PhotosolidError", "__version__", "batch", "list_files", "list_inputs", "load"]
+
+list_files = list_inputs  # the earlier name of list_inputs, kept for the recipes that use it
 
 
 def batch(
     paths: Union[str, os.PathLike, Iterable[Union[str, os.PathLike]]], compact: bool = False
 ) -> "pyarrow.Table":  # noqa: F821
     """The batch table of every photometry under ``paths`` (directories recursively: .ies, .ldt, TM-33 .xml,
-    .gldf and files read by content; ``list_files(paths)`` lists them), one row per photometry.
+    .gldf and files read by content; ``list_inputs(paths)`` lists them), one row per photometry.
 
     Equal to ``photosolid batch PATHS -o OUT.parquet`` read with ``pyarrow.parquet.read_table``; with
     ``compact=True`` to ``batch --compact``, which fills ``smallest_within_1pct``. A file that does not load is

@@ -9,10 +9,13 @@ from ._native import Luminaire as Luminaire
 from ._native import PhotosolidError as PhotosolidError
 from ._native import __version__ as __version__
 from ._native import batch_parquet as batch_parquet
+from ._native import list_inputs as list_inputs
 from ._native import load as load
+
+list_files = list_inputs
 
 def batch(
     paths: Union[str, os.PathLike[str], Iterable[Union[str, os.PathLike[str]]]], compact: bool = False
 ) -> pyarrow.Table:
-    """The batch table (columns of ``photosolid batch``, docs/batch.md) of every .ies/.ldt file under ``paths``;
+    """The batch table (columns of ``photosolid batch``, docs/batch.md) of every input under ``paths`` (.ies, .ldt, TM-33 .xml, .gldf, files read by content);
     ``compact=True`` as ``batch --compact`` (fills ``smallest_within_1pct``)."""

@@ -77,7 +77,11 @@ class Luminaire:
         """The fit report of ``photosolid fit FILE --json`` as a dict."""
 
 def load(path: Union[str, os.PathLike[str]]) -> Luminaire:
-    """Load an .ies or .ldt file; raises PhotosolidError naming the file and line when it is bad."""
+    """Load an .ies, .ldt, TM-33 .xml or GLDF (``FILE.gldf#ID``) file; raises PhotosolidError naming the file and line when it is bad."""
 
 def batch_parquet(paths: Sequence[Union[str, os.PathLike[str]]], compact: bool = False) -> bytes:
-    """The batch table of every .ies/.ldt file under ``paths`` as Parquet bytes (``compact``: ``batch --compact``)."""
+    """The batch table of every input under ``paths`` (.ies, .ldt, TM-33 .xml, .gldf, files read by content) as Parquet bytes (``compact``: ``batch --compact``)."""
+
+def list_inputs(paths: Sequence[Union[str, os.PathLike[str]]]) -> list[str]:
+    """Every photometry ``photosolid batch PATHS`` reads, in its order (``FILE#ID`` per photometry of a GLDF
+    container or TM-33 document)."""

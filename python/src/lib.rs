@@ -89,7 +89,8 @@ struct Luminaire {
     lum: photosolid::formats::Document,
 }
 
-/// Load an .ies or .ldt file. Raises `PhotosolidError` naming the file and line when it is bad.
+/// Load an .ies, .ldt, TM-33 .xml or GLDF file (`FILE.gldf#ID` for one photometry of a container). Raises
+/// `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
     let lum = py.detach(|| photosolid::formats::load_document(&path)).map_err(py_err)?;
@@ -396,7 +397,8 @@ impl Luminaire {
     }
 }
 
-/// The batch table of every .ies/.ldt file under `paths` (as `photosolid
+/// The batch table of every input under `paths` (.ies, .ldt, TM-33 .xml,
+/// .gldf, files read by content) (as `photosolid
 /// batch PATHS -o OUT.parquet`, with `compact` as `--compact`) as Parquet
 /// bytes; `photosolid.batch` reads them into a `pyarrow.Table`.
 #[pyfunction]
@@ -420,9 +422,10 @@ fn batch_parquet<'py>(py: Python<'py>, paths: Vec<PathBuf>, compact: bool) -> Py
 /// explicitly whatever their extension, and below each directory the .ies,
 /// .ldt, TM-33 .xml and .gldf files and the extension-less files read by
 /// content; a GLDF container or a TM-33 document with several photometries as
-/// one `FILE#ID` path each. The one list of `batch`, for recipes that shard it.
+/// one `FILE#ID` path each. The one list of `batch` (the library's
+/// `batch::collect`), for recipes that shard it.
 #[pyfunction]
-fn list_files(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<Vec<String>> {
+fn list_inputs(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<Vec<String>> {
     let files = py.detach(|| photosolid::batch::collect(&paths)).map_err(py_err)?;
     Ok(files.iter().map(|p| p.display().to_string()).collect())
 }
@@ -434,7 +437,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Luminaire>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
-    m.add_function(wrap_pyfunction!(list_files, m)?)?;
+    m.add_function(wrap_pyfunction!(list_inputs, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -190,26 +190,26 @@ def test_full_grid_equals_grid_full(path: Path):
     np.testing.assert_array_equal(cd, np.array(ref["cd"]))
 
 
-def test_list_files_is_what_batch_reads(tmp_path):
-    """``list_files`` lists what ``photosolid batch`` reads, in its order: every format, a file without an
-    extension read by content, a TM-33 document; the Dask recipe shards exactly that list."""
+def test_list_inputs_is_what_batch_reads(catalogue, tmp_path):
+    """``list_inputs`` lists what ``photosolid batch`` reads, in its order: every format, a file without an
+    extension read by content, a TM-33 document, one ``FILE#ID`` per photometry of a GLDF container; the Dask
+    recipe shards exactly that list. ``list_files`` is the same function under its earlier name."""
     import importlib.util
 
-    d = tmp_path / "cat"
-    (d / "sub").mkdir(parents=True)
-    shutil.copy(DATA / "isotropic.ies", d / "a.ies")
-    shutil.copy(DATA / "lambertian.ldt", d / "sub" / "b.ldt")
-    shutil.copy(DATA / "spot_p8_c40.ies", d / "no_extension")
-    subprocess.run([BIN, "convert", str(DATA / "cosine_p5.ldt"), str(d / "c.xml")], check=True, capture_output=True)
-    (d / "notes.txt").write_text("not photometric\n")
+    d = catalogue
     subprocess.run([BIN, "batch", str(d), "-o", str(tmp_path / "cli.parquet")], check=True, capture_output=True)
     cli = pq.read_table(tmp_path / "cli.parquet")["path"].to_pylist()
-    listed = photosolid.list_files([d])
+    listed = photosolid.list_inputs([d])
     assert listed == cli
+    assert photosolid.list_files([d]) == listed
     assert any(p.endswith("no_extension") for p in listed) and any(p.endswith("c.xml") for p in listed)
+    assert sorted(p.rsplit("/", 1)[-1] for p in listed if ".gldf" in p) == ["lum.gldf#bat", "lum.gldf#road"]
     assert not any(p.endswith("notes.txt") for p in listed)
+    assert len(listed) == 6
     spec = importlib.util.spec_from_file_location("dask_batch", ROOT / "python" / "examples" / "dask_batch.py")
     dask_batch = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(dask_batch)
     assert dask_batch.list_files([d]) == cli
-    assert photosolid.batch(listed)["path"].to_pylist() == cli
+    table = photosolid.batch(listed)
+    assert table["path"].to_pylist() == cli
+    assert all(table["ok"].to_pylist()), table.to_pylist()

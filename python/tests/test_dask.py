@@ -67,3 +67,25 @@ def test_dask_dataset_equals_the_cli_table(bulk):
     assert len(not_ok) == n // 100
     assert all(r["errors"] for r in not_ok)
     print(f"\n{n} files: photosolid batch {n / t_cli:.1f} files/s, Dask 2 workers {n / t_dask:.1f} files/s")
+
+
+def test_dask_reads_every_input_batch_reads(catalogue, tmp_path):
+    """The recipe on a folder of every kind of input (.ies, .ldt, no extension, TM-33, a GLDF container of two
+    photometries): the dataset holds exactly the rows of ``photosolid batch`` on that folder, value for value."""
+    from dask.distributed import Client, LocalCluster
+
+    subprocess.run([BIN, "batch", str(catalogue), "-o", str(tmp_path / "cli.parquet")], check=True,
+                   capture_output=True)
+    cli = pq.read_table(tmp_path / "cli.parquet")
+    files = dask_batch.list_files([catalogue])
+    assert files == cli["path"].to_pylist() and len(files) == 6
+    with LocalCluster(n_workers=2, threads_per_worker=1, env={"RAYON_NUM_THREADS": "1"},
+                      dashboard_address=None) as cluster, Client(cluster):
+        rows = dask_batch.batch_dataset(files, tmp_path / "dataset", npartitions=3)
+    assert rows == cli.num_rows
+    ds = pq.read_table(tmp_path / "dataset").sort_by("path")
+    cli = cli.sort_by("path")
+    for name in cli.column_names:
+        if name not in TIMING:
+            assert ds[name].to_pylist() == cli[name].to_pylist(), name
+    assert all(ds["ok"].to_pylist())

@@ -178,7 +178,7 @@ impl<'a> FieldComparison<'a> {
             Directions::Dense(n) => DirectionSet::fibonacci(n),
         };
         let values = eval_all(reference.field, &set.directions);
-        let timing = random_directions(opts.timing_samples.max(1), 0x5eed);
+        let timing = opts.timing_directions();
         let refinement = opts.refinement(i_max);
         let mut deviation = reference.deviation;
         // Solids of revolution: the reference's profile, when both files are rotational and it is C-independent.
@@ -267,34 +267,18 @@ impl<'a> FieldComparison<'a> {
 
     /// The comparison of the rows `results` (Pareto front marked) with `plots`.
     fn comparison(&self, results: Vec<ReconResult>, plots: Option<PlotData>) -> Comparison {
-        let (opts, reference) = (self.opts, self.reference);
-        Comparison {
-            file: String::new(),
-            vs: None,
-            reference: reference.label.clone(),
-            reference_kind: reference.kind,
-            normalize: opts.normalize,
-            units: opts.normalize.unit().into(),
+        let reference = super::ReferenceFacts {
+            reference: self.reference.label.clone(),
+            kind: self.reference.kind,
             directions: self.set.label.clone(),
             n_directions: self.set.len(),
             radial_max_method: MAX_REFINEMENT.describe(&self.set),
-            tolerance: opts.tolerance,
-            tolerance_pct: crate::error::percent_of(opts.tolerance),
             tolerance_cd: self.tol_cd,
-            factor: opts.factor,
             solid_tolerance_cd: self.solid_tol_cd,
-            solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
             solid_deviation_cd: self.deviation,
-            solid_tolerance_reached: self.deviation.zip(self.solid_tol_cd).map(|(d, t)| d <= t),
             i_max_cd: self.i_max,
-            reference_triangles: reference.solid.n_triangles(),
-            zotti_c: opts.zotti_c,
-            alignment: None,
-            smallest_within_1pct: super::smallest_within_1pct(&results),
-            results,
-            plots,
-            photometry_side_by_side: None,
-            warnings: Vec::new(),
-        }
+            reference_triangles: self.reference.solid.n_triangles(),
+        };
+        Comparison::assemble(self.opts, reference, results, plots)
     }
 }

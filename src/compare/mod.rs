@@ -91,8 +91,8 @@ use crate::error::ModelError;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
     corresponding_bounds, field_radial_errors, hausdorff_bvh, hausdorff_bvh_below_bounds, hausdorff_bvh_bounded,
-    hausdorff_bvh_bounded_within, pareto_front, random_directions, time_per_sample_ns, Bvh, DirectionSet, Hausdorff,
-    OneSided, MAX_REFINEMENT, ZOTTI_C,
+    hausdorff_bvh_bounded_within, pareto_front, time_per_sample_ns, Bvh, DirectionSet, Hausdorff, OneSided,
+    MAX_REFINEMENT, ZOTTI_C,
 };
 pub use crate::model::Progress;
 use crate::model::{Distribution, IntensityField, Symmetry};
@@ -407,7 +407,75 @@ pub fn smallest_within_1pct(results: &[ReconResult]) -> Option<String> {
     )
 }
 
+/// What a comparison's reference contributes to its [`Comparison`]: the
+/// fields that differ between a field reference and withheld measurements.
+pub(crate) struct ReferenceFacts {
+    /// [`Comparison::reference`].
+    pub reference: String,
+    /// [`Comparison::reference_kind`].
+    pub kind: ReferenceKind,
+    /// [`Comparison::directions`].
+    pub directions: String,
+    /// [`Comparison::n_directions`].
+    pub n_directions: usize,
+    /// [`Comparison::radial_max_method`].
+    pub radial_max_method: String,
+    /// [`Comparison::tolerance_cd`].
+    pub tolerance_cd: f64,
+    /// [`Comparison::solid_tolerance_cd`].
+    pub solid_tolerance_cd: Option<f64>,
+    /// [`Comparison::solid_deviation_cd`].
+    pub solid_deviation_cd: Option<f64>,
+    /// [`Comparison::i_max_cd`].
+    pub i_max_cd: f64,
+    /// [`Comparison::reference_triangles`].
+    pub reference_triangles: usize,
+}
+
 impl Comparison {
+    /// The comparison of the rows `results` against `reference` under
+    /// `opts` (the one place its fields are filled); `file`, `vs`, the
+    /// alignment, the side-by-side photometry and the warnings are the
+    /// caller's to set.
+    pub(crate) fn assemble(
+        opts: &CompareOptions,
+        reference: ReferenceFacts,
+        results: Vec<ReconResult>,
+        plots: Option<PlotData>,
+    ) -> Self {
+        Comparison {
+            file: String::new(),
+            vs: None,
+            reference: reference.reference,
+            reference_kind: reference.kind,
+            normalize: opts.normalize,
+            units: opts.normalize.unit().into(),
+            directions: reference.directions,
+            n_directions: reference.n_directions,
+            radial_max_method: reference.radial_max_method,
+            tolerance: opts.tolerance,
+            tolerance_pct: crate::error::percent_of(opts.tolerance),
+            tolerance_cd: reference.tolerance_cd,
+            factor: opts.factor,
+            solid_tolerance_cd: reference.solid_tolerance_cd,
+            solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
+            solid_deviation_cd: reference.solid_deviation_cd,
+            solid_tolerance_reached: reference
+                .solid_deviation_cd
+                .zip(reference.solid_tolerance_cd)
+                .map(|(d, t)| d <= t),
+            i_max_cd: reference.i_max_cd,
+            reference_triangles: reference.reference_triangles,
+            zotti_c: opts.zotti_c,
+            alignment: None,
+            smallest_within_1pct: smallest_within_1pct(&results),
+            results,
+            plots,
+            photometry_side_by_side: None,
+            warnings: Vec::new(),
+        }
+    }
+
     /// Whether H is a certified Hausdorff distance between two solids
     /// (within `tolerance_cd`, with a bound per row): false against withheld
     /// measurements, where H is the exact one-sided distance from the

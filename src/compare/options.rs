@@ -214,6 +214,15 @@ pub struct CompareOptions {
     pub hausdorff_only: bool,
 }
 
+impl CompareOptions {
+    /// The directions every timing column samples: `timing_samples` uniform
+    /// random unit vectors from one fixed seed, so every row (CPU, f32,
+    /// GPU) is timed on the same set.
+    pub fn timing_directions(&self) -> Vec<glam::DVec3> {
+        crate::metrics::random_directions(self.timing_samples.max(1), 0x5eed)
+    }
+}
+
 impl Default for CompareOptions {
     fn default() -> Self {
         let mut recons = vec![Recon::Measured];

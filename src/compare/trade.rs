@@ -415,7 +415,7 @@ fn f32_columns(
     let rendered = render(&LightTexture::new(file)?, spec.filter, spec.factor)?;
     let reduced = spec.reduced.then(|| file.symmetry());
     let tex = StoredTexture::new(&rendered, reduced, spec.precision, spec.lookup);
-    let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
+    let dirs = opts.timing_directions();
     let dirs32: Vec<glam::Vec3> = dirs.iter().map(|d| d.as_vec3()).collect();
     row.ns_per_sample_f32 = Some(crate::metrics::cost::time_per_sample_ns_f32(
         |d| tex.cd_dir_f32(d),
@@ -432,6 +432,32 @@ fn f32_columns(
     Ok(())
 }
 
+/// What a `+gpu` row's timing needs: the process's adapter, the timing
+/// directions (the CPU rows' own: same count, same seed), and the error that
+/// names the row when the GPU fails.
+#[cfg(feature = "gpu")]
+#[allow(clippy::type_complexity)]
+fn gpu_timing(
+    row: &TradeRow,
+    opts: &CompareOptions,
+) -> Result<
+    (
+        &'static crate::gpu::GpuContext,
+        Vec<glam::DVec3>,
+        impl Fn(crate::gpu::GpuError) -> ModelError,
+    ),
+    ModelError,
+> {
+    let recon = row.representation.clone();
+    let fail = move |source: crate::gpu::GpuError| ModelError::Gpu {
+        recon: recon.clone(),
+        source,
+    };
+    let ctx = crate::gpu::GpuContext::global().map_err(&fail)?;
+    let dirs = opts.timing_directions();
+    Ok((ctx, dirs, fail))
+}
+
 /// Fill the GPU columns of a `+gpu` row.
 #[cfg(feature = "gpu")]
 fn gpu_columns(
@@ -440,13 +466,8 @@ fn gpu_columns(
     spec: TextureSpec,
     opts: &CompareOptions,
 ) -> Result<(), ModelError> {
-    use crate::gpu::{precision::hardware_row, GpuContext};
-    let fail = |source: crate::gpu::GpuError| ModelError::Gpu {
-        recon: row.representation.clone(),
-        source,
-    };
-    let ctx = GpuContext::global().map_err(fail)?;
-    let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
+    use crate::gpu::precision::hardware_row;
+    let (ctx, dirs, fail) = gpu_timing(row, opts)?;
     let h = hardware_row(ctx, file, spec, &dirs, opts.timing_repeats).map_err(fail)?;
     row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
     row.adapter = Some(h.precision.adapter);
@@ -467,15 +488,9 @@ fn compact_gpu_columns(
     opts: &CompareOptions,
 ) -> Result<(), ModelError> {
     use crate::gpu::compact::{compact_row, GpuCompact};
-    use crate::gpu::GpuContext;
-    let fail = |source: crate::gpu::GpuError| ModelError::Gpu {
-        recon: row.representation.clone(),
-        source,
-    };
-    let ctx = GpuContext::global().map_err(fail)?;
+    let (ctx, dirs, fail) = gpu_timing(row, opts)?;
     let compact = crate::registry::Reconstructions::new(file.clone(), &[r])?.compact(r)?;
-    let gpu = GpuCompact::new(ctx, compact).map_err(fail)?;
-    let dirs = crate::metrics::random_directions(opts.timing_samples.max(1), 0x5eed);
+    let gpu = GpuCompact::new(ctx, compact).map_err(&fail)?;
     let h = compact_row(&gpu, &dirs, opts.timing_repeats).map_err(fail)?;
     row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
     row.adapter = Some(ctx.adapter().to_string());

@@ -20,8 +20,8 @@ use crate::metrics::cells::{distances_to_cells, largest_distance_to_cells};
 use crate::metrics::hausdorff::distances;
 use crate::metrics::profile::{self, Profile};
 use crate::metrics::{
-    distances_to_solid, largest_distance_to_solid, radial_errors, random_directions, time_per_sample_ns, Bvh,
-    DirectionSet, NearestSearch, OneSided,
+    distances_to_solid, largest_distance_to_solid, radial_errors, time_per_sample_ns, Bvh, DirectionSet, NearestSearch,
+    OneSided,
 };
 use crate::model::frame::direction;
 use crate::model::{Distribution, IntensityField, Symmetry, ANGLE_EPS};
@@ -235,35 +235,20 @@ pub(super) fn compare_withheld(
     progress(opts.recons.len(), opts.recons.len(), "done");
     mark_pareto(&mut results);
     let plots = opts.plots.then(|| h.plot_data(a));
-    Ok(Comparison {
-        file: String::new(),
-        vs: None,
+    let reference = super::ReferenceFacts {
         reference: h.reference.clone(),
-        reference_kind: super::ReferenceKind::Withheld,
-        normalize: opts.normalize,
-        units: opts.normalize.unit().into(),
+        kind: super::ReferenceKind::Withheld,
         directions: h.pooled.label.clone(),
         n_directions: h.pooled.len(),
         radial_max_method: format!("max over the {} withheld measured directions", h.pooled.len()),
-        tolerance: opts.tolerance,
-        tolerance_pct: crate::error::percent_of(opts.tolerance),
         // Printed in the file's unit; the withheld H is exact and uses no tolerance.
         tolerance_cd: opts.tolerance * i_max,
-        factor: opts.factor,
         solid_tolerance_cd: h.solid_tol_cd,
-        solid_tolerance_pct: opts.solid_tolerance.map(crate::error::percent_of),
         solid_deviation_cd: None,
-        solid_tolerance_reached: None,
         i_max_cd: i_max,
         reference_triangles: 0,
-        zotti_c: opts.zotti_c,
-        alignment: None,
-        smallest_within_1pct: super::smallest_within_1pct(&results),
-        results,
-        plots,
-        photometry_side_by_side: None,
-        warnings: Vec::new(),
-    })
+    };
+    Ok(Comparison::assemble(opts, reference, results, plots))
 }
 
 /// Two field values count as equal for [`shared_images`] within this
@@ -490,7 +475,7 @@ impl<'a> HoldOut<'a> {
             pooled,
             m_all,
             full,
-            timing: random_directions(opts.timing_samples.max(1), 0x5eed),
+            timing: opts.timing_directions(),
             refinement: opts.refinement(i_max),
             i_max,
             rotational: a.symmetry() == crate::model::Symmetry::Rotational,

@@ -41,16 +41,8 @@ pub fn road_text(r: &RoadResult) -> String {
         "{:>5} {:>12} {:>6} {:>6} {:>7}",
         "lane", "L_av cd/m2", "U_o", "U_l", "TI %"
     );
-    for l in &r.lanes {
-        let _ = writeln!(
-            s,
-            "{:>5} {:>12} {:>6} {:>6} {:>7}",
-            l.lane,
-            sig(l.l_av_cd_m2),
-            sig(l.u_o),
-            sig(l.u_l),
-            sig(l.ti_pct)
-        );
+    for [lane, l_av, u_o, u_l, ti] in lane_rows(r) {
+        let _ = writeln!(s, "{lane:>5} {l_av:>12} {u_o:>6} {u_l:>6} {ti:>7}");
     }
     let o = &r.overall;
     let _ = writeln!(
@@ -248,13 +240,32 @@ fn map(
     .map_err(|e| io(Path::new(name), e))
 }
 
-/// Write `bytes` to `dir/name` atomically (a temporary file renamed into place).
+/// Write `bytes` to `dir/name` atomically (the library's one atomic writer).
 fn write_atomic(dir: &Path, name: &str, bytes: &[u8]) -> Result<PathBuf, RoadError> {
     let path = dir.join(name);
-    let tmp = dir.join(format!(".{name}.tmp"));
-    std::fs::write(&tmp, bytes).map_err(|e| io(&tmp, e))?;
-    std::fs::rename(&tmp, &path).map_err(|e| io(&path, e))?;
+    crate::formats::write_atomic(&path, bytes).map_err(|e| match e {
+        crate::Error::Io { source, .. } => io(&path, source),
+        other => io(&path, other),
+    })?;
     Ok(path)
+}
+
+/// One row per observer lane: the lane, L_av (cd/m²), U_o, U_l and TI (%)
+/// to three significant digits; the one table the text summary and the
+/// HTML page print.
+fn lane_rows(r: &RoadResult) -> Vec<[String; 5]> {
+    r.lanes
+        .iter()
+        .map(|l| {
+            [
+                l.lane.to_string(),
+                sig(l.l_av_cd_m2),
+                sig(l.u_o),
+                sig(l.u_l),
+                sig(l.ti_pct),
+            ]
+        })
+        .collect()
 }
 
 /// The per-lane table as HTML.
@@ -263,16 +274,8 @@ fn lane_table(r: &RoadResult) -> String {
         "<table border=\"1\" cellpadding=\"4\"><tr><th>observer lane</th><th>L_av (cd/m²)</th>\
          <th>U_o</th><th>U_l</th><th>TI (%)</th></tr>\n",
     );
-    for l in &r.lanes {
-        let _ = writeln!(
-            t,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            l.lane,
-            sig(l.l_av_cd_m2),
-            sig(l.u_o),
-            sig(l.u_l),
-            sig(l.ti_pct)
-        );
+    for cells in lane_rows(r) {
+        let _ = writeln!(t, "<tr><td>{}</td></tr>", cells.join("</td><td>"));
     }
     let o = &r.overall;
     let _ = writeln!(

@@ -98,7 +98,7 @@ pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> crate::Res
                 .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
                 .collect();
             let path = dir.join(format!("isolux_{}_{safe}.png", k + 1));
-            std::fs::write(&path, plot.png).map_err(|e| io(&path, e))?;
+            crate::formats::write_atomic(&path, &plot.png)?;
             out.push(path);
         }
     }
@@ -111,10 +111,7 @@ pub fn write_maps(scene: &Scene, result: &SceneResult, dir: &Path) -> crate::Res
 /// [`SceneError::Model`] when a representation cannot be built.
 pub fn luminaire_viewer(scene: &Scene, index: usize, shown: Option<&Recon>) -> Result<ViewerData, SceneError> {
     let lum = &scene.luminaires[index];
-    let model = |e| SceneError::Model {
-        luminaire: lum.name.clone(),
-        source: e,
-    };
+    let model = |e| lum.model_error(e);
     let reference_rep = REFERENCE;
     let wanted: Vec<Recon> = std::iter::once(reference_rep).chain(shown.copied()).collect();
     let models = Models::new(lum, &wanted).map_err(model)?;

@@ -49,7 +49,22 @@ pub struct Source<'a> {
     pub patches: Vec<(DVec3, f64)>,
 }
 
-impl Source<'_> {
+impl<'a> Source<'a> {
+    /// `lum`'s pose and maintenance factor with `field` emitted from `patches`.
+    pub fn with_patches(field: &'a dyn IntensityField, lum: &SceneLuminaire, patches: Vec<(DVec3, f64)>) -> Self {
+        Self {
+            field,
+            pose: lum.pose,
+            maintenance_factor: lum.maintenance_factor,
+            patches,
+        }
+    }
+
+    /// `lum` as a point source of `field`: one patch at the photometric centre.
+    pub fn point(field: &'a dyn IntensityField, lum: &SceneLuminaire) -> Self {
+        Self::with_patches(field, lum, vec![(DVec3::ZERO, 1.0)])
+    }
+
     /// Illuminance (lx) at one point.
     pub fn lux(&self, p: &ScenePoint, occluders: &[Occluder]) -> f64 {
         let mut e = 0.0;
@@ -148,12 +163,7 @@ pub fn area_source<'a>(
     points: &[ScenePoint],
     occluders: &[Occluder],
 ) -> (Source<'a>, Vec<f64>, AreaRefinement) {
-    let make = |n: usize| Source {
-        field,
-        pose: lum.pose,
-        maintenance_factor: lum.maintenance_factor,
-        patches: lum.opening.patches(n),
-    };
+    let make = |n: usize| Source::with_patches(field, lum, lum.opening.patches(n));
     let mut n = 1;
     let mut src = make(n);
     let mut values = src.lux_all(points, occluders, None);
@@ -326,20 +336,9 @@ pub(crate) fn luminaire_lux(
     progress: Option<&Progress<'_>>,
 ) -> Result<(Vec<f64>, Vec<f64>, LuminaireResult), SceneError> {
     let rep = lum.representation.unwrap_or(REFERENCE);
-    let models = Models::new(lum, &[rep]).map_err(|e| SceneError::Model {
-        luminaire: lum.name.clone(),
-        source: e,
-    })?;
-    let field = models.field(&rep).map_err(|e| SceneError::Model {
-        luminaire: lum.name.clone(),
-        source: e,
-    })?;
-    let point = Source {
-        field: &*field,
-        pose: lum.pose,
-        maintenance_factor: lum.maintenance_factor,
-        patches: vec![(DVec3::ZERO, 1.0)],
-    };
+    let models = Models::new(lum, &[rep]).map_err(|e| lum.model_error(e))?;
+    let field = models.field(&rep).map_err(|e| lum.model_error(e))?;
+    let point = Source::point(&*field, lum);
     let point_lux = point.lux_all(points, &scene.occluders, progress);
     let (area, area_lux, refinement) = area_source(&*field, lum, points, &scene.occluders);
     let kind = lum.source_kind();
@@ -508,20 +507,9 @@ fn why_unlit(scene: &Scene, receiver: &super::Receiver, points: &[&ScenePoint]) 
     // Lit when the occluders are taken away: their shadow.
     for lum in &scene.luminaires {
         let rep = lum.representation.unwrap_or(REFERENCE);
-        let models = Models::new(lum, &[rep]).map_err(|e| SceneError::Model {
-            luminaire: lum.name.clone(),
-            source: e,
-        })?;
-        let field = models.field(&rep).map_err(|e| SceneError::Model {
-            luminaire: lum.name.clone(),
-            source: e,
-        })?;
-        let source = Source {
-            field: &*field,
-            pose: lum.pose,
-            maintenance_factor: lum.maintenance_factor,
-            patches: vec![(DVec3::ZERO, 1.0)],
-        };
+        let models = Models::new(lum, &[rep]).map_err(|e| lum.model_error(e))?;
+        let field = models.field(&rep).map_err(|e| lum.model_error(e))?;
+        let source = Source::point(&*field, lum);
         if points.iter().any(|p| source.lux(p, &[]) > 0.0) {
             return Ok("every point lies in the shadow of the occluders".into());
         }

@@ -123,10 +123,16 @@ impl SceneLuminaire {
         match LightTexture::new(self.luminaire.distribution()) {
             Ok(t) => Ok(Some(t)),
             Err(crate::ModelError::AllZero(_)) => Ok(None),
-            Err(e) => Err(SceneError::Model {
-                luminaire: self.name.clone(),
-                source: e,
-            }),
+            Err(e) => Err(self.model_error(e)),
+        }
+    }
+
+    /// `e`, met building one of this luminaire's representations, as the
+    /// scene's error naming the luminaire.
+    pub fn model_error(&self, e: crate::ModelError) -> SceneError {
+        SceneError::Model {
+            luminaire: self.name.clone(),
+            source: e,
         }
     }
 }

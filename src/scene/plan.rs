@@ -313,15 +313,6 @@ fn shared_models(
     Ok(cache.len() - 1)
 }
 
-/// The error of a luminaire's model that cannot be built, naming the luminaire.
-fn model_err(l: &SceneLuminaire) -> impl FnOnce(ModelError) -> SceneError {
-    let name = l.name.clone();
-    move |e| SceneError::Model {
-        luminaire: name,
-        source: e,
-    }
-}
-
 /// One luminaire's reference (module docs) measured on the scene.
 struct Reference {
     /// Illuminance at every point (lx) from the reference area source (one
@@ -343,14 +334,9 @@ struct Reference {
 impl Reference {
     /// The reference of `lum` at `points` of `scene`.
     fn measure(scene: &Scene, lum: &SceneLuminaire, points: &[ScenePoint]) -> Result<Self, SceneError> {
-        let models = Models::new(lum, &[REFERENCE]).map_err(model_err(lum))?;
-        let field = models.field(&REFERENCE).map_err(model_err(lum))?;
-        let point = Source {
-            field: &*field,
-            pose: lum.pose,
-            maintenance_factor: lum.maintenance_factor,
-            patches: vec![(DVec3::ZERO, 1.0)],
-        };
+        let models = Models::new(lum, &[REFERENCE]).map_err(|e| lum.model_error(e))?;
+        let field = models.field(&REFERENCE).map_err(|e| lum.model_error(e))?;
+        let point = Source::point(&*field, lum);
         let point_lux = point.lux_all(points, &scene.occluders, None);
         let (area, area_lux, refinement) = area_source(&*field, lum, points, &scene.occluders);
         let far_field = FarField::measure(lum, points, &point_lux, &area_lux);
@@ -474,14 +460,9 @@ impl Bench<'_> {
     /// `field` (representation `rep`, `ns` per lookup) as a source of `kind`
     /// in place of the luminaire's reference.
     fn measure(&self, rep: Recon, field: &dyn IntensityField, ns: f64, kind: SourceKind) -> Measured {
-        let src = Source {
-            field,
-            pose: self.lum.pose,
-            maintenance_factor: self.lum.maintenance_factor,
-            patches: match kind {
-                SourceKind::Point => vec![(DVec3::ZERO, 1.0)],
-                SourceKind::Area => self.reference.patches.clone(),
-            },
+        let src = match kind {
+            SourceKind::Point => Source::point(field, self.lum),
+            SourceKind::Area => Source::with_patches(field, self.lum, self.reference.patches.clone()),
         };
         let values = src.lux_all(self.points, &self.scene.occluders, None);
         let total: Vec<f64> = self
@@ -619,7 +600,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&Progress<'_>
         } else {
             vec![REFERENCE] // all-zero: every representation is the same dark field
         };
-        let slot = shared_models(&mut models_cache, &scene.luminaires, li, &reps).map_err(model_err(lum))?;
+        let slot = shared_models(&mut models_cache, &scene.luminaires, li, &reps).map_err(|e| lum.model_error(e))?;
         let (measured, unavailable, not_measured) = bench.measure_cheapest_first(&models_cache[slot].1, reps, &say);
         let (mut plan, values) = bench.choose(measured, unavailable)?;
         plan.candidates_not_measured = not_measured;

@@ -128,6 +128,25 @@ pub(super) fn y_axis_over(ys: &[f64]) -> Axis {
     }
 }
 
+/// The axes of an x-y plot: [`draw_grid`], the frame, `x_label` centred
+/// under the area and `y_label` written upwards at the left edge.
+pub(super) fn draw_axes(cv: &mut Canvas, area: &Area, y_ticks: Vec<(f64, String)>, x_label: &str, y_label: &str) {
+    let (left, top, right, bottom) = (area.left, area.top, area.right, area.bottom);
+    draw_grid(cv, area, y_ticks);
+    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
+    let h = cv.h();
+    cv.text(
+        left + (right - left) / 2.0,
+        h - 16.0,
+        x_label,
+        2,
+        Align::Center,
+        INK,
+        false,
+    );
+    cv.text_vertical(16.0, top + (bottom - top) / 2.0, y_label, 2, INK);
+}
+
 /// Grid lines, tick marks and tick labels of both axes (`y_ticks` as
 /// `area.y_axis` gives them); minor ticks are shorter, their lines lighter.
 pub(super) fn draw_grid(cv: &mut Canvas, area: &Area, y_ticks: Vec<(f64, String)>) {

@@ -209,6 +209,13 @@ impl Canvas {
         });
     }
 
+    /// "no data" in large letters on a white box, centred in the rectangle
+    /// `left, top, right, bottom` (px): what a plot with nothing to draw says.
+    pub fn no_data(&mut self, left: f32, top: f32, right: f32, bottom: f32) {
+        let (x, y) = (left + (right - left) / 2.0, top + (bottom - top) / 2.0);
+        self.text(x, y, "no data", 3, Align::Center, INK, true);
+    }
+
     /// The title, centred at the top (scale 2, shortened to fit).
     pub fn title(&mut self, title: &str) {
         let max_chars = ((self.w() - 20.0) / 12.0).max(4.0) as usize;

@@ -210,7 +210,7 @@ pub(super) fn heatmap_with(spec: &HeatmapSpec, subtitle: &str) -> Result<Plot, E
 
     draw_cells(&mut cv, &area, spec, &color_of);
     if !any {
-        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+        cv.no_data(left, top, right, bottom);
     }
     cv.frame(left - 1.0, top - 1.0, right + 1.0, bottom + 1.0, AXIS);
     draw_degree_axes(&mut cv, &area);

@@ -4,9 +4,9 @@
 
 use crate::error::Error;
 
-use super::area::{draw_grid, left_margin, x_axis_over, y_axis_over, Area};
-use super::canvas::{finite2, legend, Align, Canvas};
-use super::{Plot, Series, SeriesStyle, AXIS, INK, SCATTER_SIZE};
+use super::area::{draw_axes, left_margin, x_axis_over, y_axis_over, Area};
+use super::canvas::{finite2, legend, Canvas};
+use super::{Plot, Series, SeriesStyle, SCATTER_SIZE};
 
 /// What [`line_chart()`] draws. `Default` gives an empty 800 × 550 px plot.
 #[derive(Debug, Clone, Copy)]
@@ -89,18 +89,7 @@ pub fn line_chart_plot(spec: &LineSpec) -> Result<Plot, Error> {
         x_axis,
         y_axis,
     };
-    draw_grid(&mut cv, &area, y_ticks);
-    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
-    cv.text(
-        left + (right - left) / 2.0,
-        hf - 16.0,
-        x_label,
-        2,
-        Align::Center,
-        INK,
-        false,
-    );
-    cv.text_vertical(16.0, top + (bottom - top) / 2.0, y_label, 2, INK);
+    draw_axes(&mut cv, &area, y_ticks, x_label, y_label);
     legend(&mut cv, series, left, 44.0, right, false);
     for (s, pts) in series.iter().zip(&curves) {
         let px: Vec<(f32, f32)> = pts.iter().map(|&(x, y)| (area.px(x), area.py(y))).collect();
@@ -112,15 +101,7 @@ pub fn line_chart_plot(spec: &LineSpec) -> Result<Plot, Error> {
         }
     }
     if all().next().is_none() {
-        cv.text(
-            left + (right - left) / 2.0,
-            top + (bottom - top) / 2.0,
-            "no data",
-            3,
-            Align::Center,
-            INK,
-            true,
-        );
+        cv.no_data(left, top, right, bottom);
     }
     cv.finish()
 }

@@ -3,7 +3,7 @@
 use crate::error::Error;
 use crate::report::font;
 
-use super::area::{draw_grid, left_margin, x_axis_over, y_axis_over, Area};
+use super::area::{draw_axes, left_margin, x_axis_over, y_axis_over, Area};
 use super::canvas::{Align, Canvas};
 use super::{Plot, ScatterPoint, AXIS, INK, OTHER, PARETO, SCATTER_SIZE};
 
@@ -92,12 +92,8 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         x_axis,
         y_axis,
     };
-    let (pw, ph) = (right - left, bottom - top);
 
-    draw_grid(&mut cv, &area, y_ticks);
-    cv.frame(left, top, right + 1.0, bottom + 1.0, AXIS);
-    cv.text(left + pw / 2.0, hf - 16.0, x_label, 2, Align::Center, INK, false);
-    cv.text_vertical(16.0, top + ph / 2.0, y_label, 2, INK);
+    draw_axes(&mut cv, &area, y_ticks, x_label, y_label);
     draw_legend(&mut cv, right, top);
 
     let stair = pareto_stair(&pts, &area);
@@ -117,7 +113,7 @@ pub fn scatter_plot(spec: &ScatterSpec) -> Result<Plot, Error> {
         cv.text(left, top - 16.0, &note, 2, Align::Left, INK, false);
     }
     if pts.is_empty() {
-        cv.text(left + pw / 2.0, top + ph / 2.0, "no data", 3, Align::Center, INK, true);
+        cv.no_data(left, top, right, bottom);
     }
     cv.finish()
 }

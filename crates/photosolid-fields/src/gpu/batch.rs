@@ -99,6 +99,58 @@ pub(crate) fn direction_data(dirs: &[DVec3]) -> Vec<[f32; 4]> {
         .collect()
 }
 
+/// The [`IntensityField`](crate::model::IntensityField) methods every GPU
+/// evaluator shares, written once: a direction, a batch of angle pairs or a
+/// grid is one call of the type's `sample_dirs_cd` (one dispatch), answered 0
+/// where that call fails or the direction is not finite (the trait has no
+/// error channel; `sample_dirs_cd` reports the error to callers that want
+/// it). With `clamp_gamma: true` γ is clamped to [0, 180] as a texture's rows
+/// clamp; a series or a lobe mixture is a function of the direction and is
+/// not clamped.
+macro_rules! gpu_sampling_methods {
+    (clamp_gamma: $clamp:expr) => {
+        fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
+            if !(c_deg.is_finite() && gamma_deg.is_finite()) {
+                return 0.0;
+            }
+            let gamma = if $clamp {
+                gamma_deg.clamp(0.0, 180.0)
+            } else {
+                gamma_deg
+            };
+            self.intensity_dir_cd($crate::model::frame::direction(c_deg, gamma))
+        }
+        fn intensity_dir_cd(&self, d: glam::DVec3) -> f64 {
+            if !(d.is_finite() && d.length_squared() > 0.0) {
+                return 0.0;
+            }
+            self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
+        }
+        fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
+            self.sample_dirs_cd(&$crate::gpu::batch::angle_directions(dirs, $clamp))
+                .unwrap_or_else(|_| vec![0.0; dirs.len()])
+        }
+        fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
+            assert_eq!(
+                out.len(),
+                c_deg.len() * gamma_deg.len(),
+                "one output per grid direction"
+            );
+            out.copy_from_slice(&self.intensity_batch_cd(&$crate::gpu::batch::grid_angles(c_deg, gamma_deg)));
+        }
+        /// One direction is a dispatch of its own: searches use batches instead.
+        fn prefers_batches(&self) -> bool {
+            true
+        }
+        fn batch_time_per_sample_ns(&self, dirs: &[glam::DVec3], repeats: usize) -> Option<f64> {
+            $crate::gpu::batch::end_to_end_ns_per_sample(dirs.len(), repeats, || {
+                self.sample_dirs_cd(std::hint::black_box(dirs))
+            })
+        }
+    };
+}
+pub(crate) use gpu_sampling_methods;
+
 /// The unit directions of (C, γ) pairs in degrees (γ clamped to [0, 180]
 /// with `clamp_gamma`, as a texture's rows clamp); a non-finite pair gives
 /// the zero vector (answered 0).

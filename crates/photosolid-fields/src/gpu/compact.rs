@@ -15,12 +15,9 @@
 
 use glam::DVec3;
 
-use super::batch::{
-    angle_directions, buffer_entry, built_once, direction_data, end_to_end_ns_per_sample, grid_angles, upload,
-    LookupBatch,
-};
+use super::batch::{buffer_entry, built_once, direction_data, upload, LookupBatch};
 use super::{GpuContext, GpuError};
-use crate::model::{frame, IntensityField};
+use crate::model::IntensityField;
 use crate::reconstruct::Compact;
 
 /// The shader's kind, count, offsets of the recurrence and diagonal
@@ -248,38 +245,7 @@ pub fn compact_row(gpu: &GpuCompact<'_>, dirs: &[DVec3], repeats: usize) -> Resu
 /// use batches). A device error gives 0 (the field has no error channel);
 /// [`GpuCompact::sample_dirs_cd`] reports it.
 impl IntensityField for GpuCompact<'_> {
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
-            return 0.0;
-        }
-        // No clamp of γ: the series and lobes are functions of the direction, as on the CPU.
-        self.intensity_dir_cd(frame::direction(c_deg, gamma_deg))
-    }
-    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
-        if !(d.is_finite() && d.length_squared() > 0.0) {
-            return 0.0;
-        }
-        self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
-    }
-    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
-        self.sample_dirs_cd(&angle_directions(dirs, false))
-            .unwrap_or_else(|_| vec![0.0; dirs.len()])
-    }
-    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
-        assert_eq!(
-            out.len(),
-            c_deg.len() * gamma_deg.len(),
-            "one output per grid direction"
-        );
-        out.copy_from_slice(&self.intensity_batch_cd(&grid_angles(c_deg, gamma_deg)));
-    }
-    /// One direction is a dispatch of its own: searches use batches instead.
-    fn prefers_batches(&self) -> bool {
-        true
-    }
-    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
-        end_to_end_ns_per_sample(dirs.len(), repeats, || self.sample_dirs_cd(std::hint::black_box(dirs)))
-    }
+    super::batch::gpu_sampling_methods!(clamp_gamma: false);
     fn name(&self) -> String {
         format!("{}+gpu", self.exact.field().name())
     }

@@ -24,8 +24,8 @@ use std::time::Duration;
 
 use glam::DVec3;
 
+use super::batch::direction_data;
 pub use super::batch::LookupBatch;
-use super::batch::{angle_directions, direction_data, end_to_end_ns_per_sample, grid_angles};
 use super::{GpuContext, GpuError};
 use crate::model::{frame, IntensityField, Symmetry};
 use crate::reconstruct::{Lookup, Precision, Rendered, StoredTexture};
@@ -487,37 +487,7 @@ fn upload(
 /// (correct, but slow: use batches). A device error gives 0 (the field has
 /// no error channel); [`RealtimeTexture::sample_dirs_cd`] reports it.
 impl IntensityField for RealtimeTexture<'_> {
-    fn intensity_cd(&self, c_deg: f64, gamma_deg: f64) -> f64 {
-        if !(c_deg.is_finite() && gamma_deg.is_finite()) {
-            return 0.0;
-        }
-        self.intensity_dir_cd(frame::direction(c_deg, gamma_deg.clamp(0.0, 180.0)))
-    }
-    fn intensity_dir_cd(&self, d: DVec3) -> f64 {
-        if !(d.is_finite() && d.length_squared() > 0.0) {
-            return 0.0;
-        }
-        self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
-    }
-    fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
-        self.sample_dirs_cd(&angle_directions(dirs, true))
-            .unwrap_or_else(|_| vec![0.0; dirs.len()])
-    }
-    fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
-        assert_eq!(
-            out.len(),
-            c_deg.len() * gamma_deg.len(),
-            "one output per grid direction"
-        );
-        out.copy_from_slice(&self.intensity_batch_cd(&grid_angles(c_deg, gamma_deg)));
-    }
-    /// One direction is a dispatch of its own: searches use batches instead.
-    fn prefers_batches(&self) -> bool {
-        true
-    }
-    fn batch_time_per_sample_ns(&self, dirs: &[DVec3], repeats: usize) -> Option<f64> {
-        end_to_end_ns_per_sample(dirs.len(), repeats, || self.sample_dirs_cd(std::hint::black_box(dirs)))
-    }
+    super::batch::gpu_sampling_methods!(clamp_gamma: true);
     fn name(&self) -> String {
         format!("{}+gpu", self.exact.name())
     }

@@ -1,6 +1,11 @@
 use super::screened::*;
 use super::*;
 
+/// The borrowed mesh of `positions` and `triangles`.
+fn mesh_ref<'a>(positions: &'a [DVec3], triangles: &'a [[u32; 3]]) -> MeshRef<'a> {
+    MeshRef { positions, triangles }
+}
+
 /// A UV sphere of radius r centred at c.
 pub(crate) fn sphere(r: f64, c: [f64; 3], n_lat: usize, n_lon: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
     let mut pos = vec![DVec3::new(c[0], c[1], c[2] - r)];
@@ -80,10 +85,7 @@ fn bounded_search_certifies_the_full_searchs_h() {
         ("shifted", (&sphere_a, &shifted)),
         ("deep inside", (&deep.0, &deep.1)),
     ] {
-        let ma = MeshRef {
-            positions: pa,
-            triangles: ta,
-        };
+        let ma = mesh_ref(pa, ta);
         let bvh_b = Bvh::build(pb, tb);
         let full = one_sided(ma, &bvh_b, tol);
         for (name, upper) in vertex_bounds(&distances(pa, &bvh_b)) {
@@ -194,10 +196,7 @@ fn screen_by_full_sorts(
 #[test]
 fn screening_is_the_full_sorts_screening() {
     let ((p1, t1), others) = sphere_bumped_and_shifted();
-    let ma = MeshRef {
-        positions: &p1,
-        triangles: &t1,
-    };
+    let ma = mesh_ref(&p1, &t1);
     let mut screened_any = false;
     for (pb, tb) in &others {
         let bvh_b = Bvh::build(pb, tb);
@@ -261,16 +260,7 @@ fn corresponding_bounds_certify_the_full_searchs_h() {
         *p += DVec3::new(0.02 * p.y, -0.02 * p.x, 0.01);
     }
     let within = corresponding_bounds(&p1, &p2, &t1, 13.0);
-    let (ma, mb) = (
-        MeshRef {
-            positions: &p1,
-            triangles: &t1,
-        },
-        MeshRef {
-            positions: &p2,
-            triangles: &t2,
-        },
-    );
+    let (ma, mb) = (mesh_ref(&p1, &t1), mesh_ref(&p2, &t2));
     let bvh_b = Bvh::build(mb.positions, mb.triangles);
     for (k, t) in t1.iter().enumerate().step_by(97) {
         for (l1, l2) in [(0.2, 0.3), (0.6, 0.1), (1.0 / 3.0, 1.0 / 3.0), (0.05, 0.9)] {
@@ -301,17 +291,7 @@ fn corresponding_bounds_certify_the_full_searchs_h() {
 fn concentric_spheres_give_the_radius_difference() {
     let (p1, t1) = sphere(10.0, [0.0; 3], 40, 80);
     let (p2, t2) = sphere(12.0, [0.0; 3], 50, 100);
-    let h = hausdorff(
-        MeshRef {
-            positions: &p1,
-            triangles: &t1,
-        },
-        MeshRef {
-            positions: &p2,
-            triangles: &t2,
-        },
-        1e-3,
-    );
+    let h = hausdorff(mesh_ref(&p1, &t1), mesh_ref(&p2, &t2), 1e-3);
     // Polygonal spheres: the inscribed facets sit inside the true spheres by at most
     // r (1 − cos(half the angular step)), so H lies within that of |r1 − r2| = 2.
     let sag = 12.0 * (1.0 - (std::f64::consts::PI / 50.0).cos());
@@ -327,10 +307,7 @@ fn identical_meshes_give_zero_without_refinement() {
     // Each triangle's centroid has the triangle itself as its nearest: the convexity
     // bound over it is 0, so nothing waits for refinement (issue 12: 8 s on 323 k triangles).
     let (p, t) = sphere(10.0, [0.0; 3], 60, 120);
-    let m = MeshRef {
-        positions: &p,
-        triangles: &t,
-    };
+    let m = mesh_ref(&p, &t);
     let h = hausdorff(m, m, 1e-9);
     // Centroids differ from the triangle by round-off only (1e-15 of the radius).
     assert!(h.value <= 1e-12 && h.bound == 0.0, "{h:?}");
@@ -343,10 +320,7 @@ fn bound_is_certified_against_dense_sampling() {
     // Offset spheres: the sup lies inside faces, not only at vertices.
     let (p1, t1) = sphere(10.0, [0.0; 3], 12, 24);
     let (p2, t2) = sphere(10.0, [1.5, 0.0, 0.0], 12, 24);
-    let a = MeshRef {
-        positions: &p1,
-        triangles: &t1,
-    };
+    let a = mesh_ref(&p1, &t1);
     let bvh = Bvh::build(&p2, &t2);
     let h = one_sided(a, &bvh, 1e-4);
     // Dense barycentric sampling never exceeds the certified upper bound.
