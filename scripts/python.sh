@@ -6,7 +6,7 @@
 # - the venv comes from scripts/notebooks.sh --setup (pinned notebooks/requirements.txt: maturin, pytest, pyarrow,
 #   dask, distributed among them); exit 3 when it cannot be set up, as notebooks.sh;
 # - the wheel is built with the dev profile into the root's target/ (shared with `cargo build`: the dependencies
-#   the library already compiled are reused), from python/Cargo.lock (--locked);
+#   the library already compiled are reused), from the workspace's one Cargo.lock (--locked);
 # - PHOTOSOLID_BIN (the CLI the tests compare with): default target/debug/photosolid, built when missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -182,7 +182,7 @@ trap '[ -z "${SETUP_PID:-}" ] || kill_tree "$SETUP_PID"; rm -f "$SETUP_LOG"' EXI
 
 section "build (all targets: library, binary, tests, benches; dev profile = test profile, one build; the set-up of the optional groups runs beside it)"
 build_start=$SECONDS
-cargo build --workspace --all-targets --locked 2>&1 | tail -n 3
+cargo build --all-targets --locked 2>&1 | tail -n 3
 echo "build: $((SECONDS - build_start)) s, target/ $(du -sh target 2>/dev/null | cut -f1)"
 PHOTOSOLID_BIN="$(pwd)/target/debug/photosolid"
 export PHOTOSOLID_BIN
@@ -206,11 +206,11 @@ section "cargo test (library, integration, doc tests)"
 rm -rf "$PHOTOSOLID_SKIPPED_CORPUS_DIR"
 # Every target but tests/gpu, which the GPU section runs once per backend (here it would run a
 # third time, on the default adapter).
-cargo test --workspace --lib --bins --test it --benches --examples --locked
-cargo test --workspace --doc --locked
+cargo test --lib --bins --test it --benches --examples --locked
+cargo test --doc --locked
 
 section "rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"
-RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --lib --locked 2>&1 | tail -n 3
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --locked 2>&1 | tail -n 3
 
 section "clippy: the [lints] of Cargo.toml hold on every target (-D warnings; no unwrap/expect in the library)"
 if ! cargo clippy --version >/dev/null 2>&1; then
@@ -218,14 +218,14 @@ if ! cargo clippy --version >/dev/null 2>&1; then
 fi
 if cargo clippy --version >/dev/null 2>&1; then
   clippy_start=$SECONDS
-  cargo clippy --workspace --all-targets --locked -- -D warnings 2>&1 | tail -n 5
+  cargo clippy --all-targets --locked -- -D warnings 2>&1 | tail -n 5
   echo "clippy: $((SECONDS - clippy_start)) s"
 else
   need "clippy" "cargo clippy is not installed and rustup cannot add it"
 fi
 
 section "the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
-cargo test --workspace --no-default-features --lib --locked 2>&1 | tail -n 3
+cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1
 
 section "GPU: the wgpu render against the CPU render (tests/gpu/textures.rs) and the real-time lookups (tests/gpu/realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"

@@ -93,7 +93,9 @@ struct Luminaire {
 /// `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
-    let lum = py.detach(|| photosolid::formats::load_document(&path)).map_err(py_err)?;
+    let lum = py
+        .detach(|| photosolid::formats::load_document(&path))
+        .map_err(py_err)?;
     Ok(Luminaire {
         path: path.display().to_string(),
         lum,
@@ -271,12 +273,7 @@ impl Luminaire {
     /// and int64 (F, 3) vertex indices, counter-clockwise seen from outside:
     /// `trimesh.Trimesh(vertices, faces)` takes them as they are.
     #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn mesh<'py>(
-        &self,
-        py: Python<'py>,
-        filter: &str,
-        factor: usize,
-    ) -> PyResult<MeshArrays<'py>> {
+    fn mesh<'py>(&self, py: Python<'py>, filter: &str, factor: usize) -> PyResult<MeshArrays<'py>> {
         let recon: Recon = arg("filter", filter)?;
         if factor == 0 {
             return Err(PyValueError::new_err("factor must be at least 1"));
@@ -336,13 +333,20 @@ impl Luminaire {
             tolerance,
             // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
             factor: factor.unwrap_or(defaults.factor),
-            solid_tolerance: if factor.is_some() { None } else { defaults.solid_tolerance },
+            solid_tolerance: if factor.is_some() {
+                None
+            } else {
+                defaults.solid_tolerance
+            },
             // As the CLI: a Type A/B file's withheld reference withholds its own readings
             // (read with the default handedness, as `load` reads).
-            source: self.lum.source_grid().map(|grid| photosolid::compare::SourceMeasurements {
-                grid: grid.clone(),
-                handedness: photosolid::formats::Handedness::default(),
-            }),
+            source: self
+                .lum
+                .source_grid()
+                .map(|grid| photosolid::compare::SourceMeasurements {
+                    grid: grid.clone(),
+                    handedness: photosolid::formats::Handedness::default(),
+                }),
             ..defaults
         };
         let other = vs.as_ref().map(|o| o.lum.distribution());
