@@ -26,7 +26,7 @@ pub mod registry;
 pub mod report;
 pub mod scene;
 
-pub use photosolid_core::{error, formats, model, numfmt, photometry, synth};
+pub use photosolid_core::{error, formats, minimize, model, numfmt, photometry, synth};
 #[cfg(feature = "gpu")]
 pub use photosolid_fields::gpu;
 pub use photosolid_fields::{fit, metrics, reconstruct, solid};

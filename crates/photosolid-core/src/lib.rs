@@ -5,7 +5,8 @@
 //!
 //! Layers, bottom up (each only uses the ones before it; the crate boundary
 //! makes the compiler hold the line between this crate and the rest):
-//! [`numfmt`] (number formatting) < [`error`] (errors, warnings, stable
+//! [`numfmt`] (number formatting) < [`minimize`] (derivative-free
+//! minimisers) < [`error`] (errors, warnings, stable
 //! codes) < [`model`] (the luminaire, its distribution, frames) <
 //! [`formats`] (IES LM-63, EULUMDAT, TM-33-23, GLDF readers and writers) <
 //! [`photometry`] (flux, zonal tables, beams, UGR, luminance, BUG) <
@@ -19,6 +20,7 @@
 
 pub mod error;
 pub mod formats;
+pub mod minimize;
 pub mod model;
 pub mod numfmt;
 pub mod photometry;

@@ -11,7 +11,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub use photosolid_core::{error, formats, model, numfmt, photometry, synth};
+pub use photosolid_core::{error, formats, minimize, model, numfmt, photometry, synth};
 pub use photosolid_core::{load, load_with, save, ReadOptions};
 pub use photosolid_core::{Distribution, Luminaire, Symmetry};
 pub use photosolid_core::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};

@@ -35,8 +35,8 @@
 use glam::DVec3;
 
 use super::objective::{ErrorMetric, Samples, DEFAULT_GUARD};
-use super::optimize::nelder_mead;
 use crate::error::ModelError;
+use crate::minimize::nelder_mead;
 use crate::model::Distribution;
 use crate::reconstruct::lobes::{lobe_factor, ring_cosine};
 pub use crate::reconstruct::lobes::{Lobe, Lobes, LOBE_BYTES, MAX_LOBE_EXPONENT};

@@ -21,7 +21,7 @@
 
 use glam::DVec3;
 
-use crate::fit::optimize::{best_local_minima, golden_section};
+use crate::minimize::{best_local_minima, golden_section};
 use crate::model::{IntensityField, Rim};
 
 /// Samples across the searched arc of a rim, at least.
