@@ -23,7 +23,11 @@ class PhotosolidError(Exception):
     """The full message (also ``str(error)``)."""
 
 class Luminaire:
-    """A loaded photometric file (IES LM-63 or EULUMDAT)."""
+    """A loaded photometric file (IES LM-63, EULUMDAT, TM-33 or a GLDF photometry). Immutable; pickles (with the
+    bytes it was read from, parsed again on unpickling) and copies; its array properties are read-only."""
+
+    def __eq__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
 
     @property
     def path(self) -> str:

@@ -82,24 +82,62 @@ fn to_py<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py,
 /// `(vertices (V, 3) f64 cd, faces (F, 3) i64)` of a solid.
 type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
 
-/// A loaded photometric file (IES LM-63 or EULUMDAT).
+/// A loaded photometric file (IES LM-63, EULUMDAT, TM-33 or a GLDF photometry).
 #[pyclass(frozen, module = "photosolid")]
 struct Luminaire {
     path: String,
     lum: photosolid::formats::Document,
+    /// The bytes the document was parsed from (the file's, or its
+    /// container's): a pickle carries them and parses them again, so a
+    /// luminaire travels to a process or machine that has no such file.
+    source: std::sync::Arc<Vec<u8>>,
+}
+
+/// The luminaire `path` names, parsed from `source` (its bytes, as
+/// `document_source_bytes` reads them) with the default reader options.
+fn luminaire_from_source(py: Python<'_>, path: PathBuf, source: Vec<u8>) -> PyResult<Luminaire> {
+    let source = std::sync::Arc::new(source);
+    let lum = py
+        .detach(|| {
+            photosolid::formats::load_document_from_bytes(&path, source.to_vec(), &photosolid::ReadOptions::default())
+        })
+        .map_err(py_err)?;
+    Ok(Luminaire {
+        path: path.display().to_string(),
+        lum,
+        source,
+    })
+}
+
+/// `array` with numpy's write flag cleared: a property that hands out the
+/// luminaire's data cannot be written through (`lum.candela[0, 0] = 1`
+/// raises instead of changing a copy nobody sees).
+fn read_only<'py, T>(array: Bound<'py, T>) -> PyResult<Bound<'py, T>> {
+    let kwargs = pyo3::types::PyDict::new(array.py());
+    kwargs.set_item("write", false)?;
+    array.as_any().call_method("setflags", (), Some(&kwargs))?;
+    Ok(array)
+}
+
+/// What `Luminaire.__reduce__` returns: the function that rebuilds a
+/// luminaire, and its arguments (the path and the source bytes).
+type Reduced<'py> = (Bound<'py, PyAny>, (String, Bound<'py, PyBytes>));
+
+/// Rebuild a pickled [`Luminaire`] from its path and source bytes (what
+/// `Luminaire.__reduce__` returns); not for direct use.
+#[pyfunction]
+fn _luminaire_from_source(py: Python<'_>, path: PathBuf, source: Vec<u8>) -> PyResult<Luminaire> {
+    luminaire_from_source(py, path, source)
 }
 
 /// Load an .ies, .ldt, TM-33 .xml or GLDF file (`FILE.gldf#ID` for one photometry of a container). Raises
 /// `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
 fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
-    let lum = py
-        .detach(|| photosolid::formats::load_document(&path))
+    let source = py
+        .detach(|| photosolid::formats::document_source_bytes(&path))
         .map_err(py_err)?;
-    Ok(Luminaire {
-        path: path.display().to_string(),
-        lum,
-    })
+    luminaire_from_source(py, path, source)
 }
 
 impl Luminaire {
@@ -117,25 +155,58 @@ impl Luminaire {
         &self.path
     }
 
-    /// Stored C-planes, degrees, shape (n_c,).
-    #[getter]
-    fn c_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.lum.distribution().c_angles_deg())
+    /// Pickling: the path and the bytes the luminaire was parsed from, parsed
+    /// again on unpickling (no file needed there); equal data, the same numbers.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduced<'py>> {
+        let rebuild = py.import("photosolid._native")?.getattr("_luminaire_from_source")?;
+        Ok((rebuild, (self.path.clone(), PyBytes::new(py, &self.source))))
     }
 
-    /// γ angles, degrees (0 = nadir), shape (n_gamma,).
-    #[getter]
-    fn gamma_deg<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, self.lum.distribution().gamma_angles_deg())
+    /// A luminaire is immutable: its copy is itself.
+    fn __copy__(slf: Py<Self>) -> Py<Self> {
+        slf
     }
 
-    /// Measured intensities, cd, shape (n_c, n_gamma): `candela[i, j]` at `c_deg[i]`, `gamma_deg[j]`.
+    /// A luminaire is immutable: a deep copy shares nothing mutable and may be itself.
+    fn __deepcopy__(slf: Py<Self>, _memo: Bound<'_, PyAny>) -> Py<Self> {
+        slf
+    }
+
+    /// The hash of the path (equal luminaires have equal paths).
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.path.hash(&mut h);
+        h.finish()
+    }
+
+    /// Whether `other` is a luminaire of the same path and the same parsed data.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other
+            .cast::<Luminaire>()
+            .is_ok_and(|o| o.get().path == self.path && o.get().lum == self.lum)
+    }
+
+    /// Stored C-planes, degrees, shape (n_c,); read-only.
+    #[getter]
+    fn c_deg<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        read_only(PyArray1::from_slice(py, self.lum.distribution().c_angles_deg()))
+    }
+
+    /// γ angles, degrees (0 = nadir), shape (n_gamma,); read-only.
+    #[getter]
+    fn gamma_deg<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        read_only(PyArray1::from_slice(py, self.lum.distribution().gamma_angles_deg()))
+    }
+
+    /// Measured intensities, cd, shape (n_c, n_gamma): `candela[i, j]` at `c_deg[i]`, `gamma_deg[j]`;
+    /// read-only (`.copy()` for an array to change).
     #[getter]
     fn candela<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let d = self.lum.distribution();
         let a = Array2::from_shape_vec((d.n_c(), d.n_gamma()), d.intensities_cd().to_vec())
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(a.into_pyarray(py))
+        read_only(a.into_pyarray(py))
     }
 
     /// The grid on the full circle of planes (symmetry expanded), as `photosolid grid FILE --full`:
@@ -442,6 +513,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
     m.add_function(wrap_pyfunction!(list_inputs, m)?)?;
+    m.add_function(wrap_pyfunction!(_luminaire_from_source, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

@@ -219,3 +219,46 @@ fn tm33_conversion_keeps_what_the_derived_photometry_needs() {
     }
     assert!(checked >= 20, "only {checked} EULUMDAT files checked");
 }
+
+/// A document parsed from the bytes `document_source_bytes` read is the one
+/// `load_document` reads, for a plain file of each format, a file without an
+/// extension, a GLDF photometry and a TM-33 emitter by id; after the files are
+/// gone too (what a Python pickle relies on).
+#[test]
+fn documents_from_their_bytes_equal_the_loaded_ones() {
+    use photosolid::formats::{document_source_bytes, load_document, load_document_from_bytes};
+    use photosolid::ReadOptions;
+    let t = tempfile::tempdir().unwrap();
+    let dir = t.path();
+    let gldf = container(dir);
+    std::fs::copy(data("spot_p8_c40.ies"), dir.join("no_extension")).unwrap();
+    ok(&run(
+        &["convert", data("batwing.ies").to_str().unwrap(), "bat.xml"],
+        dir,
+    ));
+    let mut paths: Vec<std::path::PathBuf> = ["roadway.ldt", "batwing.ies", "cosine_p5.ldt"]
+        .iter()
+        .map(|n| data(n))
+        .collect();
+    paths.push(dir.join("no_extension"));
+    paths.push(dir.join("bat.xml"));
+    paths.push(std::path::PathBuf::from(format!("{}#road", gldf.display())));
+    paths.push(std::path::PathBuf::from(format!("{}#bat", gldf.display())));
+    let kept: Vec<_> = paths
+        .iter()
+        .map(|p| (p.clone(), load_document(p).unwrap(), document_source_bytes(p).unwrap()))
+        .collect();
+    drop(t); // the temporary files are gone: the bytes are all there is
+    for (p, loaded, bytes) in kept {
+        let again = load_document_from_bytes(&p, bytes, &ReadOptions::default()).unwrap();
+        assert_eq!(again, loaded, "{}", p.display());
+        assert_eq!(again.luminaire.distribution(), loaded.luminaire.distribution());
+    }
+    let e = load_document_from_bytes(
+        std::path::Path::new("x.gldf#a"),
+        b"not a zip".to_vec(),
+        &ReadOptions::default(),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("x.gldf") && e.to_string().contains("zip"), "{e}");
+}

@@ -159,6 +159,15 @@ impl GldfContainer {
                 other.to_string(),
             ),
         })?;
+        Self::from_bytes(path, bytes)
+    }
+
+    /// [`GldfContainer::open`] on the container's bytes, already read
+    /// (`path` names it in messages; nothing is read from disk).
+    ///
+    /// # Errors
+    /// As [`GldfContainer::open`], but for reading the file.
+    pub fn from_bytes(path: &Path, bytes: Vec<u8>) -> Result<Self> {
         let archive = zip::ZipArchive::new(std::io::Cursor::new(bytes)).map_err(|e| {
             bad(
                 path,
@@ -383,7 +392,16 @@ fn descriptive(
 /// no photometry, or several when no id is given (the message lists the ids
 /// and says to pick one as `FILE.gldf#ID`).
 pub fn load(container: &Path, id: Option<&str>, opts: &ReadOptions) -> Result<Document> {
-    let mut c = GldfContainer::open(container)?;
+    load_from(GldfContainer::open(container)?, id, opts)
+}
+
+/// [`load`] from a container already opened (from its file or its bytes).
+///
+/// # Errors
+/// As [`load`].
+pub fn load_from(mut c: GldfContainer, id: Option<&str>, opts: &ReadOptions) -> Result<Document> {
+    let container = c.path.clone();
+    let container = container.as_path();
     let id = match (id, c.ids().as_slice()) {
         (Some(id), _) => id.to_string(),
         (None, [one]) => one.to_string(),

@@ -189,16 +189,51 @@ pub fn load_document_with(path: impl AsRef<Path>, opts: &ReadOptions) -> Result<
     load_document_as_read(path.as_ref(), opts).map(|doc| opts.apply_front(doc))
 }
 
+/// The bytes [`load_document`] reads for `path`: the file's, the GLDF
+/// container's for `FILE.gldf#ID`, the TM-33 document's for `FILE.xml#ID`
+/// (each refused over [`MAX_FILE_BYTES`]). With
+/// [`load_document_from_bytes`], a document that travels as bytes (a Python
+/// pickle) and is parsed again where no file is.
+///
+/// # Errors
+/// [`Error::Io`] naming the file; a [`ParseError`] for a file that is too
+/// large or not a regular file.
+pub fn document_source_bytes(path: &Path) -> Result<Vec<u8>> {
+    if let Some((container, _)) = gldf::split_reference(path) {
+        return read_photometric_file(&container);
+    }
+    if let Some((file, _)) = tm33::split_reference(path) {
+        return read_photometric_file(&file);
+    }
+    read_photometric_file(path)
+}
+
+/// [`load_document_with`] on the bytes [`document_source_bytes`] gives for
+/// `path`, already read: the same document, nothing read from disk (`path`
+/// names the file in messages and decides the format as it does there).
+///
+/// # Errors
+/// As [`load_document_with`], but for reading the file.
+pub fn load_document_from_bytes(path: &Path, bytes: Vec<u8>, opts: &ReadOptions) -> Result<Document> {
+    parse_document(path, bytes, opts).map(|doc| opts.apply_front(doc))
+}
+
 /// [`load_document_with`] before the options' front is applied.
 fn load_document_as_read(path: &Path, opts: &ReadOptions) -> Result<Document> {
     if let Some((container, id)) = gldf::split_reference(path) {
         return gldf::load(&container, id.as_deref(), opts);
     }
-    if let Some((file, id)) = tm33::split_reference(path) {
-        let bytes = read_photometric_file(&file)?;
+    parse_document(path, document_source_bytes(path)?, opts)
+}
+
+/// The document `path` names, from `bytes` (those of [`document_source_bytes`]).
+fn parse_document(path: &Path, bytes: Vec<u8>, opts: &ReadOptions) -> Result<Document> {
+    if let Some((container, id)) = gldf::split_reference(path) {
+        return gldf::load_from(gldf::GldfContainer::from_bytes(&container, bytes)?, id.as_deref(), opts);
+    }
+    if let Some((_, id)) = tm33::split_reference(path) {
         return Ok(tm33::read_emitter(&bytes, path, Some(&id), opts)?);
     }
-    let bytes = read_photometric_file(path)?;
     let by_extension = Format::from_extension(path);
     let format = by_extension.unwrap_or_else(|| sniff(&bytes));
     parse(&bytes, path, format, opts).map_err(|mut e| {
