@@ -3,8 +3,9 @@
 Python bindings over the photosolid Rust library (the same numbers as the ``photosolid`` CLI).
 
 - ``load(path)`` -> ``Luminaire`` with numpy arrays ``c_deg``, ``gamma_deg`` (degrees) and ``candela``
-  (cd, shape (n_c, n_gamma)), ``photometry()`` (the dict of ``photosolid info --json``), ``sample``,
-  ``sample_dirs``, ``texture``, ``mesh``, ``compare``, ``fit``;
+  (cd, shape (n_c, n_gamma); read-only), ``photometry()`` (the dict of ``photosolid info --json``), ``sample``
+  and ``sample_dirs`` (each reconstruction built at its first use and kept; ``field(recon)`` returns it),
+  ``texture``, ``mesh``, ``compare``, ``fit``; it pickles and copies;
 - ``batch(paths)`` -> ``pyarrow.Table`` with the columns of ``photosolid batch`` (docs/batch.md);
 - ``list_inputs(paths)`` -> the paths ``batch`` reads, in its order (every format, files read by content,
   one ``FILE#ID`` per photometry of a GLDF container or TM-33 document), for recipes that shard them
@@ -19,9 +20,9 @@ from __future__ import annotations
 import os
 from typing import Iterable, Union
 
-from ._native import Luminaire, PhotosolidError, __version__, batch_parquet, list_inputs, load
+from ._native import Field, Luminaire, PhotosolidError, __version__, batch_parquet, list_inputs, load
 
-__all__ = ["Luminaire", "PhotosolidError", "__version__", "batch", "list_files", "list_inputs", "load"]
+__all__ = ["Field", "Luminaire", "PhotosolidError", "__version__", "batch", "list_files", "list_inputs", "load"]
 
 list_files = list_inputs  # the earlier name of list_inputs, kept for the recipes that use it
 

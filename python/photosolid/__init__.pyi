@@ -5,6 +5,7 @@ from typing import Iterable, Union
 
 import pyarrow
 
+from ._native import Field as Field
 from ._native import Luminaire as Luminaire
 from ._native import PhotosolidError as PhotosolidError
 from ._native import __version__ as __version__

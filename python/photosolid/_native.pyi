@@ -22,6 +22,17 @@ class PhotosolidError(Exception):
     message: str
     """The full message (also ``str(error)``)."""
 
+class Field:
+    """One reconstruction of a luminaire, built once (``Luminaire.field``)."""
+
+    @property
+    def name(self) -> str:
+        """The reconstruction's name, as given."""
+    def sample(self, c_deg: npt.ArrayLike, gamma_deg: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Intensity (cd) at each (C, gamma) pair in degrees; the shape of ``c_deg``."""
+    def sample_dirs(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Intensity (cd) along each row of ``dirs`` (N, 3); shape (N,)."""
+
 class Luminaire:
     """A loaded photometric file (IES LM-63, EULUMDAT, TM-33 or a GLDF photometry). Immutable; pickles (with the
     bytes it was read from, parsed again on unpickling) and copies; its array properties are read-only."""
@@ -56,6 +67,8 @@ class Luminaire:
         """Intensity (cd) of reconstruction ``filter`` at each (C, gamma) pair (degrees); same shape as the inputs."""
     def sample_dirs(self, filter: str, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Intensity (cd) along each row of ``dirs`` (N, 3), luminaire frame (+x = C0, +y = C90, -z = nadir); shape (N,)."""
+    def field(self, recon: str) -> Field:
+        """Reconstruction ``recon`` built now and kept: its ``sample``/``sample_dirs`` build nothing again."""
     def texture(self, filter: str = "catmull-rom", factor: int = 5) -> npt.NDArray[np.float32]:
         """The light texture (EXR channel Y of ``photosolid texture``): I / I_max, shape (36 factor, 72 factor)."""
     def mesh(

@@ -8,7 +8,9 @@
 //! `message` attributes. Angles are degrees in the library's frame (C0 = +x,
 //! C90 = +y, γ = 0 at nadir, -z); intensities are candela.
 
+use std::collections::HashMap;
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 use glam::DVec3;
 use numpy::ndarray::{Array2, ArrayD};
@@ -16,6 +18,7 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArra
 use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
 use photosolid::error::{Error, ErrorRecord};
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
+use photosolid::model::IntensityField;
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
 use photosolid::registry::{Recon, Reconstructions};
 use photosolid::report::InfoReport;
@@ -90,13 +93,15 @@ struct Luminaire {
     /// The bytes the document was parsed from (the file's, or its
     /// container's): a pickle carries them and parses them again, so a
     /// luminaire travels to a process or machine that has no such file.
-    source: std::sync::Arc<Vec<u8>>,
+    source: Arc<Vec<u8>>,
+    /// The reconstructions built so far, by name (`Luminaire.prepared`).
+    built: Mutex<HashMap<String, Arc<Prepared>>>,
 }
 
 /// The luminaire `path` names, parsed from `source` (its bytes, as
 /// `document_source_bytes` reads them) with the default reader options.
 fn luminaire_from_source(py: Python<'_>, path: PathBuf, source: Vec<u8>) -> PyResult<Luminaire> {
-    let source = std::sync::Arc::new(source);
+    let source = Arc::new(source);
     let lum = py
         .detach(|| {
             photosolid::formats::load_document_from_bytes(&path, source.to_vec(), &photosolid::ReadOptions::default())
@@ -106,6 +111,7 @@ fn luminaire_from_source(py: Python<'_>, path: PathBuf, source: Vec<u8>) -> PyRe
         path: path.display().to_string(),
         lum,
         source,
+        built: Mutex::default(),
     })
 }
 
@@ -144,6 +150,138 @@ impl Luminaire {
     /// The reconstructions of the measured grid that `recon` names.
     fn field_of(&self, recon: Recon) -> Result<Reconstructions, photosolid::ModelError> {
         Reconstructions::new(self.lum.distribution().clone(), &[recon])
+    }
+
+    /// Reconstruction `name` (the `filter`/`recon` argument), built at its
+    /// first use on this luminaire and kept: a later call looks it up.
+    fn prepared(&self, py: Python<'_>, name: &str) -> PyResult<Arc<Prepared>> {
+        let recon: Recon = arg("filter", name)?;
+        let key = recon.to_string();
+        py.detach(|| {
+            // A poisoned lock only means another thread panicked while
+            // building: the map itself is still whole.
+            let mut built = self.built.lock().unwrap_or_else(|e| e.into_inner());
+            if let Some(p) = built.get(&key) {
+                return Ok(Arc::clone(p));
+            }
+            let p = Arc::new(Prepared::new(self.lum.distribution(), recon)?);
+            built.insert(key, Arc::clone(&p));
+            Ok(p)
+        })
+        .map_err(model_err)
+    }
+}
+
+/// One reconstruction of a luminaire, built once: a field that owns what it
+/// samples, or the built reconstructions a cheap field borrows from (a
+/// filter over the light texture, the measured solid, the fitted lights).
+enum Prepared {
+    Owned(Box<dyn IntensityField + Send>),
+    Shared(Box<Reconstructions>, Recon),
+}
+
+impl Prepared {
+    fn new(dist: &photosolid::Distribution, recon: Recon) -> Result<Self, photosolid::ModelError> {
+        let recs = Reconstructions::new(dist.clone(), &[recon])?;
+        Ok(match recs.owned_field(recon)? {
+            Some(field) => Prepared::Owned(field),
+            None => Prepared::Shared(Box::new(recs), recon),
+        })
+    }
+
+    /// `f` of the field.
+    fn with<T>(&self, f: impl FnOnce(&dyn IntensityField) -> T) -> Result<T, photosolid::ModelError> {
+        match self {
+            Prepared::Owned(field) => Ok(f(&**field)),
+            Prepared::Shared(recs, recon) => Ok(f(&*recs.field(*recon)?)),
+        }
+    }
+}
+
+/// `prepared` at each (C, γ) pair (degrees) of two arrays of one shape.
+fn sample_angles<'py>(
+    py: Python<'py>,
+    prepared: &Prepared,
+    c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let (c, g) = (c_deg.as_array(), gamma_deg.as_array());
+    if c.shape() != g.shape() {
+        return Err(PyValueError::new_err(format!(
+            "c_deg has shape {:?} and gamma_deg {:?}: they must be equal",
+            c.shape(),
+            g.shape()
+        )));
+    }
+    let shape = c.shape().to_vec();
+    let (c, g): (Vec<f64>, Vec<f64>) = (c.iter().copied().collect(), g.iter().copied().collect());
+    let out = py
+        .detach(|| prepared.with(|field| c.iter().zip(&g).map(|(&c, &g)| field.intensity_cd(c, g)).collect()))
+        .map_err(model_err)?;
+    let a = ArrayD::from_shape_vec(shape, out).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(a.into_pyarray(py))
+}
+
+/// `prepared` along each row of `dirs`, shape (N, 3), none zero or non-finite.
+fn sample_directions<'py>(
+    py: Python<'py>,
+    prepared: &Prepared,
+    dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let d = dirs.as_array();
+    if d.ncols() != 3 {
+        return Err(PyValueError::new_err(format!(
+            "dirs has shape {:?}: expected (N, 3)",
+            d.shape()
+        )));
+    }
+    let v: Vec<DVec3> = d.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2])).collect();
+    if let Some(i) = v.iter().position(|x| !(x.length() > 0.0 && x.is_finite())) {
+        return Err(PyValueError::new_err(format!("dirs[{i}] is zero or not finite")));
+    }
+    let out = py
+        .detach(|| prepared.with(|field| v.iter().map(|&x| field.intensity_dir_cd(x.normalize())).collect()))
+        .map_err(model_err)?;
+    Ok(PyArray1::from_vec(py, out))
+}
+
+/// One reconstruction of a luminaire, built once (`Luminaire.field(recon)`):
+/// sampling it builds nothing.
+#[pyclass(frozen, module = "photosolid")]
+struct Field {
+    name: String,
+    prepared: Arc<Prepared>,
+}
+
+#[pymethods]
+impl Field {
+    /// The reconstruction's name, as given.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Intensity (cd) at each (C, γ) pair in degrees, as `Luminaire.sample`.
+    fn sample<'py>(
+        &self,
+        py: Python<'py>,
+        c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+        gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        sample_angles(py, &self.prepared, c_deg, gamma_deg)
+    }
+
+    /// Intensity (cd) along each row of `dirs`, shape (N, 3), as `Luminaire.sample_dirs`.
+    fn sample_dirs<'py>(
+        &self,
+        py: Python<'py>,
+        dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        sample_directions(py, &self.prepared, dirs)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("photosolid.Field({:?})", self.name)
     }
 }
 
@@ -247,9 +385,11 @@ impl Luminaire {
     }
 
     /// Intensity (cd) of reconstruction `filter` (a filter such as `bilinear`,
-    /// `catmull-rom`, `pchip`; or `measured`, `fitted-gl`, a texture spec) at
-    /// each (C, γ) pair in degrees; `c_deg` and `gamma_deg` have one shape,
-    /// the result has it too (float64).
+    /// `catmull-rom`, `pchip`; or `measured`, `fitted-gl`, a texture spec,
+    /// `sh:L`, `lobes:K`) at each (C, γ) pair in degrees; `c_deg` and
+    /// `gamma_deg` have one shape, the result has it too (float64). The
+    /// reconstruction is built at the first call for `filter` and kept (see
+    /// `field`).
     fn sample<'py>(
         &self,
         py: Python<'py>,
@@ -257,57 +397,32 @@ impl Luminaire {
         c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
         gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        let recon: Recon = arg("filter", filter)?;
-        let (c, g) = (c_deg.as_array(), gamma_deg.as_array());
-        if c.shape() != g.shape() {
-            return Err(PyValueError::new_err(format!(
-                "c_deg has shape {:?} and gamma_deg {:?}: they must be equal",
-                c.shape(),
-                g.shape()
-            )));
-        }
-        let shape = c.shape().to_vec();
-        let (c, g): (Vec<f64>, Vec<f64>) = (c.iter().copied().collect(), g.iter().copied().collect());
-        let out = py
-            .detach(|| -> Result<Vec<f64>, photosolid::ModelError> {
-                let recs = self.field_of(recon)?;
-                let field = recs.field(recon)?;
-                Ok(c.iter().zip(&g).map(|(&c, &g)| field.intensity_cd(c, g)).collect())
-            })
-            .map_err(model_err)?;
-        let a = ArrayD::from_shape_vec(shape, out).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        Ok(a.into_pyarray(py))
+        let prepared = self.prepared(py, filter)?;
+        sample_angles(py, &prepared, c_deg, gamma_deg)
     }
 
     /// Intensity (cd) of reconstruction `filter` along each row of `dirs`, shape
     /// (N, 3) (any length, not zero; luminaire frame: +x = C0, +y = C90, -z =
-    /// nadir); returns shape (N,).
+    /// nadir); returns shape (N,). Built once per `filter`, as `sample`.
     fn sample_dirs<'py>(
         &self,
         py: Python<'py>,
         filter: &str,
         dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let recon: Recon = arg("filter", filter)?;
-        let d = dirs.as_array();
-        if d.ncols() != 3 {
-            return Err(PyValueError::new_err(format!(
-                "dirs has shape {:?}: expected (N, 3)",
-                d.shape()
-            )));
-        }
-        let v: Vec<DVec3> = d.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2])).collect();
-        if let Some(i) = v.iter().position(|x| !(x.length() > 0.0 && x.is_finite())) {
-            return Err(PyValueError::new_err(format!("dirs[{i}] is zero or not finite")));
-        }
-        let out = py
-            .detach(|| -> Result<Vec<f64>, photosolid::ModelError> {
-                let recs = self.field_of(recon)?;
-                let field = recs.field(recon)?;
-                Ok(v.iter().map(|&x| field.intensity_dir_cd(x.normalize())).collect())
-            })
-            .map_err(model_err)?;
-        Ok(PyArray1::from_vec(py, out))
+        let prepared = self.prepared(py, filter)?;
+        sample_directions(py, &prepared, dirs)
+    }
+
+    /// Reconstruction `recon` (the names of `sample`) as a `Field`, built now
+    /// and shared with `sample`: its `sample` and `sample_dirs` look it up
+    /// without building anything again.
+    fn field(&self, py: Python<'_>, recon: &str) -> PyResult<Field> {
+        let prepared = self.prepared(py, recon)?;
+        Ok(Field {
+            name: recon.trim().to_string(),
+            prepared,
+        })
     }
 
     /// The light texture `photosolid texture FILE --filter F --factor K` writes
@@ -510,6 +625,7 @@ fn list_inputs(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<Vec<String>> {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PhotosolidError", m.py().get_type::<PhotosolidError>())?;
     m.add_class::<Luminaire>()?;
+    m.add_class::<Field>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
     m.add_function(wrap_pyfunction!(list_inputs, m)?)?;

@@ -252,3 +252,29 @@ def test_luminaires_pickle_copy_and_travel(catalogue, tmp_path):
     with pytest.raises(ValueError):
         lum.candela[0, 0] = -999.0
     assert lum.candela.copy().flags.writeable
+
+
+@pytest.mark.parametrize("recon", ["catmull-rom", "measured", "fitted-gl", "lobes:3", "sh:4",
+                                   "catmull-rom@x2/bilinear", "bilinear+gamma:0-90"])
+def test_fields_are_built_once_and_answer_as_sample(recon):
+    """``Luminaire.field(recon)`` answers as ``sample``/``sample_dirs`` on a fresh luminaire (whose first call
+    builds the reconstruction), and a second ``sample`` on the same luminaire (which looks it up) answers the same."""
+    path = DATA / "batwing.ies"
+    lum = photosolid.load(path)
+    c = np.array([0.0, 45.0, 90.0, 200.0, 359.5])
+    g = np.array([0.0, 30.0, 60.0, 90.0, 150.0])
+    fresh = photosolid.load(path).sample(recon, c, g)
+    field = lum.field(recon)
+    assert field.name == recon
+    np.testing.assert_array_equal(field.sample(c, g), fresh)
+    np.testing.assert_array_equal(lum.sample(recon, c, g), fresh)
+    dirs = np.array([[0.0, 0.0, -1.0], [1.0, 0.0, -1.0], [0.0, 1.0, 0.2]])
+    np.testing.assert_array_equal(field.sample_dirs(dirs), photosolid.load(path).sample_dirs(recon, dirs))
+    for k in range(len(c)):  # one point at a time, as a loop over single calls would
+        assert lum.sample(recon, c[k:k + 1], g[k:k + 1])[0] == fresh[k]
+
+
+def test_field_names_are_checked():
+    lum = photosolid.load(DATA / "batwing.ies")
+    with pytest.raises(ValueError):
+        lum.field("no-such-filter")

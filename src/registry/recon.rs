@@ -325,17 +325,41 @@ impl Reconstructions {
     /// # Errors
     /// [`ModelError::Internal`] when `r` was not asked for in [`Reconstructions::new`] (a bug).
     pub fn field(&self, r: Recon) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+        if let Some(owned) = self.owned_field(r)? {
+            return Ok(owned);
+        }
         let missing = || ModelError::Internal(format!("reconstruction {r} was not prepared"));
         Ok(match r {
             Recon::Measured => Box::new(Borrowed(&self.measured.as_ref().ok_or_else(missing)?.1)),
             Recon::Filter(f) => Box::new(self.texture.sampler(f)),
             Recon::FittedGl => Box::new(Borrowed(self.fitted.as_ref().ok_or_else(missing)?)),
+            Recon::Gpu(t) => self.gpu_field(r, t)?,
+            Recon::Lobes { gpu: true, .. } | Recon::Sh { gpu: true, .. } => self.gpu_compact(r, self.compact(r)?)?,
+            // Built by owned_field.
+            Recon::Texture(_)
+            | Recon::Cropped { .. }
+            | Recon::Symmetric { .. }
+            | Recon::Lobes { gpu: false, .. }
+            | Recon::Sh { gpu: false, .. } => return Err(missing()),
+        })
+    }
+
+    /// The reconstructions whose field owns what it samples (a rendered
+    /// texture, a re-stored grid, a series or a mixture), built here at a
+    /// cost (a render, a projection): a caller that samples one many times
+    /// keeps this value instead of calling [`Reconstructions::field`] again.
+    /// `None` for those that borrow from `self` and cost nothing to take
+    /// again (`measured`, a filter, `fitted-gl`) and for the GPU's.
+    ///
+    /// # Errors
+    /// As [`Reconstructions::field`].
+    pub fn owned_field(&self, r: Recon) -> Result<Option<Box<dyn IntensityField + Send>>, ModelError> {
+        Ok(Some(match r {
             Recon::Texture(t) => {
                 let rendered = render(&self.texture, t.filter, t.factor)?;
                 let reduced = t.reduced.then(|| self.dist.symmetry());
                 Box::new(StoredTexture::new(&rendered, reduced, t.precision, t.lookup))
             }
-            Recon::Gpu(t) => self.gpu_field(r, t)?,
             Recon::Cropped {
                 filter,
                 gamma_from,
@@ -344,8 +368,8 @@ impl Reconstructions {
             } => self.owned(r, crop(&self.dist, gamma_from, gamma_to, c)?, filter)?,
             Recon::Symmetric { filter, symmetry } => self.owned(r, self.dist.with_symmetry(symmetry)?, filter)?,
             Recon::Lobes { gpu: false, .. } | Recon::Sh { gpu: false, .. } => Box::new(self.compact(r)?),
-            Recon::Lobes { gpu: true, .. } | Recon::Sh { gpu: true, .. } => self.gpu_compact(r, self.compact(r)?)?,
-        })
+            _ => return Ok(None),
+        }))
     }
 
     /// The compact representation of `r` (`sh:L`, `lobes:K`, with or without `+gpu`).
@@ -380,7 +404,7 @@ impl Reconstructions {
     }
 
     /// A filter on a re-stored grid, sampled through the texture it owns.
-    fn owned(&self, r: Recon, d: Distribution, filter: Filter) -> Result<Box<dyn IntensityField + '_>, ModelError> {
+    fn owned(&self, r: Recon, d: Distribution, filter: Filter) -> Result<Box<dyn IntensityField + Send>, ModelError> {
         Ok(Box::new(OwnedSampler {
             texture: LightTexture::new(&d)?,
             filter,
