@@ -10,7 +10,10 @@ Python bindings over the photosolid Rust library (the same numbers as the ``phot
 - ``list_inputs(paths)`` -> the paths ``batch`` reads, in its order (every format, files read by content,
   one ``FILE#ID`` per photometry of a GLDF container or TM-33 document), for recipes that shard them
   (``list_files`` is the same function under its earlier name);
-- errors raise ``PhotosolidError`` with ``path``, ``line``, ``column``, ``code`` and ``message``.
+- errors raise ``PhotosolidError`` with ``path``, ``line``, ``column``, ``code`` and ``message``; a missing
+  file is also a ``FileNotFoundError``, another I/O failure an ``OSError``, a malformed file or a value out of
+  its domain a ``ValueError``, an unsupported feature a ``NotImplementedError`` (the ``Photosolid*Error``
+  subclasses); a bad argument is a ``ValueError`` or ``TypeError`` naming it.
 
 The GIL is released while Rust works, so threads (e.g. Dask's) run files in parallel.
 """
@@ -20,9 +23,29 @@ from __future__ import annotations
 import os
 from typing import Iterable, Union
 
-from ._native import Field, Luminaire, PhotosolidError, __version__, batch_parquet, list_inputs, load
+from ._native import (
+    Field,
+    Luminaire,
+    PhotosolidError,
+    PhotosolidFileNotFoundError,
+    PhotosolidOSError,
+    PhotosolidUnsupportedError,
+    PhotosolidValueError,
+    __version__,
+    batch_parquet,
+    list_inputs,
+    load,
+)
 
-__all__ = ["Field", "Luminaire", "PhotosolidError", "__version__", "batch", "list_files", "list_inputs", "load"]
+__all__ = [
+    "Field",
+    "Luminaire",
+    "PhotosolidError",
+    "PhotosolidFileNotFoundError",
+    "PhotosolidOSError",
+    "PhotosolidUnsupportedError",
+    "PhotosolidValueError",
+    "__version__", "batch", "list_files", "list_inputs", "load"]
 
 list_files = list_inputs  # the earlier name of list_inputs, kept for the recipes that use it
 

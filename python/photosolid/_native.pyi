@@ -22,6 +22,18 @@ class PhotosolidError(Exception):
     message: str
     """The full message (also ``str(error)``)."""
 
+class PhotosolidFileNotFoundError(PhotosolidError, FileNotFoundError):
+    """A file that does not exist (code ``io``)."""
+
+class PhotosolidOSError(PhotosolidError, OSError):
+    """A file that cannot be read or written (code ``io``)."""
+
+class PhotosolidValueError(PhotosolidError, ValueError):
+    """A malformed file or a value outside its domain (codes ``invalid``, ``model``, ...)."""
+
+class PhotosolidUnsupportedError(PhotosolidError, NotImplementedError):
+    """A file that uses a feature photosolid does not read (code ``unsupported``)."""
+
 class Field:
     """One reconstruction of a luminaire, built once (``Luminaire.field``)."""
 

@@ -14,7 +14,7 @@ use std::sync::{Arc, Mutex};
 
 use glam::DVec3;
 use numpy::ndarray::{Array2, ArrayD};
-use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLike2, PyArrayLikeDyn};
+use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLikeDyn};
 use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
 use photosolid::error::{Error, ErrorRecord};
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
@@ -45,8 +45,27 @@ fn py_err(e: Error) -> PyErr {
         }
         _ => None,
     };
+    // The subclass a Python user catches by the builtin it also derives from.
+    let class = match &e {
+        Error::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
+            Some("PhotosolidFileNotFoundError")
+        }
+        Error::Io { .. } => Some("PhotosolidOSError"),
+        Error::Parse(p) if p.kind == photosolid::ErrorKind::Unsupported => Some("PhotosolidUnsupportedError"),
+        Error::Parse(_) | Error::Model(_) | Error::UnknownExtension { .. } => Some("PhotosolidValueError"),
+        _ => None,
+    };
     Python::attach(|py| {
-        let err = PhotosolidError::new_err(rec.message.clone());
+        let subclass = || -> PyResult<PyErr> {
+            let cls = py
+                .import("photosolid._native")?
+                .getattr(class.unwrap_or("PhotosolidError"))?;
+            Ok(PyErr::from_value(cls.call1((rec.message.clone(),))?))
+        };
+        let err = match class {
+            Some(_) => subclass().unwrap_or_else(|_| PhotosolidError::new_err(rec.message.clone())),
+            None => PhotosolidError::new_err(rec.message.clone()),
+        };
         let v = err.value(py);
         let set = || -> PyResult<()> {
             v.setattr("path", path)?;
@@ -74,6 +93,37 @@ where
 {
     s.parse()
         .map_err(|e| PyValueError::new_err(format!("{name} = {s:?}: {e}")))
+}
+
+/// `value` of argument `name` when it lies in `lo..=hi`; a `ValueError`
+/// naming the argument and its range otherwise (a negative count is a
+/// value error, not an `OverflowError` of a conversion).
+fn int_in(name: &str, value: i64, lo: i64, hi: i64) -> PyResult<i64> {
+    if (lo..=hi).contains(&value) {
+        Ok(value)
+    } else {
+        Err(PyValueError::new_err(format!(
+            "{name} = {value}: expected {lo} to {hi}"
+        )))
+    }
+}
+
+/// The reconstruction names of `recons`: one string (comma-separated, as
+/// the CLI's `--recon`) or a sequence of strings.
+fn recon_names(recons: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
+    if let Ok(s) = recons.extract::<String>() {
+        return Ok(s
+            .split(',')
+            .map(|r| r.trim().to_string())
+            .filter(|r| !r.is_empty())
+            .collect());
+    }
+    recons.extract::<Vec<String>>().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "recons = {}: expected a string (\"bilinear\" or \"bilinear,pchip\") or a list of strings",
+            recons.repr().map(|r| r.to_string()).unwrap_or_default()
+        ))
+    })
 }
 
 /// A serde value as a Python object (through `json.loads`, so it equals the CLI's JSON).
@@ -205,16 +255,7 @@ fn sample_angles<'py>(
     c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
     gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    let (c, g) = (c_deg.as_array(), gamma_deg.as_array());
-    if c.shape() != g.shape() {
-        return Err(PyValueError::new_err(format!(
-            "c_deg has shape {:?} and gamma_deg {:?}: they must be equal",
-            c.shape(),
-            g.shape()
-        )));
-    }
-    let shape = c.shape().to_vec();
-    let (c, g): (Vec<f64>, Vec<f64>) = (c.iter().copied().collect(), g.iter().copied().collect());
+    let (shape, c, g) = broadcast_angles(c_deg.as_array(), gamma_deg.as_array())?;
     let out = py
         .detach(|| prepared.with(|field| c.iter().zip(&g).map(|(&c, &g)| field.intensity_cd(c, g)).collect()))
         .map_err(model_err)?;
@@ -222,27 +263,73 @@ fn sample_angles<'py>(
     Ok(a.into_pyarray(py))
 }
 
-/// `prepared` along each row of `dirs`, shape (N, 3), none zero or non-finite.
+/// `c_deg` and `gamma_deg` broadcast against each other as numpy does (a
+/// scalar against an array, a row against a column): the common shape and
+/// both flattened in its order; a `ValueError` for shapes that do not
+/// broadcast or a value that is not finite.
+fn broadcast_angles(
+    c: numpy::ndarray::ArrayViewD<'_, f64>,
+    g: numpy::ndarray::ArrayViewD<'_, f64>,
+) -> PyResult<(Vec<usize>, Vec<f64>, Vec<f64>)> {
+    let n = c.ndim().max(g.ndim());
+    let dim = |a: &[usize], i: usize| if i + a.len() >= n { a[i + a.len() - n] } else { 1 };
+    let mut shape = Vec::with_capacity(n);
+    for i in 0..n {
+        let (a, b) = (dim(c.shape(), i), dim(g.shape(), i));
+        if a != b && a != 1 && b != 1 {
+            return Err(PyValueError::new_err(format!(
+                "c_deg has shape {:?} and gamma_deg {:?}: they do not broadcast to one shape",
+                c.shape(),
+                g.shape()
+            )));
+        }
+        shape.push(if a == 1 { b } else { a });
+    }
+    let target = numpy::ndarray::IxDyn(&shape);
+    let flat = |a: &numpy::ndarray::ArrayViewD<'_, f64>, name: &str| -> PyResult<Vec<f64>> {
+        let v: Vec<f64> = a
+            .broadcast(target.clone())
+            .map(|b| b.iter().copied().collect())
+            .ok_or_else(|| PyValueError::new_err(format!("{name} does not broadcast to {shape:?}")))?;
+        match v.iter().position(|x| !x.is_finite()) {
+            Some(i) => Err(PyValueError::new_err(format!(
+                "{name} holds {} (at flat index {i} of the broadcast shape {shape:?}): angles must be finite",
+                v[i]
+            ))),
+            None => Ok(v),
+        }
+    };
+    Ok((shape.clone(), flat(&c, "c_deg")?, flat(&g, "gamma_deg")?))
+}
+
+/// `prepared` along each direction of `dirs`, shape (..., 3) (a single
+/// direction (3,) gives a 0-d array, (N, 3) gives (N,)); none zero or not finite.
 fn sample_directions<'py>(
     py: Python<'py>,
     prepared: &Prepared,
-    dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
-) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    dirs: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
     let d = dirs.as_array();
-    if d.ncols() != 3 {
+    if d.ndim() == 0 || d.shape()[d.ndim() - 1] != 3 {
         return Err(PyValueError::new_err(format!(
-            "dirs has shape {:?}: expected (N, 3)",
+            "dirs has shape {:?}: expected (N, 3), or (3,) for one direction",
             d.shape()
         )));
     }
-    let v: Vec<DVec3> = d.rows().into_iter().map(|r| DVec3::new(r[0], r[1], r[2])).collect();
+    let shape = d.shape()[..d.ndim() - 1].to_vec();
+    let flat: Vec<f64> = d.iter().copied().collect();
+    let v: Vec<DVec3> = flat.chunks_exact(3).map(|r| DVec3::new(r[0], r[1], r[2])).collect();
     if let Some(i) = v.iter().position(|x| !(x.length() > 0.0 && x.is_finite())) {
-        return Err(PyValueError::new_err(format!("dirs[{i}] is zero or not finite")));
+        return Err(PyValueError::new_err(format!(
+            "direction {i} (in flat order) is {:?}: expected a finite, non-zero vector",
+            v[i].to_array()
+        )));
     }
     let out = py
         .detach(|| prepared.with(|field| v.iter().map(|&x| field.intensity_dir_cd(x.normalize())).collect()))
         .map_err(model_err)?;
-    Ok(PyArray1::from_vec(py, out))
+    let a = ArrayD::from_shape_vec(shape, out).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(a.into_pyarray(py))
 }
 
 /// One reconstruction of a luminaire, built once (`Luminaire.field(recon)`):
@@ -275,8 +362,8 @@ impl Field {
     fn sample_dirs<'py>(
         &self,
         py: Python<'py>,
-        dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        dirs: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         sample_directions(py, &self.prepared, dirs)
     }
 
@@ -408,8 +495,8 @@ impl Luminaire {
         &self,
         py: Python<'py>,
         filter: &str,
-        dirs: PyArrayLike2<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        dirs: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let prepared = self.prepared(py, filter)?;
         sample_directions(py, &prepared, dirs)
     }
@@ -431,11 +518,9 @@ impl Luminaire {
     /// and (j + 0.5)·360/width degrees), values I / I_max (multiply by
     /// `photometry()["max_cd"]` for cd).
     #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn texture<'py>(&self, py: Python<'py>, filter: &str, factor: u32) -> PyResult<Bound<'py, PyArray2<f32>>> {
+    fn texture<'py>(&self, py: Python<'py>, filter: &str, factor: i64) -> PyResult<Bound<'py, PyArray2<f32>>> {
         let filter: Filter = arg("filter", filter)?;
-        if !(1..=32).contains(&factor) {
-            return Err(PyValueError::new_err(format!("factor = {factor}: outside 1..=32")));
-        }
+        let factor = int_in("factor", factor, 1, 32)? as u32;
         let r = py
             .detach(|| -> Result<_, photosolid::ModelError> {
                 let tex = LightTexture::new(self.lum.distribution())?;
@@ -459,11 +544,9 @@ impl Luminaire {
     /// and int64 (F, 3) vertex indices, counter-clockwise seen from outside:
     /// `trimesh.Trimesh(vertices, faces)` takes them as they are.
     #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn mesh<'py>(&self, py: Python<'py>, filter: &str, factor: usize) -> PyResult<MeshArrays<'py>> {
+    fn mesh<'py>(&self, py: Python<'py>, filter: &str, factor: i64) -> PyResult<MeshArrays<'py>> {
         let recon: Recon = arg("filter", filter)?;
-        if factor == 0 {
-            return Err(PyValueError::new_err("factor must be at least 1"));
-        }
+        let factor = int_in("factor", factor, 1, i64::MAX)? as usize;
         let (v, f) = py
             .detach(|| -> Result<_, photosolid::ModelError> {
                 let mesh = self.field_of(recon)?.solid_in(recon, factor, Units::Candela)?;
@@ -491,20 +574,27 @@ impl Luminaire {
     fn compare<'py>(
         &self,
         py: Python<'py>,
-        recons: Option<Vec<String>>,
+        recons: Option<Bound<'py, PyAny>>,
         against: Option<&str>,
         vs: Option<PyRef<'py, Luminaire>>,
-        folds: usize,
+        folds: i64,
         normalize: &str,
         directions: &str,
         tolerance: f64,
-        factor: Option<usize>,
+        factor: Option<i64>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let defaults = CompareOptions::default();
         let recons = match recons {
-            Some(rs) => rs.iter().map(|r| arg::<Recon>("recons", r)).collect::<PyResult<_>>()?,
+            Some(rs) => recon_names(&rs)?
+                .iter()
+                .map(|r| arg::<Recon>("recons", r))
+                .collect::<PyResult<_>>()?,
             None => defaults.recons.clone(),
         };
+        let folds = int_in("folds", folds, 0, i64::MAX)? as usize; // the library checks k >= 2, as for the CLI
+        let factor = factor
+            .map(|f| int_in("factor", f, 1, i64::MAX).map(|f| f as usize))
+            .transpose()?;
         let opts = CompareOptions {
             recons,
             against: against.map(|a| arg::<Against>("against", a)).transpose()?,
@@ -553,7 +643,7 @@ impl Luminaire {
     fn fit<'py>(
         &self,
         py: Python<'py>,
-        max_lights: usize,
+        max_lights: i64,
         error: &str,
         tolerance: f64,
         guard: f64,
@@ -564,7 +654,7 @@ impl Luminaire {
             e => return Err(PyValueError::new_err(format!("error = {e:?}: relative or solid-angle"))),
         };
         let options = FitOptions {
-            max_lights,
+            max_lights: int_in("max_lights", max_lights, 1, 2)? as usize,
             metric,
             guard,
             tolerance,
@@ -620,10 +710,48 @@ fn list_inputs(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<Vec<String>> {
     Ok(files.iter().map(|p| p.display().to_string()).collect())
 }
 
+/// The subclasses of `PhotosolidError` that also derive from the builtin a
+/// Python user catches: a missing file is a `FileNotFoundError`, another
+/// I/O failure an `OSError`, a malformed file or a value outside its domain a
+/// `ValueError`, a feature the readers do not support a `NotImplementedError`.
+/// Each keeps `path`, `line`, `column`, `code` and `message`.
+fn add_error_subclasses(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    let builtins = py.import("builtins")?;
+    let base = py.get_type::<PhotosolidError>();
+    for (name, builtin, doc) in [
+        (
+            "PhotosolidFileNotFoundError",
+            "FileNotFoundError",
+            "A file that does not exist.",
+        ),
+        ("PhotosolidOSError", "OSError", "A file that cannot be read or written."),
+        (
+            "PhotosolidValueError",
+            "ValueError",
+            "A malformed file, or a value outside its domain.",
+        ),
+        (
+            "PhotosolidUnsupportedError",
+            "NotImplementedError",
+            "A file that uses a feature photosolid does not read.",
+        ),
+    ] {
+        let namespace = pyo3::types::PyDict::new(py);
+        namespace.set_item("__module__", "photosolid")?;
+        namespace.set_item("__doc__", doc)?;
+        let bases = pyo3::types::PyTuple::new(py, [base.as_any(), &builtins.getattr(builtin)?])?;
+        let class = builtins.getattr("type")?.call1((name, bases, namespace))?;
+        m.add(name, class)?;
+    }
+    Ok(())
+}
+
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PhotosolidError", m.py().get_type::<PhotosolidError>())?;
+    add_error_subclasses(m)?;
     m.add_class::<Luminaire>()?;
     m.add_class::<Field>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;

@@ -62,8 +62,8 @@ def test_sample_reproduces_the_measurements_and_directions_agree():
     b = lum.sample("catmull-rom", cs, gs)
     assert a.shape == (500,)
     np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-9 * lum.candela.max())
-    with pytest.raises(ValueError, match="shape"):
-        lum.sample("bilinear", [0.0, 1.0], [0.0])
+    with pytest.raises(ValueError, match="shape"):  # (2,) against (1,) broadcasts; (2,) against (3,) does not
+        lum.sample("bilinear", [0.0, 1.0], [0.0, 1.0, 2.0])
     with pytest.raises(ValueError, match="filter"):
         lum.sample("no-such-filter", [0.0], [0.0])
 
@@ -278,3 +278,71 @@ def test_field_names_are_checked():
     lum = photosolid.load(DATA / "batwing.ies")
     with pytest.raises(ValueError):
         lum.field("no-such-filter")
+
+
+def test_errors_are_the_builtins_python_users_catch(tmp_path):
+    """A missing file is a FileNotFoundError, a malformed file a ValueError, an unsupported one a
+    NotImplementedError; each is still a PhotosolidError with its code, path and line."""
+    with pytest.raises(FileNotFoundError) as e:
+        photosolid.load(tmp_path / "missing.ies")
+    assert isinstance(e.value, photosolid.PhotosolidError) and e.value.code == "io"
+    assert e.value.path.endswith("missing.ies") and str(e.value) == e.value.message
+    bad = tmp_path / "bad.ies"
+    bad.write_text("IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 x\n")
+    with pytest.raises(ValueError) as e:
+        photosolid.load(bad)
+    assert isinstance(e.value, photosolid.PhotosolidValueError) and (e.value.code, e.value.line) == ("invalid", 3)
+    utf16 = tmp_path / "utf16.ies"
+    utf16.write_bytes("IESNA:LM-63-2002\nTILT=NONE\n".encode("utf-16"))
+    with pytest.raises(NotImplementedError) as e:
+        photosolid.load(utf16)
+    assert isinstance(e.value, photosolid.PhotosolidError) and e.value.code == "unsupported"
+    lum = photosolid.load(DATA / "batwing.ies")
+    with pytest.raises(ValueError) as e:  # a value outside its domain, from the library
+        lum.compare(recons="bilinear", against="withheld", folds=1, directions="dense:200", factor=1)
+    assert isinstance(e.value, photosolid.PhotosolidError) and e.value.code == "model"
+
+
+def test_bad_arguments_name_the_argument_in_python_words():
+    """No Rust type names: negative counts are ValueErrors naming the argument, recons takes a string or a list,
+    dirs of the wrong shape say the shape expected."""
+    lum = photosolid.load(DATA / "batwing.ies")
+    for call, words in [
+        (lambda: lum.fit(max_lights=-1), "max_lights = -1"),
+        (lambda: lum.fit(max_lights=3), "max_lights = 3"),
+        (lambda: lum.texture(factor=-1), "factor = -1"),
+        (lambda: lum.mesh(factor=0), "factor = 0"),
+        (lambda: lum.sample_dirs("bilinear", [[0.0, 0.0]]), "expected (N, 3)"),
+        (lambda: lum.sample("bilinear", [1.0, 2.0], [1.0, 2.0, 3.0]), "do not broadcast"),
+    ]:
+        with pytest.raises(ValueError) as e:
+            call()
+        assert words in str(e.value), str(e.value)
+        assert not any(w in str(e.value) for w in ("usize", "Vec", "dimensionality mismatch", "integral type"))
+    with pytest.raises(TypeError) as e:
+        lum.compare(recons=3)
+    assert "recons = 3" in str(e.value)
+    one = lum.compare(recons="bilinear", directions="dense:200", factor=1)
+    listed = lum.compare(recons=["bilinear"], directions="dense:200", factor=1)
+    assert [r["name"] for r in one["results"]] == [r["name"] for r in listed["results"]] == ["bilinear"]
+
+
+def test_angles_broadcast_and_nan_is_refused():
+    """c_deg and gamma_deg broadcast as numpy does; NaN or infinity is refused in sample and sample_dirs alike;
+    one direction (3,) gives a 0-d result."""
+    lum = photosolid.load(DATA / "batwing.ies")
+    c = np.array([0.0, 30.0, 90.0, 180.0])
+    full = lum.sample("bilinear", np.repeat(c, 3).reshape(4, 3), np.tile([10.0, 40.0, 70.0], (4, 1)))
+    np.testing.assert_array_equal(lum.sample("bilinear", c[:, None], np.array([10.0, 40.0, 70.0])), full)
+    scalar_gamma = lum.sample("bilinear", c, 40.0)
+    assert scalar_gamma.shape == (4,)
+    np.testing.assert_array_equal(scalar_gamma, full[:, 1])
+    for bad in (np.nan, np.inf):
+        with pytest.raises(ValueError, match="finite"):
+            lum.sample("bilinear", [bad], [0.0])
+        with pytest.raises(ValueError, match="finite"):
+            lum.sample("bilinear", [0.0], [bad])
+        with pytest.raises(ValueError, match="finite"):
+            lum.sample_dirs("bilinear", [[0.0, bad, -1.0]])
+    one = lum.sample_dirs("bilinear", [0.0, 0.0, -1.0])
+    assert one.shape == () and float(one) == lum.sample_dirs("bilinear", [[0.0, 0.0, -1.0]])[0]
