@@ -82,7 +82,8 @@ class Luminaire:
     def field(self, recon: str) -> Field:
         """Reconstruction ``recon`` built now and kept: its ``sample``/``sample_dirs`` build nothing again."""
     def texture(self, filter: str = "catmull-rom", factor: int = 5) -> npt.NDArray[np.float32]:
-        """The light texture (EXR channel Y of ``photosolid texture``): I / I_max, shape (36 factor, 72 factor)."""
+        """The light texture (EXR channel Y of ``photosolid texture``): I / I_max, shape (factor R, factor P), R the
+        file's mean measured gamma steps in 180 degrees, P its planes on the full circle (it depends on the file)."""
     def mesh(
         self, filter: str = "catmull-rom", factor: int = 5
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:

@@ -513,8 +513,10 @@ impl Luminaire {
     }
 
     /// The light texture `photosolid texture FILE --filter F --factor K` writes
-    /// (its EXR channel `Y`): float32, shape (height, width) = (36·K, 72·K)
-    /// (γ rows from nadir, C columns from C0; texel centres at (i + 0.5)·180/height
+    /// (its EXR channel `Y`): float32, shape (height, width) = (K·R, K·P) with R
+    /// the number of the file's mean measured γ steps in 180° (at least 1) and P
+    /// the number of planes on the full circle (so it depends on the file: a
+    /// 5° grid of 72 planes gives (36·K, 72·K)); γ rows from nadir, C columns from C0; texel centres at (i + 0.5)·180/height
     /// and (j + 0.5)·360/width degrees), values I / I_max (multiply by
     /// `photometry()["max_cd"]` for cd).
     #[pyo3(signature = (filter = "catmull-rom", factor = 5))]

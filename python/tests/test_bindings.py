@@ -346,3 +346,15 @@ def test_angles_broadcast_and_nan_is_refused():
             lum.sample_dirs("bilinear", [[0.0, bad, -1.0]])
     one = lum.sample_dirs("bilinear", [0.0, 0.0, -1.0])
     assert one.shape == () and float(one) == lum.sample_dirs("bilinear", [[0.0, 0.0, -1.0]])[0]
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.name)
+def test_texture_shape_is_the_documented_one(path: Path):
+    """``texture(factor=K)`` has shape (K R, K P): R the mean measured gamma steps in 180 degrees, P the planes
+    of ``full_grid()``, as the docstring says."""
+    lum = photosolid.load(path)
+    g = lum.gamma_deg
+    steps = max(1, round(180 * (g.size - 1) / (g.max() - g.min()))) if g.size >= 2 else 1
+    planes = lum.full_grid()[0].size
+    for k in (1, 3):
+        assert lum.texture(factor=k).shape == (k * steps, k * planes)
