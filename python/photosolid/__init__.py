@@ -2,7 +2,8 @@
 
 Python bindings over the photosolid Rust library (the same numbers as the ``photosolid`` CLI).
 
-- ``load(path)`` -> ``Luminaire`` with numpy arrays ``c_deg``, ``gamma_deg`` (degrees) and ``candela``
+- ``load(path, *, repair, handedness, lamp_sets, front)`` -> ``Luminaire`` (the CLI's reader options;
+  ``load_all(path)`` gives every photometry of a GLDF container or TM-33 document, each with its ``id``) with numpy arrays ``c_deg``, ``gamma_deg`` (degrees) and ``candela``
   (cd, shape (n_c, n_gamma); read-only), ``photometry()`` (the dict of ``photosolid info --json``), ``sample``
   and ``sample_dirs`` (each reconstruction built at its first use and kept; ``field(recon)`` returns it),
   ``texture``, ``mesh``, ``compare``, ``fit``; it pickles and copies;
@@ -21,7 +22,7 @@ The GIL is released while Rust works, so threads (e.g. Dask's) run files in para
 from __future__ import annotations
 
 import os
-from typing import Iterable, Union
+from typing import Iterable, Optional, Union
 
 from ._native import (
     Field,
@@ -35,6 +36,7 @@ from ._native import (
     batch_parquet,
     list_inputs,
     load,
+    load_all,
 )
 
 __all__ = [
@@ -51,19 +53,33 @@ list_files = list_inputs  # the earlier name of list_inputs, kept for the recipe
 
 
 def batch(
-    paths: Union[str, os.PathLike, Iterable[Union[str, os.PathLike]]], compact: bool = False
+    paths: Union[str, os.PathLike, Iterable[Union[str, os.PathLike]]],
+    compact: bool = False,
+    *,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
 ) -> "pyarrow.Table":  # noqa: F821
     """The batch table of every photometry under ``paths`` (directories recursively: .ies, .ldt, TM-33 .xml,
     .gldf and files read by content; ``list_inputs(paths)`` lists them), one row per photometry.
 
     Equal to ``photosolid batch PATHS -o OUT.parquet`` read with ``pyarrow.parquet.read_table``; with
     ``compact=True`` to ``batch --compact``, which fills ``smallest_within_1pct``. A file that does not load is
-    a row with ``ok`` False and its error, not an exception. Needs pyarrow.
+    a row with ``ok`` False and its error, not an exception. The reader options are ``load``'s (the CLI's
+    ``--repair``, ``--handedness``, ``--lamp-sets``, ``--front``). Needs pyarrow.
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     if isinstance(paths, (str, os.PathLike)):
         paths = [paths]
-    data = batch_parquet([os.fspath(p) for p in paths], compact)
+    data = batch_parquet(
+        [os.fspath(p) for p in paths],
+        compact,
+        repair=repair,
+        handedness=handedness,
+        lamp_sets=lamp_sets,
+        front=front,
+    )
     return pq.read_table(pa.BufferReader(data))

@@ -56,6 +56,9 @@ class Luminaire:
     def path(self) -> str:
         """The file, as given to ``load``."""
     @property
+    def id(self) -> Optional[str]:
+        """The photometry's id in its GLDF container or TM-33 document, or None."""
+    @property
     def c_deg(self) -> npt.NDArray[np.float64]:
         """Stored C-planes, degrees, shape (n_c,)."""
     @property
@@ -106,10 +109,37 @@ class Luminaire:
     ) -> dict[str, Any]:
         """The fit report of ``photosolid fit FILE --json`` as a dict."""
 
-def load(path: Union[str, os.PathLike[str]]) -> Luminaire:
-    """Load an .ies, .ldt, TM-33 .xml or GLDF (``FILE.gldf#ID``) file; raises PhotosolidError naming the file and line when it is bad."""
+def load(
+    path: Union[str, os.PathLike[str]],
+    *,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> Luminaire:
+    """Load an .ies, .ldt, TM-33 .xml or GLDF (``FILE.gldf#ID``) file with the CLI's reader options (``--repair``,
+    ``--handedness ccw|cw``, ``--lamp-sets first|sum``, ``--front DEG``); raises PhotosolidError naming the file
+    and line when it is bad."""
 
-def batch_parquet(paths: Sequence[Union[str, os.PathLike[str]]], compact: bool = False) -> bytes:
+def load_all(
+    path: Union[str, os.PathLike[str]],
+    *,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> list[Luminaire]:
+    """Every photometry of a GLDF container or TM-33 document (the one of any other file), each with its ``id``."""
+
+def batch_parquet(
+    paths: Sequence[Union[str, os.PathLike[str]]],
+    compact: bool = False,
+    *,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> bytes:
     """The batch table of every input under ``paths`` (.ies, .ldt, TM-33 .xml, .gldf, files read by content) as Parquet bytes (``compact``: ``batch --compact``)."""
 
 def list_inputs(paths: Sequence[Union[str, os.PathLike[str]]]) -> list[str]:

@@ -144,25 +144,60 @@ struct Luminaire {
     /// container's): a pickle carries them and parses them again, so a
     /// luminaire travels to a process or machine that has no such file.
     source: Arc<Vec<u8>>,
+    /// The reader options it was read with (a pickle reads it again with them).
+    options: photosolid::ReadOptions,
     /// The reconstructions built so far, by name (`Luminaire.prepared`).
     built: Mutex<HashMap<String, Arc<Prepared>>>,
 }
 
 /// The luminaire `path` names, parsed from `source` (its bytes, as
-/// `document_source_bytes` reads them) with the default reader options.
-fn luminaire_from_source(py: Python<'_>, path: PathBuf, source: Vec<u8>) -> PyResult<Luminaire> {
+/// `document_source_bytes` reads them) with `options`.
+fn luminaire_from_source(
+    py: Python<'_>,
+    path: PathBuf,
+    source: Vec<u8>,
+    options: photosolid::ReadOptions,
+) -> PyResult<Luminaire> {
     let source = Arc::new(source);
     let lum = py
-        .detach(|| {
-            photosolid::formats::load_document_from_bytes(&path, source.to_vec(), &photosolid::ReadOptions::default())
-        })
+        .detach(|| photosolid::formats::load_document_from_bytes(&path, source.to_vec(), &options))
         .map_err(py_err)?;
     Ok(Luminaire {
         path: path.display().to_string(),
         lum,
         source,
+        options,
         built: Mutex::default(),
     })
+}
+
+/// The reader options of `load`, `load_all` and `batch`, in the CLI's words
+/// (`--repair`, `--handedness ccw|cw`, `--lamp-sets first|sum`, `--front DEG`).
+fn read_options(
+    repair: bool,
+    handedness: &str,
+    lamp_sets: &str,
+    front: Option<f64>,
+) -> PyResult<photosolid::ReadOptions> {
+    if let Some(f) = front.filter(|f| !f.is_finite()) {
+        return Err(PyValueError::new_err(format!(
+            "front = {f}: expected a finite angle in degrees"
+        )));
+    }
+    Ok(photosolid::ReadOptions {
+        repair,
+        handedness: arg("handedness", handedness)?,
+        lamp_set_flux: arg("lamp_sets", lamp_sets)?,
+        front_c_deg: front,
+    })
+}
+
+/// The bytes `path` names and the luminaire read from them with `options`.
+fn load_with(py: Python<'_>, path: PathBuf, options: photosolid::ReadOptions) -> PyResult<Luminaire> {
+    let source = py
+        .detach(|| photosolid::formats::document_source_bytes(&path))
+        .map_err(py_err)?;
+    luminaire_from_source(py, path, source, options)
 }
 
 /// `array` with numpy's write flag cleared: a property that hands out the
@@ -176,24 +211,72 @@ fn read_only<'py, T>(array: Bound<'py, T>) -> PyResult<Bound<'py, T>> {
 }
 
 /// What `Luminaire.__reduce__` returns: the function that rebuilds a
-/// luminaire, and its arguments (the path and the source bytes).
-type Reduced<'py> = (Bound<'py, PyAny>, (String, Bound<'py, PyBytes>));
+/// luminaire, and its arguments (the path, the source bytes, the reader options).
+type Reduced<'py> = (
+    Bound<'py, PyAny>,
+    (
+        String,
+        Bound<'py, PyBytes>,
+        bool,
+        &'static str,
+        &'static str,
+        Option<f64>,
+    ),
+);
 
-/// Rebuild a pickled [`Luminaire`] from its path and source bytes (what
-/// `Luminaire.__reduce__` returns); not for direct use.
+/// Rebuild a pickled [`Luminaire`] from its path, source bytes and reader
+/// options (what `Luminaire.__reduce__` returns); not for direct use.
 #[pyfunction]
-fn _luminaire_from_source(py: Python<'_>, path: PathBuf, source: Vec<u8>) -> PyResult<Luminaire> {
-    luminaire_from_source(py, path, source)
+fn _luminaire_from_source(
+    py: Python<'_>,
+    path: PathBuf,
+    source: Vec<u8>,
+    repair: bool,
+    handedness: &str,
+    lamp_sets: &str,
+    front: Option<f64>,
+) -> PyResult<Luminaire> {
+    let options = read_options(repair, handedness, lamp_sets, front)?;
+    luminaire_from_source(py, path, source, options)
 }
 
-/// Load an .ies, .ldt, TM-33 .xml or GLDF file (`FILE.gldf#ID` for one photometry of a container). Raises
-/// `PhotosolidError` naming the file and line when it is bad.
+/// Load an .ies, .ldt, TM-33 .xml or GLDF file (`FILE.gldf#ID` for one
+/// photometry of a container, `FILE.xml#ID` for one emitter of a TM-33
+/// document), with the CLI's reader options: `repair` (sort unsorted and drop
+/// duplicated angles, with a warning, instead of failing), `handedness` (`ccw`
+/// or `cw`: the rotation sense of Type A/B horizontal angles), `lamp_sets`
+/// (`first` or `sum`: which flux EULUMDAT cd/klm refer to), `front` (the
+/// luminaire's front, C degrees in the file's frame, instead of its format's
+/// convention). Raises a `PhotosolidError` naming the file and line when it is bad.
 #[pyfunction]
-fn load(py: Python<'_>, path: PathBuf) -> PyResult<Luminaire> {
-    let source = py
-        .detach(|| photosolid::formats::document_source_bytes(&path))
-        .map_err(py_err)?;
-    luminaire_from_source(py, path, source)
+#[pyo3(signature = (path, *, repair = false, handedness = "ccw", lamp_sets = "first", front = None))]
+fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    repair: bool,
+    handedness: &str,
+    lamp_sets: &str,
+    front: Option<f64>,
+) -> PyResult<Luminaire> {
+    load_with(py, path, read_options(repair, handedness, lamp_sets, front)?)
+}
+
+/// Every photometry `path` holds, each a `Luminaire` with its `id`: the
+/// photometries of a GLDF container, the emitters of a TM-33 document, or the
+/// one luminaire of any other file (options as `load`).
+#[pyfunction]
+#[pyo3(signature = (path, *, repair = false, handedness = "ccw", lamp_sets = "first", front = None))]
+fn load_all(
+    py: Python<'_>,
+    path: PathBuf,
+    repair: bool,
+    handedness: &str,
+    lamp_sets: &str,
+    front: Option<f64>,
+) -> PyResult<Vec<Luminaire>> {
+    let options = read_options(repair, handedness, lamp_sets, front)?;
+    let paths = py.detach(|| photosolid::formats::photometries_in(&path));
+    paths.into_iter().map(|p| load_with(py, p, options.clone())).collect()
 }
 
 impl Luminaire {
@@ -380,11 +463,32 @@ impl Luminaire {
         &self.path
     }
 
+    /// The photometry's id within its GLDF container or TM-33 document
+    /// (`FILE.gldf#ID`, `FILE.xml#ID`), or None for a file of one photometry.
+    #[getter]
+    fn id(&self) -> Option<String> {
+        let p = std::path::Path::new(&self.path);
+        photosolid::formats::gldf::split_reference(p)
+            .and_then(|(_, id)| id)
+            .or_else(|| photosolid::formats::tm33::split_reference(p).map(|(_, id)| id))
+    }
+
     /// Pickling: the path and the bytes the luminaire was parsed from, parsed
     /// again on unpickling (no file needed there); equal data, the same numbers.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduced<'py>> {
         let rebuild = py.import("photosolid._native")?.getattr("_luminaire_from_source")?;
-        Ok((rebuild, (self.path.clone(), PyBytes::new(py, &self.source))))
+        let o = &self.options;
+        Ok((
+            rebuild,
+            (
+                self.path.clone(),
+                PyBytes::new(py, &self.source),
+                o.repair,
+                o.handedness.as_str(),
+                o.lamp_set_flux.as_str(),
+                o.front_c_deg,
+            ),
+        ))
     }
 
     /// A luminaire is immutable: its copy is itself.
@@ -623,7 +727,7 @@ impl Luminaire {
                 .source_grid()
                 .map(|grid| photosolid::compare::SourceMeasurements {
                     grid: grid.clone(),
-                    handedness: photosolid::formats::Handedness::default(),
+                    handedness: self.options.handedness,
                 }),
             ..defaults
         };
@@ -684,15 +788,21 @@ impl Luminaire {
 /// batch PATHS -o OUT.parquet`, with `compact` as `--compact`) as Parquet
 /// bytes; `photosolid.batch` reads them into a `pyarrow.Table`.
 #[pyfunction]
-#[pyo3(signature = (paths, compact = false))]
-fn batch_parquet<'py>(py: Python<'py>, paths: Vec<PathBuf>, compact: bool) -> PyResult<Bound<'py, PyBytes>> {
+#[pyo3(signature = (paths, compact = false, *, repair = false, handedness = "ccw", lamp_sets = "first", front = None))]
+fn batch_parquet<'py>(
+    py: Python<'py>,
+    paths: Vec<PathBuf>,
+    compact: bool,
+    repair: bool,
+    handedness: &str,
+    lamp_sets: &str,
+    front: Option<f64>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let read = read_options(repair, handedness, lamp_sets, front)?;
     let bytes = py
         .detach(|| -> photosolid::Result<Vec<u8>> {
             let files = photosolid::batch::collect(&paths)?;
-            let options = photosolid::batch::BatchOptions {
-                compact,
-                ..Default::default()
-            };
+            let options = photosolid::batch::BatchOptions { compact, read };
             let rows = photosolid::batch::run(&files, &options, &|_, _, _| {});
             photosolid::batch::table::parquet_bytes(&rows)
         })
@@ -757,6 +867,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Luminaire>()?;
     m.add_class::<Field>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(load_all, m)?)?;
     m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
     m.add_function(wrap_pyfunction!(list_inputs, m)?)?;
     m.add_function(wrap_pyfunction!(_luminaire_from_source, m)?)?;

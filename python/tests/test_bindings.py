@@ -358,3 +358,54 @@ def test_texture_shape_is_the_documented_one(path: Path):
     planes = lum.full_grid()[0].size
     for k in (1, 3):
         assert lum.texture(factor=k).shape == (k * steps, k * planes)
+
+
+DUPLICATED_GAMMA = """IESNA:LM-63-2002
+[TEST] duplicated gamma
+TILT=NONE
+1 1000 1 4 1 1 2 0 0 0
+1 1 10
+0 45 45 90
+0
+100 80 80 50
+"""
+
+
+def test_reader_options_are_the_clis(catalogue, tmp_path):
+    """load, load_all and batch take the CLI's reader options by the CLI's names: repair reads a file with a
+    duplicated angle that fails without it (as grid --repair does), front moves the luminaire's front as
+    --front does, bad words are ValueErrors saying what is expected; load_all gives every photometry of a GLDF
+    container with its id; a pickle keeps the options."""
+    import pickle
+
+    dup = tmp_path / "dup.ies"
+    dup.write_text(DUPLICATED_GAMMA)
+    with pytest.raises(ValueError) as e:
+        photosolid.load(dup)
+    assert "repair" in str(e.value)
+    lum = photosolid.load(dup, repair=True)
+    grid = cli_json("grid", str(dup), "--repair")
+    np.testing.assert_array_equal(lum.gamma_deg, grid["gamma_deg"])
+    assert pickle.loads(pickle.dumps(lum)) == lum
+    table = photosolid.batch([dup], repair=True)
+    assert table["ok"].to_pylist() == [True]
+    assert photosolid.batch([dup])["ok"].to_pylist() == [False]
+
+    road = DATA / "roadway.ies"
+    turned = photosolid.load(road, front=90.0)
+    assert turned.photometry() == cli_json("info", str(road), "--front", "90", "--json")
+    assert turned.photometry() != photosolid.load(road).photometry()
+    assert pickle.loads(pickle.dumps(turned)).photometry() == turned.photometry()
+    for kwargs, words in [({"handedness": "left"}, "ccw"), ({"lamp_sets": "all"}, "first"),
+                          ({"front": float("nan")}, "finite")]:
+        with pytest.raises(ValueError) as e:
+            photosolid.load(road, **kwargs)
+        assert words in str(e.value), str(e.value)
+    cw = photosolid.load(road, handedness="cw", lamp_sets="sum")
+    np.testing.assert_array_equal(cw.candela, photosolid.load(road).candela)  # a Type C file: no change
+
+    both = photosolid.load_all(catalogue / "lum.gldf")
+    assert [lum.id for lum in both] == ["road", "bat"]
+    assert [lum.path for lum in both] == [str(catalogue / "lum.gldf") + "#road", str(catalogue / "lum.gldf") + "#bat"]
+    assert photosolid.load_all(road)[0].id is None and len(photosolid.load_all(road)) == 1
+    np.testing.assert_array_equal(both[0].candela, photosolid.load(DATA / "roadway.ldt").candela)

@@ -49,6 +49,58 @@ pub enum LampSetFlux {
     Sum,
 }
 
+impl Handedness {
+    /// The word the CLI's `--handedness` and the Python `load(handedness=)` take.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Handedness::CounterClockwise => "ccw",
+            Handedness::Clockwise => "cw",
+        }
+    }
+}
+
+impl std::str::FromStr for Handedness {
+    type Err = crate::error::ModelError;
+    /// `ccw` or `cw`.
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        match s.trim() {
+            "ccw" => Ok(Handedness::CounterClockwise),
+            "cw" => Ok(Handedness::Clockwise),
+            other => Err(crate::error::ModelError::Parameter {
+                name: "handedness",
+                value: other.to_string(),
+                reason: "expected ccw (C90 = +y, the default) or cw".into(),
+            }),
+        }
+    }
+}
+
+impl LampSetFlux {
+    /// The word the CLI's `--lamp-sets` and the Python `load(lamp_sets=)` take.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            LampSetFlux::First => "first",
+            LampSetFlux::Sum => "sum",
+        }
+    }
+}
+
+impl std::str::FromStr for LampSetFlux {
+    type Err = crate::error::ModelError;
+    /// `first` or `sum`.
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        match s.trim() {
+            "first" => Ok(LampSetFlux::First),
+            "sum" => Ok(LampSetFlux::Sum),
+            other => Err(crate::error::ModelError::Parameter {
+                name: "lamp_sets",
+                value: other.to_string(),
+                reason: "expected first (the default: cd/klm refer to the first lamp set) or sum".into(),
+            }),
+        }
+    }
+}
+
 /// A read photometric file: the canonical [`Luminaire`] and what only its
 /// format knows (the raw header a lossless write-back needs, what a GLDF
 /// container declares). Readers return one; writers take one.
