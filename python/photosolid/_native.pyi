@@ -93,21 +93,26 @@ class Luminaire:
         """The photometric solid: vertices (V, 3) in cd and faces (F, 3), for ``trimesh.Trimesh(vertices, faces)``."""
     def compare(
         self,
-        recons: Optional[Sequence[str]] = None,
+        recons: Optional[Union[str, Sequence[str]]] = None,
         against: Optional[str] = None,
         vs: Optional["Luminaire"] = None,
         folds: int = 2,
         normalize: str = "cd",
         directions: str = "dense:20000",
-        tolerance: float = 1e-3,
+        tolerance: str = "0.1%",
         factor: int | None = None,
+        solid_tolerance: Optional[str] = None,
     ) -> dict[str, Any]:
-        """The comparison of ``photosolid compare FILE --json`` as a dict (adaptive solids unless ``factor`` names a fixed grid);
-        its ``smallest_within_1pct`` names the reconstruction with the fewest bytes whose radial max error is within 1 % of I_max, or is None."""
+        """The comparison of ``photosolid compare FILE --json`` as a dict (adaptive solids within ``solid_tolerance``,
+        default 0.05%, unless ``factor`` names a fixed grid). ``tolerance`` and ``solid_tolerance`` are percents of
+        I_max written as the CLI's flags are (``"0.1%"``; a bare number is refused with the CLI's hint). Its
+        ``smallest_within_1pct`` names the reconstruction with the fewest bytes whose radial max error is within
+        1 % of I_max, or is None."""
     def fit(
-        self, max_lights: int = 2, error: str = "relative", tolerance: float = 0.01, guard: float = 0.02
+        self, max_lights: int = 2, error: str = "relative", tolerance: str = "1%", guard: str = "2%"
     ) -> dict[str, Any]:
-        """The fit report of ``photosolid fit FILE --json`` as a dict."""
+        """The fit report of ``photosolid fit FILE --json`` as a dict: ``tolerance`` in percentage points of the
+        fit's error, ``guard`` a percent of I_max, both written with their sign as the CLI's flags."""
 
 def load(
     path: Union[str, os.PathLike[str]],

@@ -17,7 +17,7 @@ use numpy::ndarray::{Array2, ArrayD};
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLikeDyn};
 use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
 use photosolid::error::{Error, ErrorRecord};
-use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport, DEFAULT_GUARD, DEFAULT_TOLERANCE};
+use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport};
 use photosolid::model::IntensityField;
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
 use photosolid::registry::{Recon, Reconstructions};
@@ -93,6 +93,13 @@ where
 {
     s.parse()
         .map_err(|e| PyValueError::new_err(format!("{name} = {s:?}: {e}")))
+}
+
+/// Argument `name`, a percent of I_max as the CLI spells it (`"0.1%"`); a
+/// bare number is refused with the CLI's hint.
+fn pct_arg(name: &str, value: &str) -> PyResult<photosolid::numfmt::PctOfPeak> {
+    photosolid::numfmt::PctOfPeak::parse(value, false)
+        .map_err(|e| PyValueError::new_err(format!("{name} = {value:?}: {e}")))
 }
 
 /// `value` of argument `name` when it lies in `lo..=hi`; a `ValueError`
@@ -675,7 +682,10 @@ impl Luminaire {
     /// the file records one, else withheld; with `vs`, catmull-rom of `vs`).
     /// Its `smallest_within_1pct` names the reconstruction with the fewest
     /// bytes whose radial max error is within 1 % of I_max (or None).
-    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = 1e-3, factor = None))]
+    /// `tolerance` (Hausdorff) and `solid_tolerance` (adaptive solids; default
+    /// 0.05%, excluded by `factor`) are percents of I_max as the CLI writes them
+    /// (`"0.1%"`); a bare number is refused with the CLI's hint.
+    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = "0.1%", factor = None, solid_tolerance = None))]
     #[allow(clippy::too_many_arguments)]
     fn compare<'py>(
         &self,
@@ -686,8 +696,9 @@ impl Luminaire {
         folds: i64,
         normalize: &str,
         directions: &str,
-        tolerance: f64,
+        tolerance: &str,
         factor: Option<i64>,
+        solid_tolerance: Option<&str>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let defaults = CompareOptions::default();
         let recons = match recons {
@@ -712,13 +723,18 @@ impl Luminaire {
                 vs.as_ref().and_then(|o| o.lum.declared().lamp_flux_lm),
             ],
             directions: arg::<Directions>("directions", directions)?,
-            tolerance,
+            tolerance: pct_arg("tolerance", tolerance)?.fraction(),
             // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
             factor: factor.unwrap_or(defaults.factor),
-            solid_tolerance: if factor.is_some() {
-                None
-            } else {
-                defaults.solid_tolerance
+            solid_tolerance: match (factor, solid_tolerance) {
+                (Some(_), Some(_)) => {
+                    return Err(PyValueError::new_err(
+                        "factor and solid_tolerance exclude each other (as --factor and --solid-tolerance)",
+                    ))
+                }
+                (Some(_), None) => None,
+                (None, Some(t)) => Some(pct_arg("solid_tolerance", t)?.fraction()),
+                (None, None) => defaults.solid_tolerance,
             },
             // As the CLI: a Type A/B file's withheld reference withholds its own readings
             // (read with the default handedness, as `load` reads).
@@ -745,14 +761,16 @@ impl Luminaire {
     }
 
     /// Fit at most `max_lights` OpenGL lights (as `photosolid fit FILE --json`): the fit report as a dict.
-    #[pyo3(signature = (max_lights = 2, error = "relative", tolerance = DEFAULT_TOLERANCE, guard = DEFAULT_GUARD))]
+    /// `tolerance` is in percentage points of the fit's error (`"1%"`), `guard` a percent of I_max
+    /// (`"2%"`), written as the CLI's `--tolerance` and `--guard`; a bare number is refused.
+    #[pyo3(signature = (max_lights = 2, error = "relative", tolerance = "1%", guard = "2%"))]
     fn fit<'py>(
         &self,
         py: Python<'py>,
         max_lights: i64,
         error: &str,
-        tolerance: f64,
-        guard: f64,
+        tolerance: &str,
+        guard: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
         let metric = match error {
             "relative" => ErrorMetric::Relative,
@@ -762,8 +780,10 @@ impl Luminaire {
         let options = FitOptions {
             max_lights: int_in("max_lights", max_lights, 1, 2)? as usize,
             metric,
-            guard,
-            tolerance,
+            guard: pct_arg("guard", guard)?.fraction(),
+            tolerance: photosolid::numfmt::parse_percentage_points(tolerance)
+                .map_err(|e| PyValueError::new_err(format!("tolerance = {tolerance:?}: {e}")))?
+                / 100.0,
             ..Default::default()
         };
         let report = py

@@ -409,3 +409,31 @@ def test_reader_options_are_the_clis(catalogue, tmp_path):
     assert [lum.path for lum in both] == [str(catalogue / "lum.gldf") + "#road", str(catalogue / "lum.gldf") + "#bat"]
     assert photosolid.load_all(road)[0].id is None and len(photosolid.load_all(road)) == 1
     np.testing.assert_array_equal(both[0].candela, photosolid.load(DATA / "roadway.ldt").candela)
+
+
+def test_percents_are_spelled_as_the_cli_spells_them():
+    """compare's tolerance and solid_tolerance and fit's tolerance and guard are percents written with their sign,
+    as the CLI's flags; a bare number is refused with the CLI's own hint; the same values give the CLI's JSON."""
+    path = DATA / "cosine_p5.ies"
+    lum = photosolid.load(path)
+    for call in (lambda: lum.compare(recons="bilinear", tolerance=1e-3),
+                 lambda: lum.compare(recons="bilinear", tolerance="0.001")):
+        with pytest.raises((ValueError, TypeError)):
+            call()
+    with pytest.raises(ValueError) as e:
+        lum.compare(recons="bilinear", tolerance="0.1")
+    assert "did you mean 0.1%" in str(e.value) and "tolerance" in str(e.value)
+    with pytest.raises(ValueError) as e:
+        lum.fit(guard="0.02")
+    assert "2%" in str(e.value)
+    with pytest.raises(ValueError):
+        lum.compare(recons="bilinear", factor=2, solid_tolerance="0.05%")
+    ours = lum.compare(recons="bilinear", directions="dense:2000", tolerance="0.5%", solid_tolerance="0.1%")
+    theirs = cli_json("compare", str(path), "--recon", "bilinear", "--directions", "dense:2000",
+                      "--tolerance", "0.5%", "--solid-tolerance", "0.1%", "--json")
+    for key in ("tolerance_pct", "solid_tolerance_pct", "tolerance_cd", "solid_tolerance_cd", "reference"):
+        assert ours[key] == theirs[key], key
+    assert ours["results"][0]["radial_max_cd"] == theirs["results"][0]["radial_max_cd"]
+    fit_ours = lum.fit(tolerance="5%", guard="1%")
+    fit_cli = cli_json("fit", str(path), "--tolerance", "5%", "--guard", "1%", "--json")
+    assert fit_ours == fit_cli

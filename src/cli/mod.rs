@@ -445,94 +445,21 @@ pub(crate) mod parse {
             Err(format!("{x} must be a finite number >= 0"))
         }
     }
-    /// A quantity relative to I_max (a tolerance, a guard), as every flag
-    /// spells it: a percent with its sign, `0.1%`. Holds the percent.
-    #[derive(Debug, Clone, Copy, PartialEq)]
-    pub struct PctOfPeak(pub f64);
+    pub use photosolid::numfmt::{short, PctOfPeak};
 
-    impl PctOfPeak {
-        /// The value in percent of I_max (`0.1%` is 0.1).
-        pub fn pct(self) -> f64 {
-            self.0
-        }
-        /// The value as a fraction of I_max (`0.1%` is 0.001), as the library takes it.
-        pub fn fraction(self) -> f64 {
-            self.0 / 100.0
-        }
-    }
-
-    impl std::fmt::Display for PctOfPeak {
-        fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-            write!(f, "{}%", short(self.0))
-        }
-    }
-
-    /// `x` with at most 10 decimals and no trailing zeros (`0.1`, not
-    /// `0.10000000000000002`; `5`, not `5.0`); scientific below 1e-10.
-    pub fn short(x: f64) -> String {
-        if x != 0.0 && x.abs() < 1e-10 {
-            return format!("{x:e}");
-        }
-        let mut s = String::new();
-        photosolid::numfmt::push_fixed_trimmed(&mut s, x, 10);
-        s
-    }
-
-    /// A percent of I_max, with its sign (`0.1%`); `zero_allowed`: whether 0% is accepted.
-    fn pct(s: &str, zero_allowed: bool) -> Result<PctOfPeak, String> {
-        let t = s.trim();
-        let Some(body) = t.strip_suffix('%') else {
-            return Err(match t.parse::<f64>() {
-                Ok(x) if x.is_finite() => format!(
-                    "`{s}` has no unit: values relative to I_max are percents written with their sign; \
-                     did you mean {}%? (If {} was meant as a fraction of I_max, write {}%.)",
-                    short(x),
-                    short(x),
-                    short(100.0 * x)
-                ),
-                _ => format!("`{s}` is not a percent of I_max such as 0.1%"),
-            });
-        };
-        let x: f64 = body
-            .trim()
-            .parse()
-            .map_err(|_| format!("`{s}` is not a percent of I_max such as 0.1%"))?;
-        if !x.is_finite() || x < 0.0 || (x == 0.0 && !zero_allowed) {
-            return Err(format!(
-                "{s} must be a finite percent {} 0%",
-                if zero_allowed { ">=" } else { ">" }
-            ));
-        }
-        Ok(PctOfPeak(x))
-    }
-    /// A percent of I_max > 0% (`0.1%`); a bare number is refused with a hint.
+    /// A percent of I_max > 0% (`0.1%`); a bare number is refused with a hint
+    /// ([`PctOfPeak::parse`], the library's one reading of a percent).
     pub fn pct_of_peak(s: &str) -> Result<PctOfPeak, String> {
-        pct(s, false)
+        PctOfPeak::parse(s, false)
     }
     /// A percent of I_max >= 0% (`0%` allowed); a bare number is refused with a hint.
     pub fn pct_of_peak_or_zero(s: &str) -> Result<PctOfPeak, String> {
-        pct(s, true)
+        PctOfPeak::parse(s, true)
     }
     /// A percent >= 0 of a quantity other than I_max (`fit --tolerance 1%`: percentage
     /// points of the fit's error), as the percent; a bare number is refused with a hint.
     pub fn percentage_points(s: &str) -> Result<f64, String> {
-        let t = s.trim();
-        let Some(body) = t.strip_suffix('%') else {
-            return Err(match t.parse::<f64>() {
-                Ok(x) if x.is_finite() => format!(
-                    "`{s}` has no unit: write a percent with its sign, such as {}% (or {}% if {} was meant as \
-                     a fraction)",
-                    short(x),
-                    short(100.0 * x),
-                    short(x)
-                ),
-                _ => format!("`{s}` is not a percent such as 1%"),
-            });
-        };
-        match body.trim().parse::<f64>() {
-            Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-            _ => Err(format!("`{s}` is not a finite percent >= 0%")),
-        }
+        photosolid::numfmt::parse_percentage_points(s)
     }
     /// A finite number (an angle, an offset).
     pub fn finite(s: &str) -> Result<f64, String> {

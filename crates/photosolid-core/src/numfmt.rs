@@ -4,7 +4,9 @@
 //! `0.316992`, `1.5e-7`), [`write_shortest()`] for a value as it was read
 //! (`crate::error::Num` in error and warning messages), and
 //! [`push_fixed_trimmed()`], the allocation-free core the writers append
-//! with (fixed notation only, as the file formats require).
+//! with (fixed notation only, as the file formats require); [`PctOfPeak`],
+//! a quantity relative to I_max as every flag and Python argument spells it
+//! (`0.1%`), parsed in one place.
 //!
 //! The lowest layer: it depends on nothing, so the errors (`crate::error`),
 //! the readers' warnings, the writers and the reports all share it.
@@ -85,6 +87,101 @@ pub fn push_fixed_trimmed(out: &mut String, v: f64, decimals: usize) {
     if &out[start..] == "-0" {
         out.truncate(start);
         out.push('0');
+    }
+}
+
+/// A quantity relative to I_max (a tolerance, a guard), as every flag
+/// spells it: a percent with its sign, `0.1%`. Holds the percent.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PctOfPeak(pub f64);
+
+impl PctOfPeak {
+    /// The value in percent of I_max (`0.1%` is 0.1).
+    pub fn pct(self) -> f64 {
+        self.0
+    }
+    /// The value as a fraction of I_max (`0.1%` is 0.001), as the library takes it.
+    pub fn fraction(self) -> f64 {
+        self.0 / 100.0
+    }
+}
+
+impl std::fmt::Display for PctOfPeak {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}%", short(self.0))
+    }
+}
+
+/// `x` with at most 10 decimals and no trailing zeros (`0.1`, not
+/// `0.10000000000000002`; `5`, not `5.0`); scientific below 1e-10.
+pub fn short(x: f64) -> String {
+    if x != 0.0 && x.abs() < 1e-10 {
+        return format!("{x:e}");
+    }
+    let mut s = String::new();
+    push_fixed_trimmed(&mut s, x, 10);
+    s
+}
+
+impl PctOfPeak {
+    /// A percent of I_max as the CLI's flags and the Python functions take
+    /// it, with its sign (`0.1%`); `zero_allowed`: whether 0% is accepted.
+    /// A bare number is refused with a hint naming both readings (`0.1` →
+    /// "did you mean 0.1%? ... write 10%"); the message is the user's.
+    ///
+    /// # Errors
+    /// The message, for a bare number, text that is not a number, or a
+    /// percent below (or at, without `zero_allowed`) 0 or not finite.
+    pub fn parse(s: &str, zero_allowed: bool) -> Result<PctOfPeak, String> {
+        let t = s.trim();
+        let Some(body) = t.strip_suffix('%') else {
+            return Err(match t.parse::<f64>() {
+                Ok(x) if x.is_finite() => format!(
+                    "`{s}` has no unit: values relative to I_max are percents written with their sign; \
+                     did you mean {}%? (If {} was meant as a fraction of I_max, write {}%.)",
+                    short(x),
+                    short(x),
+                    short(100.0 * x)
+                ),
+                _ => format!("`{s}` is not a percent of I_max such as 0.1%"),
+            });
+        };
+        let x: f64 = body
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{s}` is not a percent of I_max such as 0.1%"))?;
+        if !x.is_finite() || x < 0.0 || (x == 0.0 && !zero_allowed) {
+            return Err(format!(
+                "{s} must be a finite percent {} 0%",
+                if zero_allowed { ">=" } else { ">" }
+            ));
+        }
+        Ok(PctOfPeak(x))
+    }
+}
+
+/// A percent >= 0 of a quantity other than I_max (`fit --tolerance 1%`: percentage
+/// points of the fit's error), as the percent; a bare number is refused with a hint.
+///
+/// # Errors
+/// The message, as [`PctOfPeak::parse`].
+pub fn parse_percentage_points(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let Some(body) = t.strip_suffix('%') else {
+        return Err(match t.parse::<f64>() {
+            Ok(x) if x.is_finite() => format!(
+                "`{s}` has no unit: write a percent with its sign, such as {}% (or {}% if {} was meant as \
+                 a fraction)",
+                short(x),
+                short(100.0 * x),
+                short(x)
+            ),
+            _ => format!("`{s}` is not a percent such as 1%"),
+        });
+    };
+    match body.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("`{s}` is not a finite percent >= 0%")),
     }
 }
 
