@@ -437,3 +437,19 @@ def test_percents_are_spelled_as_the_cli_spells_them():
     fit_ours = lum.fit(tolerance="5%", guard="1%")
     fit_cli = cli_json("fit", str(path), "--tolerance", "5%", "--guard", "1%", "--json")
     assert fit_ours == fit_cli
+
+
+def test_the_readme_tour_runs(catalogue, tmp_path, monkeypatch):
+    """The code of python/README.md's tour runs as written, on the repository's data and the catalogue fixture
+    in place of its example paths."""
+    import re
+
+    text = (ROOT / "python" / "README.md").read_text()
+    code = re.search(r"```python\n(.*?)```", text, re.S).group(1)
+    dup = tmp_path / "odd.ies"
+    dup.write_text(DUPLICATED_GAMMA)
+    code = (code.replace('"odd.ies"', repr(str(dup)))
+                .replace('"product.gldf"', repr(str(catalogue / "lum.gldf")))
+                .replace('"catalogue/"', repr(str(catalogue))))
+    monkeypatch.chdir(ROOT)
+    exec(compile(code, "python/README.md", "exec"), {})
