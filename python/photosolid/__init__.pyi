@@ -1,7 +1,7 @@
 """Type stubs of the photosolid package."""
 
 import os
-from typing import Iterable, Optional, Union
+from typing import Callable, Iterable, Optional, Union
 
 import pyarrow
 
@@ -28,6 +28,7 @@ def batch(
     handedness: str = "ccw",
     lamp_sets: str = "first",
     front: Optional[float] = None,
+    progress: Union[None, bool, Callable[[int, int], object]] = None,
 ) -> pyarrow.Table:
     """The batch table (columns of ``photosolid batch``, docs/batch.md) of every input under ``paths`` (.ies, .ldt, TM-33 .xml, .gldf, files read by content);
     ``compact=True`` as ``batch --compact`` (fills ``smallest_within_1pct``)."""

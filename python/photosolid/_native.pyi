@@ -1,7 +1,7 @@
 """Type stubs of the native module photosolid._native (python/src/lib.rs)."""
 
 import os
-from typing import Any, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -144,6 +144,7 @@ def batch_parquet(
     handedness: str = "ccw",
     lamp_sets: str = "first",
     front: Optional[float] = None,
+    progress: Optional[Callable[[int, int], object]] = None,
 ) -> bytes:
     """The batch table of every input under ``paths`` (.ies, .ldt, TM-33 .xml, .gldf, files read by content) as Parquet bytes (``compact``: ``batch --compact``)."""
 

@@ -22,6 +22,7 @@ iteration. Two measures, each with its reason:
 from __future__ import annotations
 
 import os
+import subprocess
 import threading
 import time
 from pathlib import Path
@@ -92,3 +93,46 @@ def test_the_gil_is_released_while_rust_samples():
     )
     print(f"call {elapsed:.3f} s ({n} points); longest main-thread pause {longest_pause * 1e3:.1f} ms; "
           f"counter at {progress:.0%} of its solo rate")
+
+
+def test_ctrl_c_stops_a_batch_and_progress_is_reported(tmp_path):
+    """SIGINT during ``photosolid.batch`` raises KeyboardInterrupt in the middle of the batch: the progress callback
+    (called about ten times a second) last saw fewer files done than the total, and the interpreter exits with the
+    interrupt; the latency from the signal to the exit is printed. Without a signal the callback ends at
+    (total, total)."""
+    import signal
+    import sys
+    import time
+
+    root = Path(os.environ.get("PHOTOSOLID_ROOT", Path(__file__).resolve().parents[2]))
+    binary = os.environ.get("PHOTOSOLID_BIN", str(root / "target" / "debug" / "photosolid"))
+    files = tmp_path / "files"
+    subprocess.run(["bash", str(root / "scripts" / "make-bulk.sh"), "300", str(files)], check=True,
+                   env={**os.environ, "PHOTOSOLID_BIN": binary})
+    import photosolid
+
+    seen = []
+    some = sorted(p for p in files.rglob("*") if p.is_file())[:20]
+    photosolid.batch(some, progress=lambda done, total: seen.append((done, total)))
+    assert seen and seen[-1][0] == seen[-1][1]
+    script = (
+        "import sys, photosolid\n"
+        "def p(done, total):\n"
+        "    print(f'{done} {total}', flush=True)\n"
+        f"photosolid.batch([{str(files)!r}], compact=True, progress=p)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    first = proc.stdout.readline()  # the first progress report: the batch is running
+    assert first.split()[1] == "300", first
+    time.sleep(0.5)
+    t0 = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=120)
+    latency = time.perf_counter() - t0
+    lines = [first] + out.splitlines()
+    done, total = map(int, lines[-1].split())
+    assert "KeyboardInterrupt" in err, err[-2000:]
+    assert proc.returncode != 0
+    assert done < total, lines[-3:]
+    print(f"\nCtrl-C: batch of {total} files (compact) stopped after {done}; {latency:.2f} s from SIGINT to exit")

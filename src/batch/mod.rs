@@ -405,13 +405,29 @@ fn add_fit(row: &mut BatchRecord, d: &Distribution) {
 /// `progress(done, total, path)` is called after each file, from the worker
 /// threads.
 pub fn run(files: &[PathBuf], options: &BatchOptions, progress: &Progress) -> Vec<BatchRecord> {
+    let never = std::sync::atomic::AtomicBool::new(false);
+    run_until(files, options, progress, &never).unwrap_or_default()
+}
+
+/// [`run`] that stops starting files once `stop` is set (a Ctrl-C in Python,
+/// a caller's cancel): `None` when it stopped before the last file, within
+/// the time of the files already started.
+pub fn run_until(
+    files: &[PathBuf],
+    options: &BatchOptions,
+    progress: &Progress,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Option<Vec<BatchRecord>> {
     let done = AtomicUsize::new(0);
     files
         .par_iter()
         .map(|f| {
+            if stop.load(Ordering::Relaxed) {
+                return None;
+            }
             let row = analyse(f, options);
             progress(done.fetch_add(1, Ordering::Relaxed) + 1, files.len(), &row.path);
-            row
+            Some(row)
         })
         .collect()
 }
