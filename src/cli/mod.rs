@@ -450,16 +450,16 @@ pub(crate) mod parse {
     /// A percent of I_max > 0% (`0.1%`); a bare number is refused with a hint
     /// ([`PctOfPeak::parse`], the library's one reading of a percent).
     pub fn pct_of_peak(s: &str) -> Result<PctOfPeak, String> {
-        PctOfPeak::parse(s, false)
+        PctOfPeak::parse(s, false).map_err(|e| e.to_string())
     }
     /// A percent of I_max >= 0% (`0%` allowed); a bare number is refused with a hint.
     pub fn pct_of_peak_or_zero(s: &str) -> Result<PctOfPeak, String> {
-        PctOfPeak::parse(s, true)
+        PctOfPeak::parse(s, true).map_err(|e| e.to_string())
     }
     /// A percent >= 0 of a quantity other than I_max (`fit --tolerance 1%`: percentage
     /// points of the fit's error), as the percent; a bare number is refused with a hint.
     pub fn percentage_points(s: &str) -> Result<f64, String> {
-        photosolid::numfmt::parse_percentage_points(s)
+        photosolid::numfmt::parse_percentage_points(s).map_err(|e| e.to_string())
     }
     /// A finite number (an angle, an offset).
     pub fn finite(s: &str) -> Result<f64, String> {

@@ -123,6 +123,22 @@ pub fn short(x: f64) -> String {
     s
 }
 
+/// A percent that does not parse ([`PctOfPeak::parse`],
+/// [`parse_percentage_points`]): the message says what was written and what
+/// is expected, with the hint for a bare number. Its own type because this
+/// layer is below `crate::error`; the CLI prints it as a usage error, the
+/// Python binding raises it as a `ValueError` naming the argument.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PercentError(pub String);
+
+impl std::fmt::Display for PercentError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for PercentError {}
+
 impl PctOfPeak {
     /// A percent of I_max as the CLI's flags and the Python functions take
     /// it, with its sign (`0.1%`); `zero_allowed`: whether 0% is accepted.
@@ -132,10 +148,10 @@ impl PctOfPeak {
     /// # Errors
     /// The message, for a bare number, text that is not a number, or a
     /// percent below (or at, without `zero_allowed`) 0 or not finite.
-    pub fn parse(s: &str, zero_allowed: bool) -> Result<PctOfPeak, String> {
+    pub fn parse(s: &str, zero_allowed: bool) -> Result<PctOfPeak, PercentError> {
         let t = s.trim();
         let Some(body) = t.strip_suffix('%') else {
-            return Err(match t.parse::<f64>() {
+            return Err(PercentError(match t.parse::<f64>() {
                 Ok(x) if x.is_finite() => format!(
                     "`{s}` has no unit: values relative to I_max are percents written with their sign; \
                      did you mean {}%? (If {} was meant as a fraction of I_max, write {}%.)",
@@ -144,17 +160,17 @@ impl PctOfPeak {
                     short(100.0 * x)
                 ),
                 _ => format!("`{s}` is not a percent of I_max such as 0.1%"),
-            });
+            }));
         };
         let x: f64 = body
             .trim()
             .parse()
-            .map_err(|_| format!("`{s}` is not a percent of I_max such as 0.1%"))?;
+            .map_err(|_| PercentError(format!("`{s}` is not a percent of I_max such as 0.1%")))?;
         if !x.is_finite() || x < 0.0 || (x == 0.0 && !zero_allowed) {
-            return Err(format!(
+            return Err(PercentError(format!(
                 "{s} must be a finite percent {} 0%",
                 if zero_allowed { ">=" } else { ">" }
-            ));
+            )));
         }
         Ok(PctOfPeak(x))
     }
@@ -165,10 +181,10 @@ impl PctOfPeak {
 ///
 /// # Errors
 /// The message, as [`PctOfPeak::parse`].
-pub fn parse_percentage_points(s: &str) -> Result<f64, String> {
+pub fn parse_percentage_points(s: &str) -> Result<f64, PercentError> {
     let t = s.trim();
     let Some(body) = t.strip_suffix('%') else {
-        return Err(match t.parse::<f64>() {
+        return Err(PercentError(match t.parse::<f64>() {
             Ok(x) if x.is_finite() => format!(
                 "`{s}` has no unit: write a percent with its sign, such as {}% (or {}% if {} was meant as \
                  a fraction)",
@@ -177,11 +193,11 @@ pub fn parse_percentage_points(s: &str) -> Result<f64, String> {
                 short(x)
             ),
             _ => format!("`{s}` is not a percent such as 1%"),
-        });
+        }));
     };
     match body.trim().parse::<f64>() {
         Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        _ => Err(format!("`{s}` is not a finite percent >= 0%")),
+        _ => Err(PercentError(format!("`{s}` is not a finite percent >= 0%"))),
     }
 }
 
