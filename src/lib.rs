@@ -7,7 +7,8 @@
 //!   [`Distribution`] in absolute candela;
 //! - [`photometry`]: flux, light output ratios, beam and field angles;
 //! - [`synth`]: analytic distributions with closed-form answers;
-//! - [`engines`]: renderers' light-profile layouts and emulated lookups.
+//! - [`engines`]: renderers' light-profile layouts and emulated lookups;
+//! - [`jobs`]: what each command computes, from loaded documents and its options.
 //!
 //! ```
 //! use photosolid::{photometry, synth};
@@ -22,6 +23,7 @@
 pub mod batch;
 pub mod compare;
 pub mod engines;
+pub mod jobs;
 pub mod registry;
 pub mod report;
 pub mod scene;

@@ -2,7 +2,8 @@
 //!
 //! `run()` matches on the subcommand; the exit code is decided here only:
 //! 0 success (also when stdout is closed early, e.g. `| head`), 1 a file failed (validate)
-//! or a command failed, 2 usage errors (clap's, and [`cli::UsageError`]).
+//! or a command failed, 2 usage errors (clap's, [`cli::UsageError`], and the options a library job
+//! could not use: `Error::Option`, `RoadError::Option`).
 
 mod cli;
 
@@ -16,7 +17,7 @@ fn main() {
         // A closed stdout (e.g. `| head`) is not a failure: stop quietly, as Unix tools do.
         Err(e) if is_broken_pipe(&e) => 0,
         // A value clap could not check alone (a range outside its key's values): a usage error.
-        Err(e) if e.downcast_ref::<cli::UsageError>().is_some() => {
+        Err(e) if is_usage_error(&e) => {
             eprintln!("photosolid: error: {}", error_message(&e));
             2
         }
@@ -27,6 +28,23 @@ fn main() {
     };
     drop(runtime_dir);
     std::process::exit(code);
+}
+
+/// Whether `e` is a usage error: the CLI's own, or an option a library job
+/// could not use as given (a range outside its key's values, `--align` without `--vs`).
+fn is_usage_error(e: &anyhow::Error) -> bool {
+    use photosolid::jobs::JobError;
+    use photosolid::scene::road::RoadError;
+    e.downcast_ref::<cli::UsageError>().is_some()
+        || matches!(
+            e.downcast_ref::<photosolid::Error>(),
+            Some(photosolid::Error::Option { .. })
+        )
+        || matches!(e.downcast_ref::<RoadError>(), Some(RoadError::Option { .. }))
+        || matches!(
+            e.downcast_ref::<JobError>(),
+            Some(JobError::Road(RoadError::Option { .. }) | JobError::Library(photosolid::Error::Option { .. }))
+        )
 }
 
 /// The error and its causes joined by ": ", each cause once: a cause whose

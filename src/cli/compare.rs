@@ -16,10 +16,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::compare::{compare_with_progress, Against, CompareOptions, Directions, Normalize};
+use photosolid::compare::{Against, Directions, Normalize};
+use photosolid::jobs::{self, CompareSettings, Loaded};
 use photosolid::registry::Recon;
 use photosolid::report::compare_report;
-use photosolid::synth::Truth;
 
 use super::parse::PctOfPeak;
 use super::{ReadArgs, ReportArgs};
@@ -76,48 +76,23 @@ pub struct CompareArgs {
 
 pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
     a.out.check()?;
-    let lum = super::load(&a.file, &a.read)?;
-    let other = a.vs.as_ref().map(|p| super::load(p, &a.read)).transpose()?;
-    if a.align && other.is_none() {
-        anyhow::bail!("--align needs --vs OTHER");
-    }
-    let defaults = CompareOptions::default();
-    let opts = CompareOptions {
-        recons: a.recon.clone().unwrap_or(defaults.recons),
+    let file = Loaded::load(&a.file, &a.read.options())?;
+    let vs = a.vs.as_ref().map(|p| Loaded::load(p, &a.read.options())).transpose()?;
+    let settings = CompareSettings {
+        recons: a.recon.clone(),
         against: a.against,
-        truth: Truth::of_luminaire(&lum),
         folds: a.folds,
-        normalize: a.normalize,
-        lamp_flux_lm: [
-            lum.declared().lamp_flux_lm,
-            other.as_ref().and_then(|o| o.declared().lamp_flux_lm),
-        ],
-        directions: a.directions,
-        tolerance: a.tolerance.fraction(),
-        factor: a.factor.unwrap_or(defaults.factor),
-        solid_tolerance: match a.factor {
-            Some(_) => None,
-            None => a.solid_tolerance.map(PctOfPeak::fraction).or(defaults.solid_tolerance),
-        },
+        units: a.normalize,
         align: a.align,
+        directions: a.directions,
+        tolerance: a.tolerance,
+        factor: a.factor,
+        solid_tolerance: a.solid_tolerance,
         plots: a.out.report.is_some(),
-        source: a.read.source_of(&lum),
-        ..Default::default()
     };
-    let mut c = super::with_progress("reconstructions", |progress| {
-        compare_with_progress(
-            lum.distribution(),
-            other.as_ref().map(|o| o.distribution()),
-            &opts,
-            progress,
-        )
+    let c = super::with_progress("reconstructions", |progress| {
+        jobs::compare(file.named(), vs.as_ref().map(Loaded::named), &settings, progress)
     })?;
-    c.file = a.file.display().to_string();
-    c.warnings = super::file_warnings(&lum, a.vs.as_deref().zip(other.as_ref()));
-    c.vs = a.vs.as_ref().map(|p| p.display().to_string());
-    c.photometry_side_by_side = other
-        .as_ref()
-        .map(|o| photosolid::photometry::derived::side_by_side(&lum, o));
     a.out
         .emit(&c, &compare_report::to_text(&c), compare_report::write_report)?;
     Ok(0)

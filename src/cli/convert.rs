@@ -17,6 +17,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use photosolid::formats::WriteOptions;
+use photosolid::jobs::{self, ConvertSettings, Loaded};
 
 use super::ReadArgs;
 
@@ -35,32 +36,30 @@ pub struct ConvertArgs {
     /// Mirror C -> -C (before rotating).
     #[arg(long)]
     mirror: bool,
+    /// Print what was written as JSON: `output` and `warnings` (what the target format does not keep).
+    #[arg(long)]
+    json: bool,
     #[command(flatten)]
     read: ReadArgs,
 }
 
 pub fn run(a: ConvertArgs) -> anyhow::Result<i32> {
     super::check_output("OUT", &a.output)?;
-    let mut doc = super::load(&a.input, &a.read)?;
-    if a.rotate_c != 0.0 || a.mirror {
-        // Setting the distribution drops the Type A/B source grid; the raw
-        // header describes the old orientation too: writers derive a fresh one.
-        let turned = doc.distribution().reoriented(a.rotate_c, a.mirror)?;
-        doc.luminaire.set_distribution(turned);
-        doc.header = photosolid::formats::Header::None;
-        // The front turns with the planes.
-        let front = doc.luminaire.front().reoriented(a.rotate_c, a.mirror);
-        doc.luminaire.set_front(front);
-    }
-    if let Some(target) = photosolid::model::Format::from_extension(&a.output) {
-        for w in photosolid::formats::conversion_warnings(&doc.luminaire, target) {
-            eprintln!("warning: {w}");
-        }
-    }
-    let opts = WriteOptions {
-        ies_version: a.ies_version.into(),
+    let input = Loaded::load(&a.input, &a.read.options())?;
+    let settings = ConvertSettings {
+        write: WriteOptions {
+            ies_version: a.ies_version.into(),
+        },
+        rotate_c_deg: a.rotate_c,
+        mirror: a.mirror,
     };
-    photosolid::save(&doc, &a.output, &opts)?;
+    let written = jobs::convert(input.named(), &a.output, &settings)?;
+    for w in &written.warnings {
+        eprintln!("warning: {w}");
+    }
+    if a.json {
+        super::emit(true, &written, "")?;
+    }
     eprintln!("wrote {}", a.output.display());
     Ok(0)
 }

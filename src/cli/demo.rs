@@ -21,7 +21,7 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use photosolid::compare::{compare, CompareOptions, Comparison};
+use photosolid::compare::Comparison;
 use photosolid::fit::{fit, FitOptions, FitReport};
 use photosolid::model::{Distribution, Luminaire};
 use photosolid::reconstruct::{exr_io, holdout, render, Filter, HoldoutSpec, LightTexture};
@@ -139,14 +139,22 @@ fn compare_to_truth(lum: &Luminaire) -> anyhow::Result<Comparison> {
         "\n== every reconstruction against the truth ({}) ==",
         truth.map_or("none".into(), |t| t.to_string())
     );
-    let opts = CompareOptions {
-        truth,
+    let doc: photosolid::formats::Document = lum.clone().into();
+    let file = photosolid::jobs::Named {
+        name: "built-in synthetic road luminaire",
+        document: &doc,
+        handedness: Default::default(),
+    };
+    let settings = photosolid::jobs::CompareSettings {
         plots: true,
         ..Default::default()
     };
-    let mut c = compare(lum.distribution(), None, &opts)?;
-    c.file = "built-in synthetic road luminaire".into();
-    Ok(c)
+    Ok(photosolid::jobs::compare(
+        file,
+        None,
+        &settings,
+        &photosolid::jobs::no_progress,
+    )?)
 }
 
 const SCENE_TITLE: &str = "built-in scene: the luminaire 8 m over a 40 m x 7 m road, a sensor 1 m under it";

@@ -7,9 +7,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 use photosolid::compare::Against;
-use photosolid::engines::{measure, Engine, EngineOptions, EnginesOptions, EnginesReport};
+use photosolid::engines::{Engine, EnginesReport};
+use photosolid::jobs::{self, EnginesSettings, Loaded};
 use photosolid::reconstruct::Filter;
-use photosolid::synth::Truth;
 
 use super::{ReadArgs, ReportArgs};
 
@@ -50,33 +50,25 @@ pub struct EnginesArgs {
 
 pub fn run(a: EnginesArgs) -> anyhow::Result<i32> {
     a.out.check()?;
-    let reference = match (a.against, a.reference) {
-        (Some(r), _) => r,
+    let against = match (a.against, a.reference) {
+        (Some(r), _) => Some(r),
         (None, Some(r)) => {
             eprintln!("warning: [deprecated-option] engines --reference is deprecated: write --against {r}");
-            r
+            Some(r)
         }
-        (None, None) => Against::Recon(photosolid::registry::Recon::Filter(Filter::CatmullRom)),
+        (None, None) => None,
     };
-    let lum = super::load(&a.file, &a.read)?;
-    let opts = EnginesOptions {
-        engines: a.engines.clone().unwrap_or_else(|| Engine::ALL.to_vec()),
-        reference,
-        truth: Truth::of_luminaire(&lum),
-        layout: EngineOptions {
-            resolution: a.resolution,
-            filter: a.filter,
-        },
+    let file = Loaded::load(&a.file, &a.read.options())?;
+    let settings = EnginesSettings {
+        engines: a.engines.clone(),
+        against,
+        tolerance: a.tolerance,
+        resolution: a.resolution,
+        filter: a.filter,
         factor: a.factor,
-        tolerance: a.tolerance.map(super::parse::PctOfPeak::fraction),
         plots: a.out.report.is_some(),
-        ..Default::default()
     };
-    let mut r = measure(&lum, &opts)?;
-    r.file = a.file.display().to_string();
-    let mut warnings = super::file_warnings(&lum, None);
-    warnings.append(&mut r.warnings);
-    r.warnings = warnings;
+    let r = jobs::engines(file.named(), &settings)?;
     for w in r
         .warnings
         .iter()

@@ -4,7 +4,8 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::engines::{export, Engine, EngineOptions};
+use photosolid::engines::Engine;
+use photosolid::jobs::{self, ExportSettings, Loaded};
 use photosolid::reconstruct::Filter;
 
 use super::ReadArgs;
@@ -26,48 +27,37 @@ pub struct ExportArgs {
     /// Filter photosolid samples the file with where it bakes the layout (pbrt, godot; the solid of gltf).
     #[arg(long, default_value = "catmull-rom")]
     filter: Filter,
+    /// Print what was written as JSON instead of the line: `output`, `engine`, `layout`, `size`,
+    /// `pbrt_flux_lm`, `warnings` (`layout-limit` when the layout is above 5 % radial max).
+    #[arg(long)]
+    json: bool,
     #[command(flatten)]
     read: ReadArgs,
 }
 
 pub fn run(a: ExportArgs) -> anyhow::Result<i32> {
-    let want = a.engine.extension();
-    let ext = a
-        .output
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    if ext != want {
-        anyhow::bail!("{}: the {} layout is written as .{want}", a.output.display(), a.engine);
-    }
     super::check_output("-o", &a.output)?;
-    let lum = super::load(&a.file, &a.read)?;
-    let opts = EngineOptions {
+    let file = Loaded::load(&a.file, &a.read.options())?;
+    let settings = ExportSettings {
+        engine: a.engine,
         resolution: a.resolution,
         filter: a.filter,
     };
-    let e = export(a.engine, &lum, &a.output, &opts)?;
-    print!("{}: {} ", a.output.display(), e.layout);
-    if let Some((w, h)) = e.size {
-        print!("({w} x {h})");
+    let written = jobs::export(file.named(), &a.output, &settings)?;
+    if a.json {
+        super::emit(true, &written, "")?;
+    } else {
+        print!("{}: {} ", a.output.display(), written.layout.as_deref().unwrap_or(""));
+        if let Some((w, h)) = written.size {
+            print!("({w} x {h})");
+        }
+        if let Some(phi) = written.pbrt_flux_lm {
+            print!("; 4 pi x mean = {phi:.6} lm");
+        }
+        println!();
     }
-    if let Some(phi) = e.pbrt_flux_lm {
-        print!("; 4 pi x mean = {phi:.6} lm");
-    }
-    println!();
-    // What the written layout costs in accuracy: the engines measurement of this
-    // engine alone, and `layout-limit` when it is above 5 % radial max.
-    let measured = photosolid::engines::measure(
-        &lum,
-        &photosolid::engines::EnginesOptions {
-            engines: vec![a.engine],
-            truth: photosolid::synth::Truth::of_luminaire(&lum),
-            layout: opts,
-            ..Default::default()
-        },
-    )?;
-    for w in &measured.warnings {
+    // What the written layout costs in accuracy: `layout-limit` above 5 % radial max.
+    for w in &written.warnings {
         eprintln!("warning: {w}");
     }
     Ok(0)

@@ -10,8 +10,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::photometry::derived::DerivedOptions;
-use photosolid::report::InfoReport;
+use photosolid::jobs::{self, InfoSettings, Loaded};
 
 use super::ReadArgs;
 
@@ -38,18 +37,13 @@ pub struct InfoArgs {
 pub fn run(a: InfoArgs) -> anyhow::Result<i32> {
     let files = photosolid::formats::photometries_in(&a.file);
     let mut reports = Vec::with_capacity(files.len());
+    let settings = InfoSettings {
+        tilt_deg: a.tilt,
+        ugr_spacing_h: a.ugr_spacing,
+    };
     for f in &files {
-        let mut doc = super::load(f, &a.read)?;
-        if let Some(t) = a.tilt {
-            let tilted = doc.tilted_distribution(t)?;
-            doc.luminaire.set_distribution(tilted);
-        }
-        let options = DerivedOptions {
-            ugr_spacing_h: a.ugr_spacing,
-        };
-        let mut report = InfoReport::of_document_with(&doc, photosolid::report::info::Tables::Compute, &options);
-        report.path = f.display().to_string();
-        reports.push(report);
+        let file = Loaded::load(f, &a.read.options())?;
+        reports.push(jobs::info(file.named(), &settings)?);
     }
     match reports.as_slice() {
         [one] => super::print_report(a.json, &files[0], one, &one.to_text())?,

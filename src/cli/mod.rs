@@ -143,15 +143,7 @@ pub struct ReadArgs {
 }
 
 impl ReadArgs {
-    /// `lum`'s Type A/B readings and the handedness they were read with,
-    /// for a `withheld` reference that withholds the readings themselves.
-    pub fn source_of(&self, lum: &photosolid::model::Luminaire) -> Option<photosolid::compare::SourceMeasurements> {
-        lum.source_grid().map(|grid| photosolid::compare::SourceMeasurements {
-            grid: grid.clone(),
-            handedness: self.handedness.into(),
-        })
-    }
-
+    /// The library's reader options.
     fn options(&self) -> ReadOptions {
         ReadOptions {
             repair: self.repair,
@@ -203,15 +195,6 @@ impl ReportArgs {
 /// container declarations), as an anyhow error naming it.
 fn load(path: &PathBuf, read: &ReadArgs) -> anyhow::Result<photosolid::formats::Document> {
     Ok(photosolid::formats::load_document_with(path, &read.options())?)
-}
-
-/// [`photosolid::compare::file_warnings`] of FILE and of the `--vs` file (its path as given).
-fn file_warnings(
-    file: &photosolid::formats::Document,
-    other: Option<(&std::path::Path, &photosolid::formats::Document)>,
-) -> Vec<photosolid::error::Warning> {
-    let other = other.map(|(p, d)| (p.display().to_string(), &d.luminaire));
-    photosolid::compare::file_warnings(&file.luminaire, other.as_ref().map(|(p, l)| (p.as_str(), *l)))
 }
 
 /// Run a parsed command line; returns the exit code.

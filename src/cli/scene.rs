@@ -6,12 +6,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use photosolid::jobs::{self, PlanAnswer, PlanSettings};
 use photosolid::report::road_report::write_road_plan_report;
 use photosolid::report::scene_report::{plan_text, scene_text, write_plan_report, write_scene_report};
-use photosolid::scene::illuminance::evaluate;
-use photosolid::scene::plan::{plan, PlanOptions};
-use photosolid::scene::road::layout::Road;
-use photosolid::scene::road::plan::{plan_road, road_plan_text, RoadPlan};
+use photosolid::scene::road::plan::road_plan_text;
 use photosolid::scene::Scene;
 
 #[derive(Args, Debug)]
@@ -50,9 +48,9 @@ pub fn run_scene(a: SceneArgs) -> anyhow::Result<i32> {
     if let Some(dir) = &a.report {
         super::check_report_dir("--report", dir)?;
     }
-    let scene = Scene::load(&a.scene)?;
-    let result = super::with_progress("points", |progress| evaluate(&scene, Some(progress)))?;
+    let result = super::with_progress("points", |progress| jobs::scene(&a.scene, Some(progress)))?;
     if let Some(dir) = &a.report {
+        let scene = Scene::load(&a.scene)?;
         // The maps and the page, as before: scene.json is not announced.
         for path in write_scene_report(dir, &scene, &result, &scene_text(&result))?
             .iter()
@@ -72,46 +70,28 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
     if let Some(dir) = &a.report {
         super::check_report_dir("--report", dir)?;
     }
-    if let Some(road) = Road::load_if_road(&a.scene)? {
-        let result = super::with_progress("candidates", |progress| {
-            plan_road(&road, a.tolerance.fraction(), a.class.as_ref(), Some(progress))
-        });
-        return write_road_plan(&a, &result?);
-    }
-    if let Some(class) = &a.class {
-        return Err(super::UsageError(format!(
-            "--class {}: {} has no [road] table, and lighting classes judge roads (docs/road.md)",
-            class.name,
-            a.scene.display()
-        ))
-        .into());
-    }
-    let scene = Scene::load(&a.scene)?;
-    let options = PlanOptions {
-        tolerance: a.tolerance.fraction(),
-        ..PlanOptions::default()
+    let settings = PlanSettings {
+        tolerance: a.tolerance,
+        class: a.class.clone(),
     };
-    let result = super::with_progress("steps", |progress| plan(&scene, &options, Some(progress)))?;
+    let answer = super::with_progress("candidates", |progress| jobs::plan(&a.scene, &settings, Some(progress)))?;
+    let text = match &answer {
+        PlanAnswer::Road(result) => road_plan_text(result),
+        PlanAnswer::Scene(result) => plan_text(result),
+    };
     if let Some(dir) = &a.report {
-        for path in write_plan_report(dir, &scene, &result, &plan_text(&result))?
-            .iter()
-            .skip(1)
-        {
+        let written = match &answer {
+            PlanAnswer::Road(result) => write_road_plan_report(dir, result, &text)?,
+            // The page shows each luminaire's chosen representation: the scene is read again.
+            PlanAnswer::Scene(result) => write_plan_report(dir, &Scene::load(&a.scene)?, result, &text)?
+                .into_iter()
+                .skip(1)
+                .collect(),
+        };
+        for path in written {
             eprintln!("wrote {}", path.display());
         }
     }
-    super::emit(a.json, &result, &plan_text(&result))?;
-    Ok(0)
-}
-
-/// The output of `plan` on a `[road]` file (the road quantities decide; docs/road.md).
-fn write_road_plan(a: &PlanArgs, result: &RoadPlan) -> anyhow::Result<i32> {
-    let text = road_plan_text(result);
-    if let Some(dir) = &a.report {
-        for path in write_road_plan_report(dir, result, &text)? {
-            eprintln!("wrote {}", path.display());
-        }
-    }
-    super::emit(a.json, result, &text)?;
+    super::emit(a.json, &answer, &text)?;
     Ok(0)
 }

@@ -2,8 +2,8 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::{Args, ValueEnum};
+use photosolid::jobs::{self, SynthSettings};
 use photosolid::synth::{GridSpec, Synth};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -44,21 +44,19 @@ pub struct SynthArgs {
     /// Output file (.ldt or .ies).
     #[arg(short, long)]
     output: PathBuf,
+    /// Print what was written as JSON: `output`, `exact_flux_lm` (where the distribution has one), `warnings`.
+    #[arg(long)]
+    json: bool,
 }
 
 pub fn run(a: SynthArgs) -> anyhow::Result<i32> {
     super::check_output("-o", &a.output)?;
-    let kind = match a.kind {
-        Kind::Isotropic => Synth::Isotropic,
-        Kind::Lambertian => Synth::Lambertian,
-        Kind::CosinePower => Synth::CosinePower { p: a.p },
-        Kind::Spot => Synth::Spot {
-            p: a.p,
-            cutoff_deg: a.cutoff,
-        },
-        Kind::Batwing => Synth::Batwing,
-        Kind::Roadway => Synth::Roadway,
-    };
+    let name = a
+        .kind
+        .to_possible_value()
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default();
+    let kind = Synth::named(&name, a.p, a.cutoff).ok_or_else(|| anyhow::anyhow!("unknown kind {name}"))?;
     let mut grid = GridSpec::uniform(a.c_step, a.gamma_step)?;
     if let Some(c) = a.c_list {
         grid.c = c;
@@ -66,16 +64,40 @@ pub fn run(a: SynthArgs) -> anyhow::Result<i32> {
     if let Some(g) = a.gamma_list {
         grid.gamma = g;
     }
-    // The roadway's street side goes where the output format's readers take its front.
-    let format = photosolid::model::Format::from_extension(&a.output).unwrap_or(photosolid::model::Format::Ldt);
-    let lum = kind
-        .build_for(format, &grid, a.intensity)
-        .context("building the distribution")?;
-    photosolid::save(&lum.clone().into(), &a.output, &Default::default())?;
-    if let Some(f) = kind.exact_flux(a.intensity) {
-        eprintln!("wrote {} (exact flux {f:.4} lm)", a.output.display());
-    } else {
-        eprintln!("wrote {}", a.output.display());
+    let settings = SynthSettings {
+        kind,
+        intensity_cd: a.intensity,
+        grid,
+    };
+    let written = jobs::synth(&a.output, &settings).map_err(|e| match e {
+        photosolid::Error::Model(_) => anyhow::Error::from(e).context("building the distribution"),
+        e => e.into(),
+    })?;
+    if a.json {
+        super::emit(true, &written, "")?;
+    }
+    match written.exact_flux_lm {
+        Some(f) => eprintln!("wrote {} (exact flux {f:.4} lm)", a.output.display()),
+        None => eprintln!("wrote {}", a.output.display()),
     }
     Ok(0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every kind the CLI offers is one the library names, under the same word.
+    #[test]
+    fn every_kind_is_a_library_kind() {
+        for kind in Kind::value_variants() {
+            let name = kind
+                .to_possible_value()
+                .map(|v| v.get_name().to_string())
+                .unwrap_or_default();
+            let synth = Synth::named(&name, 2.0, 60.0).unwrap_or_else(|| panic!("{name}"));
+            assert_eq!(synth.name(), name);
+        }
+        assert_eq!(Kind::value_variants().len(), Synth::NAMES.len());
+    }
 }

@@ -8,10 +8,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::compare::trade::{trade_table, TradeOptions, TradeTable};
-use photosolid::compare::{Against, CompareOptions, Directions};
+use photosolid::compare::trade::TradeTable;
+use photosolid::compare::Against;
+use photosolid::jobs::{self, Loaded, TradeoffSettings};
 use photosolid::report::compare_report;
-use photosolid::synth::Truth;
 
 use super::{ReadArgs, ReportArgs};
 
@@ -99,40 +99,19 @@ fn reference_of(a: &TradeoffArgs) -> (Option<PathBuf>, Option<Against>) {
 pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
     a.out.check()?;
     let (vs, against) = reference_of(&a);
-    let lum = super::load(&a.file, &a.read)?;
-    let other = vs.as_ref().map(|p| super::load(p, &a.read)).transpose()?;
-    let opts = TradeOptions {
+    let file = Loaded::load(&a.file, &a.read.options())?;
+    let vs = vs.as_ref().map(|p| Loaded::load(p, &a.read.options())).transpose()?;
+    let settings = TradeoffSettings {
+        against,
         factors: a.factors.clone(),
-        compare: CompareOptions {
-            against,
-            truth: Truth::of_luminaire(&lum),
-            factor: a.factor.unwrap_or(2),
-            solid_tolerance: if a.factor.is_some() {
-                None
-            } else {
-                CompareOptions::default().solid_tolerance
-            },
-            timing_repeats: a.repeats,
-            directions: Directions::default(),
-            plots: a.out.report.is_some(),
-            source: a.read.source_of(&lum),
-            ..CompareOptions::default()
-        },
+        factor: a.factor,
+        repeats: a.repeats,
         gpu: a.gpu,
+        plots: a.out.report.is_some(),
     };
-    let mut t = super::with_progress("representations", |progress| {
-        trade_table(
-            lum.distribution(),
-            other.as_ref().map(|o| o.distribution()),
-            &opts,
-            progress,
-        )
+    let t = super::with_progress("representations", |progress| {
+        jobs::tradeoff(file.named(), vs.as_ref().map(Loaded::named), &settings, progress)
     })?;
-    t.file = a.file.display().to_string();
-    t.comparison.file = t.file.clone();
-    t.warnings = super::file_warnings(&lum, vs.as_deref().zip(other.as_ref()));
-    t.comparison.warnings = t.warnings.clone();
-    t.comparison.vs = vs.as_ref().map(|p| p.display().to_string());
     a.out.emit(&t, &to_text(&t), compare_report::write_trade_report)?;
     Ok(0)
 }

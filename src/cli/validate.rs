@@ -6,14 +6,10 @@
 //! terminal and there are many files.
 
 use std::io::{IsTerminal, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use clap::Args;
-use photosolid::formats::Document;
-use photosolid::report::info::Tables;
-use photosolid::report::InfoReport;
-use rayon::prelude::*;
-use serde::Serialize;
+use photosolid::jobs::{self, ValidateLine};
 
 use super::ReadArgs;
 
@@ -35,68 +31,48 @@ pub struct ValidateArgs {
     read: ReadArgs,
 }
 
-#[derive(Serialize)]
-struct Line {
-    path: String,
-    ok: bool,
-    errors: Vec<photosolid::error::ErrorRecord>,
-    warnings: Vec<photosolid::error::WarningRecord>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    info: Option<InfoReport>,
-}
-
 pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
-    let walked = photosolid::formats::collect(&a.paths)?;
-    let notes = walked.summary();
-    let files = walked.files;
-    if files.is_empty() {
-        // Nothing to check is a failure, not "0 files, 0 ok".
-        return Ok(super::nothing_found(&a.paths, &notes, ""));
-    }
-    let opts = a.read.options();
-    let tables = if a.derived { Tables::Compute } else { Tables::Skip };
-    let bar = (std::io::stderr().is_terminal() && files.len() > 20).then(|| {
-        let b = super::progress_bar("files");
-        b.set_length(files.len() as u64);
-        b
-    });
-    let results: Vec<Line> = files
-        .par_iter()
-        .map(|f| {
-            let r = photosolid::formats::load_document_with(f, &opts);
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-            Line::of(f, r, tables)
-        })
-        .collect();
+    // A bar for many files only; it draws from its first update.
+    let bar = std::io::stderr().is_terminal().then(|| super::progress_bar("files"));
+    let show = |done: usize, total: usize, _: &str| {
+        if let Some(b) = bar.as_ref().filter(|_| total > 20) {
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }
+    };
+    let validated = jobs::validate(&a.paths, a.derived, &a.read.options(), &show)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }
+    if validated.lines.is_empty() {
+        // Nothing to check is a failure, not "0 files, 0 ok".
+        return Ok(super::nothing_found(&a.paths, &validated.notes, ""));
+    }
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let failed = results.iter().filter(|r| !r.ok).count();
-    for r in &results {
+    let failed = validated.failed();
+    let lines = &validated.lines;
+    for r in lines {
         if a.json {
             serde_json::to_writer(&mut out, r)?;
             writeln!(out)?;
         } else {
-            r.write_text(&mut out)?;
+            write_text(r, &mut out)?;
         }
     }
     if !a.json {
         writeln!(
             out,
             "{}, {} ok, {} failed",
-            photosolid::error::count(results.len(), "file", "files"),
-            results.len() - failed,
+            photosolid::error::count(lines.len(), "file", "files"),
+            lines.len() - failed,
             failed
         )?;
-        for n in &notes {
+        for n in &validated.notes {
             writeln!(out, "{n}")?;
         }
     } else {
         // stdout stays one JSON object per line.
-        for n in &notes {
+        for n in &validated.notes {
             eprintln!("{n}");
         }
     }
@@ -104,49 +80,23 @@ pub fn run(a: ValidateArgs) -> anyhow::Result<i32> {
     Ok(if failed == 0 { 0 } else { 1 })
 }
 
-impl Line {
-    /// The line of file `f` from what reading it gave.
-    fn of(f: &Path, read: Result<Document, photosolid::Error>, tables: Tables) -> Line {
-        match read {
-            Ok(lum) => {
-                let mut info = InfoReport::of_document_with(&lum, tables, &Default::default());
-                info.path = f.display().to_string();
-                Line {
-                    path: f.display().to_string(),
-                    ok: true,
-                    errors: vec![],
-                    warnings: info.warnings.iter().map(Into::into).collect(),
-                    info: Some(info),
-                }
-            }
-            Err(e) => Line {
-                path: f.display().to_string(),
-                ok: false,
-                errors: vec![photosolid::error::ErrorRecord::from(&e)],
-                warnings: vec![],
-                info: None,
-            },
+/// The text form: `ok PATH (N warnings)` and each warning, or `FAIL PATH` and each error.
+fn write_text(line: &ValidateLine, out: &mut impl Write) -> std::io::Result<()> {
+    if line.ok {
+        writeln!(
+            out,
+            "ok   {} ({})",
+            line.path,
+            photosolid::error::count(line.warnings.len(), "warning", "warnings")
+        )?;
+        for w in &line.warnings {
+            writeln!(out, "       {w}")?;
+        }
+    } else {
+        writeln!(out, "FAIL {}", line.path)?;
+        for e in &line.errors {
+            writeln!(out, "       {}", e.message)?;
         }
     }
-
-    /// The text form: `ok PATH (N warnings)` and each warning, or `FAIL PATH` and each error.
-    fn write_text(&self, out: &mut impl Write) -> std::io::Result<()> {
-        if self.ok {
-            writeln!(
-                out,
-                "ok   {} ({})",
-                self.path,
-                photosolid::error::count(self.warnings.len(), "warning", "warnings")
-            )?;
-            for w in &self.warnings {
-                writeln!(out, "       {w}")?;
-            }
-        } else {
-            writeln!(out, "FAIL {}", self.path)?;
-            for e in &self.errors {
-                writeln!(out, "       {}", e.message)?;
-            }
-        }
-        Ok(())
-    }
+    Ok(())
 }

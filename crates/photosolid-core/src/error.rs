@@ -326,6 +326,15 @@ pub enum Error {
     /// A scene (file, receivers, luminaires) that cannot be evaluated.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// A job's option that cannot be used as given (a range outside its key's values, an
+    /// option that needs another): the option as the command line spells it and why.
+    #[error("{option}: {message}")]
+    Option {
+        /// The option, as the command line spells it (`--range`, `--align`).
+        option: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
     /// A luminaire written in a format did not read back as it was (the
     /// writers' round-trip property, [`crate::formats::roundtrip`]).
     #[error("{format}: {difference}")]
@@ -452,6 +461,7 @@ impl Error {
             Error::Encode { .. } => "encode",
             Error::UnknownExtension { .. } => "unknown-extension",
             Error::NothingChecked(_) => "nothing-checked",
+            Error::Option { .. } => "option",
             Error::Scene(s) => s.code(),
             Error::RoundTrip { .. } | Error::RoundTripRead { .. } => "round-trip",
         }
@@ -512,6 +522,7 @@ pub const ERROR_CODES: &[(&str, &str)] = &[
         "nothing-checked",
         "a check that found nothing to check (Error::NothingChecked)",
     ),
+    ("option", "a job's option that cannot be used as given (Error::Option)"),
     (
         "scene-invalid",
         "a value of a scene file is malformed (SceneError::Invalid)",
@@ -554,6 +565,7 @@ pub struct ErrorRecord {
     /// files: `io`, `mesh-file`, `empty-mesh`, `encode`, `unknown-extension`, `round-trip`;
     /// models: `model`, `undefined`, `opening`;
     /// checks: `nothing-checked`;
+    /// options of a job: `option`;
     /// scenes: `scene-invalid`, `inside-opening`;
     /// GPU ([`GpuError::code`]): `gpu-no-adapter`, `gpu-device`, `gpu-pipeline`,
     /// `gpu-buffer-map`, `gpu-invalid-job`, `gpu-too-large`, `gpu-not-built`.

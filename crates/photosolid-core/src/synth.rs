@@ -130,6 +130,24 @@ impl Synth {
         }
     }
 
+    /// The kind [`Synth::name`] names, with the exponent `p` (cosine-power,
+    /// spot) and the cut-off angle `cutoff_deg` (spot), degrees, where the kind
+    /// has them; None for another name.
+    pub fn named(name: &str, p: f64, cutoff_deg: f64) -> Option<Synth> {
+        Some(match name {
+            "isotropic" => Synth::Isotropic,
+            "lambertian" => Synth::Lambertian,
+            "cosine-power" => Synth::CosinePower { p },
+            "spot" => Synth::Spot { p, cutoff_deg },
+            "batwing" => Synth::Batwing,
+            "roadway" => Synth::Roadway,
+            _ => return None,
+        })
+    }
+
+    /// Every kind's name, in [`Synth::name`]'s spelling.
+    pub const NAMES: [&'static str; 6] = ["isotropic", "lambertian", "cosine-power", "spot", "batwing", "roadway"];
+
     fn check(&self) -> Result<(), ModelError> {
         let bad = |name, value: f64, reason: &str| {
             Err(ModelError::Parameter {
@@ -412,6 +430,22 @@ impl GridSpec {
 mod tests {
     use super::*;
     use crate::photometry::flux;
+
+    /// `named` reads back every `name`, and nothing else.
+    #[test]
+    fn names_read_back() {
+        for name in Synth::NAMES {
+            assert_eq!(Synth::named(name, 3.0, 40.0).map(|s| s.name()), Some(name));
+        }
+        assert_eq!(Synth::named("cosine", 1.0, 90.0), None);
+        assert_eq!(
+            Synth::named("spot", 3.0, 40.0),
+            Some(Synth::Spot {
+                p: 3.0,
+                cutoff_deg: 40.0
+            })
+        );
+    }
 
     #[test]
     fn sampled_flux_approaches_closed_forms() {

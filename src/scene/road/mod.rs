@@ -122,6 +122,15 @@ pub enum RoadError {
         /// Why.
         reason: String,
     },
+    /// An option of the road job that cannot be used as given (`--range`
+    /// outside its key's values, `--grid` on the key being maximised).
+    #[error("{option}: {message}")]
+    Option {
+        /// The option, as the command line spells it.
+        option: String,
+        /// What is wrong and what was expected.
+        message: String,
+    },
     /// The luminaire file could not be read or its representation built.
     #[error("luminaire {file}: {message}", file = .file.display())]
     Luminaire {
@@ -145,6 +154,7 @@ impl RoadError {
             RoadError::NothingInView => "road-nothing-in-view",
             RoadError::Luminaire { .. } => "road-luminaire",
             RoadError::CannotJudge { .. } => "road-class-not-computable",
+            RoadError::Option { .. } => "option",
             RoadError::AtKey { source, .. } => source.code(),
         }
     }

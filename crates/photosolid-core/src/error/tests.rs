@@ -72,6 +72,10 @@ fn every_error() -> Vec<Error> {
             accepted: &[".ies"],
         },
         Error::NothingChecked("no files".into()),
+        Error::Option {
+            option: "--range".into(),
+            message: "empty".into(),
+        },
         Error::Scene(SceneError::Invalid {
             path: "s.toml".into(),
             location: Location::line(2),
@@ -105,6 +109,7 @@ fn every_error() -> Vec<Error> {
             | Error::Encode { .. }
             | Error::UnknownExtension { .. }
             | Error::NothingChecked(_)
+            | Error::Option { .. }
             | Error::Scene(_)
             | Error::RoundTrip { .. }
             | Error::RoundTripRead { .. } => {}

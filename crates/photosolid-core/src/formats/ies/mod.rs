@@ -129,3 +129,19 @@ pub enum IesWriteVersion {
     /// `IES:LM-63-2019`.
     Lm63_2019,
 }
+
+impl std::str::FromStr for IesWriteVersion {
+    type Err = crate::error::ModelError;
+    /// `2002` or `2019`, as `convert --ies-version` writes it.
+    fn from_str(s: &str) -> std::result::Result<Self, Self::Err> {
+        match s.trim() {
+            "2002" => Ok(IesWriteVersion::Lm63_2002),
+            "2019" => Ok(IesWriteVersion::Lm63_2019),
+            other => Err(crate::error::ModelError::Parameter {
+                name: "ies_version",
+                value: other.to_string(),
+                reason: "expected 2002 (LM-63-2002, the default) or 2019".into(),
+            }),
+        }
+    }
+}
