@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the Python package (python/: maturin + PyO3), installs the wheel into .venv-notebooks/ and runs pytest
-# over python/tests (the bindings against the CLI, and the Dask recipe of docs/scale.md on a 2-worker LocalCluster).
+# over python/tests (the bindings against the CLI, and the Dask recipe of docs/scale.md on a 2-worker LocalCluster),
+# then mypy.stubtest over the package's stubs.
 # Usage: bash scripts/python.sh [--no-tests]      (from anywhere)
 #
 # - the venv comes from scripts/notebooks.sh --setup (pinned notebooks/requirements.txt: maturin, pytest, pyarrow,
@@ -28,3 +29,7 @@ export PHOTOSOLID_BIN PHOTOSOLID_ROOT="$ROOT"
 start=$SECONDS
 "$VENV/bin/python" -m pytest -q -p no:cacheprovider python/tests
 echo "python: pytest in $((SECONDS - start)) s"
+# The stubs against the installed package: every name, signature, default and class property.
+start=$SECONDS
+"$VENV/bin/python" -m mypy.stubtest photosolid --mypy-config-file python/mypy.ini
+echo "python: mypy.stubtest in $((SECONDS - start)) s"

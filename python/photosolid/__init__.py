@@ -7,6 +7,10 @@ Python bindings over the photosolid Rust library (the same numbers as the ``phot
   (cd, shape (n_c, n_gamma); read-only), ``photometry()`` (the dict of ``photosolid info --json``), ``sample``
   and ``sample_dirs`` (each reconstruction built at its first use and kept; ``field(recon)`` returns it),
   ``texture``, ``mesh``, ``compare``, ``fit``; it pickles and copies;
+- the CLI's jobs, each returning the dict its ``--json`` prints: ``road``, ``scene``, ``plan`` (scene files),
+  ``validate`` (a list of dicts, one per file), ``synth`` and ``convert`` and ``export`` (what was written),
+  ``engines`` and ``tradeoff`` (a Luminaire or a path); ``Luminaire.ugr_table()`` (numpy arrays) and
+  ``Luminaire.grid_frame()`` (a pandas DataFrame);
 - ``batch(paths)`` -> ``pyarrow.Table`` with the columns of ``photosolid batch`` (docs/batch.md);
 - ``list_inputs(paths)`` -> the paths ``batch`` reads, in its order (every format, files read by content,
   one ``FILE#ID`` per photometry of a GLDF container or TM-33 document), for recipes that shard them
@@ -33,10 +37,19 @@ from ._native import (
     PhotosolidUnsupportedError,
     PhotosolidValueError,
     __version__,
+    _convert,
+    _engines,
+    _export,
+    _tradeoff,
     batch_parquet,
     list_inputs,
     load,
     load_all,
+    plan,
+    road,
+    scene,
+    synth,
+    validate,
 )
 
 __all__ = [
@@ -47,7 +60,118 @@ __all__ = [
     "PhotosolidOSError",
     "PhotosolidUnsupportedError",
     "PhotosolidValueError",
-    "__version__", "batch", "list_files", "list_inputs", "load"]
+    "__version__", "batch", "convert", "engines", "export", "list_files", "list_inputs", "load", "load_all",
+    "plan", "road", "scene", "synth", "tradeoff", "validate"]
+
+PathLike = Union[str, os.PathLike]
+
+
+def _luminaire(file: Union[Luminaire, PathLike], read: dict) -> Luminaire:
+    """``file`` itself when it is a Luminaire (its reader options kept), else ``load(file, **read)``."""
+    if isinstance(file, Luminaire):
+        return file
+    return load(file, **read)
+
+
+def tradeoff(
+    file: Union[Luminaire, PathLike],
+    vs: Union[None, Luminaire, PathLike] = None,
+    *,
+    against: Optional[str] = None,
+    factors: Optional[Iterable[int]] = None,
+    factor: Optional[int] = None,
+    repeats: int = 5,
+    gpu: bool = False,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict:
+    """``photosolid tradeoff FILE --json`` as a dict: every representation a renderer could hold, its bytes, time
+    per lookup and error against the reference (``against``: truth, withheld or a reconstruction; default as the
+    CLI). ``factors`` as ``--factors`` (default 1, 2, 5, 10), ``factor`` as ``--factor``, ``repeats`` as
+    ``--repeats``, ``gpu`` as ``--gpu``. ``file`` and ``vs``: a Luminaire or a path loaded with the reader options."""
+    read = dict(repair=repair, handedness=handedness, lamp_sets=lamp_sets, front=front)
+    other = None if vs is None else _luminaire(vs, read)
+    return _tradeoff(
+        _luminaire(file, read),
+        other,
+        against=against,
+        factors=None if factors is None else list(factors),
+        factor=factor,
+        repeats=repeats,
+        gpu=gpu,
+    )
+
+
+def engines(
+    file: Union[Luminaire, PathLike],
+    *,
+    engines: Union[None, str, Iterable[str]] = None,
+    against: Optional[str] = None,
+    tolerance: Optional[str] = None,
+    resolution: Optional[int] = None,
+    filter: str = "catmull-rom",
+    factor: int = 3,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict:
+    """``photosolid engines FILE --json`` as a dict: each engine's emulated lookup against the reference.
+    ``engines`` (names, or one comma-separated string; default all), ``against`` (truth or a reconstruction;
+    default catmull-rom), ``tolerance`` (``"1%"``: the resolution search), ``resolution``, ``filter``, ``factor``
+    as the CLI's flags."""
+    read = dict(repair=repair, handedness=handedness, lamp_sets=lamp_sets, front=front)
+    if engines is not None and not isinstance(engines, str):
+        engines = list(engines)
+    return _engines(
+        _luminaire(file, read),
+        engines=engines,
+        against=against,
+        tolerance=tolerance,
+        resolution=resolution,
+        filter=filter,
+        factor=factor,
+    )
+
+
+def export(
+    file: Union[Luminaire, PathLike],
+    output: PathLike,
+    *,
+    engine: str,
+    resolution: Optional[int] = None,
+    filter: str = "catmull-rom",
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict:
+    """``photosolid export FILE --engine ENGINE -o OUTPUT --json``: writes the engine's light-profile layout
+    (atomically) and returns what was written: ``output``, ``engine``, ``layout``, ``size``, ``pbrt_flux_lm``,
+    ``warnings`` (``layout-limit`` above 5 % radial max)."""
+    read = dict(repair=repair, handedness=handedness, lamp_sets=lamp_sets, front=front)
+    return _export(_luminaire(file, read), os.fspath(output), engine=engine, resolution=resolution, filter=filter)
+
+
+def convert(
+    file: Union[Luminaire, PathLike],
+    output: PathLike,
+    *,
+    ies_version: str = "2002",
+    rotate_c: float = 0.0,
+    mirror: bool = False,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict:
+    """``photosolid convert IN OUT --json``: writes the luminaire in the format of ``output``'s extension
+    (.ies, .ldt, .xml TM-33-23; ``ies_version`` "2002" or "2019"), turned by ``rotate_c`` degrees after an optional
+    ``mirror``, and returns ``output`` and ``warnings`` (what the target format does not keep)."""
+    read = dict(repair=repair, handedness=handedness, lamp_sets=lamp_sets, front=front)
+    return _convert(_luminaire(file, read), os.fspath(output), ies_version=ies_version, rotate_c=rotate_c, mirror=mirror)
 
 list_files = list_inputs  # the earlier name of list_inputs, kept for the recipes that use it
 

@@ -1,7 +1,7 @@
 """Type stubs of the photosolid package."""
 
 import os
-from typing import Callable, Iterable, Optional, Union
+from typing import Any, Callable, Iterable, Optional, Union
 
 import pyarrow
 
@@ -17,6 +17,36 @@ from ._native import batch_parquet as batch_parquet
 from ._native import list_inputs as list_inputs
 from ._native import load as load
 from ._native import load_all as load_all
+from ._native import plan as plan
+from ._native import road as road
+from ._native import scene as scene
+from ._native import synth as synth
+from ._native import validate as validate
+
+__all__ = [
+    "Field",
+    "Luminaire",
+    "PhotosolidError",
+    "PhotosolidFileNotFoundError",
+    "PhotosolidOSError",
+    "PhotosolidUnsupportedError",
+    "PhotosolidValueError",
+    "__version__",
+    "batch",
+    "convert",
+    "engines",
+    "export",
+    "list_files",
+    "list_inputs",
+    "load",
+    "load_all",
+    "plan",
+    "road",
+    "scene",
+    "synth",
+    "tradeoff",
+    "validate",
+]
 
 list_files = list_inputs
 
@@ -32,3 +62,65 @@ def batch(
 ) -> pyarrow.Table:
     """The batch table (columns of ``photosolid batch``, docs/batch.md) of every input under ``paths`` (.ies, .ldt, TM-33 .xml, .gldf, files read by content);
     ``compact=True`` as ``batch --compact`` (fills ``smallest_within_1pct``)."""
+
+PathLike = Union[str, os.PathLike[str]]
+
+def tradeoff(
+    file: Union[Luminaire, PathLike],
+    vs: Union[None, Luminaire, PathLike] = None,
+    *,
+    against: Optional[str] = None,
+    factors: Optional[Iterable[int]] = None,
+    factor: Optional[int] = None,
+    repeats: int = 5,
+    gpu: bool = False,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict[str, Any]:
+    """``photosolid tradeoff FILE --json`` as a dict."""
+
+def engines(
+    file: Union[Luminaire, PathLike],
+    *,
+    engines: Union[None, str, Iterable[str]] = None,
+    against: Optional[str] = None,
+    tolerance: Optional[str] = None,
+    resolution: Optional[int] = None,
+    filter: str = "catmull-rom",
+    factor: int = 3,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict[str, Any]:
+    """``photosolid engines FILE --json`` as a dict."""
+
+def export(
+    file: Union[Luminaire, PathLike],
+    output: PathLike,
+    *,
+    engine: str,
+    resolution: Optional[int] = None,
+    filter: str = "catmull-rom",
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict[str, Any]:
+    """``photosolid export FILE --engine ENGINE -o OUTPUT --json``: what was written."""
+
+def convert(
+    file: Union[Luminaire, PathLike],
+    output: PathLike,
+    *,
+    ies_version: str = "2002",
+    rotate_c: float = 0.0,
+    mirror: bool = False,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> dict[str, Any]:
+    """``photosolid convert IN OUT --json``: what was written."""

@@ -1,10 +1,35 @@
 """Type stubs of the native module photosolid._native (python/src/lib.rs)."""
 
 import os
-from typing import Any, Callable, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "PhotosolidError",
+    "PhotosolidFileNotFoundError",
+    "PhotosolidOSError",
+    "PhotosolidValueError",
+    "PhotosolidUnsupportedError",
+    "Luminaire",
+    "Field",
+    "load",
+    "load_all",
+    "batch_parquet",
+    "list_inputs",
+    "road",
+    "scene",
+    "plan",
+    "validate",
+    "synth",
+    "_tradeoff",
+    "_engines",
+    "_export",
+    "_convert",
+    "_luminaire_from_source",
+    "__version__",
+]
 
 __version__: str
 
@@ -34,6 +59,7 @@ class PhotosolidValueError(PhotosolidError, ValueError):
 class PhotosolidUnsupportedError(PhotosolidError, NotImplementedError):
     """A file that uses a feature photosolid does not read (code ``unsupported``)."""
 
+@final
 class Field:
     """One reconstruction of a luminaire, built once (``Luminaire.field``)."""
 
@@ -45,12 +71,15 @@ class Field:
     def sample_dirs(self, dirs: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Intensity (cd) along each row of ``dirs`` (N, 3); shape (N,)."""
 
+@final
 class Luminaire:
     """A loaded photometric file (IES LM-63, EULUMDAT, TM-33 or a GLDF photometry). Immutable; pickles (with the
     bytes it was read from, parsed again on unpickling) and copies; its array properties are read-only."""
 
-    def __eq__(self, other: object) -> bool: ...
+    def __eq__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
+    def __copy__(self) -> "Luminaire": ...
+    def __deepcopy__(self, _memo: Any) -> "Luminaire": ...
 
     @property
     def path(self) -> str:
@@ -74,8 +103,9 @@ class Luminaire:
     @property
     def symmetry(self) -> str:
         """``none``, ``rotational``, ``c0-c180``, ``c90-c270`` or ``quadrant``."""
-    def photometry(self) -> dict[str, Any]:
-        """The photometric summary: exactly ``photosolid info FILE --json``."""
+    def photometry(self, *, tilt: Optional[float] = None, ugr_spacing: float = 0.25) -> dict[str, Any]:
+        """The photometric summary: exactly ``photosolid info FILE --json`` (``tilt``: ``--tilt``, degrees;
+        ``ugr_spacing``: ``--ugr-spacing``, in H)."""
     def sample(
         self, filter: str, c_deg: npt.ArrayLike, gamma_deg: npt.ArrayLike
     ) -> npt.NDArray[np.float64]:
@@ -102,12 +132,21 @@ class Luminaire:
         tolerance: str = "0.1%",
         factor: int | None = None,
         solid_tolerance: Optional[str] = None,
+        *,
+        units: Optional[str] = None,
+        align: bool = False,
     ) -> dict[str, Any]:
         """The comparison of ``photosolid compare FILE --json`` as a dict (adaptive solids within ``solid_tolerance``,
         default 0.05%, unless ``factor`` names a fixed grid). ``tolerance`` and ``solid_tolerance`` are percents of
         I_max written as the CLI's flags are (``"0.1%"``; a bare number is refused with the CLI's hint). Its
         ``smallest_within_1pct`` names the reconstruction with the fewest bytes whose radial max error is within
-        1 % of I_max, or is None."""
+        1 % of I_max, or is None. ``units`` (``--units``; ``normalize`` is its older name): cd, peak, klm or flux;
+        ``align`` (``--align``, with ``vs``)."""
+    def ugr_table(self, *, tilt: Optional[float] = None, ugr_spacing: float = 0.25) -> dict[str, Any]:
+        """The UGR table of ``photometry()`` with numpy arrays: ``rooms_h`` (19, 2), ``reflectances`` (5, 3),
+        ``crosswise`` and ``endwise`` (19, 5); a ValueError where it is undefined."""
+    def grid_frame(self) -> Any:
+        """The measured grid as a pandas DataFrame: index ``gamma_deg``, columns ``c_deg``, candela. Needs pandas."""
     def fit(
         self, max_lights: int = 2, error: str = "relative", tolerance: str = "1%", guard: str = "2%"
     ) -> dict[str, Any]:
@@ -151,3 +190,91 @@ def batch_parquet(
 def list_inputs(paths: Sequence[Union[str, os.PathLike[str]]]) -> list[str]:
     """Every photometry ``photosolid batch PATHS`` reads, in its order (``FILE#ID`` per photometry of a GLDF
     container or TM-33 document)."""
+
+def road(
+    scene: Union[str, os.PathLike[str]],
+    *,
+    class_: Optional[str] = None,
+    maximize: Optional[str] = None,
+    range: Union[None, str, Tuple[float, float], Tuple[float, float, float]] = None,
+    grid: Optional[str] = None,
+) -> dict[str, Any]:
+    """``photosolid road SCENE --json`` (``class_`` is ``--class``)."""
+
+def scene(scene: Union[str, os.PathLike[str]]) -> dict[str, Any]:
+    """``photosolid scene SCENE --json``."""
+
+def plan(
+    scene: Union[str, os.PathLike[str]], *, tolerance: str = "1%", class_: Optional[str] = None
+) -> dict[str, Any]:
+    """``photosolid plan SCENE --json``."""
+
+def validate(
+    paths: Sequence[Union[str, os.PathLike[str]]],
+    *,
+    derived: bool = False,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> list[dict[str, Any]]:
+    """``photosolid validate PATHS --json``: one dict per file."""
+
+def synth(
+    kind: str,
+    output: Union[str, os.PathLike[str]],
+    *,
+    p: float = 1.0,
+    cutoff: float = 90.0,
+    intensity: float = 1000.0,
+    c_step: float = 15.0,
+    gamma_step: float = 5.0,
+    c_list: Optional[Sequence[float]] = None,
+    gamma_list: Optional[Sequence[float]] = None,
+) -> dict[str, Any]:
+    """``photosolid synth KIND -o OUTPUT --json``: writes the file, returns what was written."""
+
+def _tradeoff(
+    lum: Luminaire,
+    vs: Optional[Luminaire] = None,
+    *,
+    against: Optional[str] = None,
+    factors: Optional[Sequence[int]] = None,
+    factor: Optional[int] = None,
+    repeats: int = 5,
+    gpu: bool = False,
+) -> dict[str, Any]: ...
+def _engines(
+    lum: Luminaire,
+    *,
+    engines: Union[None, str, Sequence[str]] = None,
+    against: Optional[str] = None,
+    tolerance: Optional[str] = None,
+    resolution: Optional[int] = None,
+    filter: str = "catmull-rom",
+    factor: int = 3,
+) -> dict[str, Any]: ...
+def _export(
+    lum: Luminaire,
+    output: Union[str, os.PathLike[str]],
+    *,
+    engine: str,
+    resolution: Optional[int] = None,
+    filter: str = "catmull-rom",
+) -> dict[str, Any]: ...
+def _convert(
+    lum: Luminaire,
+    output: Union[str, os.PathLike[str]],
+    *,
+    ies_version: str = "2002",
+    rotate_c: float = 0.0,
+    mirror: bool = False,
+) -> dict[str, Any]: ...
+def _luminaire_from_source(
+    path: Union[str, os.PathLike[str]],
+    source: bytes,
+    repair: bool,
+    handedness: str,
+    lamp_sets: str,
+    front: Optional[float],
+) -> Luminaire: ...

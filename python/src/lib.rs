@@ -10,135 +10,27 @@
 
 use std::collections::HashMap;
 use std::path::PathBuf;
-use std::sync::atomic::Ordering;
 use std::sync::{Arc, Mutex};
 
-use glam::DVec3;
-use numpy::ndarray::{Array2, ArrayD};
+use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLikeDyn};
-use photosolid::compare::{compare, Against, CompareOptions, Directions, Normalize};
-use photosolid::error::{Error, ErrorRecord};
+use photosolid::compare::{Against, Directions, Normalize};
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport};
-use photosolid::model::IntensityField;
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
 use photosolid::registry::{Recon, Reconstructions};
-use photosolid::report::InfoReport;
 use photosolid::solid::Units;
-use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-pyo3::create_exception!(
-    photosolid,
-    PhotosolidError,
-    PyException,
-    "A photosolid error: `path`, `line` and `column` (None when unknown), `code` (`invalid`, `unsupported`, \
-     `io`, `model`, ...: the stable codes of `photosolid::error::ERROR_CODES`) and `message` (the full text)."
-);
+mod batch;
+mod errors;
+mod interrupt;
+mod jobs;
+mod sampling;
 
-/// The Python exception of a library error, with its location as attributes.
-fn py_err(e: Error) -> PyErr {
-    let rec = ErrorRecord::from(&e);
-    let path: Option<String> = match &e {
-        Error::Parse(p) => Some(p.path.display().to_string()),
-        Error::Io { path, .. } | Error::MeshFile { path, .. } | Error::EmptyMesh { path } => {
-            Some(path.display().to_string())
-        }
-        _ => None,
-    };
-    // The subclass a Python user catches by the builtin it also derives from.
-    let class = match &e {
-        Error::Io { source, .. } if source.kind() == std::io::ErrorKind::NotFound => {
-            Some("PhotosolidFileNotFoundError")
-        }
-        Error::Io { .. } => Some("PhotosolidOSError"),
-        Error::Parse(p) if p.kind == photosolid::ErrorKind::Unsupported => Some("PhotosolidUnsupportedError"),
-        Error::Parse(_) | Error::Model(_) | Error::UnknownExtension { .. } => Some("PhotosolidValueError"),
-        _ => None,
-    };
-    Python::attach(|py| {
-        let subclass = || -> PyResult<PyErr> {
-            let cls = py
-                .import("photosolid._native")?
-                .getattr(class.unwrap_or("PhotosolidError"))?;
-            Ok(PyErr::from_value(cls.call1((rec.message.clone(),))?))
-        };
-        let err = match class {
-            Some(_) => subclass().unwrap_or_else(|_| PhotosolidError::new_err(rec.message.clone())),
-            None => PhotosolidError::new_err(rec.message.clone()),
-        };
-        let v = err.value(py);
-        let set = || -> PyResult<()> {
-            v.setattr("path", path)?;
-            v.setattr("line", rec.line)?;
-            v.setattr("column", rec.column)?;
-            v.setattr("code", rec.code)?;
-            v.setattr("message", rec.message.clone())?;
-            Ok(())
-        };
-        match set() {
-            Ok(()) => err,
-            Err(e) => e,
-        }
-    })
-}
-
-fn model_err(e: photosolid::ModelError) -> PyErr {
-    py_err(Error::Model(e))
-}
-
-/// A `ValueError` for an argument that does not parse.
-fn arg<T: std::str::FromStr>(name: &str, s: &str) -> PyResult<T>
-where
-    T::Err: std::fmt::Display,
-{
-    s.parse()
-        .map_err(|e| PyValueError::new_err(format!("{name} = {s:?}: {e}")))
-}
-
-/// Argument `name`, a percent of I_max as the CLI spells it (`"0.1%"`); a
-/// bare number is refused with the CLI's hint.
-fn pct_arg(name: &str, value: &str) -> PyResult<photosolid::numfmt::PctOfPeak> {
-    photosolid::numfmt::PctOfPeak::parse(value, false)
-        .map_err(|e| PyValueError::new_err(format!("{name} = {value:?}: {e}")))
-}
-
-/// `value` of argument `name` when it lies in `lo..=hi`; a `ValueError`
-/// naming the argument and its range otherwise (a negative count is a
-/// value error, not an `OverflowError` of a conversion).
-fn int_in(name: &str, value: i64, lo: i64, hi: i64) -> PyResult<i64> {
-    if (lo..=hi).contains(&value) {
-        Ok(value)
-    } else {
-        Err(PyValueError::new_err(format!(
-            "{name} = {value}: expected {lo} to {hi}"
-        )))
-    }
-}
-
-/// The reconstruction names of `recons`: one string (comma-separated, as
-/// the CLI's `--recon`) or a sequence of strings.
-fn recon_names(recons: &Bound<'_, PyAny>) -> PyResult<Vec<String>> {
-    if let Ok(s) = recons.extract::<String>() {
-        return Ok(s
-            .split(',')
-            .map(|r| r.trim().to_string())
-            .filter(|r| !r.is_empty())
-            .collect());
-    }
-    recons.extract::<Vec<String>>().map_err(|_| {
-        pyo3::exceptions::PyTypeError::new_err(format!(
-            "recons = {}: expected a string (\"bilinear\" or \"bilinear,pchip\") or a list of strings",
-            recons.repr().map(|r| r.to_string()).unwrap_or_default()
-        ))
-    })
-}
-
-/// A serde value as a Python object (through `json.loads`, so it equals the CLI's JSON).
-fn to_py<'py>(py: Python<'py>, v: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
-    let text = serde_json::to_string(v).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    py.import("json")?.call_method1("loads", (text,))
-}
+use errors::{arg, int_in, model_err, pct_arg, py_err, recon_names, to_py, PhotosolidError};
+use sampling::{sample_angles, sample_directions, Field, Prepared};
 
 /// `(vertices (V, 3) f64 cd, faces (F, 3) i64)` of a solid.
 type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>);
@@ -181,7 +73,7 @@ fn luminaire_from_source(
 
 /// The reader options of `load`, `load_all` and `batch`, in the CLI's words
 /// (`--repair`, `--handedness ccw|cw`, `--lamp-sets first|sum`, `--front DEG`).
-fn read_options(
+pub(crate) fn read_options(
     repair: bool,
     handedness: &str,
     lamp_sets: &str,
@@ -313,156 +205,6 @@ impl Luminaire {
     }
 }
 
-/// One reconstruction of a luminaire, built once: a field that owns what it
-/// samples, or the built reconstructions a cheap field borrows from (a
-/// filter over the light texture, the measured solid, the fitted lights).
-enum Prepared {
-    Owned(Box<dyn IntensityField + Send>),
-    Shared(Box<Reconstructions>, Recon),
-}
-
-impl Prepared {
-    fn new(dist: &photosolid::Distribution, recon: Recon) -> Result<Self, photosolid::ModelError> {
-        let recs = Reconstructions::new(dist.clone(), &[recon])?;
-        Ok(match recs.owned_field(recon)? {
-            Some(field) => Prepared::Owned(field),
-            None => Prepared::Shared(Box::new(recs), recon),
-        })
-    }
-
-    /// `f` of the field.
-    fn with<T>(&self, f: impl FnOnce(&dyn IntensityField) -> T) -> Result<T, photosolid::ModelError> {
-        match self {
-            Prepared::Owned(field) => Ok(f(&**field)),
-            Prepared::Shared(recs, recon) => Ok(f(&*recs.field(*recon)?)),
-        }
-    }
-}
-
-/// `prepared` at each (C, γ) pair (degrees) of two arrays of one shape.
-fn sample_angles<'py>(
-    py: Python<'py>,
-    prepared: &Prepared,
-    c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    let (shape, c, g) = broadcast_angles(c_deg.as_array(), gamma_deg.as_array())?;
-    let out = py
-        .detach(|| prepared.with(|field| c.iter().zip(&g).map(|(&c, &g)| field.intensity_cd(c, g)).collect()))
-        .map_err(model_err)?;
-    let a = ArrayD::from_shape_vec(shape, out).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok(a.into_pyarray(py))
-}
-
-/// `c_deg` and `gamma_deg` broadcast against each other as numpy does (a
-/// scalar against an array, a row against a column): the common shape and
-/// both flattened in its order; a `ValueError` for shapes that do not
-/// broadcast or a value that is not finite.
-fn broadcast_angles(
-    c: numpy::ndarray::ArrayViewD<'_, f64>,
-    g: numpy::ndarray::ArrayViewD<'_, f64>,
-) -> PyResult<(Vec<usize>, Vec<f64>, Vec<f64>)> {
-    let n = c.ndim().max(g.ndim());
-    let dim = |a: &[usize], i: usize| if i + a.len() >= n { a[i + a.len() - n] } else { 1 };
-    let mut shape = Vec::with_capacity(n);
-    for i in 0..n {
-        let (a, b) = (dim(c.shape(), i), dim(g.shape(), i));
-        if a != b && a != 1 && b != 1 {
-            return Err(PyValueError::new_err(format!(
-                "c_deg has shape {:?} and gamma_deg {:?}: they do not broadcast to one shape",
-                c.shape(),
-                g.shape()
-            )));
-        }
-        shape.push(if a == 1 { b } else { a });
-    }
-    let target = numpy::ndarray::IxDyn(&shape);
-    let flat = |a: &numpy::ndarray::ArrayViewD<'_, f64>, name: &str| -> PyResult<Vec<f64>> {
-        let v: Vec<f64> = a
-            .broadcast(target.clone())
-            .map(|b| b.iter().copied().collect())
-            .ok_or_else(|| PyValueError::new_err(format!("{name} does not broadcast to {shape:?}")))?;
-        match v.iter().position(|x| !x.is_finite()) {
-            Some(i) => Err(PyValueError::new_err(format!(
-                "{name} holds {} (at flat index {i} of the broadcast shape {shape:?}): angles must be finite",
-                v[i]
-            ))),
-            None => Ok(v),
-        }
-    };
-    Ok((shape.clone(), flat(&c, "c_deg")?, flat(&g, "gamma_deg")?))
-}
-
-/// `prepared` along each direction of `dirs`, shape (..., 3) (a single
-/// direction (3,) gives a 0-d array, (N, 3) gives (N,)); none zero or not finite.
-fn sample_directions<'py>(
-    py: Python<'py>,
-    prepared: &Prepared,
-    dirs: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    let d = dirs.as_array();
-    if d.ndim() == 0 || d.shape()[d.ndim() - 1] != 3 {
-        return Err(PyValueError::new_err(format!(
-            "dirs has shape {:?}: expected (N, 3), or (3,) for one direction",
-            d.shape()
-        )));
-    }
-    let shape = d.shape()[..d.ndim() - 1].to_vec();
-    let flat: Vec<f64> = d.iter().copied().collect();
-    let v: Vec<DVec3> = flat.chunks_exact(3).map(|r| DVec3::new(r[0], r[1], r[2])).collect();
-    if let Some(i) = v.iter().position(|x| !(x.length() > 0.0 && x.is_finite())) {
-        return Err(PyValueError::new_err(format!(
-            "direction {i} (in flat order) is {:?}: expected a finite, non-zero vector",
-            v[i].to_array()
-        )));
-    }
-    let out = py
-        .detach(|| prepared.with(|field| v.iter().map(|&x| field.intensity_dir_cd(x.normalize())).collect()))
-        .map_err(model_err)?;
-    let a = ArrayD::from_shape_vec(shape, out).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok(a.into_pyarray(py))
-}
-
-/// One reconstruction of a luminaire, built once (`Luminaire.field(recon)`):
-/// sampling it builds nothing.
-#[pyclass(frozen, module = "photosolid")]
-struct Field {
-    name: String,
-    prepared: Arc<Prepared>,
-}
-
-#[pymethods]
-impl Field {
-    /// The reconstruction's name, as given.
-    #[getter]
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// Intensity (cd) at each (C, γ) pair in degrees, as `Luminaire.sample`.
-    fn sample<'py>(
-        &self,
-        py: Python<'py>,
-        c_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-        gamma_deg: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        sample_angles(py, &self.prepared, c_deg, gamma_deg)
-    }
-
-    /// Intensity (cd) along each row of `dirs`, shape (N, 3), as `Luminaire.sample_dirs`.
-    fn sample_dirs<'py>(
-        &self,
-        py: Python<'py>,
-        dirs: PyArrayLikeDyn<'py, f64, AllowTypeChange>,
-    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-        sample_directions(py, &self.prepared, dirs)
-    }
-
-    fn __repr__(&self) -> String {
-        format!("photosolid.Field({:?})", self.name)
-    }
-}
-
 #[pymethods]
 impl Luminaire {
     /// The file, as given to `load`.
@@ -577,10 +319,67 @@ impl Luminaire {
             .unwrap_or_default()
     }
 
-    /// The photometric summary as a dict: exactly `photosolid info FILE --json`.
-    fn photometry<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let report = py.detach(|| InfoReport::of_document(&self.lum));
+    /// The photometric summary as a dict: exactly `photosolid info FILE --json`
+    /// (the library's info job). `tilt` (`--tilt`): the installed tilt angle,
+    /// degrees, through the file's tilt table; `ugr_spacing` (`--ugr-spacing`):
+    /// the UGR table's spacing in H (0.25, the catalogue spacing; any 1/n of H
+    /// from 0.1 to 1).
+    #[pyo3(signature = (*, tilt = None, ugr_spacing = 0.25))]
+    fn photometry<'py>(&self, py: Python<'py>, tilt: Option<f64>, ugr_spacing: f64) -> PyResult<Bound<'py, PyAny>> {
+        if let Some(t) = tilt.filter(|t| !t.is_finite()) {
+            return Err(PyValueError::new_err(format!(
+                "tilt = {t}: expected a finite angle in degrees"
+            )));
+        }
+        let settings = photosolid::jobs::InfoSettings {
+            tilt_deg: tilt,
+            ugr_spacing_h: ugr_spacing,
+        };
+        let file = self.named();
+        let report = py.detach(|| photosolid::jobs::info(file, &settings)).map_err(py_err)?;
         to_py(py, &report)
+    }
+
+    /// The UGR table of `photometry()` (CIE 117/190, as `info --json` gives it) with numpy arrays:
+    /// `rooms_h` (19, 2) room X, Y in H, `reflectances` (5, 3) ceiling, walls, floor, `crosswise` and
+    /// `endwise` (19, 5) UGR, and the scalars `spacing_h`, `flux_lm`, `max`. A `ValueError` naming the
+    /// reason where the table is undefined (a point source: no luminous area). `tilt` and
+    /// `ugr_spacing` as `photometry`'s.
+    #[pyo3(signature = (*, tilt = None, ugr_spacing = 0.25))]
+    fn ugr_table<'py>(
+        &self,
+        py: Python<'py>,
+        tilt: Option<f64>,
+        ugr_spacing: f64,
+    ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
+        let table = self.photometry(py, tilt, ugr_spacing)?.get_item("ugr_table")?;
+        let table = table.cast_into::<pyo3::types::PyDict>()?;
+        if let Some(reason) = table.get_item("undefined")? {
+            return Err(PyValueError::new_err(format!("{}: {reason}", self.path)));
+        }
+        let asarray = py.import("numpy")?.getattr("asarray")?;
+        for key in ["rooms_h", "reflectances", "crosswise", "endwise"] {
+            if let Some(v) = table.get_item(key)? {
+                table.set_item(key, asarray.call1((v, "float64"))?)?;
+            }
+        }
+        Ok(table)
+    }
+
+    /// The measured grid as a pandas DataFrame: one row per γ (index `gamma_deg`), one column per
+    /// C-plane the file holds (columns `c_deg`), candela. Needs pandas.
+    fn grid_frame<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let pandas = py.import("pandas")?;
+        let index = |values: Bound<'py, PyArray1<f64>>, name: &str| -> PyResult<Bound<'py, PyAny>> {
+            let kwargs = pyo3::types::PyDict::new(py);
+            kwargs.set_item("name", name)?;
+            pandas.getattr("Index")?.call((values,), Some(&kwargs))
+        };
+        let kwargs = pyo3::types::PyDict::new(py);
+        kwargs.set_item("index", index(self.gamma_deg(py)?, "gamma_deg")?)?;
+        kwargs.set_item("columns", index(self.c_deg(py)?, "c_deg")?)?;
+        let values = self.candela(py)?.getattr("T")?.call_method0("copy")?;
+        pandas.getattr("DataFrame")?.call((values,), Some(&kwargs))
     }
 
     /// Intensity (cd) of reconstruction `filter` (a filter such as `bilinear`,
@@ -677,16 +476,19 @@ impl Luminaire {
         ))
     }
 
-    /// Compare reconstructions (as `photosolid compare FILE --json`): the
-    /// comparison as a dict. `recons`: names (default: the CLI's); `against`:
-    /// `truth`, `withheld` or a reconstruction (default as the CLI: truth when
-    /// the file records one, else withheld; with `vs`, catmull-rom of `vs`).
+    /// Compare reconstructions (as `photosolid compare FILE --json`, the
+    /// library's compare job): the comparison as a dict. `recons`: names
+    /// (default: the CLI's); `against`: `truth`, `withheld` or a
+    /// reconstruction (default as the CLI: truth when the file records one,
+    /// else withheld; with `vs`, catmull-rom of `vs`). `units` (`--units`;
+    /// `normalize` is its older name): cd, peak, klm or flux. `align`
+    /// (`--align`, with `vs`): the best C rotation and mirror first.
     /// Its `smallest_within_1pct` names the reconstruction with the fewest
     /// bytes whose radial max error is within 1 % of I_max (or None).
     /// `tolerance` (Hausdorff) and `solid_tolerance` (adaptive solids; default
     /// 0.05%, excluded by `factor`) are percents of I_max as the CLI writes them
     /// (`"0.1%"`); a bare number is refused with the CLI's hint.
-    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = "0.1%", factor = None, solid_tolerance = None))]
+    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = "0.1%", factor = None, solid_tolerance = None, *, units = None, align = false))]
     #[allow(clippy::too_many_arguments)]
     fn compare<'py>(
         &self,
@@ -700,64 +502,50 @@ impl Luminaire {
         tolerance: &str,
         factor: Option<i64>,
         solid_tolerance: Option<&str>,
+        units: Option<&str>,
+        align: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let defaults = CompareOptions::default();
-        let recons = match recons {
-            Some(rs) => recon_names(&rs)?
-                .iter()
-                .map(|r| arg::<Recon>("recons", r))
-                .collect::<PyResult<_>>()?,
-            None => defaults.recons.clone(),
-        };
-        let folds = int_in("folds", folds, 0, i64::MAX)? as usize; // the library checks k >= 2, as for the CLI
-        let factor = factor
-            .map(|f| int_in("factor", f, 1, i64::MAX).map(|f| f as usize))
+        let recons = recons
+            .map(|rs| -> PyResult<Vec<Recon>> { recon_names(&rs)?.iter().map(|r| arg::<Recon>("recons", r)).collect() })
             .transpose()?;
-        let opts = CompareOptions {
+        let units = match (units, normalize) {
+            (Some(u), "cd") => u,
+            (Some(u), n) if u != n => {
+                return Err(PyValueError::new_err(format!(
+                    "units = {u:?} and normalize = {n:?}: normalize is the older name of units; give one"
+                )))
+            }
+            (_, n) => n,
+        };
+        if factor.is_some() && solid_tolerance.is_some() {
+            return Err(PyValueError::new_err(
+                "factor and solid_tolerance exclude each other (as --factor and --solid-tolerance)",
+            ));
+        }
+        if align && vs.is_none() {
+            return Err(PyValueError::new_err("align needs vs (as --align needs --vs OTHER)"));
+        }
+        let settings = photosolid::jobs::CompareSettings {
             recons,
             against: against.map(|a| arg::<Against>("against", a)).transpose()?,
-            truth: photosolid::synth::Truth::of_luminaire(&self.lum),
-            folds,
-            normalize: arg::<Normalize>("normalize", normalize)?,
-            lamp_flux_lm: [
-                self.lum.declared().lamp_flux_lm,
-                vs.as_ref().and_then(|o| o.lum.declared().lamp_flux_lm),
-            ],
+            // The library checks k >= 2, as for the CLI.
+            folds: int_in("folds", folds, 0, i64::MAX)? as usize,
+            units: arg::<Normalize>("units", units)?,
+            align,
             directions: arg::<Directions>("directions", directions)?,
-            tolerance: pct_arg("tolerance", tolerance)?.fraction(),
-            // As the CLI: adaptive grid solids unless `factor` names a fixed grid.
-            factor: factor.unwrap_or(defaults.factor),
-            solid_tolerance: match (factor, solid_tolerance) {
-                (Some(_), Some(_)) => {
-                    return Err(PyValueError::new_err(
-                        "factor and solid_tolerance exclude each other (as --factor and --solid-tolerance)",
-                    ))
-                }
-                (Some(_), None) => None,
-                (None, Some(t)) => Some(pct_arg("solid_tolerance", t)?.fraction()),
-                (None, None) => defaults.solid_tolerance,
-            },
-            // As the CLI: a Type A/B file's withheld reference withholds its own readings
-            // (read with the default handedness, as `load` reads).
-            source: self
-                .lum
-                .source_grid()
-                .map(|grid| photosolid::compare::SourceMeasurements {
-                    grid: grid.clone(),
-                    handedness: self.options.handedness,
-                }),
-            ..defaults
+            tolerance: pct_arg("tolerance", tolerance)?,
+            factor: factor
+                .map(|f| int_in("factor", f, 1, i64::MAX).map(|f| f as usize))
+                .transpose()?,
+            solid_tolerance: solid_tolerance.map(|t| pct_arg("solid_tolerance", t)).transpose()?,
+            plots: false,
         };
-        let other = vs.as_ref().map(|o| o.lum.distribution());
-        let mut c = py
-            .detach(|| compare(self.lum.distribution(), other, &opts))
-            .map_err(model_err)?;
-        c.file = self.path.clone();
-        c.vs = vs.as_ref().map(|o| o.path.clone());
-        c.warnings = photosolid::compare::file_warnings(
-            &self.lum.luminaire,
-            vs.as_ref().map(|o| (o.path.as_str(), &o.lum.luminaire)),
-        );
+        let (file, other) = (self.loaded(), vs.as_ref().map(|o| o.loaded()));
+        let c = interrupt::detached(py, move || {
+            use photosolid::jobs::{compare, no_progress, Loaded};
+            compare(file.named(), other.as_ref().map(Loaded::named), &settings, &no_progress)
+        })?
+        .map_err(py_err)?;
         to_py(py, &c)
     }
 
@@ -804,150 +592,18 @@ impl Luminaire {
     }
 }
 
-/// The batch table of every input under `paths` (.ies, .ldt, TM-33 .xml,
-/// .gldf, files read by content) (as `photosolid
-/// batch PATHS -o OUT.parquet`, with `compact` as `--compact`) as Parquet
-/// bytes; `photosolid.batch` reads them into a `pyarrow.Table`.
-#[pyfunction]
-#[pyo3(signature = (paths, compact = false, *, repair = false, handedness = "ccw", lamp_sets = "first", front = None, progress = None))]
-#[allow(clippy::too_many_arguments)]
-fn batch_parquet<'py>(
-    py: Python<'py>,
-    paths: Vec<PathBuf>,
-    compact: bool,
-    repair: bool,
-    handedness: &str,
-    lamp_sets: &str,
-    front: Option<f64>,
-    progress: Option<Bound<'py, PyAny>>,
-) -> PyResult<Bound<'py, PyBytes>> {
-    let read = read_options(repair, handedness, lamp_sets, front)?;
-    let files = py.detach(|| photosolid::batch::collect(&paths)).map_err(py_err)?;
-    let options = photosolid::batch::BatchOptions { compact, read };
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let stop = std::sync::atomic::AtomicBool::new(false);
-    let report = |n: usize| -> PyResult<()> {
-        match &progress {
-            Some(callback) => callback.call1((n, files.len())).map(drop),
-            None => Ok(()),
-        }
-    };
-    let rows = interruptible(
-        py,
-        || photosolid::batch::run_until(&files, &options, &|d, _, _| done.store(d, Ordering::Relaxed), &stop),
-        &stop,
-        || report(done.load(Ordering::Relaxed)),
-    )?;
-    let Some(rows) = rows else {
-        return Err(pyo3::exceptions::PyKeyboardInterrupt::new_err("batch stopped"));
-    };
-    report(files.len())?;
-    let bytes = py
-        .detach(|| photosolid::batch::table::parquet_bytes(&rows))
-        .map_err(py_err)?;
-    Ok(PyBytes::new(py, &bytes))
-}
-
-/// Run `work` on a thread of its own while this one, every 0.1 s, lets
-/// Python handle its signals (a Ctrl-C raises `KeyboardInterrupt` here) and
-/// calls `tick` (progress). On an exception `stop` is set, so `work` stops
-/// starting new items, and the exception is raised once `work` returns
-/// (within the items already started: a file of a batch, not the batch).
-fn interruptible<T: Send>(
-    py: Python<'_>,
-    work: impl FnOnce() -> T + Send,
-    stop: &std::sync::atomic::AtomicBool,
-    mut tick: impl FnMut() -> PyResult<()>,
-) -> PyResult<T> {
-    std::thread::scope(|s| {
-        let handle = s.spawn(work);
-        let mut failure: Option<PyErr> = None;
-        while !handle.is_finished() {
-            py.detach(|| {
-                for _ in 0..20 {
-                    if handle.is_finished() {
-                        break;
-                    }
-                    std::thread::sleep(std::time::Duration::from_millis(5));
-                }
-            });
-            if failure.is_none() {
-                if let Err(e) = py.check_signals().and_then(|()| tick()) {
-                    stop.store(true, Ordering::Relaxed);
-                    failure = Some(e);
-                }
-            }
-        }
-        let out = py
-            .detach(|| handle.join())
-            .map_err(|_| pyo3::exceptions::PyRuntimeError::new_err("a photosolid worker thread panicked (a bug)"))?;
-        match failure {
-            Some(e) => Err(e),
-            None => Ok(out),
-        }
-    })
-}
-
-/// Every photometry `photosolid batch PATHS` reads, in its order: files named
-/// explicitly whatever their extension, and below each directory the .ies,
-/// .ldt, TM-33 .xml and .gldf files and the extension-less files read by
-/// content; a GLDF container or a TM-33 document with several photometries as
-/// one `FILE#ID` path each. The one list of `batch` (the library's
-/// `batch::collect`), for recipes that shard it.
-#[pyfunction]
-fn list_inputs(py: Python<'_>, paths: Vec<PathBuf>) -> PyResult<Vec<String>> {
-    let files = py.detach(|| photosolid::batch::collect(&paths)).map_err(py_err)?;
-    Ok(files.iter().map(|p| p.display().to_string()).collect())
-}
-
-/// The subclasses of `PhotosolidError` that also derive from the builtin a
-/// Python user catches: a missing file is a `FileNotFoundError`, another
-/// I/O failure an `OSError`, a malformed file or a value outside its domain a
-/// `ValueError`, a feature the readers do not support a `NotImplementedError`.
-/// Each keeps `path`, `line`, `column`, `code` and `message`.
-fn add_error_subclasses(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    let py = m.py();
-    let builtins = py.import("builtins")?;
-    let base = py.get_type::<PhotosolidError>();
-    for (name, builtin, doc) in [
-        (
-            "PhotosolidFileNotFoundError",
-            "FileNotFoundError",
-            "A file that does not exist.",
-        ),
-        ("PhotosolidOSError", "OSError", "A file that cannot be read or written."),
-        (
-            "PhotosolidValueError",
-            "ValueError",
-            "A malformed file, or a value outside its domain.",
-        ),
-        (
-            "PhotosolidUnsupportedError",
-            "NotImplementedError",
-            "A file that uses a feature photosolid does not read.",
-        ),
-    ] {
-        let namespace = pyo3::types::PyDict::new(py);
-        namespace.set_item("__module__", "photosolid")?;
-        namespace.set_item("__doc__", doc)?;
-        let bases = pyo3::types::PyTuple::new(py, [base.as_any(), &builtins.getattr(builtin)?])?;
-        let class = builtins.getattr("type")?.call1((name, bases, namespace))?;
-        m.add(name, class)?;
-    }
-    Ok(())
-}
-
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PhotosolidError", m.py().get_type::<PhotosolidError>())?;
-    add_error_subclasses(m)?;
+    errors::add_error_subclasses(m)?;
     m.add_class::<Luminaire>()?;
     m.add_class::<Field>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(load_all, m)?)?;
-    m.add_function(wrap_pyfunction!(batch_parquet, m)?)?;
-    m.add_function(wrap_pyfunction!(list_inputs, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::batch_parquet, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::list_inputs, m)?)?;
+    jobs::add(m)?;
     m.add_function(wrap_pyfunction!(_luminaire_from_source, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

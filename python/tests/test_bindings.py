@@ -450,6 +450,7 @@ def test_the_readme_tour_runs(catalogue, tmp_path, monkeypatch):
     dup.write_text(DUPLICATED_GAMMA)
     code = (code.replace('"odd.ies"', repr(str(dup)))
                 .replace('"product.gldf"', repr(str(catalogue / "lum.gldf")))
-                .replace('"catalogue/"', repr(str(catalogue))))
+                .replace('"catalogue/"', repr(str(catalogue)))
+                .replace('"/tmp/', '"' + str(tmp_path) + "/"))
     monkeypatch.chdir(ROOT)
     exec(compile(code, "python/README.md", "exec"), {})

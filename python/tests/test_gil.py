@@ -1,4 +1,4 @@
-"""The bindings release the GIL around their Rust work (issue 16): another Python thread keeps running while a
+"""The bindings release the GIL around their Rust work: another Python thread keeps running while a
 binding call computes.
 
 Method: a worker thread runs one long `Luminaire.sample` call (single-threaded Rust: one Catmull-Rom evaluation per
@@ -17,6 +17,9 @@ iteration. Two measures, each with its reason:
   a half of it where the worker, the main thread and other jobs share the cores (33 % measured on the 2-core
   machine while two other builds ran).
   Threshold: 10 % of the solo rate.
+
+The last tests send SIGINT to a batch and to other long calls running in a subprocess: each raises
+KeyboardInterrupt instead of running to its end.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import photosolid
 
@@ -136,3 +140,40 @@ def test_ctrl_c_stops_a_batch_and_progress_is_reported(tmp_path):
     assert proc.returncode != 0
     assert done < total, lines[-3:]
     print(f"\nCtrl-C: batch of {total} files (compact) stopped after {done}; {latency:.2f} s from SIGINT to exit")
+
+
+CALLS = {
+    "tradeoff": "photosolid.tradeoff(lum, repeats=200)",
+    "compare": "lum.compare(recons='measured,catmull-rom,sh:16,lobes:4', against='withheld', folds=12)",
+    "sample_dirs": "lum.sample_dirs('measured', np.tile([[0.3, 0.2, -1.0]], (8_000_000, 1)))",
+}
+
+
+@pytest.mark.parametrize("call", sorted(CALLS))
+def test_ctrl_c_interrupts_a_long_call(call):
+    """SIGINT one second into a long call (a tradeoff, a compare, sampling millions of directions) raises
+    KeyboardInterrupt in the calling thread: the call does not return. The latency from the signal to the
+    process's exit is printed."""
+    import signal
+    import sys
+    import time
+
+    root = Path(os.environ.get("PHOTOSOLID_ROOT", Path(__file__).resolve().parents[2]))
+    script = (
+        "import numpy as np, photosolid\n"
+        f"lum = photosolid.load({str(root / 'data' / 'roadway.ldt')!r})\n"
+        "print('go', flush=True)\n"
+        f"{CALLS[call]}\n"
+        "print('returned', flush=True)\n"
+    )
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    assert proc.stdout.readline().strip() == "go"
+    time.sleep(1.0)
+    t0 = time.perf_counter()
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=300)
+    latency = time.perf_counter() - t0
+    assert "returned" not in out, f"{call} finished within a second: not a long call"
+    assert "KeyboardInterrupt" in err, err[-2000:]
+    print(f"\nCtrl-C: {call} interrupted; {latency:.2f} s from SIGINT to exit")

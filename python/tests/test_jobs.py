@@ -1,0 +1,196 @@
+"""The CLI's jobs from Python: each function returns the document its command prints with ``--json``, equal to
+the CLI's (timings removed where a document has them: they are measured anew on each run).
+
+Needs PHOTOSOLID_BIN (the CLI binary) and PHOTOSOLID_ROOT (the repository), as scripts/python.sh sets them.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import photosolid
+
+ROOT = Path(os.environ.get("PHOTOSOLID_ROOT", Path(__file__).resolve().parents[2]))
+BIN = os.environ.get("PHOTOSOLID_BIN", str(ROOT / "target" / "debug" / "photosolid"))
+DATA = ROOT / "data"
+TIMING_WORDS = ("ns_per", "seconds", "time", "pareto", "elapsed", "_ms", "throughput")
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([BIN, *map(str, args)], capture_output=True, text=True)
+
+
+def cli_json(*args: str):
+    r = cli(*args)
+    assert r.returncode == 0, r.stderr
+    return json.loads(r.stdout)
+
+
+def scrub(v):
+    """The document without the keys that come from timings, candidate lists in a fixed order (ties in bytes
+    are ordered by time), as scripts/behaviour-snapshot.py."""
+    if isinstance(v, dict):
+        return {k: scrub(x) for k, x in v.items() if not any(w in k for w in TIMING_WORDS)}
+    if isinstance(v, list):
+        items = [scrub(x) for x in v]
+        if items and all(isinstance(x, dict) and "representation" in x for x in items):
+            items.sort(key=lambda x: str(x["representation"]))
+        return items
+    return v
+
+
+def test_road_equals_the_cli_with_class_and_maximize():
+    scene = DATA / "road_en13201.toml"
+    assert photosolid.road(scene) == cli_json("road", scene, "--json")
+    ours = photosolid.road(scene, class_="M5", maximize="spacing_m", range="30:45")
+    theirs = cli_json("road", scene, "--class", "M5", "--maximize", "spacing_m", "--range", "30:45", "--json")
+    assert ours == theirs
+    assert ours["class"] == "M5" and ours["maximize"]["key"] == "spacing_m"
+    # A range as a tuple is the same range.
+    assert photosolid.road(scene, class_="M5", maximize="spacing_m", range=(30, 45)) == theirs
+    grid = photosolid.road(scene, class_="M5", maximize="spacing_m", grid="mounting_height_m=9:10:1")
+    assert grid == cli_json("road", scene, "--class", "M5", "--maximize", "spacing_m",
+                            "--grid", "mounting_height_m=9:10:1", "--json")
+    assert [g["grid"]["value"] for g in grid["maximize"]] == [9.0, 10.0]
+
+
+def test_road_options_are_value_errors_naming_the_option():
+    scene = DATA / "road_en13201.toml"
+    with pytest.raises(ValueError, match="--class"):
+        photosolid.road(scene, class_="M9")
+    with pytest.raises(ValueError, match="--maximize"):
+        photosolid.road(scene, maximize="spacing_m")
+    with pytest.raises(ValueError, match="only spacing_m has a default"):
+        photosolid.road(scene, class_="M5", maximize="tilt_deg")
+    with pytest.raises(ValueError, match="START < END"):
+        photosolid.road(scene, class_="M5", maximize="spacing_m", range="40:30")
+    # The CLI says the same, as a usage error.
+    r = cli("road", scene, "--class", "M5", "--maximize", "tilt_deg")
+    assert r.returncode == 2 and "only spacing_m has a default" in r.stderr
+
+
+@pytest.mark.parametrize("name", ["office_scene.toml", "office_panels.toml", "road_scene.toml"])
+def test_scene_equals_the_cli(name):
+    scene = DATA / name
+    assert photosolid.scene(scene) == cli_json("scene", scene, "--json")
+
+
+@pytest.mark.parametrize("name", ["office_scene.toml", "road_en13201.toml"])
+def test_plan_equals_the_cli(name):
+    scene = DATA / name
+    assert scrub(photosolid.plan(scene, tolerance="2%")) == scrub(cli_json("plan", scene, "--tolerance", "2%", "--json"))
+
+
+def test_plan_class_on_a_scene_without_a_road_is_refused_as_the_cli_refuses_it():
+    with pytest.raises(ValueError, match="no \\[road\\] table"):
+        photosolid.plan(DATA / "office_scene.toml", class_="M3")
+    assert cli("plan", DATA / "office_scene.toml", "--class", "M3").returncode == 2
+
+
+def test_validate_equals_the_cli(catalogue):
+    ours = photosolid.validate([catalogue], derived=True)
+    out = cli("validate", catalogue, "--derived", "--json").stdout
+    theirs = [json.loads(line) for line in out.splitlines()]
+    assert ours == theirs
+    assert len(ours) == 6 and all(line["ok"] for line in ours)  # a.ies, b.ldt, no_extension, c.xml, 2 in lum.gldf
+
+
+def test_synth_convert_and_export_write_what_the_cli_writes(tmp_path):
+    ours = photosolid.synth("spot", tmp_path / "a.ldt", p=8, cutoff=40, intensity=500, gamma_step=2.5)
+    theirs = cli_json("synth", "spot", "--p", "8", "--cutoff", "40", "--intensity", "500", "--gamma-step", "2.5",
+                      "-o", tmp_path / "b.ldt", "--json")
+    assert ours["output"] == str(tmp_path / "a.ldt") and theirs["output"] == str(tmp_path / "b.ldt")
+    assert ours["exact_flux_lm"] == theirs["exact_flux_lm"] > 0
+    assert (tmp_path / "a.ldt").read_bytes() == (tmp_path / "b.ldt").read_bytes()
+
+    road = photosolid.load(DATA / "roadway.ies")
+    conv = photosolid.convert(road, tmp_path / "r.ldt", rotate_c=90)
+    conv_cli = cli_json("convert", DATA / "roadway.ies", tmp_path / "r2.ldt", "--rotate-c", "90", "--json")
+    assert conv["warnings"] == conv_cli["warnings"]
+    assert (tmp_path / "r.ldt").read_bytes() == (tmp_path / "r2.ldt").read_bytes()
+    assert photosolid.convert(DATA / "roadway.ies", tmp_path / "r3.ies", ies_version="2019")["output"].endswith("r3.ies")
+
+    exp = photosolid.export(road, tmp_path / "r.exr", engine="pbrt", resolution=64)
+    exp_cli = cli_json("export", DATA / "roadway.ies", "--engine", "pbrt", "--resolution", "64",
+                       "-o", tmp_path / "r2.exr", "--json")
+    assert {k: v for k, v in exp.items() if k != "output"} == {k: v for k, v in exp_cli.items() if k != "output"}
+    assert len(exp["size"]) == 2 and exp["engine"] == "pbrt"
+    with pytest.raises(ValueError, match="kind"):
+        photosolid.synth("cosine", tmp_path / "x.ldt")
+    with pytest.raises(ValueError, match="written as .exr"):
+        photosolid.export(road, tmp_path / "r.png", engine="pbrt")
+
+
+def test_engines_and_tradeoff_equal_the_cli():
+    path = DATA / "cosine_p5.ldt"
+    ours = photosolid.engines(path, engines="pbrt,godot", resolution=64)
+    theirs = cli_json("engines", path, "--engines", "pbrt,godot", "--resolution", "64", "--json")
+    assert scrub(ours) == scrub(theirs)
+    assert [r["name"] for r in ours["rows"]] == [r["name"] for r in theirs["rows"]]
+    lum = photosolid.load(path)
+    ours = photosolid.tradeoff(lum, factors=[1, 2], repeats=1)
+    theirs = cli_json("tradeoff", path, "--factors", "1,2", "--repeats", "1", "--json")
+    assert scrub(ours) == scrub(theirs)
+    assert ours["file"] == str(path)
+
+
+def test_compare_takes_units_and_align_as_the_cli():
+    a, b = DATA / "roadway.ldt", DATA / "roadway.ies"
+    ours = photosolid.load(a).compare(recons="bilinear", vs=photosolid.load(b), units="peak", align=True,
+                                      directions="dense:2000")
+    theirs = cli_json("compare", a, "--vs", b, "--recon", "bilinear", "--units", "peak", "--align",
+                      "--directions", "dense:2000", "--json")
+    assert scrub(ours) == scrub(theirs)
+    assert ours["photometry_side_by_side"] == theirs["photometry_side_by_side"]
+    with pytest.raises(ValueError, match="align needs vs"):
+        photosolid.load(a).compare(align=True)
+
+
+def test_ugr_table_is_the_info_table_as_arrays():
+    ugr_file = ROOT.parent / "shared" / "ugr-reference" / "sample_09.ldt"
+    if not ugr_file.is_file():
+        pytest.skip(f"no {ugr_file} (the shared UGR references)")
+    lum = photosolid.load(ugr_file)
+    t = lum.ugr_table()
+    info = lum.photometry()["ugr_table"]
+    assert t["crosswise"].shape == (19, 5) and t["rooms_h"].shape == (19, 2)
+    assert t["reflectances"].shape == (5, 3) and t["crosswise"].dtype == np.float64
+    np.testing.assert_array_equal(t["endwise"], np.array(info["endwise"]))
+    assert t["max"] == info["max"]
+
+
+def test_grid_frame_and_an_undefined_ugr_table():
+    with pytest.raises(ValueError, match="point source"):
+        photosolid.load(DATA / "batwing.ldt").ugr_table()
+    pd = pytest.importorskip("pandas", reason="pandas is in notebooks/requirements.txt; not installed here")
+    lum = photosolid.load(DATA / "batwing.ies")
+    frame = lum.grid_frame()
+    assert isinstance(frame, pd.DataFrame)
+    assert frame.index.name == "gamma_deg" and frame.columns.name == "c_deg"
+    assert frame.shape == (len(lum.gamma_deg), len(lum.c_deg))
+    np.testing.assert_array_equal(frame.to_numpy(), lum.candela.T)
+    np.testing.assert_array_equal(frame.columns.to_numpy(), lum.c_deg)
+
+
+def test_photometry_takes_the_info_options_as_the_cli():
+    corpus = ROOT.parent / "shared" / "corpus"
+    tilted = corpus / "luxera" / "tilt_include_variant.ies"
+    ugr_file = ROOT.parent / "shared" / "ugr-reference" / "sample_09.ldt"
+    if not (tilted.is_file() and ugr_file.is_file()):
+        pytest.skip(f"no {tilted} or {ugr_file} (the shared corpus and UGR references)")
+    lum = photosolid.load(tilted)
+    assert lum.photometry(tilt=30) == cli_json("info", tilted, "--tilt", "30", "--json")
+    assert lum.photometry(tilt=30)["flux_lm"] != lum.photometry()["flux_lm"]
+    ugr = photosolid.load(ugr_file)
+    assert ugr.photometry(ugr_spacing=1.0) == cli_json("info", ugr_file, "--ugr-spacing", "1", "--json")
+    assert ugr.ugr_table(ugr_spacing=1.0)["spacing_h"] == 1.0
+    with pytest.raises(ValueError):
+        ugr.photometry(ugr_spacing=0.3)
+    with pytest.raises(ValueError):
+        photosolid.load(DATA / "batwing.ies").photometry(tilt=10)  # no tilt table
