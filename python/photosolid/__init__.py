@@ -26,8 +26,9 @@ The GIL is released while Rust works, so threads (e.g. Dask's) run files in para
 from __future__ import annotations
 
 import os
-from typing import Callable, Iterable, Optional, Union
+from typing import BinaryIO, Callable, Iterable, Optional, Union
 
+from ._native import load as _load_path
 from ._native import (
     Field,
     Luminaire,
@@ -42,8 +43,8 @@ from ._native import (
     _export,
     _tradeoff,
     batch_parquet,
+    _luminaire_from_source,
     list_inputs,
-    load,
     load_all,
     plan,
     road,
@@ -64,6 +65,38 @@ __all__ = [
     "plan", "road", "scene", "synth", "tradeoff", "validate"]
 
 PathLike = Union[str, os.PathLike]
+
+
+def load(
+    source: Union[PathLike, bytes, bytearray, memoryview, BinaryIO],
+    *,
+    name: Optional[str] = None,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> Luminaire:
+    """Load an .ies, .ldt, TM-33 .xml or GLDF file (``FILE.gldf#ID`` for one photometry of a container,
+    ``FILE.xml#ID`` for one emitter of a TM-33 document), from a path, from bytes, or from a binary file object
+    (its ``read()``), with the CLI's reader options: ``repair`` (sort unsorted and drop duplicated angles, with a
+    warning, instead of failing), ``handedness`` (``ccw`` or ``cw``: the rotation sense of Type A/B horizontal
+    angles), ``lamp_sets`` (``first`` or ``sum``: which flux EULUMDAT cd/klm refer to), ``front`` (the
+    luminaire's front, C degrees in the file's frame, instead of its format's convention).
+
+    Bytes and file objects are read by the same readers: ``name`` (default: the file object's ``name``, else
+    ``"<bytes>"``) names the luminaire in messages and outputs, and its extension picks the format (``.gldf``
+    for a container, ``NAME.gldf#ID`` for one of its photometries); without one the content decides, as for
+    ``batch``'s extension-less files. Raises a ``PhotosolidError`` naming the file and line when it is bad."""
+    if isinstance(source, (bytes, bytearray, memoryview)) or hasattr(source, "read"):
+        data = source.read() if hasattr(source, "read") else source
+        if isinstance(data, str):
+            raise TypeError("load: the file object gives text; open it in binary mode ('rb')")
+        label = name if name is not None else getattr(source, "name", None)
+        label = os.fspath(label) if isinstance(label, (str, os.PathLike)) else "<bytes>"
+        return _luminaire_from_source(label, bytes(data), repair, handedness, lamp_sets, front)
+    if name is not None:
+        raise TypeError("load: name is for bytes and file objects; a path names itself")
+    return _load_path(source, repair=repair, handedness=handedness, lamp_sets=lamp_sets, front=front)
 
 
 def _luminaire(file: Union[Luminaire, PathLike], read: dict) -> Luminaire:

@@ -1,7 +1,7 @@
 """Type stubs of the photosolid package."""
 
 import os
-from typing import Any, Callable, Iterable, Optional, Union
+from typing import Any, BinaryIO, Callable, Iterable, Optional, Union
 
 import pyarrow
 
@@ -15,7 +15,6 @@ from ._native import PhotosolidValueError as PhotosolidValueError
 from ._native import __version__ as __version__
 from ._native import batch_parquet as batch_parquet
 from ._native import list_inputs as list_inputs
-from ._native import load as load
 from ._native import load_all as load_all
 from ._native import plan as plan
 from ._native import road as road
@@ -124,3 +123,15 @@ def convert(
     front: Optional[float] = None,
 ) -> dict[str, Any]:
     """``photosolid convert IN OUT --json``: what was written."""
+
+def load(
+    source: Union[PathLike, bytes, bytearray, memoryview, BinaryIO],
+    *,
+    name: Optional[str] = None,
+    repair: bool = False,
+    handedness: str = "ccw",
+    lamp_sets: str = "first",
+    front: Optional[float] = None,
+) -> Luminaire:
+    """Load a photometric file from a path, bytes or a binary file object (``name`` names bytes: its
+    extension picks the format, else the content), with the CLI's reader options."""

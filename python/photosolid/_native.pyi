@@ -118,9 +118,17 @@ class Luminaire:
         """The light texture (EXR channel Y of ``photosolid texture``): I / I_max, shape (factor R, factor P), R the
         file's mean measured gamma steps in 180 degrees, P its planes on the full circle (it depends on the file)."""
     def mesh(
-        self, filter: str = "catmull-rom", factor: int = 5
+        self,
+        filter: str = "catmull-rom",
+        factor: Optional[int] = None,
+        *,
+        tolerance: Optional[str] = None,
+        units: str = "cd",
+        texture: bool = False,
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]:
-        """The photometric solid: vertices (V, 3) in cd and faces (F, 3), for ``trimesh.Trimesh(vertices, faces)``."""
+        """The photometric solid (``photosolid mesh FILE --filter F``): vertices (V, 3) in ``units`` and faces
+        (F, 3), for ``trimesh.Trimesh(vertices, faces)``. As the CLI: the adaptive grid within ``tolerance`` (default
+        ``"0.1%"`` of I_max) unless ``factor`` names a fixed grid; ``filter`` may be ``measured``."""
     def compare(
         self,
         recons: Optional[Union[str, Sequence[str]]] = None,
@@ -128,7 +136,7 @@ class Luminaire:
         vs: Optional["Luminaire"] = None,
         folds: int = 2,
         normalize: str = "cd",
-        directions: str = "dense:20000",
+        directions: Optional[str] = None,
         tolerance: str = "0.1%",
         factor: int | None = None,
         solid_tolerance: Optional[str] = None,
@@ -142,6 +150,13 @@ class Luminaire:
         ``smallest_within_1pct`` names the reconstruction with the fewest bytes whose radial max error is within
         1 % of I_max, or is None. ``units`` (``--units``; ``normalize`` is its older name): cd, peak, klm or flux;
         ``align`` (``--align``, with ``vs``)."""
+    @property
+    def metadata(self) -> dict[str, Any]:
+        """``metadata`` (names, catalogue number, ...), ``declared`` (fluxes, LOR, watts as the file declares them)
+        and ``format``, without computing anything."""
+    @property
+    def warnings(self) -> list[dict[str, Any]]:
+        """The reader's warnings, ``{line, code, message}`` each."""
     def ugr_table(self, *, tilt: Optional[float] = None, ugr_spacing: float = 0.25) -> dict[str, Any]:
         """The UGR table of ``photometry()`` with numpy arrays: ``rooms_h`` (19, 2), ``reflectances`` (5, 3),
         ``crosswise`` and ``endwise`` (19, 5); a ValueError where it is undefined."""

@@ -15,10 +15,10 @@ use std::sync::{Arc, Mutex};
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArrayLikeDyn};
 use photosolid::compare::{Against, Directions, Normalize};
+use photosolid::error::WarningCode;
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport};
 use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
-use photosolid::registry::{Recon, Reconstructions};
-use photosolid::solid::Units;
+use photosolid::registry::Recon;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -180,11 +180,6 @@ fn load_all(
 }
 
 impl Luminaire {
-    /// The reconstructions of the measured grid that `recon` names.
-    fn field_of(&self, recon: Recon) -> Result<Reconstructions, photosolid::ModelError> {
-        Reconstructions::new(self.lum.distribution().clone(), &[recon])
-    }
-
     /// Reconstruction `name` (the `filter`/`recon` argument), built at its
     /// first use on this luminaire and kept: a later call looks it up.
     fn prepared(&self, py: Python<'_>, name: &str) -> PyResult<Arc<Prepared>> {
@@ -340,6 +335,30 @@ impl Luminaire {
         to_py(py, &report)
     }
 
+    /// What the file says of itself, without computing anything: `metadata`
+    /// (manufacturer, luminaire and lamp names, catalogue number, ...),
+    /// `declared` (lamp flux, luminaire flux, LOR, watts as the file declares
+    /// them; None where it does not) and `format` (`Ies`, `Ldt` or `Tm33`),
+    /// the library's `Metadata` and `Declared` as dicts.
+    #[getter]
+    fn metadata<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(
+            py,
+            &serde_json::json!({
+                "metadata": self.lum.metadata(),
+                "declared": self.lum.declared(),
+                "format": self.lum.format(),
+            }),
+        )
+    }
+
+    /// The reader's warnings (`{line, code, message}` each, as `info --json`'s
+    /// `warnings`); `warnings.warn` is not called, so a batch stays quiet.
+    #[getter]
+    fn warnings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.lum.warnings())
+    }
+
     /// The UGR table of `photometry()` (CIE 117/190, as `info --json` gives it) with numpy arrays:
     /// `rooms_h` (19, 2) room X, Y in H, `reflectances` (5, 3) ceiling, walls, floor, `crosswise` and
     /// `endwise` (19, 5) UGR, and the scalars `spacing_h`, `flux_lm`, `max`. A `ValueError` naming the
@@ -453,21 +472,42 @@ impl Luminaire {
     }
 
     /// The photometric solid of reconstruction `filter` (as `photosolid mesh
-    /// FILE --filter F --factor K`): `(vertices, faces)`, float64 (V, 3) in cd
-    /// and int64 (F, 3) vertex indices, counter-clockwise seen from outside:
-    /// `trimesh.Trimesh(vertices, faces)` takes them as they are.
-    #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn mesh<'py>(&self, py: Python<'py>, filter: &str, factor: i64) -> PyResult<MeshArrays<'py>> {
-        let recon: Recon = arg("filter", filter)?;
-        let factor = int_in("factor", factor, 1, i64::MAX)? as usize;
-        let (v, f) = py
-            .detach(|| -> Result<_, photosolid::ModelError> {
-                let mesh = self.field_of(recon)?.solid_in(recon, factor, Units::Candela)?;
-                let v: Vec<f64> = mesh.positions().iter().flatten().map(|&x| f64::from(x)).collect();
-                let f: Vec<i64> = mesh.triangles().iter().flatten().map(|&i| i64::from(i)).collect();
-                Ok((v, f))
-            })
-            .map_err(model_err)?;
+    /// FILE --filter F`, the library's mesh job): `(vertices, faces)`, float64
+    /// (V, 3) in `units` (cd, peak, klm or flux, as `--units`) and int64 (F, 3)
+    /// vertex indices, counter-clockwise seen from outside:
+    /// `trimesh.Trimesh(vertices, faces)` takes them as they are. `filter`: a
+    /// filter, `fitted-gl`, or `measured` (`--measured`). As the CLI: the
+    /// adaptive grid within `tolerance` (a percent of I_max, default `"0.1%"`)
+    /// unless `factor` names a fixed grid; `texture=True` (`--texture`) builds
+    /// it from the filter's rendered texture (render factor `factor`, default 5).
+    #[pyo3(signature = (filter = "catmull-rom", factor = None, *, tolerance = None, units = "cd", texture = false))]
+    fn mesh<'py>(
+        &self,
+        py: Python<'py>,
+        filter: &str,
+        factor: Option<i64>,
+        tolerance: Option<&str>,
+        units: &str,
+        texture: bool,
+    ) -> PyResult<MeshArrays<'py>> {
+        let settings = photosolid::jobs::MeshSettings {
+            recon: arg("filter", filter)?,
+            texture,
+            factor: factor
+                .map(|f| int_in("factor", f, 1, if texture { 32 } else { i64::MAX }).map(|f| f as usize))
+                .transpose()?,
+            tolerance: tolerance.map(|t| pct_arg("tolerance", t)).transpose()?,
+            units: arg("units", units)?,
+            color: false,
+        };
+        let file = self.loaded();
+        let (v, f) = interrupt::detached(py, move || -> Result<_, photosolid::Error> {
+            let built = photosolid::jobs::mesh(file.named(), &settings, &photosolid::jobs::no_progress)?;
+            let v: Vec<f64> = built.mesh.positions().iter().flatten().map(|&x| f64::from(x)).collect();
+            let f: Vec<i64> = built.mesh.triangles().iter().flatten().map(|&i| i64::from(i)).collect();
+            Ok((v, f))
+        })?
+        .map_err(py_err)?;
         let (nv, nf) = (v.len() / 3, f.len() / 3);
         let bad = |e: numpy::ndarray::ShapeError| PyValueError::new_err(e.to_string());
         Ok((
@@ -487,8 +527,11 @@ impl Luminaire {
     /// bytes whose radial max error is within 1 % of I_max (or None).
     /// `tolerance` (Hausdorff) and `solid_tolerance` (adaptive solids; default
     /// 0.05%, excluded by `factor`) are percents of I_max as the CLI writes them
-    /// (`"0.1%"`); a bare number is refused with the CLI's hint.
-    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = "dense:20000", tolerance = "0.1%", factor = None, solid_tolerance = None, *, units = None, align = false))]
+    /// (`"0.1%"`); a bare number is refused with the CLI's hint. `directions`
+    /// (`--directions`, default `dense:20000`) given under the withheld
+    /// reference has no effect: an `ignored-option` warning, in the dict and
+    /// as a Python `UserWarning`.
+    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = None, tolerance = "0.1%", factor = None, solid_tolerance = None, *, units = None, align = false))]
     #[allow(clippy::too_many_arguments)]
     fn compare<'py>(
         &self,
@@ -498,7 +541,7 @@ impl Luminaire {
         vs: Option<PyRef<'py, Luminaire>>,
         folds: i64,
         normalize: &str,
-        directions: &str,
+        directions: Option<&str>,
         tolerance: &str,
         factor: Option<i64>,
         solid_tolerance: Option<&str>,
@@ -532,7 +575,7 @@ impl Luminaire {
             folds: int_in("folds", folds, 0, i64::MAX)? as usize,
             units: arg::<Normalize>("units", units)?,
             align,
-            directions: arg::<Directions>("directions", directions)?,
+            directions: directions.map(|d| arg::<Directions>("directions", d)).transpose()?,
             tolerance: pct_arg("tolerance", tolerance)?,
             factor: factor
                 .map(|f| int_in("factor", f, 1, i64::MAX).map(|f| f as usize))
@@ -546,6 +589,11 @@ impl Luminaire {
             compare(file.named(), other.as_ref().map(Loaded::named), &settings, &no_progress)
         })?
         .map_err(py_err)?;
+        // An option that had no effect is also a Python warning, where a notebook shows it.
+        let warn = py.import("warnings")?.getattr("warn")?;
+        for w in c.warnings.iter().filter(|w| w.code == WarningCode::IgnoredOption) {
+            warn.call1((w.message.clone(),))?;
+        }
         to_py(py, &c)
     }
 

@@ -194,3 +194,74 @@ def test_photometry_takes_the_info_options_as_the_cli():
         ugr.photometry(ugr_spacing=0.3)
     with pytest.raises(ValueError):
         photosolid.load(DATA / "batwing.ies").photometry(tilt=10)  # no tilt table
+
+
+@pytest.mark.parametrize("args,kwargs", [
+    (["--filter", "catmull-rom"], {}),  # the CLI's default grid: adaptive within 0.1 %
+    (["--filter", "bilinear", "--tolerance", "0.5%", "--units", "peak"], {"filter": "bilinear", "tolerance": "0.5%",
+                                                                        "units": "peak"}),
+    (["--measured"], {"filter": "measured"}),
+    (["--filter", "pchip", "--texture", "--factor", "2"], {"filter": "pchip", "texture": True, "factor": 2}),
+])
+def test_mesh_takes_the_clis_options_and_defaults(tmp_path, args, kwargs):
+    import trimesh
+
+    path = DATA / "spot_p8_c40.ies"
+    v, f = photosolid.load(path).mesh(**kwargs)
+    cli_doc = cli_json("mesh", path, *args, "-o", tmp_path / "s.ply", "--json")
+    m = trimesh.Trimesh(v, f, process=False)
+    assert len(f) == cli_doc["triangles"]
+    assert m.volume == pytest.approx(cli_doc["volume"], rel=1e-5)
+    assert m.area == pytest.approx(cli_doc["area"], rel=1e-5)
+
+
+def test_mesh_options_that_exclude_each_other_are_refused():
+    lum = photosolid.load(DATA / "spot_p8_c40.ies")
+    with pytest.raises(ValueError, match="--tolerance"):
+        lum.mesh(factor=3, tolerance="0.1%")
+    with pytest.raises(ValueError, match="--texture"):
+        lum.mesh("measured", texture=True)
+    with pytest.raises(ValueError, match="units"):
+        lum.mesh(units="lm")
+
+
+def test_an_ignored_option_is_a_warning_in_both_ways_in():
+    path = DATA / "roadway.ldt"
+    lum = photosolid.load(path)
+    with pytest.warns(UserWarning, match="--directions dense:2000: the withheld reference"):
+        ours = lum.compare(recons="bilinear", against="withheld", directions="dense:2000")
+    theirs = cli_json("compare", path, "--recon", "bilinear", "--against", "withheld", "--directions", "dense:2000",
+                      "--json")
+    assert [w for w in ours["warnings"] if w["code"] == "ignored-option"] == \
+        [w for w in theirs["warnings"] if w["code"] == "ignored-option"] != []
+    # Not given: no warning.
+    assert not [w for w in lum.compare(recons="bilinear", against="withheld")["warnings"]
+                if w["code"] == "ignored-option"]
+
+
+def test_load_from_bytes_and_file_objects_and_the_cheap_properties(catalogue):
+    import io
+
+    path = DATA / "roadway.ldt"
+    from_path = photosolid.load(path)
+    data = path.read_bytes()
+    from_bytes = photosolid.load(data, name="roadway.ldt")
+    assert from_bytes.path == "roadway.ldt"
+    np.testing.assert_array_equal(from_bytes.candela, from_path.candela)
+    assert from_bytes.photometry()["flux_lm"] == from_path.photometry()["flux_lm"]
+    # No name: the content decides (EULUMDAT has no TILT= line), as for batch's extension-less files.
+    np.testing.assert_array_equal(photosolid.load(io.BytesIO(data)).candela, from_path.candela)
+    with open(path, "rb") as f:
+        assert photosolid.load(f).path == str(path)
+    gldf = (catalogue / "lum.gldf").read_bytes()
+    bat = photosolid.load(gldf, name="lum.gldf#bat")
+    np.testing.assert_array_equal(bat.candela, photosolid.load(DATA / "batwing.ies").candela)
+    with pytest.raises(TypeError, match="binary mode"):
+        photosolid.load(io.StringIO("x"))
+    with pytest.raises(ValueError):
+        photosolid.load(b"not photometric at all", name="x.ies")
+    meta = from_path.metadata
+    info = from_path.photometry()
+    assert meta["declared"]["lamp_flux_lm"] == info["lamp_flux_lm"]
+    assert meta["format"] == info["format"]
+    assert from_path.warnings == info["warnings"]

@@ -55,8 +55,10 @@ pub struct CompareArgs {
     align: bool,
     /// Direction set of the radial metrics: measured, dense, dense:N (the radial max is then refined
     /// locally around the set's 32 largest errors).
-    #[arg(long, default_value = "dense:20000")]
-    directions: Directions,
+    /// [default: dense:20000; under the withheld reference, which measures at the withheld
+    /// points, a given set is an `ignored-option` warning]
+    #[arg(long)]
+    directions: Option<Directions>,
     /// Hausdorff tolerance, a percent of I_max with its sign (a bare number is refused).
     #[arg(long, default_value = "0.1%", value_parser = super::parse::pct_of_peak, allow_hyphen_values = true)]
     tolerance: PctOfPeak,

@@ -4,14 +4,10 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 use clap::Args;
-use photosolid::model::Distribution;
-use photosolid::registry::{Recon, Reconstructions};
+use photosolid::jobs::{self, Loaded, MeshSettings};
+use photosolid::registry::Recon;
 use photosolid::solid::adaptive::AdaptiveGrid;
-use photosolid::solid::adaptive::DEFAULT_TOLERANCE_PCT;
-use photosolid::solid::{
-    export, texture_solid, topology, AdaptiveOptions, ColorMap, Mesh, MeshTopology, Refinement, SanityReport,
-    Tolerance, Units, UnitsName,
-};
+use photosolid::solid::{export, topology, Mesh, MeshTopology, SanityReport, Units, UnitsName};
 
 use super::ReadArgs;
 
@@ -72,15 +68,20 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         return Err(anyhow::Error::from(export::MeshFormat::unknown_extension(&a.output)).context("-o"));
     }
     super::check_output("-o", &a.output)?;
-    let lum = super::load(&a.file, &a.read)?;
-    let d = lum.distribution();
-    let units =
-        Units::resolve(a.units, d, lum.declared().lamp_flux_lm).with_context(|| a.file.display().to_string())?;
-    let (mut mesh, adaptive) = build(&a, recon, d, units)?;
-    mesh.info_mut().source = a.file.display().to_string();
-    if a.color {
-        mesh.colorize(ColorMap::Viridis);
-    }
+    let file = Loaded::load(&a.file, &a.read.options())?;
+    let settings = MeshSettings {
+        recon,
+        texture: a.texture,
+        factor: a.factor,
+        tolerance: a.tolerance,
+        units: a.units,
+        color: a.color,
+    };
+    let built = super::with_progress("adaptive solid", |progress| {
+        jobs::mesh(file.named(), &settings, progress)
+    })
+    .with_context(|| a.file.display().to_string())?;
+    let (mesh, adaptive, units) = (built.mesh, built.adaptive, built.units);
     let report = mesh
         .sanity_check()
         .map_err(|e| anyhow::anyhow!("the solid failed its sanity check: {e}"))?;
@@ -94,6 +95,7 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         topo: topology(written.positions(), written.triangles()),
         adaptive: adaptive.as_ref(),
         units,
+        tolerance_pct: settings.tolerance_pct(),
     };
     if a.json {
         outln!("{}", serde_json::to_string_pretty(&solid.json(&a))?);
@@ -101,42 +103,6 @@ pub fn run(a: MeshArgs) -> anyhow::Result<i32> {
         solid.print(&a)?;
     }
     Ok(0)
-}
-
-/// The solid `a` asks for: a filter's texture, the measured points, a fixed
-/// `--factor` grid or the adaptive grid of `--tolerance` (then with the grid
-/// it found).
-fn build(a: &MeshArgs, recon: Recon, d: &Distribution, units: Units) -> anyhow::Result<(Mesh, Option<AdaptiveGrid>)> {
-    Ok(match recon {
-        Recon::Filter(f) if a.texture => (
-            texture_solid(d, f, u32::try_from(a.factor.unwrap_or(5)).unwrap_or(u32::MAX), units)?,
-            None,
-        ),
-        Recon::Measured => (
-            Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, 1, units)?,
-            None,
-        ),
-        _ => match a.factor {
-            Some(factor) => (
-                Reconstructions::new(d.clone(), &[recon])?.solid_in(recon, factor, units)?,
-                None,
-            ),
-            None => {
-                let recs = Reconstructions::new(d.clone(), &[recon])?;
-                let tolerance = Tolerance::PercentOfPeak(tolerance_pct(a));
-                let field = recs.field(recon)?;
-                super::with_progress("adaptive solid", |progress| {
-                    Refinement::Adaptive(AdaptiveOptions::new(tolerance))
-                        .solid_with_progress(&*field, d, units, progress)
-                })?
-            }
-        },
-    })
-}
-
-/// The adaptive grid's tolerance, % of I_max.
-fn tolerance_pct(a: &MeshArgs) -> f64 {
-    a.tolerance.map_or(DEFAULT_TOLERANCE_PCT, |t| t.pct())
 }
 
 /// A written solid and what was checked of it: the mesh's own sanity report
@@ -148,6 +114,8 @@ struct Written<'a> {
     topo: MeshTopology,
     adaptive: Option<&'a AdaptiveGrid>,
     units: Units,
+    /// The adaptive grid's tolerance, % of I_max.
+    tolerance_pct: f64,
 }
 
 impl Written<'_> {
@@ -170,7 +138,7 @@ impl Written<'_> {
             "manifold": topo.manifold,
             "file_topology": topo,
             "tolerance_cd": adaptive.map(|f| f.tolerance_cd),
-            "tolerance_pct": adaptive.map(|_| tolerance_pct(a)),
+            "tolerance_pct": adaptive.map(|_| self.tolerance_pct),
             "tested_deviation_cd": adaptive.map(|f| f.tested_deviation_cd),
             "tolerance_reached": adaptive.map(|f| f.reached),
             "stopped_by": adaptive.map(|f| f.stop),
@@ -211,7 +179,7 @@ impl Written<'_> {
                 f.grid.c_angles_deg().len(),
                 f.grid.gamma_angles_deg().len(),
                 f.tested_deviation_cd,
-                super::parse::short(tolerance_pct(a)),
+                super::parse::short(self.tolerance_pct),
                 f.tolerance_cd,
                 if f.reached {
                     String::new()

@@ -678,11 +678,7 @@ pub fn compare_with_progress(
         }
         alignment = Some(al);
     }
-    let against = opts.against.unwrap_or(match (&b_dist, opts.truth) {
-        (Some(_), _) => Against::Recon(Recon::Filter(crate::reconstruct::Filter::CatmullRom)),
-        (None, Some(_)) => Against::Truth,
-        (None, None) => Against::Withheld,
-    });
+    let against = opts.reference(b_dist.is_some());
     let mut comparison = match (against, &b_dist) {
         // `k`: a Type A/B file's readings are scaled as the distribution was.
         (Against::Withheld, None) => withheld::compare_withheld(&a, k, opts, progress)?,

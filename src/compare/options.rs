@@ -103,6 +103,16 @@ impl Default for Directions {
     }
 }
 
+impl std::fmt::Display for Directions {
+    /// As `--directions` writes it: `measured` or `dense:N`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Directions::Measured => f.write_str("measured"),
+            Directions::Dense(n) => write!(f, "dense:{n}"),
+        }
+    }
+}
+
 impl FromStr for Directions {
     type Err = ModelError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
@@ -220,6 +230,17 @@ impl CompareOptions {
     /// GPU) is timed on the same set.
     pub fn timing_directions(&self) -> Vec<glam::DVec3> {
         crate::metrics::random_directions(self.timing_samples.max(1), 0x5eed)
+    }
+
+    /// The reference these options compare against: `against`, or by default
+    /// catmull-rom of the other file with one (`with_vs`), the truth when the
+    /// file records it, else the file's withheld measurements.
+    pub fn reference(&self, with_vs: bool) -> Against {
+        self.against.unwrap_or(match (with_vs, self.truth) {
+            (true, _) => Against::Recon(Recon::Filter(crate::reconstruct::Filter::CatmullRom)),
+            (false, Some(_)) => Against::Truth,
+            (false, None) => Against::Withheld,
+        })
     }
 }
 

@@ -4,7 +4,7 @@
 use crate::compare::trade::{trade_table, TradeOptions, TradeTable};
 use crate::compare::{compare_with_progress, Against, CompareOptions, Comparison, Directions, Normalize};
 use crate::engines::{measure, Engine, EngineOptions, EnginesOptions, EnginesReport};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Warning, WarningCode};
 use crate::model::Progress;
 use crate::numfmt::PctOfPeak;
 use crate::reconstruct::Filter;
@@ -27,8 +27,9 @@ pub struct CompareSettings {
     pub units: Normalize,
     /// `--align`: search the best C rotation and mirror onto the other file (needs `--vs`).
     pub align: bool,
-    /// `--directions`. Default dense:20000.
-    pub directions: Directions,
+    /// `--directions` (None: dense:20000). Given under the withheld reference,
+    /// which measures at the withheld points, it is an `ignored-option` warning.
+    pub directions: Option<Directions>,
     /// `--tolerance`: the Hausdorff tolerance, a percent of I_max. Default 0.1%.
     pub tolerance: PctOfPeak,
     /// `--factor`: grid solids on a fixed grid refined this many times (None: adaptive).
@@ -49,7 +50,7 @@ impl Default for CompareSettings {
             folds: d.folds,
             units: d.normalize,
             align: false,
-            directions: d.directions,
+            directions: None,
             tolerance: PctOfPeak(0.1),
             factor: None,
             solid_tolerance: None,
@@ -79,7 +80,7 @@ impl CompareSettings {
                 file.document.declared().lamp_flux_lm,
                 vs.and_then(|o| o.document.declared().lamp_flux_lm),
             ],
-            directions: self.directions,
+            directions: self.directions.unwrap_or(defaults.directions),
             tolerance: self.tolerance.fraction(),
             factor: self.factor.unwrap_or(defaults.factor),
             solid_tolerance: match self.factor {
@@ -121,6 +122,15 @@ pub fn compare(
     )?;
     c.file = file.name.to_string();
     c.warnings = file.warnings_with(vs);
+    if let (Some(d), Against::Withheld) = (settings.directions, opts.reference(vs.is_some())) {
+        c.warnings.push(Warning::new(
+            WarningCode::IgnoredOption,
+            format!(
+                "--directions {d}: the withheld reference measures each reconstruction at the withheld \
+                 measurements, not at a direction set"
+            ),
+        ));
+    }
     c.vs = vs.map(|o| o.name.to_string());
     c.photometry_side_by_side = vs.map(|o| crate::photometry::derived::side_by_side(file.document, o.document));
     Ok(c)

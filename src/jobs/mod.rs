@@ -13,6 +13,7 @@ mod compare;
 mod info;
 mod road;
 mod scene;
+mod solid;
 mod validate;
 mod write;
 
@@ -20,6 +21,7 @@ pub use compare::{compare, engines, tradeoff, CompareSettings, EnginesSettings, 
 pub use info::{info, InfoSettings};
 pub use road::{parse_class, parse_grid, parse_key, parse_range, road, Range, RoadSettings};
 pub use scene::{plan, scene, JobError, PlanAnswer, PlanSettings};
+pub use solid::{mesh, BuiltSolid, MeshSettings};
 pub use validate::{validate, ValidateLine, Validated};
 pub use write::{convert, export, synth, ConvertSettings, ExportSettings, SynthSettings, Written};
 

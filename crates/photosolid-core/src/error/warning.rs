@@ -104,11 +104,13 @@ pub enum WarningCode {
     StreetSideMismatch,
     /// `layout-limit`: an engine's layout cannot hold the file within 5 % radial max.
     LayoutLimit,
+    /// `ignored-option`: an option given that has no effect on this job (the message says why).
+    IgnoredOption,
 }
 
 impl WarningCode {
     /// Every code, in declaration order (the table in docs/warnings.md lists each).
-    pub const ALL: [WarningCode; 46] = [
+    pub const ALL: [WarningCode; 47] = [
         WarningCode::AnglesRepaired,
         WarningCode::BlankNumber,
         WarningCode::C360Plane,
@@ -155,6 +157,7 @@ impl WarningCode {
         WarningCode::TiLuminairesLeftOut,
         WarningCode::StreetSideMismatch,
         WarningCode::LayoutLimit,
+        WarningCode::IgnoredOption,
     ];
 
     /// The code as written in JSON and text (kebab-case).
@@ -206,6 +209,7 @@ impl WarningCode {
             WarningCode::TiLuminairesLeftOut => "ti-luminaires-left-out",
             WarningCode::StreetSideMismatch => "street-side-mismatch",
             WarningCode::LayoutLimit => "layout-limit",
+            WarningCode::IgnoredOption => "ignored-option",
         }
     }
 }

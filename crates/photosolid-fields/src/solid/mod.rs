@@ -104,6 +104,24 @@ pub enum UnitsName {
     Flux,
 }
 
+impl std::str::FromStr for UnitsName {
+    type Err = ModelError;
+    /// `cd`, `peak`, `klm` or `flux`, as `--units` writes them.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.trim() {
+            "cd" => Ok(UnitsName::Cd),
+            "peak" => Ok(UnitsName::Peak),
+            "klm" => Ok(UnitsName::Klm),
+            "flux" => Ok(UnitsName::Flux),
+            other => Err(ModelError::Parameter {
+                name: "units",
+                value: other.to_string(),
+                reason: "expected cd, peak, klm or flux".into(),
+            }),
+        }
+    }
+}
+
 /// Units of the solid's coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Units {
