@@ -134,7 +134,7 @@ class Luminaire:
         recons: Optional[Union[str, Sequence[str]]] = None,
         against: Optional[str] = None,
         vs: Optional["Luminaire"] = None,
-        folds: int = 2,
+        folds: Optional[int] = None,
         normalize: str = "cd",
         directions: Optional[str] = None,
         tolerance: str = "0.1%",

@@ -531,7 +531,7 @@ impl Luminaire {
     /// (`--directions`, default `dense:20000`) given under the withheld
     /// reference has no effect: an `ignored-option` warning, in the dict and
     /// as a Python `UserWarning`.
-    #[pyo3(signature = (recons = None, against = None, vs = None, folds = 2, normalize = "cd", directions = None, tolerance = "0.1%", factor = None, solid_tolerance = None, *, units = None, align = false))]
+    #[pyo3(signature = (recons = None, against = None, vs = None, folds = None, normalize = "cd", directions = None, tolerance = "0.1%", factor = None, solid_tolerance = None, *, units = None, align = false))]
     #[allow(clippy::too_many_arguments)]
     fn compare<'py>(
         &self,
@@ -539,7 +539,7 @@ impl Luminaire {
         recons: Option<Bound<'py, PyAny>>,
         against: Option<&str>,
         vs: Option<PyRef<'py, Luminaire>>,
-        folds: i64,
+        folds: Option<i64>,
         normalize: &str,
         directions: Option<&str>,
         tolerance: &str,
@@ -572,7 +572,9 @@ impl Luminaire {
             recons,
             against: against.map(|a| arg::<Against>("against", a)).transpose()?,
             // The library checks k >= 2, as for the CLI.
-            folds: int_in("folds", folds, 0, i64::MAX)? as usize,
+            folds: folds
+                .map(|k| int_in("folds", k, 0, i64::MAX).map(|k| k as usize))
+                .transpose()?,
             units: arg::<Normalize>("units", units)?,
             align,
             directions: directions.map(|d| arg::<Directions>("directions", d)).transpose()?,

@@ -378,6 +378,13 @@ fn compact_candidates(d: &Distribution, reports: &[HoldoutReport]) -> Result<Vec
         .to_string();
         out.push((name, m.bytes(), split.max_percent(m, i_max)));
     }
+    // The default instances of the representations a caller registered, built from the same kept samples.
+    for r in crate::registry::extension::default_instances() {
+        let field = crate::registry::Reconstructions::new(split.kept.clone(), &[r])?.owned_field(r)?;
+        if let Some(field) = field {
+            out.push((r.to_string(), field.bytes(), split.max_percent(&*field, i_max)));
+        }
+    }
     Ok(out)
 }
 

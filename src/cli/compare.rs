@@ -43,8 +43,9 @@ pub struct CompareArgs {
     #[arg(long)]
     against: Option<Against>,
     /// Folds of the withheld reference (k >= 2).
-    #[arg(long, default_value_t = 2)]
-    folds: usize,
+    /// [default: 2; with another reference, an `ignored-option` warning]
+    #[arg(long)]
+    folds: Option<usize>,
     /// Units the files are compared in (as `mesh --units`): cd (absolute), peak (I_max = 1), klm
     /// (cd per 1000 lm of the file's lamp flux, as in EULUMDAT; not for absolute photometry), flux
     /// (equal luminaire flux: cd per 1000 lm of the computed flux). `--normalize` is the older name.

@@ -177,7 +177,8 @@ impl FromStr for Against {
 /// Options of [`compare`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompareOptions {
-    /// Reconstructions of FILE to compare. Default: [`DEFAULT_RECONS`] and `measured`.
+    /// Reconstructions of FILE to compare. Default: `measured`, [`DEFAULT_RECONS`] and the default
+    /// instances of the representations a caller registered.
     pub recons: Vec<Recon>,
     /// The reference. Default (`None`): with `vs`, Catmull–Rom of OTHER
     /// (`dense`); else `truth` when [`CompareOptions::truth`] is known, else `withheld`.
@@ -248,6 +249,8 @@ impl Default for CompareOptions {
     fn default() -> Self {
         let mut recons = vec![Recon::Measured];
         recons.extend(DEFAULT_RECONS);
+        // The default instances of the representations a caller registered.
+        recons.extend(crate::registry::extension::default_instances());
         Self {
             recons,
             against: None,

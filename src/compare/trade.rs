@@ -104,7 +104,8 @@ pub const FRONT_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
 /// The representations of the trade table for `file`: [`representations`]
 /// of its declared symmetry, and `sh:L` for L in [`ZONAL_FRONT_SH_DEGREES`]
 /// where every C-plane holds the same values, whatever symmetry the file
-/// declares (its series are zonal).
+/// declares (its series are zonal), then the default instances of the
+/// representations a caller registered ([`crate::registry::register`]).
 pub fn representations_of(file: &Distribution, factors: &[u32]) -> Vec<Recon> {
     let mut out = representations(file.symmetry(), factors);
     if file.detect_symmetry(0.0) == Symmetry::Rotational {
@@ -114,6 +115,8 @@ pub fn representations_of(file: &Distribution, factors: &[u32]) -> Vec<Recon> {
             gpu: false,
         }));
     }
+    // The default instances of the representations a caller registered.
+    out.extend(crate::registry::extension::default_instances());
     out
 }
 

@@ -21,8 +21,9 @@ pub struct CompareSettings {
     /// `--against`: the reference (None: truth when the file records it, else
     /// withheld; with `--vs`, catmull-rom of the other file).
     pub against: Option<Against>,
-    /// `--folds`: folds of the withheld reference (k ≥ 2). Default 2.
-    pub folds: usize,
+    /// `--folds`: folds of the withheld reference (k ≥ 2; None: 2). Given with
+    /// another reference it is an `ignored-option` warning.
+    pub folds: Option<usize>,
     /// `--units`: cd, peak, klm or flux. Default cd.
     pub units: Normalize,
     /// `--align`: search the best C rotation and mirror onto the other file (needs `--vs`).
@@ -47,7 +48,7 @@ impl Default for CompareSettings {
         Self {
             recons: None,
             against: None,
-            folds: d.folds,
+            folds: None,
             units: d.normalize,
             align: false,
             directions: None,
@@ -74,7 +75,7 @@ impl CompareSettings {
             recons: self.recons.clone().unwrap_or(defaults.recons.clone()),
             against: self.against,
             truth: Truth::of_luminaire(file.document),
-            folds: self.folds,
+            folds: self.folds.unwrap_or(defaults.folds),
             normalize: self.units,
             lamp_flux_lm: [
                 file.document.declared().lamp_flux_lm,
@@ -95,6 +96,31 @@ impl CompareSettings {
             source: file.source(),
             ..defaults
         })
+    }
+}
+
+impl CompareSettings {
+    /// An `ignored-option` warning for each option given that has no effect
+    /// with the reference `against`: `--directions` under the withheld
+    /// reference (it measures at the withheld points), `--folds` under another.
+    fn ignored(&self, against: Against) -> Vec<Warning> {
+        let mut out = Vec::new();
+        match (against, self.directions, self.folds) {
+            (Against::Withheld, Some(d), _) => out.push(Warning::new(
+                WarningCode::IgnoredOption,
+                format!(
+                    "--directions {d}: the withheld reference measures each reconstruction at the withheld \
+                     measurements, not at a direction set"
+                ),
+            )),
+            (Against::Withheld, None, _) => {}
+            (other, _, Some(k)) => out.push(Warning::new(
+                WarningCode::IgnoredOption,
+                format!("--folds {k}: folds are the withheld reference's, and the reference is {other}"),
+            )),
+            _ => {}
+        }
+        out
     }
 }
 
@@ -122,15 +148,7 @@ pub fn compare(
     )?;
     c.file = file.name.to_string();
     c.warnings = file.warnings_with(vs);
-    if let (Some(d), Against::Withheld) = (settings.directions, opts.reference(vs.is_some())) {
-        c.warnings.push(Warning::new(
-            WarningCode::IgnoredOption,
-            format!(
-                "--directions {d}: the withheld reference measures each reconstruction at the withheld \
-                 measurements, not at a direction set"
-            ),
-        ));
-    }
+    c.warnings.extend(settings.ignored(opts.reference(vs.is_some())));
     c.vs = vs.map(|o| o.name.to_string());
     c.photometry_side_by_side = vs.map(|o| crate::photometry::derived::side_by_side(file.document, o.document));
     Ok(c)

@@ -5,6 +5,7 @@ use std::str::FromStr;
 
 use serde::{Serialize, Serializer};
 
+use super::extension::{self, ExtensionId};
 use super::owned::{crop, OwnedSampler};
 use crate::error::ModelError;
 use crate::fit::lobes::{fit_lobes, Lobes, MAX_LOBES};
@@ -81,6 +82,14 @@ pub enum Recon {
         /// Evaluated by the GPU's compute shader instead of the CPU.
         gpu: bool,
     },
+    /// An instance of a representation a caller registered
+    /// ([`super::extension::register`]), written as it spells it.
+    Extension {
+        /// The registered representation.
+        id: ExtensionId,
+        /// The instance's parameter (the representation reads and writes it in its names).
+        param: u32,
+    },
 }
 
 /// The prefix naming a [`Recon::Lobes`] mixture.
@@ -135,6 +144,7 @@ impl fmt::Display for Recon {
             Recon::Lobes { count, gpu } => {
                 write!(f, "{LOBES_PREFIX}{count}{}", if *gpu { GPU_SUFFIX } else { "" })
             }
+            Recon::Extension { id, param } => f.write_str(&extension::name(*id, *param)),
         }
     }
 }
@@ -152,30 +162,36 @@ impl Recon {
 
 impl FromStr for Recon {
     type Err = ModelError;
+    /// A built-in reconstruction's name, else a registered representation's.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s.trim() {
-            "measured" => Ok(Recon::Measured),
-            x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),
-            x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
-            x if x.starts_with(SH_PREFIX) => parse_sh(x),
-            x if x.starts_with(LOBES_PREFIX) => parse_lobes(x),
-            x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
-                Some(t) => t.parse().map(Recon::Gpu),
-                None => x.parse().map(Recon::Texture),
-            },
-            x => x
-                .parse::<Filter>()
-                .map(Recon::Filter)
-                .map_err(|_| ModelError::Parameter {
-                    name: "recon",
-                    value: x.to_string(),
-                    reason: format!(
-                        "expected measured, {}, a texture FILTER@xK/LOOKUP, FILTER+gamma:A-B[+c:A-B], FILTER+isym:N, sh:L[+f16], lobes:K, or a filter ({})",
-                        crate::fit::RECONSTRUCTION_NAME,
-                        crate::reconstruct::FILTER_NAMES
-                    ),
-                }),
-        }
+        parse_builtin(s).or_else(|e| extension::parse(s.trim()).ok_or(e))
+    }
+}
+
+/// A built-in reconstruction's name.
+fn parse_builtin(s: &str) -> Result<Recon, ModelError> {
+    match s.trim() {
+        "measured" => Ok(Recon::Measured),
+        x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),
+        x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
+        x if x.starts_with(SH_PREFIX) => parse_sh(x),
+        x if x.starts_with(LOBES_PREFIX) => parse_lobes(x),
+        x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
+            Some(t) => t.parse().map(Recon::Gpu),
+            None => x.parse().map(Recon::Texture),
+        },
+        x => x
+            .parse::<Filter>()
+            .map(Recon::Filter)
+            .map_err(|_| ModelError::Parameter {
+                name: "recon",
+                value: x.to_string(),
+                reason: format!(
+                    "expected measured, {}, a texture FILTER@xK/LOOKUP, FILTER+gamma:A-B[+c:A-B], FILTER+isym:N, sh:L[+f16], lobes:K, or a filter ({})",
+                    crate::fit::RECONSTRUCTION_NAME,
+                    crate::reconstruct::FILTER_NAMES
+                ),
+            }),
     }
 }
 
@@ -340,7 +356,8 @@ impl Reconstructions {
             | Recon::Cropped { .. }
             | Recon::Symmetric { .. }
             | Recon::Lobes { gpu: false, .. }
-            | Recon::Sh { gpu: false, .. } => return Err(missing()),
+            | Recon::Sh { gpu: false, .. }
+            | Recon::Extension { .. } => return Err(missing()),
         })
     }
 
@@ -368,6 +385,7 @@ impl Reconstructions {
             } => self.owned(r, crop(&self.dist, gamma_from, gamma_to, c)?, filter)?,
             Recon::Symmetric { filter, symmetry } => self.owned(r, self.dist.with_symmetry(symmetry)?, filter)?,
             Recon::Lobes { gpu: false, .. } | Recon::Sh { gpu: false, .. } => Box::new(self.compact(r)?),
+            Recon::Extension { id, param } => extension::build(id, param, &self.dist)?,
             _ => return Ok(None),
         }))
     }

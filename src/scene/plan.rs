@@ -289,6 +289,8 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
             }
         }
     }
+    // The default instances of the representations a caller registered.
+    reps.extend(crate::registry::extension::default_instances());
     reps
 }
 

@@ -1,0 +1,186 @@
+//! The open extension point (`photosolid::registry::register`): a
+//! representation defined here, registered once, and found where the
+//! built-in ones are: `--recon` names, `compare`'s rows, `tradeoff`'s
+//! table, `plan`'s candidates and `batch --compact`'s candidates.
+//!
+//! Its own test binary: the registry is the process's, and the `it` tests
+//! count the built-in rows.
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    reason = "in a test a panic is the failure report"
+)]
+
+use std::path::Path;
+use std::sync::{Arc, Once};
+
+use photosolid::error::ModelError;
+use photosolid::formats::Document;
+use photosolid::jobs::{self, CompareSettings, Named, TradeoffSettings};
+use photosolid::model::{Distribution, IntensityField};
+use photosolid::registry::{register, Recon, Representation};
+use photosolid::synth::{GridSpec, Synth};
+
+/// `nadir-cos:P`: I_max cos^P(γ) in the lower hemisphere, 12 bytes (the peak
+/// as f64 and P as u32). Exact for a cosine-power luminaire of exponent P.
+struct NadirCosine;
+
+/// One instance of [`NadirCosine`].
+struct NadirCosineField {
+    peak_cd: f64,
+    p: u32,
+}
+
+impl IntensityField for NadirCosineField {
+    fn intensity_cd(&self, _c_deg: f64, gamma_deg: f64) -> f64 {
+        if gamma_deg.is_finite() && gamma_deg < 90.0 {
+            self.peak_cd * gamma_deg.to_radians().cos().powi(self.p as i32)
+        } else {
+            0.0
+        }
+    }
+    fn name(&self) -> String {
+        format!("nadir-cos:{}", self.p)
+    }
+    fn bytes(&self) -> usize {
+        12
+    }
+}
+
+impl Representation for NadirCosine {
+    fn parse(&self, name: &str) -> Option<u32> {
+        name.strip_prefix("nadir-cos:")?.parse().ok().filter(|p| *p <= 128)
+    }
+    fn name(&self, p: u32) -> String {
+        format!("nadir-cos:{p}")
+    }
+    fn build(&self, dist: &Distribution, p: u32) -> Result<Box<dyn IntensityField + Send>, ModelError> {
+        Ok(Box::new(NadirCosineField {
+            peak_cd: dist.max_cd(),
+            p,
+        }))
+    }
+    fn defaults(&self) -> Vec<u32> {
+        vec![5]
+    }
+}
+
+fn registered() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        register(Arc::new(NadirCosine)).unwrap();
+    });
+}
+
+/// A cosine-power luminaire of exponent 5 that records its closed form.
+fn cosine_p5() -> Document {
+    let grid = GridSpec::uniform(15.0, 5.0).unwrap();
+    Synth::CosinePower { p: 5.0 }.build(&grid, 1000.0).unwrap().into()
+}
+
+fn named(doc: &Document) -> Named<'_> {
+    Named {
+        name: "cosine_p5",
+        document: doc,
+        handedness: Default::default(),
+    }
+}
+
+#[test]
+fn its_names_parse_and_print_as_a_reconstruction() {
+    registered();
+    let r: Recon = "nadir-cos:7".parse().unwrap();
+    assert!(matches!(r, Recon::Extension { param: 7, .. }));
+    assert_eq!(r.to_string(), "nadir-cos:7");
+    // The built-in names still parse as before; a name no one spells is still an error.
+    assert_eq!("bilinear".parse::<Recon>().unwrap().to_string(), "bilinear");
+    assert!("nadir-cos:999".parse::<Recon>().is_err());
+    // A representation whose default names a built-in is refused.
+    struct Squatter;
+    impl Representation for Squatter {
+        fn parse(&self, _: &str) -> Option<u32> {
+            None
+        }
+        fn name(&self, _: u32) -> String {
+            "bilinear".into()
+        }
+        fn build(&self, _: &Distribution, _: u32) -> Result<Box<dyn IntensityField + Send>, ModelError> {
+            Err(ModelError::Internal("never built".into()))
+        }
+        fn defaults(&self) -> Vec<u32> {
+            vec![0]
+        }
+    }
+    assert!(register(Arc::new(Squatter)).is_err());
+}
+
+#[test]
+fn compare_measures_it_against_the_truth() {
+    registered();
+    let doc = cosine_p5();
+    // By default, with the built-in rows.
+    let c = jobs::compare(named(&doc), None, &CompareSettings::default(), &jobs::no_progress).unwrap();
+    let row = c
+        .results
+        .iter()
+        .find(|r| r.name == "nadir-cos:5")
+        .expect("a nadir-cos:5 row");
+    assert_eq!(row.bytes, 12);
+    // The closed form itself: errors at rounding level, far below catmull-rom's.
+    let cr = c.results.iter().find(|r| r.name == "catmull-rom").unwrap();
+    assert!(row.radial_max_pct < 1e-9, "{}", row.radial_max_pct);
+    assert!(cr.radial_max_pct > 1e-4, "{}", cr.radial_max_pct);
+    // Named on its own, as --recon names it.
+    let only = CompareSettings {
+        recons: Some(vec!["nadir-cos:2".parse().unwrap()]),
+        ..Default::default()
+    };
+    let c = jobs::compare(named(&doc), None, &only, &jobs::no_progress).unwrap();
+    assert_eq!(c.results.len(), 1);
+    assert!(
+        c.results[0].radial_max_pct > 1.0,
+        "p = 2 is not the luminaire's exponent"
+    );
+}
+
+#[test]
+fn tradeoff_lists_it_and_it_is_the_smallest_within_one_percent() {
+    registered();
+    let doc = cosine_p5();
+    let settings = TradeoffSettings {
+        factors: vec![1],
+        repeats: 1,
+        ..Default::default()
+    };
+    let t = jobs::tradeoff(named(&doc), None, &settings, &jobs::no_progress).unwrap();
+    let row = t
+        .rows
+        .iter()
+        .find(|r| r.representation == "nadir-cos:5")
+        .expect("a nadir-cos:5 row");
+    assert_eq!(row.bytes, 12);
+    assert_eq!(t.smallest_within_1pct.as_deref(), Some("nadir-cos:5"));
+}
+
+#[test]
+fn plan_and_batch_take_it_as_a_candidate() {
+    registered();
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/office_scene.toml");
+    let answer = jobs::plan(&scene, &Default::default(), None).unwrap();
+    let json = serde_json::to_string(&answer).unwrap();
+    assert!(json.contains("nadir-cos:5"), "plan's candidates");
+
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/cosine_p5.ldt");
+    let options = photosolid::batch::BatchOptions {
+        compact: true,
+        ..Default::default()
+    };
+    let rows = photosolid::batch::run(&[file], &options, &|_, _, _| {});
+    assert_eq!(rows.len(), 1);
+    assert_eq!(
+        rows[0].smallest_within_1pct.as_deref(),
+        Some("nadir-cos:5"),
+        "{:?}",
+        rows[0].errors
+    );
+}
