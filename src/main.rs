@@ -12,6 +12,9 @@ fn main() {
     // Mesa's drivers print "error: XDG_RUNTIME_DIR is invalid or not set" on every
     // GPU run without one: give them a private directory, removed at exit.
     let runtime_dir = cli::runtime_dir::ensure();
+    // The GPU is plugged in here, at start-up: the library's layers ask for the installed device.
+    #[cfg(feature = "gpu")]
+    photosolid::gpu::install();
     let code = match cli::run(args) {
         Ok(code) => code,
         // A closed stdout (e.g. `| head`) is not a failure: stop quietly, as Unix tools do.

@@ -435,47 +435,35 @@ fn f32_columns(
     Ok(())
 }
 
-/// What a `+gpu` row's timing needs: the process's adapter, the timing
-/// directions (the CPU rows' own: same count, same seed), and the error that
-/// names the row when the GPU fails.
-#[cfg(feature = "gpu")]
-#[allow(clippy::type_complexity)]
-fn gpu_timing(
-    row: &TradeRow,
-    opts: &CompareOptions,
-) -> Result<
-    (
-        &'static crate::gpu::GpuContext,
-        Vec<glam::DVec3>,
-        impl Fn(crate::gpu::GpuError) -> ModelError,
-    ),
-    ModelError,
-> {
-    let recon = row.representation.clone();
-    let fail = move |source: crate::gpu::GpuError| ModelError::Gpu {
-        recon: recon.clone(),
-        source,
-    };
-    let ctx = crate::gpu::GpuContext::global().map_err(&fail)?;
-    let dirs = opts.timing_directions();
-    Ok((ctx, dirs, fail))
+/// The installed GPU device, or the error naming the `+gpu` row that needs it.
+fn gpu_device(row: &TradeRow) -> Result<&'static dyn crate::device::GpuDevice, ModelError> {
+    crate::device::device().map_err(|source| gpu_error(row, source))
 }
 
-/// Fill the GPU columns of a `+gpu` row.
-#[cfg(feature = "gpu")]
+/// A GPU failure as the error of the row that met it.
+fn gpu_error(row: &TradeRow, source: crate::error::GpuError) -> ModelError {
+    ModelError::Gpu {
+        recon: row.representation.clone(),
+        source,
+    }
+}
+
+/// Fill the GPU columns of a `+gpu` row, timed on the CPU rows' directions
+/// (same count, same seed).
 fn gpu_columns(
     row: &mut TradeRow,
     file: &Distribution,
     spec: TextureSpec,
     opts: &CompareOptions,
 ) -> Result<(), ModelError> {
-    use crate::gpu::precision::hardware_row;
-    let (ctx, dirs, fail) = gpu_timing(row, opts)?;
-    let h = hardware_row(ctx, file, spec, &dirs, opts.timing_repeats).map_err(fail)?;
+    let device = gpu_device(row)?;
+    let h = device
+        .texture_row(file, spec, &opts.timing_directions(), opts.timing_repeats)
+        .map_err(|e| gpu_error(row, e))?;
     row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
-    row.adapter = Some(h.precision.adapter);
+    row.adapter = Some(h.adapter);
     row.texture_format = Some(h.texture_format);
-    row.subtexel_bits = Some(h.precision.bits);
+    row.subtexel_bits = Some(h.subtexel_bits);
     row.hardware_vs_exact_max_pct = Some(100.0 * h.vs_exact_max);
     Ok(())
 }
@@ -483,20 +471,19 @@ fn gpu_columns(
 /// Fill the GPU columns of a `sh:L+gpu` or `lobes:K+gpu` row: the adapter,
 /// the dispatch time, and the largest difference from the CPU evaluation of
 /// the same stored parameters (`hardware_vs_exact_max_pct`).
-#[cfg(feature = "gpu")]
 fn compact_gpu_columns(
     row: &mut TradeRow,
     file: &Distribution,
     r: Recon,
     opts: &CompareOptions,
 ) -> Result<(), ModelError> {
-    use crate::gpu::compact::{compact_row, GpuCompact};
-    let (ctx, dirs, fail) = gpu_timing(row, opts)?;
+    let device = gpu_device(row)?;
     let compact = crate::registry::Reconstructions::new(file.clone(), &[r])?.compact(r)?;
-    let gpu = GpuCompact::new(ctx, compact).map_err(&fail)?;
-    let h = compact_row(&gpu, &dirs, opts.timing_repeats).map_err(fail)?;
+    let h = device
+        .compact_row(compact, &opts.timing_directions(), opts.timing_repeats)
+        .map_err(|e| gpu_error(row, e))?;
     row.ns_per_sample_gpu = Some(h.ns_per_sample_dispatch);
-    row.adapter = Some(ctx.adapter().to_string());
+    row.adapter = Some(h.adapter);
     let i_max = file.max_cd();
     row.hardware_vs_exact_max_pct = Some(if i_max > 0.0 {
         100.0 * h.vs_exact_max_cd / i_max
@@ -504,22 +491,4 @@ fn compact_gpu_columns(
         0.0
     });
     Ok(())
-}
-
-/// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).
-#[cfg(not(feature = "gpu"))]
-fn compact_gpu_columns(row: &mut TradeRow, _: &Distribution, _: Recon, _: &CompareOptions) -> Result<(), ModelError> {
-    Err(ModelError::Gpu {
-        recon: row.representation.clone(),
-        source: crate::error::GpuError::NotBuilt,
-    })
-}
-
-/// Without the `gpu` feature there are no `+gpu` rows (building their field fails first).
-#[cfg(not(feature = "gpu"))]
-fn gpu_columns(row: &mut TradeRow, _: &Distribution, _: TextureSpec, _: &CompareOptions) -> Result<(), ModelError> {
-    Err(ModelError::Gpu {
-        recon: row.representation.clone(),
-        source: crate::error::GpuError::NotBuilt,
-    })
 }

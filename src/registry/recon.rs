@@ -430,48 +430,29 @@ impl Reconstructions {
         }))
     }
 
-    #[cfg(feature = "gpu")]
+    /// A stored texture read by the GPU's texture hardware, on the installed device.
     fn gpu_field(&self, r: Recon, t: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        use crate::gpu::realtime::{HardwareLookup, RealtimeTexture};
-        let unavailable = |source: crate::gpu::GpuError| ModelError::Gpu {
+        let unavailable = |source: crate::error::GpuError| ModelError::Gpu {
             recon: r.to_string(),
             source,
         };
-        let ctx = crate::gpu::GpuContext::global().map_err(unavailable)?;
+        let device = crate::device::device().map_err(unavailable)?;
         let rendered = render(&self.texture, t.filter, t.factor)?;
         let reduced = t.reduced.then(|| self.dist.symmetry());
-        let lookup = HardwareLookup::for_lookup(t.lookup);
-        Ok(Box::new(
-            RealtimeTexture::new(ctx, &rendered, reduced, t.precision, lookup).map_err(unavailable)?,
-        ))
+        device
+            .texture_field(&rendered, reduced, t.precision, t.lookup)
+            .map_err(unavailable)
     }
 
-    /// A spherical-harmonic series or lobe mixture evaluated by the GPU.
-    #[cfg(feature = "gpu")]
+    /// A spherical-harmonic series or lobe mixture evaluated by the installed GPU device.
     fn gpu_compact(&self, r: Recon, compact: Compact) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        use crate::gpu::compact::GpuCompact;
-        let unavailable = |source: crate::gpu::GpuError| ModelError::Gpu {
+        let unavailable = |source: crate::error::GpuError| ModelError::Gpu {
             recon: r.to_string(),
             source,
         };
-        let ctx = crate::gpu::GpuContext::global().map_err(unavailable)?;
-        Ok(Box::new(GpuCompact::new(ctx, compact).map_err(unavailable)?))
-    }
-
-    #[cfg(not(feature = "gpu"))]
-    fn gpu_compact(&self, r: Recon, _: Compact) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        Err(ModelError::Gpu {
-            recon: r.to_string(),
-            source: crate::error::GpuError::NotBuilt,
-        })
-    }
-
-    #[cfg(not(feature = "gpu"))]
-    fn gpu_field(&self, r: Recon, _: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        Err(ModelError::Gpu {
-            recon: r.to_string(),
-            source: crate::error::GpuError::NotBuilt,
-        })
+        crate::device::device()
+            .and_then(|device| device.compact_field(compact))
+            .map_err(unavailable)
     }
 
     /// The photometric solid of `r` (coordinates in cd): the measured solid

@@ -1,6 +1,7 @@
 //! [`render_on`]: render a texture on the backend chosen with `--backend`
-//! ([`Backend`]: a GPU adapter through `crate::gpu`, or the CPU).
+//! ([`Backend`]: a GPU adapter through the installed [`crate::device`], or the CPU).
 
+use crate::device::DeviceRender;
 use crate::error::Error;
 use crate::reconstruct::{render_with, Backend, LightTexture, RenderOptions, Rendered};
 
@@ -19,30 +20,29 @@ pub struct RenderedOn {
 ///
 /// `Auto` uses a GPU adapter when one exists (honouring `WGPU_BACKEND`) and
 /// otherwise the CPU, with a [`RenderedOn::notice`]; `Gpu` without an
-/// adapter is an error naming the drivers tried. Built without the `gpu`
-/// feature, `Auto` is the CPU and `Gpu` is [`crate::error::GpuError::NotBuilt`].
+/// adapter is an error naming the drivers tried. Without an installed GPU
+/// device ([`crate::device::install`]; the binary installs wgpu's when built
+/// with the `gpu` feature), `Auto` is the CPU and `Gpu` is
+/// [`crate::error::GpuError::NotBuilt`].
 ///
 /// # Errors
 /// [`Error::Gpu`] as above; the render's own errors (an invalid factor).
 pub fn render_on(backend: Backend, tex: &LightTexture, options: &RenderOptions) -> Result<RenderedOn, Error> {
-    #[cfg(feature = "gpu")]
-    let notice = {
-        use crate::gpu::{self, Resolved};
-        match gpu::resolve(backend)? {
-            Resolved::Gpu(ctx) => {
+    let notice = match crate::device::installed() {
+        Some(device) => match device.render(backend, tex, options)? {
+            DeviceRender::Gpu { rendered, adapter } => {
                 return Ok(RenderedOn {
-                    rendered: gpu::render_gpu(ctx, tex, options)?,
-                    on: format!("gpu: {}", ctx.adapter()),
+                    rendered,
+                    on: format!("gpu: {adapter}"),
                     notice: None,
                 })
             }
-            Resolved::Cpu { notice } => notice,
-        }
-    };
-    #[cfg(not(feature = "gpu"))]
-    let notice = match backend {
-        Backend::Gpu => return Err(crate::error::GpuError::NotBuilt.into()),
-        _ => None,
+            DeviceRender::Cpu { notice } => notice,
+        },
+        None => match backend {
+            Backend::Gpu => return Err(crate::error::GpuError::NotBuilt.into()),
+            _ => None,
+        },
     };
     Ok(RenderedOn {
         rendered: render_with(tex, options)?,
@@ -69,10 +69,10 @@ mod tests {
         assert_eq!(r.rendered.data, render_with(&tex, &options).unwrap().data);
     }
 
-    /// Without the `gpu` feature, asking for the GPU is the typed `NotBuilt` error.
-    #[cfg(not(feature = "gpu"))]
+    /// Without an installed device (none is in the library's unit tests), asking for the GPU is the
+    /// typed `NotBuilt` error.
     #[test]
-    fn gpu_without_the_feature_is_not_built() {
+    fn gpu_without_a_device_is_not_built() {
         let lum = Synth::Lambertian
             .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)
             .unwrap();

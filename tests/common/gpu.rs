@@ -10,6 +10,9 @@ pub fn require_gpu() -> bool {
 
 /// The process-wide context, or `None` (test skipped, reason printed).
 pub fn ctx(test: &str) -> Option<&'static GpuContext> {
+    // The library's layers (the registry's `+gpu` fields, the trade table's GPU rows) ask for the
+    // installed device, as the binary installs it at start-up.
+    photosolid::gpu::install();
     match GpuContext::global() {
         Ok(c) => {
             eprintln!("{test}: gpu adapter {}", c.adapter());

@@ -416,7 +416,10 @@ pub enum GpuError {
         reason: String,
     },
     /// This build has no GPU support (cargo feature `gpu` off).
-    #[error("this photosolid binary was built without GPU support (cargo feature `gpu`)")]
+    #[error(
+        "no GPU device: this photosolid was built without GPU support (cargo feature `gpu`), or the program \
+         installed none (`photosolid::gpu::install()`)"
+    )]
     NotBuilt,
 }
 

@@ -16,6 +16,7 @@ pub use photosolid_core::{load, load_with, save, ReadOptions};
 pub use photosolid_core::{Distribution, Luminaire, Symmetry};
 pub use photosolid_core::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 
+pub mod device;
 pub mod fit;
 #[cfg(feature = "gpu")]
 pub mod gpu;

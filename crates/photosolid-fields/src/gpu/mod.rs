@@ -33,10 +33,12 @@
 mod backend;
 pub mod check;
 mod context;
+mod device;
 pub mod resample;
 
 pub use backend::{resolve, Backend, Resolved};
 pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
+pub use device::{install, Wgpu};
 mod batch;
 pub mod compact;
 pub mod precision;

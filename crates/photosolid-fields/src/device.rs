@@ -1,0 +1,126 @@
+//! The GPU as the layers above see it: a [`GpuDevice`] trait, implemented by
+//! the `gpu` module (feature `gpu`) and plugged in at start-up with
+//! [`install`]. The registry, the comparisons and the trade table ask
+//! [`installed`] for the device instead of naming wgpu, so they hold no
+//! `cfg(feature = "gpu")`: without a device, asking for the GPU is
+//! [`GpuError::NotBuilt`] and `--backend auto` renders on the CPU.
+
+use std::sync::{Arc, OnceLock};
+
+use glam::DVec3;
+
+use crate::error::GpuError;
+use crate::model::{Distribution, IntensityField, Symmetry};
+use crate::reconstruct::{Backend, Compact, LightTexture, Lookup, Precision, RenderOptions, Rendered, TextureSpec};
+
+/// Where [`GpuDevice::render`] rendered.
+#[derive(Debug)]
+pub enum DeviceRender {
+    /// On the GPU: the texture and the adapter's name.
+    Gpu {
+        /// The texture.
+        rendered: Rendered,
+        /// The adapter, for the user.
+        adapter: String,
+    },
+    /// Not on the GPU (`cpu` asked for, or `auto` without an adapter): the
+    /// caller renders on the CPU; `notice` says why `auto` fell back.
+    Cpu {
+        /// One line for the user when `auto` fell back.
+        notice: Option<&'static str>,
+    },
+}
+
+/// The trade table's GPU columns of a stored texture read by the texture hardware.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureRow {
+    /// The adapter.
+    pub adapter: String,
+    /// The texture format used (`R32Float` or `R16Float`).
+    pub texture_format: String,
+    /// The adapter's sub-texel weight precision, bits.
+    pub subtexel_bits: f64,
+    /// Median ns per direction of the dispatch alone.
+    pub ns_per_sample_dispatch: f64,
+    /// Largest |hardware − exact lookup on the same texels|, fraction of I_max.
+    pub vs_exact_max: f64,
+}
+
+/// The trade table's GPU columns of a compact representation evaluated by a compute shader.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompactRow {
+    /// The adapter.
+    pub adapter: String,
+    /// Median ns per direction of the dispatch alone.
+    pub ns_per_sample_dispatch: f64,
+    /// Largest |GPU − CPU (f64) evaluation of the same parameters|, cd.
+    pub vs_exact_max_cd: f64,
+}
+
+/// What the layers above ask of a GPU.
+pub trait GpuDevice: Send + Sync {
+    /// Render `tex` with `options` where `backend` says (`auto`: the GPU when
+    /// an adapter exists).
+    ///
+    /// # Errors
+    /// [`GpuError`] when `gpu` was asked for and no adapter works, or the render fails.
+    fn render(&self, backend: Backend, tex: &LightTexture, options: &RenderOptions) -> Result<DeviceRender, GpuError>;
+
+    /// A rendered texture sampled by the texture hardware with `lookup`
+    /// (stored with `reduced` symmetry and `precision`), as a field.
+    ///
+    /// # Errors
+    /// [`GpuError`] when no adapter works or the texture cannot be made.
+    fn texture_field(
+        &self,
+        rendered: &Rendered,
+        reduced: Option<Symmetry>,
+        precision: Precision,
+        lookup: Lookup,
+    ) -> Result<Box<dyn IntensityField>, GpuError>;
+
+    /// A spherical-harmonic series or lobe mixture evaluated by a compute shader, as a field.
+    ///
+    /// # Errors
+    /// [`GpuError`] when no adapter works or the pipeline fails.
+    fn compact_field(&self, compact: Compact) -> Result<Box<dyn IntensityField>, GpuError>;
+
+    /// The GPU columns of `spec`'s texture of `dist`, timed on `dirs` (`repeats`, median).
+    ///
+    /// # Errors
+    /// [`GpuError`] as [`GpuDevice::texture_field`].
+    fn texture_row(
+        &self,
+        dist: &Distribution,
+        spec: TextureSpec,
+        dirs: &[DVec3],
+        repeats: usize,
+    ) -> Result<TextureRow, GpuError>;
+
+    /// The GPU columns of `compact`, timed on `dirs` (`repeats`, median).
+    ///
+    /// # Errors
+    /// [`GpuError`] as [`GpuDevice::compact_field`].
+    fn compact_row(&self, compact: Compact, dirs: &[DVec3], repeats: usize) -> Result<CompactRow, GpuError>;
+}
+
+static DEVICE: OnceLock<Arc<dyn GpuDevice>> = OnceLock::new();
+
+/// Plug `device` in for the process; `false` when one was installed already
+/// (the first stays).
+pub fn install(device: Arc<dyn GpuDevice>) -> bool {
+    DEVICE.set(device).is_ok()
+}
+
+/// The installed device, if any.
+pub fn installed() -> Option<&'static dyn GpuDevice> {
+    DEVICE.get().map(|d| &**d)
+}
+
+/// The installed device, or [`GpuError::NotBuilt`].
+///
+/// # Errors
+/// [`GpuError::NotBuilt`] when none is installed.
+pub fn device() -> Result<&'static dyn GpuDevice, GpuError> {
+    installed().ok_or(GpuError::NotBuilt)
+}
