@@ -238,6 +238,13 @@ pub(crate) fn _tradeoff<'py>(
     to_py(py, &table)
 }
 
+/// `--resolution` of the engines where it is a choice: 1 to 65,536.
+fn resolution_arg(resolution: Option<i64>) -> PyResult<Option<usize>> {
+    resolution
+        .map(|r| int_in("resolution", r, 1, 1 << 16).map(|r| r as usize))
+        .transpose()
+}
+
 /// `photosolid engines FILE --json` on a loaded luminaire (`photosolid.engines`).
 #[pyfunction]
 #[pyo3(signature = (lum, *, engines = None, against = None, tolerance = None, resolution = None, filter = "catmull-rom", factor = 3))]
@@ -264,9 +271,7 @@ pub(crate) fn _engines<'py>(
         engines,
         against: against.map(|a| arg("against", a)).transpose()?,
         tolerance: tolerance.map(|t| pct_arg("tolerance", t)).transpose()?,
-        resolution: resolution
-            .map(|r| int_in("resolution", r, 1, 1 << 16).map(|r| r as usize))
-            .transpose()?,
+        resolution: resolution_arg(resolution)?,
         filter: arg("filter", filter)?,
         factor: int_in("factor", factor, 1, i64::MAX)? as usize,
         plots: false,
@@ -289,9 +294,7 @@ pub(crate) fn _export<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let settings = jobs::ExportSettings {
         engine: arg("engine", engine)?,
-        resolution: resolution
-            .map(|r| int_in("resolution", r, 1, 1 << 16).map(|r| r as usize))
-            .transpose()?,
+        resolution: resolution_arg(resolution)?,
         filter: arg("filter", filter)?,
     };
     let file = lum.named();

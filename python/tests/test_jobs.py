@@ -19,7 +19,6 @@ import photosolid
 ROOT = Path(os.environ.get("PHOTOSOLID_ROOT", Path(__file__).resolve().parents[2]))
 BIN = os.environ.get("PHOTOSOLID_BIN", str(ROOT / "target" / "debug" / "photosolid"))
 DATA = ROOT / "data"
-TIMING_WORDS = ("ns_per", "seconds", "time", "pareto", "elapsed", "_ms", "throughput")
 
 
 def cli(*args: str) -> subprocess.CompletedProcess:
@@ -32,17 +31,18 @@ def cli_json(*args: str):
     return json.loads(r.stdout)
 
 
-def scrub(v):
-    """The document without the keys that come from timings, candidate lists in a fixed order (ties in bytes
-    are ordered by time), as scripts/behaviour-snapshot.py."""
-    if isinstance(v, dict):
-        return {k: scrub(x) for k, x in v.items() if not any(w in k for w in TIMING_WORDS)}
-    if isinstance(v, list):
-        items = [scrub(x) for x in v]
-        if items and all(isinstance(x, dict) and "representation" in x for x in items):
-            items.sort(key=lambda x: str(x["representation"]))
-        return items
-    return v
+def _behaviour_snapshot():
+    """scripts/behaviour-snapshot.py as a module: its `scrub` removes the keys that come from timings and orders
+    candidate lists (ties in bytes are ordered by time), the one definition of "timings removed"."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("behaviour_snapshot", ROOT / "scripts" / "behaviour-snapshot.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+scrub = _behaviour_snapshot().scrub
 
 
 def test_road_equals_the_cli_with_class_and_maximize():
