@@ -265,3 +265,14 @@ def test_load_from_bytes_and_file_objects_and_the_cheap_properties(catalogue):
     assert meta["declared"]["lamp_flux_lm"] == info["lamp_flux_lm"]
     assert meta["format"] == info["format"]
     assert from_path.warnings == info["warnings"]
+
+
+def test_folds_with_another_reference_is_an_ignored_option():
+    path = DATA / "cosine_p5.ldt"  # written by `photosolid synth`: it records its closed form, the default reference
+    lum = photosolid.load(path)
+    with pytest.warns(UserWarning, match="--folds 3: folds are the withheld reference's, and the reference is truth"):
+        ours = lum.compare(recons="bilinear", folds=3, directions="dense:2000")
+    theirs = cli_json("compare", path, "--recon", "bilinear", "--folds", "3", "--directions", "dense:2000", "--json")
+    ignored = [w for w in theirs["warnings"] if w["code"] == "ignored-option"]
+    assert ignored and ignored == [w for w in ours["warnings"] if w["code"] == "ignored-option"]
+    assert theirs["reference"].startswith("truth")
