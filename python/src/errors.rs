@@ -35,29 +35,56 @@ pub(crate) fn py_err(e: Error) -> PyErr {
         }
         _ => None,
     };
+    located(Located {
+        class,
+        message: rec.message,
+        code: rec.code,
+        path,
+        line: rec.line,
+        column: rec.column,
+    })
+}
+
+/// What a raised photosolid exception carries.
+pub(crate) struct Located {
+    /// The `PhotosolidError` subclass of `photosolid._native` (None: `PhotosolidError` itself).
+    pub(crate) class: Option<&'static str>,
+    /// The full message.
+    pub(crate) message: String,
+    /// The stable code.
+    pub(crate) code: &'static str,
+    /// The file, when the error concerns one.
+    pub(crate) path: Option<String>,
+    /// 1-based line, when known.
+    pub(crate) line: Option<usize>,
+    /// 1-based column, when known.
+    pub(crate) column: Option<usize>,
+}
+
+/// The exception `e` describes, its location and code as attributes: the one
+/// place a photosolid error (the library's, a road's) becomes a Python exception.
+pub(crate) fn located(e: Located) -> PyErr {
     Python::attach(|py| {
-        let subclass = || -> PyResult<PyErr> {
-            let cls = py
-                .import("photosolid._native")?
-                .getattr(class.unwrap_or("PhotosolidError"))?;
-            Ok(PyErr::from_value(cls.call1((rec.message.clone(),))?))
+        let subclass = |name: &str| -> PyResult<PyErr> {
+            let cls = py.import("photosolid._native")?.getattr(name)?;
+            Ok(PyErr::from_value(cls.call1((e.message.clone(),))?))
         };
-        let err = match class {
-            Some(_) => subclass().unwrap_or_else(|_| PhotosolidError::new_err(rec.message.clone())),
-            None => PhotosolidError::new_err(rec.message.clone()),
+        let err = match e.class {
+            Some(name) => subclass(name).unwrap_or_else(|_| PhotosolidError::new_err(e.message.clone())),
+            None => PhotosolidError::new_err(e.message.clone()),
         };
         let v = err.value(py);
         let set = || -> PyResult<()> {
-            v.setattr("path", path)?;
-            v.setattr("line", rec.line)?;
-            v.setattr("column", rec.column)?;
-            v.setattr("code", rec.code)?;
-            v.setattr("message", rec.message.clone())?;
+            v.setattr("path", e.path)?;
+            v.setattr("line", e.line)?;
+            v.setattr("column", e.column)?;
+            v.setattr("code", e.code)?;
+            v.setattr("message", e.message.clone())?;
             Ok(())
         };
         match set() {
             Ok(()) => err,
-            Err(e) => e,
+            Err(failed) => failed,
         }
     })
 }

@@ -11,27 +11,27 @@ use photosolid::scene::road::RoadError;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::errors::{arg, int_in, pct_arg, py_err, to_py};
+use crate::errors::{arg, int_in, located, pct_arg, py_err, to_py, Located};
 use crate::{read_options, Luminaire};
 
-/// A road or plan error as a Python exception: an option a `ValueError`
-/// naming it, another a `PhotosolidError` with its code.
+/// A road's error as a Python exception: a `PhotosolidValueError` (every
+/// road error is a value the user gave: an option, a `[road]` key, a table)
+/// with the road's code, and the scene file, line and column where the error
+/// has them.
 fn road_err(e: RoadError) -> PyErr {
-    match e {
-        RoadError::Option { option, message } => PyValueError::new_err(format!("{option}: {message}")),
-        e => {
-            let err = crate::errors::PhotosolidError::new_err(e.to_string());
-            Python::attach(|py| {
-                let v = err.value(py);
-                let _ = v.setattr("code", e.code());
-                let _ = v.setattr("message", e.to_string());
-                let _ = v.setattr("path", None::<String>);
-                let _ = v.setattr("line", None::<usize>);
-                let _ = v.setattr("column", None::<usize>);
-            });
-            err
-        }
-    }
+    let (path, line, column) = match &e {
+        RoadError::AtKey { path, line, column, .. } => (Some(path.display().to_string()), Some(*line), Some(*column)),
+        RoadError::File { path, .. } => (Some(path.display().to_string()), None, None),
+        _ => (None, None, None),
+    };
+    located(Located {
+        class: Some("PhotosolidValueError"),
+        message: e.to_string(),
+        code: e.code(),
+        path,
+        line,
+        column,
+    })
 }
 
 fn job_err(e: jobs::JobError) -> PyErr {
@@ -143,20 +143,6 @@ pub(crate) fn synth<'py>(
             photosolid::synth::Synth::NAMES.join(", ")
         )));
     };
-    for (name, v, zero_ok) in [
-        ("p", p, true),
-        ("cutoff", cutoff, false),
-        ("intensity", intensity, false),
-        ("c_step", c_step, false),
-        ("gamma_step", gamma_step, false),
-    ] {
-        if !(v.is_finite() && (v > 0.0 || (zero_ok && v == 0.0))) {
-            let want = if zero_ok { ">= 0" } else { "> 0" };
-            return Err(PyValueError::new_err(format!(
-                "{name} = {v}: expected a finite number {want}"
-            )));
-        }
-    }
     let mut grid = photosolid::synth::GridSpec::uniform(c_step, gamma_step).map_err(crate::errors::model_err)?;
     if let Some(c) = c_list {
         grid.c = c;

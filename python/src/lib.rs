@@ -124,8 +124,9 @@ type Reduced<'py> = (
     ),
 );
 
-/// Rebuild a pickled [`Luminaire`] from its path, source bytes and reader
-/// options (what `Luminaire.__reduce__` returns); not for direct use.
+/// A [`Luminaire`] from its name, source bytes and reader options: what
+/// `Luminaire.__reduce__` returns to rebuild a pickled one, and what
+/// `photosolid.load` calls on bytes and file objects; not for direct use.
 #[pyfunction]
 fn _luminaire_from_source(
     py: Python<'_>,

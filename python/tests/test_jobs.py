@@ -75,6 +75,24 @@ def test_road_options_are_value_errors_naming_the_option():
     assert r.returncode == 2 and "only spacing_m has a default" in r.stderr
 
 
+def test_road_errors_carry_code_path_line_and_column(tmp_path):
+    scene = DATA / "road_en13201.toml"
+    with pytest.raises(photosolid.PhotosolidValueError) as caught:
+        photosolid.road(scene, class_="M9")
+    assert caught.value.code == "option" and caught.value.path is None
+    bad = tmp_path / "road.toml"
+    text = scene.read_text().replace("lane_width_m = 3.5", "lane_width_m = -3.5")
+    bad.write_text(text)
+    line = text.splitlines().index("lane_width_m = -3.5") + 1
+    with pytest.raises(ValueError) as caught:
+        photosolid.road(bad)
+    e = caught.value
+    assert (e.code, e.path, e.line, e.column) == ("road-invalid", str(bad), line, 1), (e.code, e.path, e.line, e.column)
+    assert str(e) == e.message and "lane_width_m" in e.message
+    # The CLI names the same place.
+    assert f"{bad}:{line}:1" in cli("road", bad).stderr
+
+
 @pytest.mark.parametrize("name", ["office_scene.toml", "office_panels.toml", "road_scene.toml"])
 def test_scene_equals_the_cli(name):
     scene = DATA / name
@@ -168,7 +186,7 @@ def test_ugr_table_is_the_info_table_as_arrays():
 def test_grid_frame_and_an_undefined_ugr_table():
     with pytest.raises(ValueError, match="point source"):
         photosolid.load(DATA / "batwing.ldt").ugr_table()
-    pd = pytest.importorskip("pandas", reason="pandas is in notebooks/requirements.txt; not installed here")
+    import pandas as pd  # pinned in notebooks/requirements.txt: grid_frame is tested, never skipped
     lum = photosolid.load(DATA / "batwing.ies")
     frame = lum.grid_frame()
     assert isinstance(frame, pd.DataFrame)

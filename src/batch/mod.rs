@@ -379,9 +379,11 @@ fn compact_candidates(d: &Distribution, reports: &[HoldoutReport]) -> Result<Vec
         out.push((name, m.bytes(), split.max_percent(m, i_max)));
     }
     // The default instances of the representations a caller registered, built from the same kept samples.
-    for r in crate::registry::extension::default_instances() {
-        let field = crate::registry::Reconstructions::new(split.kept.clone(), &[r])?.owned_field(r)?;
-        if let Some(field) = field {
+    let registered = crate::registry::extension::default_instances();
+    if !registered.is_empty() {
+        let kept = crate::registry::Reconstructions::new(split.kept.clone(), &registered)?;
+        for r in registered {
+            let field = kept.field(r)?;
             out.push((r.to_string(), field.bytes(), split.max_percent(&*field, i_max)));
         }
     }

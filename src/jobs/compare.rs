@@ -4,14 +4,14 @@
 use crate::compare::trade::{trade_table, TradeOptions, TradeTable};
 use crate::compare::{compare_with_progress, Against, CompareOptions, Comparison, Directions, Normalize};
 use crate::engines::{measure, Engine, EngineOptions, EnginesOptions, EnginesReport};
-use crate::error::{Error, Result, Warning, WarningCode};
+use crate::error::{Result, Warning, WarningCode};
 use crate::model::Progress;
 use crate::numfmt::PctOfPeak;
 use crate::reconstruct::Filter;
 use crate::registry::Recon;
 use crate::synth::Truth;
 
-use super::Named;
+use super::{option_error, Named};
 
 /// The options of `compare` (the CLI's flags; defaults are the CLI's).
 #[derive(Clone, Debug)]
@@ -97,9 +97,7 @@ impl CompareSettings {
             ..defaults
         })
     }
-}
 
-impl CompareSettings {
     /// An `ignored-option` warning for each option given that has no effect
     /// with the reference `against`: `--directions` under the withheld
     /// reference (it measures at the withheld points), `--folds` under another.
@@ -121,14 +119,6 @@ impl CompareSettings {
             _ => {}
         }
         out
-    }
-}
-
-/// An [`Error::Option`] naming `option`.
-pub(crate) fn option_error(option: &str, message: impl Into<String>) -> Error {
-    Error::Option {
-        option: option.to_string(),
-        message: message.into(),
     }
 }
 

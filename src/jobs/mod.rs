@@ -27,7 +27,7 @@ pub use write::{convert, export, synth, ConvertSettings, ExportSettings, SynthSe
 
 use std::path::Path;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::formats::{Document, Handedness, ReadOptions};
 
 /// A loaded document and what a job reports of it: the name outputs give it
@@ -90,6 +90,14 @@ impl Named<'_> {
     /// The warnings of this file and of `other` (its messages prefixed with its name).
     pub fn warnings_with(&self, other: Option<Named<'_>>) -> Vec<crate::error::Warning> {
         crate::compare::file_warnings(&self.document.luminaire, other.map(|o| (o.name, &o.document.luminaire)))
+    }
+}
+
+/// An [`Error::Option`] naming `option`.
+pub(crate) fn option_error(option: &str, message: impl Into<String>) -> Error {
+    Error::Option {
+        option: option.to_string(),
+        message: message.into(),
     }
 }
 

@@ -8,7 +8,7 @@ use crate::registry::{Recon, Reconstructions};
 use crate::solid::adaptive::{AdaptiveGrid, DEFAULT_TOLERANCE_PCT};
 use crate::solid::{texture_solid, AdaptiveOptions, ColorMap, Mesh, Refinement, Tolerance, Units, UnitsName};
 
-use super::compare::option_error;
+use super::option_error;
 use super::Named;
 
 /// The options of `mesh` (the CLI's flags; defaults are the CLI's).

@@ -132,7 +132,7 @@ pub fn export(input: Named<'_>, output: &Path, settings: &ExportSettings) -> Res
         .unwrap_or("")
         .to_ascii_lowercase();
     if ext != want {
-        return Err(super::compare::option_error(
+        return Err(super::option_error(
             "-o",
             format!(
                 "{}: the {} layout is written as .{want}",
