@@ -225,8 +225,13 @@ else
 fi
 
 section "the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
-cargo test --no-default-features --lib --locked 2>&1 | tail -n 3
-cargo check --no-default-features --features cli --bins --locked 2>&1 | tail -n 1
+# The crates but photosolid-gpu (wgpu is its one reason to exist): none of them may need it.
+cargo test --no-default-features --lib --locked -p photosolid -p photosolid-core -p photosolid-fields 2>&1 | tail -n 3
+cargo check --no-default-features --features cli --bins --locked -p photosolid 2>&1 | tail -n 1
+if cargo tree --no-default-features -e normal -p photosolid --prefix none 2>/dev/null | grep -q "^wgpu "; then
+  echo "FAIL: photosolid without its feature gpu depends on wgpu"
+  exit 1
+fi
 
 section "GPU: the wgpu render against the CPU render (tests/gpu/textures.rs) and the real-time lookups (tests/gpu/realtime.rs) on Mesa lavapipe (Vulkan) and llvmpipe (GL)"
 gpu_start=$SECONDS

@@ -29,9 +29,9 @@ pub mod report;
 pub mod scene;
 
 pub use photosolid_core::{error, formats, minimize, model, numfmt, photometry, synth};
-#[cfg(feature = "gpu")]
-pub use photosolid_fields::gpu;
 pub use photosolid_fields::{device, fit, metrics, reconstruct, solid};
+#[cfg(feature = "gpu")]
+pub use photosolid_gpu as gpu;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 pub use formats::{load, load_with, save, ReadOptions};

@@ -190,31 +190,34 @@ fn scene_and_plan(dir: &Path) -> anyhow::Result<SceneSection> {
 }
 
 /// Wallner's (2008) Figure 5 setting: a plane lit through the bilinear and the
-/// Catmull-Rom lookups of the factor-5 texture, on the GPU when an adapter
+/// Catmull-Rom lookups of the factor-5 texture, on the installed GPU when an adapter
 /// exists and always on the CPU (`photosolid::report::shading`); EXRs written
 /// into `dir`, PNGs returned as report figures.
-#[cfg(feature = "gpu")]
 fn shading_figures(tex: &LightTexture, dir: &std::path::Path) -> anyhow::Result<Vec<compare_report::Figure>> {
-    use photosolid::gpu::{resolve, Backend};
+    use photosolid::device::{installed, Selected};
+    use photosolid::reconstruct::Backend;
     use photosolid::report::shading;
-    let resolved = resolve(Backend::Auto)?;
-    if let photosolid::gpu::Resolved::Cpu { notice: Some(n) } = resolved {
-        outln!("{n}: the shaded plane is rendered with the CPU lookups only");
-    }
+    let device = match installed() {
+        Some(d) => match d.select(Backend::Auto)? {
+            Selected::Gpu { .. } => Some(d),
+            Selected::Cpu { notice } => {
+                if let Some(n) = notice {
+                    outln!("{n}: the shaded plane is rendered with the CPU lookups only");
+                }
+                None
+            }
+        },
+        None => None,
+    };
     let view = shading::PlaneView {
         height_m: 8.0,
         half_width_m: 24.0,
         pixels: 256,
     };
-    let (figs, notes) = shading::report_figures(resolved.gpu(), &render(tex, Filter::CatmullRom, 5)?, &view, dir)?;
+    let (figs, notes) = shading::report_figures(device, &render(tex, Filter::CatmullRom, 5)?, &view, dir)?;
     outln!("\n== shaded plane (EXR and PNG in {}) ==", dir.display());
     for n in notes {
         outln!("{n}");
     }
     Ok(figs)
-}
-
-#[cfg(not(feature = "gpu"))]
-fn shading_figures(_: &LightTexture, _: &std::path::Path) -> anyhow::Result<Vec<compare_report::Figure>> {
-    Ok(Vec::new())
 }

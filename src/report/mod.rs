@@ -9,7 +9,6 @@ pub mod info;
 pub mod plot;
 pub mod road_report;
 pub mod scene_report;
-#[cfg(feature = "gpu")]
 pub mod shading;
 pub mod viewer;
 

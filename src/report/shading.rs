@@ -13,8 +13,8 @@
 //! ```
 //!
 //! (I_max · LDT = I, the intensity in cd towards P; ι the angle of incidence
-//! on the plane, whose normal points up). The GPU image takes I from a
-//! [`RealtimeTexture`] batch; the CPU reference evaluates the same texels
+//! on the plane, whose normal points up). The GPU image takes I from one batch
+//! read by the installed device's texture hardware ([`GpuDevice::texture_samples`]); the CPU reference evaluates the same texels
 //! with the exact lookup through the scene module's point-source formula
 //! ([`crate::scene::illuminance::Source::lux`]), an independent path for
 //! the geometry as well.
@@ -24,11 +24,10 @@ use std::path::Path;
 use exr::prelude::{AttributeValue, FlatSamples, LayerAttributes, Text};
 use glam::DVec3;
 
-use crate::error::{Error, ModelError};
-use crate::gpu::realtime::RealtimeTexture;
-use crate::gpu::GpuError;
+use crate::device::GpuDevice;
+use crate::error::{Error, GpuError, ModelError};
 use crate::model::IntensityField;
-use crate::reconstruct::exr_io;
+use crate::reconstruct::{exr_io, Lookup, Precision, Rendered, StoredTexture};
 use crate::scene::aim::{Aim, Pose};
 use crate::scene::illuminance::Source;
 use crate::scene::ScenePoint;
@@ -92,14 +91,35 @@ impl PlaneView {
     }
 }
 
-/// Illuminance (lx) at every pixel of `view`, the intensities from the GPU lookup (one batch).
+/// The plane lit through the GPU: illuminance (lx) at every pixel and what read the intensities.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShadedGpu {
+    /// Illuminance (lx) at every pixel, row-major.
+    pub lux: Vec<f64>,
+    /// The adapter whose texture hardware read the intensities.
+    pub adapter: String,
+    /// The texture format the texels were stored in.
+    pub texture_format: String,
+}
+
+/// Illuminance (lx) at every pixel of `view`, the intensities read by `device`'s texture hardware
+/// through `lookup` of `rendered` stored in f32 (one batch).
 ///
 /// # Errors
-/// An invalid view; the errors of [`RealtimeTexture::sample_dirs_cd`].
-pub fn shade_gpu(tex: &RealtimeTexture<'_>, view: &PlaneView) -> Result<Vec<f64>, GpuError> {
+/// An invalid view; the errors of [`GpuDevice::texture_samples`].
+pub fn shade_gpu(
+    device: &dyn GpuDevice,
+    rendered: &Rendered,
+    lookup: Lookup,
+    view: &PlaneView,
+) -> Result<ShadedGpu, GpuError> {
     view.check()?;
-    let i = tex.sample_dirs_cd(&view.points())?;
-    Ok(i.iter().zip(view.lux_per_cd()).map(|(i, g)| i * g).collect())
+    let samples = device.texture_samples(rendered, Precision::F32, lookup, &view.points())?;
+    Ok(ShadedGpu {
+        lux: samples.cd.iter().zip(view.lux_per_cd()).map(|(i, g)| i * g).collect(),
+        adapter: samples.adapter,
+        texture_format: samples.texture_format,
+    })
 }
 
 /// Illuminance (lx) at every pixel of `view` from `field` on the CPU,
@@ -201,7 +221,7 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
 
 /// The shaded-plane images of `rendered` for a report: the plane under the
 /// bilinear and the Catmull–Rom lookup and their difference (bilinear −
-/// Catmull–Rom), on the GPU's texture hardware when `ctx` is given and always
+/// Catmull–Rom), on `device`'s texture hardware when one is given and always
 /// with the exact CPU lookups on the same texels (the reference). EXRs (lux,
 /// f32) are written into `dir`; the PNGs come back as report figures, with
 /// one line per image pair saying how far GPU and CPU differ.
@@ -209,24 +229,23 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
 /// # Errors
 /// Writing the EXRs, encoding the PNGs ([`Error::Encode`]), device errors ([`Error::Gpu`]).
 pub fn report_figures(
-    ctx: Option<&crate::gpu::GpuContext>,
-    rendered: &crate::reconstruct::Rendered,
+    device: Option<&dyn GpuDevice>,
+    rendered: &Rendered,
     view: &PlaneView,
     dir: &Path,
 ) -> Result<(Vec<crate::report::compare_report::Figure>, Vec<String>), Error> {
-    use crate::gpu::realtime::HardwareLookup;
     let formula = format!(
         "E = I cos(i) / d^2 on a plane {} m under the luminaire, ±{} m shown",
         view.height_m, view.half_width_m
     );
     let (mut figs, mut notes) = (Vec::new(), vec![formula.clone()]);
-    for (device, tag) in [(ctx, "gpu"), (None, "cpu")] {
-        if tag == "gpu" && ctx.is_none() {
+    for (device, tag) in [(device, "gpu"), (None, "cpu")] {
+        if tag == "gpu" && device.is_none() {
             continue;
         }
         let mut lit = Vec::new();
-        for lookup in [HardwareLookup::Linear, HardwareLookup::CatmullRomLinearFetch] {
-            let name = lookup.exact().name().replace('-', "_");
+        for lookup in [Lookup::Bilinear, Lookup::CatmullRom] {
+            let name = lookup.name().replace('-', "_");
             let values = lit_plane(device, rendered, view, lookup, &mut notes)?;
             let who = if tag == "gpu" {
                 "GPU texture hardware"
@@ -237,7 +256,7 @@ pub fn report_figures(
                 dir,
                 view,
                 &format!("plane_{name}_{tag}"),
-                format!("Plane lit through the {} lookup ({who}); {formula}", lookup.exact()),
+                format!("Plane lit through the {lookup} lookup ({who}); {formula}"),
                 &values,
                 Tone::Exposure,
             )?);
@@ -261,39 +280,26 @@ pub fn report_figures(
 /// hardware (with a note on how far it is from the CPU lookup of the same
 /// texels), or with the exact CPU lookup when there is no device.
 fn lit_plane(
-    device: Option<&crate::gpu::GpuContext>,
-    rendered: &crate::reconstruct::Rendered,
+    device: Option<&dyn GpuDevice>,
+    rendered: &Rendered,
     view: &PlaneView,
-    lookup: crate::gpu::realtime::HardwareLookup,
+    lookup: Lookup,
     notes: &mut Vec<String>,
 ) -> Result<Vec<f64>, Error> {
-    let gpu_err = Error::Gpu;
-    Ok(match device {
-        Some(c) => {
-            let t =
-                RealtimeTexture::new(c, rendered, None, crate::reconstruct::Precision::F32, lookup).map_err(gpu_err)?;
-            let v = shade_gpu(&t, view).map_err(gpu_err)?;
-            let cpu = shade_cpu(t.exact(), view).map_err(gpu_err)?;
-            let d = v.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-            notes.push(format!(
-                "{} on {} ({:?}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
-                lookup.exact(),
-                c.adapter(),
-                t.format(),
-                cpu.iter().copied().fold(0.0, f64::max)
-            ));
-            v
-        }
-        None => {
-            let exact = crate::reconstruct::StoredTexture::new(
-                rendered,
-                None,
-                crate::reconstruct::Precision::F32,
-                lookup.exact(),
-            );
-            shade_cpu(&exact, view).map_err(gpu_err)?
-        }
-    })
+    let exact = StoredTexture::new(rendered, None, Precision::F32, lookup);
+    let cpu = shade_cpu(&exact, view)?;
+    let Some(device) = device else {
+        return Ok(cpu);
+    };
+    let gpu = shade_gpu(device, rendered, lookup, view)?;
+    let d = gpu.lux.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    notes.push(format!(
+        "{lookup} on {} ({}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
+        gpu.adapter,
+        gpu.texture_format,
+        cpu.iter().copied().fold(0.0, f64::max)
+    ));
+    Ok(gpu.lux)
 }
 
 /// One image of the plane: its EXR `name`.exr written into `dir` (created

@@ -14,7 +14,7 @@ use photosolid::gpu::precision::subtexel_precision;
 use photosolid::gpu::realtime::{HardwareLookup, RealtimeTexture};
 use photosolid::metrics::random_directions;
 use photosolid::model::IntensityField;
-use photosolid::reconstruct::{render, Filter, LightTexture, Precision, Rendered};
+use photosolid::reconstruct::{render, Filter, LightTexture, Lookup, Precision, Rendered, StoredTexture};
 use photosolid::report::shading::{self, PlaneView};
 
 use common::gpu::ctx;
@@ -133,9 +133,9 @@ fn quantised_textures_match_exact_on_the_gpu() {
                 continue;
             }
             let want = if precision == Precision::U8 {
-                wgpu::TextureFormat::R8Unorm
+                photosolid::gpu::TextureFormat::R8Unorm
             } else {
-                wgpu::TextureFormat::R16Unorm
+                photosolid::gpu::TextureFormat::R16Unorm
             };
             assert_eq!(t.format(), want);
             assert_eq!(t.bytes(), precision.bytes() * r.data.len());
@@ -186,7 +186,7 @@ fn bc6h_textures_are_decoded_by_the_gpu() {
         );
         assert_eq!(
             (t.precision(), t.format()),
-            (Precision::F16, wgpu::TextureFormat::R16Float)
+            (Precision::F16, photosolid::gpu::TextureFormat::R16Float)
         );
         return;
     }
@@ -214,7 +214,7 @@ fn bc6h_textures_are_decoded_by_the_gpu() {
             let name = format!("{file} x{factor} reduced={} ({w} x {h} texels)", reduced.is_some());
             assert_eq!(
                 (t.precision(), t.format()),
-                (Precision::Bc6h, wgpu::TextureFormat::Bc6hRgbUfloat),
+                (Precision::Bc6h, photosolid::gpu::TextureFormat::Bc6hRgbUfloat),
                 "{name}"
             );
             assert_eq!(t.bytes(), w.div_ceil(4) * h.div_ceil(4) * 16, "{name}");
@@ -334,12 +334,17 @@ fn shaded_plane_gpu_matches_cpu() {
         ..PlaneView::default()
     };
     let mut images = Vec::new();
-    for lookup in [HardwareLookup::Linear, HardwareLookup::CatmullRomLinearFetch] {
-        let t = RealtimeTexture::new(c, &r, None, Precision::F32, lookup).unwrap();
-        let gpu = shading::shade_gpu(&t, &view).unwrap();
-        let cpu = shading::shade_cpu(t.exact(), &view).unwrap();
+    let device = photosolid::device::device().unwrap();
+    for lookup in [Lookup::Bilinear, Lookup::CatmullRom] {
+        let shaded = shading::shade_gpu(device, &r, lookup, &view).unwrap();
+        assert_eq!(shaded.adapter, c.adapter().to_string());
+        assert_eq!(shaded.texture_format, "R32Float");
+        let exact = StoredTexture::new(&r, None, Precision::F32, lookup);
+        let cpu = shading::shade_cpu(&exact, &view).unwrap();
+        let gpu = shaded.lux;
         let worst = gpu.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-        let tol = lookup_tolerance(&r, lookup, eps) * r.i_max_cd / (view.height_m * view.height_m);
+        let hardware = HardwareLookup::for_lookup(lookup);
+        let tol = lookup_tolerance(&r, hardware, eps) * r.i_max_cd / (view.height_m * view.height_m);
         let e_max = cpu.iter().copied().fold(0.0, f64::max);
         println!("{lookup:?}: E max {e_max:.1} lx, max |gpu - cpu| = {worst:.3e} lx (tol {tol:.2e})");
         assert!(e_max > 0.0);
@@ -365,11 +370,7 @@ fn shaded_plane_gpu_matches_cpu() {
     }
     let png = shading::png(&view, &diff, shading::Tone::Diverging).unwrap();
     assert_eq!(&png[1..4], b"PNG");
-    assert!(shading::shade_gpu(
-        &RealtimeTexture::new(c, &r, None, Precision::F32, HardwareLookup::Linear).unwrap(),
-        &PlaneView { pixels: 0, ..view }
-    )
-    .is_err());
+    assert!(shading::shade_gpu(device, &r, Lookup::Bilinear, &PlaneView { pixels: 0, ..view }).is_err());
 }
 
 /// The trade table's `+gpu` rows: measured like the CPU rows (truth and

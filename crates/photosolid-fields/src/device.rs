@@ -57,6 +57,32 @@ pub struct CompactRow {
     pub vs_exact_max_cd: f64,
 }
 
+/// Which processor a [`Backend`] selects on this machine ([`GpuDevice::select`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Selected {
+    /// The GPU, this adapter.
+    Gpu {
+        /// The adapter's name and driver.
+        adapter: String,
+    },
+    /// The CPU.
+    Cpu {
+        /// Why `auto` fell back to the CPU (one line for the user); `None` when the CPU was asked for.
+        notice: Option<&'static str>,
+    },
+}
+
+/// Intensities read by the texture hardware ([`GpuDevice::texture_samples`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureSamples {
+    /// Intensity (cd) in each direction asked for, in order.
+    pub cd: Vec<f64>,
+    /// The adapter that read them.
+    pub adapter: String,
+    /// The texture format the texels were stored in (`R32Float`, ...).
+    pub texture_format: String,
+}
+
 /// What the layers above ask of a GPU.
 pub trait GpuDevice: Send + Sync {
     /// Render `tex` with `options` where `backend` says (`auto`: the GPU when
@@ -102,6 +128,27 @@ pub trait GpuDevice: Send + Sync {
     /// # Errors
     /// [`GpuError`] as [`GpuDevice::compact_field`].
     fn compact_row(&self, compact: Compact, dirs: &[DVec3], repeats: usize) -> Result<CompactRow, GpuError>;
+
+    /// Which processor `backend` selects here: `gpu` without a working adapter is an error,
+    /// `auto` then falls back to the CPU with a notice.
+    ///
+    /// # Errors
+    /// [`GpuError`] when `gpu` was asked for and no adapter works.
+    fn select(&self, backend: Backend) -> Result<Selected, GpuError>;
+
+    /// `rendered` stored in `precision` and read by the texture hardware's `lookup` in each of
+    /// `dirs` (luminaire frame, any length; zero vectors give 0), in one batch. Unlike the
+    /// [`GpuDevice::texture_field`]'s per-call lookups, a failure is an error, not zeros.
+    ///
+    /// # Errors
+    /// [`GpuError`] as [`GpuDevice::texture_field`], or when the batch exceeds the device's limits.
+    fn texture_samples(
+        &self,
+        rendered: &Rendered,
+        precision: Precision,
+        lookup: Lookup,
+        dirs: &[DVec3],
+    ) -> Result<TextureSamples, GpuError>;
 }
 
 static DEVICE: OnceLock<Arc<dyn GpuDevice>> = OnceLock::new();

@@ -1,7 +1,8 @@
 //! The middle layers of photosolid, above [`photosolid_core`]:
 //! [`reconstruct`] (filters, light textures, stored lookups, compact
-//! forms) < [`gpu`] (feature `gpu`: the headless wgpu renderer and
-//! real-time lookups) < [`fit`] (fitted OpenGL lights, lobe mixtures) <
+//! forms) < [`device`] (what the layers above ask of a GPU: a trait that
+//! `photosolid-gpu` implements and a program installs at start-up, so no
+//! crate here depends on wgpu) < [`fit`] (fitted OpenGL lights, lobe mixtures) <
 //! [`metrics`] (certified Hausdorff distance, profiles, radial errors,
 //! costs) < [`solid`] (meshes of any field, adaptive grids, the measured
 //! solid, exports). Each module only uses the ones before it and the core.
@@ -18,8 +19,6 @@ pub use photosolid_core::{Error, ErrorKind, Location, ModelError, ParseError, Re
 
 pub mod device;
 pub mod fit;
-#[cfg(feature = "gpu")]
-pub mod gpu;
 pub mod metrics;
 pub mod reconstruct;
 pub mod solid;

@@ -413,13 +413,13 @@ impl ShField {
     }
     /// The recurrence constants `(a_lm, b_lm)` of the evaluation, per (l, m ≥ 0)
     /// at `l(l+1)/2 + m` (see [`ShField::unclamped_cd`]).
-    #[cfg_attr(not(feature = "gpu"), allow(dead_code))] // read by the GPU's compact shader
-    pub(crate) fn recurrence_constants(&self) -> &[(f64, f64)] {
+    /// Public for the GPU's compact shader (`photosolid-gpu`), which evaluates the same recurrence.
+    pub fn recurrence_constants(&self) -> &[(f64, f64)] {
         &self.rec
     }
     /// The diagonal factors `√((2m+1)/2m)` per m (1 at m = 0).
-    #[cfg_attr(not(feature = "gpu"), allow(dead_code))] // read by the GPU's compact shader
-    pub(crate) fn diagonal_factors(&self) -> &[f64] {
+    /// Public for the GPU's compact shader (`photosolid-gpu`).
+    pub fn diagonal_factors(&self) -> &[f64] {
         &self.diag
     }
     /// The stored coefficients as orthonormal ones, windowed (cd, at `l² + l + m`).

@@ -14,7 +14,7 @@ use crate::reconstruct::{render, LightTexture, Precision, Rendered, TextureSpec}
 /// The observed precision of an adapter's bilinear sub-texel weights.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct SubtexelPrecision {
-    /// The adapter, as [`crate::gpu::AdapterSummary`] prints it.
+    /// The adapter, as [`crate::AdapterSummary`] prints it.
     pub adapter: String,
     /// The texture format probed (`R32Float` or `R16Float`).
     pub format: String,

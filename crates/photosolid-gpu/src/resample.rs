@@ -782,10 +782,10 @@ mod tests {
     #[test]
     fn cpu_backend_resolves_without_wgpu() {
         // The spellings are tested with `reconstruct::Backend`; `cpu` never initialises wgpu.
-        use crate::gpu::Backend;
+        use crate::Backend;
         assert!(matches!(
-            crate::gpu::resolve(Backend::Cpu).unwrap(),
-            crate::gpu::Resolved::Cpu { notice: None }
+            crate::resolve(Backend::Cpu).unwrap(),
+            crate::Resolved::Cpu { notice: None }
         ));
     }
 }

@@ -95,7 +95,7 @@ impl CheckInputs {
         }
         let (mut textures, mut skipped) = (Vec::new(), Vec::new());
         for f in &files {
-            match crate::load_with(f, read).and_then(|l| Ok(LightTexture::new(l.distribution())?)) {
+            match crate::formats::load_with(f, read).and_then(|l| Ok(LightTexture::new(l.distribution())?)) {
                 Ok(t) => textures.push((f.clone(), t)),
                 Err(e) => skipped.push(Skipped {
                     path: f.clone(),

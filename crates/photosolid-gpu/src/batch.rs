@@ -127,7 +127,7 @@ macro_rules! gpu_sampling_methods {
             self.sample_dirs_cd(&[d]).map_or(0.0, |v| v[0])
         }
         fn intensity_batch_cd(&self, dirs: &[(f64, f64)]) -> Vec<f64> {
-            self.sample_dirs_cd(&$crate::gpu::batch::angle_directions(dirs, $clamp))
+            self.sample_dirs_cd(&$crate::batch::angle_directions(dirs, $clamp))
                 .unwrap_or_else(|_| vec![0.0; dirs.len()])
         }
         fn sample_grid(&self, c_deg: &[f64], gamma_deg: &[f64], out: &mut [f64]) {
@@ -136,14 +136,14 @@ macro_rules! gpu_sampling_methods {
                 c_deg.len() * gamma_deg.len(),
                 "one output per grid direction"
             );
-            out.copy_from_slice(&self.intensity_batch_cd(&$crate::gpu::batch::grid_angles(c_deg, gamma_deg)));
+            out.copy_from_slice(&self.intensity_batch_cd(&$crate::batch::grid_angles(c_deg, gamma_deg)));
         }
         /// One direction is a dispatch of its own: searches use batches instead.
         fn prefers_batches(&self) -> bool {
             true
         }
         fn batch_time_per_sample_ns(&self, dirs: &[glam::DVec3], repeats: usize) -> Option<f64> {
-            $crate::gpu::batch::end_to_end_ns_per_sample(dirs.len(), repeats, || {
+            $crate::batch::end_to_end_ns_per_sample(dirs.len(), repeats, || {
                 self.sample_dirs_cd(std::hint::black_box(dirs))
             })
         }

@@ -9,7 +9,7 @@ use super::compact::{compact_row, GpuCompact};
 use super::precision::hardware_row;
 use super::realtime::{HardwareLookup, RealtimeTexture};
 use super::{render_gpu, resolve, GpuContext, GpuError, Resolved};
-use crate::device::{CompactRow, DeviceRender, GpuDevice, TextureRow};
+use crate::device::{CompactRow, DeviceRender, GpuDevice, Selected, TextureRow, TextureSamples};
 use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{Backend, Compact, LightTexture, Lookup, Precision, RenderOptions, Rendered, TextureSpec};
 
@@ -78,6 +78,31 @@ impl GpuDevice for Wgpu {
             adapter: ctx.adapter().to_string(),
             ns_per_sample_dispatch: h.ns_per_sample_dispatch,
             vs_exact_max_cd: h.vs_exact_max_cd,
+        })
+    }
+
+    fn select(&self, backend: Backend) -> Result<Selected, GpuError> {
+        Ok(match resolve(backend)? {
+            Resolved::Gpu(ctx) => Selected::Gpu {
+                adapter: ctx.adapter().to_string(),
+            },
+            Resolved::Cpu { notice } => Selected::Cpu { notice },
+        })
+    }
+
+    fn texture_samples(
+        &self,
+        rendered: &Rendered,
+        precision: Precision,
+        lookup: Lookup,
+        dirs: &[DVec3],
+    ) -> Result<TextureSamples, GpuError> {
+        let ctx = GpuContext::global()?;
+        let texture = RealtimeTexture::new(ctx, rendered, None, precision, HardwareLookup::for_lookup(lookup))?;
+        Ok(TextureSamples {
+            cd: texture.sample_dirs_cd(dirs)?,
+            adapter: ctx.adapter().to_string(),
+            texture_format: format!("{:?}", texture.format()),
         })
     }
 }

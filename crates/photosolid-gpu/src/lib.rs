@@ -1,4 +1,10 @@
-//! GPU rendering of light distribution textures (feature `gpu`, on by default).
+//! photosolid's GPU: rendering light distribution textures and evaluating
+//! stored textures and compact representations on a headless wgpu device.
+//!
+//! This crate implements [`photosolid_fields::device::GpuDevice`] ([`Wgpu`]);
+//! a program plugs it in at start-up with [`install`] (the `photosolid`
+//! binary does, behind its feature `gpu`, on by default). The layers that ask
+//! for a GPU know only the trait, so none of them depends on wgpu.
 //!
 //! A headless [wgpu](https://wgpu.rs) compute pipeline that renders a
 //! [`LightTexture`](crate::reconstruct::LightTexture) exactly as the CPU
@@ -23,22 +29,28 @@
 //!   batches of directions; [`precision`]: what that costs per adapter
 //!   (sub-texel weight bits, difference from the exact lookup); a plane
 //!   lit through those lookups (Wallner's (2008) Figure 5 setting) is a
-//!   report figure, `crate::report::shading`.
+//!   report figure, `photosolid::report::shading`.
 //!
 //! Output goes to a storage buffer rather than an `r32float` storage texture:
 //! it needs no 256-byte row padding on read-back, a whole batch fits in one
 //! binding with per-item offsets, and storage buffers in compute shaders are
 //! available on every backend we target (GLES 3.1+, which llvmpipe provides).
 
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+// The layers below, under the names this crate's modules use (`crate::reconstruct`, ...).
+use photosolid_fields::{device, error, formats, model, reconstruct};
+
 mod backend;
 pub mod check;
 mod context;
-mod device;
 pub mod resample;
+mod wgpu_device;
 
 pub use backend::{resolve, Backend, Resolved};
 pub use context::{list_adapters, requested_backends, AdapterSummary, GpuContext, COMPILED_BACKENDS};
-pub use device::{install, Wgpu};
+pub use wgpu_device::{install, Wgpu};
 mod batch;
 pub mod compact;
 pub mod precision;
@@ -47,4 +59,6 @@ pub use resample::{
     clamp_count_range, jobs, plans, render_batch, render_cpu, render_gpu, GpuBatch, RenderJob, RenderKernel, Timings,
 };
 
-pub use crate::error::GpuError;
+pub use photosolid_fields::error::GpuError;
+/// The texture formats a [`realtime::RealtimeTexture`] reports, wgpu's own type.
+pub use wgpu::TextureFormat;
