@@ -226,7 +226,7 @@ fi
 
 section "the library alone (--no-default-features: no GPU, no CLI) builds and passes its unit tests; the CLI builds without the GPU"
 # The crates but photosolid-gpu (wgpu is its one reason to exist): none of them may need it.
-cargo test --no-default-features --lib --locked -p photosolid -p photosolid-core -p photosolid-fields 2>&1 | tail -n 3
+cargo test --no-default-features --lib --locked -p photosolid -p photosolid-core -p photosolid-fields -p photosolid-analysis -p photosolid-scene -p photosolid-report 2>&1 | tail -n 3
 cargo check --no-default-features --features cli --bins --locked -p photosolid 2>&1 | tail -n 1
 if cargo tree --no-default-features -e normal -p photosolid --prefix none 2>/dev/null | grep -q "^wgpu "; then
   echo "FAIL: photosolid without its feature gpu depends on wgpu"

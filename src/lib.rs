@@ -21,17 +21,15 @@
 #![warn(missing_docs)]
 
 pub mod batch;
-pub mod compare;
-pub mod engines;
 pub mod jobs;
-pub mod registry;
-pub mod report;
-pub mod scene;
 
+pub use photosolid_analysis::{compare, engines, registry};
 pub use photosolid_core::{error, formats, minimize, model, numfmt, photometry, synth};
 pub use photosolid_fields::{device, fit, metrics, reconstruct, solid};
 #[cfg(feature = "gpu")]
 pub use photosolid_gpu as gpu;
+pub use photosolid_report as report;
+pub use photosolid_scene as scene;
 
 pub use error::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 pub use formats::{load, load_with, save, ReadOptions};

@@ -189,18 +189,22 @@ fn layer_check_passes_here_and_catches_planted_upward_paths() {
     std::fs::copy(here.join("ARCHITECTURE.md"), t.path().join("ARCHITECTURE.md")).unwrap();
     copy_tree(&here.join("src"), &t.path().join("src"));
     copy_tree(&here.join("crates"), &t.path().join("crates"));
-    // The core layers live in the core crate, the rest in the root package's src/.
+    // The layers live in the layer crates that hold several modules, the rest in the root package's src/.
     let file_of = |file: &str| {
         // the module's own directory: a layer crate's src/, else the root package's
         let module = std::path::Path::new(file).iter().next().unwrap();
-        ["crates/photosolid-core/src", "crates/photosolid-fields/src"]
-            .iter()
-            .map(|c| std::path::Path::new(c).join(file))
-            .find(|p| {
-                let top = t.path().join(p.parent().unwrap()).join(module);
-                t.path().join(p).exists() || top.exists() || top.with_extension("rs").exists()
-            })
-            .unwrap_or_else(|| std::path::Path::new("src").join(file))
+        [
+            "crates/photosolid-core/src",
+            "crates/photosolid-fields/src",
+            "crates/photosolid-analysis/src",
+        ]
+        .iter()
+        .map(|c| std::path::Path::new(c).join(file))
+        .find(|p| {
+            let top = t.path().join(p.parent().unwrap()).join(module);
+            t.path().join(p).exists() || top.exists() || top.with_extension("rs").exists()
+        })
+        .unwrap_or_else(|| std::path::Path::new("src").join(file))
     };
     let plant = |file: &str, text: &str| -> usize {
         let p = t.path().join(file_of(file));

@@ -1,4 +1,4 @@
-//! Every HTML report carries the interactive 3D view (src/report/viewer), its
+//! Every HTML report carries the interactive 3D view (crates/photosolid-report/src/viewer), its
 //! data parses, states the reference, and a typical report stays under 1 MB.
 //! The browser checks (rendering, toggles, slider, offline) are in tests/browser/.
 
