@@ -24,7 +24,16 @@ pub mod batch;
 pub mod jobs;
 
 pub use photosolid_analysis::{compare, engines, registry};
-pub use photosolid_core::{error, formats, minimize, model, numfmt, photometry, synth};
+pub use photosolid_core::{formats, minimize, model, numfmt, photometry, synth};
+
+/// Every error of the library under one path: the core's [`Error`] with its kinds, codes
+/// and warnings, and the error types the layers above define, each in its own crate
+/// ([`error::GpuError`] and [`error::MeshError`] in `photosolid-fields`,
+/// [`error::SceneError`] in `photosolid-scene`), which convert into [`Error`] with `From`.
+pub mod error {
+    pub use photosolid_fields::error::*;
+    pub use photosolid_scene::SceneError;
+}
 pub use photosolid_fields::{device, fit, metrics, reconstruct, solid};
 #[cfg(feature = "gpu")]
 pub use photosolid_gpu as gpu;

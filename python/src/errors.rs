@@ -18,9 +18,8 @@ pub(crate) fn py_err(e: Error) -> PyErr {
     let rec = ErrorRecord::from(&e);
     let path: Option<String> = match &e {
         Error::Parse(p) => Some(p.path.display().to_string()),
-        Error::Io { path, .. } | Error::MeshFile { path, .. } | Error::EmptyMesh { path } => {
-            Some(path.display().to_string())
-        }
+        Error::Layer(l) => l.path().map(|p| p.display().to_string()),
+        Error::Io { path, .. } => Some(path.display().to_string()),
         _ => None,
     };
     // The subclass a Python user catches by the builtin it also derives from.

@@ -38,7 +38,7 @@ pub struct GpuCheckArgs {
 
 #[cfg(not(feature = "gpu"))]
 pub fn run(_a: GpuCheckArgs) -> anyhow::Result<i32> {
-    Err(anyhow::Error::from(photosolid::Error::Gpu(photosolid::error::GpuError::NotBuilt)).context("gpu-check"))
+    Err(anyhow::Error::from(photosolid::Error::from(photosolid::error::GpuError::NotBuilt)).context("gpu-check"))
 }
 
 #[cfg(feature = "gpu")]

@@ -8,7 +8,7 @@ use crate::common;
 use std::io::Write;
 
 use common::cli::{fails, ok, run};
-use photosolid::error::{ErrorRecord, GpuError};
+use photosolid::error::{ErrorRecord, GpuError, Layered, MeshError};
 use photosolid::synth::{GridSpec, Synth};
 use photosolid::{Error, ModelError};
 
@@ -110,7 +110,8 @@ fn encoder_failures_are_encode_errors() {
     assert_eq!(ErrorRecord::from(&e).code, "encode");
 }
 
-/// GPU failures are `Error::Gpu` with a code per kind; a job the device
+/// GPU failures are `GpuError`s (photosolid-fields' own type, carried by `Error::Layer`) with
+/// a code per kind; a job the device
 /// cannot render (factor 0) fails in the plan, before any adapter is needed.
 #[test]
 fn gpu_errors_are_typed() {
@@ -129,7 +130,10 @@ fn gpu_errors_are_typed() {
             ..RenderOptions::default()
         };
         let e: Error = photosolid::gpu::plans(&[(&tex, bad)]).unwrap_err().into();
-        assert!(matches!(&e, Error::Gpu(GpuError::InvalidJob { index: 0, .. })), "{e:?}");
+        assert!(
+            matches!(e.downcast_ref(), Some(GpuError::InvalidJob { index: 0, .. })),
+            "{e:?}"
+        );
         assert_eq!(ErrorRecord::from(&e).code, "gpu-invalid-job");
     }
 }
@@ -249,9 +253,9 @@ fn mesh_file_failures_are_typed() {
     let bad = t.path().join("bad.ply");
     std::fs::write(&bad, b"ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n").unwrap();
     let e = export::read(&bad).unwrap_err();
-    match &e {
-        Error::MeshFile { path, .. } => assert_eq!(path, &bad),
-        other => panic!("expected MeshFile, got {other:?}"),
+    match e.downcast_ref() {
+        Some(MeshError::File { path, .. }) => assert_eq!(path, &bad),
+        other => panic!("expected MeshError::File, got {other:?}"),
     }
     assert!(
         e.to_string()
@@ -274,8 +278,8 @@ fn mesh_file_failures_are_typed() {
     let obj = t.path().join("bad.obj");
     std::fs::write(&obj, b"# a mesh\nv 0 0 0\nv 1 0\n").unwrap();
     let e = export::read(&obj).unwrap_err();
-    let Error::MeshFile { source, .. } = &e else {
-        panic!("expected a MeshFile error, got {e:?}");
+    let Some(MeshError::File { source, .. }) = e.downcast_ref() else {
+        panic!("expected a MeshError::File, got {e:?}");
     };
     match source.as_ref() {
         photosolid::error::MeshFileError::Syntax {
@@ -303,8 +307,8 @@ fn mesh_file_failures_are_typed() {
     let e = export::read(&obj).unwrap_err();
     assert!(
         matches!(
-            &e,
-            Error::MeshFile { source, .. }
+            e.downcast_ref(),
+            Some(MeshError::File { source, .. })
                 if matches!(**source, photosolid::error::MeshFileError::Mesh { format: "OBJ", .. })
         ),
         "{e:?}"
@@ -313,9 +317,9 @@ fn mesh_file_failures_are_typed() {
     let empty = Mesh::from_parts(vec![[0.0; 3]], vec![], None, Default::default()).unwrap();
     let out = t.path().join("empty.stl");
     let e = export::write(&empty, &out).unwrap_err();
-    match &e {
-        Error::EmptyMesh { path } => assert_eq!(path, &out),
-        other => panic!("expected EmptyMesh, got {other:?}"),
+    match e.downcast_ref() {
+        Some(MeshError::Empty { path }) => assert_eq!(path, &out),
+        other => panic!("expected MeshError::Empty, got {other:?}"),
     }
     assert!(e.to_string().contains("no triangles; expected at least one"), "{e}");
     assert_eq!(ErrorRecord::from(&e).code, "empty-mesh");
@@ -456,11 +460,15 @@ fn gpu_representation_errors_keep_the_gpu_error() {
         ModelError::Gpu { recon, source } => {
             assert_eq!(recon, &r.to_string());
             assert!(e.to_string().contains(&source.to_string()), "{e}");
+            assert!(source.downcast_ref::<GpuError>().is_some(), "{source:?}");
         }
         other => panic!("expected ModelError::Gpu, got {other:?}"),
     }
+    // The source chain meets the GPU's own type: through the carrier, `Layered`.
     assert!(
-        e.source().is_some_and(|s| s.downcast_ref::<GpuError>().is_some()),
+        e.source()
+            .and_then(|s| s.downcast_ref::<Layered>())
+            .is_some_and(|l| l.downcast_ref::<GpuError>().is_some()),
         "{e:?}"
     );
     assert_eq!(ErrorRecord::from(&Error::from(e)).code, "model");
@@ -508,4 +516,119 @@ fn reference_kinds_serialise_as_before() {
         assert_eq!(k.to_string(), s);
         assert_eq!(k, s);
     }
+}
+
+/// The one table of codes, `ERROR_CODES`, against the errors of every crate: each code there is
+/// given by some error (the core's own, `photosolid-fields`' `GpuError` and `MeshError`,
+/// `photosolid-scene`'s `SceneError`, each converted into `Error` with `From`), and each code
+/// an error gives is there. The core's unit test checks its own variants exhaustively.
+#[test]
+fn every_error_code_is_given_by_some_crate() {
+    use photosolid::error::{Difference, ErrorKind, Location, MeshFileError, ParseError, SceneError, ERROR_CODES};
+    use std::collections::BTreeSet;
+    let parse = |kind| {
+        Error::Parse(ParseError {
+            path: "f.ies".into(),
+            location: Location::at(3, 4),
+            kind,
+            expected: "a number".into(),
+            found: "`x`".into(),
+        })
+    };
+    let model = |reason: &str| ModelError::Parameter {
+        name: "factor",
+        value: "0".into(),
+        reason: reason.into(),
+    };
+    let mut errors = vec![
+        parse(ErrorKind::Invalid),
+        parse(ErrorKind::Unsupported),
+        Error::io("f.ies", std::io::Error::other("gone")),
+        model("expected >= 1").into(),
+        ModelError::Undefined {
+            quantity: "UGR",
+            why: photosolid::error::Undefined::NoLuminousArea,
+        }
+        .into(),
+        ModelError::Opening("signs".into()).into(),
+        Error::Encode {
+            format: "PNG",
+            message: "full".into(),
+        },
+        Error::UnknownExtension {
+            path: "x.txt".into(),
+            what: "output format",
+            accepted: &[".ies"],
+        },
+        Error::NothingChecked("no files".into()),
+        Error::Option {
+            option: "--range".into(),
+            message: "empty".into(),
+        },
+        Error::RoundTrip {
+            format: "EULUMDAT",
+            difference: Difference::MissingPlane {
+                c: 90.0,
+                back: vec![0.0],
+            },
+        },
+        MeshError::File {
+            path: "m.obj".into(),
+            source: Box::new(MeshFileError::at_line("OBJ", 2, "3 numbers", "`v 1`")),
+        }
+        .into(),
+        MeshError::Empty { path: "m.stl".into() }.into(),
+        SceneError::Invalid {
+            path: "s.toml".into(),
+            location: Location::line(2),
+            message: "bad".into(),
+        }
+        .into(),
+        SceneError::InsideOpening {
+            receiver: "r".into(),
+            index: 1,
+            position: [0.0; 3],
+            luminaire: "l".into(),
+            opening: "point".into(),
+        }
+        .into(),
+    ];
+    errors.extend(
+        [
+            GpuError::NoAdapter {
+                tried: "vulkan".into(),
+                detail: "none".into(),
+            },
+            GpuError::Device("lost".into()),
+            GpuError::Pipeline("bad".into()),
+            GpuError::BufferMap("unmapped".into()),
+            GpuError::InvalidJob {
+                index: 0,
+                reason: "factor 0".into(),
+            },
+            GpuError::TooLarge {
+                index: 0,
+                reason: "too big".into(),
+            },
+            GpuError::NotBuilt,
+        ]
+        .map(Error::from),
+    );
+    let table: BTreeSet<&str> = ERROR_CODES.iter().map(|(c, _)| *c).collect();
+    let given: BTreeSet<&str> = errors.iter().map(|e| ErrorRecord::from(e).code).collect();
+    assert_eq!(given, table, "codes given by the crates' errors vs ERROR_CODES");
+    // A layer's error keeps its line and its type through Error.
+    let mesh = &errors[11];
+    assert_eq!(ErrorRecord::from(mesh).line, Some(2));
+    assert!(
+        mesh.to_string()
+            .starts_with("m.obj: cannot read the mesh: OBJ line 2: expected 3 numbers"),
+        "{mesh}"
+    );
+    let scene = &errors[13];
+    assert_eq!(
+        (ErrorRecord::from(scene).line, scene.to_string().as_str()),
+        (Some(2), "s.toml:2: bad")
+    );
+    assert!(matches!(scene.downcast_ref(), Some(SceneError::Invalid { .. })));
 }

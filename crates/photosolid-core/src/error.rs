@@ -13,14 +13,12 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-mod mesh;
+mod layer;
 mod roundtrip;
-mod scene;
 mod warning;
 
-pub use mesh::MeshFileError;
+pub use layer::{LayerError, Layered};
 pub use roundtrip::Difference;
-pub use scene::SceneError;
 pub use warning::{Warning, WarningCode, WarningRecord};
 
 /// Result alias of the library.
@@ -47,6 +45,15 @@ pub struct Location {
 }
 
 impl Location {
+    /// `:line` or `:line:column` for a location with a line (to follow a path), else nothing.
+    pub fn suffix(self) -> String {
+        match (self.line, self.column) {
+            (0, _) => String::new(),
+            (line, Some(column)) => format!(":{line}:{column}"),
+            (line, None) => format!(":{line}"),
+        }
+    }
+
     /// A location on a line, without column.
     pub fn line(line: usize) -> Self {
         Self { line, column: None }
@@ -197,13 +204,14 @@ pub enum ModelError {
     #[error("{0}")]
     Opening(String),
     /// A GPU representation was asked for and the GPU path failed: the GPU
-    /// error is kept as the source ([`ModelError::code`] stays `model`).
+    /// error (`photosolid_fields::error::GpuError`) is kept as the source
+    /// ([`ModelError::code`] stays `model`).
     #[error("recon = {recon}: the GPU lookup is not available: {source}")]
     Gpu {
         /// The representation, as the CLI spells it (`catmull-rom@x5+gpu`).
         recon: String,
-        /// What the GPU path reported.
-        source: GpuError,
+        /// What the GPU path reported ([`Layered::downcast_ref`] gives its type back).
+        source: Layered,
     },
 }
 
@@ -276,26 +284,6 @@ pub enum Error {
     /// A model invariant or parameter domain was violated.
     #[error(transparent)]
     Model(#[from] ModelError),
-    /// A mesh file (OBJ, PLY, STL or GLB) whose content is not a mesh this
-    /// crate reads: the file, the line (or byte), what was expected.
-    #[error("{path}: cannot read the mesh: {source}", path = .path.display())]
-    MeshFile {
-        /// The file.
-        path: PathBuf,
-        /// What the mesh reader found wrong, and where (boxed: it is the
-        /// largest variant, and every `Result<_, Error>` would carry its size).
-        source: Box<MeshFileError>,
-    },
-    /// A mesh with no triangles where one with triangles is needed (a solid
-    /// is never empty, and glTF cannot hold an empty mesh).
-    #[error("{path}: the mesh has no triangles; expected at least one", path = .path.display())]
-    EmptyMesh {
-        /// The file that was to be written.
-        path: PathBuf,
-    },
-    /// The GPU path failed: no adapter, the device, a pipeline, a read-back.
-    #[error(transparent)]
-    Gpu(#[from] GpuError),
     /// An output could not be encoded (PNG, EXR, JSON, Arrow, Parquet).
     #[error("cannot encode {format}: {message}")]
     Encode {
@@ -323,9 +311,11 @@ pub enum Error {
     /// a check that checked nothing fails.
     #[error("checked nothing: {0}")]
     NothingChecked(String),
-    /// A scene (file, receivers, luminaires) that cannot be evaluated.
+    /// An error of a layer above this crate, of the type that layer defines: the GPU's
+    /// (`GpuError`), a mesh file's (`MeshError`), a scene's (`SceneError`). Each converts
+    /// into [`Error`] with `From`; [`Error::downcast_ref`] gives the type back.
     #[error(transparent)]
-    Scene(#[from] SceneError),
+    Layer(Layered),
     /// A job's option that cannot be used as given (a range outside its key's values, an
     /// option that needs another): the option as the command line spells it and why.
     #[error("{option}: {message}")]
@@ -354,87 +344,12 @@ pub enum Error {
     },
 }
 
-/// `:line` for a location with a line, else nothing.
-pub(crate) fn line_suffix(l: Location) -> String {
-    match (l.line, l.column) {
-        (0, _) => String::new(),
-        (line, Some(column)) => format!(":{line}:{column}"),
-        (line, None) => format!(":{line}"),
-    }
-}
-
 /// `a`, `a or b`, `a, b or c`.
 fn join_or(items: &[&str]) -> String {
     match items {
         [] => String::new(),
         [one] => (*one).to_string(),
         [init @ .., last] => format!("{} or {last}", init.join(", ")),
-    }
-}
-
-/// Errors of the GPU path (feature `gpu`). The type exists without the
-/// feature so that [`Error`] has one shape; [`GpuError::NotBuilt`] is then
-/// what asking for the GPU gives.
-#[non_exhaustive]
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum GpuError {
-    /// No adapter on any of the tried backends.
-    #[error(
-        "no GPU adapter found (backends tried: {tried}; {detail}); install a Vulkan or GL driver, e.g. Mesa's \
-         software drivers (`apt-get install mesa-vulkan-drivers libvulkan1 libegl-mesa0`, see \
-         scripts/install-gpu-drivers.sh), or use --backend cpu"
-    )]
-    NoAdapter {
-        /// Backends that were tried.
-        tried: String,
-        /// wgpu's last message.
-        detail: String,
-    },
-    /// Device creation, a submission or a wait failed.
-    #[error("GPU device error: {0}")]
-    Device(String),
-    /// A shader or pipeline could not be created (a driver that cannot compile it).
-    #[error("GPU pipeline error: {0}")]
-    Pipeline(String),
-    /// A read-back buffer could not be mapped or read.
-    #[error("GPU read-back error: {0}")]
-    BufferMap(String),
-    /// A job is malformed.
-    #[error("render job {index}: {reason}")]
-    InvalidJob {
-        /// Index of the job in the batch.
-        index: usize,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A single job does not fit the device's limits.
-    #[error("render job {index} is too large for this device: {reason}")]
-    TooLarge {
-        /// Index of the job in the batch.
-        index: usize,
-        /// Which limit.
-        reason: String,
-    },
-    /// This build has no GPU support (cargo feature `gpu` off).
-    #[error(
-        "no GPU device: this photosolid was built without GPU support (cargo feature `gpu`), or the program \
-         installed none (`photosolid::gpu::install()`)"
-    )]
-    NotBuilt,
-}
-
-impl GpuError {
-    /// The stable code of this error in [`ErrorRecord::code`] (`gpu-no-adapter`, ...).
-    pub fn code(&self) -> &'static str {
-        match self {
-            GpuError::NoAdapter { .. } => "gpu-no-adapter",
-            GpuError::Device(_) => "gpu-device",
-            GpuError::Pipeline(_) => "gpu-pipeline",
-            GpuError::BufferMap(_) => "gpu-buffer-map",
-            GpuError::InvalidJob { .. } => "gpu-invalid-job",
-            GpuError::TooLarge { .. } => "gpu-too-large",
-            GpuError::NotBuilt => "gpu-not-built",
-        }
     }
 }
 
@@ -458,14 +373,11 @@ impl Error {
             // Every model error was `model` before ModelError had codes; the
             // new kinds have their own.
             Error::Model(m) => m.code(),
-            Error::MeshFile { .. } => "mesh-file",
-            Error::EmptyMesh { .. } => "empty-mesh",
-            Error::Gpu(g) => g.code(),
             Error::Encode { .. } => "encode",
             Error::UnknownExtension { .. } => "unknown-extension",
             Error::NothingChecked(_) => "nothing-checked",
             Error::Option { .. } => "option",
-            Error::Scene(s) => s.code(),
+            Error::Layer(l) => l.code(),
             Error::RoundTrip { .. } | Error::RoundTripRead { .. } => "round-trip",
         }
     }
@@ -474,18 +386,27 @@ impl Error {
     pub fn location(&self) -> Option<Location> {
         let l = match self {
             Error::Parse(p) => p.location,
-            Error::MeshFile { source, .. } => source.location(),
-            Error::Scene(SceneError::Invalid { location, .. }) => *location,
+            Error::Layer(l) => l.location()?,
             _ => return None,
         };
         (l.line > 0).then_some(l)
     }
+
+    /// The error of a layer above this crate as its own type `T`, when it is one.
+    pub fn downcast_ref<T: LayerError>(&self) -> Option<&T> {
+        match self {
+            Error::Layer(l) => l.downcast_ref(),
+            _ => None,
+        }
+    }
 }
 
 /// Every stable code an [`ErrorRecord`] (and the CLI's JSON, and the Python
-/// exception's `code`) can carry, with its meaning. The documentation of
-/// [`ErrorRecord::code`] lists the same codes; a unit test checks that each
-/// is produced by some error and that the two lists agree.
+/// exception's `code`) can carry, with its meaning: this crate's errors' and
+/// those of the layers above ([`LayerError::code`]), one table. The documentation of
+/// [`ErrorRecord::code`] lists the same codes; a unit test checks that the two
+/// lists agree and that this crate's codes are here, an integration test
+/// (`tests/it/typed_errors.rs`) that every code is produced by some error of some crate.
 pub const ERROR_CODES: &[(&str, &str)] = &[
     (
         "invalid",
@@ -510,11 +431,11 @@ pub const ERROR_CODES: &[(&str, &str)] = &[
     ),
     (
         "mesh-file",
-        "a mesh file is not a mesh this crate reads (Error::MeshFile)",
+        "a mesh file is not a mesh the mesh readers read (MeshError::File)",
     ),
     (
         "empty-mesh",
-        "a mesh without triangles where one is needed (Error::EmptyMesh)",
+        "a mesh without triangles where one is needed (MeshError::Empty)",
     ),
     ("encode", "an output could not be encoded (Error::Encode)"),
     (
@@ -570,7 +491,7 @@ pub struct ErrorRecord {
     /// checks: `nothing-checked`;
     /// options of a job: `option`;
     /// scenes: `scene-invalid`, `inside-opening`;
-    /// GPU ([`GpuError::code`]): `gpu-no-adapter`, `gpu-device`, `gpu-pipeline`,
+    /// GPU (`GpuError::code`): `gpu-no-adapter`, `gpu-device`, `gpu-pipeline`,
     /// `gpu-buffer-map`, `gpu-invalid-job`, `gpu-too-large`, `gpu-not-built`.
     pub code: &'static str,
     /// The full message (as [`std::fmt::Display`] prints it).

@@ -12,12 +12,13 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub use photosolid_core::{error, formats, minimize, model, numfmt, photometry, synth};
+pub use photosolid_core::{formats, minimize, model, numfmt, photometry, synth};
 pub use photosolid_core::{load, load_with, save, ReadOptions};
 pub use photosolid_core::{Distribution, Luminaire, Symmetry};
 pub use photosolid_core::{Error, ErrorKind, Location, ModelError, ParseError, Result, Warning};
 
 pub mod device;
+pub mod error;
 pub mod fit;
 pub mod metrics;
 pub mod reconstruct;

@@ -175,7 +175,7 @@ pub struct FileCheck {
 /// the same plans, and compare.
 ///
 /// # Errors
-/// [`Error::Gpu`] from the device or the plans; [`Error::NothingChecked`]
+/// [`crate::GpuError`] from the device or the plans; [`Error::NothingChecked`]
 /// when `opts.filters` is empty.
 pub fn check_file(ctx: &GpuContext, path: &Path, tex: &LightTexture, opts: &CheckOptions) -> Result<FileCheck> {
     let Some(&first) = opts.filters.first() else {

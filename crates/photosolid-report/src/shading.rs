@@ -227,7 +227,7 @@ pub fn png(view: &PlaneView, values: &[f64], tone: Tone) -> Result<Vec<u8>, Erro
 /// one line per image pair saying how far GPU and CPU differ.
 ///
 /// # Errors
-/// Writing the EXRs, encoding the PNGs ([`Error::Encode`]), device errors ([`Error::Gpu`]).
+/// Writing the EXRs, encoding the PNGs ([`Error::Encode`]), device errors ([`crate::error::GpuError`]).
 pub fn report_figures(
     device: Option<&dyn GpuDevice>,
     rendered: &Rendered,

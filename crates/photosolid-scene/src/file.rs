@@ -464,7 +464,7 @@ impl Scene {
     ///
     /// # Errors
     /// [`crate::Error::Io`] (the path and the I/O error) when it cannot be
-    /// read; [`crate::Error::Scene`] when its content is not a scene.
+    /// read; a [`SceneError`] when its content is not a scene.
     pub fn load(path: &Path) -> crate::Result<Scene> {
         let text = std::fs::read_to_string(path).map_err(|e| crate::Error::io(path, e))?;
         Ok(Scene::from_toml(&text, path)?)

@@ -57,8 +57,9 @@ use aim::Pose;
 use opening::Opening;
 
 /// Everything that can go wrong with a scene: now a part of the crate's
-/// error ([`crate::Error::Scene`]), with stable codes.
-pub use crate::error::SceneError;
+/// error ([`SceneError`], this crate's), with stable codes.
+mod scene_error;
+pub use scene_error::SceneError;
 
 /// How a luminaire's light leaves it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]

@@ -444,7 +444,7 @@ fn gpu_device(row: &TradeRow) -> Result<&'static dyn crate::device::GpuDevice, M
 fn gpu_error(row: &TradeRow, source: crate::error::GpuError) -> ModelError {
     ModelError::Gpu {
         recon: row.representation.clone(),
-        source,
+        source: crate::error::Layered::new(source),
     }
 }
 

@@ -434,7 +434,7 @@ impl Reconstructions {
     fn gpu_field(&self, r: Recon, t: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
         let unavailable = |source: crate::error::GpuError| ModelError::Gpu {
             recon: r.to_string(),
-            source,
+            source: crate::error::Layered::new(source),
         };
         let device = crate::device::device().map_err(unavailable)?;
         let rendered = render(&self.texture, t.filter, t.factor)?;
@@ -448,7 +448,7 @@ impl Reconstructions {
     fn gpu_compact(&self, r: Recon, compact: Compact) -> Result<Box<dyn IntensityField + '_>, ModelError> {
         let unavailable = |source: crate::error::GpuError| ModelError::Gpu {
             recon: r.to_string(),
-            source,
+            source: crate::error::Layered::new(source),
         };
         crate::device::device()
             .and_then(|device| device.compact_field(compact))

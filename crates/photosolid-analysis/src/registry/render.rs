@@ -26,7 +26,7 @@ pub struct RenderedOn {
 /// [`crate::error::GpuError::NotBuilt`].
 ///
 /// # Errors
-/// [`Error::Gpu`] as above; the render's own errors (an invalid factor).
+/// [`GpuError`](crate::error::GpuError) as above; the render's own errors (an invalid factor).
 pub fn render_on(backend: Backend, tex: &LightTexture, options: &RenderOptions) -> Result<RenderedOn, Error> {
     let notice = match crate::device::installed() {
         Some(device) => match device.render(backend, tex, options)? {
@@ -78,7 +78,7 @@ mod tests {
             .unwrap();
         let tex = LightTexture::new(lum.distribution()).unwrap();
         let e = render_on(Backend::Gpu, &tex, &RenderOptions::default()).unwrap_err();
-        assert!(matches!(e, Error::Gpu(crate::error::GpuError::NotBuilt)), "{e}");
+        assert_eq!(e.downcast_ref(), Some(&crate::error::GpuError::NotBuilt), "{e}");
         assert_eq!(crate::error::ErrorRecord::from(&e).code, "gpu-not-built");
     }
 }

@@ -98,7 +98,7 @@ pub fn write(mesh: &Mesh, path: &Path) -> Result<()> {
 /// (glTF cannot hold one, and no solid is empty).
 pub fn write_as(mesh: &Mesh, path: &Path, format: MeshFormat) -> Result<()> {
     if mesh.n_triangles() == 0 {
-        return Err(Error::EmptyMesh { path: path.into() });
+        return Err(crate::error::MeshError::Empty { path: path.into() }.into());
     }
     crate::formats::write_atomic(path, &encode(mesh, format))
 }
@@ -114,9 +114,12 @@ pub fn read(path: &Path) -> Result<Mesh> {
         MeshFormat::Stl => stl::read(&bytes),
         MeshFormat::Glb => glb::read(&bytes),
     };
-    mesh.map_err(|source| Error::MeshFile {
-        path: path.into(),
-        source: Box::new(source),
+    mesh.map_err(|source| {
+        crate::error::MeshError::File {
+            path: path.into(),
+            source: Box::new(source),
+        }
+        .into()
     })
 }
 

@@ -1,16 +1,16 @@
-//! The errors of scenes ([`super::Error::Scene`]).
+//! The errors of scenes ([`SceneError`]), this crate's own.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-use super::{line_suffix, Location, ModelError};
+use crate::error::{Error, LayerError, Layered, Location, ModelError};
 
-/// Everything that can go wrong with a scene ([`Error::Scene`](super::Error::Scene); I/O and
-/// encoding failures of scene reports are [`Error::Io`](super::Error::Io) and [`Error::Encode`](super::Error::Encode)).
+/// Everything that can go wrong with a scene (it converts into [`Error`] with `From`; I/O and
+/// encoding failures of scene reports are [`Error::Io`] and [`Error::Encode`]).
 #[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SceneError {
     /// A value in the scene file is malformed or outside its domain.
-    #[error("{path}{line}: {message}", path = .path.display(), line = line_suffix(*.location))]
+    #[error("{path}{line}: {message}", path = .path.display(), line = .location.suffix())]
     Invalid {
         /// The scene file.
         path: PathBuf,
@@ -49,7 +49,7 @@ pub enum SceneError {
 }
 
 impl SceneError {
-    /// The stable code of this error in [`ErrorRecord::code`](super::ErrorRecord::code):
+    /// The stable code of this error in [`crate::error::ErrorRecord::code`]:
     /// `scene-invalid`, `inside-opening`, or the luminaire's [`ModelError::code`].
     pub fn code(&self) -> &'static str {
         match self {
@@ -57,5 +57,31 @@ impl SceneError {
             SceneError::InsideOpening { .. } => "inside-opening",
             SceneError::Model { source, .. } => source.code(),
         }
+    }
+}
+
+impl LayerError for SceneError {
+    fn code(&self) -> &'static str {
+        SceneError::code(self)
+    }
+
+    fn location(&self) -> Option<Location> {
+        match self {
+            SceneError::Invalid { location, .. } => Some(*location),
+            _ => None,
+        }
+    }
+
+    fn path(&self) -> Option<&Path> {
+        match self {
+            SceneError::Invalid { path, .. } => Some(path),
+            _ => None,
+        }
+    }
+}
+
+impl From<SceneError> for Error {
+    fn from(e: SceneError) -> Self {
+        Error::Layer(Layered::new(e))
     }
 }

@@ -1,8 +1,60 @@
-//! The errors of the mesh readers ([`super::Error::MeshFile`]).
+//! The errors of mesh files ([`MeshError`]): reading a solid back, writing one.
 
-use super::{Location, ModelError};
+use std::path::{Path, PathBuf};
 
-/// What a mesh reader found wrong in a mesh file ([`Error::MeshFile`](super::Error::MeshFile)).
+use super::{Error, LayerError, Layered, Location, ModelError};
+
+/// A mesh file that cannot be read, or a mesh that cannot be written.
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// A mesh file (OBJ, PLY, STL or GLB) whose content is not a mesh the readers read:
+    /// the file, the line (or byte), what was expected.
+    #[error("{path}: cannot read the mesh: {source}", path = .path.display())]
+    File {
+        /// The file.
+        path: PathBuf,
+        /// What the mesh reader found wrong, and where (boxed: it is the largest variant).
+        source: Box<MeshFileError>,
+    },
+    /// A mesh with no triangles where one with triangles is needed (a solid
+    /// is never empty, and glTF cannot hold an empty mesh).
+    #[error("{path}: the mesh has no triangles; expected at least one", path = .path.display())]
+    Empty {
+        /// The file that was to be written.
+        path: PathBuf,
+    },
+}
+
+impl LayerError for MeshError {
+    fn code(&self) -> &'static str {
+        match self {
+            MeshError::File { .. } => "mesh-file",
+            MeshError::Empty { .. } => "empty-mesh",
+        }
+    }
+
+    fn location(&self) -> Option<Location> {
+        match self {
+            MeshError::File { source, .. } => Some(source.location()),
+            MeshError::Empty { .. } => None,
+        }
+    }
+
+    fn path(&self) -> Option<&Path> {
+        match self {
+            MeshError::File { path, .. } | MeshError::Empty { path } => Some(path),
+        }
+    }
+}
+
+impl From<MeshError> for Error {
+    fn from(e: MeshError) -> Self {
+        Error::Layer(Layered::new(e))
+    }
+}
+
+/// What a mesh reader found wrong in a mesh file ([`MeshError::File`]).
 #[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshFileError {
