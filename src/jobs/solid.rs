@@ -94,7 +94,8 @@ pub fn mesh(file: Named<'_>, settings: &MeshSettings, progress: &Progress<'_>) -
             match settings.factor {
                 Some(factor) => (recs.solid_in(recon, factor, units)?, None),
                 None => {
-                    let tolerance = Tolerance::PercentOfPeak(settings.tolerance_pct());
+                    let tolerance =
+                        Tolerance::PercentOfPeak(settings.tolerance.unwrap_or(PctOfPeak(DEFAULT_TOLERANCE_PCT)));
                     let field = recs.field(recon)?;
                     Refinement::Adaptive(AdaptiveOptions::new(tolerance))
                         .solid_with_progress(&*field, d, units, progress)?

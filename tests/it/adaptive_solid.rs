@@ -4,6 +4,7 @@
 //! give no NaN; and the profile Hausdorff of rotational compares.
 
 use photosolid::model::{Distribution, IntensityField, Symmetry};
+use photosolid::numfmt::PctOfPeak;
 use photosolid::reconstruct::Filter;
 use photosolid::registry::{Recon, Reconstructions};
 use photosolid::solid::{
@@ -43,7 +44,7 @@ fn sampled(f: &dyn Fn(f64, f64) -> f64, c: Vec<f64>, g: Vec<f64>) -> Distributio
 /// Build the adaptive solid of `field` from `d`'s knots at `pct` % of
 /// I_max, check it independently, return it with its tolerance (cd).
 fn check(name: &str, field: &dyn IntensityField, d: &Distribution, pct: f64) -> (Mesh, f64) {
-    let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(pct));
+    let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(PctOfPeak(pct)));
     let a = adaptive_grid(field, &SolidGrid::knots(d).unwrap(), &opts).unwrap();
     assert!(a.reached, "{name}: {a:?}");
     assert!(a.tested_deviation_cd <= a.tolerance_cd, "{name}");
@@ -140,7 +141,7 @@ fn extremes_give_no_nan() {
     for peak in [1e-6, 1.0, 1e6] {
         let lobe = move |_c: f64, g: f64| peak * photosolid::model::frame::cos_deg(g).max(0.0).powi(128);
         let d = sampled(&lobe, vec![0.0], gammas(2.5));
-        let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(0.1));
+        let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(PctOfPeak(0.1)));
         let a = adaptive_grid(&lobe, &SolidGrid::knots(&d).unwrap(), &opts).unwrap();
         assert!(
             a.tested_deviation_cd <= 2.0 * a.tolerance_cd,
@@ -161,7 +162,7 @@ fn extremes_give_no_nan() {
             .relative(0.0, g)
     };
     let d = sampled(&spot, vec![0.0], gammas(1.0));
-    let r = Refinement::Adaptive(AdaptiveOptions::new(Tolerance::PercentOfPeak(0.5)));
+    let r = Refinement::Adaptive(AdaptiveOptions::new(Tolerance::PercentOfPeak(PctOfPeak(0.5))));
     let (mesh, found) = r.solid(&spot, &d, Units::Peak).unwrap();
     // A cut-off is a jump: refined to the minimum step, the mesh still closed and finite.
     let found = found.unwrap();
@@ -245,7 +246,7 @@ fn refinement_work_is_bounded_and_the_stop_is_reported() {
     };
     let c: Vec<f64> = (0..24).map(|k| 15.0 * k as f64).collect();
     let d = sampled(&cone, c, gammas(5.0));
-    let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(0.1));
+    let opts = AdaptiveOptions::new(Tolerance::PercentOfPeak(PctOfPeak(0.1)));
     let a = adaptive_grid(&cone, &SolidGrid::knots(&d).unwrap(), &opts).unwrap();
     let points = a.grid.c_angles_deg().len() * a.grid.gamma_angles_deg().len();
     assert_eq!(a.stop, Stop::Stalled, "{}", a.stop);
@@ -259,7 +260,7 @@ fn refinement_work_is_bounded_and_the_stop_is_reported() {
     let d = sampled(&lobe, vec![0.0, 90.0, 180.0, 270.0], gammas(10.0));
     let small = AdaptiveOptions {
         max_points: 20_000,
-        ..AdaptiveOptions::new(Tolerance::PercentOfPeak(1e-9))
+        ..AdaptiveOptions::new(Tolerance::PercentOfPeak(PctOfPeak(1e-9)))
     };
     let a = adaptive_grid(&lobe, &SolidGrid::knots(&d).unwrap(), &small).unwrap();
     let points = a.grid.c_angles_deg().len() * a.grid.gamma_angles_deg().len();

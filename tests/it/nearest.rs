@@ -9,6 +9,7 @@ use photosolid::metrics::hausdorff::distances;
 use photosolid::metrics::{distances_to_solid, Bvh, NearestSearch};
 use photosolid::model::frame::direction;
 use photosolid::model::{ConstantCells, Distribution, IntensityField};
+use photosolid::numfmt::PctOfPeak;
 use photosolid::reconstruct::{Filter, LightTexture};
 use photosolid::solid::{adaptive_grid, grid_solid, surface_distance, AdaptiveOptions, SolidGrid, Tolerance, Units};
 use photosolid::synth::{GridSpec, Synth};
@@ -36,7 +37,7 @@ fn agrees(name: &str, d: &Distribution, field: &dyn IntensityField) {
     let a = adaptive_grid(
         field,
         &SolidGrid::knots(d).unwrap(),
-        &AdaptiveOptions::new(Tolerance::PercentOfPeak(0.01)),
+        &AdaptiveOptions::new(Tolerance::PercentOfPeak(PctOfPeak(0.01))),
     )
     .unwrap();
     let mesh = grid_solid(field, &a.grid, Units::Candela).unwrap();

@@ -78,13 +78,15 @@ use super::{SolidGrid, Units, ZERO_FRACTION};
 use crate::error::ModelError;
 use crate::model::frame::unit_angles;
 use crate::model::{Distribution, IntensityField, Progress, ANGLE_EPS};
+use crate::numfmt::PctOfPeak;
 use crate::reconstruct::eval_all;
 
 /// How far a grid solid may lie from its field, measured along the radius.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Tolerance {
-    /// Percent of the field's peak intensity on the grid (e.g. 0.1 = 0.1 % of I_max).
-    PercentOfPeak(f64),
+    /// Percent of the field's peak intensity on the grid (`PctOfPeak(0.1)`: 0.1 % of I_max), the
+    /// one percent type the flags and settings use.
+    PercentOfPeak(PctOfPeak),
     /// Candela (absolute).
     Candela(f64),
 }
@@ -93,7 +95,7 @@ impl Tolerance {
     /// The tolerance in cd for a field whose peak is `peak_cd` (cd).
     pub fn candela(&self, peak_cd: f64) -> f64 {
         match *self {
-            Tolerance::PercentOfPeak(p) => 0.01 * p * peak_cd,
+            Tolerance::PercentOfPeak(p) => p.fraction() * peak_cd,
             Tolerance::Candela(cd) => cd,
         }
     }
@@ -102,7 +104,7 @@ impl Tolerance {
 impl std::fmt::Display for Tolerance {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Tolerance::PercentOfPeak(p) => write!(f, "{p} % of I_max"),
+            Tolerance::PercentOfPeak(p) => write!(f, "{} % of I_max", p.pct()),
             Tolerance::Candela(cd) => write!(f, "{cd} cd"),
         }
     }
@@ -174,7 +176,7 @@ pub struct AdaptiveOptions {
 impl Default for AdaptiveOptions {
     fn default() -> Self {
         Self {
-            tolerance: Tolerance::PercentOfPeak(DEFAULT_TOLERANCE_PCT),
+            tolerance: Tolerance::PercentOfPeak(PctOfPeak(DEFAULT_TOLERANCE_PCT)),
             min_step_deg: 0.05,
             max_points: DEFAULT_MAX_POINTS,
         }
