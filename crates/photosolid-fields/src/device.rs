@@ -81,6 +81,9 @@ pub struct TextureSamples {
     pub adapter: String,
     /// The texture format the texels were stored in (`R32Float`, ...).
     pub texture_format: String,
+    /// The precision they were stored in: the one asked for, or `F16` where the adapter cannot
+    /// filter that format (a CPU lookup of the same texels stores in this one).
+    pub precision: Precision,
 }
 
 /// What the layers above ask of a GPU.

@@ -103,6 +103,7 @@ impl GpuDevice for Wgpu {
             cd: texture.sample_dirs_cd(dirs)?,
             adapter: ctx.adapter().to_string(),
             texture_format: format!("{:?}", texture.format()),
+            precision: texture.precision(),
         })
     }
 }

@@ -100,10 +100,12 @@ pub struct ShadedGpu {
     pub adapter: String,
     /// The texture format the texels were stored in.
     pub texture_format: String,
+    /// The precision the texels were stored in (`F16` where the adapter cannot filter f32).
+    pub precision: Precision,
 }
 
 /// Illuminance (lx) at every pixel of `view`, the intensities read by `device`'s texture hardware
-/// through `lookup` of `rendered` stored in f32 (one batch).
+/// through `lookup` of `rendered` stored in f32, or f16 where the adapter cannot filter f32 (one batch).
 ///
 /// # Errors
 /// An invalid view; the errors of [`GpuDevice::texture_samples`].
@@ -119,6 +121,7 @@ pub fn shade_gpu(
         lux: samples.cd.iter().zip(view.lux_per_cd()).map(|(i, g)| i * g).collect(),
         adapter: samples.adapter,
         texture_format: samples.texture_format,
+        precision: samples.precision,
     })
 }
 
@@ -286,12 +289,15 @@ fn lit_plane(
     lookup: Lookup,
     notes: &mut Vec<String>,
 ) -> Result<Vec<f64>, Error> {
-    let exact = StoredTexture::new(rendered, None, Precision::F32, lookup);
-    let cpu = shade_cpu(&exact, view)?;
     let Some(device) = device else {
-        return Ok(cpu);
+        return Ok(shade_cpu(
+            &StoredTexture::new(rendered, None, Precision::F32, lookup),
+            view,
+        )?);
     };
     let gpu = shade_gpu(device, rendered, lookup, view)?;
+    // The CPU lookup of the same texels: stored as the device stored them.
+    let cpu = shade_cpu(&StoredTexture::new(rendered, None, gpu.precision, lookup), view)?;
     let d = gpu.lux.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
     notes.push(format!(
         "{lookup} on {} ({}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
