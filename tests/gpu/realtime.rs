@@ -337,14 +337,17 @@ fn shaded_plane_gpu_matches_cpu() {
     let device = photosolid::device::device().unwrap();
     for lookup in [Lookup::Bilinear, Lookup::CatmullRom] {
         let shaded = shading::shade_gpu(device, &r, lookup, &view).unwrap();
-        assert_eq!(shaded.adapter, c.adapter().to_string());
+        assert_eq!(shaded.store.adapter, c.adapter().to_string());
         // f32 where the adapter filters it (lavapipe), else f16 (llvmpipe's GL).
         let (format, precision) = if c.float32_filterable() {
             ("R32Float", Precision::F32)
         } else {
             ("R16Float", Precision::F16)
         };
-        assert_eq!((shaded.texture_format.as_str(), shaded.precision), (format, precision));
+        assert_eq!(
+            (shaded.store.texture_format.as_str(), shaded.store.precision),
+            (format, precision)
+        );
         let exact = StoredTexture::new(&r, None, precision, lookup);
         let cpu = shading::shade_cpu(&exact, &view).unwrap();
         let gpu = shaded.lux;

@@ -247,6 +247,15 @@ fn undefined_text(quantity: &str, why: Undefined) -> String {
 }
 
 impl ModelError {
+    /// A GPU representation `recon` (as the CLI spells it) that the GPU path failed to give,
+    /// `source` the GPU's own error (kept, [`ModelError::Gpu`]).
+    pub fn gpu(recon: impl Into<String>, source: impl LayerError) -> Self {
+        ModelError::Gpu {
+            recon: recon.into(),
+            source: Layered::new(source),
+        }
+    }
+
     /// The stable code of this error in [`ErrorRecord::code`]: `model` for
     /// every invariant and parameter error (and a GPU representation that
     /// failed, as before), `undefined` and `opening` for the two kinds a

@@ -1,6 +1,6 @@
 //! The GPU as the layers above see it: a [`GpuDevice`] trait, implemented by
-//! the `gpu` module (feature `gpu`) and plugged in at start-up with
-//! [`install`]. The registry, the comparisons and the trade table ask
+//! the `photosolid-gpu` crate (`photosolid_gpu::Wgpu`) and plugged in at start-up with
+//! [`install`]. The registry, the comparisons, the trade table and the shaded-plane report ask
 //! [`installed`] for the device instead of naming wgpu, so they hold no
 //! `cfg(feature = "gpu")`: without a device, asking for the GPU is
 //! [`GpuError::NotBuilt`] and `--backend auto` renders on the CPU.
@@ -72,18 +72,25 @@ pub enum Selected {
     },
 }
 
-/// Intensities read by the texture hardware ([`GpuDevice::texture_samples`]).
+/// Where and how the texture hardware held the texels it read.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TextureSamples {
-    /// Intensity (cd) in each direction asked for, in order.
-    pub cd: Vec<f64>,
-    /// The adapter that read them.
+pub struct TextureStore {
+    /// The adapter whose texture hardware read them.
     pub adapter: String,
     /// The texture format the texels were stored in (`R32Float`, ...).
     pub texture_format: String,
     /// The precision they were stored in: the one asked for, or `F16` where the adapter cannot
     /// filter that format (a CPU lookup of the same texels stores in this one).
     pub precision: Precision,
+}
+
+/// Intensities read by the texture hardware ([`GpuDevice::texture_samples`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TextureSamples {
+    /// Intensity (cd) in each direction asked for, in order.
+    pub cd: Vec<f64>,
+    /// Where and how the texels were held.
+    pub store: TextureStore,
 }
 
 /// What the layers above ask of a GPU.

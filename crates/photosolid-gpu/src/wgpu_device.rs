@@ -9,7 +9,7 @@ use super::compact::{compact_row, GpuCompact};
 use super::precision::hardware_row;
 use super::realtime::{HardwareLookup, RealtimeTexture};
 use super::{render_gpu, resolve, GpuContext, GpuError, Resolved};
-use crate::device::{CompactRow, DeviceRender, GpuDevice, Selected, TextureRow, TextureSamples};
+use crate::device::{CompactRow, DeviceRender, GpuDevice, Selected, TextureRow, TextureSamples, TextureStore};
 use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{Backend, Compact, LightTexture, Lookup, Precision, RenderOptions, Rendered, TextureSpec};
 
@@ -101,9 +101,11 @@ impl GpuDevice for Wgpu {
         let texture = RealtimeTexture::new(ctx, rendered, None, precision, HardwareLookup::for_lookup(lookup))?;
         Ok(TextureSamples {
             cd: texture.sample_dirs_cd(dirs)?,
-            adapter: ctx.adapter().to_string(),
-            texture_format: format!("{:?}", texture.format()),
-            precision: texture.precision(),
+            store: TextureStore {
+                adapter: ctx.adapter().to_string(),
+                texture_format: format!("{:?}", texture.format()),
+                precision: texture.precision(),
+            },
         })
     }
 }

@@ -24,7 +24,7 @@ use std::path::Path;
 use exr::prelude::{AttributeValue, FlatSamples, LayerAttributes, Text};
 use glam::DVec3;
 
-use crate::device::GpuDevice;
+use crate::device::{GpuDevice, TextureStore};
 use crate::error::{Error, GpuError, ModelError};
 use crate::model::IntensityField;
 use crate::reconstruct::{exr_io, Lookup, Precision, Rendered, StoredTexture};
@@ -96,12 +96,8 @@ impl PlaneView {
 pub struct ShadedGpu {
     /// Illuminance (lx) at every pixel, row-major.
     pub lux: Vec<f64>,
-    /// The adapter whose texture hardware read the intensities.
-    pub adapter: String,
-    /// The texture format the texels were stored in.
-    pub texture_format: String,
-    /// The precision the texels were stored in (`F16` where the adapter cannot filter f32).
-    pub precision: Precision,
+    /// Where and how the texels were held (`F16` where the adapter cannot filter f32).
+    pub store: TextureStore,
 }
 
 /// Illuminance (lx) at every pixel of `view`, the intensities read by `device`'s texture hardware
@@ -119,9 +115,7 @@ pub fn shade_gpu(
     let samples = device.texture_samples(rendered, Precision::F32, lookup, &view.points())?;
     Ok(ShadedGpu {
         lux: samples.cd.iter().zip(view.lux_per_cd()).map(|(i, g)| i * g).collect(),
-        adapter: samples.adapter,
-        texture_format: samples.texture_format,
-        precision: samples.precision,
+        store: samples.store,
     })
 }
 
@@ -297,12 +291,12 @@ fn lit_plane(
     };
     let gpu = shade_gpu(device, rendered, lookup, view)?;
     // The CPU lookup of the same texels: stored as the device stored them.
-    let cpu = shade_cpu(&StoredTexture::new(rendered, None, gpu.precision, lookup), view)?;
+    let cpu = shade_cpu(&StoredTexture::new(rendered, None, gpu.store.precision, lookup), view)?;
     let d = gpu.lux.iter().zip(&cpu).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
     notes.push(format!(
         "{lookup} on {} ({}): max |GPU - CPU| = {d:.3e} lx of {:.1} lx",
-        gpu.adapter,
-        gpu.texture_format,
+        gpu.store.adapter,
+        gpu.store.texture_format,
         cpu.iter().copied().fold(0.0, f64::max)
     ));
     Ok(gpu.lux)

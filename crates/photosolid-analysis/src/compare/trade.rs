@@ -442,10 +442,7 @@ fn gpu_device(row: &TradeRow) -> Result<&'static dyn crate::device::GpuDevice, M
 
 /// A GPU failure as the error of the row that met it.
 fn gpu_error(row: &TradeRow, source: crate::error::GpuError) -> ModelError {
-    ModelError::Gpu {
-        recon: row.representation.clone(),
-        source: crate::error::Layered::new(source),
-    }
+    ModelError::gpu(row.representation.clone(), source)
 }
 
 /// Fill the GPU columns of a `+gpu` row, timed on the CPU rows' directions

@@ -432,10 +432,7 @@ impl Reconstructions {
 
     /// A stored texture read by the GPU's texture hardware, on the installed device.
     fn gpu_field(&self, r: Recon, t: TextureSpec) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        let unavailable = |source: crate::error::GpuError| ModelError::Gpu {
-            recon: r.to_string(),
-            source: crate::error::Layered::new(source),
-        };
+        let unavailable = |source: crate::error::GpuError| ModelError::gpu(r.to_string(), source);
         let device = crate::device::device().map_err(unavailable)?;
         let rendered = render(&self.texture, t.filter, t.factor)?;
         let reduced = t.reduced.then(|| self.dist.symmetry());
@@ -446,10 +443,7 @@ impl Reconstructions {
 
     /// A spherical-harmonic series or lobe mixture evaluated by the installed GPU device.
     fn gpu_compact(&self, r: Recon, compact: Compact) -> Result<Box<dyn IntensityField + '_>, ModelError> {
-        let unavailable = |source: crate::error::GpuError| ModelError::Gpu {
-            recon: r.to_string(),
-            source: crate::error::Layered::new(source),
-        };
+        let unavailable = |source: crate::error::GpuError| ModelError::gpu(r.to_string(), source);
         crate::device::device()
             .and_then(|device| device.compact_field(compact))
             .map_err(unavailable)
