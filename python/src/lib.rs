@@ -646,6 +646,9 @@ impl Luminaire {
 /// The native module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // The GPU is plugged in at import, as the CLI's main does at start-up: `tradeoff(gpu=True)`
+    // and the `+gpu` representations then run on the adapter (WGPU_BACKEND chooses it).
+    photosolid::gpu::install();
     m.add("PhotosolidError", m.py().get_type::<PhotosolidError>())?;
     errors::add_error_subclasses(m)?;
     m.add_class::<Luminaire>()?;

@@ -158,6 +158,23 @@ def test_engines_and_tradeoff_equal_the_cli():
     assert ours["file"] == str(path)
 
 
+def test_tradeoff_on_the_gpu_equals_the_cli():
+    """The wheel installs the GPU at import as the CLI's main does: `gpu=True` gives `--gpu`'s rows (the `+gpu`
+    ones on the adapter WGPU_BACKEND picks), or, with no adapter, the CLI's error code."""
+    path = DATA / "cosine_p5.ldt"
+    r = cli("tradeoff", path, "--factors", "1", "--repeats", "1", "--gpu", "--json")
+    if r.returncode != 0:
+        with pytest.raises(photosolid.PhotosolidError) as caught:
+            photosolid.tradeoff(path, factors=[1], repeats=1, gpu=True)
+        assert caught.value.code in r.stderr, (caught.value.code, r.stderr)
+        return
+    theirs = json.loads(r.stdout)
+    ours = photosolid.tradeoff(path, factors=[1], repeats=1, gpu=True)
+    gpu_rows = [row["representation"] for row in ours["rows"] if row["representation"].endswith("+gpu")]
+    assert gpu_rows, [row["representation"] for row in ours["rows"]]
+    assert scrub(ours) == scrub(theirs)
+
+
 def test_compare_takes_units_and_align_as_the_cli():
     a, b = DATA / "roadway.ldt", DATA / "roadway.ies"
     ours = photosolid.load(a).compare(recons="bilinear", vs=photosolid.load(b), units="peak", align=True,
