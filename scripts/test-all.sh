@@ -206,7 +206,7 @@ section "cargo test (library, integration, doc tests)"
 rm -rf "$PHOTOSOLID_SKIPPED_CORPUS_DIR"
 # Every target but tests/gpu, which the GPU section runs once per backend (here it would run a
 # third time, on the default adapter).
-cargo test --lib --bins --test it --test extension --benches --examples --locked
+cargo test --lib --bins --test it --benches --examples --locked
 cargo test --doc --locked
 
 section "rustdoc: the API docs build with every intra-doc link resolved (RUSTDOCFLAGS=-D warnings)"

@@ -28,7 +28,11 @@ pub(crate) fn batch_parquet<'py>(
 ) -> PyResult<Bound<'py, PyBytes>> {
     let read = read_options(repair, handedness, lamp_sets, front)?;
     let files = py.detach(|| photosolid::batch::collect(&paths)).map_err(py_err)?;
-    let options = photosolid::batch::BatchOptions { compact, read };
+    let options = photosolid::batch::BatchOptions {
+        compact,
+        read,
+        ..Default::default()
+    };
     let done = std::sync::atomic::AtomicUsize::new(0);
     let stop = std::sync::atomic::AtomicBool::new(false);
     let report = |n: usize| -> PyResult<()> {

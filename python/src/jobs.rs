@@ -96,6 +96,7 @@ pub(crate) fn plan<'py>(
     let settings = jobs::PlanSettings {
         tolerance,
         class: class_.map(jobs::parse_class).transpose().map_err(road_err)?,
+        ..Default::default()
     };
     let answer = crate::interrupt::detached(py, move || jobs::plan(&scene, &settings, None))?.map_err(job_err)?;
     to_py(py, &answer)
@@ -210,6 +211,7 @@ pub(crate) fn _tradeoff<'py>(
         repeats: int_in("repeats", repeats, 1, i64::MAX)? as usize,
         gpu,
         plots: false,
+        ..defaults
     };
     let (file, other) = (lum.loaded(), vs.as_ref().map(|v| v.loaded()));
     let table = crate::interrupt::detached(py, move || {

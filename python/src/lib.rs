@@ -585,6 +585,7 @@ impl Luminaire {
                 .transpose()?,
             solid_tolerance: solid_tolerance.map(|t| pct_arg("solid_tolerance", t)).transpose()?,
             plots: false,
+            ..Default::default()
         };
         let (file, other) = (self.loaded(), vs.as_ref().map(|o| o.loaded()));
         let c = interrupt::detached(py, move || {

@@ -33,6 +33,7 @@ use crate::photometry::Summary;
 use crate::reconstruct::{
     holdout, holdout_split, Filter, HoldoutReport, HoldoutSpec, LightTexture, Precision, ShField, ShWindow,
 };
+use crate::registry::Registry;
 
 /// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
 /// row, reconstruct the others (`photosolid holdout`'s default).
@@ -211,6 +212,9 @@ pub struct BatchOptions {
     /// Measure the compact candidates and fill `smallest_within_1pct`
     /// (`batch --compact`; off by default: tens of ms a file).
     pub compact: bool,
+    /// The representations beyond the built-in ones whose default instances
+    /// are compact candidates (the CLI's: none).
+    pub registry: Registry,
 }
 
 /// A number only when finite (a table never holds NaN or infinity).
@@ -255,7 +259,7 @@ pub fn analyse(path: &Path, options: &BatchOptions) -> BatchRecord {
     add_fit(&mut row, lum.distribution());
     // Without a hold-out (its error is in the row) there is nothing to measure against.
     if options.compact && !reports.is_empty() {
-        add_compact(&mut row, lum.distribution(), &reports);
+        add_compact(&mut row, lum.distribution(), &reports, &options.registry);
     }
     row
 }
@@ -331,9 +335,9 @@ fn add_holdout(row: &mut BatchRecord, d: &Distribution) -> Vec<HoldoutReport> {
 /// filters' hold-out errors (`reports`), and `sh:L` and `lobes:K` rebuilt
 /// from the same kept samples and measured at the same withheld ones; an
 /// error message when they cannot be built (the column then stays null).
-fn add_compact(row: &mut BatchRecord, d: &Distribution, reports: &[HoldoutReport]) {
+fn add_compact(row: &mut BatchRecord, d: &Distribution, reports: &[HoldoutReport], registry: &Registry) {
     let t = Instant::now();
-    match compact_candidates(d, reports) {
+    match compact_candidates(d, reports, registry) {
         Ok(c) => {
             row.smallest_within_1pct = crate::compare::smallest_named(
                 c.iter().map(|(name, bytes, pct)| (name.as_str(), *bytes, *pct)),
@@ -346,8 +350,13 @@ fn add_compact(row: &mut BatchRecord, d: &Distribution, reports: &[HoldoutReport
 }
 
 /// (name, bytes, largest hold-out error in % of I_max) of every candidate of
-/// [`BatchRecord::smallest_within_1pct`].
-fn compact_candidates(d: &Distribution, reports: &[HoldoutReport]) -> Result<Vec<(String, usize, f64)>, ModelError> {
+/// [`BatchRecord::smallest_within_1pct`], those of `registry`'s added
+/// representations last.
+fn compact_candidates(
+    d: &Distribution,
+    reports: &[HoldoutReport],
+    registry: &Registry,
+) -> Result<Vec<(String, usize, f64)>, ModelError> {
     use crate::compare::trade::{LOBE_COUNTS, SH_DEGREES};
     use crate::registry::Recon;
     let i_max = d.max_cd();
@@ -378,8 +387,8 @@ fn compact_candidates(d: &Distribution, reports: &[HoldoutReport]) -> Result<Vec
         .to_string();
         out.push((name, m.bytes(), split.max_percent(m, i_max)));
     }
-    // The default instances of the representations a caller registered, built from the same kept samples.
-    let registered = crate::registry::extension::default_instances();
+    // The default instances of the representations added to the registry, built from the same kept samples.
+    let registered = registry.default_instances();
     if !registered.is_empty() {
         let kept = crate::registry::Reconstructions::new(split.kept.clone(), &registered)?;
         for r in registered {

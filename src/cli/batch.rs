@@ -132,6 +132,7 @@ pub fn run(a: BatchArgs) -> anyhow::Result<i32> {
     let options = BatchOptions {
         compact: a.compact,
         read: a.read.options(),
+        ..Default::default()
     };
     let bar = super::progress_bar("files");
     bar.set_length(todo.len() as u64);

@@ -92,6 +92,8 @@ pub fn run(a: CompareArgs) -> anyhow::Result<i32> {
         factor: a.factor,
         solid_tolerance: a.solid_tolerance,
         plots: a.out.report.is_some(),
+        // The command line offers the built-in representations.
+        registry: photosolid::registry::Registry::builtin(),
     };
     let c = super::with_progress("reconstructions", |progress| {
         jobs::compare(file.named(), vs.as_ref().map(Loaded::named), &settings, progress)

@@ -73,6 +73,8 @@ pub fn run_plan(a: PlanArgs) -> anyhow::Result<i32> {
     let settings = PlanSettings {
         tolerance: a.tolerance,
         class: a.class.clone(),
+        // The command line offers the built-in representations.
+        registry: photosolid::registry::Registry::builtin(),
     };
     let answer = super::with_progress("candidates", |progress| jobs::plan(&a.scene, &settings, Some(progress)))?;
     let text = match &answer {

@@ -108,6 +108,8 @@ pub fn run(a: TradeoffArgs) -> anyhow::Result<i32> {
         repeats: a.repeats,
         gpu: a.gpu,
         plots: a.out.report.is_some(),
+        // The command line offers the built-in representations.
+        registry: photosolid::registry::Registry::builtin(),
     };
     let t = super::with_progress("representations", |progress| {
         jobs::tradeoff(file.named(), vs.as_ref().map(Loaded::named), &settings, progress)

@@ -8,7 +8,7 @@ use crate::error::{Result, Warning, WarningCode};
 use crate::model::Progress;
 use crate::numfmt::PctOfPeak;
 use crate::reconstruct::Filter;
-use crate::registry::Recon;
+use crate::registry::{Recon, Registry};
 use crate::synth::Truth;
 
 use super::{option_error, Named};
@@ -16,8 +16,11 @@ use super::{option_error, Named};
 /// The options of `compare` (the CLI's flags; defaults are the CLI's).
 #[derive(Clone, Debug)]
 pub struct CompareSettings {
-    /// `--recon`: the reconstructions (None: [`CompareOptions`]' default list).
+    /// `--recon`: the reconstructions (None: [`CompareOptions`]' default list,
+    /// then the default instances of `registry`'s added representations).
     pub recons: Option<Vec<Recon>>,
+    /// The representations offered beyond the built-in ones (the CLI's: none).
+    pub registry: Registry,
     /// `--against`: the reference (None: truth when the file records it, else
     /// withheld; with `--vs`, catmull-rom of the other file).
     pub against: Option<Against>,
@@ -47,6 +50,7 @@ impl Default for CompareSettings {
         let d = CompareOptions::default();
         Self {
             recons: None,
+            registry: Registry::default(),
             against: None,
             folds: None,
             units: d.normalize,
@@ -72,7 +76,10 @@ impl CompareSettings {
         }
         let defaults = CompareOptions::default();
         Ok(CompareOptions {
-            recons: self.recons.clone().unwrap_or(defaults.recons.clone()),
+            recons: match &self.recons {
+                Some(r) => r.clone(),
+                None => [defaults.recons.clone(), self.registry.default_instances()].concat(),
+            },
             against: self.against,
             truth: Truth::of_luminaire(file.document),
             folds: self.folds.unwrap_or(defaults.folds),
@@ -159,6 +166,8 @@ pub struct TradeoffSettings {
     pub gpu: bool,
     /// Compute the report's plot data (`--report`).
     pub plots: bool,
+    /// The representations offered beyond the built-in ones (the CLI's: none).
+    pub registry: Registry,
 }
 
 impl Default for TradeoffSettings {
@@ -170,6 +179,7 @@ impl Default for TradeoffSettings {
             repeats: 5,
             gpu: false,
             plots: false,
+            registry: Registry::default(),
         }
     }
 }
@@ -199,6 +209,7 @@ pub fn tradeoff(
             ..CompareOptions::default()
         },
         gpu: settings.gpu,
+        registry: settings.registry.clone(),
     };
     let mut t = trade_table(
         file.document.distribution(),

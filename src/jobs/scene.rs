@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use crate::model::Progress;
 use crate::numfmt::PctOfPeak;
+use crate::registry::Registry;
 use crate::scene::illuminance::{evaluate, SceneResult};
 use crate::scene::plan::{plan as plan_scene, PlanOptions, PlanResult};
 use crate::scene::road::classes::LightingClass;
@@ -30,6 +31,8 @@ pub struct PlanSettings {
     /// `--class`: on a road, a candidate is within only when each criterion
     /// of the class passes or fails as with the reference.
     pub class: Option<LightingClass>,
+    /// The representations offered beyond the built-in ones (the CLI's: none).
+    pub registry: Registry,
 }
 
 impl Default for PlanSettings {
@@ -37,6 +40,7 @@ impl Default for PlanSettings {
         Self {
             tolerance: PctOfPeak(1.0),
             class: None,
+            registry: Registry::default(),
         }
     }
 }
@@ -76,7 +80,13 @@ impl JobError {
 /// its road both loaded here.
 pub fn plan(path: &Path, settings: &PlanSettings, progress: Option<&Progress<'_>>) -> Result<PlanAnswer, JobError> {
     if let Some(road) = Road::load_if_road(path)? {
-        let planned = plan_road(&road, settings.tolerance.fraction(), settings.class.as_ref(), progress)?;
+        let planned = plan_road(
+            &road,
+            settings.tolerance.fraction(),
+            settings.class.as_ref(),
+            &settings.registry,
+            progress,
+        )?;
         return Ok(PlanAnswer::Road(Box::new(planned)));
     }
     if let Some(class) = &settings.class {
@@ -92,6 +102,7 @@ pub fn plan(path: &Path, settings: &PlanSettings, progress: Option<&Progress<'_>
     let scene = Scene::load(path)?;
     let options = PlanOptions {
         tolerance: settings.tolerance.fraction(),
+        registry: settings.registry.clone(),
         ..PlanOptions::default()
     };
     Ok(PlanAnswer::Scene(Box::new(plan_scene(&scene, &options, progress)?)))

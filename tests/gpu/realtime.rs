@@ -407,6 +407,7 @@ fn trade_table_gpu_rows() {
                 ..CompareOptions::default()
             },
             gpu: true,
+            ..Default::default()
         };
         let t = trade_table(lum.distribution(), None, &opts, &|_, _, _| {}).unwrap();
         let row = |name: &str| t.rows.iter().find(|r| r.representation == name).unwrap();

@@ -26,6 +26,7 @@ mod damaged;
 mod data;
 mod engines;
 mod engines_renderers;
+mod extension;
 mod fit;
 mod front;
 mod fuzz_regressions;

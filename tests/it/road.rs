@@ -448,7 +448,7 @@ fn the_cli_writes_the_contract_keys_and_scene_computes_the_field() {
 fn plan_on_a_road_keeps_every_quantity_within_its_limit() {
     use photosolid::scene::road::plan::{plan_road, TI_LIMIT_PP, UNIFORMITY_LIMIT};
     let road = Road::load(&root().join("data/road_en13201.toml")).unwrap();
-    let plan = plan_road(&road, 0.01, None, None).unwrap();
+    let plan = plan_road(&road, 0.01, None, &Default::default(), None).unwrap();
     assert!(plan.candidates.len() >= 10, "{} candidates", plan.candidates.len());
     // cheapest first; the chosen one is the first within
     assert!(plan.candidates.windows(2).all(|w| w[0].bytes <= w[1].bytes));
@@ -492,10 +492,10 @@ fn plan_on_a_road_keeps_every_quantity_within_its_limit() {
         .unwrap();
     assert!(!fitted.within);
     // a looser tolerance never chooses something bigger
-    let loose = plan_road(&road, 0.05, None, None).unwrap();
+    let loose = plan_road(&road, 0.05, None, &Default::default(), None).unwrap();
     assert!(loose.bytes <= plan.bytes);
     assert!(matches!(
-        plan_road(&road, f64::NAN, None, None),
+        plan_road(&road, f64::NAN, None, &Default::default(), None),
         Err(RoadError::Invalid { .. })
     ));
 }
@@ -558,7 +558,7 @@ fn corpus_road_luminaires_filter_changes() {
         let mut road = example.clone();
         road.file = corpus.join(file);
         road.luminaire = photosolid::formats::load(&road.file).unwrap();
-        let plan = plan_road(&road, 0.01, None, None).unwrap();
+        let plan = plan_road(&road, 0.01, None, &Default::default(), None).unwrap();
         let o = &plan.reference_overall;
         println!(
             "{file}: reference L_av {:.3} cd/m2, TI {:.2} %, chosen {} ({} bytes)",

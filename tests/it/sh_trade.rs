@@ -124,6 +124,7 @@ fn trade_table_has_compact_rows_on_the_bytes_front() {
             ..CompareOptions::default()
         },
         gpu: false,
+        registry: Default::default(),
     };
     let lum = Synth::Roadway
         .build(&GridSpec::uniform(15.0, 5.0).unwrap(), 1000.0)

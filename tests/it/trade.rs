@@ -23,6 +23,7 @@ fn quick_trade() -> TradeOptions {
             ..CompareOptions::default()
         },
         gpu: false,
+        registry: Default::default(),
     }
 }
 
@@ -227,7 +228,11 @@ fn extremes_give_finite_rows() {
             if truth.is_some() { "truth" } else { "withheld" },
             "{name}"
         );
-        assert_eq!(t.rows.len(), representations_of(&d, &o.factors).len(), "{name}");
+        assert_eq!(
+            t.rows.len(),
+            representations_of(&d, &o.factors, &o.registry).len(),
+            "{name}"
+        );
         for r in &t.rows {
             for (k, v) in [
                 ("hausdorff", r.hausdorff_pct),
@@ -241,7 +246,7 @@ fn extremes_give_finite_rows() {
         }
         // No representation answers a negative or NaN intensity anywhere.
         let dirs = DirectionSet::fibonacci(3000);
-        for r in representations_of(&d, &o.factors) {
+        for r in representations_of(&d, &o.factors, &o.registry) {
             let recs = photosolid::registry::Reconstructions::new(d.clone(), &[r]).unwrap();
             let v = eval_all(&*recs.field(r).unwrap(), &dirs.directions);
             assert!(v.iter().all(|x| x.is_finite() && *x >= 0.0), "{name} {r}");

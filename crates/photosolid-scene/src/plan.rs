@@ -35,6 +35,7 @@ use crate::error::ModelError;
 use crate::metrics::{random_directions, time_per_sample_ns};
 use crate::model::{Distribution, IntensityField, Progress, Symmetry};
 use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
+use crate::registry::Registry;
 pub use crate::registry::{OwnedSampler, Recon};
 
 /// Render factors of the texture candidates.
@@ -207,7 +208,7 @@ pub const ERROR_DEFINITION: &str = "per receiver point: |E(candidate in place of
      point source also where the scene sets source = \"point\")";
 
 /// Options of [`plan`].
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PlanOptions {
     /// Largest error allowed at any point, as a fraction (0.01 = 1 %).
     pub tolerance: f64,
@@ -215,6 +216,9 @@ pub struct PlanOptions {
     pub timing_directions: usize,
     /// Timing repeats (median).
     pub timing_repeats: usize,
+    /// The representations beyond the built-in ones whose default instances
+    /// are candidates. Default: none.
+    pub registry: Registry,
 }
 
 impl Default for PlanOptions {
@@ -223,12 +227,18 @@ impl Default for PlanOptions {
             tolerance: 0.01,
             timing_directions: 4096,
             timing_repeats: 5,
+            registry: Registry::default(),
         }
     }
 }
 
-/// Every candidate representation of `lum` for this scene.
-pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Visible>) -> Vec<Recon> {
+/// Every candidate representation of `lum` for this scene: the built-in
+/// ones, then the default instances of `registry`'s added representations.
+pub(crate) fn candidate_representations(
+    lum: &SceneLuminaire,
+    visible: Option<Visible>,
+    registry: &Registry,
+) -> Vec<Recon> {
     let mut reps: Vec<Recon> = Filter::ALL.into_iter().map(Recon::Filter).collect();
     // The trade table's rows: every filter rendered at each factor, read with
     // the hardware's bilinear lookup; the Catmull-Rom render also with the others.
@@ -289,8 +299,7 @@ pub(crate) fn candidate_representations(lum: &SceneLuminaire, visible: Option<Vi
             }
         }
     }
-    // The default instances of the representations a caller registered.
-    reps.extend(crate::registry::extension::default_instances());
+    reps.extend(registry.default_instances());
     reps
 }
 
@@ -598,7 +607,7 @@ pub fn plan(scene: &Scene, options: &PlanOptions, progress: Option<&Progress<'_>
         };
         let visible = visible_grid(lum, &bench.reference.patches, &points);
         let reps = if lit {
-            candidate_representations(lum, visible)
+            candidate_representations(lum, visible, &options.registry)
         } else {
             vec![REFERENCE] // all-zero: every representation is the same dark field
         };

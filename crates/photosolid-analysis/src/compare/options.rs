@@ -249,8 +249,6 @@ impl Default for CompareOptions {
     fn default() -> Self {
         let mut recons = vec![Recon::Measured];
         recons.extend(DEFAULT_RECONS);
-        // The default instances of the representations a caller registered.
-        recons.extend(crate::registry::extension::default_instances());
         Self {
             recons,
             against: None,

@@ -42,7 +42,7 @@ use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress
 use crate::error::ModelError;
 use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{Filter, Lookup, Precision, ShWindow, TextureSpec};
-use crate::registry::Recon;
+use crate::registry::{Recon, Registry};
 
 /// The representations of the trade table for data with `symmetry`:
 /// textures at each of `factors` (see the module docs).
@@ -105,8 +105,8 @@ pub const FRONT_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
 /// of its declared symmetry, and `sh:L` for L in [`ZONAL_FRONT_SH_DEGREES`]
 /// where every C-plane holds the same values, whatever symmetry the file
 /// declares (its series are zonal), then the default instances of the
-/// representations a caller registered ([`crate::registry::register`]).
-pub fn representations_of(file: &Distribution, factors: &[u32]) -> Vec<Recon> {
+/// representations added to `registry` ([`Registry::register`]).
+pub fn representations_of(file: &Distribution, factors: &[u32], registry: &Registry) -> Vec<Recon> {
     let mut out = representations(file.symmetry(), factors);
     if file.detect_symmetry(0.0) == Symmetry::Rotational {
         out.extend(ZONAL_FRONT_SH_DEGREES.map(|degree| Recon::Sh {
@@ -115,8 +115,7 @@ pub fn representations_of(file: &Distribution, factors: &[u32]) -> Vec<Recon> {
             gpu: false,
         }));
     }
-    // The default instances of the representations a caller registered.
-    out.extend(crate::registry::extension::default_instances());
+    out.extend(registry.default_instances());
     out
 }
 
@@ -251,6 +250,9 @@ pub struct TradeOptions {
     pub compare: CompareOptions,
     /// Add the GPU texture-hardware rows (module docs). Default: false.
     pub gpu: bool,
+    /// The representations beyond the built-in ones whose default instances
+    /// are rows. Default: none.
+    pub registry: Registry,
 }
 
 impl Default for TradeOptions {
@@ -262,6 +264,7 @@ impl Default for TradeOptions {
                 ..CompareOptions::default()
             },
             gpu: false,
+            registry: Registry::default(),
         }
     }
 }
@@ -304,7 +307,7 @@ pub fn trade_table(
     opts: &TradeOptions,
     progress: &Progress<'_>,
 ) -> Result<TradeTable, ModelError> {
-    let mut recons = representations_of(file, &opts.factors);
+    let mut recons = representations_of(file, &opts.factors, &opts.registry);
     if opts.gpu {
         recons.extend(gpu_representations());
     }

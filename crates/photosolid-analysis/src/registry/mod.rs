@@ -7,8 +7,9 @@
 //! texture hardware from `crate::gpu` (feature `gpu`), the cropped and
 //! re-stored grids a scene's plan offers ([`owned`]). [`render_on`]
 //! renders a texture on the [`Backend`](crate::reconstruct::Backend) chosen
-//! with `--backend`. A caller adds a representation of its own with
-//! [`register`] ([`extension`]): its names then parse as a [`Recon`].
+//! with `--backend`. A caller adds a representation of its own to a
+//! [`Registry`], the value the jobs take ([`extension`]): its names then
+//! parse as a [`Recon`], and the jobs given that registry list it.
 //!
 //! It sits above everything it chooses among, so that those never import
 //! each other to offer a choice (ARCHITECTURE.md, "Layers").
@@ -18,7 +19,7 @@ pub mod owned;
 pub mod recon;
 mod render;
 
-pub use extension::{register, ExtensionId, Representation};
+pub use extension::{ExtensionId, Registry, Representation};
 pub use owned::{crop, OwnedSampler};
 pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX, LOBES_PREFIX, SH_PREFIX};
 pub use render::{render_on, RenderedOn};

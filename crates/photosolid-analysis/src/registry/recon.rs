@@ -83,7 +83,7 @@ pub enum Recon {
         gpu: bool,
     },
     /// An instance of a representation a caller registered
-    /// ([`super::extension::register`]), written as it spells it.
+    /// ([`super::Registry::register`]), written as it spells it.
     Extension {
         /// The registered representation.
         id: ExtensionId,
@@ -162,14 +162,15 @@ impl Recon {
 
 impl FromStr for Recon {
     type Err = ModelError;
-    /// A built-in reconstruction's name, else a registered representation's.
+    /// A built-in reconstruction's name, else the name of an instance of a
+    /// representation registered in the process (in any [`super::Registry`]).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         parse_builtin(s).or_else(|e| extension::parse(s.trim()).ok_or(e))
     }
 }
 
 /// A built-in reconstruction's name.
-fn parse_builtin(s: &str) -> Result<Recon, ModelError> {
+pub(crate) fn parse_builtin(s: &str) -> Result<Recon, ModelError> {
     match s.trim() {
         "measured" => Ok(Recon::Measured),
         x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),

@@ -24,6 +24,7 @@ use super::RoadError;
 use crate::metrics::{random_directions, time_per_sample_ns};
 use crate::model::{IntensityField, Progress};
 use crate::plan::{candidate_representations, Models, Recon, REFERENCE};
+use crate::registry::Registry;
 
 /// Largest change of U_o or U_l a candidate may make (absolute).
 pub const UNIFORMITY_LIMIT: f64 = 0.01;
@@ -190,6 +191,7 @@ pub fn plan_road(
     road: &Road,
     tolerance: f64,
     class: Option<&LightingClass>,
+    registry: &Registry,
     progress: Option<&Progress<'_>>,
 ) -> Result<RoadPlan, RoadError> {
     if !(tolerance.is_finite() && tolerance >= 0.0) {
@@ -206,7 +208,7 @@ pub fn plan_road(
         message: e.to_string(),
     })?;
     let reps = if texture.is_some() {
-        candidate_representations(&template, None)
+        candidate_representations(&template, None, registry)
     } else {
         vec![REFERENCE]
     };

@@ -1,24 +1,18 @@
-//! The open extension point (`photosolid::registry::register`): a
-//! representation defined here, registered once, and found where the
-//! built-in ones are: `--recon` names, `compare`'s rows, `tradeoff`'s
-//! table, `plan`'s candidates and `batch --compact`'s candidates.
-//!
-//! Its own test binary: the registry is the process's, and the `it` tests
-//! count the built-in rows.
-#![allow(
-    clippy::unwrap_used,
-    clippy::expect_used,
-    reason = "in a test a panic is the failure report"
-)]
+//! The open extension point (`photosolid::registry::Registry`): a
+//! representation defined here, added to a registry value, and found where
+//! the built-in ones are by the jobs given that registry: `--recon` names,
+//! `compare`'s rows, `tradeoff`'s table, `plan`'s candidates and `batch
+//! --compact`'s candidates. Jobs given the built-in registry (every other
+//! test, the CLI) list none of it.
 
 use std::path::Path;
-use std::sync::{Arc, Once};
+use std::sync::{Arc, OnceLock};
 
 use photosolid::error::ModelError;
 use photosolid::formats::Document;
 use photosolid::jobs::{self, CompareSettings, Named, TradeoffSettings};
 use photosolid::model::{Distribution, IntensityField};
-use photosolid::registry::{register, Recon, Representation};
+use photosolid::registry::{Recon, Registry, Representation};
 use photosolid::synth::{GridSpec, Synth};
 
 /// `nadir-cos:P`: I_max cos^P(γ) in the lower hemisphere, 12 bytes (the peak
@@ -65,11 +59,13 @@ impl Representation for NadirCosine {
     }
 }
 
-fn registered() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        register(Arc::new(NadirCosine)).unwrap();
-    });
+/// The built-in representations and `nadir-cos:P` (one registry for the
+/// tests: registering defines the representation for the process).
+fn registered() -> Registry {
+    static REGISTRY: OnceLock<Registry> = OnceLock::new();
+    REGISTRY
+        .get_or_init(|| Registry::builtin().with(Arc::new(NadirCosine)).unwrap())
+        .clone()
 }
 
 /// A cosine-power luminaire of exponent 5 that records its closed form.
@@ -88,8 +84,12 @@ fn named(doc: &Document) -> Named<'_> {
 
 #[test]
 fn its_names_parse_and_print_as_a_reconstruction() {
-    registered();
+    let registry = registered();
     let r: Recon = "nadir-cos:7".parse().unwrap();
+    assert_eq!(registry.parse("nadir-cos:7").unwrap(), r);
+    // The built-in registry reads only the built-in names.
+    assert!(Registry::builtin().parse("nadir-cos:7").is_err());
+    assert_eq!(Registry::builtin().parse("bilinear").unwrap().to_string(), "bilinear");
     assert!(matches!(r, Recon::Extension { param: 7, .. }));
     assert_eq!(r.to_string(), "nadir-cos:7");
     // The built-in names still parse as before; a name no one spells is still an error.
@@ -111,15 +111,22 @@ fn its_names_parse_and_print_as_a_reconstruction() {
             vec![0]
         }
     }
-    assert!(register(Arc::new(Squatter)).is_err());
+    assert!(Registry::builtin().register(Arc::new(Squatter)).is_err());
 }
 
 #[test]
 fn compare_measures_it_against_the_truth() {
-    registered();
     let doc = cosine_p5();
+    // Not a row of a job given the built-in registry.
+    let builtin = jobs::compare(named(&doc), None, &CompareSettings::default(), &jobs::no_progress).unwrap();
+    assert!(builtin.results.iter().all(|r| !r.name.starts_with("nadir-cos")));
     // By default, with the built-in rows.
-    let c = jobs::compare(named(&doc), None, &CompareSettings::default(), &jobs::no_progress).unwrap();
+    let with = CompareSettings {
+        registry: registered(),
+        ..Default::default()
+    };
+    let c = jobs::compare(named(&doc), None, &with, &jobs::no_progress).unwrap();
+    assert_eq!(c.results.len(), builtin.results.len() + 1);
     let row = c
         .results
         .iter()
@@ -132,7 +139,7 @@ fn compare_measures_it_against_the_truth() {
     assert!(cr.radial_max_pct > 1e-4, "{}", cr.radial_max_pct);
     // Named on its own, as --recon names it.
     let only = CompareSettings {
-        recons: Some(vec!["nadir-cos:2".parse().unwrap()]),
+        recons: Some(vec![registered().parse("nadir-cos:2").unwrap()]),
         ..Default::default()
     };
     let c = jobs::compare(named(&doc), None, &only, &jobs::no_progress).unwrap();
@@ -145,11 +152,11 @@ fn compare_measures_it_against_the_truth() {
 
 #[test]
 fn tradeoff_lists_it_and_it_is_the_smallest_within_one_percent() {
-    registered();
     let doc = cosine_p5();
     let settings = TradeoffSettings {
         factors: vec![1],
         repeats: 1,
+        registry: registered(),
         ..Default::default()
     };
     let t = jobs::tradeoff(named(&doc), None, &settings, &jobs::no_progress).unwrap();
@@ -164,15 +171,19 @@ fn tradeoff_lists_it_and_it_is_the_smallest_within_one_percent() {
 
 #[test]
 fn plan_and_batch_take_it_as_a_candidate() {
-    registered();
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/office_scene.toml");
-    let answer = jobs::plan(&scene, &Default::default(), None).unwrap();
+    let settings = jobs::PlanSettings {
+        registry: registered(),
+        ..Default::default()
+    };
+    let answer = jobs::plan(&scene, &settings, None).unwrap();
     let json = serde_json::to_string(&answer).unwrap();
     assert!(json.contains("nadir-cos:5"), "plan's candidates");
 
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/cosine_p5.ldt");
     let options = photosolid::batch::BatchOptions {
         compact: true,
+        registry: registered(),
         ..Default::default()
     };
     let rows = photosolid::batch::run(&[file], &options, &|_, _, _| {});
