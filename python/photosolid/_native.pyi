@@ -114,9 +114,13 @@ class Luminaire:
         """Intensity (cd) along each row of ``dirs`` (N, 3), luminaire frame (+x = C0, +y = C90, -z = nadir); shape (N,)."""
     def field(self, recon: str) -> Field:
         """Reconstruction ``recon`` built now and kept: its ``sample``/``sample_dirs`` build nothing again."""
-    def texture(self, filter: str = "catmull-rom", factor: int = 5) -> npt.NDArray[np.float32]:
+    def texture(
+        self, filter: str = "catmull-rom", factor: int = 5, *, backend: str = "auto"
+    ) -> npt.NDArray[np.float32]:
         """The light texture (EXR channel Y of ``photosolid texture``): I / I_max, shape (factor R, factor P), R the
-        file's mean measured gamma steps in 180 degrees, P its planes on the full circle (it depends on the file)."""
+        file's mean measured gamma steps in 180 degrees, P its planes on the full circle (it depends on the file).
+        ``backend`` is ``--backend``: ``auto`` (a GPU adapter when one exists, else the CPU with a warning), ``gpu``
+        (an error without an adapter) or ``cpu``."""
     def mesh(
         self,
         filter: str = "catmull-rom",

@@ -17,7 +17,8 @@ use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayDyn, PyArra
 use photosolid::compare::{Against, Directions, Normalize};
 use photosolid::error::WarningCode;
 use photosolid::fit::{fit, ErrorMetric, FitOptions, FitReport};
-use photosolid::reconstruct::{render_with, Filter, LightTexture, RenderOptions};
+use photosolid::reconstruct::{Backend, Filter, LightTexture, RenderOptions};
+use photosolid::registry::render_on;
 use photosolid::registry::Recon;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -449,24 +450,36 @@ impl Luminaire {
     /// the number of planes on the full circle (so it depends on the file: a
     /// 5° grid of 72 planes gives (36·K, 72·K)); γ rows from nadir, C columns from C0; texel centres at (i + 0.5)·180/height
     /// and (j + 0.5)·360/width degrees), values I / I_max (multiply by
-    /// `photometry()["max_cd"]` for cd).
-    #[pyo3(signature = (filter = "catmull-rom", factor = 5))]
-    fn texture<'py>(&self, py: Python<'py>, filter: &str, factor: i64) -> PyResult<Bound<'py, PyArray2<f32>>> {
+    /// `photometry()["max_cd"]` for cd). `backend` is `--backend`: `auto` (a
+    /// GPU adapter when one exists, else the CPU, with a Python warning saying
+    /// why), `gpu` (an error without an adapter; `WGPU_BACKEND` picks the
+    /// drivers) or `cpu`; every backend renders from the same tap tables.
+    #[pyo3(signature = (filter = "catmull-rom", factor = 5, *, backend = "auto"))]
+    fn texture<'py>(
+        &self,
+        py: Python<'py>,
+        filter: &str,
+        factor: i64,
+        backend: &str,
+    ) -> PyResult<Bound<'py, PyArray2<f32>>> {
         let filter: Filter = arg("filter", filter)?;
         let factor = int_in("factor", factor, 1, 32)? as u32;
-        let r = py
-            .detach(|| -> Result<_, photosolid::ModelError> {
+        let backend: Backend = arg("backend", backend)?;
+        let on = py
+            .detach(|| -> photosolid::Result<_> {
                 let tex = LightTexture::new(self.lum.distribution())?;
-                render_with(
-                    &tex,
-                    &RenderOptions {
-                        filter,
-                        factor,
-                        ..Default::default()
-                    },
-                )
+                let options = RenderOptions {
+                    filter,
+                    factor,
+                    ..Default::default()
+                };
+                render_on(backend, &tex, &options)
             })
-            .map_err(model_err)?;
+            .map_err(py_err)?;
+        if let Some(notice) = &on.notice {
+            py.import("warnings")?.getattr("warn")?.call1((*notice,))?;
+        }
+        let r = on.rendered;
         let a = Array2::from_shape_vec((r.mapping.height, r.mapping.width), r.data)
             .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(a.into_pyarray(py))

@@ -84,6 +84,33 @@ def test_texture_equals_the_cli_exr(tmp_path: Path):
     np.testing.assert_array_equal(ours, theirs)
 
 
+def test_texture_backends_equal_the_cli(tmp_path: Path):
+    """``backend`` is ``--backend``: the GPU's texture (on the adapter WGPU_BACKEND picks) equals the CLI's with
+    ``--backend gpu`` texel for texel and the CPU's within f32 rounding; without an adapter both refuse ``gpu``."""
+    import OpenImageIO as oiio
+
+    path = DATA / "batwing.ldt"
+    lum = photosolid.load(path)
+    cpu = lum.texture("catmull-rom", 2, backend="cpu")
+    exr = tmp_path / "gpu.exr"
+    r = subprocess.run([BIN, "texture", str(path), "--factor", "2", "--backend", "gpu", "-o", str(exr)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        with pytest.raises(photosolid.PhotosolidError) as caught:
+            lum.texture("catmull-rom", 2, backend="gpu")
+        assert caught.value.code in r.stderr, (caught.value.code, r.stderr)
+        return
+    gpu = lum.texture("catmull-rom", 2, backend="gpu")
+    inp = oiio.ImageInput.open(str(exr))
+    theirs = inp.read_image(format="float")[:, :, 0]
+    inp.close()
+    np.testing.assert_array_equal(gpu, theirs)
+    assert gpu.shape == cpu.shape
+    assert np.max(np.abs(gpu - cpu)) <= 1e-5 * np.max(cpu), np.max(np.abs(gpu - cpu))
+    with pytest.raises(ValueError, match="backend"):
+        lum.texture(backend="tpu")
+
+
 def test_mesh_goes_into_trimesh_and_equals_the_cli(tmp_path: Path):
     import trimesh
 
