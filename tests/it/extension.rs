@@ -112,6 +112,11 @@ fn its_names_parse_and_print_as_a_reconstruction() {
         }
     }
     assert!(Registry::builtin().register(Arc::new(Squatter)).is_err());
+    // Another registry may hold the same representation; one registry holds it once.
+    let mut other = Registry::builtin().with(Arc::new(NadirCosine)).unwrap();
+    assert_eq!(other.default_instances().len(), 1);
+    assert!(other.register(Arc::new(NadirCosine)).is_err());
+    assert_eq!(other.parse("nadir-cos:7").unwrap().to_string(), "nadir-cos:7");
 }
 
 #[test]

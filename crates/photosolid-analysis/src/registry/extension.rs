@@ -83,11 +83,27 @@ impl Registry {
     /// Add `representation`: its names parse as [`Recon::Extension`] from now
     /// on, and the jobs given this registry list its default instances.
     ///
+    /// Its names are checked against the built-in ones and this registry's:
+    /// another registry may hold the same representation (or another that
+    /// spells the same names), since each job reads its own registry.
+    ///
     /// # Errors
     /// [`ModelError::Parameter`] when one of its default names is already
-    /// spelled by a built-in or a registered representation, or past 65,536
-    /// registrations in the process.
+    /// spelled by a built-in representation or one of this registry's, or
+    /// past 65,536 registrations in the process.
     pub fn register(&mut self, representation: Arc<dyn Representation>) -> Result<ExtensionId, ModelError> {
+        for param in representation.defaults() {
+            let name = representation.name(param);
+            if self.parse(&name).is_ok() {
+                return Err(ModelError::Parameter {
+                    name: "representation",
+                    value: name,
+                    reason: "this name is already a reconstruction's in this registry: a registered \
+                             representation needs names of its own"
+                        .into(),
+                });
+            }
+        }
         let id = define(representation)?;
         self.added.push(id);
         Ok(id)
@@ -108,7 +124,7 @@ impl Registry {
     /// # Errors
     /// The built-in parser's [`ModelError::Parameter`] when neither spells it.
     pub fn parse(&self, name: &str) -> Result<Recon, ModelError> {
-        super::recon::parse_builtin(name).or_else(|e| parse_among(&self.added, name.trim()).ok_or(e))
+        super::recon::parse_builtin(name).or_else(|e| parse_among(self.added.iter().copied(), name.trim()).ok_or(e))
     }
 
     /// The default instances of the added representations, in the order added.
@@ -128,17 +144,6 @@ impl Registry {
 
 /// Define `representation` for the process and give its id.
 fn define(representation: Arc<dyn Representation>) -> Result<ExtensionId, ModelError> {
-    let taken = |name: &str| ModelError::Parameter {
-        name: "representation",
-        value: name.to_string(),
-        reason: "this name is already a reconstruction's: a registered representation needs names of its own".into(),
-    };
-    for param in representation.defaults() {
-        let name = representation.name(param);
-        if name.parse::<Recon>().is_ok() {
-            return Err(taken(&name));
-        }
-    }
     let mut all = DEFINED.write().unwrap_or_else(|e| e.into_inner());
     let id = u16::try_from(all.len()).map_err(|_| ModelError::Parameter {
         name: "representation",
@@ -150,9 +155,9 @@ fn define(representation: Arc<dyn Representation>) -> Result<ExtensionId, ModelE
 }
 
 /// The first of `ids` that reads `name`, as a [`Recon`].
-fn parse_among(ids: &[ExtensionId], name: &str) -> Option<Recon> {
+fn parse_among(mut ids: impl Iterator<Item = ExtensionId>, name: &str) -> Option<Recon> {
     let defined = read();
-    ids.iter().find_map(|&id| {
+    ids.find_map(|id| {
         let param = defined.get(usize::from(id.0))?.parse(name)?;
         Some(Recon::Extension { id, param })
     })
@@ -163,15 +168,11 @@ fn get(id: ExtensionId) -> Option<Arc<dyn Representation>> {
     read().get(usize::from(id.0)).cloned()
 }
 
-/// The [`Recon`] a representation registered in the process reads `name` as, if any.
+/// The [`Recon`] the first representation registered in the process that
+/// reads `name` reads it as, if any.
 pub(crate) fn parse(name: &str) -> Option<Recon> {
-    read().iter().enumerate().find_map(|(i, rep)| {
-        let param = rep.parse(name)?;
-        Some(Recon::Extension {
-            id: ExtensionId(u16::try_from(i).ok()?),
-            param,
-        })
-    })
+    let count = read().len();
+    parse_among((0..count).filter_map(|i| u16::try_from(i).ok().map(ExtensionId)), name)
 }
 
 /// The name of an extension's instance (`?ID:PARAM` for an id never registered: a bug).
