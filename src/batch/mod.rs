@@ -24,16 +24,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::ModelError;
 use crate::error::{Error, ErrorRecord};
-use crate::fit::lobes::fit_lobes;
 use crate::fit::{fit, FitOptions};
 use crate::formats::ReadOptions;
 use crate::model::IntensityField;
 use crate::model::{Distribution, Luminaire, Progress};
 use crate::photometry::Summary;
-use crate::reconstruct::{
-    holdout, holdout_split, Filter, HoldoutReport, HoldoutSpec, LightTexture, Precision, ShField, ShWindow,
-};
-use crate::registry::Registry;
+use crate::reconstruct::{holdout, holdout_split, Filter, HoldoutReport, HoldoutSpec, LightTexture};
+use crate::registry::{Job, Registry};
 
 /// The hold-out of the batch: keep every 2nd stored C-plane and every 2nd γ
 /// row, reconstruct the others (`photosolid holdout`'s default).
@@ -350,15 +347,14 @@ fn add_compact(row: &mut BatchRecord, d: &Distribution, reports: &[HoldoutReport
 }
 
 /// (name, bytes, largest hold-out error in % of I_max) of every candidate of
-/// [`BatchRecord::smallest_within_1pct`], those of `registry`'s added
-/// representations last.
+/// [`BatchRecord::smallest_within_1pct`]: the filters (their hold-out
+/// `reports`), then `registry`'s candidates for [`Job::Compact`] (`sh:L`,
+/// `lobes:K`, then those added to it) built from the same kept samples.
 fn compact_candidates(
     d: &Distribution,
     reports: &[HoldoutReport],
     registry: &Registry,
 ) -> Result<Vec<(String, usize, f64)>, ModelError> {
-    use crate::compare::trade::{LOBE_COUNTS, SH_DEGREES};
-    use crate::registry::Recon;
     let i_max = d.max_cd();
     let full = LightTexture::new(d)?;
     let mut out: Vec<(String, usize, f64)> = reports
@@ -366,35 +362,11 @@ fn compact_candidates(
         .map(|r| (r.filter.to_string(), full.sampler(r.filter).bytes(), r.max_percent))
         .collect();
     let split = holdout_split(d, HOLDOUT)?;
-    let source = LightTexture::new(&split.kept)?;
-    let catmull_rom = source.sampler(Filter::CatmullRom);
-    for degree in SH_DEGREES {
-        let s = ShField::new(&catmull_rom, degree, ShWindow::Lanczos, Precision::F32)?;
-        let name = Recon::Sh {
-            degree,
-            f16: false,
-            gpu: false,
-        }
-        .to_string();
-        out.push((name, s.bytes(), split.max_percent(&s, i_max)));
-    }
-    let most = LOBE_COUNTS.iter().copied().max().unwrap_or(1);
-    for (k, m) in fit_lobes(&split.kept, most)?.iter().enumerate() {
-        let name = Recon::Lobes {
-            count: k + 1,
-            gpu: false,
-        }
-        .to_string();
-        out.push((name, m.bytes(), split.max_percent(m, i_max)));
-    }
-    // The default instances of the representations added to the registry, built from the same kept samples.
-    let registered = registry.default_instances();
-    if !registered.is_empty() {
-        let kept = crate::registry::Reconstructions::new(split.kept.clone(), &registered)?;
-        for r in registered {
-            let field = kept.field(r)?;
-            out.push((r.to_string(), field.bytes(), split.max_percent(&*field, i_max)));
-        }
+    let candidates = registry.candidates(&Job::Compact);
+    let kept = crate::registry::Reconstructions::new(split.kept.clone(), &candidates)?;
+    for r in candidates {
+        let field = kept.field(r)?;
+        out.push((r.to_string(), field.bytes(), split.max_percent(&*field, i_max)));
     }
     Ok(out)
 }

@@ -8,7 +8,7 @@ use crate::error::{Result, Warning, WarningCode};
 use crate::model::Progress;
 use crate::numfmt::PctOfPeak;
 use crate::reconstruct::Filter;
-use crate::registry::{Recon, Registry};
+use crate::registry::{Job, Recon, Registry};
 use crate::synth::Truth;
 
 use super::{option_error, Named};
@@ -78,7 +78,7 @@ impl CompareSettings {
         Ok(CompareOptions {
             recons: match &self.recons {
                 Some(r) => r.clone(),
-                None => [defaults.recons.clone(), self.registry.default_instances()].concat(),
+                None => self.registry.candidates(&Job::Compare),
             },
             against: self.against,
             truth: Truth::of_luminaire(file.document),

@@ -34,15 +34,11 @@ use super::{Scene, SceneError, SceneLuminaire, ScenePoint, SourceKind};
 use crate::error::ModelError;
 use crate::metrics::{random_directions, time_per_sample_ns};
 use crate::model::{Distribution, IntensityField, Progress, Symmetry};
-use crate::reconstruct::{Filter, Lookup, Precision, TextureSpec};
-use crate::registry::Registry;
+use crate::registry::{Job, Registry, Visible};
 pub use crate::registry::{OwnedSampler, Recon};
 
 /// Render factors of the texture candidates.
-pub const TEXTURE_FACTORS: [u32; 3] = [1, 2, 5];
-
-/// The part of the grid the scene sees.
-type Visible = (f64, f64, Option<(f64, f64)>);
+pub use crate::registry::builtin::PLAN_TEXTURE_FACTORS as TEXTURE_FACTORS;
 
 /// What the scene can see of `lum` through `patches`: the γ rows (first,
 /// last, degrees) and, when no kept row touches a pole (whose cubic taps
@@ -232,75 +228,17 @@ impl Default for PlanOptions {
     }
 }
 
-/// Every candidate representation of `lum` for this scene: the built-in
-/// ones, then the default instances of `registry`'s added representations.
+/// Every candidate representation of `lum` for this scene: `registry`'s
+/// candidates for [`Job::Plan`] (the built-in ones, then those added to it).
 pub(crate) fn candidate_representations(
     lum: &SceneLuminaire,
     visible: Option<Visible>,
     registry: &Registry,
 ) -> Vec<Recon> {
-    let mut reps: Vec<Recon> = Filter::ALL.into_iter().map(Recon::Filter).collect();
-    // The trade table's rows: every filter rendered at each factor, read with
-    // the hardware's bilinear lookup; the Catmull-Rom render also with the others.
-    for factor in TEXTURE_FACTORS {
-        for filter in Filter::ALL {
-            for lookup in Lookup::ALL {
-                if lookup == Lookup::Bilinear || filter == Filter::CatmullRom {
-                    reps.push(Recon::Texture(TextureSpec {
-                        filter,
-                        factor,
-                        lookup,
-                        precision: Precision::F32,
-                        reduced: false,
-                    }));
-                }
-            }
-        }
-    }
-    // Half-float and symmetry-reduced storage of the x5 Catmull-Rom render (trade-table rows).
-    let sym = lum.luminaire.distribution().symmetry();
-    for (precision, reduced) in [(Precision::F16, false), (Precision::F32, true), (Precision::F16, true)] {
-        if reduced && sym == crate::model::Symmetry::None {
-            continue;
-        }
-        reps.push(Recon::Texture(TextureSpec {
-            filter: Filter::CatmullRom,
-            factor: 5,
-            lookup: Lookup::Bilinear,
-            precision,
-            reduced,
-        }));
-    }
-    reps.push(Recon::FittedGl);
-    // The compact representations between the fitted lights and the textures (issue 30).
-    reps.extend([2, 4, 8, 16].map(|degree| Recon::Sh {
-        degree,
-        f16: false,
-        gpu: false,
-    }));
-    reps.extend((1..=4).map(|count| Recon::Lobes { count, gpu: false }));
-    if let Some((gamma_from, gamma_to, c)) = visible {
-        reps.push(Recon::Cropped {
-            filter: Filter::CatmullRom,
-            gamma_from,
-            gamma_to,
-            c,
-        });
-    }
-    let d = lum.luminaire.distribution();
-    let found = d.detect_symmetry(1e-9 * d.max_cd());
-    if found != d.symmetry() {
-        if let Ok(s) = d.with_symmetry(found) {
-            if s.n_c() < d.n_c() {
-                reps.push(Recon::Symmetric {
-                    filter: Filter::CatmullRom,
-                    symmetry: found,
-                });
-            }
-        }
-    }
-    reps.extend(registry.default_instances());
-    reps
+    registry.candidates(&Job::Plan {
+        dist: lum.luminaire.distribution(),
+        visible,
+    })
 }
 
 /// The slot in `cache` of the models of luminaire `li`: luminaires of one

@@ -97,7 +97,7 @@ use crate::metrics::{
 pub use crate::model::Progress;
 use crate::model::{Distribution, IntensityField, Symmetry};
 use crate::reconstruct::eval_all;
-use crate::registry::{Recon, Reconstructions, DEFAULT_RECONS};
+use crate::registry::{Recon, Reconstructions};
 use crate::solid::{AdaptiveOptions, Mesh, RadialMesh, Refinement, SolidGrid, Tolerance, Units};
 use crate::synth::Truth;
 

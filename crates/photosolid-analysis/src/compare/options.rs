@@ -177,8 +177,9 @@ impl FromStr for Against {
 /// Options of [`compare`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompareOptions {
-    /// Reconstructions of FILE to compare. Default: `measured`, [`DEFAULT_RECONS`] and the default
-    /// instances of the representations a caller registered.
+    /// Reconstructions of FILE to compare. Default: the built-in registry's
+    /// candidates for [`Job::Compare`](crate::registry::Job::Compare) (`measured`,
+    /// the filters but nearest, `fitted-gl`).
     pub recons: Vec<Recon>,
     /// The reference. Default (`None`): with `vs`, Catmull–Rom of OTHER
     /// (`dense`); else `truth` when [`CompareOptions::truth`] is known, else `withheld`.
@@ -247,10 +248,8 @@ impl CompareOptions {
 
 impl Default for CompareOptions {
     fn default() -> Self {
-        let mut recons = vec![Recon::Measured];
-        recons.extend(DEFAULT_RECONS);
         Self {
-            recons,
+            recons: crate::registry::Registry::builtin().candidates(&crate::registry::Job::Compare),
             against: None,
             truth: None,
             folds: 2,

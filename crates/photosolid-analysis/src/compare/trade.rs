@@ -41,115 +41,31 @@ use serde::Serialize;
 use super::{compare_with_progress, Against, CompareOptions, Comparison, Progress};
 use crate::error::ModelError;
 use crate::model::{Distribution, IntensityField, Symmetry};
-use crate::reconstruct::{Filter, Lookup, Precision, ShWindow, TextureSpec};
-use crate::registry::{Recon, Registry};
+use crate::reconstruct::{ShWindow, TextureSpec};
+use crate::registry::{Job, Recon, Registry};
 
-/// The representations of the trade table for data with `symmetry`:
-/// textures at each of `factors` (see the module docs).
+pub use crate::registry::builtin::{
+    FRONT_LOBE_COUNTS, FRONT_SH_DEGREE, LOBE_COUNTS, SH_DEGREES, ZONAL_FRONT_SH_DEGREES,
+};
+
+/// The trade table's CPU rows for data with `symmetry` whose C-planes
+/// differ, textures at each of `factors` (see the module docs): the built-in
+/// registry's candidates for [`Job::TradeRows`].
 pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
-    let mut out = vec![Recon::Measured];
-    out.extend(Filter::ALL.into_iter().map(Recon::Filter));
-    let tex = |factor, lookup, precision, reduced| {
-        Recon::Texture(TextureSpec {
-            filter: Filter::CatmullRom,
-            factor,
-            lookup,
-            precision,
-            reduced,
-        })
-    };
-    for &k in factors {
-        for l in Lookup::ALL {
-            out.push(tex(k, l, Precision::F32, false));
-        }
-    }
-    // The same texture in half floats and in 16- and 8-bit normalised integers.
-    for precision in [Precision::F16, Precision::U16, Precision::U8] {
-        out.push(tex(5, Lookup::Bilinear, precision, false));
-    }
-    if crate::reconstruct::bc6h::available() {
-        out.push(tex(5, Lookup::Bilinear, Precision::Bc6h, false));
-    }
-    if symmetry != Symmetry::None {
-        out.push(tex(5, Lookup::Bilinear, Precision::F32, true));
-        out.push(tex(5, Lookup::Bilinear, Precision::F16, true));
-    }
-    out.push(Recon::FittedGl);
-    out.extend(SH_DEGREES.map(|degree| Recon::Sh {
-        degree,
-        f16: false,
-        gpu: false,
-    }));
-    out.push(Recon::Sh {
-        degree: FRONT_SH_DEGREE,
-        f16: false,
-        gpu: false,
-    });
-    out.extend(LOBE_COUNTS.map(|count| Recon::Lobes { count, gpu: false }));
-    out.extend(FRONT_LOBE_COUNTS.map(|count| Recon::Lobes { count, gpu: false }));
-    out
+    Registry::builtin().candidates(&Job::TradeRows { symmetry, factors })
 }
 
-/// The degree of the trade table's extra `sh:L` row, beside [`SH_DEGREES`]:
-/// it fills the bytes front between the default compact rows and the
-/// textures. On asymmetric data `sh:32` is 4,356 bytes (1,089 terms a
-/// lookup) where `sh:16` is 1,156; on rotationally symmetric data the series
-/// are zonal, L + 1 coefficients, so every default compact row is under 128
-/// bytes and `sh:32` is 132 bytes (33 terms), below the one-column texture
-/// (144-720 bytes). Over the corpus it puts a compact row on the bytes front
-/// between 128 bytes and 10 kB on 12 more files than the default rows alone
-/// (docs/compact.md). Not among `batch --compact`'s or `plan`'s candidates.
-pub const FRONT_SH_DEGREE: usize = crate::reconstruct::MAX_SH_DEGREE;
-
-/// The representations of the trade table for `file`: [`representations`]
-/// of its declared symmetry, and `sh:L` for L in [`ZONAL_FRONT_SH_DEGREES`]
-/// where every C-plane holds the same values, whatever symmetry the file
-/// declares (its series are zonal), then the default instances of the
-/// representations added to `registry` ([`Registry::register`]).
+/// The trade table's CPU rows for `file` (its declared symmetry; the extra
+/// zonal `sh:L` rows, [`ZONAL_FRONT_SH_DEGREES`], where every C-plane holds
+/// the same values), then those of the representations added to `registry`
+/// ([`Registry::register`]): its candidates for [`Job::Tradeoff`].
 pub fn representations_of(file: &Distribution, factors: &[u32], registry: &Registry) -> Vec<Recon> {
-    let mut out = representations(file.symmetry(), factors);
-    if file.detect_symmetry(0.0) == Symmetry::Rotational {
-        out.extend(ZONAL_FRONT_SH_DEGREES.map(|degree| Recon::Sh {
-            degree,
-            f16: false,
-            gpu: false,
-        }));
-    }
-    out.extend(registry.default_instances());
-    out
+    registry.candidates(&Job::Tradeoff {
+        file,
+        factors,
+        gpu: false,
+    })
 }
-
-/// The degrees of the trade table's extra `sh:L` rows on data the same in
-/// every C-plane (whatever symmetry the file declares), where a series is
-/// zonal: 260 and 516 bytes (L + 1
-/// coefficients, as many terms a lookup). There every default compact row
-/// is under 128 bytes and the one-column texture (144-1,100 bytes) was the
-/// front above them; a profile with a sharp edge needs these degrees to
-/// come within a few % of it (the Lanczos window blurs an edge over about
-/// 180° / (L + 1)). Over the corpus's rotational files they put an `sh:L`
-/// row on the bytes front between 128 bytes and 10 kB where none was
-/// (docs/compact.md, "Rotational data: zonal series to L = 128").
-pub const ZONAL_FRONT_SH_DEGREES: [usize; 2] = [64, 128];
-
-/// The lobe counts of the trade table's extra `lobes:K` rows, beside
-/// [`LOBE_COUNTS`]: the stages of the lobe search that lie between 128 bytes
-/// and 10 kB, where the table's other extra rows (`sh:32`, the zonal
-/// series) fill the bytes front too: 140 and 160 bytes. They are fitted in
-/// the same search as the default counts (the fit of K lobes is a stage of
-/// the fit of 8), so they cost their measurement only. A narrow spot is
-/// lobes', where 33 zonal bands still ring. The mixture's radial max against
-/// withheld samples does not fall with K (the fit minimises a weighted RMS
-/// of the kept samples): on eulumdat-plot's sample_02 `lobes:7` reads
-/// 4.08 % where `lobes:4` reads 5.29 % and `lobes:8` 6.12 %, and only
-/// `lobes:7` is on its bytes front in that band (docs/compact.md, "Seven
-/// lobes"). Not among `batch --compact`'s or `plan`'s candidates.
-pub const FRONT_LOBE_COUNTS: [usize; 2] = [7, 8];
-
-/// The lobe counts K of the default `lobes:K` rows.
-pub const LOBE_COUNTS: [usize; 4] = [1, 2, 3, 4];
-
-/// The degrees L of the default `sh:L` rows.
-pub const SH_DEGREES: [usize; 4] = [2, 4, 8, 16];
 
 /// Largest radial error (% of I_max) of [`TradeTable::smallest_within_1pct`].
 pub const WITHIN_PCT: f64 = 1.0;
@@ -269,35 +185,6 @@ impl Default for TradeOptions {
     }
 }
 
-/// The `+gpu` rows of [`TradeOptions::gpu`]: the k = 5 Catmull–Rom texture
-/// read with the hardware's bilinear filter and with Catmull–Rom from linear
-/// fetches, and the largest spherical-harmonic series and lobe mixture of the
-/// table evaluated by the compute shader (`sh:16+gpu`, `lobes:4+gpu`).
-pub fn gpu_representations() -> Vec<Recon> {
-    let mut out: Vec<Recon> = [Lookup::Bilinear, Lookup::CatmullRom]
-        .into_iter()
-        .map(|lookup| {
-            Recon::Gpu(TextureSpec {
-                filter: Filter::CatmullRom,
-                factor: 5,
-                lookup,
-                precision: Precision::F32,
-                reduced: false,
-            })
-        })
-        .collect();
-    out.push(Recon::Sh {
-        degree: SH_DEGREES[SH_DEGREES.len() - 1],
-        f16: false,
-        gpu: true,
-    });
-    out.push(Recon::Lobes {
-        count: LOBE_COUNTS[LOBE_COUNTS.len() - 1],
-        gpu: true,
-    });
-    out
-}
-
 /// Measure every representation of `file` against the reference (the
 /// rules of [`compare`](super::compare): `truth` when known, else
 /// `withheld`; with `vs`, the denser file).
@@ -307,10 +194,13 @@ pub fn trade_table(
     opts: &TradeOptions,
     progress: &Progress<'_>,
 ) -> Result<TradeTable, ModelError> {
-    let mut recons = representations_of(file, &opts.factors, &opts.registry);
-    if opts.gpu {
-        recons.extend(gpu_representations());
-    }
+    // With `gpu`, the GPU's twins: the k = 5 Catmull–Rom texture read with the hardware's
+    // bilinear filter and with Catmull–Rom from linear fetches, `sh:16+gpu` and `lobes:4+gpu`.
+    let mut recons = opts.registry.candidates(&Job::Tradeoff {
+        file,
+        factors: &opts.factors,
+        gpu: opts.gpu,
+    });
     if matches!(opts.compare.against, Some(Against::Recon(_))) && vs.is_none() {
         // A reconstruction of FILE as its own reference is not a row.
         recons.retain(|r| Some(Against::Recon(*r)) != opts.compare.against);
@@ -355,18 +245,7 @@ pub fn trade_table(
         })
         .collect();
     for row in &mut rows {
-        match row.recon {
-            Some(Recon::Gpu(spec)) => gpu_columns(row, file, spec, &opts.compare)?,
-            Some(r @ (Recon::Sh { gpu: true, .. } | Recon::Lobes { gpu: true, .. })) => {
-                compact_gpu_columns(row, file, r, &opts.compare)?;
-                if matches!(r, Recon::Sh { .. }) {
-                    row.window = Some(ShWindow::Lanczos.name().into());
-                }
-            }
-            Some(Recon::Texture(spec)) => f32_columns(row, file, spec, &opts.compare)?,
-            Some(Recon::Sh { .. }) => row.window = Some(ShWindow::Lanczos.name().into()),
-            _ => {}
-        }
+        add_columns(row, file, &opts.compare)?;
     }
     mark_pareto_bytes(&mut rows);
     Ok(TradeTable {
@@ -380,6 +259,24 @@ pub fn trade_table(
         comparison: c,
         warnings: Vec::new(),
     })
+}
+
+/// The columns of `row` that only some representations have: a texture's
+/// f32 evaluation, the GPU's, a series' window.
+fn add_columns(row: &mut TradeRow, file: &Distribution, opts: &CompareOptions) -> Result<(), ModelError> {
+    match row.recon {
+        Some(Recon::Gpu(spec)) => gpu_columns(row, file, spec, opts)?,
+        Some(r @ (Recon::Sh { gpu: true, .. } | Recon::Lobes { gpu: true, .. })) => {
+            compact_gpu_columns(row, file, r, opts)?;
+            if matches!(r, Recon::Sh { .. }) {
+                row.window = Some(ShWindow::Lanczos.name().into());
+            }
+        }
+        Some(Recon::Texture(spec)) => f32_columns(row, file, spec, opts)?,
+        Some(Recon::Sh { .. }) => row.window = Some(ShWindow::Lanczos.name().into()),
+        _ => {}
+    }
+    Ok(())
 }
 
 /// Mark the rows on the Pareto front of (bytes, radial max error). A `+gpu`

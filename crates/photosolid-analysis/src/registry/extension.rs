@@ -1,31 +1,32 @@
-//! The open extension point: a representation a caller adds, and the
-//! registry value that holds it beside the built-in ones.
+//! The open extension point: a representation as a trait, and the registry
+//! value that holds the representations a job offers.
 //!
 //! A [`Representation`] says how it is spelled (parsing its names, one
 //! parameter each), how it is built from a distribution into an
-//! [`IntensityField`] (whose `bytes()` is its storage), and which of its
-//! instances the trade table lists. A [`Registry`] is the value the jobs take
-//! (`compare`, `tradeoff`, `plan`, `batch --compact`: their settings' or
-//! options' `registry`): the built-in representations and those added to it
-//! with [`Registry::register`]. The jobs list the default instances of the
-//! representations in their registry after the built-in ones; a registry
+//! [`IntensityField`] (whose `bytes()` is its storage), optionally how the
+//! GPU evaluates it (its names with `+gpu`), and which of its instances each
+//! [`Job`] lists. A [`Registry`] is the value the jobs take (`compare`,
+//! `tradeoff`, `plan`, `batch --compact`: their settings' or options'
+//! `registry`): the built-in representations ([`super::builtin`], registered
+//! there in one place) and those added to it with [`Registry::register`].
+//! Each job reads its candidates from [`Registry::candidates`]; a registry
 //! without a representation lists none of it, so two callers in one process
 //! can offer different sets.
 //!
-//! A registered representation's names parse as [`Recon::Extension`]
-//! wherever a reconstruction is named (`--recon`, a scene's
-//! `representation`, `Recon::from_str`): a [`Recon`] is a small copyable
-//! name, so the definitions it points at are kept for the process
-//! (append-only; registering defines).
-//!
-//! The built-in representations are not (yet) implementations of this trait:
-//! [`Recon`]'s variants name them and [`super::Reconstructions`] builds them.
+//! A representation on this trait is named [`Recon::Extension`] wherever a
+//! reconstruction is named (`--recon`, a scene's `representation`,
+//! `Recon::from_str`): a [`Recon`] is a small copyable name, so the
+//! definitions it points at are kept for the process (append-only;
+//! registering defines).
 
 use std::sync::{Arc, RwLock};
 
+use crate::device::GpuDevice;
 use crate::error::ModelError;
 use crate::model::{Distribution, IntensityField};
 
+use super::builtin::{self, Job};
+use super::recon::{strip_gpu, GPU_SUFFIX};
 use super::Recon;
 
 /// A representation a caller adds to a [`Registry`].
@@ -45,9 +46,42 @@ pub trait Representation: Send + Sync {
     /// A [`ModelError`] when it cannot be built for this distribution.
     fn build(&self, dist: &Distribution, param: u32) -> Result<Box<dyn IntensityField + Send>, ModelError>;
 
-    /// The parameters of the instances `tradeoff` and `plan` list by default.
+    /// The parameters of the instances the jobs list by default.
     fn defaults(&self) -> Vec<u32> {
         Vec::new()
+    }
+
+    /// The parameters of the instances `job` lists: [`Representation::defaults`]
+    /// unless a representation lists by job.
+    fn candidates(&self, job: &Job<'_>) -> Vec<u32> {
+        let _ = job;
+        self.defaults()
+    }
+
+    /// Whether the GPU evaluates this representation
+    /// ([`Representation::build_gpu`]): its names with `+gpu` then parse.
+    fn evaluates_on_gpu(&self) -> bool {
+        false
+    }
+
+    /// The instance with parameter `param` built from `dist` and evaluated by
+    /// `device` (the installed GPU device, [`crate::device::device`]).
+    ///
+    /// # Errors
+    /// A [`ModelError`] when it cannot be built or the device fails; by
+    /// default, that this representation has no GPU evaluation.
+    fn build_gpu(
+        &self,
+        dist: &Distribution,
+        param: u32,
+        device: &'static dyn GpuDevice,
+    ) -> Result<Box<dyn IntensityField>, ModelError> {
+        let _ = (dist, device);
+        Err(ModelError::Parameter {
+            name: "recon",
+            value: format!("{}{GPU_SUFFIX}", self.name(param)),
+            reason: "this representation has no GPU evaluation".into(),
+        })
     }
 }
 
@@ -124,22 +158,41 @@ impl Registry {
     /// # Errors
     /// The built-in parser's [`ModelError::Parameter`] when neither spells it.
     pub fn parse(&self, name: &str) -> Result<Recon, ModelError> {
-        super::recon::parse_builtin(name).or_else(|e| parse_among(self.added.iter().copied(), name.trim()).ok_or(e))
+        builtin::parse(name).or_else(|e| parse_among(self.ids().into_iter(), name.trim()).ok_or(e))
     }
 
-    /// The default instances of the added representations, in the order added.
-    pub fn default_instances(&self) -> Vec<Recon> {
-        let defined = read();
-        self.added
-            .iter()
-            .filter_map(|&id| Some((id, defined.get(usize::from(id.0))?.clone())))
-            .flat_map(|(id, rep)| {
-                rep.defaults()
-                    .into_iter()
-                    .map(move |param| Recon::Extension { id, param })
-            })
-            .collect()
+    /// The built-in open representations' ids, then the added ones'
+    /// (collected first: the open ones are defined on first use, which takes
+    /// the definitions' write lock).
+    fn ids(&self) -> Vec<ExtensionId> {
+        open_builtins().iter().chain(&self.added).copied().collect()
     }
+
+    /// The candidates `job` lists: the built-in families' ([`super::builtin`]),
+    /// then the open built-in representations', then the added ones', each in
+    /// the order registered.
+    pub fn candidates(&self, job: &Job<'_>) -> Vec<Recon> {
+        let mut out = builtin::candidates(job);
+        let ids = self.ids();
+        let defined = read();
+        for id in ids {
+            if let Some(rep) = defined.get(usize::from(id.0)) {
+                out.extend(
+                    rep.candidates(job)
+                        .into_iter()
+                        .map(|param| Recon::Extension { id, param, gpu: false }),
+                );
+            }
+        }
+        out
+    }
+}
+
+/// The built-in representations on the open trait ([`builtin::open`]),
+/// defined for the process on first use.
+fn open_builtins() -> &'static [ExtensionId] {
+    static IDS: std::sync::OnceLock<Vec<ExtensionId>> = std::sync::OnceLock::new();
+    IDS.get_or_init(|| builtin::open().into_iter().filter_map(|rep| define(rep).ok()).collect())
 }
 
 /// Define `representation` for the process and give its id.
@@ -154,12 +207,22 @@ fn define(representation: Arc<dyn Representation>) -> Result<ExtensionId, ModelE
     Ok(ExtensionId(id))
 }
 
-/// The first of `ids` that reads `name`, as a [`Recon`].
+/// The first of `ids` that reads `name` (or, for a representation the GPU
+/// evaluates, `name` without its `+gpu`), as a [`Recon`].
 fn parse_among(mut ids: impl Iterator<Item = ExtensionId>, name: &str) -> Option<Recon> {
+    let (body, gpu) = strip_gpu(name);
     let defined = read();
     ids.find_map(|id| {
-        let param = defined.get(usize::from(id.0))?.parse(name)?;
-        Some(Recon::Extension { id, param })
+        let rep = defined.get(usize::from(id.0))?;
+        match rep.parse(name) {
+            Some(param) => Some(Recon::Extension { id, param, gpu: false }),
+            None if gpu && rep.evaluates_on_gpu() => Some(Recon::Extension {
+                id,
+                param: rep.parse(body)?,
+                gpu: true,
+            }),
+            None => None,
+        }
     })
 }
 
@@ -171,13 +234,19 @@ fn get(id: ExtensionId) -> Option<Arc<dyn Representation>> {
 /// The [`Recon`] the first representation registered in the process that
 /// reads `name` reads it as, if any.
 pub(crate) fn parse(name: &str) -> Option<Recon> {
+    open_builtins();
     let count = read().len();
     parse_among((0..count).filter_map(|i| u16::try_from(i).ok().map(ExtensionId)), name)
 }
 
 /// The name of an extension's instance (`?ID:PARAM` for an id never registered: a bug).
-pub(crate) fn name(id: ExtensionId, param: u32) -> String {
-    get(id).map_or_else(|| format!("?{}:{param}", id.0), |rep| rep.name(param))
+pub(crate) fn name(id: ExtensionId, param: u32, gpu: bool) -> String {
+    let name = get(id).map_or_else(|| format!("?{}:{param}", id.0), |rep| rep.name(param));
+    if gpu {
+        name + GPU_SUFFIX
+    } else {
+        name
+    }
 }
 
 /// The instance `id`/`param` built from `dist`.
@@ -188,4 +257,15 @@ pub(crate) fn build(
 ) -> Result<Box<dyn IntensityField + Send>, ModelError> {
     let rep = get(id).ok_or_else(|| ModelError::Internal(format!("representation {} was never registered", id.0)))?;
     rep.build(dist, param)
+}
+
+/// The instance `id`/`param` built from `dist` and evaluated by the installed GPU device.
+pub(crate) fn build_gpu(
+    id: ExtensionId,
+    param: u32,
+    dist: &Distribution,
+) -> Result<Box<dyn IntensityField>, ModelError> {
+    let rep = get(id).ok_or_else(|| ModelError::Internal(format!("representation {} was never registered", id.0)))?;
+    let device = crate::device::device().map_err(|e| ModelError::gpu(name(id, param, true), e))?;
+    rep.build_gpu(dist, param, device)
 }

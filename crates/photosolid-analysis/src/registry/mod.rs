@@ -14,12 +14,14 @@
 //! It sits above everything it chooses among, so that those never import
 //! each other to offer a choice (ARCHITECTURE.md, "Layers").
 
+pub mod builtin;
 pub mod extension;
 pub mod owned;
 pub mod recon;
 mod render;
 
+pub use builtin::{Job, Visible};
 pub use extension::{ExtensionId, Registry, Representation};
 pub use owned::{crop, OwnedSampler};
-pub use recon::{Recon, Reconstructions, DEFAULT_RECONS, GPU_SUFFIX, LOBES_PREFIX, SH_PREFIX};
+pub use recon::{Recon, Reconstructions, GPU_SUFFIX, LOBES_PREFIX, SH_PREFIX};
 pub use render::{render_on, RenderedOn};

@@ -8,12 +8,11 @@ use serde::{Serialize, Serializer};
 use super::extension::{self, ExtensionId};
 use super::owned::{crop, OwnedSampler};
 use crate::error::ModelError;
-use crate::fit::lobes::{fit_lobes, Lobes, MAX_LOBES};
+use crate::fit::lobes::{fit_lobes, Lobes};
 use crate::fit::{fit, FitOptions, PreparedLights};
 use crate::model::{Borrowed, Distribution, IntensityField, Symmetry};
 use crate::reconstruct::{
-    render, Compact, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec, MAX_SH_DEGREE,
-    MAX_ZONAL_SH_DEGREE,
+    render, Compact, Filter, LightTexture, Precision, ShField, ShWindow, StoredTexture, TextureSpec,
 };
 use crate::solid::{grid_solid, measured_solid, Mesh, RadialMesh, SolidGrid, Units};
 
@@ -65,7 +64,7 @@ pub enum Recon {
     /// ([`ShField`]); written `sh:L`, `sh:L+f16` for half-float coefficients,
     /// with `+gpu` evaluated by the GPU in f32 (`gpu::compact`, feature `gpu`).
     Sh {
-        /// The degree L (0 to [`MAX_SH_DEGREE`]; to [`MAX_ZONAL_SH_DEGREE`]
+        /// The degree L (0 to [`MAX_SH_DEGREE`](crate::reconstruct::MAX_SH_DEGREE); to [`MAX_ZONAL_SH_DEGREE`](crate::reconstruct::MAX_ZONAL_SH_DEGREE)
         /// for rotationally symmetric data, whose series is zonal).
         degree: usize,
         /// Coefficients stored as f16 (2 bytes) instead of f32 (4 bytes).
@@ -77,7 +76,7 @@ pub enum Recon {
     /// ([`crate::fit::lobes`]); written `lobes:K`, `lobes:K+gpu` evaluated by
     /// the GPU in f32.
     Lobes {
-        /// The number of lobes K (1 to [`MAX_LOBES`]).
+        /// The number of lobes K (1 to [`MAX_LOBES`](crate::fit::lobes::MAX_LOBES)).
         count: usize,
         /// Evaluated by the GPU's compute shader instead of the CPU.
         gpu: bool,
@@ -89,6 +88,8 @@ pub enum Recon {
         id: ExtensionId,
         /// The instance's parameter (the representation reads and writes it in its names).
         param: u32,
+        /// Evaluated by the GPU ([`super::Representation::build_gpu`]), written `NAME+gpu`.
+        gpu: bool,
     },
 }
 
@@ -100,19 +101,6 @@ pub const SH_PREFIX: &str = "sh:";
 
 /// The suffix naming a [`Recon::Gpu`] texture.
 pub const GPU_SUFFIX: &str = "+gpu";
-
-/// The default reconstructions of `photosolid compare`.
-pub const DEFAULT_RECONS: [Recon; 6] = [
-    Recon::Filter(Filter::Bilinear),
-    Recon::Filter(Filter::CatmullRom),
-    Recon::Filter(Filter::Mitchell {
-        b: 1.0 / 3.0,
-        c: 1.0 / 3.0,
-    }),
-    Recon::Filter(Filter::BSpline),
-    Recon::Filter(Filter::Pchip),
-    Recon::FittedGl,
-];
 
 impl fmt::Display for Recon {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -144,7 +132,7 @@ impl fmt::Display for Recon {
             Recon::Lobes { count, gpu } => {
                 write!(f, "{LOBES_PREFIX}{count}{}", if *gpu { GPU_SUFFIX } else { "" })
             }
-            Recon::Extension { id, param } => f.write_str(&extension::name(*id, *param)),
+            Recon::Extension { id, param, gpu } => f.write_str(&extension::name(*id, *param, *gpu)),
         }
     }
 }
@@ -155,7 +143,10 @@ impl Recon {
     pub fn on_gpu(&self) -> bool {
         matches!(
             self,
-            Recon::Gpu(_) | Recon::Sh { gpu: true, .. } | Recon::Lobes { gpu: true, .. }
+            Recon::Gpu(_)
+                | Recon::Sh { gpu: true, .. }
+                | Recon::Lobes { gpu: true, .. }
+                | Recon::Extension { gpu: true, .. }
         )
     }
 }
@@ -165,112 +156,12 @@ impl FromStr for Recon {
     /// A built-in reconstruction's name, else the name of an instance of a
     /// representation registered in the process (in any [`super::Registry`]).
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        parse_builtin(s).or_else(|e| extension::parse(s.trim()).ok_or(e))
-    }
-}
-
-/// A built-in reconstruction's name.
-pub(crate) fn parse_builtin(s: &str) -> Result<Recon, ModelError> {
-    match s.trim() {
-        "measured" => Ok(Recon::Measured),
-        x if x.contains("+gamma:") || x.contains("+isym:") => parse_regridded(x),
-        x if x == crate::fit::RECONSTRUCTION_NAME => Ok(Recon::FittedGl),
-        x if x.starts_with(SH_PREFIX) => parse_sh(x),
-        x if x.starts_with(LOBES_PREFIX) => parse_lobes(x),
-        x if x.contains('@') => match x.strip_suffix(GPU_SUFFIX) {
-            Some(t) => t.parse().map(Recon::Gpu),
-            None => x.parse().map(Recon::Texture),
-        },
-        x => x
-            .parse::<Filter>()
-            .map(Recon::Filter)
-            .map_err(|_| ModelError::Parameter {
-                name: "recon",
-                value: x.to_string(),
-                reason: format!(
-                    "expected measured, {}, a texture FILTER@xK/LOOKUP, FILTER+gamma:A-B[+c:A-B], FILTER+isym:N, sh:L[+f16], lobes:K, or a filter ({})",
-                    crate::fit::RECONSTRUCTION_NAME,
-                    crate::reconstruct::FILTER_NAMES
-                ),
-            }),
-    }
-}
-
-/// `FILTER+gamma:A-B[+c:A-B]` or `FILTER+isym:N`.
-fn parse_regridded(s: &str) -> Result<Recon, ModelError> {
-    let bad = || ModelError::Parameter {
-        name: "recon",
-        value: s.to_string(),
-        reason: "expected FILTER+gamma:FROM-TO[+c:FROM-TO] or FILTER+isym:N (N 0-4)".into(),
-    };
-    // `A-B` with finite A, B (a leading minus sign belongs to A).
-    let range = |t: &str| -> Option<(f64, f64)> {
-        let at = t.char_indices().skip(1).find(|&(_, ch)| ch == '-')?.0;
-        let (a, b) = (t[..at].parse::<f64>().ok()?, t[at + 1..].parse::<f64>().ok()?);
-        (a.is_finite() && b.is_finite()).then_some((a, b))
-    };
-    let mut parts = s.split('+');
-    let filter: Filter = parts.next().ok_or_else(bad)?.parse()?;
-    let (mut gamma, mut c, mut isym) = (None, None, None);
-    for part in parts {
-        match part.split_once(':') {
-            Some(("gamma", v)) if gamma.is_none() => gamma = Some(range(v).ok_or_else(bad)?),
-            Some(("c", v)) if c.is_none() => c = Some(range(v).ok_or_else(bad)?),
-            Some(("isym", v)) if isym.is_none() => {
-                isym = Some(v.parse::<i64>().ok().and_then(Symmetry::from_isym).ok_or_else(bad)?)
-            }
-            _ => return Err(bad()),
-        }
-    }
-    match (gamma, c, isym) {
-        (Some((gamma_from, gamma_to)), c, None) => Ok(Recon::Cropped {
-            filter,
-            gamma_from,
-            gamma_to,
-            c,
-        }),
-        (None, None, Some(symmetry)) => Ok(Recon::Symmetric { filter, symmetry }),
-        _ => Err(bad()),
-    }
-}
-
-/// `sh:L[+f16][+gpu]`, L in 0..=[`MAX_ZONAL_SH_DEGREE`] (above
-/// [`MAX_SH_DEGREE`] only rotationally symmetric data builds, see [`ShField::new`]).
-fn parse_sh(x: &str) -> Result<Recon, ModelError> {
-    let body = x.strip_prefix(SH_PREFIX).unwrap_or(x);
-    let (body, gpu) = strip_gpu(body);
-    let (digits, f16) = match body.strip_suffix("+f16") {
-        Some(d) => (d, true),
-        None => (body, false),
-    };
-    match digits.parse::<usize>() {
-        Ok(degree) if degree <= MAX_ZONAL_SH_DEGREE => Ok(Recon::Sh { degree, f16, gpu }),
-        _ => Err(ModelError::Parameter {
-            name: "recon",
-            value: x.to_string(),
-            reason: format!(
-                "expected sh:L[+f16][+gpu] with the degree L from 0 to {MAX_SH_DEGREE} \
-                 ({MAX_ZONAL_SH_DEGREE} for rotationally symmetric data)"
-            ),
-        }),
-    }
-}
-
-/// `lobes:K[+gpu]`, K in 1..=[`MAX_LOBES`].
-fn parse_lobes(x: &str) -> Result<Recon, ModelError> {
-    let (body, gpu) = strip_gpu(x.strip_prefix(LOBES_PREFIX).unwrap_or(x));
-    match body.parse::<usize>() {
-        Ok(count) if (1..=MAX_LOBES).contains(&count) => Ok(Recon::Lobes { count, gpu }),
-        _ => Err(ModelError::Parameter {
-            name: "recon",
-            value: x.to_string(),
-            reason: format!("expected lobes:K[+gpu] with the lobe count K from 1 to {MAX_LOBES}"),
-        }),
+        super::builtin::parse(s).or_else(|e| extension::parse(s.trim()).ok_or(e))
     }
 }
 
 /// `s` without a trailing [`GPU_SUFFIX`], and whether it had one.
-fn strip_gpu(s: &str) -> (&str, bool) {
+pub(crate) fn strip_gpu(s: &str) -> (&str, bool) {
     match s.strip_suffix(GPU_SUFFIX) {
         Some(body) => (body, true),
         None => (s, false),
@@ -352,13 +243,14 @@ impl Reconstructions {
             Recon::FittedGl => Box::new(Borrowed(self.fitted.as_ref().ok_or_else(missing)?)),
             Recon::Gpu(t) => self.gpu_field(r, t)?,
             Recon::Lobes { gpu: true, .. } | Recon::Sh { gpu: true, .. } => self.gpu_compact(r, self.compact(r)?)?,
+            Recon::Extension { id, param, gpu: true } => extension::build_gpu(id, param, &self.dist)?,
             // Built by owned_field.
             Recon::Texture(_)
             | Recon::Cropped { .. }
             | Recon::Symmetric { .. }
             | Recon::Lobes { gpu: false, .. }
             | Recon::Sh { gpu: false, .. }
-            | Recon::Extension { .. } => return Err(missing()),
+            | Recon::Extension { gpu: false, .. } => return Err(missing()),
         })
     }
 
@@ -386,7 +278,7 @@ impl Reconstructions {
             } => self.owned(r, crop(&self.dist, gamma_from, gamma_to, c)?, filter)?,
             Recon::Symmetric { filter, symmetry } => self.owned(r, self.dist.with_symmetry(symmetry)?, filter)?,
             Recon::Lobes { gpu: false, .. } | Recon::Sh { gpu: false, .. } => Box::new(self.compact(r)?),
-            Recon::Extension { id, param } => extension::build(id, param, &self.dist)?,
+            Recon::Extension { id, param, gpu: false } => extension::build(id, param, &self.dist)?,
             _ => return Ok(None),
         }))
     }
