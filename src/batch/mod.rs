@@ -126,7 +126,7 @@ pub struct BatchRecord {
     /// With `batch --compact` ([`BatchOptions::compact`]): the representation
     /// with the fewest bytes whose largest error over the hold-out's withheld
     /// samples ([`HOLDOUT`]) is within 1 % of I_max, among the six filters on
-    /// the measured grid, `sh:{2,4,8,16}` and `lobes:{1,2,3,4}` (each rebuilt
+    /// the measured grid, `sh:{2,4,8,16}`, `lobes:{1,2,3,4}` and `c-mean` (each rebuilt
     /// from the kept samples; `compare::smallest_named`, the rule of
     /// `tradeoff`'s key of the same name). Null when none is, and when not
     /// measured (then `compact_ms` is null too; schema 3).
@@ -362,7 +362,7 @@ fn compact_candidates(
         .map(|r| (r.filter.to_string(), full.sampler(r.filter).bytes(), r.max_percent))
         .collect();
     let split = holdout_split(d, HOLDOUT)?;
-    let candidates = registry.candidates(&Job::Compact);
+    let candidates = registry.candidates(&Job::Compact { dist: d });
     let kept = crate::registry::Reconstructions::new(split.kept.clone(), &candidates)?;
     for r in candidates {
         let field = kept.field(r)?;

@@ -33,7 +33,7 @@ pub struct BatchArgs {
     /// Skip files whose path is already in the output (OUT.parquet, else OUT.jsonl), keeping their rows.
     #[arg(long)]
     resume: bool,
-    /// Also measure sh:{2,4,8,16} and lobes:{1,2,3,4} against the hold-out and fill the
+    /// Also measure sh:{2,4,8,16}, lobes:{1,2,3,4} and c-mean against the hold-out and fill the
     /// `smallest_within_1pct` column (tens of ms a file; null without this flag).
     #[arg(long)]
     compact: bool,

@@ -33,7 +33,8 @@ pub struct CompareArgs {
     vs: Option<PathBuf>,
     /// Reconstructions of FILE (comma separated): measured, fitted-gl, filters, textures
     /// FILTER@xK/LOOKUP, spherical harmonics sh:L[+f16] (L 0-32; to 128 for data the same
-    /// in every C-plane), lobe mixtures lobes:K (K 1-16).
+    /// in every C-plane), lobe mixtures lobes:K (K 1-16), the mean γ profile over C c-mean;
+    /// +gpu after a texture, sh:L, lobes:K or c-mean: evaluated by the GPU.
     #[arg(long, value_delimiter = ',')]
     recon: Option<Vec<Recon>>,
     /// The reference: truth (the closed form a synth file records), withheld

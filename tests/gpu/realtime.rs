@@ -453,3 +453,44 @@ fn trade_table_gpu_rows() {
         }
     }
 }
+
+/// A built-in representation on the open trait evaluated by the GPU
+/// (`c-mean+gpu`, `Representation::build_gpu`). batwing.ldt is the same in
+/// every plane, so its mean profile is the file (to rounding): the GPU reads
+/// the texels of `catmull-rom@x5/bilinear+gpu`, and stays within the
+/// hardware lookup's difference (the trade table's bound, 0.01 % of I_max)
+/// of the CPU's exact lookup of the same texture.
+#[test]
+fn an_open_representation_on_the_gpu() {
+    use photosolid::registry::{Recon, Reconstructions};
+    let Some(_) = ctx("an_open_representation_on_the_gpu") else {
+        return;
+    };
+    let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/batwing.ldt")).unwrap();
+    let names = ["c-mean+gpu", "catmull-rom@x5/bilinear+gpu", "catmull-rom@x5/bilinear"];
+    let recons: Vec<Recon> = names.iter().map(|n| n.parse().unwrap()).collect();
+    assert!(recons[0].on_gpu() && !recons[2].on_gpu());
+    assert_eq!(recons[0].to_string(), "c-mean+gpu");
+    let recs = Reconstructions::new(lum.distribution().clone(), &recons).unwrap();
+    let dirs: Vec<(f64, f64)> = (0..50)
+        .flat_map(|i| (0..59).map(move |j| (7.3 * f64::from(i), 3.1 * f64::from(j))))
+        .collect();
+    let values: Vec<Vec<f64>> = recons
+        .iter()
+        .map(|r| recs.field(*r).unwrap().intensity_batch_cd(&dirs))
+        .collect();
+    let i_max = lum.distribution().max_cd();
+    // Where the adapter cannot filter R32Float (llvmpipe GL) the texels are half floats: half an
+    // ulp, 2^-11 of I_max, more from the CPU's f32 texels.
+    let gpu_name = recs.field(recons[0]).unwrap().name();
+    let f16 = if gpu_name.contains("+f16") { 2f64.powi(-11) } else { 0.0 };
+    for (k, dir) in dirs.iter().enumerate() {
+        assert_close!(values[0][k], values[1][k], abs = 1e-6 * i_max, "{dir:?}");
+        assert_close!(
+            values[0][k],
+            values[2][k],
+            abs = (1e-4 + f16) * i_max,
+            "{gpu_name} {dir:?}"
+        );
+    }
+}

@@ -201,3 +201,84 @@ fn plan_and_batch_take_it_as_a_candidate() {
         rows[0].errors
     );
 }
+
+/// A built-in representation on the open trait (`c-mean`, one file and one
+/// line in `registry::builtin`) is in every registry: `--recon` parses it
+/// with and without `+gpu`, `tradeoff` and `plan` list it for data that
+/// stores more than one plane, `compare`'s defaults do not. On data the same in every plane it is the Catmull-Rom
+/// filter on one column; where the planes differ its error is that asymmetry.
+#[test]
+fn a_builtin_on_the_open_trait_is_in_every_registry() {
+    let builtin = Registry::builtin();
+    assert_eq!(builtin.parse("c-mean").unwrap().to_string(), "c-mean");
+    assert_eq!(builtin.parse("c-mean+gpu").unwrap().to_string(), "c-mean+gpu");
+    assert!(builtin.parse("c-mean+gpu").unwrap().on_gpu());
+    assert!(builtin.parse("c-mean:2").is_err());
+    // An added representation cannot take its name.
+    struct Squatter;
+    impl Representation for Squatter {
+        fn parse(&self, name: &str) -> Option<u32> {
+            (name == "c-mean").then_some(0)
+        }
+        fn name(&self, _: u32) -> String {
+            "c-mean".into()
+        }
+        fn build(&self, _: &Distribution, _: u32) -> Result<Box<dyn IntensityField + Send>, ModelError> {
+            Err(ModelError::Internal("never built".into()))
+        }
+        fn defaults(&self) -> Vec<u32> {
+            vec![0]
+        }
+    }
+    assert!(Registry::builtin().register(Arc::new(Squatter)).is_err());
+    assert!(!builtin
+        .candidates(&Job::Compare)
+        .iter()
+        .any(|r| r.to_string() == "c-mean"));
+
+    let settings = TradeoffSettings {
+        factors: vec![1],
+        repeats: 1,
+        ..Default::default()
+    };
+    let row = |t: &photosolid::compare::trade::TradeTable, name: &str| {
+        t.rows.iter().find(|r| r.representation == name).cloned().expect(name)
+    };
+    // The cosine-power luminaire stored in all of its 24 planes, the same in each.
+    let grid = GridSpec::uniform(15.0, 5.0).unwrap();
+    let mut lum = Synth::CosinePower { p: 5.0 }.build(&grid, 1000.0).unwrap();
+    lum.set_distribution(lum.distribution().expand(24));
+    let doc = Document::from(lum);
+    assert_eq!(doc.distribution().n_c(), 24);
+    let t = jobs::tradeoff(named(&doc), None, &settings, &jobs::no_progress).unwrap();
+    let (mean, cr) = (row(&t, "c-mean"), row(&t, "catmull-rom"));
+    assert!(mean.bytes < cr.bytes / 4, "{} vs {} bytes", mean.bytes, cr.bytes);
+    assert!(
+        (mean.radial_max_pct - cr.radial_max_pct).abs() < 1e-6,
+        "{mean:?} vs {cr:?}"
+    );
+    // Planes that differ: the roadway luminaire's mean profile is far from it.
+    let road =
+        photosolid::formats::load_document(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/roadway.ldt")).unwrap();
+    let road_named = Named {
+        name: "roadway",
+        document: &road,
+        handedness: Default::default(),
+    };
+    let two = CompareSettings {
+        recons: Some(["c-mean", "catmull-rom"].map(|n| builtin.parse(n).unwrap()).to_vec()),
+        ..Default::default()
+    };
+    let c = jobs::compare(road_named, None, &two, &jobs::no_progress).unwrap();
+    let (mean, cr) = (&c.results[0], &c.results[1]);
+    assert_eq!((mean.name.as_str(), cr.name.as_str()), ("c-mean", "catmull-rom"));
+    assert!(mean.radial_max_pct > 10.0 * cr.radial_max_pct, "{mean:?} vs {cr:?}");
+
+    // The road scene's luminaire stores its planes (the office's are rotational: no c-mean there).
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("data/road_en13201.toml");
+    let answer = jobs::plan(&scene, &jobs::PlanSettings::default(), None).unwrap();
+    assert!(
+        serde_json::to_string(&answer).unwrap().contains("\"c-mean\""),
+        "plan's candidates"
+    );
+}

@@ -21,7 +21,7 @@ impl Builtin for FittedGl {
         match job {
             Job::Compare | Job::Tradeoff { .. } | Job::TradeRows { .. } | Job::Plan { .. } => vec![Recon::FittedGl],
             // The hold-out pass of `batch` fits on the whole file (its `fitted_gl` column).
-            Job::Compact => Vec::new(),
+            Job::Compact { .. } => Vec::new(),
         }
     }
 }

@@ -62,7 +62,7 @@ impl Builtin for LobeMixtures {
                 }
                 out
             }
-            Job::Plan { .. } | Job::Compact => LOBE_COUNTS.map(lobes).to_vec(),
+            Job::Plan { .. } | Job::Compact { .. } => LOBE_COUNTS.map(lobes).to_vec(),
         }
     }
 }

@@ -19,7 +19,7 @@ impl Builtin for Measured {
     fn candidates(&self, job: &Job<'_>) -> Vec<Recon> {
         match job {
             Job::Compare | Job::Tradeoff { .. } | Job::TradeRows { .. } => vec![Recon::Measured],
-            Job::Plan { .. } | Job::Compact => Vec::new(),
+            Job::Plan { .. } | Job::Compact { .. } => Vec::new(),
         }
     }
 }

@@ -17,6 +17,7 @@
 //! [`Representation`] in a file of its own and is one line of this
 //! module's `open` list.
 
+mod c_mean;
 mod fitted;
 mod lobes;
 mod measured;
@@ -70,8 +71,12 @@ pub enum Job<'a> {
         /// The directions the scene sees, when not all.
         visible: Option<Visible>,
     },
-    /// `batch --compact`'s candidates besides the filters (which its hold-out pass measures).
-    Compact,
+    /// `batch --compact`'s candidates for a file of `dist`, besides the
+    /// filters (which its hold-out pass measures).
+    Compact {
+        /// The file's distribution (the hold-out's kept samples are a part of it).
+        dist: &'a Distribution,
+    },
 }
 
 impl Job<'_> {
@@ -86,6 +91,15 @@ impl Job<'_> {
             )),
             Job::TradeRows { symmetry, factors } => Some((symmetry, false, factors)),
             _ => None,
+        }
+    }
+
+    /// The symmetry the job's file declares, when it has one.
+    pub fn declared_symmetry(&self) -> Option<Symmetry> {
+        match *self {
+            Job::Tradeoff { file: dist, .. } | Job::Plan { dist, .. } | Job::Compact { dist } => Some(dist.symmetry()),
+            Job::TradeRows { symmetry, .. } => Some(symmetry),
+            Job::Compare => None,
         }
     }
 
@@ -126,7 +140,7 @@ pub(crate) const BUILTINS: [&dyn Builtin; 7] = [
 /// on the open trait ([`Representation`]): in every registry, listed after
 /// the typed families, one line each.
 pub(crate) fn open() -> Vec<Arc<dyn Representation>> {
-    Vec::new()
+    vec![Arc::new(c_mean::CMean)]
 }
 
 /// `name` read as a built-in typed representation.
@@ -181,7 +195,7 @@ mod tests {
                 dist: &dist,
                 visible: Some((0.0, 80.0, Some((350.0, 10.0)))),
             },
-            Job::Compact,
+            Job::Compact { dist: &dist },
         ];
         for job in jobs {
             let listed = Registry::builtin().candidates(&job);

@@ -74,7 +74,7 @@ impl Builtin for Sh {
     fn candidates(&self, job: &Job<'_>) -> Vec<Recon> {
         let Some((_, zonal, _)) = job.trade_view() else {
             return match job {
-                Job::Plan { .. } | Job::Compact => SH_DEGREES.map(sh).to_vec(),
+                Job::Plan { .. } | Job::Compact { .. } => SH_DEGREES.map(sh).to_vec(),
                 _ => Vec::new(),
             };
         };

@@ -36,7 +36,7 @@ impl Builtin for Filters {
                 Filter::ALL.into_iter().map(Recon::Filter).collect()
             }
             // `batch`'s hold-out pass measures the filters itself.
-            Job::Compact => Vec::new(),
+            Job::Compact { .. } => Vec::new(),
         }
     }
 }
