@@ -187,25 +187,30 @@ fn to_text(t: &TradeTable) -> String {
 fn gpu_rows_text(t: &TradeTable, out: &mut String) {
     use std::fmt::Write as _;
     for r in t.rows.iter().filter(|r| r.adapter.is_some()) {
+        let adapter = r.adapter.as_deref().unwrap_or("?");
+        let vs_cpu = r.hardware_vs_exact_max_pct.unwrap_or(f64::NAN);
+        let Some(dispatch) = r.ns_per_sample_gpu else {
+            // A representation on the open trait, evaluated by its own `build_gpu`.
+            let _ = writeln!(
+                out,
+                "{}: evaluated on {adapter} by the representation's own GPU path (ns/sample above: batch upload + evaluation + read-back); max |GPU - CPU evaluation| {vs_cpu:.2e} % of I_max",
+                r.representation,
+            );
+            continue;
+        };
         // A texture row is read through the sampler; a series (sh:L, lobes:K) is evaluated in the shader.
         let how = match r.texture_format.as_deref() {
             Some(format) => format!(
-                "{format} on {}; sub-texel weights {}; max |hardware - exact lookup, same texels|",
-                r.adapter.as_deref().unwrap_or("?"),
+                "{format} on {adapter}; sub-texel weights {}; max |hardware - exact lookup, same texels|",
                 r.subtexel_bits
                     .map_or("not probed".into(), |bits| format!("{bits:.1} bits"))
             ),
-            None => format!(
-                "evaluated in a compute shader on {}, no texture; max |GPU - CPU evaluation|",
-                r.adapter.as_deref().unwrap_or("?")
-            ),
+            None => format!("evaluated in a compute shader on {adapter}, no texture; max |GPU - CPU evaluation|"),
         };
         let _ = writeln!(
             out,
-            "{}: GPU dispatch {:.2} ns/sample (ns/sample above: batch upload + dispatch + read-back); {how} {:.2e} % of I_max",
+            "{}: GPU dispatch {dispatch:.2} ns/sample (ns/sample above: batch upload + dispatch + read-back); {how} {vs_cpu:.2e} % of I_max",
             r.representation,
-            r.ns_per_sample_gpu.unwrap_or(f64::NAN),
-            r.hardware_vs_exact_max_pct.unwrap_or(f64::NAN),
         );
     }
 }

@@ -494,3 +494,44 @@ fn an_open_representation_on_the_gpu() {
         );
     }
 }
+
+/// `tradeoff --gpu` lists the GPU's evaluation of a representation on the
+/// open trait after its CPU row: `c-mean+gpu` names the adapter and its
+/// largest difference from `c-mean`, which on a profile this smooth is the
+/// x5 texture's bilinear reading (under 0.1 % of I_max).
+#[test]
+fn trade_table_lists_open_gpu_twins() {
+    use photosolid::compare::trade::{trade_table, TradeOptions};
+    use photosolid::compare::{Against, CompareOptions, Directions};
+    use photosolid::synth::{GridSpec, Synth};
+    let Some(c) = ctx("trade_table_lists_open_gpu_twins") else {
+        return;
+    };
+    let grid = GridSpec::uniform(15.0, 5.0).unwrap();
+    let mut lum = Synth::CosinePower { p: 5.0 }.build(&grid, 1000.0).unwrap();
+    lum.set_distribution(lum.distribution().expand(24));
+    let opts = TradeOptions {
+        factors: vec![1],
+        compare: CompareOptions {
+            against: Some(Against::Truth),
+            truth: photosolid::synth::Truth::of_luminaire(&lum),
+            directions: Directions::Dense(2000),
+            factor: 2,
+            tolerance: 0.01,
+            timing_samples: 500,
+            timing_repeats: 1,
+            ..CompareOptions::default()
+        },
+        gpu: true,
+        ..Default::default()
+    };
+    let t = trade_table(lum.distribution(), None, &opts, &|_, _, _| {}).unwrap();
+    let at = |name: &str| t.rows.iter().position(|r| r.representation == name).expect(name);
+    assert_eq!(at("c-mean+gpu"), at("c-mean") + 1);
+    let g = &t.rows[at("c-mean+gpu")];
+    assert_eq!(g.adapter.as_deref(), Some(c.adapter().to_string().as_str()));
+    assert!(g.ns_per_sample_gpu.is_none() && g.ns_per_sample > 0.0);
+    let d = g.hardware_vs_exact_max_pct.unwrap();
+    assert!(d > 0.0 && d < 0.1, "{d} % of I_max");
+    assert!(t.rows[at("c-mean")].adapter.is_none());
+}

@@ -93,7 +93,9 @@ pub struct TradeRow {
     /// f32 angle falls on the other side of a texel edge).
     pub f32_vs_f64_max_pct: Option<f64>,
     /// `+gpu` rows: median ns per direction of the GPU dispatch alone
-    /// (the timing directions resident on the device); null for CPU rows.
+    /// (the timing directions resident on the device); null for CPU rows and
+    /// for a representation on the open trait, whose GPU path is timed whole
+    /// (`ns_per_sample`).
     pub ns_per_sample_gpu: Option<f64>,
     /// `+gpu` rows: the adapter, e.g. `llvmpipe (LLVM 15.0.6, 256 bits) [Vulkan, Cpu, …]`.
     pub adapter: Option<String>,
@@ -106,7 +108,9 @@ pub struct TradeRow {
     /// `+gpu` rows: largest |hardware − exact lookup on the same texels| over
     /// the timing directions, % of I_max: the cost of hardware filtering alone;
     /// for `sh:L+gpu` and `lobes:K+gpu`, |f32 shader − f64 CPU evaluation of
-    /// the same stored parameters|, % of the file's I_max.
+    /// the same stored parameters|, % of the file's I_max; for a
+    /// representation on the open trait (`c-mean+gpu`), |its GPU − its CPU
+    /// instance| over the same directions, % of the file's I_max.
     pub hardware_vs_exact_max_pct: Option<f64>,
     /// Hausdorff distance, % of the reference I_max (certified for a field
     /// reference: the true value is at most this plus `hausdorff_bound_pct`).
@@ -274,8 +278,49 @@ fn add_columns(row: &mut TradeRow, file: &Distribution, opts: &CompareOptions) -
         }
         Some(Recon::Texture(spec)) => f32_columns(row, file, spec, opts)?,
         Some(Recon::Sh { .. }) => row.window = Some(ShWindow::Lanczos.name().into()),
+        Some(r @ Recon::Extension { gpu: true, .. }) => open_gpu_columns(row, file, r, opts)?,
         _ => {}
     }
+    Ok(())
+}
+
+/// Fill the GPU columns of a representation on the open trait evaluated by
+/// the GPU (`NAME+gpu`, `Representation::build_gpu`): the adapter, and the
+/// largest difference from its CPU instance over the CPU rows' timing
+/// directions. Its dispatch alone is not separable from the caller's time
+/// (`ns_per_sample`, upload to read-back), so `ns_per_sample_gpu` stays empty.
+fn open_gpu_columns(
+    row: &mut TradeRow,
+    file: &Distribution,
+    r: Recon,
+    opts: &CompareOptions,
+) -> Result<(), ModelError> {
+    let Recon::Extension { id, param, .. } = r else {
+        return Ok(());
+    };
+    let device = gpu_device(row)?;
+    if let crate::device::Selected::Gpu { adapter } = device
+        .select(crate::reconstruct::Backend::Gpu)
+        .map_err(|e| gpu_error(row, e))?
+    {
+        row.adapter = Some(adapter);
+    }
+    let cpu = Recon::Extension { id, param, gpu: false };
+    let built = crate::registry::Reconstructions::new(file.clone(), &[r, cpu])?;
+    let dirs: Vec<(f64, f64)> = opts
+        .timing_directions()
+        .into_iter()
+        .map(crate::model::frame::unit_angles)
+        .collect();
+    let on_gpu = built.field(r)?.intensity_batch_cd(&dirs);
+    let on_cpu = built.field(cpu)?.intensity_batch_cd(&dirs);
+    let largest = on_gpu
+        .iter()
+        .zip(&on_cpu)
+        .map(|(g, c)| (g - c).abs())
+        .fold(0.0, f64::max);
+    let i_max = file.max_cd();
+    row.hardware_vs_exact_max_pct = Some(if i_max > 0.0 { 100.0 * largest / i_max } else { 0.0 });
     Ok(())
 }
 

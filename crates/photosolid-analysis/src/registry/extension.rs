@@ -170,19 +170,30 @@ impl Registry {
 
     /// The candidates `job` lists: the built-in families' ([`super::builtin`]),
     /// then the open built-in representations', then the added ones', each in
-    /// the order registered.
+    /// the order registered. A `tradeoff --gpu` table also lists the GPU's
+    /// evaluation (`NAME+gpu`) of each instance of a representation the GPU
+    /// evaluates, after its CPU instances.
     pub fn candidates(&self, job: &Job<'_>) -> Vec<Recon> {
         let mut out = builtin::candidates(job);
         let ids = self.ids();
         let defined = read();
+        let gpu_twins = matches!(job, Job::Tradeoff { gpu: true, .. });
         for id in ids {
-            if let Some(rep) = defined.get(usize::from(id.0)) {
-                out.extend(
-                    rep.candidates(job)
-                        .into_iter()
-                        .map(|param| Recon::Extension { id, param, gpu: false }),
-                );
-            }
+            let Some(rep) = defined.get(usize::from(id.0)) else {
+                continue;
+            };
+            let params = rep.candidates(job);
+            let twins = if gpu_twins && rep.evaluates_on_gpu() {
+                params.clone()
+            } else {
+                Vec::new()
+            };
+            out.extend(
+                params
+                    .into_iter()
+                    .map(|param| Recon::Extension { id, param, gpu: false }),
+            );
+            out.extend(twins.into_iter().map(|param| Recon::Extension { id, param, gpu: true }));
         }
         out
     }
