@@ -382,34 +382,44 @@ fn shaded_plane_gpu_matches_cpu() {
     assert!(shading::shade_gpu(device, &r, Lookup::Bilinear, &PlaneView { pixels: 0, ..view }).is_err());
 }
 
+/// A quick `tradeoff --gpu` of `lum` against `against` (2,000 dense
+/// directions, x2 solids, 500 timing samples once), textures at `factor`.
+fn gpu_trade(
+    lum: &photosolid::Luminaire,
+    against: photosolid::compare::Against,
+    factor: u32,
+) -> photosolid::compare::trade::TradeOptions {
+    use photosolid::compare::{CompareOptions, Directions};
+    photosolid::compare::trade::TradeOptions {
+        factors: vec![factor],
+        compare: CompareOptions {
+            against: Some(against),
+            truth: photosolid::synth::Truth::of_luminaire(lum),
+            directions: Directions::Dense(2000),
+            factor: 2,
+            tolerance: 0.01,
+            timing_samples: 500,
+            timing_repeats: 1,
+            ..CompareOptions::default()
+        },
+        gpu: true,
+        ..Default::default()
+    }
+}
+
 /// The trade table's `+gpu` rows: measured like the CPU rows (truth and
 /// withheld), naming the adapter; their errors match the exact lookup of the
 /// same texture to within the hardware's difference.
 #[test]
 fn trade_table_gpu_rows() {
-    use photosolid::compare::trade::{trade_table, TradeOptions};
-    use photosolid::compare::{Against, CompareOptions, Directions};
+    use photosolid::compare::trade::trade_table;
+    use photosolid::compare::Against;
     let Some(c) = ctx("trade_table_gpu_rows") else {
         return;
     };
     let lum = photosolid::load(Path::new(env!("CARGO_MANIFEST_DIR")).join("data/batwing.ldt")).unwrap();
     for against in [Against::Truth, Against::Withheld] {
-        let opts = TradeOptions {
-            factors: vec![5],
-            compare: CompareOptions {
-                against: Some(against),
-                truth: photosolid::synth::Truth::of_luminaire(&lum),
-                directions: Directions::Dense(2000),
-                factor: 2,
-                tolerance: 0.01,
-                timing_samples: 500,
-                timing_repeats: 1,
-                ..CompareOptions::default()
-            },
-            gpu: true,
-            ..Default::default()
-        };
-        let t = trade_table(lum.distribution(), None, &opts, &|_, _, _| {}).unwrap();
+        let t = trade_table(lum.distribution(), None, &gpu_trade(&lum, against, 5), &|_, _, _| {}).unwrap();
         let row = |name: &str| t.rows.iter().find(|r| r.representation == name).unwrap();
         for (gpu, cpu) in [
             ("catmull-rom@x5/bilinear+gpu", "catmull-rom@x5/bilinear"),
@@ -501,8 +511,8 @@ fn an_open_representation_on_the_gpu() {
 /// x5 texture's bilinear reading (under 0.1 % of I_max).
 #[test]
 fn trade_table_lists_open_gpu_twins() {
-    use photosolid::compare::trade::{trade_table, TradeOptions};
-    use photosolid::compare::{Against, CompareOptions, Directions};
+    use photosolid::compare::trade::trade_table;
+    use photosolid::compare::Against;
     use photosolid::synth::{GridSpec, Synth};
     let Some(c) = ctx("trade_table_lists_open_gpu_twins") else {
         return;
@@ -510,22 +520,13 @@ fn trade_table_lists_open_gpu_twins() {
     let grid = GridSpec::uniform(15.0, 5.0).unwrap();
     let mut lum = Synth::CosinePower { p: 5.0 }.build(&grid, 1000.0).unwrap();
     lum.set_distribution(lum.distribution().expand(24));
-    let opts = TradeOptions {
-        factors: vec![1],
-        compare: CompareOptions {
-            against: Some(Against::Truth),
-            truth: photosolid::synth::Truth::of_luminaire(&lum),
-            directions: Directions::Dense(2000),
-            factor: 2,
-            tolerance: 0.01,
-            timing_samples: 500,
-            timing_repeats: 1,
-            ..CompareOptions::default()
-        },
-        gpu: true,
-        ..Default::default()
-    };
-    let t = trade_table(lum.distribution(), None, &opts, &|_, _, _| {}).unwrap();
+    let t = trade_table(
+        lum.distribution(),
+        None,
+        &gpu_trade(&lum, Against::Truth, 1),
+        &|_, _, _| {},
+    )
+    .unwrap();
     let at = |name: &str| t.rows.iter().position(|r| r.representation == name).expect(name);
     assert_eq!(at("c-mean+gpu"), at("c-mean") + 1);
     let g = &t.rows[at("c-mean+gpu")];

@@ -101,18 +101,12 @@ impl Representation for CMean {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::synth::{GridSpec, Synth};
 
     /// Data the same in every plane is its own mean; a plane-dependent one is
     /// averaged with the arc weights (a cos C term averages out).
     #[test]
     fn the_profile_is_the_arc_weighted_mean() {
-        let grid = GridSpec::uniform(15.0, 5.0).unwrap();
-        let dist = Synth::CosinePower { p: 5.0 }
-            .build(&grid, 1000.0)
-            .unwrap()
-            .distribution()
-            .clone();
+        let dist = super::super::tests::cosine_p5();
         let field = CMean.build(&dist, 0).unwrap();
         // The same as the Catmull-Rom filter on the measured grid, which is the same in every plane.
         let measured = LightTexture::new(&dist).unwrap();

@@ -171,15 +171,17 @@ mod tests {
     use crate::registry::Registry;
     use crate::synth::{GridSpec, Synth};
 
+    /// A cosine-power luminaire (p = 5, peak 1000 cd) on a 15° x 5° grid, stored rotational.
+    pub(super) fn cosine_p5() -> Distribution {
+        let grid = GridSpec::uniform(15.0, 5.0).unwrap();
+        let lum = Synth::CosinePower { p: 5.0 }.build(&grid, 1000.0).unwrap();
+        lum.distribution().clone()
+    }
+
     /// Every candidate of every job prints a name that parses back to it.
     #[test]
     fn every_candidate_round_trips_through_its_name() {
-        let grid = GridSpec::uniform(15.0, 5.0).unwrap();
-        let dist = Synth::CosinePower { p: 5.0 }
-            .build(&grid, 1000.0)
-            .unwrap()
-            .distribution()
-            .clone();
+        let dist = cosine_p5();
         let jobs = [
             Job::Compare,
             Job::Tradeoff {
