@@ -40,8 +40,10 @@ pub use texture::PLAN_TEXTURE_FACTORS;
 pub type Visible = (f64, f64, Option<(f64, f64)>);
 
 /// The job asking a registry for its candidate representations, with what
-/// its lists depend on.
+/// its lists depend on. Non-exhaustive: a representation outside this crate
+/// matches the jobs it knows and lists nothing (or its defaults) for others.
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub enum Job<'a> {
     /// `compare`'s default reconstructions.
     Compare,
