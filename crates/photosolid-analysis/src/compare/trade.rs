@@ -13,8 +13,10 @@
 //! [`FRONT_SH_DEGREE`], and on data the same in every C-plane L in
 //! [`ZONAL_FRONT_SH_DEGREES`] ([`crate::reconstruct::sh`], Lanczos-windowed, named
 //! in `window`); mixtures of K cosine-power lobes `lobes:K` for K in
-//! [`LOBE_COUNTS`] and K in [`FRONT_LOBE_COUNTS`] ([`crate::fit::lobes`]).
-//! Errors come from [`compare`](super::compare())
+//! [`LOBE_COUNTS`] and K in [`FRONT_LOBE_COUNTS`] ([`crate::fit::lobes`]);
+//! then the representations on the open trait ([`crate::registry::Representation`]:
+//! the mean profile over C, `c-mean`, where the file stores more than one
+//! plane, then those a caller added to the registry). Errors come from [`compare`](super::compare())
 //! (same metrics, same reference rules); a row is on the Pareto front
 //! (`pareto`) when no other row is at most as costly in time, bytes and
 //! Hausdorff error and cheaper in one, and on the bytes front
@@ -57,8 +59,10 @@ pub fn representations(symmetry: Symmetry, factors: &[u32]) -> Vec<Recon> {
 
 /// The trade table's CPU rows for `file` (its declared symmetry; the extra
 /// zonal `sh:L` rows, [`ZONAL_FRONT_SH_DEGREES`], where every C-plane holds
-/// the same values), then those of the representations added to `registry`
-/// ([`Registry::register`]): its candidates for [`Job::Tradeoff`].
+/// the same values), then those of the representations on the open trait
+/// (the built-in `c-mean` where the file stores more than one plane, then
+/// those added to `registry`, [`Registry::register`]): its candidates for
+/// [`Job::Tradeoff`].
 pub fn representations_of(file: &Distribution, factors: &[u32], registry: &Registry) -> Vec<Recon> {
     registry.candidates(&Job::Tradeoff {
         file,

@@ -3,9 +3,9 @@
 //! Each γ row of the measured grid is averaged over the full circle of C
 //! planes (each plane weighted by the arc it stands for), and the profile is
 //! stored as one column read with the Catmull–Rom filter: a rotationally
-//! symmetric stand-in, as many values as γ rows. Exact for data that is the
-//! same in every plane; for a luminaire whose planes differ its error is that
-//! asymmetry, which the trade table, `plan` and `batch --compact` measure
+//! symmetric stand-in, as many values as γ rows. On data the same in every
+//! plane it equals the Catmull–Rom filter on the measured grid; for a
+//! luminaire whose planes differ its error adds that asymmetry, which the trade table, `plan` and `batch --compact` measure
 //! like any other candidate's. On the GPU (`c-mean+gpu`) the profile
 //! rendered x5 is read by the texture hardware's bilinear filter.
 //!

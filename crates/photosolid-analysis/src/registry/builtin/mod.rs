@@ -152,11 +152,16 @@ pub(crate) fn parse(name: &str) -> Result<Recon, ModelError> {
         .iter()
         .find_map(|family| family.parse(name))
         .unwrap_or_else(|| {
-            let spellings: Vec<String> = BUILTINS.iter().map(|f| f.spelling()).collect();
+            // Every built-in spelling: the typed families', then the open built-ins' names.
+            let open = open();
+            let names = open
+                .iter()
+                .flat_map(|rep| rep.defaults().into_iter().map(|p| rep.name(p)));
+            let spellings: Vec<String> = BUILTINS.iter().map(|f| f.spelling()).chain(names).collect();
             Err(ModelError::Parameter {
                 name: "recon",
                 value: name.to_string(),
-                reason: format!("expected {}", spellings.join(", ")),
+                reason: format!("expected one of: {}", spellings.join(", ")),
             })
         })
 }
@@ -228,7 +233,7 @@ mod tests {
         );
     }
 
-    /// A name no family reads names every family's spelling.
+    /// A name no family reads names every family's spelling and the open built-ins' names.
     #[test]
     fn an_unknown_name_lists_every_spelling() {
         let Err(ModelError::Parameter { reason, .. }) = parse("octahedral:8") else {
@@ -237,5 +242,6 @@ mod tests {
         for family in BUILTINS {
             assert!(reason.contains(&family.spelling()), "{reason}");
         }
+        assert!(reason.contains("c-mean"), "{reason}");
     }
 }

@@ -17,7 +17,7 @@ pub(crate) struct Filters;
 
 impl Builtin for Filters {
     fn spelling(&self) -> String {
-        format!("or a filter ({FILTER_NAMES})")
+        format!("a filter ({FILTER_NAMES})")
     }
 
     fn parse(&self, name: &str) -> Option<Result<Recon, ModelError>> {
